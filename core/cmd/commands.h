@@ -1,0 +1,27 @@
+// The front end's commands. Each returns the process exit status; errors are thrown as
+// InputError (1) or UsageError (2) and reported by main().
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/render/render_job.h"
+
+namespace fb {
+
+struct RenderCommand {
+  std::filesystem::path scene;
+  std::vector<std::filesystem::path> outputs;
+  std::string resolution;  // "WxH"
+  std::string background;  // "r,g,b" or one grey value
+  unsigned threads = 0;    // 0: all cores
+  bool quiet = false;
+  RenderOptions options;
+};
+
+int run_render(RenderCommand& command);
+int run_info(const std::filesystem::path& scene);
+int run_plugins();
+
+}  // namespace fb

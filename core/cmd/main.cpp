@@ -1,0 +1,60 @@
+// filmback's command-line front end: `render`, `info`, `plugins` (docs/cli.md).
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "core/cmd/commands.h"
+#include "core/util/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"filmback: a physically based renderer that keeps the camera of the shot"};
+  app.require_subcommand(1);
+
+  fb::RenderCommand render;
+  CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR and/or PNG");
+  render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb)")->required();
+  render_cmd->add_option("-o,--output", render.outputs, "output image, .exr or .png (repeatable)")->required();
+  render_cmd->add_option("--spp", render.options.samples_per_pixel, "samples per pixel (default 64)")
+      ->check(CLI::Range(1u, 1000000u));
+  render_cmd->add_option("--res", render.resolution, "image size WxH in pixels (default: long side 1280 at the shot's aspect)");
+  render_cmd->add_option("--camera", render.options.camera, "scene camera by name (default: the first in node order)");
+  render_cmd->add_option("--camera-model", render.options.camera_model,
+                         "camera plugin NAME[:k=v,...] (default: perspective or orthographic, as the shot's camera)");
+  render_cmd->add_option("--filter", render.options.filter, "pixel filter NAME[:k=v,...] (default gaussian)");
+  render_cmd->add_option("--integrator", render.options.integrator, "integrator NAME[:k=v,...] (default path)");
+  render_cmd->add_option("--background", render.background, "uniform background radiance: one value or r,g,b (W/sr/m^2)");
+  render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")->check(CLI::Range(0u, 4096u));
+  render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");
+  render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
+
+  std::filesystem::path info_scene;
+  CLI::App* info_cmd = app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
+  info_cmd->add_option("scene", info_scene, "scene file (.gltf, .glb)")->required();
+
+  CLI::App* plugins_cmd = app.add_subcommand("plugins", "list every plugin found, with its parameters");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    return status == 0 ? 0 : 2;
+  }
+  try {
+    if (render_cmd->parsed()) return fb::run_render(render);
+    if (info_cmd->parsed()) return fb::run_info(info_scene);
+    if (plugins_cmd->parsed()) return fb::run_plugins();
+  } catch (const fb::UsageError& e) {
+    std::cerr << "filmback: error: " << e.what() << '\n';
+    return 2;
+  } catch (const fb::InputError& e) {
+    std::cerr << "filmback: error: " << e.what() << '\n';
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "filmback: error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "filmback: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,89 @@
+#include <tbb/global_control.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include "core/cmd/commands.h"
+#include "core/image/image_io.h"
+#include "core/plugin/loader.h"
+#include "core/plugin/params.h"
+#include "core/util/error.h"
+#include "importers/import_scene.h"
+
+namespace fb {
+namespace {
+
+constexpr uint32_t kMaxSidePx = 32768;
+constexpr uint64_t kMaxPixels = uint64_t(1) << 28;  // 268 Mpx: 16K x 16K
+
+uint32_t parse_side(std::string_view text, std::string_view whole) {
+  uint32_t v = 0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || ptr != text.data() + text.size() || v == 0 || v > kMaxSidePx)
+    throw UsageError("--res '" + std::string(whole) + "': expected WxH with each side from 1 to " +
+                     std::to_string(kMaxSidePx) + " pixels");
+  return v;
+}
+
+void parse_resolution(const std::string& text, RenderOptions& options) {
+  const size_t x = text.find('x');
+  if (x == std::string::npos) throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
+  options.width = parse_side(std::string_view(text).substr(0, x), text);
+  options.height = parse_side(std::string_view(text).substr(x + 1), text);
+  if (uint64_t(*options.width) * *options.height > kMaxPixels)
+    throw UsageError("--res '" + text + "': more than " + std::to_string(kMaxPixels) + " pixels");
+}
+
+// Same syntax and checks as an rgb plugin parameter: one grey value, or r,g,b.
+Rgb parse_background(const std::string& text) {
+  const fb_param_desc desc{"background", FB_PARAM_RGB, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL, ""};
+  fb_value value;
+  const std::string bracketed = text.find(',') == std::string::npos ? text : "[" + text + "]";
+  if (std::string expected = parse_param_value(desc, bracketed, value); !expected.empty())
+    throw UsageError("--background '" + text + "': expected " + expected);
+  return Rgb(float(value.number[0]), float(value.number[1]), float(value.number[2]));
+}
+
+}  // namespace
+
+int run_render(RenderCommand& c) {
+  for (const std::filesystem::path& out : c.outputs) {
+    image_format_for(out);
+    const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
+    if (!std::filesystem::is_directory(folder))
+      throw UsageError("output '" + out.string() + "': the folder '" + folder.string() + "' does not exist");
+  }
+  if (!c.resolution.empty()) parse_resolution(c.resolution, c.options);
+  if (!c.background.empty()) c.options.background = parse_background(c.background);
+  c.options.show_progress = !c.quiet;
+
+  Diagnostics diagnostics;
+  const Scene scene = import_scene(c.scene, diagnostics);
+  diagnostics.print(std::cerr);
+
+  std::optional<tbb::global_control> threads;
+  if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
+  const PluginLoader loader(PluginLoader::default_search_dirs());
+  const RenderJob job(scene, c.options, loader);
+  if (!c.quiet) std::cout << job.plan() << std::endl;
+
+  const RenderResult result = job.run();
+  const ImageMetadata metadata = job.metadata(result.stats);
+  for (const std::filesystem::path& out : c.outputs) write_image(result.image, out, metadata);
+
+  const RenderStats& s = result.stats;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "filmback: rendered %ux%u at %u spp in %.2f s: %.2f M samples/s, %.2f M rays/s, "
+                "%llu non-finite samples dropped",
+                job.width(), job.height(), job.samples_per_pixel(), s.seconds,
+                s.samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
+                static_cast<unsigned long long>(s.dropped_samples));
+  std::cout << line << std::endl;
+  return 0;
+}
+
+}  // namespace fb

@@ -1,0 +1,109 @@
+#include "core/image/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// IEC 61966-2-1 sRGB transfer function.
+float srgb_encode(float linear) {
+  const float v = std::clamp(linear, 0.f, 1.f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
+}
+
+OIIO::ImageSpec spec_for(const Image& image, ImageFormat format, const ImageMetadata& metadata) {
+  const int channels = format == ImageFormat::kPng ? 3 : int(image.channels.size());
+  OIIO::ImageSpec spec(int(image.width), int(image.height), channels,
+                       format == ImageFormat::kPng ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  if (format == ImageFormat::kExr) {
+    spec.channelnames = image.channels;
+    spec.attribute("compression", "zip");
+  } else {
+    spec.channelnames = {"R", "G", "B"};
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("filmback/transfer", "sRGB transfer function, values clamped to [0,1], no exposure");
+  }
+  for (const auto& [name, m] : metadata.matrices) {
+    // Imath's M44f multiplies row vectors (p' = p M): store the transpose.
+    std::array<float, 16> imath;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) imath[c * 4 + r] = m[r * 4 + c];
+    spec.attribute(name, OIIO::TypeMatrix44, imath.data());
+  }
+  for (const auto& [name, v] : metadata.floats) spec.attribute(name, v);
+  for (const auto& [name, v] : metadata.ints) spec.attribute(name, v);
+  for (const auto& [name, v] : metadata.strings) spec.attribute(name, v);
+  return spec;
+}
+
+std::vector<float> png_pixels(const Image& image) {
+  std::vector<float> rgb(size_t(image.width) * image.height * 3);
+  const size_t n = image.channels.size();
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
+    for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = srgb_encode(image.pixels[i * n + c]);
+  return rgb;
+}
+
+}  // namespace
+
+ImageFormat image_format_for(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext == ".exr") return ImageFormat::kExr;
+  if (ext == ".png") return ImageFormat::kPng;
+  throw UsageError("output '" + file.string() + "': unknown image type '" + ext +
+                   "' (expected .exr or .png)");
+}
+
+void write_image(const Image& image, const fs::path& file, const ImageMetadata& metadata) {
+  const ImageFormat format = image_format_for(file);
+  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  // Hidden, in the same folder (so rename() is atomic), with the extension OIIO dispatches on.
+  std::string temporary_name = ".";
+  temporary_name += file.stem().string();
+  temporary_name += ".filmback-" + std::to_string(getpid()) + file.extension().string();
+  const fs::path temporary = folder / temporary_name;
+  auto fail = [&](const std::string& why) -> InputError {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    return InputError(located(file.string(), "", "cannot write the image: " + why));
+  };
+
+  auto out = OIIO::ImageOutput::create(file.string());
+  if (!out) throw fail(OIIO::geterror());
+  const OIIO::ImageSpec spec = spec_for(image, format, metadata);
+  if (!out->open(temporary.string(), spec)) throw fail(out->geterror());
+  const bool written = format == ImageFormat::kPng
+                           ? out->write_image(OIIO::TypeDesc::FLOAT, png_pixels(image).data())
+                           : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+  if (!written) {
+    const std::string why = out->geterror();
+    out->close();
+    throw fail(why);
+  }
+  if (!out->close()) throw fail(out->geterror());
+  std::error_code ec;
+  fs::rename(temporary, file, ec);
+  if (ec) throw fail(ec.message());
+}
+
+Image read_image(const fs::path& file) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) throw InputError(located(file.string(), "", "cannot read the image: " + OIIO::geterror()));
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image{uint32_t(spec.width), uint32_t(spec.height), spec.channelnames, {}};
+  image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    throw InputError(located(file.string(), "", "cannot read the image: " + in->geterror()));
+  return image;
+}
+
+}  // namespace fb

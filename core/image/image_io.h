@@ -1,0 +1,36 @@
+// Image files through OpenImageIO. EXR is the master (float, scene-linear Rec.709, camera metadata
+// under OpenEXR's standard names); PNG is a preview (sRGB transfer, clamped, 8 bit). Files are
+// written to a temporary name in the target folder and renamed, so a failure never leaves a
+// broken image behind.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image/image.h"
+
+namespace fb {
+
+enum class ImageFormat { kExr, kPng };
+
+struct ImageMetadata {
+  using Matrix = std::array<float, 16>;  // row-major, column vectors: p' = M p
+  std::vector<std::pair<std::string, Matrix>> matrices;
+  std::vector<std::pair<std::string, float>> floats;
+  std::vector<std::pair<std::string, int>> ints;
+  std::vector<std::pair<std::string, std::string>> strings;
+};
+
+// Throws UsageError for an extension other than .exr or .png.
+ImageFormat image_format_for(const std::filesystem::path& file);
+
+// Throws InputError naming the file when it cannot be written; nothing is left behind then.
+void write_image(const Image& image, const std::filesystem::path& file, const ImageMetadata& metadata);
+
+// Throws InputError naming the file.
+Image read_image(const std::filesystem::path& file);
+
+}  // namespace fb

@@ -1,0 +1,48 @@
+#include "core/plugin/instances.h"
+
+#include "core/util/error.h"
+
+namespace fb {
+
+void PluginInstance::fail(const char* reason) const {
+  throw InputError(located(library_->file().string(), "",
+                           std::string(kind_name(library_->descriptor().kind)) + " '" +
+                               library_->descriptor().name + "' refused to start: " +
+                               (*reason ? reason : "no reason given")));
+}
+
+CameraInstance::CameraInstance(std::shared_ptr<const PluginLibrary> library,
+                               const BoundParams& params, const fb_camera_setup& setup)
+    : PluginInstance(library, library->api<fb_camera_api>().destroy,
+                     [&](void** out, fb_error_buffer error) {
+                       return library->api<fb_camera_api>().create(params.data(), &setup, out, error);
+                     }),
+      api_(library->api<fb_camera_api>()) {}
+
+FilterInstance::FilterInstance(std::shared_ptr<const PluginLibrary> library, const BoundParams& params)
+    : PluginInstance(library, library->api<fb_filter_api>().destroy,
+                     [&](void** out, fb_error_buffer error) {
+                       return library->api<fb_filter_api>().create(params.data(), out, error);
+                     }),
+      api_(library->api<fb_filter_api>()) {}
+
+IntegratorInstance::IntegratorInstance(std::shared_ptr<const PluginLibrary> library,
+                                       const BoundParams& params)
+    : PluginInstance(library, library->api<fb_integrator_api>().destroy,
+                     [&](void** out, fb_error_buffer error) {
+                       return library->api<fb_integrator_api>().create(params.data(), out, error);
+                     }),
+      api_(library->api<fb_integrator_api>()) {
+  const char* names[FB_MAX_CHANNELS] = {};
+  const uint32_t count = api_.channels(instance(), names, FB_MAX_CHANNELS);
+  for (uint32_t i = 0; i < count && i < FB_MAX_CHANNELS; ++i) {
+    if (!names[i]) throw InputError(located(library->file().string(), "", "channel " + std::to_string(i) + " has no name"));
+    channels_.emplace_back(names[i]);
+  }
+  if (channels_.size() < 3)
+    throw InputError(located(library->file().string(), "",
+                             "integrator declares " + std::to_string(channels_.size()) +
+                                 " channels, expected at least 3 (the colour)"));
+}
+
+}  // namespace fb

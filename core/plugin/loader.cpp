@@ -1,0 +1,240 @@
+#include "core/plugin/loader.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+
+#include "core/plugin/params.h"
+#include "core/util/error.h"
+
+#ifndef FILMBACK_INSTALL_PLUGIN_DIR
+#define FILMBACK_INSTALL_PLUGIN_DIR "/usr/local/lib/filmback/plugins"
+#endif
+
+namespace fb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The function-table entries each kind must fill, by name, for the "incomplete plugin" message.
+struct RequiredFunctions {
+  size_t api_size;
+  std::vector<std::pair<const char*, const void*>> functions;
+};
+
+RequiredFunctions required_functions(const fb_plugin& p) {
+  switch (p.kind) {
+    case FB_KIND_CAMERA: {
+      const auto* a = static_cast<const fb_camera_api*>(p.api);
+      return {sizeof(*a), {{"create", (const void*)a->create}, {"destroy", (const void*)a->destroy},
+                           {"needs", (const void*)a->needs},
+                           {"generate_rays", (const void*)a->generate_rays}}};
+    }
+    case FB_KIND_FILTER: {
+      const auto* a = static_cast<const fb_filter_api*>(p.api);
+      return {sizeof(*a), {{"create", (const void*)a->create}, {"destroy", (const void*)a->destroy},
+                           {"radius", (const void*)a->radius}, {"evaluate", (const void*)a->evaluate},
+                           {"integral", (const void*)a->integral}, {"sample", (const void*)a->sample}}};
+    }
+    default: {
+      const auto* a = static_cast<const fb_integrator_api*>(p.api);
+      return {sizeof(*a), {{"create", (const void*)a->create}, {"destroy", (const void*)a->destroy},
+                           {"channels", (const void*)a->channels},
+                           {"radiance", (const void*)a->radiance}}};
+    }
+  }
+}
+
+bool is_plugin_name(const char* name) {
+  if (!name || !*name) return false;
+  for (const char* c = name; *c; ++c)
+    if (!(std::islower(static_cast<unsigned char>(*c)) || std::isdigit(static_cast<unsigned char>(*c)) ||
+          *c == '_'))
+      return false;
+  return true;
+}
+
+// Everything the descriptor promises, checked in the order the handshake allows reading it.
+std::string check_descriptor(const fb_plugin* p) {
+  if (!p) return "not a filmback plugin: its " FB_ENTRY_POINT "() returned no descriptor";
+  if (p->abi_version != FB_ABI_VERSION)
+    return "ABI version mismatch: the plugin was built for plugin ABI " +
+           std::to_string(p->abi_version) + ", this filmback speaks " +
+           std::to_string(FB_ABI_VERSION) + " (rebuild it against this SDK)";
+  if (p->struct_size != sizeof(fb_plugin))
+    return "descriptor size mismatch: the plugin's fb_plugin is " + std::to_string(p->struct_size) +
+           " bytes, this filmback's is " + std::to_string(sizeof(fb_plugin)) +
+           " (rebuild it against this SDK)";
+  if (p->kind < FB_KIND_CAMERA || p->kind > FB_KIND_INTEGRATOR)
+    return "unknown plugin kind " + std::to_string(p->kind) +
+           " (expected camera, filter or integrator)";
+  if (!is_plugin_name(p->name))
+    return "invalid plugin name (expected lower-case letters, digits and '_')";
+  if (!p->version || !p->summary) return "descriptor lacks a version or a summary";
+  if (p->param_count > 0 && !p->params) return "descriptor declares parameters but lists none";
+  for (uint32_t i = 0; i < p->param_count; ++i) {
+    const fb_param_desc& d = p->params[i];
+    if (!d.name || !d.default_value || !d.unit || !d.doc)
+      return "parameter " + std::to_string(i) + " lacks a name, default, unit or doc";
+    fb_value value;
+    if (std::string expected = parse_param_value(d, d.default_value, value); !expected.empty())
+      return std::string("parameter '") + d.name + "' has default '" + d.default_value +
+             "', expected " + expected;
+  }
+  if (!p->api) return std::string("incomplete plugin: no ") + kind_name(p->kind) + " function table";
+  const RequiredFunctions required = required_functions(*p);
+  const uint32_t api_size = *static_cast<const uint32_t*>(p->api);
+  if (api_size != required.api_size)
+    return std::string(kind_name(p->kind)) + " function table size mismatch: the plugin's is " +
+           std::to_string(api_size) + " bytes, this filmback's is " +
+           std::to_string(required.api_size) + " (rebuild it against this SDK)";
+  for (const auto& [name, function] : required.functions)
+    if (!function)
+      return std::string("incomplete plugin: its ") + kind_name(p->kind) +
+             " function table lacks '" + name + "'";
+  return {};
+}
+
+std::vector<fs::path> directories_with(const std::vector<fs::path>& dirs, const std::string& file) {
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (const fs::path& dir : dirs)
+    if (fs::is_regular_file(dir / file, ec)) found.push_back(dir / file);
+  return found;
+}
+
+}  // namespace
+
+const char* kind_name(uint32_t kind) {
+  switch (kind) {
+    case FB_KIND_CAMERA: return "camera";
+    case FB_KIND_FILTER: return "filter";
+    case FB_KIND_INTEGRATOR: return "integrator";
+  }
+  return "unknown";
+}
+
+std::string plugin_file_name(uint32_t kind, std::string_view name) {
+  return "libfilmback_" + std::string(kind_name(kind)) + "_" + std::string(name) + ".so";
+}
+
+PluginLibrary::PluginLibrary(const fs::path& file) : file_(file) {
+  auto fail = [&](const std::string& reason) -> InputError {
+    return InputError(located(file.string(), "", reason));
+  };
+  // RTLD_NOW: an unresolved symbol is reported here, naming the file, not mid-render.
+  handle_ = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle_) {
+    const std::string why = dlerror();
+    const size_t at = why.find("undefined symbol: ");
+    if (at != std::string::npos)
+      throw fail("missing symbol: " + why.substr(at + 18) + " (the plugin needs a symbol nothing provides)");
+    throw fail("not a filmback plugin: cannot load it as a shared library (" + why + ")");
+  }
+  auto entry = reinterpret_cast<fb_entry_point_fn>(dlsym(handle_, FB_ENTRY_POINT));
+  if (entry) descriptor_ = entry();
+  const std::string problem =
+      entry ? check_descriptor(descriptor_)
+            : "not a filmback plugin: it has no " FB_ENTRY_POINT " entry point";
+  if (problem.empty()) return;
+  dlclose(handle_);
+  throw fail(problem);
+}
+
+PluginLibrary::~PluginLibrary() {
+  if (handle_) dlclose(handle_);
+}
+
+PluginLoader::PluginLoader(std::vector<fs::path> search_dirs) : search_dirs_(std::move(search_dirs)) {}
+
+std::vector<fs::path> PluginLoader::default_search_dirs() {
+  std::vector<fs::path> dirs;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path beside = ec ? fs::path() : exe.parent_path().parent_path() / "lib/filmback/plugins";
+  if (!beside.empty() && fs::is_directory(beside, ec))
+    dirs.push_back(beside);
+  else
+    dirs.emplace_back(FILMBACK_INSTALL_PLUGIN_DIR);
+  if (const char* env = std::getenv("FILMBACK_PLUGIN_PATH")) {
+    std::string_view rest = env;
+    while (!rest.empty()) {
+      const size_t colon = rest.find(':');
+      if (colon != 0) dirs.emplace_back(std::string(rest.substr(0, colon)));
+      if (colon == std::string_view::npos) break;
+      rest.remove_prefix(colon + 1);
+    }
+  }
+  return dirs;
+}
+
+std::shared_ptr<const PluginLibrary> PluginLoader::load(uint32_t kind, std::string_view name) const {
+  const std::string file = plugin_file_name(kind, name);
+  const std::vector<fs::path> found = directories_with(search_dirs_, file);
+  if (found.empty()) {
+    std::string where;
+    for (const fs::path& dir : search_dirs_) where += (where.empty() ? "" : ", ") + dir.string();
+    throw UsageError("unknown " + std::string(kind_name(kind)) + " plugin '" + std::string(name) +
+                     "': no " + file + " in " + where + " (`filmback plugins` lists what exists)");
+  }
+  if (found.size() > 1)
+    throw InputError("duplicate plugin name: " + std::string(kind_name(kind)) + " '" +
+                     std::string(name) + "' is provided by " + found[0].string() + " and by " +
+                     found[1].string());
+  auto library = std::make_shared<const PluginLibrary>(found[0]);
+  const fb_plugin& d = library->descriptor();
+  if (d.kind != kind)
+    throw InputError(located(found[0].string(), "",
+                             std::string("wrong kind: the plugin declares itself a ") +
+                                 kind_name(d.kind) + ", expected a " + kind_name(kind)));
+  if (name != d.name)
+    throw InputError(located(found[0].string(), "",
+                             "name mismatch: the plugin declares the name '" + std::string(d.name) +
+                                 "', its file name says '" + std::string(name) + "'"));
+  return library;
+}
+
+PluginLoader::Scan PluginLoader::load_all() const {
+  Scan scan;
+  std::map<std::pair<uint32_t, std::string>, fs::path> seen;
+  for (const fs::path& dir : search_dirs_) {
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      const std::string filename = entry.path().filename().string();
+      if (filename.starts_with("libfilmback_") && filename.ends_with(".so")) files.push_back(entry.path());
+    }
+    std::sort(files.begin(), files.end());
+    for (const fs::path& file : files) {
+      try {
+        auto library = std::make_shared<const PluginLibrary>(file);
+        const fb_plugin& d = library->descriptor();
+        if (file.filename() != plugin_file_name(d.kind, d.name)) {
+          scan.errors.push_back(located(file.string(), "",
+                                        "name mismatch: the plugin declares " + std::string(kind_name(d.kind)) +
+                                            " '" + d.name + "', so its file must be named " +
+                                            plugin_file_name(d.kind, d.name)));
+          continue;
+        }
+        const auto [it, fresh] = seen.emplace(std::pair{d.kind, std::string(d.name)}, file);
+        if (!fresh) {
+          scan.errors.push_back("duplicate plugin name: " + std::string(kind_name(d.kind)) + " '" +
+                                d.name + "' is provided by " + it->second.string() + " and by " +
+                                file.string());
+          continue;
+        }
+        scan.plugins.push_back(std::move(library));
+      } catch (const InputError& e) {
+        scan.errors.push_back(e.what());
+      }
+    }
+  }
+  return scan;
+}
+
+}  // namespace fb

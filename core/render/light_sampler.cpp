@@ -1,0 +1,128 @@
+#include "core/render/light_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <filmback/sampling.h>
+
+namespace fb {
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+// KHR_lights_punctual's recommended spot falloff: a smooth ramp in cos(angle) between the cones.
+float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
+  const float scale = 1.f / std::max(0.001f, cos_inner - cos_outer);
+  const float t = std::clamp((cos_angle - cos_outer) * scale, 0.f, 1.f);
+  return t * t;
+}
+
+}  // namespace
+
+LightSampler::LightSampler(const Scene& scene, const Transform& render_from_world,
+                           const RenderGeometry& geometry)
+    : emitters_(geometry.emitters()), materials_(scene.materials) {
+  std::vector<double> power;
+  const double scene_radius = std::max(geometry.bounds_radius(), 1e-3f);
+  for (const Light& light : scene.lights) {
+    const Transform render_from_light = render_from_world * light.world_from_light;
+    Punctual p{light.type, Vec3f(render_from_light.point({0, 0, 0})),
+               Vec3f(normalize(render_from_light.vector({0, 0, -1}))), light.intensity,
+               float(std::cos(light.spot_inner_angle_rad)), float(std::cos(light.spot_outer_angle_rad))};
+    const double lum = luminance(light.intensity);
+    switch (light.type) {
+      case LightType::kPoint: power.push_back(4 * kPi * lum); break;
+      case LightType::kSpot:
+        power.push_back(2 * kPi * (1 - 0.5 * (p.cos_inner + p.cos_outer)) * lum);
+        break;
+      case LightType::kDirectional:
+        p.axis = -p.axis;
+        power.push_back(kPi * scene_radius * scene_radius * lum);
+        break;
+    }
+    punctual_.push_back(p);
+  }
+  for (const EmissiveTriangle& e : emitters_) {
+    const Material& m = materials_[e.material];
+    power.push_back(kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
+  }
+  double total = 0;
+  for (double p : power) total += std::max(p, 0.0);
+  if (!(total > 0)) return;  // no light carries energy: sample() always fails
+  cdf_.push_back(0);
+  for (double p : power) {
+    pmf_.push_back(float(std::max(p, 0.0) / total));
+    cdf_.push_back(cdf_.back() + std::max(p, 0.0) / total);
+  }
+}
+
+bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out) const {
+  if (pmf_.empty()) return false;
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), double(u[0]));
+  size_t index = std::min<size_t>(std::max<ptrdiff_t>(it - cdf_.begin() - 1, 0), pmf_.size() - 1);
+  while (pmf_[index] == 0.f && index > 0) --index;  // u landed on an empty interval's edge
+  if (pmf_[index] == 0.f) return false;
+  const bool ok = index < punctual_.size()
+                      ? sample_punctual(punctual_[index], position, out)
+                      : sample_triangle(uint32_t(index - punctual_.size()), position, u + 1, out);
+  out.pdf *= pmf_[index];
+  return ok;
+}
+
+bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, fb_light_sample& out) const {
+  out.is_delta = 1;
+  out.pdf = 1.f;
+  if (light.type == LightType::kDirectional) {
+    light.axis.store(out.direction);
+    light.intensity.store(out.radiance);  // irradiance E, W/m^2
+    out.distance = HUGE_VALF;
+    return max_component(light.intensity) > 0.f;
+  }
+  const Vec3f d = light.position - position;
+  const float distance2 = dot(d, d);
+  if (!(distance2 > 0.f)) return false;
+  out.distance = std::sqrt(distance2);
+  const Vec3f wi = d / out.distance;
+  wi.store(out.direction);
+  float scale = 1.f / distance2;  // I / d^2
+  if (light.type == LightType::kSpot)
+    scale *= spot_falloff(dot(light.axis, -wi), light.cos_inner, light.cos_outer);
+  (light.intensity * scale).store(out.radiance);
+  return scale > 0.f;
+}
+
+bool LightSampler::sample_triangle(uint32_t index, Vec3f position, const float u[2],
+                                   fb_light_sample& out) const {
+  const EmissiveTriangle& e = emitters_[index];
+  const Material& m = materials_[e.material];
+  const Vec2f b = sample_uniform_triangle({u[0], u[1]});
+  const Vec3f q = e.p0 * b.x + e.p1 * b.y + e.p2 * (1.f - b.x - b.y);
+  const Vec3f d = q - position;
+  const float distance2 = dot(d, d);
+  if (!(distance2 > 0.f) || !(e.area > 0.f)) return false;
+  out.distance = std::sqrt(distance2);
+  const Vec3f wi = d / out.distance;
+  float cos_light = -dot(e.normal, wi);
+  if (m.double_sided) cos_light = std::abs(cos_light);
+  if (!(cos_light > 0.f)) return false;
+  wi.store(out.direction);
+  m.emission.store(out.radiance);
+  // area measure to solid angle: pdf_w = pdf_A d^2 / cos(theta_light)
+  out.pdf = distance2 / (cos_light * e.area);
+  out.is_delta = 0;
+  return true;
+}
+
+float LightSampler::pdf(Vec3f position, const fb_hit& hit) const {
+  if (hit.emitter == FB_NONE || pmf_.empty()) return 0.f;
+  const EmissiveTriangle& e = emitters_[hit.emitter];
+  const Vec3f d = Vec3f(hit.position) - position;
+  const float distance2 = dot(d, d);
+  float cos_light = -dot(e.normal, d) / std::sqrt(distance2);
+  if (materials_[e.material].double_sided) cos_light = std::abs(cos_light);
+  if (!(cos_light > 0.f) || !(e.area > 0.f)) return 0.f;
+  return pmf_[punctual_.size() + hit.emitter] * distance2 / (cos_light * e.area);
+}
+
+}  // namespace fb

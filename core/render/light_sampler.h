@@ -1,0 +1,41 @@
+// Next-event estimation's half of the lights: picks a light in proportion to its estimated power
+// (punctual lights and emissive triangles alike) and a point on it (pbrt 4e §12.6, power sampling).
+#pragma once
+
+#include <vector>
+
+#include <filmback/plugin_abi.h>
+#include <filmback/vec.h>
+
+#include "core/accel/render_geometry.h"
+#include "core/math/transform.h"
+#include "core/scene/scene.h"
+
+namespace fb {
+
+class LightSampler {
+ public:
+  LightSampler(const Scene& scene, const Transform& render_from_world, const RenderGeometry& geometry);
+  bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
+  float pdf(Vec3f position, const fb_hit& emitter_hit) const;
+  size_t light_count() const { return pmf_.size(); }
+
+ private:
+  struct Punctual {
+    LightType type;
+    Vec3f position;  // point, spot
+    Vec3f axis;      // spot: where it shines; directional: towards the light
+    Rgb intensity;
+    float cos_inner, cos_outer;
+  };
+  bool sample_punctual(const Punctual& light, Vec3f position, fb_light_sample& out) const;
+  bool sample_triangle(uint32_t index, Vec3f position, const float u[2], fb_light_sample& out) const;
+
+  std::vector<Punctual> punctual_;
+  const std::vector<EmissiveTriangle>& emitters_;  // light index punctual_.size() + i
+  const std::vector<Material>& materials_;
+  std::vector<float> pmf_;
+  std::vector<double> cdf_;
+};
+
+}  // namespace fb

@@ -1,0 +1,181 @@
+#include "core/render/render_job.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include <filmback/camera_projection.h>
+
+#include "core/accel/render_geometry.h"
+#include "core/plugin/instances.h"
+#include "core/plugin/params.h"
+#include "core/render/light_sampler.h"
+#include "core/render/trace_context.h"
+#include "core/scene/default_camera.h"
+#include "core/util/error.h"
+
+namespace fb {
+
+struct RenderJob::Plugins {
+  Transform render_from_world;
+  std::unique_ptr<CameraInstance> camera;
+  std::unique_ptr<FilterInstance> filter;
+  std::unique_ptr<IntegratorInstance> integrator;
+  std::string filter_text, integrator_text;
+  std::unique_ptr<RenderGeometry> geometry;
+  std::unique_ptr<LightSampler> lights;
+  std::vector<fb_material> materials;
+  fb_scene scene{};
+};
+
+namespace {
+
+SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name) {
+  if (!name) return scene.cameras.empty() ? frame_bounds(scene.world_bounds()) : scene.cameras.front();
+  for (const SceneCamera& camera : scene.cameras)
+    if (camera.name == *name) return camera;
+  std::string known;
+  for (const SceneCamera& camera : scene.cameras) known += (known.empty() ? "" : ", ") + camera.name;
+  throw UsageError("--camera '" + *name + "': the scene has no camera of that name (" +
+                   (known.empty() ? "it has no camera at all" : "it has: " + known) + ")");
+}
+
+
+ImageMetadata::Matrix to_float_matrix(const Transform& t) {
+  ImageMetadata::Matrix m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m[r * 4 + c] = float(t(r, c));
+  return m;
+}
+
+// OpenEXR's NDC: (0,0) at the top-left corner of the image, (1,1) at the bottom-right.
+Transform ndc_from_camera(const fb_camera_setup& setup) {
+  const ViewPlane v = view_plane(setup);
+  const double w = setup.image_width_px, h = setup.image_height_px;
+  if (setup.projection == FB_PROJECTION_ORTHOGRAPHIC)
+    return Transform::from_rows({v.fx / w, 0, 0, v.cx / w,  //
+                                 0, -v.fy / h, 0, v.cy / h,  //
+                                 0, 0, 1, 0,                 //
+                                 0, 0, 0, 1});
+  // x_ndc = (cx + fx X / -Z) / w, with the division by -Z done by the homogeneous w
+  return Transform::from_rows({v.fx / w, 0, -v.cx / w, 0,   //
+                               0, -v.fy / h, -v.cy / h, 0,  //
+                               0, 0, -1, 0,                 //
+                               0, 0, -1, 0});
+}
+
+}  // namespace
+
+std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
+  const double aspect = camera.intended_aspect.value_or(16.0 / 9.0);
+  if (aspect >= 1.0)
+    return {kDefaultLongSidePx, std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx / aspect)))};
+  return {std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx * aspect))), kDefaultLongSidePx};
+}
+
+RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader)
+    : scene_(scene), options_(options), plugins_(std::make_unique<Plugins>()) {
+  camera_ = choose_camera(scene, options.camera);
+  if (options.width.has_value() != options.height.has_value())
+    throw UsageError("--res: give both width and height");
+  std::tie(width_, height_) =
+      options.width ? std::pair{*options.width, *options.height} : default_resolution(camera_);
+  spp_ = options.samples_per_pixel.value_or(kDefaultSamplesPerPixel);
+
+  Plugins& p = *plugins_;
+  const bool orthographic = camera_.physical.projection == FB_PROJECTION_ORTHOGRAPHIC;
+  const PluginSpec camera_spec = parse_plugin_spec(
+      options.camera_model.value_or(orthographic ? "orthographic" : "perspective"), "--camera-model");
+  const PluginSpec filter_spec = parse_plugin_spec(options.filter.value_or(kDefaultFilter), "--filter");
+  const PluginSpec integrator_spec =
+      parse_plugin_spec(options.integrator.value_or(kDefaultIntegrator), "--integrator");
+  p.filter_text = options.filter.value_or(kDefaultFilter);
+  p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
+
+  auto camera_library = loader.load(FB_KIND_CAMERA, camera_spec.name);
+  auto filter_library = loader.load(FB_KIND_FILTER, filter_spec.name);
+  auto integrator_library = loader.load(FB_KIND_INTEGRATOR, integrator_spec.name);
+  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
+  p.camera = std::make_unique<CameraInstance>(
+      camera_library, BoundParams(camera_library->descriptor(), camera_spec.settings), setup);
+  p.filter = std::make_unique<FilterInstance>(
+      filter_library, BoundParams(filter_library->descriptor(), filter_spec.settings));
+  p.integrator = std::make_unique<IntegratorInstance>(
+      integrator_library, BoundParams(integrator_library->descriptor(), integrator_spec.settings));
+
+  // Render space: world translated so the camera is at the origin; only this is narrowed to float.
+  p.render_from_world = Transform::translate(-camera_.world_from_camera.translation());
+  p.geometry = std::make_unique<RenderGeometry>(scene, p.render_from_world);
+  p.lights = std::make_unique<LightSampler>(scene, p.render_from_world, *p.geometry);
+  for (const Material& m : scene.materials) {
+    fb_material fm{};
+    m.base_color.store(fm.base_color);
+    m.emission.store(fm.emission);
+    fm.double_sided = m.double_sided;
+    p.materials.push_back(fm);
+  }
+  p.scene.struct_size = sizeof(fb_scene);
+  p.scene.api = &host_scene_api();
+  p.scene.materials = p.materials.data();
+  p.scene.material_count = uint32_t(p.materials.size());
+  options.background.value_or(scene.background).store(p.scene.background);
+  p.scene.scene_radius_m = length(p.geometry->bounds_centre()) + p.geometry->bounds_radius();
+  Vec3f(normalize(camera_.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
+
+  const uint32_t needs = p.camera->needs();
+  camera_reason_ = (needs & FB_CAMERA_NEEDS_LENS) ? "with lens samples" : "pinhole: no lens samples";
+}
+
+RenderJob::~RenderJob() = default;
+
+std::string RenderJob::plan() const {
+  std::ostringstream out;
+  out << "filmback: camera '" << camera_.name << "' (" << camera_.source << ") through "
+      << plugins_->camera->name() << " (" << camera_reason_ << "), " << width_ << "x" << height_
+      << ", " << spp_ << " spp, filter " << plugins_->filter_text << ", integrator "
+      << plugins_->integrator_text << "; static scene: no time samples; "
+      << plugins_->geometry->triangle_count() << " triangles, " << plugins_->lights->light_count()
+      << " lights";
+  return out.str();
+}
+
+RenderResult RenderJob::run() const {
+  const Plugins& p = *plugins_;
+  Film film(width_, height_, p.integrator->channels());
+  const RenderInputs inputs{*p.camera,   *p.filter, *p.integrator, *p.geometry, *p.lights, p.scene,
+                            camera_.world_from_camera.without_scale_and_translation(), spp_,
+                            options_.seed};
+  std::optional<Progress> progress;
+  if (options_.show_progress) progress.emplace(tile_count(width_, height_), std::cerr, stderr_is_terminal());
+  RenderStats stats = render_image(inputs, film, progress ? &*progress : nullptr);
+  progress.reset();
+  return {film.resolve(), stats};
+}
+
+ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
+  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
+  const Transform camera_from_world = camera_.world_from_camera.inverse();
+  ImageMetadata m;
+  m.matrices = {{"worldToCamera", to_float_matrix(camera_from_world)},
+                {"worldToNDC", to_float_matrix(ndc_from_camera(setup) * camera_from_world)}};
+  if (setup.projection == FB_PROJECTION_PERSPECTIVE)
+    m.floats.push_back({"filmback/focal_length_mm", float(setup.focal_length_mm)});
+  m.floats.insert(m.floats.end(), {{"filmback/sensor_width_mm", float(setup.sensor_width_mm)},
+                                   {"filmback/sensor_height_mm", float(setup.sensor_height_mm)},
+                                   {"filmback/shift_x", float(setup.shift_x)},
+                                   {"filmback/shift_y", float(setup.shift_y)},
+                                   {"filmback/render_seconds", float(stats.seconds)}});
+  m.ints = {{"filmback/samples_per_pixel", int(spp_)},
+            {"filmback/dropped_samples", int(std::min<uint64_t>(stats.dropped_samples, INT32_MAX))}};
+  m.strings = {{"Software", "filmback"},
+               {"filmback/scene", scene_.file.filename().string()},
+               {"filmback/camera", camera_.name},
+               {"filmback/sensor_fit", sensor_fit_name(setup.sensor_fit)},
+               {"filmback/camera_model", plugins_->camera->name()},
+               {"filmback/filter", plugins_->filter_text},
+               {"filmback/integrator", plugins_->integrator_text}};
+  return m;
+}
+
+}  // namespace fb

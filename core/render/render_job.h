@@ -1,0 +1,72 @@
+// A RenderJob decides what a scene needs and nothing more, loads just those plugins, and runs
+// the render loop. Everything that can fail on bad input fails in the constructor, before any
+// pixel is traced and before any output file exists.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <filmback/vec.h>
+
+#include "core/image/image.h"
+#include "core/image/image_io.h"
+#include "core/plugin/loader.h"
+#include "core/render/render_loop.h"
+#include "core/scene/scene.h"
+
+namespace fb {
+
+struct RenderOptions {
+  std::optional<uint32_t> width, height;  // both or neither
+  std::optional<uint32_t> samples_per_pixel;
+  std::optional<std::string> camera;        // a scene camera by name
+  std::optional<std::string> camera_model;  // "NAME[:k=v,...]": overrides the projection's plugin
+  std::optional<std::string> filter;        // "NAME[:k=v,...]"
+  std::optional<std::string> integrator;    // "NAME[:k=v,...]"
+  std::optional<Rgb> background;
+  uint64_t seed = 0;
+  bool show_progress = true;
+};
+
+// Documented defaults (docs/cli.md).
+constexpr uint32_t kDefaultLongSidePx = 1280;
+constexpr uint32_t kDefaultSamplesPerPixel = 64;
+constexpr const char* kDefaultFilter = "gaussian";
+constexpr const char* kDefaultIntegrator = "path";
+
+// The image size a render gets without --res: the long side kDefaultLongSidePx at the shot's
+// intended aspect (16:9 when the scene does not say).
+std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera);
+
+struct RenderResult {
+  Image image;
+  RenderStats stats;
+};
+
+class RenderJob {
+ public:
+  RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader);
+  ~RenderJob();
+
+  std::string plan() const;  // one line: what was chosen and why
+  RenderResult run() const;
+  ImageMetadata metadata(const RenderStats& stats) const;
+
+  const SceneCamera& camera() const { return camera_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  uint32_t samples_per_pixel() const { return spp_; }
+
+ private:
+  struct Plugins;
+  const Scene& scene_;
+  RenderOptions options_;
+  SceneCamera camera_;
+  uint32_t width_ = 0, height_ = 0, spp_ = 0;
+  std::string camera_reason_;
+  std::unique_ptr<Plugins> plugins_;
+};
+
+}  // namespace fb

@@ -1,0 +1,155 @@
+#include "core/render/render_loop.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include <atomic>
+#include <chrono>
+#include <vector>
+
+#include "core/render/sampler.h"
+#include "core/render/trace_context.h"
+
+namespace fb {
+namespace {
+
+// Rotation part in float: render space only differs from camera space by orientation.
+struct Rotation {
+  float m[3][3];
+  explicit Rotation(const Transform& t) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = float(t(r, c));
+  }
+  void apply(const float v[3], float out[3]) const {
+    for (int r = 0; r < 3; ++r) out[r] = m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2];
+  }
+};
+
+struct TileWork {
+  std::vector<uint32_t> px, py;
+  std::vector<float> filter_u;
+  std::vector<fb_filter_sample> filter_samples;
+  std::vector<fb_camera_sample> camera_samples;
+  std::vector<fb_camera_ray> camera_rays;
+  std::vector<fb_ray> rays;
+  std::vector<float> values;
+};
+
+class TileRenderer {
+ public:
+  TileRenderer(const RenderInputs& in, Film& film)
+      : in_(in),
+        film_(film),
+        sampler_(in.seed),
+        rotation_(in.render_from_camera),
+        channels_(in.integrator.channels().size()),
+        needs_(in.camera.needs()) {}
+
+  void render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, RenderStats& stats) const {
+    TileWork w;
+    for (uint32_t y = y0; y < y1; ++y)
+      for (uint32_t x = x0; x < x1; ++x) w.px.push_back(x), w.py.push_back(y);
+    const size_t n = w.px.size();
+    w.filter_u.resize(2 * n);
+    w.filter_samples.resize(n);
+    w.camera_samples.resize(n);
+    w.camera_rays.resize(n);
+    w.rays.resize(n);
+    w.values.resize(n * channels_);
+    fb_trace_context context;
+    context.geometry = &in_.geometry;
+    context.lights = &in_.lights;
+    context.sampler = &sampler_;
+    context.paths.resize(n);
+
+    for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
+      for (size_t i = 0; i < n; ++i) {
+        const SampleKey key{w.px[i], w.py[i], s, kFilterDimension};
+        w.filter_u[2 * i] = sampler_.get(key);
+        w.filter_u[2 * i + 1] = sampler_.get({key.pixel_x, key.pixel_y, s, kFilterDimension + 1});
+        context.paths[i] = {key.pixel_x, key.pixel_y, s, kIntegratorDimension};
+      }
+      in_.filter.sample(w.filter_u, w.filter_samples.data());
+      for (size_t i = 0; i < n; ++i) {
+        fb_camera_sample& c = w.camera_samples[i];
+        c = {};
+        c.film_x = float(w.px[i]) + 0.5f + w.filter_samples[i].x;
+        c.film_y = float(w.py[i]) + 0.5f + w.filter_samples[i].y;
+        if (needs_ & FB_CAMERA_NEEDS_LENS) {
+          c.lens_u = sampler_.get({w.px[i], w.py[i], s, kLensDimension});
+          c.lens_v = sampler_.get({w.px[i], w.py[i], s, kLensDimension + 1});
+        }
+      }
+      in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
+      for (size_t i = 0; i < n; ++i) {
+        const fb_camera_ray& c = w.camera_rays[i];
+        fb_ray& r = w.rays[i];
+        rotation_.apply(c.origin, r.origin);  // the camera sits at the render-space origin
+        rotation_.apply(c.direction, r.direction);
+        r.t_min = c.t_min;
+        r.t_max = c.weight > 0.f ? c.t_max : -1.f;  // an empty interval: the integrator sees a miss
+        r.time_s = w.camera_samples[i].time_s;
+      }
+      in_.integrator.radiance(in_.scene, &context, w.rays, w.values.data());
+      for (size_t i = 0; i < n; ++i) {
+        float* v = &w.values[i * channels_];
+        const float camera_weight = w.camera_rays[i].weight;
+        for (size_t c = 0; c < channels_; ++c) v[c] = camera_weight > 0.f ? v[c] * camera_weight : 0.f;
+        if (!film_.add(w.px[i], w.py[i], v, w.filter_samples[i].weight)) ++stats.dropped_samples;
+      }
+      stats.samples += n;
+    }
+    stats.rays += context.rays_traced;
+  }
+
+ private:
+  const RenderInputs& in_;
+  Film& film_;
+  IndependentSampler sampler_;
+  Rotation rotation_;
+  size_t channels_;
+  uint32_t needs_;
+};
+
+}  // namespace
+
+uint64_t tile_count(uint32_t width, uint32_t height) {
+  return uint64_t((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
+}
+
+RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progress) {
+  const uint32_t tiles_x = (film.width() + kTileSize - 1) / kTileSize;
+  const uint64_t tiles = tile_count(film.width(), film.height());
+  const TileRenderer renderer(inputs, film);
+  std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
+  const auto start = std::chrono::steady_clock::now();
+  tbb::parallel_for(
+      tbb::blocked_range<uint64_t>(0, tiles, 1),
+      [&](const tbb::blocked_range<uint64_t>& range) {
+        // Embree wants denormals flushed in every thread that traces.
+        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+        for (uint64_t tile = range.begin(); tile != range.end(); ++tile) {
+          const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize;
+          const uint32_t y0 = uint32_t(tile / tiles_x) * kTileSize;
+          RenderStats local;
+          renderer.render_tile(x0, y0, std::min(x0 + kTileSize, film.width()),
+                               std::min(y0 + kTileSize, film.height()), local);
+          samples += local.samples;
+          rays += local.rays;
+          dropped += local.dropped_samples;
+          if (progress) progress->advance();
+        }
+      },
+      tbb::simple_partitioner());
+  RenderStats stats;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.samples = samples;
+  stats.rays = rays;
+  stats.dropped_samples = dropped;
+  return stats;
+}
+
+}  // namespace fb

@@ -1,0 +1,46 @@
+// The render loop: the measurement equation term by term. For every pixel sample it draws a
+// filter offset (the integral over R^2 with h), asks the camera for a ray and its weight (the
+// aperture integral and the cos^4/f^2 factor, when the camera models them), asks the integrator for
+// the radiance L along it, and hands the filter-weighted value to the film.
+#pragma once
+
+#include <cstdint>
+
+#include <filmback/plugin_abi.h>
+
+#include "core/accel/render_geometry.h"
+#include "core/film/film.h"
+#include "core/math/transform.h"
+#include "core/plugin/instances.h"
+#include "core/render/light_sampler.h"
+#include "core/render/progress.h"
+
+namespace fb {
+
+struct RenderInputs {
+  const CameraInstance& camera;
+  const FilterInstance& filter;
+  const IntegratorInstance& integrator;
+  const RenderGeometry& geometry;
+  const LightSampler& lights;
+  const fb_scene& scene;
+  Transform render_from_camera;  // a rotation: render space is centred on the camera
+  uint32_t samples_per_pixel;
+  uint64_t seed;
+};
+
+struct RenderStats {
+  double seconds = 0;
+  uint64_t samples = 0;
+  uint64_t rays = 0;
+  uint64_t dropped_samples = 0;  // non-finite values kept out of the film
+};
+
+constexpr uint32_t kTileSize = 16;
+
+// Renders into `film` on the calling thread's TBB arena; `progress` counts tiles.
+RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progress);
+
+uint64_t tile_count(uint32_t width, uint32_t height);
+
+}  // namespace fb

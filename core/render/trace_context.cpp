@@ -1,0 +1,38 @@
+#include "core/render/trace_context.h"
+
+namespace fb {
+namespace {
+
+int intersect(fb_trace_context* c, const fb_ray* ray, fb_hit* hit) {
+  ++c->rays_traced;
+  return c->geometry->intersect(*ray, *hit) ? 1 : 0;
+}
+
+int occluded(fb_trace_context* c, const fb_ray* ray) {
+  ++c->rays_traced;
+  return c->geometry->occluded(*ray) ? 1 : 0;
+}
+
+int sample_light(fb_trace_context* c, const float position[3], const float u[3],
+                 fb_light_sample* sample) {
+  return c->lights->sample(Vec3f(position), u, *sample) ? 1 : 0;
+}
+
+float light_pdf(fb_trace_context* c, const float position[3], const fb_hit* hit) {
+  return c->lights->pdf(Vec3f(position), *hit);
+}
+
+void next_samples(fb_trace_context* c, size_t path, float* u, uint32_t count) {
+  SampleKey& key = c->paths[path];
+  for (uint32_t i = 0; i < count; ++i, ++key.dimension) u[i] = c->sampler->get(key);
+}
+
+}  // namespace
+
+const fb_scene_api& host_scene_api() {
+  static const fb_scene_api api{sizeof(fb_scene_api), intersect, occluded, sample_light, light_pdf,
+                                next_samples};
+  return api;
+}
+
+}  // namespace fb

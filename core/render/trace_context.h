@@ -1,0 +1,26 @@
+// The host side of the integrator ABI: fb_scene_api's functions and the per-thread context they
+// run on. One context per worker batch; it counts the rays it traces for the summary line.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <filmback/plugin_abi.h>
+
+#include "core/accel/render_geometry.h"
+#include "core/render/light_sampler.h"
+#include "core/render/sampler.h"
+
+struct fb_trace_context {
+  const fb::RenderGeometry* geometry = nullptr;
+  const fb::LightSampler* lights = nullptr;
+  const fb::IndependentSampler* sampler = nullptr;
+  std::vector<fb::SampleKey> paths;  // one per ray of the current batch
+  uint64_t rays_traced = 0;
+};
+
+namespace fb {
+
+const fb_scene_api& host_scene_api();
+
+}  // namespace fb

@@ -1,0 +1,60 @@
+#include "core/scene/camera.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <filmback/camera_projection.h>
+
+namespace fb {
+
+fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_px,
+                                  uint32_t height_px, double pixel_aspect) {
+  fb_camera_setup setup{};
+  setup.struct_size = sizeof(fb_camera_setup);
+  setup.projection = camera.projection;
+  setup.image_width_px = width_px;
+  setup.image_height_px = height_px;
+  setup.pixel_aspect = pixel_aspect;
+  setup.focal_length_mm = camera.focal_length_mm;
+  setup.sensor_width_mm = camera.sensor_width_mm;
+  setup.sensor_height_mm = camera.sensor_height_mm;
+  setup.sensor_fit = camera.sensor_fit;
+  setup.shift_x = camera.shift_x;
+  setup.shift_y = camera.shift_y;
+  setup.ortho_scale_m = camera.ortho_scale_m;
+  setup.clip_near_m = camera.clip_near_m;
+  setup.clip_far_m = camera.clip_far_m;
+  return setup;
+}
+
+CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px,
+                                 uint32_t height_px) {
+  const ViewPlane v = view_plane(make_camera_setup(camera, width_px, height_px));
+  constexpr double kDegrees = 180.0 / std::numbers::pi;
+  constexpr double kFullFrameWidthMm = 36.0;
+  const double kFullFrameDiagonalMm = std::hypot(36.0, 24.0);  // 43.27 mm
+  CameraQuantities q{};
+  q.horizontal_fit = v.horizontal_fit;
+  if (camera.projection == FB_PROJECTION_ORTHOGRAPHIC) return q;  // no angles, no focal length
+  // alpha = 2 atan(h / 2f) for an image side h on the sensor (docs/camera-model.md)
+  q.horizontal_fov_deg = 2.0 * std::atan(v.extent_x / 2.0) * kDegrees;
+  q.vertical_fov_deg = 2.0 * std::atan(v.extent_y / 2.0) * kDegrees;
+  q.imaged_sensor_width_mm = v.extent_x * camera.focal_length_mm;
+  q.imaged_sensor_height_mm = v.extent_y * camera.focal_length_mm;
+  q.equivalent_35mm_width_mm =
+      camera.focal_length_mm * kFullFrameWidthMm / q.imaged_sensor_width_mm;
+  q.equivalent_35mm_diagonal_mm =
+      camera.focal_length_mm * kFullFrameDiagonalMm /
+      std::hypot(q.imaged_sensor_width_mm, q.imaged_sensor_height_mm);
+  return q;
+}
+
+const char* sensor_fit_name(uint32_t fit) {
+  switch (fit) {
+    case FB_SENSOR_FIT_HORIZONTAL: return "horizontal";
+    case FB_SENSOR_FIT_VERTICAL: return "vertical";
+    default: return "auto";
+  }
+}
+
+}  // namespace fb

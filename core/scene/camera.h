@@ -1,0 +1,50 @@
+// A scene camera as a physical parameter set (Blender's), plus its placement. Every importer
+// converts into this; the render turns it into an fb_camera_setup for the camera plugin.
+#pragma once
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include <filmback/plugin_abi.h>
+
+#include "core/math/transform.h"
+
+namespace fb {
+
+struct PhysicalCamera {
+  uint32_t projection = FB_PROJECTION_PERSPECTIVE;
+  double focal_length_mm = 50.0;
+  double sensor_width_mm = 36.0;
+  double sensor_height_mm = 24.0;
+  uint32_t sensor_fit = FB_SENSOR_FIT_AUTO;
+  double shift_x = 0.0, shift_y = 0.0;  // fractions of the fitted side
+  double ortho_scale_m = 1.0;
+  double clip_near_m = 0.1;
+  double clip_far_m = HUGE_VAL;
+};
+
+struct SceneCamera {
+  std::string name;    // the glTF camera's name, else its node's name
+  std::string source;  // where it came from: "nodes[3] (cameras[0])"
+  PhysicalCamera physical;
+  Transform world_from_camera;               // scale removed: cameras look down -Z, +Y up
+  std::optional<double> intended_aspect;     // width / height the shot was made for
+};
+
+// The quantities `filmback info` reports, for a given image size.
+struct CameraQuantities {
+  double horizontal_fov_deg, vertical_fov_deg;  // full angles of the view plane extents
+  double imaged_sensor_width_mm, imaged_sensor_height_mm;
+  double equivalent_35mm_width_mm;     // f * 36 / imaged width
+  double equivalent_35mm_diagonal_mm;  // f * 43.27 / imaged diagonal
+  bool horizontal_fit;
+};
+
+fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_px,
+                                  uint32_t height_px, double pixel_aspect = 1.0);
+CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px,
+                                 uint32_t height_px);
+const char* sensor_fit_name(uint32_t fit);
+
+}  // namespace fb

@@ -1,0 +1,72 @@
+// What an importer produces: geometry, materials, lights and cameras in world space (right-handed,
+// +Y up, metres). It knows nothing of plugins or of how the render will use it.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <filmback/vec.h>
+
+#include "core/math/transform.h"
+#include "core/scene/camera.h"
+
+namespace fb {
+
+struct TriangleMesh {
+  std::string name;              // for messages and `filmback info`
+  std::vector<Vec3f> positions;  // object space
+  std::vector<Vec3f> normals;    // empty, or one per position
+  std::vector<uint32_t> indices; // three per triangle, counter-clockwise front faces
+  uint32_t material = 0;
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct MeshInstance {
+  uint32_t mesh = 0;
+  Transform world_from_object;
+  std::string node;
+};
+
+struct Material {
+  std::string name;
+  Rgb base_color{1.f, 1.f, 1.f};  // Lambertian albedo (glTF's default base colour)
+  Rgb emission{0.f, 0.f, 0.f};    // radiance, W sr^-1 m^-2
+  bool double_sided = false;
+};
+
+enum class LightType { kPoint, kSpot, kDirectional };
+
+struct Light {
+  std::string name;
+  LightType type = LightType::kPoint;
+  // Radiant intensity in W/sr (point, spot) or irradiance in W/m^2 (directional), per channel.
+  Rgb intensity{1.f, 1.f, 1.f};
+  Transform world_from_light;  // lights shine down their -Z axis
+  double spot_inner_angle_rad = 0.0;
+  double spot_outer_angle_rad = 0.7853981633974483;
+};
+
+struct Bounds3d {
+  Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  Vec3d hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  bool empty() const { return lo.x > hi.x; }
+  void extend(Vec3d p) { lo = min(lo, p), hi = max(hi, p); }
+};
+
+struct Scene {
+  std::filesystem::path file;
+  std::vector<TriangleMesh> meshes;
+  std::vector<MeshInstance> instances;
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
+  Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
+
+  size_t triangle_count() const;
+  Bounds3d world_bounds() const;  // of all instanced geometry
+};
+
+}  // namespace fb

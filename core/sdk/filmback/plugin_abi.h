@@ -1,0 +1,237 @@
+/* filmback plugin ABI, version 1.
+ *
+ * The whole boundary between filmback and a plugin is this C header: one exported entry point per
+ * shared library returns a plain descriptor, and every call after that goes through C function
+ * pointers on plain C structs. No C++ type, exception or vtable crosses it, so a plugin built with
+ * another compiler (or in another language) loads as long as it speaks this header. This is
+ * Embree's model (opaque handles, version queries), not Mitsuba's C-named entry points that pass
+ * C++ objects (see docs/architecture.md, "Plugin ABI").
+ *
+ * Handshake: the loader calls `filmback_plugin_v1()`, then checks `abi_version` and `struct_size`
+ * (the first two fields, fixed forever) before it reads anything else; then the kind, the name
+ * (which must match the file name libfilmback_<kind>_<name>.so) and the kind's function table,
+ * which starts with its own struct_size.
+ *
+ * Spaces and units (docs/conventions.md): raster x right, y down, origin at the top-left corner of
+ * the image; camera space looks down -Z with +Y up; render space is world space translated so that
+ * the camera sits at the origin; metres, seconds, radiance in W sr^-1 m^-2.
+ */
+#ifndef FILMBACK_PLUGIN_ABI_H
+#define FILMBACK_PLUGIN_ABI_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define FB_ABI_VERSION 1u
+#define FB_ENTRY_POINT "filmback_plugin_v1"
+
+#if defined(_WIN32)
+#define FB_EXPORT __declspec(dllexport)
+#else
+#define FB_EXPORT __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------- descriptor and parameters */
+
+enum { FB_KIND_CAMERA = 1, FB_KIND_FILTER = 2, FB_KIND_INTEGRATOR = 3 };
+
+enum {
+  FB_PARAM_FLOAT = 1,  /* value.number[0] */
+  FB_PARAM_INT = 2,    /* value.number[0], a whole number */
+  FB_PARAM_BOOL = 3,   /* value.number[0], 0 or 1 */
+  FB_PARAM_STRING = 4, /* value.text; `choices` may restrict it */
+  FB_PARAM_RGB = 5     /* value.number[0..2]; typed as [r,g,b] or one grey value */
+};
+
+/* One entry of a plugin's parameter schema. The host parses `default_value` with the same parser
+ * as user input, checks bounds and choices, and hands the plugin only validated values. */
+typedef struct fb_param_desc {
+  const char* name;          /* lower_snake_case, unit in the name where one applies */
+  uint32_t type;             /* FB_PARAM_* */
+  const char* default_value; /* as a user would type it */
+  const char* unit;          /* "px", "mm", "m", "s", "" */
+  const char* choices;       /* strings only: "a|b|c", or NULL for free text */
+  double min_value;          /* numbers: inclusive bounds (use +-HUGE_VAL for none) */
+  double max_value;
+  const char* doc; /* one sentence */
+} fb_param_desc;
+
+/* A validated parameter value, passed to create() in schema order. */
+typedef struct fb_value {
+  double number[3];
+  const char* text; /* valid only during create() */
+} fb_value;
+
+typedef struct fb_plugin {
+  uint32_t abi_version; /* FB_ABI_VERSION */
+  uint32_t struct_size; /* sizeof(fb_plugin) */
+  uint32_t kind;        /* FB_KIND_* */
+  const char* name;     /* short lower-case name: "perspective", "gaussian" */
+  const char* version;  /* the plugin's own version, "1.0.0" */
+  const char* summary;  /* one line */
+  const fb_param_desc* params;
+  uint32_t param_count;
+  const void* api; /* fb_camera_api, fb_filter_api or fb_integrator_api, by kind */
+} fb_plugin;
+
+typedef const fb_plugin* (*fb_entry_point_fn)(void);
+
+/* create() returns 0 on success; otherwise it writes a one-line reason into `error`. */
+typedef struct fb_error_buffer {
+  char* text;
+  size_t capacity;
+} fb_error_buffer;
+
+/* ------------------------------------------------------------------------------------ camera */
+
+enum { FB_PROJECTION_PERSPECTIVE = 1, FB_PROJECTION_ORTHOGRAPHIC = 2 };
+enum { FB_SENSOR_FIT_AUTO = 0, FB_SENSOR_FIT_HORIZONTAL = 1, FB_SENSOR_FIT_VERTICAL = 2 };
+
+/* The shot's physical camera, as Blender describes it (docs/camera-model.md). */
+typedef struct fb_camera_setup {
+  uint32_t struct_size;
+  uint32_t projection; /* FB_PROJECTION_* */
+  uint32_t image_width_px;
+  uint32_t image_height_px;
+  double pixel_aspect; /* pixel width / pixel height */
+  double focal_length_mm;
+  double sensor_width_mm;
+  double sensor_height_mm;
+  uint32_t sensor_fit; /* FB_SENSOR_FIT_* */
+  double shift_x;      /* fraction of the fitted image side */
+  double shift_y;
+  double ortho_scale_m; /* orthographic: view extent along the fitted side */
+  double clip_near_m;   /* depth along the view axis */
+  double clip_far_m;    /* HUGE_VAL for none */
+} fb_camera_setup;
+
+typedef struct fb_camera_sample {
+  float film_x, film_y; /* raster position, px */
+  float lens_u, lens_v; /* [0,1)^2, drawn only if the camera needs lens samples */
+  float time_s;         /* within the shutter, drawn only if the scene moves */
+} fb_camera_sample;
+
+typedef struct fb_camera_ray {
+  float origin[3];    /* camera space, m */
+  float direction[3]; /* camera space, unit length */
+  float t_min, t_max; /* clip range along this ray */
+  float weight;       /* 0: no ray for this sample */
+} fb_camera_ray;
+
+enum { FB_CAMERA_NEEDS_LENS = 1u, FB_CAMERA_NEEDS_TIME = 2u };
+
+typedef struct fb_camera_api {
+  uint32_t struct_size;
+  int (*create)(const fb_value* params, const fb_camera_setup* setup, void** instance,
+                fb_error_buffer error);
+  void (*destroy)(void* instance);
+  uint32_t (*needs)(const void* instance); /* FB_CAMERA_NEEDS_* */
+  /* One call per batch (a tile's worth) keeps the indirection off the per-ray path. */
+  void (*generate_rays)(const void* instance, const fb_camera_sample* samples, size_t count,
+                        fb_camera_ray* rays);
+} fb_camera_api;
+
+/* ------------------------------------------------------------------------------------ filter */
+
+typedef struct fb_filter_sample {
+  float x, y;   /* offset from the pixel centre, px */
+  float weight; /* f(x,y) / pdf(x,y): constant for exactly sampled positive filters */
+} fb_filter_sample;
+
+typedef struct fb_filter_api {
+  uint32_t struct_size;
+  int (*create)(const fb_value* params, void** instance, fb_error_buffer error);
+  void (*destroy)(void* instance);
+  void (*radius)(const void* instance, float radius_px[2]); /* zero beyond it */
+  float (*evaluate)(const void* instance, float x, float y);
+  double (*integral)(const void* instance); /* of evaluate over R^2 */
+  void (*sample)(const void* instance, const float* u /* 2 per sample */, size_t count,
+                 fb_filter_sample* samples);
+} fb_filter_api;
+
+/* -------------------------------------------------------------------------------- integrator */
+
+typedef struct fb_ray {
+  float origin[3]; /* render space: world translated so the camera is at the origin */
+  float direction[3];
+  float t_min, t_max;
+  float time_s;
+} fb_ray;
+
+#define FB_NONE 0xffffffffu
+
+typedef struct fb_hit {
+  float t;
+  float position[3];
+  float position_error[3]; /* conservative bound on |position - exact|, per axis */
+  float geometric_normal[3]; /* unit; the triangle's winding decides its side */
+  float shading_normal[3];   /* unit; interpolated vertex normal, same side as geometric */
+  uint32_t material;         /* index into fb_scene.materials */
+  uint32_t emitter;          /* emissive-triangle light index, or FB_NONE */
+} fb_hit;
+
+typedef struct fb_material {
+  float base_color[3]; /* Lambertian albedo */
+  float emission[3];   /* radiance, W sr^-1 m^-2 */
+  uint32_t double_sided; /* emission leaves the back face too */
+} fb_material;
+
+typedef struct fb_light_sample {
+  float radiance[3];  /* arriving at the shading point: L (area), I/d^2 (point, spot), E (sun) */
+  float direction[3]; /* unit, from the shading point towards the light */
+  float distance;     /* to the light point; HUGE_VAL for a directional light */
+  float pdf;          /* solid-angle pdf with the light choice; for delta lights the choice only */
+  uint32_t is_delta;
+} fb_light_sample;
+
+typedef struct fb_trace_context fb_trace_context; /* per-thread host state: opaque */
+
+/* What the host offers an integrator. All calls are thread-safe with distinct contexts. */
+typedef struct fb_scene_api {
+  uint32_t struct_size;
+  int (*intersect)(fb_trace_context* context, const fb_ray* ray, fb_hit* hit);
+  int (*occluded)(fb_trace_context* context, const fb_ray* ray);
+  /* Picks a light (punctual or emissive triangle) and a point on it, as seen from `position`.
+   * Returns 0 when the scene has no light or the sample carries no energy. */
+  int (*sample_light)(fb_trace_context* context, const float position[3], const float u[3],
+                      fb_light_sample* sample);
+  /* Solid-angle pdf with which sample_light() would have chosen `hit` (an emitter) from
+   * `position`: for multiple importance sampling of emission found by BSDF sampling. */
+  float (*light_pdf)(fb_trace_context* context, const float position[3], const fb_hit* hit);
+  /* The next `count` sample dimensions of path `path` of the current batch, in [0,1). */
+  void (*next_samples)(fb_trace_context* context, size_t path, float* u, uint32_t count);
+} fb_scene_api;
+
+typedef struct fb_scene {
+  uint32_t struct_size;
+  const fb_scene_api* api;
+  const fb_material* materials;
+  uint32_t material_count;
+  float background[3];  /* uniform radiance of rays that escape */
+  float scene_radius_m; /* a sphere of this radius about the camera holds the whole scene */
+  float view_axis[3];   /* unit: where the camera looks; depth = dot(position, view_axis) */
+} fb_scene;
+
+#define FB_MAX_CHANNELS 16u
+
+typedef struct fb_integrator_api {
+  uint32_t struct_size;
+  int (*create)(const fb_value* params, void** instance, fb_error_buffer error);
+  void (*destroy)(void* instance);
+  /* Names of the values radiance() writes per ray, e.g. "R","G","B","depth.Z". At most
+   * FB_MAX_CHANNELS; the first three are the image's colour. */
+  uint32_t (*channels)(const void* instance, const char** names, uint32_t capacity);
+  /* values[i * channel_count + c] for ray i; one call per batch of camera rays. */
+  void (*radiance)(const void* instance, const fb_scene* scene, fb_trace_context* context,
+                   const fb_ray* rays, size_t count, float* values);
+} fb_integrator_api;
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* FILMBACK_PLUGIN_ABI_H */

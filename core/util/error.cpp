@@ -1,0 +1,16 @@
+#include "core/util/error.h"
+
+namespace fb {
+
+std::string located(std::string_view file, std::string_view where, std::string_view what) {
+  std::string message;
+  for (std::string_view part : {file, where}) {
+    if (part.empty()) continue;
+    message.append(part);
+    message.append(": ");
+  }
+  message.append(what);
+  return message;
+}
+
+}  // namespace fb

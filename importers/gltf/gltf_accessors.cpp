@@ -1,0 +1,132 @@
+#include "importers/gltf/gltf_accessors.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/util/error.h"
+
+namespace fb::gltf {
+namespace {
+
+size_t component_size(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+  }
+  return 0;
+}
+
+// The bytes of element i of a checked accessor.
+struct AccessorView {
+  const unsigned char* data;
+  size_t stride;
+  size_t count;
+  const unsigned char* element(size_t i) const { return data + i * stride; }
+};
+
+const tinygltf::Accessor& checked_accessor(const AccessorContext& ctx, int index, const std::string& where) {
+  if (index < 0 || size_t(index) >= ctx.model.accessors.size())
+    throw_input(ctx.file, where,
+                "accessor index " + std::to_string(index) + " is out of range (the file has " +
+                    std::to_string(ctx.model.accessors.size()) + " accessors)");
+  return ctx.model.accessors[size_t(index)];
+}
+
+AccessorView view(const AccessorContext& ctx, int index, const std::string& where, int type,
+                  std::initializer_list<int> component_types) {
+  const tinygltf::Accessor& a = checked_accessor(ctx, index, where);
+  const std::string path = where + " (accessors[" + std::to_string(index) + "])";
+  if (a.type != type) throw_input(ctx.file, path, "unexpected element type for this attribute");
+  bool known = false;
+  for (int t : component_types) known |= a.componentType == t;
+  if (!known) throw_input(ctx.file, path, "unsupported componentType " + std::to_string(a.componentType));
+  if (a.sparse.isSparse) throw_input(ctx.file, path, "sparse accessors are not supported yet");
+  if (a.count == 0) return {nullptr, 0, 0};
+  if (a.bufferView < 0 || size_t(a.bufferView) >= ctx.model.bufferViews.size())
+    throw_input(ctx.file, path, "bufferView " + std::to_string(a.bufferView) + " is out of range");
+  const tinygltf::BufferView& bv = ctx.model.bufferViews[size_t(a.bufferView)];
+  const std::string bv_path = "bufferViews[" + std::to_string(a.bufferView) + "]";
+  if (bv.buffer < 0 || size_t(bv.buffer) >= ctx.model.buffers.size())
+    throw_input(ctx.file, bv_path, "buffer " + std::to_string(bv.buffer) + " is out of range");
+  const size_t buffer_size = ctx.model.buffers[size_t(bv.buffer)].data.size();
+  const size_t element_size = component_size(a.componentType) * size_t(tinygltf::GetNumComponentsInType(a.type));
+  const size_t stride = bv.byteStride ? bv.byteStride : element_size;
+  if (stride < element_size)
+    throw_input(ctx.file, bv_path, "byteStride " + std::to_string(stride) +
+                                       " is smaller than one element (" + std::to_string(element_size) + " bytes)");
+  // Overflow-safe: each term is checked against the sizes it must fit in before it is added.
+  if (bv.byteOffset > buffer_size || bv.byteLength > buffer_size - bv.byteOffset)
+    throw_input(ctx.file, bv_path,
+                "bytes " + std::to_string(bv.byteOffset) + "+" + std::to_string(bv.byteLength) +
+                    " reach past the end of buffers[" + std::to_string(bv.buffer) + "] (" +
+                    std::to_string(buffer_size) + " bytes)");
+  const size_t available = bv.byteLength;
+  // needs byteOffset + (count - 1) * stride + element_size <= available
+  if (a.byteOffset > available || available - a.byteOffset < element_size ||
+      a.count - 1 > (available - a.byteOffset - element_size) / stride)
+    throw_input(ctx.file, path,
+                std::to_string(a.count) + " elements of " + std::to_string(element_size) +
+                    " bytes at offset " + std::to_string(a.byteOffset) + " with stride " +
+                    std::to_string(stride) + " do not fit in " + bv_path + " (" +
+                    std::to_string(available) + " bytes)");
+  const unsigned char* base = ctx.model.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset + a.byteOffset;
+  return {base, stride, a.count};
+}
+
+}  // namespace
+
+size_t accessor_count(const AccessorContext& ctx, int accessor, const std::string& where) {
+  return checked_accessor(ctx, accessor, where).count;
+}
+
+std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std::string& where) {
+  const AccessorView v = view(ctx, accessor, where, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+  std::vector<Vec3f> out(v.count);
+  for (size_t i = 0; i < v.count; ++i) {
+    float xyz[3];
+    std::memcpy(xyz, v.element(i), sizeof xyz);  // glTF data need not be aligned
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+      throw_input(ctx.file, where + " (accessors[" + std::to_string(accessor) + "])",
+                  "element " + std::to_string(i) + " is not a finite number");
+    out[i] = Vec3f(xyz);
+  }
+  return out;
+}
+
+std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor, const std::string& where,
+                                   size_t vertex_count) {
+  const AccessorView v =
+      view(ctx, accessor, where, TINYGLTF_TYPE_SCALAR,
+           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+            TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+  const int type = ctx.model.accessors[size_t(accessor)].componentType;
+  std::vector<uint32_t> out(v.count);
+  for (size_t i = 0; i < v.count; ++i) {
+    const unsigned char* e = v.element(i);
+    uint32_t index;
+    if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+      index = e[0];
+    } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+      uint16_t s;
+      std::memcpy(&s, e, 2);
+      index = s;
+    } else {
+      std::memcpy(&index, e, 4);
+    }
+    if (index >= vertex_count)
+      throw_input(ctx.file, where + " (accessors[" + std::to_string(accessor) + "])",
+                  "index " + std::to_string(i) + " is " + std::to_string(index) +
+                      ", but there are only " + std::to_string(vertex_count) + " vertices");
+    out[i] = index;
+  }
+  return out;
+}
+
+}  // namespace fb::gltf

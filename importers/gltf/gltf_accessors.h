@@ -1,0 +1,33 @@
+// Reading glTF accessors as untrusted data: every index, offset, stride and count is checked
+// against the buffer it points into before a byte is read, and every message names the JSON
+// path of the element that was wrong.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <filmback/vec.h>
+
+namespace tinygltf {
+class Model;
+}
+
+namespace fb::gltf {
+
+struct AccessorContext {
+  const tinygltf::Model& model;
+  std::string file;  // for messages
+};
+
+// A VEC3 float accessor, each value finite. `where` is the referring JSON path.
+std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std::string& where);
+
+// A SCALAR unsigned byte/short/int accessor, each value below `vertex_count`.
+std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor, const std::string& where,
+                                   size_t vertex_count);
+
+// The accessor's element count, after checking the index.
+size_t accessor_count(const AccessorContext& ctx, int accessor, const std::string& where);
+
+}  // namespace fb::gltf

@@ -1,0 +1,352 @@
+#include "importers/gltf/gltf_importer.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "core/util/error.h"
+#include "importers/gltf/gltf_accessors.h"
+
+namespace fb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Textures are not used yet: skip decoding them (untrusted input, and time).
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                const unsigned char*, int, void*) {
+  return true;
+}
+
+std::string index_path(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+
+double number_or(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+class Importer {
+ public:
+  Importer(const fs::path& file, Diagnostics& diagnostics)
+      : file_(file), name_(file.string()), diagnostics_(diagnostics) {}
+
+  Scene run() {
+    load();
+    check_extensions();
+    scene_.file = file_;
+    convert_materials();
+    warn_if_present("animations", model_.animations.size());
+    warn_if_present("skins", model_.skins.size());
+    warn_if_present("textures", model_.textures.size());
+    walk_nodes();
+    return std::move(scene_);
+  }
+
+ private:
+  void warn(const std::string& where, const std::string& what) { diagnostics_.warn(located(name_, where, what)); }
+
+  void load() {
+    std::error_code ec;
+    if (!fs::is_regular_file(file_, ec)) throw_input(name_, "", "no such file");
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(skip_image, nullptr);
+    std::string err, warnings;
+    const bool binary = file_.extension() == ".glb";
+    const bool ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warnings, file_.string())
+                           : loader.LoadASCIIFromFile(&model_, &err, &warnings, file_.string());
+    if (!ok) throw_input(name_, "", "not a valid glTF " + std::string(binary ? "binary" : "JSON") + " file: " + trim(err));
+  }
+
+  static std::string trim(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    return s.empty() ? "unknown reason" : s;
+  }
+
+  void check_extensions() {
+    static const std::set<std::string> kSupported = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+    for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
+      if (!kSupported.count(model_.extensionsRequired[i]))
+        throw_input(name_, index_path("extensionsRequired", i),
+                    model_.extensionsRequired[i] + " is required by the file but not supported");
+    for (size_t i = 0; i < model_.extensionsUsed.size(); ++i)
+      if (!kSupported.count(model_.extensionsUsed[i]))
+        warn(index_path("extensionsUsed", i), model_.extensionsUsed[i] + " is not supported yet; ignored");
+  }
+
+  void warn_if_present(const std::string& what, size_t n) {
+    if (n > 0) warn(what, std::to_string(n) + " " + what + " are not supported yet; ignored");
+  }
+
+  void convert_materials() {
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& g = model_.materials[i];
+      const std::string path = index_path("materials", i);
+      Material m;
+      m.name = g.name.empty() ? path : g.name;
+      const auto& base = g.pbrMetallicRoughness.baseColorFactor;
+      if (base.size() == 4) m.base_color = Rgb(float(base[0]), float(base[1]), float(base[2]));
+      double strength = 1.0;
+      if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end())
+        strength = number_or(it->second, "emissiveStrength", 1.0);
+      if (g.emissiveFactor.size() == 3)
+        m.emission = Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
+                         float(g.emissiveFactor[2] * strength));
+      m.double_sided = g.doubleSided;
+      if (!is_finite(m.base_color) || !is_finite(m.emission) || m.base_color.x < 0 || m.base_color.y < 0 ||
+          m.base_color.z < 0 || m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0)
+        throw_input(name_, path, "base colour and emission must be finite and non-negative");
+      if (g.pbrMetallicRoughness.metallicFactor > 0)
+        warn(path, "metallic " + std::to_string(g.pbrMetallicRoughness.metallicFactor) +
+                       " is rendered as Lambertian (metallic-roughness is not supported yet)");
+      if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
+        warn(path + ".alphaMode", g.alphaMode + " is rendered as OPAQUE");
+      scene_.materials.push_back(m);
+    }
+  }
+
+  uint32_t default_material() {
+    if (!default_material_) {
+      default_material_ = uint32_t(scene_.materials.size());
+      Material m;
+      m.name = "default (primitive without material)";
+      scene_.materials.push_back(m);
+    }
+    return *default_material_;
+  }
+
+  Transform local_transform(const tinygltf::Node& node, const std::string& path) {
+    Transform t;
+    if (node.matrix.size() == 16) {
+      std::array<double, 16> m;
+      std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
+      t = Transform::from_columns(m);
+    } else {
+      if (node.translation.size() == 3) t = Transform::translate({node.translation[0], node.translation[1], node.translation[2]});
+      if (node.rotation.size() == 4)
+        t = t * Transform::rotate({node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]});
+      if (node.scale.size() == 3) t = t * Transform::scale({node.scale[0], node.scale[1], node.scale[2]});
+    }
+    if (!t.is_finite()) throw_input(name_, path, "the node's transform is not finite");
+    return t;
+  }
+
+  // Depth-first over the scene's node trees, iteratively: a hostile file cannot overflow the stack,
+  // and a node reached twice (a cycle, or two parents) is an error, as glTF requires a forest.
+  void walk_nodes() {
+    std::vector<int> roots;
+    if (!model_.scenes.empty()) {
+      const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
+      if (s >= model_.scenes.size()) throw_input(name_, "scene", "scene index " + std::to_string(s) + " is out of range");
+      roots = model_.scenes[s].nodes;
+      if (model_.scenes.size() > 1) warn("scenes", "the file has " + std::to_string(model_.scenes.size()) + " scenes; rendering scenes[" + std::to_string(s) + "]");
+    } else {
+      std::vector<bool> is_child(model_.nodes.size(), false);
+      for (const auto& node : model_.nodes)
+        for (int c : node.children)
+          if (c >= 0 && size_t(c) < is_child.size()) is_child[size_t(c)] = true;
+      for (size_t i = 0; i < model_.nodes.size(); ++i)
+        if (!is_child[i]) roots.push_back(int(i));
+    }
+    std::vector<bool> visited(model_.nodes.size(), false);
+    std::vector<std::pair<int, Transform>> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, Transform());
+    while (!stack.empty()) {
+      auto [index, parent] = stack.back();
+      stack.pop_back();
+      if (index < 0 || size_t(index) >= model_.nodes.size())
+        throw_input(name_, "nodes", "node index " + std::to_string(index) + " is out of range");
+      const std::string path = index_path("nodes", size_t(index));
+      if (visited[size_t(index)]) throw_input(name_, path, "node reached twice: the node hierarchy must be a tree");
+      visited[size_t(index)] = true;
+      const tinygltf::Node& node = model_.nodes[size_t(index)];
+      const Transform world = parent * local_transform(node, path);
+      visit(node, path, world);
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+    }
+  }
+
+  void visit(const tinygltf::Node& node, const std::string& path, const Transform& world) {
+    if (node.skin >= 0) warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
+    if (node.mesh >= 0) add_mesh(node, path, world);
+    if (node.camera >= 0) add_camera(node, path, world);
+    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
+      add_light(node, path, world, int(number_or(it->second, "light", -1)));
+  }
+
+  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world) {
+    if (size_t(node.mesh) >= model_.meshes.size())
+      throw_input(name_, path + ".mesh", "mesh index " + std::to_string(node.mesh) + " is out of range");
+    const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const auto key = std::pair{node.mesh, p};
+      auto cached = primitive_meshes_.find(key);
+      if (cached == primitive_meshes_.end()) {
+        const std::string ppath = index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
+        std::optional<TriangleMesh> converted = convert_primitive(mesh, mesh.primitives[p], ppath);
+        std::optional<uint32_t> index;
+        if (converted) {
+          index = uint32_t(scene_.meshes.size());
+          scene_.meshes.push_back(std::move(*converted));
+        }
+        cached = primitive_meshes_.emplace(key, index).first;
+      }
+      if (cached->second) scene_.instances.push_back({*cached->second, world, node.name.empty() ? path : node.name});
+    }
+  }
+
+  std::optional<TriangleMesh> convert_primitive(const tinygltf::Mesh& mesh, const tinygltf::Primitive& prim,
+                                                const std::string& path) {
+    const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      warn(path + ".mode", "points and lines (mode " + std::to_string(mode) + ") are not supported yet; skipped");
+      return std::nullopt;
+    }
+    if (!prim.targets.empty()) warn(path + ".targets", "morph targets are not supported yet; rendering the base shape");
+    const auto position = prim.attributes.find("POSITION");
+    if (position == prim.attributes.end()) throw_input(name_, path + ".attributes", "a triangle primitive needs POSITION");
+    const gltf::AccessorContext ctx{model_, name_};
+    TriangleMesh out;
+    out.name = mesh.name.empty() ? path : mesh.name;
+    out.positions = gltf::read_vec3(ctx, position->second, path + ".attributes.POSITION");
+    if (const auto normal = prim.attributes.find("NORMAL"); normal != prim.attributes.end()) {
+      out.normals = gltf::read_vec3(ctx, normal->second, path + ".attributes.NORMAL");
+      if (out.normals.size() != out.positions.size())
+        throw_input(name_, path + ".attributes.NORMAL",
+                    std::to_string(out.normals.size()) + " normals for " + std::to_string(out.positions.size()) + " positions");
+    }
+    std::vector<uint32_t> vertices;
+    if (prim.indices >= 0) {
+      vertices = gltf::read_indices(ctx, prim.indices, path + ".indices", out.positions.size());
+    } else {
+      vertices.resize(out.positions.size());
+      for (size_t i = 0; i < vertices.size(); ++i) vertices[i] = uint32_t(i);
+    }
+    out.indices = triangle_list(vertices, mode, path);
+    if (prim.material >= 0) {
+      if (size_t(prim.material) >= scene_.materials.size())
+        throw_input(name_, path + ".material", "material index " + std::to_string(prim.material) + " is out of range");
+      out.material = uint32_t(prim.material);
+    } else {
+      out.material = default_material();
+    }
+    return out;
+  }
+
+  // glTF §3.7.2.1: lists, strips (winding alternates) and fans, all as counter-clockwise lists.
+  std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode, const std::string& path) {
+    std::vector<uint32_t> out;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (v.size() % 3 != 0) warn(path, std::to_string(v.size() % 3) + " trailing vertices do not form a triangle; ignored");
+      out.assign(v.begin(), v.begin() + ptrdiff_t(v.size() - v.size() % 3));
+      return out;
+    }
+    for (size_t i = 2; i < v.size(); ++i) {
+      if (mode == TINYGLTF_MODE_TRIANGLE_FAN) out.insert(out.end(), {v[0], v[i - 1], v[i]});
+      else if (i % 2 == 0) out.insert(out.end(), {v[i - 2], v[i - 1], v[i]});
+      else out.insert(out.end(), {v[i - 1], v[i - 2], v[i]});
+    }
+    return out;
+  }
+
+  void add_camera(const tinygltf::Node& node, const std::string& path, const Transform& world) {
+    if (size_t(node.camera) >= model_.cameras.size())
+      throw_input(name_, path + ".camera", "camera index " + std::to_string(node.camera) + " is out of range");
+    const tinygltf::Camera& g = model_.cameras[size_t(node.camera)];
+    const std::string cpath = index_path("cameras", size_t(node.camera));
+    SceneCamera camera;
+    camera.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : cpath;
+    camera.source = path + " (" + cpath + ")";
+    // Blender ignores camera scale when projecting: keep rotation and position only.
+    camera.world_from_camera = Transform::translate(world.translation()) * world.without_scale_and_translation();
+    if (!camera.world_from_camera.is_finite())
+      throw_input(name_, path, "the camera's transform is degenerate (zero scale?)");
+    PhysicalCamera& phys = camera.physical;
+    if (g.type == "perspective") {
+      const tinygltf::PerspectiveCamera& p = g.perspective;
+      if (!(p.yfov > 0 && p.yfov < std::numbers::pi))
+        throw_input(name_, cpath + ".perspective.yfov", std::to_string(p.yfov) + " is not a field of view (expected 0 < yfov < pi)");
+      if (!(p.znear > 0)) throw_input(name_, cpath + ".perspective.znear", "expected a positive near clip distance");
+      if (p.zfar != 0 && !(p.zfar > p.znear)) throw_input(name_, cpath + ".perspective.zfar", "expected zfar > znear");
+      if (p.aspectRatio < 0 || !std::isfinite(p.aspectRatio))
+        throw_input(name_, cpath + ".perspective.aspectRatio", "expected a positive aspect ratio");
+      // The glTF projection becomes Blender's physical set (docs/camera-model.md): with an
+      // aspect ratio, a 36 mm sensor with AUTO fit, whose fitted side spans the larger image
+      // side; without one, the vertical field of view is kept for any image shape.
+      const double tan_half_y = std::tan(p.yfov / 2);
+      phys.projection = FB_PROJECTION_PERSPECTIVE;
+      if (p.aspectRatio > 0) {
+        camera.intended_aspect = p.aspectRatio;
+        const double tan_half_fitted = p.aspectRatio >= 1 ? tan_half_y * p.aspectRatio : tan_half_y;
+        phys.focal_length_mm = phys.sensor_width_mm / (2 * tan_half_fitted);
+      } else {
+        phys.sensor_fit = FB_SENSOR_FIT_VERTICAL;
+        phys.focal_length_mm = phys.sensor_height_mm / (2 * tan_half_y);
+      }
+      phys.clip_near_m = p.znear;
+      phys.clip_far_m = p.zfar > 0 ? p.zfar : HUGE_VAL;  // absent zfar: infinite projection
+    } else if (g.type == "orthographic") {
+      const tinygltf::OrthographicCamera& o = g.orthographic;
+      if (!(o.xmag > 0) || !(o.ymag > 0) || !std::isfinite(o.xmag) || !std::isfinite(o.ymag))
+        throw_input(name_, cpath + ".orthographic", "expected positive xmag and ymag");
+      if (!(o.zfar > o.znear) || o.znear < 0) throw_input(name_, cpath + ".orthographic", "expected 0 <= znear < zfar");
+      phys.projection = FB_PROJECTION_ORTHOGRAPHIC;
+      phys.ortho_scale_m = 2 * std::max(o.xmag, o.ymag);  // Blender: xmag = scale * w / max(w, h) / 2
+      camera.intended_aspect = o.xmag / o.ymag;
+      phys.clip_near_m = o.znear;
+      phys.clip_far_m = o.zfar;
+    } else {
+      throw_input(name_, cpath + ".type", "'" + g.type + "' is not a camera type (expected perspective or orthographic)");
+    }
+    scene_.cameras.push_back(camera);
+  }
+
+  void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world, int index) {
+    const std::string ext_path = path + ".extensions.KHR_lights_punctual";
+    if (index < 0 || size_t(index) >= model_.lights.size())
+      throw_input(name_, ext_path + ".light", "light index " + std::to_string(index) + " is out of range");
+    const tinygltf::Light& g = model_.lights[size_t(index)];
+    const std::string lpath = "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));
+    Light light;
+    light.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : lpath;
+    light.world_from_light = Transform::translate(world.translation()) * world.without_scale_and_translation();
+    Rgb color{1, 1, 1};
+    if (g.color.size() == 3) color = Rgb(float(g.color[0]), float(g.color[1]), float(g.color[2]));
+    if (!is_finite(color) || color.x < 0 || color.y < 0 || color.z < 0 || !std::isfinite(g.intensity) || g.intensity < 0)
+      throw_input(name_, lpath, "colour and intensity must be finite and non-negative");
+    light.intensity = color * float(g.intensity / kLumensPerWatt);
+    if (g.type == "point") {
+      light.type = LightType::kPoint;
+    } else if (g.type == "spot") {
+      light.type = LightType::kSpot;
+      light.spot_inner_angle_rad = g.spot.innerConeAngle;
+      light.spot_outer_angle_rad = g.spot.outerConeAngle;
+      if (!(g.spot.innerConeAngle >= 0 && g.spot.innerConeAngle < g.spot.outerConeAngle &&
+            g.spot.outerConeAngle <= std::numbers::pi / 2))
+        throw_input(name_, lpath + ".spot", "expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    } else if (g.type == "directional") {
+      light.type = LightType::kDirectional;
+    } else {
+      throw_input(name_, lpath + ".type", "'" + g.type + "' is not a light type (expected point, spot or directional)");
+    }
+    if (g.range > 0) warn(lpath + ".range", "range is ignored: lights fall off with the inverse square law");
+    scene_.lights.push_back(light);
+  }
+
+  fs::path file_;
+  std::string name_;
+  Diagnostics& diagnostics_;
+  tinygltf::Model model_;
+  Scene scene_;
+  std::optional<uint32_t> default_material_;
+  std::map<std::pair<int, size_t>, std::optional<uint32_t>> primitive_meshes_;
+};
+
+}  // namespace
+
+Scene import_gltf(const fs::path& file, Diagnostics& diagnostics) { return Importer(file, diagnostics).run(); }
+
+}  // namespace fb

@@ -1,0 +1,14 @@
+#include "importers/import_scene.h"
+
+#include "core/util/error.h"
+#include "importers/gltf/gltf_importer.h"
+
+namespace fb {
+
+Scene import_scene(const std::filesystem::path& file, Diagnostics& diagnostics) {
+  const std::string ext = file.extension().string();
+  if (ext == ".gltf" || ext == ".glb") return import_gltf(file, diagnostics);
+  throw UsageError("'" + file.string() + "': unknown scene type '" + ext + "' (expected .gltf or .glb)");
+}
+
+}  // namespace fb

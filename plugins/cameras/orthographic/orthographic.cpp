@@ -1,0 +1,56 @@
+// Camera `orthographic`: parallel rays along -Z from the view plane, whose extent along the
+// fitted side is Blender's ortho scale (glTF: 2 * max(xmag, ymag)); shift as for perspective.
+#include <filmback/camera_projection.h>
+#include <filmback/plugin_sdk.h>
+
+namespace {
+
+class Orthographic {
+ public:
+  explicit Orthographic(const fb_camera_setup& setup)
+      : plane_(fb::view_plane(setup)), near_(setup.clip_near_m), far_(setup.clip_far_m) {}
+
+  void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
+    ray.origin[0] = float((s.film_x - plane_.cx) / plane_.fx);
+    ray.origin[1] = float(-(s.film_y - plane_.cy) / plane_.fy);
+    ray.origin[2] = 0.f;
+    ray.direction[0] = ray.direction[1] = 0.f;
+    ray.direction[2] = -1.f;
+    ray.t_min = float(near_);
+    ray.t_max = float(far_);
+    ray.weight = 1.f;
+  }
+
+ private:
+  fb::ViewPlane plane_;
+  double near_, far_;
+};
+
+int create(const fb_value*, const fb_camera_setup* setup, void** instance, fb_error_buffer error) {
+  if (setup->projection != FB_PROJECTION_ORTHOGRAPHIC)
+    return fb::fail(error, "the shot's camera is not an orthographic one (use the perspective camera)");
+  if (!(setup->ortho_scale_m > 0))
+    return fb::fail(error, "ortho scale %g m must be positive", setup->ortho_scale_m);
+  if (!(setup->clip_far_m > setup->clip_near_m))
+    return fb::fail(error, "clip range [%g, %g] m is empty", setup->clip_near_m, setup->clip_far_m);
+  return fb::create_instance<Orthographic>(instance, error, *setup);
+}
+
+uint32_t needs(const void*) { return 0; }
+
+void generate_rays(const void* self, const fb_camera_sample* samples, size_t count,
+                   fb_camera_ray* rays) {
+  const auto& camera = *static_cast<const Orthographic*>(self);
+  for (size_t i = 0; i < count; ++i) camera.generate(samples[i], rays[i]);
+}
+
+const fb_camera_api kApi = {sizeof(fb_camera_api), create, fb::destroy_instance<Orthographic>,
+                            needs, generate_rays};
+
+const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA, "orthographic", "1.0.0",
+                           "Parallel projection with Blender's ortho scale, sensor fit and lens shift",
+                           nullptr, 0, &kApi};
+
+}  // namespace
+
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }

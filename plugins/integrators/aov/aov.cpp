@@ -1,0 +1,75 @@
+// Integrator `aov`: what the camera ray hits, one ray per sample. Channels: the base colour
+// (albedo.R/G/B), the world-space shading normal (N.X/Y/Z) and the depth along the view axis (Z,
+// as Blender's depth pass: not the distance along the ray). R, G, B show one of them, chosen by
+// `show`. Rays that escape get albedo 0, normal 0 and depth 1e10 m, as in Cycles.
+#include <filmback/plugin_sdk.h>
+#include <filmback/vec.h>
+
+#include <cstring>
+
+namespace {
+
+constexpr float kMissDepth = 1e10f;
+constexpr uint32_t kChannels = 10;
+const char* const kNames[kChannels] = {"R",    "G",    "B",    "albedo.R", "albedo.G",
+                                       "albedo.B", "N.X", "N.Y", "N.Z",      "Z"};
+
+enum class Show { kAlbedo, kNormal, kDepth };
+
+struct Aov {
+  Show show;
+
+  void shade(const fb_scene& scene, fb_trace_context* ctx, const fb_ray& ray, float* v) const {
+    fb_hit hit;
+    if (!scene.api->intersect(ctx, &ray, &hit)) {
+      for (uint32_t c = 0; c < kChannels; ++c) v[c] = 0.f;
+      v[9] = kMissDepth;
+      return;
+    }
+    const fb_material& m = scene.materials[hit.material];
+    for (int c = 0; c < 3; ++c) v[3 + c] = m.base_color[c], v[6 + c] = hit.shading_normal[c];
+    v[9] = fb::dot(fb::Vec3f(hit.position), fb::Vec3f(scene.view_axis));
+    for (int c = 0; c < 3; ++c) {
+      switch (show) {
+        case Show::kAlbedo: v[c] = v[3 + c]; break;
+        case Show::kNormal: v[c] = 0.5f + 0.5f * v[6 + c]; break;
+        case Show::kDepth: v[c] = v[9]; break;
+      }
+    }
+  }
+};
+
+const fb_param_desc kParams[] = {
+    {"show", FB_PARAM_STRING, "albedo", "", "albedo|normal|depth", 0, 0,
+     "which AOV the R, G, B channels (and a PNG) show; normals as 0.5 + 0.5 n"},
+};
+
+int create(const fb_value* params, void** instance, fb_error_buffer error) {
+  const char* show = params[0].text;
+  const Show s = std::strcmp(show, "normal") == 0  ? Show::kNormal
+                 : std::strcmp(show, "depth") == 0 ? Show::kDepth
+                                                   : Show::kAlbedo;
+  return fb::create_instance<Aov>(instance, error, s);
+}
+
+uint32_t channels(const void*, const char** names, uint32_t capacity) {
+  for (uint32_t i = 0; i < kChannels && i < capacity; ++i) names[i] = kNames[i];
+  return kChannels;
+}
+
+void radiance(const void* self, const fb_scene* scene, fb_trace_context* ctx, const fb_ray* rays,
+              size_t count, float* values) {
+  const auto& aov = *static_cast<const Aov*>(self);
+  for (size_t i = 0; i < count; ++i) aov.shade(*scene, ctx, rays[i], values + kChannels * i);
+}
+
+const fb_integrator_api kApi = {sizeof(fb_integrator_api), create, fb::destroy_instance<Aov>,
+                                channels, radiance};
+
+const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR, "aov", "1.0.0",
+                           "Depth, normal and albedo of what camera rays hit", kParams,
+                           sizeof kParams / sizeof kParams[0], &kApi};
+
+}  // namespace
+
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }

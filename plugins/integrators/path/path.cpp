@@ -1,0 +1,143 @@
+// Integrator `path`: unidirectional path tracing with next-event estimation (Kajiya 1986;
+// Veach 1997 ch. 9). Surfaces are two-sided Lambertian reflectors with optional emission; light
+// comes from punctual lights, emissive triangles and a uniform background. Emission found by
+// BSDF sampling and by light sampling is combined with the power heuristic; delta lights are
+// reached by light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased.
+#include <filmback/geometry.h>
+#include <filmback/plugin_sdk.h>
+#include <filmback/sampling.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace {
+
+using fb::Rgb;
+using fb::Vec3f;
+
+constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this short of the light
+
+struct PathTracer {
+  int max_depth;  // bounces; 0 shows emitters only
+  int rr_depth;
+
+  Rgb radiance(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const;
+};
+
+// Emission leaving the hit towards -direction: front faces only, unless the material is two-sided.
+Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
+  if (!m.double_sided && fb::dot(Vec3f(hit.geometric_normal), direction) > 0.f) return {};
+  return Rgb(m.emission);
+}
+
+Rgb PathTracer::radiance(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const {
+  const fb_scene_api& api = *scene.api;
+  Rgb L{}, beta{1.f, 1.f, 1.f};
+  float bsdf_pdf = 0.f;        // of the direction that produced `ray`
+  float previous[3] = {0, 0, 0};  // where that direction was sampled
+  const float time_s = ray.time_s;
+  for (int depth = 0;; ++depth) {
+    fb_hit hit;
+    if (!api.intersect(ctx, &ray, &hit)) {
+      L += beta * Rgb(scene.background);
+      break;
+    }
+    const fb_material& m = scene.materials[hit.material];
+    const Vec3f wo = -Vec3f(ray.direction);
+    if (hit.emitter != FB_NONE) {
+      const Rgb Le = emitted(m, hit, Vec3f(ray.direction));
+      const float weight =
+          depth == 0 ? 1.f : fb::power_heuristic(bsdf_pdf, api.light_pdf(ctx, previous, &hit));
+      L += beta * Le * weight;
+    }
+    if (depth >= max_depth) break;
+
+    // Two-sided Lambertian: shade on the side the ray arrived from.
+    Vec3f ng(hit.geometric_normal), ns(hit.shading_normal);
+    if (fb::dot(ng, wo) < 0.f) ng = -ng, ns = -ns;
+    const Vec3f p(hit.position), p_error(hit.position_error);
+    const Rgb albedo(m.base_color);
+    const Rgb f = albedo * kInvPi;
+
+    float u[3];
+    api.next_samples(ctx, path, u, 3);
+    fb_light_sample ls;
+    if (max_component(albedo) > 0.f && api.sample_light(ctx, hit.position, u, &ls)) {
+      const Vec3f wi(ls.direction);
+      const float cos_theta = fb::dot(ns, wi);
+      if (cos_theta > 0.f && fb::dot(ng, wi) > 0.f && ls.pdf > 0.f) {
+        fb_ray shadow{};
+        fb::offset_ray_origin(p, p_error, ng, wi).store(shadow.origin);
+        wi.store(shadow.direction);
+        shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
+        shadow.time_s = time_s;
+        if (!api.occluded(ctx, &shadow)) {
+          const float weight = ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, cos_theta * kInvPi);
+          L += beta * f * Rgb(ls.radiance) * (cos_theta * weight / ls.pdf);
+        }
+      }
+    }
+
+    float v[2];
+    api.next_samples(ctx, path, v, 2);
+    const fb::Frame frame(ns);
+    const Vec3f local = fb::sample_cosine_hemisphere({v[0], v[1]});
+    const Vec3f wi = frame.to_world(local);
+    if (local.z <= 0.f || fb::dot(ng, wi) <= 0.f) break;  // below the true surface: no light path
+    beta *= albedo;  // f cos / pdf = (albedo / pi) cos / (cos / pi)
+    bsdf_pdf = local.z * kInvPi;
+    p.store(previous);
+
+    if (depth + 1 >= rr_depth) {
+      float r;
+      api.next_samples(ctx, path, &r, 1);
+      const float survive = std::min(1.f, fb::max_component(beta));
+      if (r >= survive) break;
+      beta *= 1.f / survive;
+    }
+    ray = {};
+    fb::offset_ray_origin(p, p_error, ng, wi).store(ray.origin);
+    wi.store(ray.direction);
+    ray.t_max = HUGE_VALF;
+    ray.time_s = time_s;
+  }
+  return L;
+}
+
+const fb_param_desc kParams[] = {
+    {"max_depth", FB_PARAM_INT, "8", "", nullptr, 0, 1024,
+     "most bounces a path takes (0: emitters only, 1: direct light)"},
+    {"rr_depth", FB_PARAM_INT, "3", "", nullptr, 1, 1024,
+     "bounces before Russian roulette may end a path"},
+};
+
+int create(const fb_value* params, void** instance, fb_error_buffer error) {
+  return fb::create_instance<PathTracer>(instance, error, int(params[0].number[0]),
+                                         int(params[1].number[0]));
+}
+
+uint32_t channels(const void*, const char** names, uint32_t capacity) {
+  static const char* const kNames[] = {"R", "G", "B"};
+  for (uint32_t i = 0; i < 3 && i < capacity; ++i) names[i] = kNames[i];
+  return 3;
+}
+
+void radiance(const void* self, const fb_scene* scene, fb_trace_context* ctx, const fb_ray* rays,
+              size_t count, float* values) {
+  const auto& tracer = *static_cast<const PathTracer*>(self);
+  for (size_t i = 0; i < count; ++i) tracer.radiance(*scene, ctx, i, rays[i]).store(values + 3 * i);
+}
+
+const fb_integrator_api kApi = {sizeof(fb_integrator_api), create, fb::destroy_instance<PathTracer>,
+                                channels, radiance};
+
+const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR, "path", "1.0.0",
+                           "Path tracing with next-event estimation and MIS; Lambertian surfaces, "
+                           "emission, punctual lights, uniform background",
+                           kParams, sizeof kParams / sizeof kParams[0], &kApi};
+
+}  // namespace
+
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
