@@ -23,6 +23,27 @@ size_t component_size(int type) {
   return 0;
 }
 
+// The accessor "type" as written in the JSON (glTF 2.0 §5.1.3).
+const char* type_name(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+  }
+  return "unknown";
+}
+
 // The bytes of element i of a checked accessor.
 struct AccessorView {
   const unsigned char* data;
@@ -43,18 +64,31 @@ AccessorView view(const AccessorContext& ctx, int index, const std::string& wher
                   std::initializer_list<int> component_types) {
   const tinygltf::Accessor& a = checked_accessor(ctx, index, where);
   const std::string path = where + " (accessors[" + std::to_string(index) + "])";
-  if (a.type != type) throw_input(ctx.file, path, "unexpected element type for this attribute");
+  if (a.type != type)
+    throw_input(ctx.file, path,
+                std::string("type ") + type_name(a.type) + ", expected " + type_name(type));
   bool known = false;
-  for (int t : component_types) known |= a.componentType == t;
-  if (!known) throw_input(ctx.file, path, "unsupported componentType " + std::to_string(a.componentType));
+  std::string expected;
+  for (int t : component_types) {
+    known |= a.componentType == t;
+    expected += (expected.empty() ? "" : " or ") + std::to_string(t);
+  }
+  if (!known)
+    throw_input(ctx.file, path,
+                "componentType " + std::to_string(a.componentType) + ", expected " + expected);
   if (a.sparse.isSparse) throw_input(ctx.file, path, "sparse accessors are not supported yet");
   if (a.count == 0) return {nullptr, 0, 0};
   if (a.bufferView < 0 || size_t(a.bufferView) >= ctx.model.bufferViews.size())
-    throw_input(ctx.file, path, "bufferView " + std::to_string(a.bufferView) + " is out of range");
+    throw_input(ctx.file, path,
+                "bufferView index " + std::to_string(a.bufferView) +
+                    " is out of range (the file has " +
+                    std::to_string(ctx.model.bufferViews.size()) + " bufferViews)");
   const tinygltf::BufferView& bv = ctx.model.bufferViews[size_t(a.bufferView)];
   const std::string bv_path = "bufferViews[" + std::to_string(a.bufferView) + "]";
   if (bv.buffer < 0 || size_t(bv.buffer) >= ctx.model.buffers.size())
-    throw_input(ctx.file, bv_path, "buffer " + std::to_string(bv.buffer) + " is out of range");
+    throw_input(ctx.file, bv_path,
+                "buffer index " + std::to_string(bv.buffer) + " is out of range (the file has " +
+                    std::to_string(ctx.model.buffers.size()) + " buffers)");
   const size_t buffer_size = ctx.model.buffers[size_t(bv.buffer)].data.size();
   const size_t element_size = component_size(a.componentType) * size_t(tinygltf::GetNumComponentsInType(a.type));
   const size_t stride = bv.byteStride ? bv.byteStride : element_size;

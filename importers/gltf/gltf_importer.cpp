@@ -3,6 +3,9 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -23,6 +26,48 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 
 std::string index_path(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
+// "mesh index 5 is out of range (the file has 1 meshes)": what was found and what was expected.
+std::string out_of_range(const char* what, long index, size_t count, const char* array) {
+  return std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
+         std::to_string(count) + " " + array + ")";
+}
+
+// The GLB container (glTF 2.0 §4.4): a 12-byte header (magic "glTF", version 2, total length)
+// and chunks of (length, type, data), the first one JSON. Checked before tinygltf sees the bytes:
+// tinygltf 2.7.0 compares a BIN chunk's length with the file size without the chunk's 8-byte
+// header, so a chunk claiming 8 bytes too many is read past the end of the file.
+void check_glb_container(const std::vector<unsigned char>& bytes, const std::string& file) {
+  auto fail = [&](const std::string& what) {
+    throw_input(file, "", "not a valid glTF binary file: " + what);
+  };
+  auto u32 = [&](size_t at) {  // little-endian, whatever the host
+    return uint32_t(bytes[at]) | uint32_t(bytes[at + 1]) << 8 | uint32_t(bytes[at + 2]) << 16 |
+           uint32_t(bytes[at + 3]) << 24;
+  };
+  const size_t size = bytes.size();
+  if (size < 12)
+    fail("the file has " + std::to_string(size) + " bytes, expected at least the 12-byte header");
+  if (std::memcmp(bytes.data(), "glTF", 4) != 0)
+    fail("expected the magic bytes 'glTF' at the start");
+  if (u32(4) != 2) fail("container version " + std::to_string(u32(4)) + ", expected 2");
+  if (u32(8) != size)
+    fail("the header gives a length of " + std::to_string(u32(8)) + " bytes, but the file has " +
+         std::to_string(size) + (u32(8) > size ? " (truncated?)" : ""));
+  constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
+  size_t at = 12;
+  for (size_t chunk = 0; at < size || chunk == 0; ++chunk) {
+    const std::string where = "chunk " + std::to_string(chunk) + " at byte " + std::to_string(at);
+    if (size - at < 8)
+      fail(where + ": expected an 8-byte chunk header, found " + std::to_string(size - at) +
+           " bytes");
+    if (u32(at) > size - at - 8)
+      fail(where + ": " + std::to_string(u32(at)) +
+           " bytes of data reach past the end of the file (" + std::to_string(size) + " bytes)");
+    if (chunk == 0 && u32(at + 4) != kJsonChunk) fail(where + ": expected the JSON chunk first");
+    at += 8 + size_t(u32(at));
+  }
+}
+
 double number_or(const tinygltf::Value& object, const char* key, double fallback) {
   if (!object.IsObject() || !object.Has(key)) return fallback;
   const tinygltf::Value& v = object.Get(key);
@@ -39,8 +84,8 @@ class Importer {
     check_extensions();
     scene_.file = file_;
     convert_materials();
+    // Skins are reported where a node uses one (visit()), with what is rendered instead.
     warn_if_present("animations", model_.animations.size());
-    warn_if_present("skins", model_.skins.size());
     warn_if_present("textures", model_.textures.size());
     walk_nodes();
     return std::move(scene_);
@@ -50,15 +95,35 @@ class Importer {
   void warn(const std::string& where, const std::string& what) { diagnostics_.warn(located(name_, where, what)); }
 
   void load() {
-    std::error_code ec;
-    if (!fs::is_regular_file(file_, ec)) throw_input(name_, "", "no such file");
+    const std::vector<unsigned char> bytes = read_file();
+    const bool binary = file_.extension() == ".glb";
+    if (binary) check_glb_container(bytes, name_);
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(skip_image, nullptr);
     std::string err, warnings;
-    const bool binary = file_.extension() == ".glb";
-    const bool ok = binary ? loader.LoadBinaryFromFile(&model_, &err, &warnings, file_.string())
-                           : loader.LoadASCIIFromFile(&model_, &err, &warnings, file_.string());
+    const std::string folder = file_.parent_path().string();  // external buffers are relative to it
+    const auto size = unsigned(bytes.size());
+    const bool ok =
+        binary
+            ? loader.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), size, folder)
+            : loader.LoadASCIIFromString(&model_, &err, &warnings,
+                                         reinterpret_cast<const char*>(bytes.data()), size, folder);
     if (!ok) throw_input(name_, "", "not a valid glTF " + std::string(binary ? "binary" : "JSON") + " file: " + trim(err));
+  }
+
+  std::vector<unsigned char> read_file() {
+    std::error_code ec;
+    if (fs::is_directory(file_, ec)) throw_input(name_, "", "is a folder, expected a glTF file");
+    if (!fs::is_regular_file(file_, ec)) throw_input(name_, "", "no such file");
+    std::ifstream in(file_, std::ios::binary);
+    std::vector<unsigned char> bytes(fs::file_size(file_, ec));
+    if (ec || !in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size())))
+      throw_input(name_, "", "cannot read the file");
+    if (bytes.empty()) throw_input(name_, "", "the file is empty, expected a glTF document");
+    // tinygltf takes 32-bit sizes; a GLB's length field is 32-bit too (glTF 2.0 §4.4.2).
+    if (bytes.size() > std::numeric_limits<uint32_t>::max())
+      throw_input(name_, "", std::to_string(bytes.size()) + " bytes, expected at most 4 GiB");
+    return bytes;
   }
 
   static std::string trim(std::string s) {
@@ -78,7 +143,7 @@ class Importer {
   }
 
   void warn_if_present(const std::string& what, size_t n) {
-    if (n > 0) warn(what, std::to_string(n) + " " + what + " are not supported yet; ignored");
+    if (n > 0) warn(what, "not supported yet; " + std::to_string(n) + " ignored");
   }
 
   void convert_materials() {
@@ -99,7 +164,8 @@ class Importer {
       if (!is_finite(m.base_color) || !is_finite(m.emission) || m.base_color.x < 0 || m.base_color.y < 0 ||
           m.base_color.z < 0 || m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0)
         throw_input(name_, path, "base colour and emission must be finite and non-negative");
-      if (g.pbrMetallicRoughness.metallicFactor > 0)
+      // A black metal reflects nothing, as a black Lambertian surface: no warning for emitters.
+      if (g.pbrMetallicRoughness.metallicFactor > 0 && max_component(m.base_color) > 0)
         warn(path, "metallic " + std::to_string(g.pbrMetallicRoughness.metallicFactor) +
                        " is rendered as Lambertian (metallic-roughness is not supported yet)");
       if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
@@ -134,39 +200,61 @@ class Importer {
     return t;
   }
 
-  // Depth-first over the scene's node trees, iteratively: a hostile file cannot overflow the stack,
-  // and a node reached twice (a cycle, or two parents) is an error, as glTF requires a forest.
+  // Depth-first over the scene's node trees, iteratively: a hostile file cannot overflow the stack.
+  // glTF requires the hierarchy to be a set of disjoint trees ("Nodes and Hierarchy"): a node
+  // reached twice (a cycle, or two parents) is an error, named at the reference that reached it.
   void walk_nodes() {
-    std::vector<int> roots;
+    struct Pending {
+      int index;
+      Transform parent;
+      std::string from;  // the JSON path of the reference to the node
+    };
+    std::vector<Pending> stack;
     if (!model_.scenes.empty()) {
       const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
-      if (s >= model_.scenes.size()) throw_input(name_, "scene", "scene index " + std::to_string(s) + " is out of range");
-      roots = model_.scenes[s].nodes;
+      if (s >= model_.scenes.size())
+        throw_input(name_, "scene", out_of_range("scene", long(s), model_.scenes.size(), "scenes"));
+      const std::vector<int>& roots = model_.scenes[s].nodes;
+      for (size_t r = roots.size(); r-- > 0;)
+        stack.push_back(
+            {roots[r], Transform(), index_path("scenes", s) + "." + index_path("nodes", r)});
       if (model_.scenes.size() > 1) warn("scenes", "the file has " + std::to_string(model_.scenes.size()) + " scenes; rendering scenes[" + std::to_string(s) + "]");
     } else {
+      // No scene: every node without a parent is a root.
       std::vector<bool> is_child(model_.nodes.size(), false);
       for (const auto& node : model_.nodes)
         for (int c : node.children)
           if (c >= 0 && size_t(c) < is_child.size()) is_child[size_t(c)] = true;
-      for (size_t i = 0; i < model_.nodes.size(); ++i)
-        if (!is_child[i]) roots.push_back(int(i));
+      for (size_t i = model_.nodes.size(); i-- > 0;)
+        if (!is_child[i]) stack.push_back({int(i), Transform(), index_path("nodes", i)});
     }
     std::vector<bool> visited(model_.nodes.size(), false);
-    std::vector<std::pair<int, Transform>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, Transform());
     while (!stack.empty()) {
-      auto [index, parent] = stack.back();
+      const Pending next = std::move(stack.back());
       stack.pop_back();
-      if (index < 0 || size_t(index) >= model_.nodes.size())
-        throw_input(name_, "nodes", "node index " + std::to_string(index) + " is out of range");
-      const std::string path = index_path("nodes", size_t(index));
-      if (visited[size_t(index)]) throw_input(name_, path, "node reached twice: the node hierarchy must be a tree");
-      visited[size_t(index)] = true;
-      const tinygltf::Node& node = model_.nodes[size_t(index)];
-      const Transform world = parent * local_transform(node, path);
+      if (next.index < 0 || size_t(next.index) >= model_.nodes.size())
+        throw_input(name_, next.from,
+                    out_of_range("node", next.index, model_.nodes.size(), "nodes"));
+      const std::string path = index_path("nodes", size_t(next.index));
+      if (visited[size_t(next.index)])
+        throw_input(name_, next.from,
+                    path +
+                        " is reached a second time (a cycle, or a second parent); expected the "
+                        "node hierarchy to be a set of trees");
+      visited[size_t(next.index)] = true;
+      const tinygltf::Node& node = model_.nodes[size_t(next.index)];
+      const Transform world = next.parent * local_transform(node, path);
       visit(node, path, world);
-      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.emplace_back(*c, world);
+      for (size_t c = node.children.size(); c-- > 0;)
+        stack.push_back({node.children[c], world, path + "." + index_path("children", c)});
     }
+    // Without a scene every node is drawn; one that no root reaches hangs below a cycle.
+    if (model_.scenes.empty())
+      for (size_t i = 0; i < visited.size(); ++i)
+        if (!visited[i])
+          throw_input(name_, index_path("nodes", i),
+                      "no root above this node: its ancestors form a cycle; expected the node "
+                      "hierarchy to be a set of trees");
   }
 
   void visit(const tinygltf::Node& node, const std::string& path, const Transform& world) {
@@ -179,7 +267,8 @@ class Importer {
 
   void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world) {
     if (size_t(node.mesh) >= model_.meshes.size())
-      throw_input(name_, path + ".mesh", "mesh index " + std::to_string(node.mesh) + " is out of range");
+      throw_input(name_, path + ".mesh",
+                  out_of_range("mesh", node.mesh, model_.meshes.size(), "meshes"));
     const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const auto key = std::pair{node.mesh, p};
@@ -227,8 +316,10 @@ class Importer {
     }
     out.indices = triangle_list(vertices, mode, path);
     if (prim.material >= 0) {
-      if (size_t(prim.material) >= scene_.materials.size())
-        throw_input(name_, path + ".material", "material index " + std::to_string(prim.material) + " is out of range");
+      // Against the file's materials, not scene_.materials, which may also hold the default one.
+      if (size_t(prim.material) >= model_.materials.size())
+        throw_input(name_, path + ".material",
+                    out_of_range("material", prim.material, model_.materials.size(), "materials"));
       out.material = uint32_t(prim.material);
     } else {
       out.material = default_material();
@@ -254,7 +345,8 @@ class Importer {
 
   void add_camera(const tinygltf::Node& node, const std::string& path, const Transform& world) {
     if (size_t(node.camera) >= model_.cameras.size())
-      throw_input(name_, path + ".camera", "camera index " + std::to_string(node.camera) + " is out of range");
+      throw_input(name_, path + ".camera",
+                  out_of_range("camera", node.camera, model_.cameras.size(), "cameras"));
     const tinygltf::Camera& g = model_.cameras[size_t(node.camera)];
     const std::string cpath = index_path("cameras", size_t(node.camera));
     SceneCamera camera;
@@ -307,7 +399,8 @@ class Importer {
   void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world, int index) {
     const std::string ext_path = path + ".extensions.KHR_lights_punctual";
     if (index < 0 || size_t(index) >= model_.lights.size())
-      throw_input(name_, ext_path + ".light", "light index " + std::to_string(index) + " is out of range");
+      throw_input(name_, ext_path + ".light",
+                  out_of_range("light", index, model_.lights.size(), "lights"));
     const tinygltf::Light& g = model_.lights[size_t(index)];
     const std::string lpath = "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));
     Light light;

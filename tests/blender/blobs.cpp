@@ -1,0 +1,69 @@
+#include "tests/blender/blobs.h"
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+namespace fb::test {
+namespace {
+
+std::vector<double> rgb_sum(const Image& image) {
+  std::array<size_t, 3> index{};
+  const std::array<const char*, 3> names = {"R", "G", "B"};
+  for (size_t c = 0; c < 3; ++c) {
+    const auto it = std::find(image.channels.begin(), image.channels.end(), names[c]);
+    if (it == image.channels.end())
+      throw std::runtime_error(std::string("image has no channel ") + names[c]);
+    index[c] = size_t(std::distance(image.channels.begin(), it));
+  }
+  std::vector<double> sum(size_t(image.width) * image.height);
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      sum[size_t(y) * image.width + x] =
+          double(image.at(x, y, index[0])) + image.at(x, y, index[1]) + image.at(x, y, index[2]);
+  return sum;
+}
+
+}  // namespace
+
+std::vector<Blob> find_blobs(const Image& image, double threshold) {
+  const std::vector<double> value = rgb_sum(image);
+  const auto w = int64_t(image.width), h = int64_t(image.height);
+  std::vector<bool> seen(value.size(), false);
+  std::vector<Blob> blobs;
+  std::vector<int64_t> stack;  // an explicit stack: a large blob cannot overflow the call stack
+  for (int64_t start = 0; start < int64_t(value.size()); ++start) {
+    if (seen[size_t(start)] || !(value[size_t(start)] > threshold)) continue;
+    Blob blob;
+    double sum_x = 0, sum_y = 0;
+    seen[size_t(start)] = true;
+    stack.push_back(start);
+    while (!stack.empty()) {
+      const int64_t p = stack.back();
+      stack.pop_back();
+      const int64_t x = p % w, y = p / w;
+      const double v = value[size_t(p)];
+      blob.flux += v;
+      sum_x += v * (double(x) + 0.5);
+      sum_y += v * (double(y) + 0.5);
+      ++blob.pixel_count;
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dx = -1; dx <= 1; ++dx) {
+          const int64_t nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          const int64_t q = ny * w + nx;
+          if (seen[size_t(q)] || !(value[size_t(q)] > threshold)) continue;
+          seen[size_t(q)] = true;
+          stack.push_back(q);
+        }
+    }
+    blob.x_px = sum_x / blob.flux;
+    blob.y_px = sum_y / blob.flux;
+    blobs.push_back(blob);
+  }
+  return blobs;
+}
+
+}  // namespace fb::test
