@@ -1,0 +1,72 @@
+// Camera plugins through the ABI: rays through raster points re-project onto them, and clipping
+// is by depth along the view axis (Blender's clip_start/clip_end), not by distance along the ray.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <filmback/camera_projection.h>
+
+#include "core/plugin/instances.h"
+#include "core/scene/camera.h"
+#include "support/plugins.h"
+
+namespace fb {
+namespace {
+
+std::unique_ptr<CameraInstance> make_camera(const char* name, const fb_camera_setup& setup) {
+  auto library = test::loader().load(FB_KIND_CAMERA, name);
+  return std::make_unique<CameraInstance>(library, BoundParams(library->descriptor(), {}), setup);
+}
+
+fb_camera_ray generate(const CameraInstance& camera, float x, float y) {
+  fb_camera_sample sample{x, y, 0.f, 0.f, 0.f};
+  fb_camera_ray ray;
+  camera.generate_rays({&sample, 1}, &ray);
+  return ray;
+}
+
+TEST(PerspectiveCamera, RaysReprojectOntoTheirRasterPoints) {
+  PhysicalCamera physical;
+  physical.focal_length_mm = 24;
+  physical.shift_x = 0.07;
+  physical.shift_y = -0.03;
+  physical.clip_near_m = 0.5;
+  physical.clip_far_m = 40;
+  const fb_camera_setup setup = make_camera_setup(physical, 640, 360);
+  const auto camera = make_camera("perspective", setup);
+  EXPECT_EQ(camera->needs(), 0u);  // a pinhole draws neither lens nor time samples
+  const ViewPlane v = view_plane(setup);
+  for (auto [x, y] : {std::pair{0.f, 0.f}, {640.f, 360.f}, {17.25f, 300.5f}, {float(v.cx), float(v.cy)}}) {
+    const fb_camera_ray ray = generate(*camera, x, y);
+    const double dx = ray.direction[0], dy = ray.direction[1], dz = ray.direction[2];
+    EXPECT_NEAR(std::hypot(dx, dy, dz), 1.0, 1e-6);
+    EXPECT_NEAR(v.cx + v.fx * dx / -dz, x, 1e-4);
+    EXPECT_NEAR(v.cy - v.fy * dy / -dz, y, 1e-4);
+    EXPECT_NEAR(ray.t_min * -dz, 0.5, 1e-6);  // depth along the view axis
+    EXPECT_NEAR(ray.t_max * -dz, 40, 1e-5);
+    EXPECT_EQ(ray.weight, 1.f);
+  }
+}
+
+TEST(OrthographicCamera, RaysAreParallelAndSpacedByTheOrthoScale) {
+  PhysicalCamera physical;
+  physical.projection = FB_PROJECTION_ORTHOGRAPHIC;
+  physical.ortho_scale_m = 6;
+  physical.clip_near_m = 0;
+  physical.clip_far_m = 100;
+  const auto camera = make_camera("orthographic", make_camera_setup(physical, 300, 150));
+  const fb_camera_ray left = generate(*camera, 0, 75), right = generate(*camera, 300, 0);
+  EXPECT_NEAR(left.origin[0], -3, 1e-6);
+  EXPECT_NEAR(right.origin[0], 3, 1e-6);
+  EXPECT_NEAR(right.origin[1], 1.5, 1e-6);  // the height spans 6 * 150 / 300 m
+  EXPECT_EQ(left.direction[2], -1.f);
+}
+
+TEST(CameraPlugins, RefuseTheOtherProjection) {
+  PhysicalCamera physical;
+  physical.projection = FB_PROJECTION_ORTHOGRAPHIC;
+  EXPECT_THROW(make_camera("perspective", make_camera_setup(physical, 10, 10)), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace fb

@@ -1,0 +1,172 @@
+#include "support/gltf_builder.h"
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <cstring>
+
+namespace fb::test {
+
+namespace fs = std::filesystem;
+
+fs::path scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  fs::path dir = fs::temp_directory_path() / "filmback-tests" /
+                 (std::string(info->test_suite_name()) + "." + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct GltfBuilder::Impl {
+  tinygltf::Model model;
+
+  int add_accessor(const void* data, size_t bytes, int component_type, int type, size_t count) {
+    auto& buffer = model.buffers[0].data;
+    while (buffer.size() % 4) buffer.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = bytes;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buffer.insert(buffer.end(), p, p + bytes);
+    model.bufferViews.push_back(view);
+    tinygltf::Accessor accessor;
+    accessor.bufferView = int(model.bufferViews.size() - 1);
+    accessor.byteOffset = 0;
+    accessor.componentType = component_type;
+    accessor.type = type;
+    accessor.count = count;
+    model.accessors.push_back(accessor);
+    return int(model.accessors.size() - 1);
+  }
+};
+
+GltfBuilder::GltfBuilder() : impl_(std::make_unique<Impl>()) {
+  impl_->model.buffers.emplace_back();
+  impl_->model.scenes.emplace_back();
+  impl_->model.defaultScene = 0;
+  impl_->model.asset.version = "2.0";
+  impl_->model.asset.generator = "filmback tests";
+}
+
+GltfBuilder::~GltfBuilder() = default;
+
+int GltfBuilder::material(Rgb base_color, Rgb emission, double emissive_strength, bool double_sided) {
+  tinygltf::Material m;
+  m.pbrMetallicRoughness.baseColorFactor = {base_color.x, base_color.y, base_color.z, 1.0};
+  m.pbrMetallicRoughness.metallicFactor = 0.0;
+  m.emissiveFactor = {emission.x, emission.y, emission.z};
+  m.doubleSided = double_sided;
+  if (emissive_strength != 1.0) {
+    tinygltf::Value::Object strength;
+    strength["emissiveStrength"] = tinygltf::Value(emissive_strength);
+    m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
+    impl_->model.extensionsUsed.push_back("KHR_materials_emissive_strength");
+  }
+  impl_->model.materials.push_back(m);
+  return int(impl_->model.materials.size() - 1);
+}
+
+int GltfBuilder::mesh(const std::vector<Vec3f>& positions, const std::vector<uint32_t>& indices,
+                      int material, int index_component_type, const std::vector<Vec3f>& normals) {
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = material;
+  prim.attributes["POSITION"] = impl_->add_accessor(positions.data(), positions.size() * sizeof(Vec3f),
+                                                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                                    positions.size());
+  if (!normals.empty())
+    prim.attributes["NORMAL"] = impl_->add_accessor(normals.data(), normals.size() * sizeof(Vec3f),
+                                                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                                    normals.size());
+  if (index_component_type > 0) {
+    std::vector<unsigned char> bytes;
+    for (uint32_t i : indices) {
+      unsigned char b[4];
+      std::memcpy(b, &i, 4);  // little-endian: the low bytes come first
+      const size_t n = index_component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                       : index_component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                                                                                        : 4;
+      bytes.insert(bytes.end(), b, b + n);
+    }
+    prim.indices = impl_->add_accessor(bytes.data(), bytes.size(), index_component_type,
+                                       TINYGLTF_TYPE_SCALAR, indices.size());
+  }
+  tinygltf::Mesh mesh;
+  mesh.primitives.push_back(prim);
+  impl_->model.meshes.push_back(mesh);
+  return int(impl_->model.meshes.size() - 1);
+}
+
+int GltfBuilder::perspective_camera(double yfov, double aspect_ratio, double znear, double zfar,
+                                    const std::string& name) {
+  tinygltf::Camera c;
+  c.type = "perspective";
+  c.name = name;
+  c.perspective.yfov = yfov;
+  c.perspective.aspectRatio = aspect_ratio;
+  c.perspective.znear = znear;
+  c.perspective.zfar = zfar;
+  impl_->model.cameras.push_back(c);
+  return int(impl_->model.cameras.size() - 1);
+}
+
+int GltfBuilder::orthographic_camera(double xmag, double ymag, double znear, double zfar) {
+  tinygltf::Camera c;
+  c.type = "orthographic";
+  c.orthographic.xmag = xmag;
+  c.orthographic.ymag = ymag;
+  c.orthographic.znear = znear;
+  c.orthographic.zfar = zfar;
+  impl_->model.cameras.push_back(c);
+  return int(impl_->model.cameras.size() - 1);
+}
+
+int GltfBuilder::point_light(Rgb color, double intensity_cd) {
+  tinygltf::Light l;
+  l.type = "point";
+  l.color = {color.x, color.y, color.z};
+  l.intensity = intensity_cd;
+  impl_->model.lights.push_back(l);
+  auto& used = impl_->model.extensionsUsed;
+  if (std::find(used.begin(), used.end(), "KHR_lights_punctual") == used.end())
+    used.push_back("KHR_lights_punctual");
+  return int(impl_->model.lights.size() - 1);
+}
+
+int GltfBuilder::node(const Node& n, bool root) {
+  tinygltf::Node node;
+  node.name = n.name;
+  node.mesh = n.mesh;
+  node.camera = n.camera;
+  node.children = n.children;
+  if (!n.matrix.empty()) {
+    node.matrix = n.matrix;
+  } else {
+    node.translation.assign(n.translation.begin(), n.translation.end());
+    node.rotation.assign(n.rotation.begin(), n.rotation.end());
+    node.scale.assign(n.scale.begin(), n.scale.end());
+  }
+  if (n.light >= 0) {
+    tinygltf::Value::Object light;
+    light["light"] = tinygltf::Value(n.light);
+    node.extensions["KHR_lights_punctual"] = tinygltf::Value(light);
+  }
+  impl_->model.nodes.push_back(node);
+  const int index = int(impl_->model.nodes.size() - 1);
+  if (root) impl_->model.scenes[0].nodes.push_back(index);
+  return index;
+}
+
+fs::path GltfBuilder::write(const fs::path& file) {
+  // A file without geometry has no buffer: an empty data: URI is not valid glTF.
+  if (impl_->model.buffers.size() == 1 && impl_->model.buffers[0].data.empty()) impl_->model.buffers.clear();
+  tinygltf::TinyGLTF writer;
+  const bool binary = file.extension() == ".glb";
+  EXPECT_TRUE(writer.WriteGltfSceneToFile(&impl_->model, file.string(), true, true, true, binary))
+      << "could not write " << file;
+  return file;
+}
+
+}  // namespace fb::test

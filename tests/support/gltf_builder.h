@@ -1,0 +1,51 @@
+// Writes small glTF files for tests through tinygltf's own serialiser, so test scenes are valid
+// glTF produced independently of filmback's importer.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <filmback/vec.h>
+
+namespace fb::test {
+
+// A fresh, empty folder under the system temp dir, named after the running test.
+std::filesystem::path scratch_dir();
+
+class GltfBuilder {
+ public:
+  GltfBuilder();
+  ~GltfBuilder();
+
+  int material(Rgb base_color, Rgb emission = {}, double emissive_strength = 1.0, bool double_sided = true);
+  // Triangles with optional normals; indices of the given component type (5121, 5123, 5125) or
+  // none (-1: non-indexed, positions taken three at a time).
+  int mesh(const std::vector<Vec3f>& positions, const std::vector<uint32_t>& indices, int material,
+           int index_component_type = 5125, const std::vector<Vec3f>& normals = {});
+  int perspective_camera(double yfov, double aspect_ratio, double znear, double zfar, const std::string& name = "");
+  int orthographic_camera(double xmag, double ymag, double znear, double zfar);
+  int point_light(Rgb color, double intensity_cd);
+
+  struct Node {
+    std::string name;
+    int mesh = -1, camera = -1, light = -1;
+    std::array<double, 3> translation{0, 0, 0};
+    std::array<double, 4> rotation{0, 0, 0, 1};  // x, y, z, w
+    std::array<double, 3> scale{1, 1, 1};
+    std::vector<double> matrix;  // column-major 16 values; overrides TRS when set
+    std::vector<int> children;
+  };
+  int node(const Node& node, bool root = true);
+
+  // Writes .gltf (JSON, buffers embedded as data: URIs) or .glb, by extension.
+  std::filesystem::path write(const std::filesystem::path& file);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fb::test
