@@ -21,31 +21,41 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The function-table entries each kind must fill, by name, for the "incomplete plugin" message.
-struct RequiredFunctions {
-  size_t api_size;
-  std::vector<std::pair<const char*, const void*>> functions;
-};
+size_t api_size(uint32_t kind) {
+  switch (kind) {
+    case FB_KIND_CAMERA:
+      return sizeof(fb_camera_api);
+    case FB_KIND_FILTER:
+      return sizeof(fb_filter_api);
+    default:
+      return sizeof(fb_integrator_api);
+  }
+}
 
-RequiredFunctions required_functions(const fb_plugin& p) {
+// The function-table entries each kind must fill, by name, for the "incomplete plugin" message.
+// Read only after the table's struct_size matched api_size(): a smaller table from another SDK
+// would otherwise be read past its end.
+std::vector<std::pair<const char*, const void*>> required_functions(const fb_plugin& p) {
   switch (p.kind) {
     case FB_KIND_CAMERA: {
       const auto* a = static_cast<const fb_camera_api*>(p.api);
-      return {sizeof(*a), {{"create", (const void*)a->create}, {"destroy", (const void*)a->destroy},
-                           {"needs", (const void*)a->needs},
-                           {"generate_rays", (const void*)a->generate_rays}}};
+      return {{"create", (const void*)a->create},
+              {"destroy", (const void*)a->destroy},
+              {"needs", (const void*)a->needs},
+              {"generate_rays", (const void*)a->generate_rays}};
     }
     case FB_KIND_FILTER: {
       const auto* a = static_cast<const fb_filter_api*>(p.api);
-      return {sizeof(*a), {{"create", (const void*)a->create}, {"destroy", (const void*)a->destroy},
-                           {"radius", (const void*)a->radius}, {"evaluate", (const void*)a->evaluate},
-                           {"integral", (const void*)a->integral}, {"sample", (const void*)a->sample}}};
+      return {{"create", (const void*)a->create},     {"destroy", (const void*)a->destroy},
+              {"radius", (const void*)a->radius},     {"evaluate", (const void*)a->evaluate},
+              {"integral", (const void*)a->integral}, {"sample", (const void*)a->sample}};
     }
     default: {
       const auto* a = static_cast<const fb_integrator_api*>(p.api);
-      return {sizeof(*a), {{"create", (const void*)a->create}, {"destroy", (const void*)a->destroy},
-                           {"channels", (const void*)a->channels},
-                           {"radiance", (const void*)a->radiance}}};
+      return {{"create", (const void*)a->create},
+              {"destroy", (const void*)a->destroy},
+              {"channels", (const void*)a->channels},
+              {"radiance", (const void*)a->radiance}};
     }
   }
 }
@@ -87,13 +97,12 @@ std::string check_descriptor(const fb_plugin* p) {
              "', expected " + expected;
   }
   if (!p->api) return std::string("incomplete plugin: no ") + kind_name(p->kind) + " function table";
-  const RequiredFunctions required = required_functions(*p);
-  const uint32_t api_size = *static_cast<const uint32_t*>(p->api);
-  if (api_size != required.api_size)
+  const uint32_t table_size = *static_cast<const uint32_t*>(p->api);
+  if (table_size != api_size(p->kind))
     return std::string(kind_name(p->kind)) + " function table size mismatch: the plugin's is " +
-           std::to_string(api_size) + " bytes, this filmback's is " +
-           std::to_string(required.api_size) + " (rebuild it against this SDK)";
-  for (const auto& [name, function] : required.functions)
+           std::to_string(table_size) + " bytes, this filmback's is " +
+           std::to_string(api_size(p->kind)) + " (rebuild it against this SDK)";
+  for (const auto& [name, function] : required_functions(*p))
     if (!function)
       return std::string("incomplete plugin: its ") + kind_name(p->kind) +
              " function table lacks '" + name + "'";
@@ -106,6 +115,29 @@ std::vector<fs::path> directories_with(const std::vector<fs::path>& dirs, const 
   for (const fs::path& dir : dirs)
     if (fs::is_regular_file(dir / file, ec)) found.push_back(dir / file);
   return found;
+}
+
+// A render finds a plugin by its file name (`--filter gaussian` opens
+// libfilmback_filter_gaussian.so), so the name must agree with what the descriptor declares.
+std::string check_file_name(const fs::path& file, const fb_plugin& p) {
+  const std::string expected = plugin_file_name(p.kind, p.name);
+  const std::string actual = file.filename().string();
+  if (actual == expected) return {};
+  constexpr std::string_view prefix = "libfilmback_", suffix = ".so";
+  if (actual.starts_with(prefix) && actual.ends_with(suffix)) {
+    // libfilmback_<kind>_<name>.so; no kind name holds a '_'.
+    const std::string stem =
+        actual.substr(prefix.size(), actual.size() - prefix.size() - suffix.size());
+    const size_t cut = stem.find('_');
+    if (stem.substr(0, cut) != kind_name(p.kind))
+      return "wrong kind: the file name says " + stem.substr(0, cut) +
+             ", the plugin declares itself a " + kind_name(p.kind);
+    if (cut != std::string::npos)
+      return "name mismatch: the file name says '" + stem.substr(cut + 1) +
+             "', the plugin declares the name '" + p.name + "'";
+  }
+  return "name mismatch: the plugin declares " + std::string(kind_name(p.kind)) + " '" + p.name +
+         "', so its file must be named " + expected;
 }
 
 }  // namespace
@@ -130,10 +162,17 @@ PluginLibrary::PluginLibrary(const fs::path& file) : file_(file) {
   // RTLD_NOW: an unresolved symbol is reported here, naming the file, not mid-render.
   handle_ = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle_) {
-    const std::string why = dlerror();
+    std::string why = dlerror();
+    // dlerror() starts with the path, which the message names already.
+    if (why.starts_with(file.string() + ": ")) why.erase(0, file.string().size() + 2);
     const size_t at = why.find("undefined symbol: ");
     if (at != std::string::npos)
       throw fail("missing symbol: " + why.substr(at + 18) + " (the plugin needs a symbol nothing provides)");
+    // glibc: "<dependency>: cannot open shared object file: ..." for a library the plugin needs.
+    const size_t dependency = why.find(": cannot open shared object file");
+    if (dependency != std::string::npos)
+      throw fail("missing library: " + why.substr(0, dependency) +
+                 " (the plugin needs a shared library the dynamic loader cannot find)");
     throw fail("not a filmback plugin: cannot load it as a shared library (" + why + ")");
   }
   auto entry = reinterpret_cast<fb_entry_point_fn>(dlsym(handle_, FB_ENTRY_POINT));
@@ -187,15 +226,9 @@ std::shared_ptr<const PluginLibrary> PluginLoader::load(uint32_t kind, std::stri
                      std::string(name) + "' is provided by " + found[0].string() + " and by " +
                      found[1].string());
   auto library = std::make_shared<const PluginLibrary>(found[0]);
-  const fb_plugin& d = library->descriptor();
-  if (d.kind != kind)
-    throw InputError(located(found[0].string(), "",
-                             std::string("wrong kind: the plugin declares itself a ") +
-                                 kind_name(d.kind) + ", expected a " + kind_name(kind)));
-  if (name != d.name)
-    throw InputError(located(found[0].string(), "",
-                             "name mismatch: the plugin declares the name '" + std::string(d.name) +
-                                 "', its file name says '" + std::string(name) + "'"));
+  // The file is named for (kind, name), so a matching file name means the kind and name match.
+  if (std::string problem = check_file_name(found[0], library->descriptor()); !problem.empty())
+    throw InputError(located(found[0].string(), "", problem));
   return library;
 }
 
@@ -214,11 +247,8 @@ PluginLoader::Scan PluginLoader::load_all() const {
       try {
         auto library = std::make_shared<const PluginLibrary>(file);
         const fb_plugin& d = library->descriptor();
-        if (file.filename() != plugin_file_name(d.kind, d.name)) {
-          scan.errors.push_back(located(file.string(), "",
-                                        "name mismatch: the plugin declares " + std::string(kind_name(d.kind)) +
-                                            " '" + d.name + "', so its file must be named " +
-                                            plugin_file_name(d.kind, d.name)));
+        if (std::string problem = check_file_name(file, d); !problem.empty()) {
+          scan.errors.push_back(located(file.string(), "", problem));
           continue;
         }
         const auto [it, fresh] = seen.emplace(std::pair{d.kind, std::string(d.name)}, file);

@@ -1,0 +1,50 @@
+// Filter `outoftree`: a box of adjustable radius, the smallest complete plugin built against the
+// installed SDK (tests/plugin_abi/sdk_test.cmake). h(x, y) = 1 / (4 r^2) on [-r, r]^2, sampled
+// exactly, so every weight is 1.
+#include <filmback/plugin_sdk.h>
+
+#include <cmath>
+
+namespace {
+
+struct Box {
+  float radius_px;
+};
+
+const fb_param_desc kParams[] = {
+    {"radius", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "half-width of the square support"},
+};
+
+int create(const fb_value* params, void** instance, fb_error_buffer error) {
+  return fb::create_instance<Box>(instance, error, Box{float(params[0].number[0])});
+}
+void radius(const void* self, float r[2]) {
+  r[0] = r[1] = static_cast<const Box*>(self)->radius_px;
+}
+float evaluate(const void* self, float x, float y) {
+  const float r = static_cast<const Box*>(self)->radius_px;
+  return std::abs(x) <= r && std::abs(y) <= r ? 1.f / (4.f * r * r) : 0.f;
+}
+double integral(const void*) {
+  return 1.0;
+}
+void sample(const void* self, const float* u, size_t count, fb_filter_sample* out) {
+  const float r = static_cast<const Box*>(self)->radius_px;
+  for (size_t i = 0; i < count; ++i)
+    out[i] = {(2.f * u[2 * i] - 1.f) * r, (2.f * u[2 * i + 1] - 1.f) * r, 1.f};
+}
+
+const fb_filter_api kApi = {
+    sizeof(fb_filter_api), create, fb::destroy_instance<Box>, radius, evaluate, integral, sample};
+
+const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin),
+                           FB_KIND_FILTER, "outoftree",
+                           "1.0.0",        "Box filter built out of tree against the installed SDK",
+                           kParams,        sizeof kParams / sizeof kParams[0],
+                           &kApi};
+
+}  // namespace
+
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
+  return &kPlugin;
+}
