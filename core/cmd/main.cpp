@@ -36,8 +36,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int status = app.exit(e);
-    return status == 0 ? 0 : 2;
+    if (e.get_exit_code() == int(CLI::ExitCodes::Success)) return app.exit(e);  // --help
+    // One line, in the same form as every other error (docs/conventions.md, "Errors").
+    std::cerr << "filmback: error: " << e.what() << " (see filmback --help)\n";
+    return 2;
   }
   try {
     if (render_cmd->parsed()) return fb::run_render(render);

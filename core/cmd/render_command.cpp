@@ -33,8 +33,9 @@ void parse_resolution(const std::string& text, RenderOptions& options) {
   if (x == std::string::npos) throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
   options.width = parse_side(std::string_view(text).substr(0, x), text);
   options.height = parse_side(std::string_view(text).substr(x + 1), text);
-  if (uint64_t(*options.width) * *options.height > kMaxPixels)
-    throw UsageError("--res '" + text + "': more than " + std::to_string(kMaxPixels) + " pixels");
+  if (const uint64_t pixels = uint64_t(*options.width) * *options.height; pixels > kMaxPixels)
+    throw UsageError("--res '" + text + "': " + std::to_string(pixels) +
+                     " pixels, expected at most " + std::to_string(kMaxPixels));
 }
 
 // Same syntax and checks as an rgb plugin parameter: one grey value, or r,g,b.
@@ -55,6 +56,9 @@ int run_render(RenderCommand& c) {
     const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
     if (!std::filesystem::is_directory(folder))
       throw UsageError("output '" + out.string() + "': the folder '" + folder.string() + "' does not exist");
+    // Checked before rendering: failing at the second write would leave the first output behind.
+    if (std::filesystem::is_directory(out))
+      throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");
   }
   if (!c.resolution.empty()) parse_resolution(c.resolution, c.options);
   if (!c.background.empty()) c.options.background = parse_background(c.background);

@@ -1,0 +1,449 @@
+"""The command line's promise about bad input (docs/conventions.md, "Errors"): one message,
+`filmback: error: file: JSON path: what was found, what was expected`, exit status 1 for bad input
+and 2 for bad usage, never a crash and never an output file (not even a hidden temporary one).
+What is not supported yet is skipped with one warning each, naming the JSON path.
+
+Run: cli_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case names
+(CMake registers one CTest test per case from it).
+"""
+
+import argparse
+import math
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+from gltf_files import FLOAT, TRIANGLE, Gltf, png_1x1_uri, triangle_scene
+
+FILMBACK = None  # set by main()
+SCRATCH = None
+TINY = ["--res", "16x16", "--spp", "1", "-q"]
+INPUT, USAGE = 1, 2
+
+
+def png_size(path):
+    """Width and height from the IHDR chunk that follows the 8-byte signature (PNG spec §11.2.2)."""
+    data = path.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "%s is not a PNG" % path
+    return struct.unpack(">II", data[16:24])
+
+
+def exr_size(path):
+    """Width and height from the dataWindow header attribute (OpenEXR file layout: magic, version,
+    then name\\0 type\\0 int32 size value, until an empty name)."""
+    data = path.read_bytes()
+    assert struct.unpack("<I", data[:4])[0] == 20000630, "%s is not an OpenEXR file" % path
+    at = 8
+    while data[at] != 0:
+        name_end = data.index(b"\0", at)
+        type_end = data.index(b"\0", name_end + 1)
+        size = struct.unpack("<i", data[type_end + 1:type_end + 5])[0]
+        value = data[type_end + 5:type_end + 5 + size]
+        if data[at:name_end] == b"dataWindow":
+            x0, y0, x1, y1 = struct.unpack("<4i", value)
+            return x1 - x0 + 1, y1 - y0 + 1
+        at = type_end + 5 + size
+    raise AssertionError("%s has no dataWindow" % path)
+
+
+class CliTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        self.out = self.dir / "out"
+        self.out.mkdir()
+
+    def run_cli(self, *args):
+        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}  # only built plugins
+        result = subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True, env=env,
+                                stdin=subprocess.DEVNULL, timeout=120)
+        # Echoed so that CTest's log shows each message as printed (ctest -V, --output-on-failure).
+        print("\n$ filmback %s\nexit %d\n%s" % (" ".join(map(str, args)), result.returncode, result.stderr),
+              end="", flush=True)
+        return result
+
+    def render(self, scene, *options, outputs=("image.exr",)):
+        return self.run_cli("render", scene, *[a for o in outputs for a in ("-o", self.out / o)],
+                            *options)
+
+    def scene(self, gltf, name="scene.gltf"):
+        return gltf.write(self.dir / name)
+
+    def raw(self, data, name):
+        path = self.dir / name
+        path.write_bytes(data) if isinstance(data, bytes) else path.write_text(data)
+        return path
+
+    def assert_error(self, result, status, prefix, *fragments):
+        """Exit `status`, stderr exactly one line starting `filmback: error: ` + prefix and holding
+        each fragment, and the output folder still empty."""
+        report = "\nexit %d\nstderr:\n%s" % (result.returncode, result.stderr)
+        self.assertGreaterEqual(result.returncode, 0, "killed by signal" + report)
+        self.assertEqual(result.returncode, status, report)
+        lines = result.stderr.splitlines()
+        self.assertEqual(len(lines), 1, "expected one message" + report)
+        self.assertTrue(lines[0].startswith("filmback: error: " + prefix),
+                        "expected the message to start with %r%s" % (prefix, report))
+        for fragment in fragments:
+            self.assertIn(fragment, lines[0], report)
+        self.assertEqual(sorted(os.listdir(self.out)), [], "output folder not empty" + report)
+
+    def assert_input_error(self, scene, json_path, *fragments):
+        """A bad scene: exit 1 and `file: JSON path: ...` (no path when json_path is None)."""
+        prefix = "%s: %s" % (scene, json_path + ": " if json_path else "")
+        self.assert_error(self.render(scene, *TINY), INPUT, prefix, *fragments)
+
+    def assert_usage_error(self, scene, options, prefix, *fragments, outputs=("image.exr",)):
+        self.assert_error(self.render(scene, *options, outputs=outputs), USAGE, prefix, *fragments)
+
+    def assert_rendered(self, result, *names):
+        report = "\nexit %d\nstderr:\n%s" % (result.returncode, result.stderr)
+        self.assertEqual(result.returncode, 0, report)
+        self.assertEqual(sorted(os.listdir(self.out)), sorted(names), report)
+
+    # --- files that cannot be read -------------------------------------------------------------
+
+    def test_missing_scene_file(self):
+        missing = self.dir / "missing.gltf"
+        self.assert_input_error(missing, None, "no such file")
+
+    def test_scene_is_a_folder(self):
+        folder = self.dir / "folder.gltf"
+        folder.mkdir()
+        self.assert_input_error(folder, None, "is a folder, expected a glTF file")
+
+    def test_empty_gltf(self):
+        self.assert_input_error(self.raw(b"", "empty.gltf"), None, "the file is empty")
+
+    def test_not_json(self):
+        scene = self.raw("solid triangle\n  facet normal 0 0 1\nendsolid\n", "stl.gltf")
+        self.assert_input_error(scene, None, "not a valid glTF JSON file")
+
+    def test_malformed_json(self):
+        text = triangle_scene().json_text().replace('"nodes": [', '"nodes": [,', 1)
+        self.assert_input_error(self.raw(text, "malformed.gltf"), None, "not a valid glTF JSON file")
+
+    def test_truncated_gltf(self):
+        text = triangle_scene().json_text()
+        self.assert_input_error(self.raw(text[:len(text) // 2], "truncated.gltf"), None,
+                                "not a valid glTF JSON file")
+
+    def test_missing_asset_version(self):
+        g = triangle_scene()
+        del g.doc["asset"]
+        self.assert_input_error(self.scene(g), None, "asset")
+
+    def test_truncated_glb(self):
+        data = triangle_scene().glb_bytes()
+        self.assert_input_error(self.raw(data[:len(data) - 20], "truncated.glb"), None,
+                                "not a valid glTF binary file: the header gives a length of %d bytes, "
+                                "but the file has %d (truncated?)" % (len(data), len(data) - 20))
+
+    def test_glb_truncated_in_header(self):
+        self.assert_input_error(self.raw(triangle_scene().glb_bytes()[:10], "header.glb"), None,
+                                "not a valid glTF binary file", "12-byte header")
+
+    def test_glb_bad_magic(self):
+        data = b"gLTF" + triangle_scene().glb_bytes()[4:]
+        self.assert_input_error(self.raw(data, "magic.glb"), None, "not a valid glTF binary file", "'glTF'")
+
+    def test_glb_version_1(self):
+        data = bytearray(triangle_scene().glb_bytes())
+        data[4:8] = struct.pack("<I", 1)
+        self.assert_input_error(self.raw(bytes(data), "version.glb"), None, "version 1, expected 2")
+
+    def test_gltf_json_named_glb(self):
+        self.assert_input_error(self.raw(triangle_scene().json_text(), "json.glb"), None,
+                                "not a valid glTF binary file", "'glTF'")
+
+    def test_glb_length_past_end_of_file(self):
+        data = bytearray(triangle_scene().glb_bytes())
+        data[8:12] = struct.pack("<I", len(data) + 4096)
+        self.assert_input_error(self.raw(bytes(data), "length.glb"), None, "not a valid glTF binary file",
+                                "length of %d bytes" % (len(data) + 4096))
+
+    def test_glb_json_chunk_past_end(self):
+        data = bytearray(triangle_scene().glb_bytes())
+        data[12:16] = struct.pack("<I", len(data))
+        self.assert_input_error(self.raw(bytes(data), "json_chunk.glb"), None, "not a valid glTF binary file",
+                                "chunk 0 at byte 12", "past the end of the file")
+
+    def test_glb_bin_chunk_past_end(self):
+        # A BIN chunk length (and buffer byteLength) that counts the chunk's own 8-byte header:
+        # the data would end 8 bytes past the end of the file. tinygltf 2.7.0 accepts this and
+        # copies those 8 bytes from beyond its input (AddressSanitizer: heap-buffer-overflow).
+        g = triangle_scene()
+        data = bytearray(g.glb_bytes(buffer_length=len(g.bin) + 8))
+        json_length = struct.unpack("<I", data[12:16])[0]
+        bin_header = 20 + json_length
+        bin_length = struct.unpack("<I", data[bin_header:bin_header + 4])[0]
+        data[bin_header:bin_header + 4] = struct.pack("<I", bin_length + 8)
+        self.assert_input_error(self.raw(bytes(data), "bin_chunk.glb"), None, "not a valid glTF binary file",
+                                "chunk 1 at byte %d" % bin_header, "past the end of the file")
+
+    def test_missing_external_buffer(self):
+        text = triangle_scene().json_text(buffer_uri="missing.bin")
+        self.assert_input_error(self.raw(text, "external.gltf"), None, "missing.bin")
+
+    # --- data that points outside itself ------------------------------------------------------
+
+    def test_accessor_count_past_buffer_view(self):
+        g = triangle_scene()
+        g.doc["accessors"][0]["count"] = 4  # 4 VEC3 floats: 48 bytes in a 36-byte bufferView
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].attributes.POSITION (accessors[0])",
+                                "bufferViews[0]", "36 bytes")
+
+    def test_accessor_count_overflows(self):
+        g = triangle_scene()
+        g.doc["accessors"][0]["count"] = 2**62  # count * 12 bytes wraps around in 64 bits
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].attributes.POSITION (accessors[0])",
+                                "bufferViews[0]")
+
+    def test_accessor_count_past_buffer_view_in_glb(self):
+        g = triangle_scene()
+        g.doc["accessors"][1]["count"] = 4
+        self.assert_input_error(self.scene(g, "scene.glb"), "meshes[0].primitives[0].indices (accessors[1])",
+                                "bufferViews[1]", "12 bytes")
+
+    def test_buffer_view_past_buffer(self):
+        g = triangle_scene()
+        g.doc["bufferViews"][1]["byteOffset"] = 40  # 12 bytes from 40 in a 48-byte buffer
+        self.assert_input_error(self.scene(g), "bufferViews[1]", "40+12", "buffers[0] (48 bytes)")
+
+    def test_index_past_vertex_count(self):
+        g = Gltf()
+        position = g.positions(TRIANGLE)
+        g.mesh([{"attributes": {"POSITION": position}, "indices": g.indices([0, 1, 3])}])
+        g.node(mesh=0, translation=[0.0, 0.0, -3.0])
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].indices (accessors[1])",
+                                "index 2 is 3", "3 vertices")
+
+    def test_accessor_index_out_of_range(self):
+        g = triangle_scene()
+        g.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].attributes.POSITION",
+                                "accessor index 7", "2 accessors")
+
+    def test_position_accessor_of_wrong_type(self):
+        g = triangle_scene()
+        g.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 1  # the SCALAR indices
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].attributes.POSITION (accessors[1])",
+                                "type SCALAR, expected VEC3")
+
+    def test_indices_of_float_type(self):
+        g = triangle_scene()
+        g.doc["accessors"][1]["componentType"] = FLOAT
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].indices (accessors[1])",
+                                "componentType 5126, expected 5121 or 5123 or 5125")
+
+    def test_mesh_index_out_of_range(self):
+        g = triangle_scene()
+        g.doc["nodes"][0]["mesh"] = 5
+        self.assert_input_error(self.scene(g), "nodes[0].mesh", "mesh index 5", "1 meshes")
+
+    def test_material_index_out_of_range(self):
+        # The first primitive has no material, so the importer adds its default one; index 0 must
+        # still be out of range for a file without materials.
+        g = triangle_scene()
+        g.doc["meshes"][0]["primitives"].append(dict(g.doc["meshes"][0]["primitives"][0], material=0))
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[1].material", "material index 0",
+                                "0 materials")
+
+    def test_node_index_out_of_range(self):
+        g = triangle_scene()
+        g.doc["nodes"][0]["children"] = [9]
+        self.assert_input_error(self.scene(g), "nodes[0].children[0]", "node index 9", "2 nodes")
+
+    def test_scene_index_out_of_range(self):
+        g = triangle_scene()
+        g.doc["scene"] = 3
+        self.assert_input_error(self.scene(g), "scene", "scene index 3", "1 scenes")
+
+    def test_node_cycle(self):
+        g = triangle_scene()
+        a = g.node(name="a", children=[])
+        b = g.node(root=False, name="b", children=[a])
+        g.doc["nodes"][a]["children"] = [b]
+        self.assert_input_error(self.scene(g), "nodes[%d].children[0]" % b,
+                                "nodes[%d] is reached a second time" % a)
+
+    def test_node_with_two_parents(self):
+        g = triangle_scene()
+        child = g.node(root=False, name="child")
+        g.node(name="parent1", children=[child])
+        second = g.node(name="parent2", children=[child])
+        self.assert_input_error(self.scene(g), "nodes[%d].children[0]" % second,
+                                "nodes[%d] is reached a second time" % child)
+
+    def test_node_cycle_without_scenes(self):
+        g = triangle_scene()
+        del g.doc["scenes"], g.doc["scene"]
+        g.doc["nodes"][0]["children"] = [1]
+        g.doc["nodes"][1]["children"] = [0]
+        self.assert_input_error(self.scene(g), "nodes[0]", "cycle")
+
+    def test_nan_position(self):
+        g = Gltf()
+        g.mesh([{"attributes": {"POSITION": g.positions([TRIANGLE[0], (0.0, math.nan, 0.0), TRIANGLE[2]])}}])
+        g.node(mesh=0, translation=[0.0, 0.0, -3.0])
+        self.assert_input_error(self.scene(g, "nan.glb"),
+                                "meshes[0].primitives[0].attributes.POSITION (accessors[0])",
+                                "element 1", "finite")
+
+    def test_unsupported_required_extension(self):
+        g = triangle_scene()
+        g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+        self.assert_input_error(self.scene(g), "extensionsRequired[0]", "KHR_draco_mesh_compression",
+                                "not supported")
+
+    def test_info_reports_bad_input_too(self):
+        g = triangle_scene()
+        g.doc["accessors"][0]["count"] = 4
+        scene = self.scene(g)
+        self.assert_error(self.run_cli("info", scene), INPUT,
+                          "%s: meshes[0].primitives[0].attributes.POSITION (accessors[0]): " % scene)
+
+    # --- what was typed ------------------------------------------------------------------------
+
+    def test_option_value_out_of_range(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, ["--res", "16x16", "--spp", "0", "-q"], "--spp: ", "0",
+                                "1 to 1000000")
+
+    def test_unknown_option(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--exposure", "2"], "", "--exposure")
+
+    def test_unknown_scene_extension(self):
+        scene = self.raw("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "scene.obj")
+        self.assert_usage_error(scene, TINY, "'%s': " % scene, "'.obj'", "expected .gltf or .glb")
+
+    def test_unknown_filter(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--filter", "lanczos"], "", "filter", "'lanczos'")
+
+    def test_unknown_integrator(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--integrator", "bdpt"], "", "integrator", "'bdpt'")
+
+    def test_unknown_plugin_parameter(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--filter", "gaussian:width=2"], "", "'width'",
+                                "radius", "sigma")
+
+    def test_parameter_out_of_range(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--filter", "gaussian:sigma=-1"], "", "sigma", "'-1'",
+                                "expected")
+
+    def test_parameter_not_a_number(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--integrator", "path:max_depth=deep"], "", "max_depth",
+                                "'deep'", "expected a whole number")
+
+    def test_bad_resolution(self):
+        scene = self.scene(triangle_scene())
+        for res in ["0x10", "10", "10x", "axb", "x10", "16x16x16", "99999x99999", "32768x32768"]:
+            with self.subTest(res=res):
+                self.assert_usage_error(scene, ["--res", res, "--spp", "1", "-q"], "--res '%s': " % res,
+                                        "expected")
+
+    def test_unknown_output_extension(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY, "output '%s': " % (self.out / "image.jpg"), "'.jpg'",
+                                "expected .exr or .png", outputs=("image.exr", "image.jpg"))
+
+    def test_output_folder_missing(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY, "output '%s': " % (self.out / "nowhere" / "image.exr"),
+                                "does not exist", outputs=("image.exr", "nowhere/image.exr"))
+
+    def test_output_is_a_folder(self):
+        scene = self.scene(triangle_scene())
+        (self.out / "b.png").mkdir()
+        result = self.render(scene, *TINY, outputs=("a.exr", "b.png"))
+        self.assertEqual(result.returncode, USAGE, result.stderr)
+        self.assertEqual(result.stderr, "filmback: error: output '%s': is a folder, expected an image "
+                         "file name\n" % (self.out / "b.png"))
+        self.assertEqual(sorted(os.listdir(self.out)), ["b.png"])  # no a.exr, no temporary file
+
+    def test_unknown_camera(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--camera", "Camera.001"], "--camera 'Camera.001': ",
+                                "it has: shot")
+
+    # --- what works ----------------------------------------------------------------------------
+
+    def test_unsupported_features_warn_once_each(self):
+        g = triangle_scene()
+        position = 0
+        g.doc["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": position}]
+        g.doc["meshes"][0]["weights"] = [0.5]
+        g.doc["meshes"][0]["primitives"] += [{"attributes": {"POSITION": position}, "mode": 1},
+                                             {"attributes": {"POSITION": position}, "mode": 0}]
+        g.doc["images"] = [{"uri": png_1x1_uri()}]
+        g.doc["textures"] = [{"source": 0}]
+        g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                                        "metallicFactor": 0.0},  # no metallic warning
+                               "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}}]
+        g.doc["meshes"][0]["primitives"][0]["material"] = 0
+        g.doc["extensionsUsed"] = ["KHR_materials_clearcoat"]
+        g.doc["skins"] = [{"joints": [0]}]
+        g.doc["nodes"][0]["skin"] = 0
+        scene = self.scene(g)
+        result = self.render(scene, *TINY)
+        self.assert_rendered(result, "image.exr")
+        expected = ["extensionsUsed[0]", "textures", "nodes[0].skin", "meshes[0].primitives[0].targets",
+                    "meshes[0].primitives[1].mode", "meshes[0].primitives[2].mode"]
+        warnings = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
+        self.assertEqual(len(warnings), len(expected), result.stderr)
+        for path in expected:
+            with self.subTest(path=path):
+                found = [w for w in warnings if w.startswith("warning: %s: %s: " % (scene, path))]
+                self.assertEqual(len(found), 1, "one warning for %s expected:\n%s" % (path, result.stderr))
+
+    def test_writes_exr_and_png(self):
+        scene = self.scene(triangle_scene(), "scene.glb")
+        result = self.render(scene, "--res", "16x12", "--spp", "1", "-q", outputs=("a.exr", "b.png"))
+        self.assert_rendered(result, "a.exr", "b.png")
+        self.assertEqual(exr_size(self.out / "a.exr"), (16, 12))
+        self.assertEqual(png_size(self.out / "b.png"), (16, 12))
+        self.assertEqual(result.stderr, "")
+
+    def test_replaces_existing_output(self):
+        scene = self.scene(triangle_scene())
+        (self.out / "image.png").write_bytes(b"an older file")
+        self.assert_rendered(self.render(scene, *TINY, outputs=("image.png",)), "image.png")
+        self.assertEqual(png_size(self.out / "image.png"), (16, 16))
+        self.assert_rendered(self.render(scene, "--res", "8x8", "--spp", "1", "-q", outputs=("image.png",)),
+                             "image.png")
+        self.assertEqual(png_size(self.out / "image.png"), (8, 8))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--filmback", help="the filmback executable")
+    parser.add_argument("--scratch", help="folder for the test files (created)")
+    parser.add_argument("--list", action="store_true", help="print the case names and exit")
+    args, rest = parser.parse_known_args()
+    if args.list:
+        for name in unittest.defaultTestLoader.getTestCaseNames(CliTest):
+            print(name[len("test_"):])
+        return 0
+    if not args.filmback or not args.scratch:
+        parser.error("--filmback and --scratch are required")
+    global FILMBACK, SCRATCH
+    FILMBACK, SCRATCH = args.filmback, args.scratch
+    os.makedirs(SCRATCH, exist_ok=True)
+    names = ["CliTest.test_" + n if not n.startswith("CliTest.") else n for n in rest]
+    program = unittest.main(module=__name__, argv=[sys.argv[0], "-v", *names], exit=False)
+    return 0 if program.result.wasSuccessful() else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
