@@ -76,7 +76,7 @@ int run_render(RenderCommand& c) {
 
   const RenderResult result = job.run();
   const ImageMetadata metadata = job.metadata(result.stats);
-  for (const std::filesystem::path& out : c.outputs) write_image(result.image, out, metadata);
+  write_images(result.image, c.outputs, metadata);
 
   const RenderStats& s = result.stats;
   char line[256];

@@ -52,6 +52,31 @@ std::vector<float> png_pixels(const Image& image) {
   return rgb;
 }
 
+fs::path temporary_for(const fs::path& file) {
+  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  // Hidden, in the same folder (so rename() is atomic), with the extension OIIO dispatches on.
+  std::string name = ".";
+  name += file.stem().string();
+  name += ".filmback-" + std::to_string(getpid()) + file.extension().string();
+  return folder / name;
+}
+
+// Writes `file`'s content to `temporary`; returns what went wrong, or an empty string.
+std::string write_temporary(const Image& image, const fs::path& file, const fs::path& temporary,
+                            const ImageMetadata& metadata) {
+  const ImageFormat format = image_format_for(file);
+  auto out = OIIO::ImageOutput::create(file.string());
+  if (!out) return OIIO::geterror();
+  if (!out->open(temporary.string(), spec_for(image, format, metadata))) return out->geterror();
+  const bool written = format == ImageFormat::kPng
+                           ? out->write_image(OIIO::TypeDesc::FLOAT, png_pixels(image).data())
+                           : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+  std::string why = written ? "" : out->geterror();
+  if (!out->close() && why.empty()) why = out->geterror();
+  return why;
+}
+
+
 }  // namespace
 
 ImageFormat image_format_for(const fs::path& file) {
@@ -63,36 +88,26 @@ ImageFormat image_format_for(const fs::path& file) {
                    "' (expected .exr or .png)");
 }
 
-void write_image(const Image& image, const fs::path& file, const ImageMetadata& metadata) {
-  const ImageFormat format = image_format_for(file);
-  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  // Hidden, in the same folder (so rename() is atomic), with the extension OIIO dispatches on.
-  std::string temporary_name = ".";
-  temporary_name += file.stem().string();
-  temporary_name += ".filmback-" + std::to_string(getpid()) + file.extension().string();
-  const fs::path temporary = folder / temporary_name;
-  auto fail = [&](const std::string& why) -> InputError {
+void write_images(const Image& image, const std::vector<fs::path>& files, const ImageMetadata& metadata) {
+  std::vector<fs::path> temporaries;
+  auto fail = [&](const fs::path& file, const std::string& why) -> InputError {
     std::error_code ignored;
-    fs::remove(temporary, ignored);
+    for (const fs::path& t : temporaries) fs::remove(t, ignored);
     return InputError(located(file.string(), "", "cannot write the image: " + why));
   };
-
-  auto out = OIIO::ImageOutput::create(file.string());
-  if (!out) throw fail(OIIO::geterror());
-  const OIIO::ImageSpec spec = spec_for(image, format, metadata);
-  if (!out->open(temporary.string(), spec)) throw fail(out->geterror());
-  const bool written = format == ImageFormat::kPng
-                           ? out->write_image(OIIO::TypeDesc::FLOAT, png_pixels(image).data())
-                           : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
-  if (!written) {
-    const std::string why = out->geterror();
-    out->close();
-    throw fail(why);
+  for (const fs::path& file : files) {
+    temporaries.push_back(temporary_for(file));
+    if (std::string why = write_temporary(image, file, temporaries.back(), metadata); !why.empty())
+      throw fail(file, why);
   }
-  if (!out->close()) throw fail(out->geterror());
-  std::error_code ec;
-  fs::rename(temporary, file, ec);
-  if (ec) throw fail(ec.message());
+  for (size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temporaries[i], files[i], ec);
+    if (ec) {
+      temporaries.erase(temporaries.begin(), temporaries.begin() + ptrdiff_t(i));
+      throw fail(files[i], ec.message());
+    }
+  }
 }
 
 Image read_image(const fs::path& file) {

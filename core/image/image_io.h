@@ -27,8 +27,10 @@ struct ImageMetadata {
 // Throws UsageError for an extension other than .exr or .png.
 ImageFormat image_format_for(const std::filesystem::path& file);
 
-// Throws InputError naming the file when it cannot be written; nothing is left behind then.
-void write_image(const Image& image, const std::filesystem::path& file, const ImageMetadata& metadata);
+// Writes every file, or none: all are written to temporaries first and renamed only when every
+// one succeeded. Throws InputError naming the file that failed; no temporary is left behind.
+void write_images(const Image& image, const std::vector<std::filesystem::path>& files,
+                  const ImageMetadata& metadata);
 
 // Throws InputError naming the file.
 Image read_image(const std::filesystem::path& file);

@@ -118,7 +118,6 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
 
 BoundParams::BoundParams(const fb_plugin& plugin,
                          const std::vector<std::pair<std::string, std::string>>& settings) {
-  const std::string who = std::string(plugin.name);
   std::vector<std::string_view> given(plugin.param_count);
   for (const auto& [key, text] : settings) {
     uint32_t index = 0;
@@ -127,10 +126,10 @@ BoundParams::BoundParams(const fb_plugin& plugin,
       std::string known;
       for (uint32_t i = 0; i < plugin.param_count; ++i)
         known += (i ? ", " : "") + std::string(plugin.params[i].name);
-      throw UsageError(who + ": unknown parameter '" + key + "' (" +
+      throw UsageError("unknown parameter '" + key + "' (" +
                        (known.empty() ? "it takes no parameters" : "expected one of: " + known) + ")");
     }
-    if (given[index].data()) throw UsageError(who + ": parameter '" + key + "' given twice");
+    if (given[index].data()) throw UsageError("parameter '" + key + "' given twice");
     given[index] = text;
   }
   values_.resize(plugin.param_count);
@@ -142,8 +141,8 @@ BoundParams::BoundParams(const fb_plugin& plugin,
     if (std::string expected = parse_param_value(desc, texts_[i], values_[i]); !expected.empty()) {
       const std::string what = "parameter '" + std::string(desc.name) + "' = '" + texts_[i] +
                                "': expected " + expected;
-      if (user) throw UsageError(who + ": " + what);
-      throw InputError(who + ": its default " + what);
+      if (user) throw UsageError(what);
+      throw InputError(std::string(plugin.name) + ": its default " + what);
     }
   }
   for (uint32_t i = 0; i < plugin.param_count; ++i) values_[i].text = texts_[i].c_str();

@@ -27,7 +27,8 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
 // Validated values for create(), in schema order, with defaults filled in.
 class BoundParams {
  public:
-  // Throws UsageError for an unknown key, a repeated key or a bad value, naming the plugin.
+  // Throws UsageError for an unknown key, a repeated key or a bad value (the caller adds which
+  // option it came from), InputError for a default the plugin itself got wrong.
   BoundParams(const fb_plugin& plugin, const std::vector<std::pair<std::string, std::string>>& settings);
   BoundParams(const BoundParams&) = delete;
   BoundParams& operator=(const BoundParams&) = delete;

@@ -65,6 +65,20 @@ Transform ndc_from_camera(const fb_camera_setup& setup) {
                                0, 0, -1, 0});
 }
 
+// Loads the plugin `text` names ("NAME[:k=v,...]") and creates an instance with its parameters;
+// usage errors say which option they came from.
+template <typename Instance, typename... Setup>
+std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind, const std::string& text,
+                                      const char* option, const Setup&... setup) {
+  const PluginSpec spec = parse_plugin_spec(text, option);
+  auto library = loader.load(kind, spec.name);
+  try {
+    return std::make_unique<Instance>(library, BoundParams(library->descriptor(), spec.settings), setup...);
+  } catch (const UsageError& e) {
+    throw UsageError(std::string(option) + " '" + text + "': " + e.what());
+  }
+}
+
 }  // namespace
 
 std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
@@ -85,24 +99,14 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 
   Plugins& p = *plugins_;
   const bool orthographic = camera_.physical.projection == FB_PROJECTION_ORTHOGRAPHIC;
-  const PluginSpec camera_spec = parse_plugin_spec(
-      options.camera_model.value_or(orthographic ? "orthographic" : "perspective"), "--camera-model");
-  const PluginSpec filter_spec = parse_plugin_spec(options.filter.value_or(kDefaultFilter), "--filter");
-  const PluginSpec integrator_spec =
-      parse_plugin_spec(options.integrator.value_or(kDefaultIntegrator), "--integrator");
   p.filter_text = options.filter.value_or(kDefaultFilter);
   p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
-
-  auto camera_library = loader.load(FB_KIND_CAMERA, camera_spec.name);
-  auto filter_library = loader.load(FB_KIND_FILTER, filter_spec.name);
-  auto integrator_library = loader.load(FB_KIND_INTEGRATOR, integrator_spec.name);
   const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
-  p.camera = std::make_unique<CameraInstance>(
-      camera_library, BoundParams(camera_library->descriptor(), camera_spec.settings), setup);
-  p.filter = std::make_unique<FilterInstance>(
-      filter_library, BoundParams(filter_library->descriptor(), filter_spec.settings));
-  p.integrator = std::make_unique<IntegratorInstance>(
-      integrator_library, BoundParams(integrator_library->descriptor(), integrator_spec.settings));
+  p.camera = instantiate<CameraInstance>(
+      loader, FB_KIND_CAMERA, options.camera_model.value_or(orthographic ? "orthographic" : "perspective"),
+      "--camera-model", setup);
+  p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
+  p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text, "--integrator");
 
   // Render space: world translated so the camera is at the origin; only this is narrowed to float.
   p.render_from_world = Transform::translate(-camera_.world_from_camera.translation());

@@ -1,10 +1,12 @@
 #include "core/render/render_loop.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <vector>
@@ -27,6 +29,8 @@ struct Rotation {
   }
 };
 
+// Per-thread buffers, allocated once and reused for every tile the thread renders: a tile of 256
+// samples is too short to pay for a dozen heap allocations of its own.
 struct TileWork {
   std::vector<uint32_t> px, py;
   std::vector<float> filter_u;
@@ -35,6 +39,20 @@ struct TileWork {
   std::vector<fb_camera_ray> camera_rays;
   std::vector<fb_ray> rays;
   std::vector<float> values;
+  fb_trace_context context;
+
+  // What plugins write starts zeroed in every tile, as in a fresh buffer, so that a plugin that
+  // leaves a value unwritten cannot pass one tile's data to the next one on its thread.
+  void reset(size_t samples, size_t channels) {
+    px.resize(samples), py.resize(samples);
+    filter_u.resize(2 * samples);
+    filter_samples.assign(samples, {});
+    camera_samples.resize(samples);
+    camera_rays.assign(samples, {});
+    rays.resize(samples);
+    values.assign(samples * channels, 0.f);
+    context.paths.resize(samples);
+  }
 };
 
 class TileRenderer {
@@ -47,22 +65,17 @@ class TileRenderer {
         channels_(in.integrator.channels().size()),
         needs_(in.camera.needs()) {}
 
-  void render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, RenderStats& stats) const {
-    TileWork w;
-    for (uint32_t y = y0; y < y1; ++y)
-      for (uint32_t x = x0; x < x1; ++x) w.px.push_back(x), w.py.push_back(y);
-    const size_t n = w.px.size();
-    w.filter_u.resize(2 * n);
-    w.filter_samples.resize(n);
-    w.camera_samples.resize(n);
-    w.camera_rays.resize(n);
-    w.rays.resize(n);
-    w.values.resize(n * channels_);
-    fb_trace_context context;
+  void render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, TileWork& w,
+                   RenderStats& stats) const {
+    const size_t n = size_t(x1 - x0) * (y1 - y0);
+    w.reset(n, channels_);
+    for (uint32_t y = y0, i = 0; y < y1; ++y)
+      for (uint32_t x = x0; x < x1; ++x, ++i) w.px[i] = x, w.py[i] = y;
+    fb_trace_context& context = w.context;
     context.geometry = &in_.geometry;
     context.lights = &in_.lights;
     context.sampler = &sampler_;
-    context.paths.resize(n);
+    context.rays_traced = 0;
 
     for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
       for (size_t i = 0; i < n; ++i) {
@@ -96,7 +109,11 @@ class TileRenderer {
       for (size_t i = 0; i < n; ++i) {
         float* v = &w.values[i * channels_];
         const float camera_weight = w.camera_rays[i].weight;
-        for (size_t c = 0; c < channels_; ++c) v[c] = camera_weight > 0.f ? v[c] * camera_weight : 0.f;
+        if (camera_weight > 0.f) {
+          for (size_t c = 0; c < channels_; ++c) v[c] *= camera_weight;
+        } else {
+          std::fill_n(v, channels_, 0.f);
+        }
         if (!film_.add(w.px[i], w.py[i], v, w.filter_samples[i].weight)) ++stats.dropped_samples;
       }
       stats.samples += n;
@@ -123,6 +140,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progr
   const uint32_t tiles_x = (film.width() + kTileSize - 1) / kTileSize;
   const uint64_t tiles = tile_count(film.width(), film.height());
   const TileRenderer renderer(inputs, film);
+  tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
   const auto start = std::chrono::steady_clock::now();
   tbb::parallel_for(
@@ -136,7 +154,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progr
           const uint32_t y0 = uint32_t(tile / tiles_x) * kTileSize;
           RenderStats local;
           renderer.render_tile(x0, y0, std::min(x0 + kTileSize, film.width()),
-                               std::min(y0 + kTileSize, film.height()), local);
+                               std::min(y0 + kTileSize, film.height()), work.local(), local);
           samples += local.samples;
           rays += local.rays;
           dropped += local.dropped_samples;

@@ -78,7 +78,10 @@ AccessorView view(const AccessorContext& ctx, int index, const std::string& wher
                 "componentType " + std::to_string(a.componentType) + ", expected " + expected);
   if (a.sparse.isSparse) throw_input(ctx.file, path, "sparse accessors are not supported yet");
   if (a.count == 0) return {nullptr, 0, 0};
-  if (a.bufferView < 0 || size_t(a.bufferView) >= ctx.model.bufferViews.size())
+  if (a.bufferView < 0)
+    throw_input(ctx.file, path,
+                "no bufferView (glTF's all-zero accessor) is not supported here; expected data");
+  if (size_t(a.bufferView) >= ctx.model.bufferViews.size())
     throw_input(ctx.file, path,
                 "bufferView index " + std::to_string(a.bufferView) +
                     " is out of range (the file has " +
