@@ -4,7 +4,10 @@
 
 #include <cstdarg>
 #include <cstdio>
+#include <exception>
 #include <new>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "plugin_abi.h"
@@ -38,6 +41,72 @@ int create_instance(void** instance, fb_error_buffer error, Args&&... args) {
 template <typename T>
 void destroy_instance(void* instance) {
   delete static_cast<T*>(instance);
+}
+
+// Function tables for C++ classes, so a plugin writes only its maths. A constructor that finds
+// its parameters or setup unusable throws std::invalid_argument; the message reaches the user.
+//
+//   Camera(const fb_value* params, const fb_camera_setup& setup);
+//   uint32_t needs() const;
+//   void generate(const fb_camera_sample& sample, fb_camera_ray& ray) const;
+template <typename Camera>
+constexpr fb_camera_api camera_api() {
+  return {sizeof(fb_camera_api),
+          [](const fb_value* params, const fb_camera_setup* setup, void** instance, fb_error_buffer error) {
+            return create_instance<Camera>(instance, error, params, *setup);
+          },
+          destroy_instance<Camera>,
+          [](const void* self) { return static_cast<const Camera*>(self)->needs(); },
+          [](const void* self, const fb_camera_sample* samples, size_t count, fb_camera_ray* rays) {
+            const auto& camera = *static_cast<const Camera*>(self);
+            for (size_t i = 0; i < count; ++i) camera.generate(samples[i], rays[i]);
+          }};
+}
+
+//   Filter(const fb_value* params);
+//   float radius() const;                       (the same on both axes)
+//   float evaluate(float x, float y) const;
+//   double integral() const;
+//   fb_filter_sample sample(float ux, float uy) const;
+template <typename Filter>
+constexpr fb_filter_api filter_api() {
+  return {sizeof(fb_filter_api),
+          [](const fb_value* params, void** instance, fb_error_buffer error) {
+            return create_instance<Filter>(instance, error, params);
+          },
+          destroy_instance<Filter>,
+          [](const void* self, float r[2]) { r[0] = r[1] = static_cast<const Filter*>(self)->radius(); },
+          [](const void* self, float x, float y) { return static_cast<const Filter*>(self)->evaluate(x, y); },
+          [](const void* self) { return static_cast<const Filter*>(self)->integral(); },
+          [](const void* self, const float* u, size_t count, fb_filter_sample* samples) {
+            const auto& filter = *static_cast<const Filter*>(self);
+            for (size_t i = 0; i < count; ++i) samples[i] = filter.sample(u[2 * i], u[2 * i + 1]);
+          }};
+}
+
+//   Integrator(const fb_value* params);
+//   static constexpr const char* kChannels[] = {"R", "G", "B", ...};
+//   void radiance(const fb_scene& scene, fb_trace_context* context, size_t path, const fb_ray& ray,
+//                 float* values) const;      (values: one per channel)
+template <typename Integrator>
+constexpr fb_integrator_api integrator_api() {
+  constexpr size_t kCount = sizeof Integrator::kChannels / sizeof Integrator::kChannels[0];
+  static_assert(kCount >= 3 && kCount <= FB_MAX_CHANNELS);
+  return {sizeof(fb_integrator_api),
+          [](const fb_value* params, void** instance, fb_error_buffer error) {
+            return create_instance<Integrator>(instance, error, params);
+          },
+          destroy_instance<Integrator>,
+          [](const void*, const char** names, uint32_t capacity) {
+            for (uint32_t i = 0; i < kCount && i < capacity; ++i) names[i] = Integrator::kChannels[i];
+            return uint32_t(kCount);
+          },
+          [](const void* self, const fb_scene* scene, fb_trace_context* context, const fb_ray* rays,
+             size_t count, float* values) {
+            const auto& integrator = *static_cast<const Integrator*>(self);
+            for (size_t i = 0; i < count; ++i)
+              integrator.radiance(*scene, context, i, rays[i], values + i * kCount);
+          }};
 }
 
 }  // namespace fb

@@ -7,8 +7,15 @@ namespace {
 
 class Orthographic {
  public:
-  explicit Orthographic(const fb_camera_setup& setup)
-      : plane_(fb::view_plane(setup)), near_(setup.clip_near_m), far_(setup.clip_far_m) {}
+  Orthographic(const fb_value*, const fb_camera_setup& setup)
+      : plane_(fb::view_plane(setup)), near_(setup.clip_near_m), far_(setup.clip_far_m) {
+    if (setup.projection != FB_PROJECTION_ORTHOGRAPHIC)
+      throw std::invalid_argument("the shot's camera is not an orthographic one (use the perspective camera)");
+    if (!(setup.ortho_scale_m > 0)) throw std::invalid_argument("the ortho scale must be positive");
+    if (!(far_ > near_)) throw std::invalid_argument("the clip range is empty");
+  }
+
+  uint32_t needs() const { return 0; }
 
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     ray.origin[0] = float((s.film_x - plane_.cx) / plane_.fx);
@@ -26,27 +33,7 @@ class Orthographic {
   double near_, far_;
 };
 
-int create(const fb_value*, const fb_camera_setup* setup, void** instance, fb_error_buffer error) {
-  if (setup->projection != FB_PROJECTION_ORTHOGRAPHIC)
-    return fb::fail(error, "the shot's camera is not an orthographic one (use the perspective camera)");
-  if (!(setup->ortho_scale_m > 0))
-    return fb::fail(error, "ortho scale %g m must be positive", setup->ortho_scale_m);
-  if (!(setup->clip_far_m > setup->clip_near_m))
-    return fb::fail(error, "clip range [%g, %g] m is empty", setup->clip_near_m, setup->clip_far_m);
-  return fb::create_instance<Orthographic>(instance, error, *setup);
-}
-
-uint32_t needs(const void*) { return 0; }
-
-void generate_rays(const void* self, const fb_camera_sample* samples, size_t count,
-                   fb_camera_ray* rays) {
-  const auto& camera = *static_cast<const Orthographic*>(self);
-  for (size_t i = 0; i < count; ++i) camera.generate(samples[i], rays[i]);
-}
-
-const fb_camera_api kApi = {sizeof(fb_camera_api), create, fb::destroy_instance<Orthographic>,
-                            needs, generate_rays};
-
+constexpr fb_camera_api kApi = fb::camera_api<Orthographic>();
 const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA, "orthographic", "1.0.0",
                            "Parallel projection with Blender's ortho scale, sensor fit and lens shift",
                            nullptr, 0, &kApi};

@@ -13,6 +13,7 @@ namespace {
 
 class Gaussian {
  public:
+  explicit Gaussian(const fb_value* params) : Gaussian(params[0].number[0], params[1].number[0]) {}
   Gaussian(double radius_px, double sigma_px)
       : radius_(radius_px),
         sigma_(sigma_px),
@@ -26,6 +27,7 @@ class Gaussian {
   }
   float radius() const { return float(radius_); }
   float evaluate(float x, float y) const { return float(g(x) * g(y) / (norm_ * norm_)); }
+  double integral() const { return 1.0; }
   fb_filter_sample sample(float ux, float uy) const {
     const fb::Tabulated1D::Sample sx = table_.sample(ux), sy = table_.sample(uy);
     const double weight = g(sx.x) * g(sy.x) / (norm_ * norm_ * sx.pdf * sy.pdf);
@@ -42,22 +44,7 @@ const fb_param_desc kParams[] = {
     {"sigma", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "standard deviation"},
 };
 
-int create(const fb_value* params, void** instance, fb_error_buffer error) {
-  return fb::create_instance<Gaussian>(instance, error, params[0].number[0], params[1].number[0]);
-}
-void radius(const void* self, float r[2]) { r[0] = r[1] = static_cast<const Gaussian*>(self)->radius(); }
-float evaluate(const void* self, float x, float y) {
-  return static_cast<const Gaussian*>(self)->evaluate(x, y);
-}
-double integral(const void*) { return 1.0; }
-void sample(const void* self, const float* u, size_t count, fb_filter_sample* out) {
-  const auto& gaussian = *static_cast<const Gaussian*>(self);
-  for (size_t i = 0; i < count; ++i) out[i] = gaussian.sample(u[2 * i], u[2 * i + 1]);
-}
-
-const fb_filter_api kApi = {sizeof(fb_filter_api), create, fb::destroy_instance<Gaussian>, radius,
-                            evaluate, integral, sample};
-
+constexpr fb_filter_api kApi = fb::filter_api<Gaussian>();
 const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_FILTER, "gaussian", "1.0.0",
                            "Gaussian filter, shifted to reach zero at its radius, normalised, "
                            "importance-sampled",

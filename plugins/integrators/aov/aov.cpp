@@ -5,24 +5,31 @@
 #include <filmback/plugin_sdk.h>
 #include <filmback/vec.h>
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 
 namespace {
 
 constexpr float kMissDepth = 1e10f;
-constexpr uint32_t kChannels = 10;
-const char* const kNames[kChannels] = {"R",    "G",    "B",    "albedo.R", "albedo.G",
-                                       "albedo.B", "N.X", "N.Y", "N.Z",      "Z"};
-
 enum class Show { kAlbedo, kNormal, kDepth };
 
-struct Aov {
-  Show show;
+class Aov {
+ public:
+  static constexpr const char* kChannels[] = {"R",        "G",   "B",   "albedo.R", "albedo.G",
+                                              "albedo.B", "N.X", "N.Y", "N.Z",      "Z"};
 
-  void shade(const fb_scene& scene, fb_trace_context* ctx, const fb_ray& ray, float* v) const {
+  explicit Aov(const fb_value* params) {
+    const char* show = params[0].text;
+    show_ = std::strcmp(show, "normal") == 0  ? Show::kNormal
+            : std::strcmp(show, "depth") == 0 ? Show::kDepth
+                                              : Show::kAlbedo;
+  }
+
+  void radiance(const fb_scene& scene, fb_trace_context* ctx, size_t, const fb_ray& ray, float* v) const {
     fb_hit hit;
     if (!scene.api->intersect(ctx, &ray, &hit)) {
-      for (uint32_t c = 0; c < kChannels; ++c) v[c] = 0.f;
+      std::fill(v, v + std::size(kChannels), 0.f);
       v[9] = kMissDepth;
       return;
     }
@@ -30,13 +37,16 @@ struct Aov {
     for (int c = 0; c < 3; ++c) v[3 + c] = m.base_color[c], v[6 + c] = hit.shading_normal[c];
     v[9] = fb::dot(fb::Vec3f(hit.position), fb::Vec3f(scene.view_axis));
     for (int c = 0; c < 3; ++c) {
-      switch (show) {
+      switch (show_) {
         case Show::kAlbedo: v[c] = v[3 + c]; break;
         case Show::kNormal: v[c] = 0.5f + 0.5f * v[6 + c]; break;
         case Show::kDepth: v[c] = v[9]; break;
       }
     }
   }
+
+ private:
+  Show show_;
 };
 
 const fb_param_desc kParams[] = {
@@ -44,28 +54,7 @@ const fb_param_desc kParams[] = {
      "which AOV the R, G, B channels (and a PNG) show; normals as 0.5 + 0.5 n"},
 };
 
-int create(const fb_value* params, void** instance, fb_error_buffer error) {
-  const char* show = params[0].text;
-  const Show s = std::strcmp(show, "normal") == 0  ? Show::kNormal
-                 : std::strcmp(show, "depth") == 0 ? Show::kDepth
-                                                   : Show::kAlbedo;
-  return fb::create_instance<Aov>(instance, error, s);
-}
-
-uint32_t channels(const void*, const char** names, uint32_t capacity) {
-  for (uint32_t i = 0; i < kChannels && i < capacity; ++i) names[i] = kNames[i];
-  return kChannels;
-}
-
-void radiance(const void* self, const fb_scene* scene, fb_trace_context* ctx, const fb_ray* rays,
-              size_t count, float* values) {
-  const auto& aov = *static_cast<const Aov*>(self);
-  for (size_t i = 0; i < count; ++i) aov.shade(*scene, ctx, rays[i], values + kChannels * i);
-}
-
-const fb_integrator_api kApi = {sizeof(fb_integrator_api), create, fb::destroy_instance<Aov>,
-                                channels, radiance};
-
+constexpr fb_integrator_api kApi = fb::integrator_api<Aov>();
 const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR, "aov", "1.0.0",
                            "Depth, normal and albedo of what camera rays hit", kParams,
                            sizeof kParams / sizeof kParams[0], &kApi};

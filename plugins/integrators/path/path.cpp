@@ -19,11 +19,20 @@ using fb::Vec3f;
 constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this short of the light
 
-struct PathTracer {
-  int max_depth;  // bounces; 0 shows emitters only
-  int rr_depth;
+class PathTracer {
+ public:
+  static constexpr const char* kChannels[] = {"R", "G", "B"};
+  explicit PathTracer(const fb_value* params)
+      : max_depth_(int(params[0].number[0])), rr_depth_(int(params[1].number[0])) {}
+  void radiance(const fb_scene& scene, fb_trace_context* ctx, size_t path, const fb_ray& ray,
+                float* values) const {
+    trace(scene, ctx, path, ray).store(values);
+  }
 
-  Rgb radiance(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const;
+ private:
+  Rgb trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const;
+  int max_depth_;  // bounces; 0 shows emitters only
+  int rr_depth_;
 };
 
 // Emission leaving the hit towards -direction: front faces only, unless the material is two-sided.
@@ -32,7 +41,7 @@ Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
   return Rgb(m.emission);
 }
 
-Rgb PathTracer::radiance(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const {
+Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const {
   const fb_scene_api& api = *scene.api;
   Rgb L{}, beta{1.f, 1.f, 1.f};
   float bsdf_pdf = 0.f;        // of the direction that produced `ray`
@@ -52,7 +61,7 @@ Rgb PathTracer::radiance(const fb_scene& scene, fb_trace_context* ctx, size_t pa
           depth == 0 ? 1.f : fb::power_heuristic(bsdf_pdf, api.light_pdf(ctx, previous, &hit));
       L += beta * Le * weight;
     }
-    if (depth >= max_depth) break;
+    if (depth >= max_depth_) break;
 
     // Two-sided Lambertian: shade on the side the ray arrived from.
     Vec3f ng(hit.geometric_normal), ns(hit.shading_normal);
@@ -90,7 +99,7 @@ Rgb PathTracer::radiance(const fb_scene& scene, fb_trace_context* ctx, size_t pa
     bsdf_pdf = local.z * kInvPi;
     p.store(previous);
 
-    if (depth + 1 >= rr_depth) {
+    if (depth + 1 >= rr_depth_) {
       float r;
       api.next_samples(ctx, path, &r, 1);
       const float survive = std::min(1.f, fb::max_component(beta));
@@ -113,26 +122,7 @@ const fb_param_desc kParams[] = {
      "bounces before Russian roulette may end a path"},
 };
 
-int create(const fb_value* params, void** instance, fb_error_buffer error) {
-  return fb::create_instance<PathTracer>(instance, error, int(params[0].number[0]),
-                                         int(params[1].number[0]));
-}
-
-uint32_t channels(const void*, const char** names, uint32_t capacity) {
-  static const char* const kNames[] = {"R", "G", "B"};
-  for (uint32_t i = 0; i < 3 && i < capacity; ++i) names[i] = kNames[i];
-  return 3;
-}
-
-void radiance(const void* self, const fb_scene* scene, fb_trace_context* ctx, const fb_ray* rays,
-              size_t count, float* values) {
-  const auto& tracer = *static_cast<const PathTracer*>(self);
-  for (size_t i = 0; i < count; ++i) tracer.radiance(*scene, ctx, i, rays[i]).store(values + 3 * i);
-}
-
-const fb_integrator_api kApi = {sizeof(fb_integrator_api), create, fb::destroy_instance<PathTracer>,
-                                channels, radiance};
-
+constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
 const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR, "path", "1.0.0",
                            "Path tracing with next-event estimation and MIS; Lambertian surfaces, "
                            "emission, punctual lights, uniform background",
