@@ -53,6 +53,14 @@ RTCRay to_embree(const fb_ray& ray) {
   return r;
 }
 
+RTCRayHit to_embree_hit(const fb_ray& ray) {
+  RTCRayHit rh;
+  rh.ray = to_embree(ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 }  // namespace
 
 RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_world)
@@ -61,6 +69,9 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   if (!embree_->device) throw InputError("cannot create an Embree device");
   rtcSetDeviceErrorFunction(embree_->device, record_embree_error, &embree_->error);
   embree_->scene = rtcNewScene(embree_->device);
+  // Watertight triangle tests: no ray slips between two triangles of a closed mesh (light leaks
+  // into closed rooms), and single rays and packets agree on every hit.
+  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
 
   Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi = -lo;
   for (const MeshInstance& instance : scene.instances) {
@@ -127,17 +138,35 @@ RenderGeometry::~RenderGeometry() = default;
 bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray = to_embree(ray);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = to_embree_hit(ray);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hit);
+  return true;
+}
 
-  const Mesh& mesh = meshes_[rh.hit.geomID];
-  const uint32_t* tri = &mesh.indices[3 * size_t(rh.hit.primID)];
+void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits) const {
+  thread_local std::vector<RTCRayHit> stream;
+  stream.resize(count);
+  for (size_t i = 0; i < count; ++i) stream[i] = to_embree_hit(rays[i]);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // Embree packs the stream into packets
+  rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
+  for (size_t i = 0; i < count; ++i) {
+    const RTCRayHit& rh = stream[i];
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      hits[i].t = HUGE_VALF;
+    else
+      fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, hits[i]);
+  }
+}
+
+void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
+                              fb_hit& hit) {
+  const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
   const Vec3f p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]], p2 = mesh.positions[tri[2]];
-  const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.f - b1 - b2;
+  const float b1 = u, b2 = v, b0 = 1.f - b1 - b2;
   // Re-interpolating from the vertices puts the point on the triangle's plane up to rounding,
   // bounded by gamma(7) times the magnitudes summed (pbrt 4e §6.8.4).
   const Vec3f p = p0 * b0 + p1 * b1 + p2 * b2;
@@ -150,14 +179,13 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
     if (len > 0.f) ns = n / len;
     if (dot(ns, ng) < 0.f) ns = -ns;
   }
-  hit.t = rh.ray.tfar;
+  hit.t = t;
   p.store(hit.position);
   error.store(hit.position_error);
   ng.store(hit.geometric_normal);
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
-  hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + rh.hit.primID;
-  return true;
+  hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
 }
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {

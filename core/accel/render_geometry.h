@@ -29,6 +29,8 @@ class RenderGeometry {
   RenderGeometry& operator=(const RenderGeometry&) = delete;
 
   bool intersect(const fb_ray& ray, fb_hit& hit) const;
+  // Embree's ray stream with the coherent flag; a miss gets hit.t = +infinity.
+  void intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits) const;
   bool occluded(const fb_ray& ray) const;
 
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_; }
@@ -38,6 +40,8 @@ class RenderGeometry {
 
  private:
   struct Mesh;
+  // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`.
+  static void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, fb_hit& hit);
   std::vector<Mesh> meshes_;  // indexed by Embree geometry ID
   std::vector<EmissiveTriangle> emitters_;
   Vec3f centre_;

@@ -1,5 +1,9 @@
 #include "core/film/film.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cmath>
 
 namespace fb {
@@ -8,8 +12,15 @@ Film::Film(uint32_t width, uint32_t height, std::vector<std::string> channels)
     : width_(width),
       height_(height),
       channels_(std::move(channels)),
-      sums_(size_t(width) * height * channels_.size(), 0.0),
-      weights_(size_t(width) * height, 0.0) {}
+      sums_(new double[size_t(width) * height * channels_.size()]),
+      weights_(new double[size_t(width) * height]) {
+  const size_t n = channels_.size();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, height_), [&](const tbb::blocked_range<size_t>& rows) {
+    const size_t first = rows.begin() * width_, last = rows.end() * width_;
+    std::fill(&sums_[first * n], &sums_[last * n], 0.0);
+    std::fill(&weights_[first], &weights_[last], 0.0);
+  });
+}
 
 bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
   const size_t n = channels_.size();
@@ -24,13 +35,14 @@ bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
 }
 
 Image Film::resolve() const {
-  Image image{width_, height_, channels_, std::vector<float>(sums_.size(), 0.f)};
   const size_t n = channels_.size();
-  for (size_t pixel = 0; pixel < weights_.size(); ++pixel) {
-    if (weights_[pixel] == 0.0) continue;  // no sample landed: stays zero, never NaN
-    for (size_t c = 0; c < n; ++c)
-      image.pixels[pixel * n + c] = float(sums_[pixel * n + c] / weights_[pixel]);
-  }
+  Image image{width_, height_, channels_, std::vector<float>(size_t(width_) * height_ * n)};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(width_) * height_), [&](const tbb::blocked_range<size_t>& pixels) {
+    for (size_t pixel = pixels.begin(); pixel != pixels.end(); ++pixel) {
+      if (weights_[pixel] == 0.0) continue;  // no sample landed: stays zero, never NaN
+      for (size_t c = 0; c < n; ++c) image.pixels[pixel * n + c] = float(sums_[pixel * n + c] / weights_[pixel]);
+    }
+  });
   return image;
 }
 

@@ -69,8 +69,12 @@ class TileRenderer {
                    RenderStats& stats) const {
     const size_t n = size_t(x1 - x0) * (y1 - y0);
     w.reset(n, channels_);
-    for (uint32_t y = y0, i = 0; y < y1; ++y)
-      for (uint32_t x = x0; x < x1; ++x, ++i) w.px[i] = x, w.py[i] = y;
+    // 4x4 blocks, so that consecutive camera rays (Embree's packets of up to 16) cover a square.
+    size_t i = 0;
+    for (uint32_t by = y0; by < y1; by += 4)
+      for (uint32_t bx = x0; bx < x1; bx += 4)
+        for (uint32_t y = by; y < std::min(by + 4, y1); ++y)
+          for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x, ++i) w.px[i] = x, w.py[i] = y;
     fb_trace_context& context = w.context;
     context.geometry = &in_.geometry;
     context.lights = &in_.lights;

@@ -8,6 +8,11 @@ int intersect(fb_trace_context* c, const fb_ray* ray, fb_hit* hit) {
   return c->geometry->intersect(*ray, *hit) ? 1 : 0;
 }
 
+void intersect_batch(fb_trace_context* c, const fb_ray* rays, size_t count, fb_hit* hits) {
+  c->rays_traced += count;
+  c->geometry->intersect_coherent(rays, count, hits);
+}
+
 int occluded(fb_trace_context* c, const fb_ray* ray) {
   ++c->rays_traced;
   return c->geometry->occluded(*ray) ? 1 : 0;
@@ -30,7 +35,7 @@ void next_samples(fb_trace_context* c, size_t path, float* u, uint32_t count) {
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
-  static const fb_scene_api api{sizeof(fb_scene_api), intersect, occluded, sample_light, light_pdf,
+  static const fb_scene_api api{sizeof(fb_scene_api), intersect, intersect_batch, occluded, sample_light, light_pdf,
                                 next_samples};
   return api;
 }

@@ -47,7 +47,8 @@ EmbreeBaseline::EmbreeBaseline(const Scene& scene, const SceneCamera& camera, ui
   indices_ = mesh.indices;
 
   device_ = rtcNewDevice(nullptr);
-  scene_ = rtcNewScene(device_);  // default flags and build quality (MEDIUM), as filmback's
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);  // as filmback: watertight; MEDIUM quality
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                              positions_.data(), 0, sizeof(Vec3f), positions_.size() - 1);
@@ -65,7 +66,7 @@ EmbreeBaseline::~EmbreeBaseline() {
   rtcReleaseDevice(device_);
 }
 
-uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m) const {
+uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per_pixel) const {
   depth_m.resize(size_t(width_) * height_);
   const uint32_t tiles_x = (width_ + kTileSize - 1) / kTileSize;
   const uint64_t tiles = uint64_t(tiles_x) * ((height_ + kTileSize - 1) / kTileSize);
@@ -82,11 +83,12 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m) const {
           const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize,
                          y0 = uint32_t(tile / tiles_x) * kTileSize;
           uint64_t tile_hits = 0;
+          for (uint32_t s = 0; s < samples_per_pixel; ++s)
           for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
             for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x) {
               // The box filter's sample, (2u - 1) r with r = 0.5 px, at filmback's sample key.
-              const float ux = sampler.get({x, y, 0, kFilterDimension});
-              const float uy = sampler.get({x, y, 0, kFilterDimension + 1});
+              const float ux = sampler.get({x, y, s, kFilterDimension});
+              const float uy = sampler.get({x, y, s, kFilterDimension + 1});
               const float film_x = float(x) + 0.5f + (2.f * ux - 1.f) * 0.5f;
               const float film_y = float(y) + 0.5f + (2.f * uy - 1.f) * 0.5f;
               const float cam_x = float((film_x - cx_) / fx_), cam_y = float(-(film_y - cy_) / fy_);
@@ -110,7 +112,7 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m) const {
               const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
               tile_hits += hit;
               // depth along the view axis = t cos(theta), cos(theta) = inv_length
-              depth_m[size_t(y) * width_ + x] = hit ? rh.ray.tfar * inv_length : kMissDepth;
+              if (s == 0) depth_m[size_t(y) * width_ + x] = hit ? rh.ray.tfar * inv_length : kMissDepth;
             }
           hits += tile_hits;
         }

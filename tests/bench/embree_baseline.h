@@ -23,10 +23,10 @@ class EmbreeBaseline {
   EmbreeBaseline(const EmbreeBaseline&) = delete;
   EmbreeBaseline& operator=(const EmbreeBaseline&) = delete;
 
-  // One pinhole ray per pixel through the film position filmback's box filter (radius 0.5 px)
-  // samples with seed 0. Writes each pixel's depth along the view axis (kMissDepth when the ray
-  // escapes) and returns the number of hits.
-  uint64_t trace(std::vector<float>& depth_m) const;
+  // `samples_per_pixel` pinhole rays per pixel through the film positions filmback's box filter
+  // (radius 0.5 px) samples with seed 0. Writes each pixel's depth along the view axis for sample
+  // 0 (kMissDepth when the ray escapes) and returns the number of hits of all samples.
+  uint64_t trace(std::vector<float>& depth_m, uint32_t samples_per_pixel) const;
 
   static constexpr float kMissDepth = 1e10f;  // as the aov integrator's Z channel
 

@@ -194,6 +194,10 @@ typedef struct fb_trace_context fb_trace_context; /* per-thread host state: opaq
 typedef struct fb_scene_api {
   uint32_t struct_size;
   int (*intersect)(fb_trace_context* context, const fb_ray* ray, fb_hit* hit);
+  /* The same for `count` rays at once, traced as coherent packets: for rays that start together
+   * and point alike (camera rays), several times faster than one at a time. A miss leaves
+   * hits[i].t = +infinity and the rest of hits[i] unset. */
+  void (*intersect_batch)(fb_trace_context* context, const fb_ray* rays, size_t count, fb_hit* hits);
   int (*occluded)(fb_trace_context* context, const fb_ray* ray);
   /* Picks a light (punctual or emissive triangle) and a point on it, as seen from `position`.
    * Returns 0 when the scene has no light or the sample carries no energy. */

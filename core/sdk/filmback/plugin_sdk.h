@@ -86,8 +86,8 @@ constexpr fb_filter_api filter_api() {
 
 //   Integrator(const fb_value* params);
 //   static constexpr const char* kChannels[] = {"R", "G", "B", ...};
-//   void radiance(const fb_scene& scene, fb_trace_context* context, size_t path, const fb_ray& ray,
-//                 float* values) const;      (values: one per channel)
+//   void radiance(const fb_scene& scene, fb_trace_context* context, const fb_ray* rays,
+//                 size_t count, float* values) const;   (values: count x channels)
 template <typename Integrator>
 constexpr fb_integrator_api integrator_api() {
   constexpr size_t kCount = sizeof Integrator::kChannels / sizeof Integrator::kChannels[0];
@@ -103,9 +103,7 @@ constexpr fb_integrator_api integrator_api() {
           },
           [](const void* self, const fb_scene* scene, fb_trace_context* context, const fb_ray* rays,
              size_t count, float* values) {
-            const auto& integrator = *static_cast<const Integrator*>(self);
-            for (size_t i = 0; i < count; ++i)
-              integrator.radiance(*scene, context, i, rays[i], values + i * kCount);
+            static_cast<const Integrator*>(self)->radiance(*scene, context, rays, count, values);
           }};
 }
 

@@ -6,8 +6,10 @@
 #include <filmback/vec.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <iterator>
+#include <vector>
 
 namespace {
 
@@ -26,9 +28,18 @@ class Aov {
                                               : Show::kAlbedo;
   }
 
-  void radiance(const fb_scene& scene, fb_trace_context* ctx, size_t, const fb_ray& ray, float* v) const {
-    fb_hit hit;
-    if (!scene.api->intersect(ctx, &ray, &hit)) {
+  // Camera rays start together: one coherent batch through Embree's packets.
+  void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
+                float* values) const {
+    thread_local std::vector<fb_hit> hits;
+    hits.resize(count);
+    scene.api->intersect_batch(ctx, rays, count, hits.data());
+    for (size_t i = 0; i < count; ++i) shade(scene, hits[i], values + i * std::size(kChannels));
+  }
+
+ private:
+  void shade(const fb_scene& scene, const fb_hit& hit, float* v) const {
+    if (std::isinf(hit.t)) {
       std::fill(v, v + std::size(kChannels), 0.f);
       v[9] = kMissDepth;
       return;
@@ -45,7 +56,6 @@ class Aov {
     }
   }
 
- private:
   Show show_;
 };
 

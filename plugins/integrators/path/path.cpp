@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace {
 
@@ -24,13 +25,17 @@ class PathTracer {
   static constexpr const char* kChannels[] = {"R", "G", "B"};
   explicit PathTracer(const fb_value* params)
       : max_depth_(int(params[0].number[0])), rr_depth_(int(params[1].number[0])) {}
-  void radiance(const fb_scene& scene, fb_trace_context* ctx, size_t path, const fb_ray& ray,
+  // Camera rays start together: their first hits come from one coherent batch.
+  void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
                 float* values) const {
-    trace(scene, ctx, path, ray).store(values);
+    thread_local std::vector<fb_hit> first_hits;
+    first_hits.resize(count);
+    scene.api->intersect_batch(ctx, rays, count, first_hits.data());
+    for (size_t i = 0; i < count; ++i) trace(scene, ctx, i, rays[i], first_hits[i]).store(values + 3 * i);
   }
 
  private:
-  Rgb trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const;
+  Rgb trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray, fb_hit hit) const;
   int max_depth_;  // bounces; 0 shows emitters only
   int rr_depth_;
 };
@@ -41,15 +46,16 @@ Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
   return Rgb(m.emission);
 }
 
-Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray) const {
+Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
+                      fb_hit hit) const {
   const fb_scene_api& api = *scene.api;
   Rgb L{}, beta{1.f, 1.f, 1.f};
   float bsdf_pdf = 0.f;        // of the direction that produced `ray`
   float previous[3] = {0, 0, 0};  // where that direction was sampled
   const float time_s = ray.time_s;
   for (int depth = 0;; ++depth) {
-    fb_hit hit;
-    if (!api.intersect(ctx, &ray, &hit)) {
+    const bool found = depth == 0 ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
+    if (!found) {
       L += beta * Rgb(scene.background);
       break;
     }
