@@ -8,7 +8,8 @@ namespace fb {
 Scene import_scene(const std::filesystem::path& file, Diagnostics& diagnostics) {
   const std::string ext = file.extension().string();
   if (ext == ".gltf" || ext == ".glb") return import_gltf(file, diagnostics);
-  throw UsageError("'" + file.string() + "': unknown scene type '" + ext + "' (expected .gltf or .glb)");
+  throw UsageError("'" + file.string() + "': unknown scene type '" + ext +
+                   "' (expected .gltf or .glb)");
 }
 
 }  // namespace fb

@@ -99,14 +99,19 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     }
     mesh.indices = source.indices;
     if (mirrored)
-      for (size_t i = 0; i < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+      for (size_t i = 0; i < mesh.indices.size(); i += 3)
+        std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
 
     const Material& material = scene.materials[mesh.material];
     if (max_component(material.emission) > 0.f) {
       mesh.first_emitter = static_cast<uint32_t>(emitters_.size());
       for (size_t i = 0; i < mesh.indices.size(); i += 3) {
-        EmissiveTriangle e{mesh.positions[mesh.indices[i]], mesh.positions[mesh.indices[i + 1]],
-                           mesh.positions[mesh.indices[i + 2]], {}, 0.f, mesh.material};
+        EmissiveTriangle e{mesh.positions[mesh.indices[i]],
+                           mesh.positions[mesh.indices[i + 1]],
+                           mesh.positions[mesh.indices[i + 2]],
+                           {},
+                           0.f,
+                           mesh.material};
         const Vec3f c = cross(e.p1 - e.p0, e.p2 - e.p0);
         e.area = 0.5f * length(c);
         e.normal = e.area > 0.f ? c / (2.f * e.area) : Vec3f{0, 0, 1};
@@ -118,15 +123,18 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                mesh.positions.data(), 0, sizeof(Vec3f), mesh.positions.size() - 1);
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.indices.size() / 3);
+                               mesh.indices.data(), 0, 3 * sizeof(uint32_t),
+                               mesh.indices.size() / 3);
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(embree_->scene, geometry, static_cast<unsigned>(meshes_.size()));
     rtcReleaseGeometry(geometry);
     triangle_count_ += mesh.indices.size() / 3;
-    meshes_.push_back(std::move(mesh));  // vector storage moves with it: the shared pointers stay valid
+    meshes_.push_back(
+        std::move(mesh));  // vector storage moves with it: the shared pointers stay valid
   }
   rtcCommitScene(embree_->scene);
-  if (!embree_->error.empty()) throw InputError("Embree could not build the scene: " + embree_->error);
+  if (!embree_->error.empty())
+    throw InputError("Embree could not build the scene: " + embree_->error);
   if (lo.x <= hi.x) {
     centre_ = Vec3f((lo + hi) * 0.5);
     radius_ = static_cast<float>(length(hi - lo) * 0.5);
@@ -148,7 +156,8 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
 void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits) const {
   thread_local std::vector<RTCRayHit> stream;
   stream.resize(count);
-  for (size_t i = 0; i < count; ++i) stream[i] = to_embree_hit(rays[i]);
+  for (size_t i = 0; i < count; ++i)
+    stream[i] = to_embree_hit(rays[i]);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // Embree packs the stream into packets
@@ -174,7 +183,8 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   const Vec3f ng = normalize(cross(p1 - p0, p2 - p0));
   Vec3f ns = ng;
   if (!mesh.normals.empty()) {
-    const Vec3f n = mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2;
+    const Vec3f n =
+        mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2;
     const float len = length(n);
     if (len > 0.f) ns = n / len;
     if (dot(ns, ng) < 0.f) ns = -ns;

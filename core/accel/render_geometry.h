@@ -1,6 +1,7 @@
 // The scene's triangles in render space (world translated so the camera is at the origin, then
 // narrowed to float), with an Embree 3 BVH over them. Instances are flattened: every triangle
-// is stored once per instance, which keeps traversal single-level and fastest (docs/architecture.md).
+// is stored once per instance, which keeps traversal single-level and fastest
+// (docs/architecture.md).
 #pragma once
 
 #include <memory>
@@ -41,7 +42,8 @@ class RenderGeometry {
  private:
   struct Mesh;
   // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`.
-  static void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, fb_hit& hit);
+  static void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
+                       fb_hit& hit);
   std::vector<Mesh> meshes_;  // indexed by Embree geometry ID
   std::vector<EmissiveTriangle> emitters_;
   Vec3f centre_;

@@ -15,37 +15,53 @@ std::string format(const char* fmt, auto... args) {
   return text;
 }
 
-std::string rgb(Rgb c) { return format("(%.4g, %.4g, %.4g)", c.x, c.y, c.z); }
-std::string point(Vec3d p) { return format("(%.6g, %.6g, %.6g)", p.x, p.y, p.z); }
+std::string rgb(Rgb c) {
+  return format("(%.4g, %.4g, %.4g)", c.x, c.y, c.z);
+}
+std::string point(Vec3d p) {
+  return format("(%.6g, %.6g, %.6g)", p.x, p.y, p.z);
+}
 
 void print_camera(const SceneCamera& camera) {
   const PhysicalCamera& c = camera.physical;
   const auto [width, height] = default_resolution(camera);
   const CameraQuantities q = describe_camera(c, width, height);
   const bool ortho = c.projection == FB_PROJECTION_ORTHOGRAPHIC;
-  std::cout << "  " << camera.name << "  [" << camera.source << "]  " << (ortho ? "orthographic" : "perspective") << '\n';
+  std::cout << "  " << camera.name << "  [" << camera.source << "]  "
+            << (ortho ? "orthographic" : "perspective") << '\n';
   if (ortho) {
     std::cout << format("    ortho scale %.6g m, sensor fit %s (%s at %ux%u)\n", c.ortho_scale_m,
-                        sensor_fit_name(c.sensor_fit), q.horizontal_fit ? "horizontal" : "vertical", width, height);
+                        sensor_fit_name(c.sensor_fit), q.horizontal_fit ? "horizontal" : "vertical",
+                        width, height);
   } else {
-    std::cout << format("    focal length %.3f mm, sensor %.2f x %.2f mm, fit %s (%s at %ux%u), shift %.4g, %.4g\n",
-                        c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm, sensor_fit_name(c.sensor_fit),
-                        q.horizontal_fit ? "horizontal" : "vertical", width, height, c.shift_x, c.shift_y);
-    std::cout << format("    field of view %.4f deg horizontal x %.4f deg vertical (imaged sensor area %.2f x %.2f mm)\n",
-                        q.horizontal_fov_deg, q.vertical_fov_deg, q.imaged_sensor_width_mm, q.imaged_sensor_height_mm);
-    std::cout << format("    35 mm equivalent focal length: %.2f mm (width-based, 36 mm), %.2f mm (diagonal-based, 43.27 mm)\n",
-                        q.equivalent_35mm_width_mm, q.equivalent_35mm_diagonal_mm);
+    std::cout << format(
+        "    focal length %.3f mm, sensor %.2f x %.2f mm, fit %s (%s at %ux%u), shift %.4g, %.4g\n",
+        c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm, sensor_fit_name(c.sensor_fit),
+        q.horizontal_fit ? "horizontal" : "vertical", width, height, c.shift_x, c.shift_y);
+    std::cout << format(
+        "    field of view %.4f deg horizontal x %.4f deg vertical (imaged sensor area %.2f x %.2f "
+        "mm)\n",
+        q.horizontal_fov_deg, q.vertical_fov_deg, q.imaged_sensor_width_mm,
+        q.imaged_sensor_height_mm);
+    std::cout << format(
+        "    35 mm equivalent focal length: %.2f mm (width-based, 36 mm), %.2f mm (diagonal-based, "
+        "43.27 mm)\n",
+        q.equivalent_35mm_width_mm, q.equivalent_35mm_diagonal_mm);
   }
-  std::cout << format("    clip %.6g m to %s, at %s m\n", c.clip_near_m,
-                      std::isinf(c.clip_far_m) ? "infinity" : format("%.6g m", c.clip_far_m).c_str(),
-                      point(camera.world_from_camera.translation()).c_str());
+  std::cout << format(
+      "    clip %.6g m to %s, at %s m\n", c.clip_near_m,
+      std::isinf(c.clip_far_m) ? "infinity" : format("%.6g m", c.clip_far_m).c_str(),
+      point(camera.world_from_camera.translation()).c_str());
 }
 
 const char* light_type(LightType t) {
   switch (t) {
-    case LightType::kPoint: return "point";
-    case LightType::kSpot: return "spot";
-    case LightType::kDirectional: return "directional";
+    case LightType::kPoint:
+      return "point";
+    case LightType::kSpot:
+      return "spot";
+    case LightType::kDirectional:
+      return "directional";
   }
   return "?";
 }
@@ -57,34 +73,43 @@ int run_info(const std::filesystem::path& file) {
   const Scene scene = import_scene(file, diagnostics);
   std::cout << "scene " << file.string() << '\n';
 
-  std::cout << "cameras (" << scene.cameras.size() << ")" << (scene.cameras.empty() ? ": none; a render frames the scene bounds with the default camera" : "") << '\n';
-  for (const SceneCamera& camera : scene.cameras) print_camera(camera);
+  std::cout << "cameras (" << scene.cameras.size() << ")"
+            << (scene.cameras.empty()
+                    ? ": none; a render frames the scene bounds with the default camera"
+                    : "")
+            << '\n';
+  for (const SceneCamera& camera : scene.cameras)
+    print_camera(camera);
 
   std::cout << "lights (" << scene.lights.size() << ")\n";
   for (const Light& light : scene.lights) {
     const bool sun = light.type == LightType::kDirectional;
     std::cout << "  " << light.name << "  " << light_type(light.type) << ", "
-              << (sun ? "irradiance " : "intensity ") << rgb(light.intensity) << (sun ? " W/m^2" : " W/sr");
+              << (sun ? "irradiance " : "intensity ") << rgb(light.intensity)
+              << (sun ? " W/m^2" : " W/sr");
     if (light.type == LightType::kSpot)
-      std::cout << format(", cone %.2f..%.2f deg", light.spot_inner_angle_rad * 180 / M_PI, light.spot_outer_angle_rad * 180 / M_PI);
+      std::cout << format(", cone %.2f..%.2f deg", light.spot_inner_angle_rad * 180 / M_PI,
+                          light.spot_outer_angle_rad * 180 / M_PI);
     std::cout << ", at " << point(light.world_from_light.translation()) << " m\n";
   }
 
   std::map<uint32_t, size_t> uses;
-  for (const MeshInstance& instance : scene.instances) ++uses[instance.mesh];
-  std::cout << "meshes (" << scene.meshes.size() << " meshes, " << scene.instances.size() << " instances, "
-            << scene.triangle_count() << " triangles rendered)\n";
+  for (const MeshInstance& instance : scene.instances)
+    ++uses[instance.mesh];
+  std::cout << "meshes (" << scene.meshes.size() << " meshes, " << scene.instances.size()
+            << " instances, " << scene.triangle_count() << " triangles rendered)\n";
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
     const TriangleMesh& m = scene.meshes[i];
-    std::cout << "  " << m.name << "  " << m.triangle_count() << " triangles, " << m.positions.size()
-              << " vertices" << (m.normals.empty() ? "" : " with normals") << ", material '"
-              << scene.materials[m.material].name << "', " << uses[uint32_t(i)] << " instance(s)\n";
+    std::cout << "  " << m.name << "  " << m.triangle_count() << " triangles, "
+              << m.positions.size() << " vertices" << (m.normals.empty() ? "" : " with normals")
+              << ", material '" << scene.materials[m.material].name << "', " << uses[uint32_t(i)]
+              << " instance(s)\n";
   }
 
   std::cout << "materials (" << scene.materials.size() << ")\n";
   for (const Material& m : scene.materials)
-    std::cout << "  " << m.name << "  base colour " << rgb(m.base_color) << ", emission " << rgb(m.emission)
-              << " W/sr/m^2" << (m.double_sided ? ", double-sided" : "") << '\n';
+    std::cout << "  " << m.name << "  base colour " << rgb(m.base_color) << ", emission "
+              << rgb(m.emission) << " W/sr/m^2" << (m.double_sided ? ", double-sided" : "") << '\n';
   diagnostics.print(std::cerr);
   return 0;
 }

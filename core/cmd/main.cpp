@@ -13,25 +13,36 @@ int main(int argc, char** argv) {
   fb::RenderCommand render;
   CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR and/or PNG");
   render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb)")->required();
-  render_cmd->add_option("-o,--output", render.outputs, "output image, .exr or .png (repeatable)")->required();
-  render_cmd->add_option("--spp", render.options.samples_per_pixel, "samples per pixel (default 64)")
+  render_cmd->add_option("-o,--output", render.outputs, "output image, .exr or .png (repeatable)")
+      ->required();
+  render_cmd
+      ->add_option("--spp", render.options.samples_per_pixel, "samples per pixel (default 64)")
       ->check(CLI::Range(1u, 1000000u));
-  render_cmd->add_option("--res", render.resolution, "image size WxH in pixels (default: long side 1280 at the shot's aspect)");
-  render_cmd->add_option("--camera", render.options.camera, "scene camera by name (default: the first in node order)");
-  render_cmd->add_option("--camera-model", render.options.camera_model,
-                         "camera plugin NAME[:k=v,...] (default: perspective or orthographic, as the shot's camera)");
-  render_cmd->add_option("--filter", render.options.filter, "pixel filter NAME[:k=v,...] (default gaussian)");
-  render_cmd->add_option("--integrator", render.options.integrator, "integrator NAME[:k=v,...] (default path)");
-  render_cmd->add_option("--background", render.background, "uniform background radiance: one value or r,g,b (W/sr/m^2)");
-  render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")->check(CLI::Range(0u, 4096u));
+  render_cmd->add_option("--res", render.resolution,
+                         "image size WxH in pixels (default: long side 1280 at the shot's aspect)");
+  render_cmd->add_option("--camera", render.options.camera,
+                         "scene camera by name (default: the first in node order)");
+  render_cmd->add_option(
+      "--camera-model", render.options.camera_model,
+      "camera plugin NAME[:k=v,...] (default: perspective or orthographic, as the shot's camera)");
+  render_cmd->add_option("--filter", render.options.filter,
+                         "pixel filter NAME[:k=v,...] (default gaussian)");
+  render_cmd->add_option("--integrator", render.options.integrator,
+                         "integrator NAME[:k=v,...] (default path)");
+  render_cmd->add_option("--background", render.background,
+                         "uniform background radiance: one value or r,g,b (W/sr/m^2)");
+  render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")
+      ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");
   render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
 
   std::filesystem::path info_scene;
-  CLI::App* info_cmd = app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
+  CLI::App* info_cmd =
+      app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
   info_cmd->add_option("scene", info_scene, "scene file (.gltf, .glb)")->required();
 
-  CLI::App* plugins_cmd = app.add_subcommand("plugins", "list every plugin found, with its parameters");
+  CLI::App* plugins_cmd =
+      app.add_subcommand("plugins", "list every plugin found, with its parameters");
 
   try {
     app.parse(argc, argv);

@@ -30,11 +30,14 @@ void print_plugin(const PluginLibrary& library) {
 int run_plugins() {
   const PluginLoader loader(PluginLoader::default_search_dirs());
   std::cout << "searched:";
-  for (const auto& dir : loader.search_dirs()) std::cout << ' ' << dir.string();
+  for (const auto& dir : loader.search_dirs())
+    std::cout << ' ' << dir.string();
   std::cout << '\n';
   const PluginLoader::Scan scan = loader.load_all();
-  for (const auto& library : scan.plugins) print_plugin(*library);
-  for (const std::string& error : scan.errors) std::cerr << "filmback: error: " << error << '\n';
+  for (const auto& library : scan.plugins)
+    print_plugin(*library);
+  for (const std::string& error : scan.errors)
+    std::cerr << "filmback: error: " << error << '\n';
   return scan.errors.empty() ? 0 : 1;
 }
 

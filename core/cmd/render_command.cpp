@@ -30,7 +30,8 @@ uint32_t parse_side(std::string_view text, std::string_view whole) {
 
 void parse_resolution(const std::string& text, RenderOptions& options) {
   const size_t x = text.find('x');
-  if (x == std::string::npos) throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
+  if (x == std::string::npos)
+    throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
   options.width = parse_side(std::string_view(text).substr(0, x), text);
   options.height = parse_side(std::string_view(text).substr(x + 1), text);
   if (const uint64_t pixels = uint64_t(*options.width) * *options.height; pixels > kMaxPixels)
@@ -55,7 +56,8 @@ int run_render(RenderCommand& c) {
     image_format_for(out);
     const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
     if (!std::filesystem::is_directory(folder))
-      throw UsageError("output '" + out.string() + "': the folder '" + folder.string() + "' does not exist");
+      throw UsageError("output '" + out.string() + "': the folder '" + folder.string() +
+                       "' does not exist");
     // Checked before rendering: failing at the second write would leave the first output behind.
     if (std::filesystem::is_directory(out))
       throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");

@@ -15,11 +15,12 @@ Film::Film(uint32_t width, uint32_t height, std::vector<std::string> channels)
       sums_(new double[size_t(width) * height * channels_.size()]),
       weights_(new double[size_t(width) * height]) {
   const size_t n = channels_.size();
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, height_), [&](const tbb::blocked_range<size_t>& rows) {
-    const size_t first = rows.begin() * width_, last = rows.end() * width_;
-    std::fill(&sums_[first * n], &sums_[last * n], 0.0);
-    std::fill(&weights_[first], &weights_[last], 0.0);
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, height_),
+                    [&](const tbb::blocked_range<size_t>& rows) {
+                      const size_t first = rows.begin() * width_, last = rows.end() * width_;
+                      std::fill(&sums_[first * n], &sums_[last * n], 0.0);
+                      std::fill(&weights_[first], &weights_[last], 0.0);
+                    });
 }
 
 bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
@@ -29,7 +30,8 @@ bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
     if (!std::isfinite(values[c])) return false;
   const size_t pixel = size_t(y) * width_ + x;
   double* sum = &sums_[pixel * n];
-  for (size_t c = 0; c < n; ++c) sum[c] += double(weight) * values[c];
+  for (size_t c = 0; c < n; ++c)
+    sum[c] += double(weight) * values[c];
   weights_[pixel] += weight;
   return true;
 }
@@ -37,12 +39,16 @@ bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
 Image Film::resolve() const {
   const size_t n = channels_.size();
   Image image{width_, height_, channels_, std::vector<float>(size_t(width_) * height_ * n)};
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(width_) * height_), [&](const tbb::blocked_range<size_t>& pixels) {
-    for (size_t pixel = pixels.begin(); pixel != pixels.end(); ++pixel) {
-      if (weights_[pixel] == 0.0) continue;  // no sample landed: stays zero, never NaN
-      for (size_t c = 0; c < n; ++c) image.pixels[pixel * n + c] = float(sums_[pixel * n + c] / weights_[pixel]);
-    }
-  });
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(width_) * height_),
+                    [&](const tbb::blocked_range<size_t>& pixels) {
+                      for (size_t pixel = pixels.begin(); pixel != pixels.end(); ++pixel) {
+                        if (weights_[pixel] == 0.0)
+                          continue;  // no sample landed: stays zero, never NaN
+                        for (size_t c = 0; c < n; ++c)
+                          image.pixels[pixel * n + c] =
+                              float(sums_[pixel * n + c] / weights_[pixel]);
+                      }
+                    });
   return image;
 }
 

@@ -37,7 +37,8 @@ TEST(Film, DropsNonFiniteSamplesWhole) {
   EXPECT_FALSE(film.add(0, 0, inf, 1.f));
   EXPECT_FALSE(film.add(0, 0, good, std::numeric_limits<float>::infinity()));
   const Image image = film.resolve();
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(image.at(0, 0, c), 1.f);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_EQ(image.at(0, 0, c), 1.f);
 }
 
 TEST(Film, ImagesAreStoredTopRowFirst) {

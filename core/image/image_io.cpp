@@ -29,18 +29,23 @@ OIIO::ImageSpec spec_for(const Image& image, ImageFormat format, const ImageMeta
   } else {
     spec.channelnames = {"R", "G", "B"};
     spec.attribute("oiio:ColorSpace", "sRGB");
-    spec.attribute("filmback/transfer", "sRGB transfer function, values clamped to [0,1], no exposure");
+    spec.attribute("filmback/transfer",
+                   "sRGB transfer function, values clamped to [0,1], no exposure");
   }
   for (const auto& [name, m] : metadata.matrices) {
     // Imath's M44f multiplies row vectors (p' = p M): store the transpose.
     std::array<float, 16> imath;
     for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) imath[c * 4 + r] = m[r * 4 + c];
+      for (int c = 0; c < 4; ++c)
+        imath[c * 4 + r] = m[r * 4 + c];
     spec.attribute(name, OIIO::TypeMatrix44, imath.data());
   }
-  for (const auto& [name, v] : metadata.floats) spec.attribute(name, v);
-  for (const auto& [name, v] : metadata.ints) spec.attribute(name, v);
-  for (const auto& [name, v] : metadata.strings) spec.attribute(name, v);
+  for (const auto& [name, v] : metadata.floats)
+    spec.attribute(name, v);
+  for (const auto& [name, v] : metadata.ints)
+    spec.attribute(name, v);
+  for (const auto& [name, v] : metadata.strings)
+    spec.attribute(name, v);
   return spec;
 }
 
@@ -48,7 +53,8 @@ std::vector<float> png_pixels(const Image& image) {
   std::vector<float> rgb(size_t(image.width) * image.height * 3);
   const size_t n = image.channels.size();
   for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
-    for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = srgb_encode(image.pixels[i * n + c]);
+    for (size_t c = 0; c < 3; ++c)
+      rgb[i * 3 + c] = srgb_encode(image.pixels[i * n + c]);
   return rgb;
 }
 
@@ -76,23 +82,25 @@ std::string write_temporary(const Image& image, const fs::path& file, const fs::
   return why;
 }
 
-
 }  // namespace
 
 ImageFormat image_format_for(const fs::path& file) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (ext == ".exr") return ImageFormat::kExr;
   if (ext == ".png") return ImageFormat::kPng;
   throw UsageError("output '" + file.string() + "': unknown image type '" + ext +
                    "' (expected .exr or .png)");
 }
 
-void write_images(const Image& image, const std::vector<fs::path>& files, const ImageMetadata& metadata) {
+void write_images(const Image& image, const std::vector<fs::path>& files,
+                  const ImageMetadata& metadata) {
   std::vector<fs::path> temporaries;
   auto fail = [&](const fs::path& file, const std::string& why) -> InputError {
     std::error_code ignored;
-    for (const fs::path& t : temporaries) fs::remove(t, ignored);
+    for (const fs::path& t : temporaries)
+      fs::remove(t, ignored);
     return InputError(located(file.string(), "", "cannot write the image: " + why));
   };
   for (const fs::path& file : files) {
@@ -104,7 +112,9 @@ void write_images(const Image& image, const std::vector<fs::path>& files, const 
     std::error_code ec;
     fs::rename(temporaries[i], files[i], ec);
     if (ec) {
-      temporaries.erase(temporaries.begin(), temporaries.begin() + ptrdiff_t(i));
+      // None rather than some: the outputs already renamed into place go too.
+      for (size_t j = 0; j < i; ++j)
+        temporaries[j] = files[j];
       throw fail(files[i], ec.message());
     }
   }
@@ -112,7 +122,8 @@ void write_images(const Image& image, const std::vector<fs::path>& files, const 
 
 Image read_image(const fs::path& file) {
   auto in = OIIO::ImageInput::open(file.string());
-  if (!in) throw InputError(located(file.string(), "", "cannot read the image: " + OIIO::geterror()));
+  if (!in)
+    throw InputError(located(file.string(), "", "cannot read the image: " + OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
   Image image{uint32_t(spec.width), uint32_t(spec.height), spec.channelnames, {}};
   image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);

@@ -6,18 +6,21 @@ namespace fb {
 
 Transform::Transform() {
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m_[r][c] = r == c ? 1.0 : 0.0;
+    for (int c = 0; c < 4; ++c)
+      m_[r][c] = r == c ? 1.0 : 0.0;
 }
 
 Transform Transform::from_rows(const std::array<double, 16>& row_major) {
   Transform t;
-  for (int i = 0; i < 16; ++i) t.m_[i / 4][i % 4] = row_major[i];
+  for (int i = 0; i < 16; ++i)
+    t.m_[i / 4][i % 4] = row_major[i];
   return t;
 }
 
 Transform Transform::from_columns(const std::array<double, 16>& column_major) {
   Transform t;
-  for (int i = 0; i < 16; ++i) t.m_[i % 4][i / 4] = column_major[i];
+  for (int i = 0; i < 16; ++i)
+    t.m_[i % 4][i / 4] = column_major[i];
   return t;
 }
 
@@ -57,7 +60,8 @@ Transform Transform::operator*(const Transform& rhs) const {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) {
       double sum = 0;
-      for (int k = 0; k < 4; ++k) sum += m_[r][k] * rhs.m_[k][c];
+      for (int k = 0; k < 4; ++k)
+        sum += m_[r][k] * rhs.m_[k][c];
       t.m_[r][c] = sum;
     }
   return t;
@@ -75,18 +79,22 @@ Transform Transform::inverse() const {
     int pivot = col;
     for (int r = col + 1; r < 4; ++r)
       if (std::abs(a[r][col]) > std::abs(a[pivot][col])) pivot = r;
-    for (int c = 0; c < 8; ++c) std::swap(a[col][c], a[pivot][c]);
+    for (int c = 0; c < 8; ++c)
+      std::swap(a[col][c], a[pivot][c]);
     const double inv_pivot = 1.0 / a[col][col];  // inf for a singular matrix, by design
-    for (int c = 0; c < 8; ++c) a[col][c] *= inv_pivot;
+    for (int c = 0; c < 8; ++c)
+      a[col][c] *= inv_pivot;
     for (int r = 0; r < 4; ++r) {
       if (r == col) continue;
       const double f = a[r][col];
-      for (int c = 0; c < 8; ++c) a[r][c] -= f * a[col][c];
+      for (int c = 0; c < 8; ++c)
+        a[r][c] -= f * a[col][c];
     }
   }
   Transform t;
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) t.m_[r][c] = a[r][c + 4];
+    for (int c = 0; c < 4; ++c)
+      t.m_[r][c] = a[r][c + 4];
   return t;
 }
 
@@ -108,7 +116,8 @@ Transform Transform::normal_transform() const {
   const Transform inv = inverse();
   Transform t;
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) t.m_[r][c] = inv.m_[c][r];
+    for (int c = 0; c < 3; ++c)
+      t.m_[r][c] = inv.m_[c][r];
   return t;
 }
 

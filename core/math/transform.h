@@ -20,7 +20,7 @@ class Transform {
   static Transform from_columns(const std::array<double, 16>& column_major);  // glTF "matrix"
   static Transform translate(Vec3d t);
   static Transform scale(Vec3d s);
-  static Transform rotate(Quatd q);  // q normalised here
+  static Transform rotate(Quatd q);                             // q normalised here
   static Transform look_at(Vec3d eye, Vec3d target, Vec3d up);  // world_from_camera, looks down -Z
 
   Transform operator*(const Transform& rhs) const;

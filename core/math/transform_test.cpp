@@ -26,15 +26,16 @@ TEST(Transform, GltfColumnMajorMatrixMatchesTrs) {
                         Transform::scale({2, 3, 4});
   std::array<double, 16> columns;
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) columns[c * 4 + r] = trs(r, c);
+    for (int r = 0; r < 4; ++r)
+      columns[c * 4 + r] = trs(r, c);
   const Transform m = Transform::from_columns(columns);
   expect_near(m.point({0.5, -1, 2}), trs.point({0.5, -1, 2}), 1e-14);
   expect_near(m.translation(), {1, 2, 3}, 0);
 }
 
 TEST(Transform, InverseUndoesAffineMaps) {
-  const Transform t = Transform::translate({1e5, -3, 7}) * Transform::rotate({0.3, -0.2, 0.1, 0.9}) *
-                      Transform::scale({0.5, 2, 3});
+  const Transform t = Transform::translate({1e5, -3, 7}) *
+                      Transform::rotate({0.3, -0.2, 0.1, 0.9}) * Transform::scale({0.5, 2, 3});
   const Vec3d p{12.25, -0.5, 1e-3};
   expect_near(t.inverse().point(t.point(p)), p, 1e-10);
   expect_near((t.inverse() * t).point({1, 1, 1}), {1, 1, 1}, 1e-12);

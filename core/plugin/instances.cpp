@@ -7,19 +7,21 @@ namespace fb {
 void PluginInstance::fail(const char* reason) const {
   throw InputError(located(library_->file().string(), "",
                            std::string(kind_name(library_->descriptor().kind)) + " '" +
-                               library_->descriptor().name + "' refused to start: " +
-                               (*reason ? reason : "no reason given")));
+                               library_->descriptor().name +
+                               "' refused to start: " + (*reason ? reason : "no reason given")));
 }
 
 CameraInstance::CameraInstance(std::shared_ptr<const PluginLibrary> library,
                                const BoundParams& params, const fb_camera_setup& setup)
     : PluginInstance(library, library->api<fb_camera_api>().destroy,
                      [&](void** out, fb_error_buffer error) {
-                       return library->api<fb_camera_api>().create(params.data(), &setup, out, error);
+                       return library->api<fb_camera_api>().create(params.data(), &setup, out,
+                                                                   error);
                      }),
       api_(library->api<fb_camera_api>()) {}
 
-FilterInstance::FilterInstance(std::shared_ptr<const PluginLibrary> library, const BoundParams& params)
+FilterInstance::FilterInstance(std::shared_ptr<const PluginLibrary> library,
+                               const BoundParams& params)
     : PluginInstance(library, library->api<fb_filter_api>().destroy,
                      [&](void** out, fb_error_buffer error) {
                        return library->api<fb_filter_api>().create(params.data(), out, error);
@@ -36,7 +38,9 @@ IntegratorInstance::IntegratorInstance(std::shared_ptr<const PluginLibrary> libr
   const char* names[FB_MAX_CHANNELS] = {};
   const uint32_t count = api_.channels(instance(), names, FB_MAX_CHANNELS);
   for (uint32_t i = 0; i < count && i < FB_MAX_CHANNELS; ++i) {
-    if (!names[i]) throw InputError(located(library->file().string(), "", "channel " + std::to_string(i) + " has no name"));
+    if (!names[i])
+      throw InputError(
+          located(library->file().string(), "", "channel " + std::to_string(i) + " has no name"));
     channels_.emplace_back(names[i]);
   }
   if (channels_.size() < 3)

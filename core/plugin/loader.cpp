@@ -63,8 +63,8 @@ std::vector<std::pair<const char*, const void*>> required_functions(const fb_plu
 bool is_plugin_name(const char* name) {
   if (!name || !*name) return false;
   for (const char* c = name; *c; ++c)
-    if (!(std::islower(static_cast<unsigned char>(*c)) || std::isdigit(static_cast<unsigned char>(*c)) ||
-          *c == '_'))
+    if (!(std::islower(static_cast<unsigned char>(*c)) ||
+          std::isdigit(static_cast<unsigned char>(*c)) || *c == '_'))
       return false;
   return true;
 }
@@ -96,7 +96,8 @@ std::string check_descriptor(const fb_plugin* p) {
       return std::string("parameter '") + d.name + "' has default '" + d.default_value +
              "', expected " + expected;
   }
-  if (!p->api) return std::string("incomplete plugin: no ") + kind_name(p->kind) + " function table";
+  if (!p->api)
+    return std::string("incomplete plugin: no ") + kind_name(p->kind) + " function table";
   const uint32_t table_size = *static_cast<const uint32_t*>(p->api);
   if (table_size != api_size(p->kind))
     return std::string(kind_name(p->kind)) + " function table size mismatch: the plugin's is " +
@@ -144,9 +145,12 @@ std::string check_file_name(const fs::path& file, const fb_plugin& p) {
 
 const char* kind_name(uint32_t kind) {
   switch (kind) {
-    case FB_KIND_CAMERA: return "camera";
-    case FB_KIND_FILTER: return "filter";
-    case FB_KIND_INTEGRATOR: return "integrator";
+    case FB_KIND_CAMERA:
+      return "camera";
+    case FB_KIND_FILTER:
+      return "filter";
+    case FB_KIND_INTEGRATOR:
+      return "integrator";
   }
   return "unknown";
 }
@@ -167,7 +171,8 @@ PluginLibrary::PluginLibrary(const fs::path& file) : file_(file) {
     if (why.starts_with(file.string() + ": ")) why.erase(0, file.string().size() + 2);
     const size_t at = why.find("undefined symbol: ");
     if (at != std::string::npos)
-      throw fail("missing symbol: " + why.substr(at + 18) + " (the plugin needs a symbol nothing provides)");
+      throw fail("missing symbol: " + why.substr(at + 18) +
+                 " (the plugin needs a symbol nothing provides)");
     // glibc: "<dependency>: cannot open shared object file: ..." for a library the plugin needs.
     const size_t dependency = why.find(": cannot open shared object file");
     if (dependency != std::string::npos)
@@ -177,9 +182,9 @@ PluginLibrary::PluginLibrary(const fs::path& file) : file_(file) {
   }
   auto entry = reinterpret_cast<fb_entry_point_fn>(dlsym(handle_, FB_ENTRY_POINT));
   if (entry) descriptor_ = entry();
-  const std::string problem =
-      entry ? check_descriptor(descriptor_)
-            : "not a filmback plugin: it has no " FB_ENTRY_POINT " entry point";
+  const std::string problem = entry ? check_descriptor(descriptor_)
+                                    : "not a filmback plugin: it has no " FB_ENTRY_POINT
+                                      " entry point";
   if (problem.empty()) return;
   dlclose(handle_);
   throw fail(problem);
@@ -189,13 +194,15 @@ PluginLibrary::~PluginLibrary() {
   if (handle_) dlclose(handle_);
 }
 
-PluginLoader::PluginLoader(std::vector<fs::path> search_dirs) : search_dirs_(std::move(search_dirs)) {}
+PluginLoader::PluginLoader(std::vector<fs::path> search_dirs)
+    : search_dirs_(std::move(search_dirs)) {}
 
 std::vector<fs::path> PluginLoader::default_search_dirs() {
   std::vector<fs::path> dirs;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  const fs::path beside = ec ? fs::path() : exe.parent_path().parent_path() / "lib/filmback/plugins";
+  const fs::path beside =
+      ec ? fs::path() : exe.parent_path().parent_path() / "lib/filmback/plugins";
   if (!beside.empty() && fs::is_directory(beside, ec))
     dirs.push_back(beside);
   else
@@ -212,12 +219,14 @@ std::vector<fs::path> PluginLoader::default_search_dirs() {
   return dirs;
 }
 
-std::shared_ptr<const PluginLibrary> PluginLoader::load(uint32_t kind, std::string_view name) const {
+std::shared_ptr<const PluginLibrary> PluginLoader::load(uint32_t kind,
+                                                        std::string_view name) const {
   const std::string file = plugin_file_name(kind, name);
   const std::vector<fs::path> found = directories_with(search_dirs_, file);
   if (found.empty()) {
     std::string where;
-    for (const fs::path& dir : search_dirs_) where += (where.empty() ? "" : ", ") + dir.string();
+    for (const fs::path& dir : search_dirs_)
+      where += (where.empty() ? "" : ", ") + dir.string();
     throw UsageError("unknown " + std::string(kind_name(kind)) + " plugin '" + std::string(name) +
                      "': no " + file + " in " + where + " (`filmback plugins` lists what exists)");
   }
@@ -240,7 +249,8 @@ PluginLoader::Scan PluginLoader::load_all() const {
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
       const std::string filename = entry.path().filename().string();
-      if (filename.starts_with("libfilmback_") && filename.ends_with(".so")) files.push_back(entry.path());
+      if (filename.starts_with("libfilmback_") && filename.ends_with(".so"))
+        files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
     for (const fs::path& file : files) {

@@ -24,7 +24,9 @@ class PluginLibrary {
   const fb_plugin& descriptor() const { return *descriptor_; }
   const std::filesystem::path& file() const { return file_; }
   template <typename Api>
-  const Api& api() const { return *static_cast<const Api*>(descriptor_->api); }
+  const Api& api() const {
+    return *static_cast<const Api*>(descriptor_->api);
+  }
 
  private:
   std::filesystem::path file_;

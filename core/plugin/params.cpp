@@ -34,8 +34,8 @@ bool parse_number(std::string_view text, double& out) {
 bool is_identifier(std::string_view s) {
   if (s.empty()) return false;
   for (char c : s)
-    if (!(std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) ||
-          c == '_' || c == '-'))
+    if (!(std::islower(static_cast<unsigned char>(c)) ||
+          std::isdigit(static_cast<unsigned char>(c)) || c == '_' || c == '-'))
       return false;
   return true;
 }
@@ -87,7 +87,8 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
       return {};
     }
     case FB_PARAM_BOOL:
-      if (text == "true" || text == "1" || text == "yes" || text == "on") value.number[0] = 1;
+      if (text == "true" || text == "1" || text == "yes" || text == "on")
+        value.number[0] = 1;
       else if (text != "false" && text != "0" && text != "no" && text != "off")
         return "true or false";
       return {};
@@ -100,8 +101,10 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
         return "a colour: one number, or [r,g,b]";
       for (size_t i = 0; i < 3; ++i) {
         double x;
-        if (!parse_number(parts[parts.size() == 1 ? 0 : i], x)) return "a colour: one number, or [r,g,b]";
-        if (x < desc.min_value || x > desc.max_value) return "colour components" + describe_bounds(desc);
+        if (!parse_number(parts[parts.size() == 1 ? 0 : i], x))
+          return "a colour: one number, or [r,g,b]";
+        if (x < desc.min_value || x > desc.max_value)
+          return "colour components" + describe_bounds(desc);
         value.number[i] = x;
       }
       return {};
@@ -121,13 +124,15 @@ BoundParams::BoundParams(const fb_plugin& plugin,
   std::vector<std::string_view> given(plugin.param_count);
   for (const auto& [key, text] : settings) {
     uint32_t index = 0;
-    while (index < plugin.param_count && key != plugin.params[index].name) ++index;
+    while (index < plugin.param_count && key != plugin.params[index].name)
+      ++index;
     if (index == plugin.param_count) {
       std::string known;
       for (uint32_t i = 0; i < plugin.param_count; ++i)
         known += (i ? ", " : "") + std::string(plugin.params[i].name);
       throw UsageError("unknown parameter '" + key + "' (" +
-                       (known.empty() ? "it takes no parameters" : "expected one of: " + known) + ")");
+                       (known.empty() ? "it takes no parameters" : "expected one of: " + known) +
+                       ")");
     }
     if (given[index].data()) throw UsageError("parameter '" + key + "' given twice");
     given[index] = text;
@@ -139,22 +144,28 @@ BoundParams::BoundParams(const fb_plugin& plugin,
     const bool user = given[i].data() != nullptr;
     texts_[i] = std::string(user ? given[i] : std::string_view(desc.default_value));
     if (std::string expected = parse_param_value(desc, texts_[i], values_[i]); !expected.empty()) {
-      const std::string what = "parameter '" + std::string(desc.name) + "' = '" + texts_[i] +
-                               "': expected " + expected;
+      const std::string what =
+          "parameter '" + std::string(desc.name) + "' = '" + texts_[i] + "': expected " + expected;
       if (user) throw UsageError(what);
       throw InputError(std::string(plugin.name) + ": its default " + what);
     }
   }
-  for (uint32_t i = 0; i < plugin.param_count; ++i) values_[i].text = texts_[i].c_str();
+  for (uint32_t i = 0; i < plugin.param_count; ++i)
+    values_[i].text = texts_[i].c_str();
 }
 
 const char* param_type_name(uint32_t type) {
   switch (type) {
-    case FB_PARAM_FLOAT: return "float";
-    case FB_PARAM_INT: return "int";
-    case FB_PARAM_BOOL: return "bool";
-    case FB_PARAM_STRING: return "string";
-    case FB_PARAM_RGB: return "rgb";
+    case FB_PARAM_FLOAT:
+      return "float";
+    case FB_PARAM_INT:
+      return "int";
+    case FB_PARAM_BOOL:
+      return "bool";
+    case FB_PARAM_STRING:
+      return "string";
+    case FB_PARAM_RGB:
+      return "rgb";
   }
   return "unknown";
 }

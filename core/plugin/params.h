@@ -29,7 +29,8 @@ class BoundParams {
  public:
   // Throws UsageError for an unknown key, a repeated key or a bad value (the caller adds which
   // option it came from), InputError for a default the plugin itself got wrong.
-  BoundParams(const fb_plugin& plugin, const std::vector<std::pair<std::string, std::string>>& settings);
+  BoundParams(const fb_plugin& plugin,
+              const std::vector<std::pair<std::string, std::string>>& settings);
   BoundParams(const BoundParams&) = delete;
   BoundParams& operator=(const BoundParams&) = delete;
   const fb_value* data() const { return values_.empty() ? nullptr : values_.data(); }

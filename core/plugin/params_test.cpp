@@ -19,7 +19,8 @@ TEST(PluginSpec, ParsesNameAndSettingsInOrder) {
 }
 
 TEST(PluginSpec, BracketsKeepListsTogether) {
-  const PluginSpec spec = parse_plugin_spec("path:background=[0.1,0.2,0.3],max_depth=4", "--integrator");
+  const PluginSpec spec =
+      parse_plugin_spec("path:background=[0.1,0.2,0.3],max_depth=4", "--integrator");
   ASSERT_EQ(spec.settings.size(), 2u);
   EXPECT_EQ(spec.settings[0].second, "[0.1,0.2,0.3]");
 }
@@ -70,7 +71,8 @@ TEST(ParamValue, StringsColoursAndBools) {
 
 TEST(BoundParams, FillsDefaultsAndRejectsUnknownOrRepeatedKeys) {
   const fb_param_desc params[] = {kFloat, kChoice};
-  fb_plugin plugin{FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_FILTER, "test", "1", "s", params, 2, nullptr};
+  fb_plugin plugin{FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_FILTER, "test", "1", "s", params, 2,
+                   nullptr};
   const BoundParams bound(plugin, {{"show", "normal"}});
   EXPECT_EQ(bound.values()[0].number[0], 0.5);
   EXPECT_STREQ(bound.values()[1].text, "normal");
@@ -78,7 +80,8 @@ TEST(BoundParams, FillsDefaultsAndRejectsUnknownOrRepeatedKeys) {
     BoundParams(plugin, {{"sigmaa", "1"}});
     ADD_FAILURE() << "accepted an unknown key";
   } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("expected one of: sigma, show"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected one of: sigma, show"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(BoundParams(plugin, {{"sigma", "1"}, {"sigma", "2"}}), UsageError);
   EXPECT_THROW(BoundParams(plugin, {{"sigma", "0"}}), UsageError);

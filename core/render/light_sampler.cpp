@@ -27,12 +27,17 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
   const double scene_radius = std::max(geometry.bounds_radius(), 1e-3f);
   for (const Light& light : scene.lights) {
     const Transform render_from_light = render_from_world * light.world_from_light;
-    Punctual p{light.type, Vec3f(render_from_light.point({0, 0, 0})),
-               Vec3f(normalize(render_from_light.vector({0, 0, -1}))), light.intensity,
-               float(std::cos(light.spot_inner_angle_rad)), float(std::cos(light.spot_outer_angle_rad))};
+    Punctual p{light.type,
+               Vec3f(render_from_light.point({0, 0, 0})),
+               Vec3f(normalize(render_from_light.vector({0, 0, -1}))),
+               light.intensity,
+               float(std::cos(light.spot_inner_angle_rad)),
+               float(std::cos(light.spot_outer_angle_rad))};
     const double lum = luminance(light.intensity);
     switch (light.type) {
-      case LightType::kPoint: power.push_back(4 * kPi * lum); break;
+      case LightType::kPoint:
+        power.push_back(4 * kPi * lum);
+        break;
       case LightType::kSpot:
         power.push_back(2 * kPi * (1 - 0.5 * (p.cos_inner + p.cos_outer)) * lum);
         break;
@@ -48,7 +53,8 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
     power.push_back(kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
   }
   double total = 0;
-  for (double p : power) total += std::max(p, 0.0);
+  for (double p : power)
+    total += std::max(p, 0.0);
   if (!(total > 0)) return;  // no light carries energy: sample() always fails
   cdf_.push_back(0);
   for (double p : power) {
@@ -61,7 +67,8 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
   if (pmf_.empty()) return false;
   const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), double(u[0]));
   size_t index = std::min<size_t>(std::max<ptrdiff_t>(it - cdf_.begin() - 1, 0), pmf_.size() - 1);
-  while (pmf_[index] == 0.f && index > 0) --index;  // u landed on an empty interval's edge
+  while (pmf_[index] == 0.f && index > 0)
+    --index;  // u landed on an empty interval's edge
   if (pmf_[index] == 0.f) return false;
   const bool ok = index < punctual_.size()
                       ? sample_punctual(punctual_[index], position, out)
@@ -70,7 +77,8 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
   return ok;
 }
 
-bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, fb_light_sample& out) const {
+bool LightSampler::sample_punctual(const Punctual& light, Vec3f position,
+                                   fb_light_sample& out) const {
   out.is_delta = 1;
   out.pdf = 1.f;
   if (light.type == LightType::kDirectional) {

@@ -15,7 +15,8 @@ namespace fb {
 
 class LightSampler {
  public:
-  LightSampler(const Scene& scene, const Transform& render_from_world, const RenderGeometry& geometry);
+  LightSampler(const Scene& scene, const Transform& render_from_world,
+               const RenderGeometry& geometry);
   bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
   float pdf(Vec3f position, const fb_hit& emitter_hit) const;
   size_t light_count() const { return pmf_.size(); }
@@ -29,7 +30,8 @@ class LightSampler {
     float cos_inner, cos_outer;
   };
   bool sample_punctual(const Punctual& light, Vec3f position, fb_light_sample& out) const;
-  bool sample_triangle(uint32_t index, Vec3f position, const float u[2], fb_light_sample& out) const;
+  bool sample_triangle(uint32_t index, Vec3f position, const float u[2],
+                       fb_light_sample& out) const;
 
   std::vector<Punctual> punctual_;
   const std::vector<EmissiveTriangle>& emitters_;  // light index punctual_.size() + i

@@ -10,15 +10,20 @@ namespace {
 
 std::string format_seconds(double s) {
   char text[32];
-  if (s < 60) std::snprintf(text, sizeof text, "%.0fs", s);
-  else if (s < 3600) std::snprintf(text, sizeof text, "%dm%02ds", int(s) / 60, int(s) % 60);
-  else std::snprintf(text, sizeof text, "%dh%02dm", int(s) / 3600, int(s) % 3600 / 60);
+  if (s < 60)
+    std::snprintf(text, sizeof text, "%.0fs", s);
+  else if (s < 3600)
+    std::snprintf(text, sizeof text, "%dm%02ds", int(s) / 60, int(s) % 60);
+  else
+    std::snprintf(text, sizeof text, "%dh%02dm", int(s) / 3600, int(s) % 3600 / 60);
   return text;
 }
 
 }  // namespace
 
-bool stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }
+bool stderr_is_terminal() {
+  return isatty(STDERR_FILENO) == 1;
+}
 
 Progress::Progress(uint64_t total, std::ostream& out, bool terminal)
     : total_(total), out_(out), terminal_(terminal), start_(std::chrono::steady_clock::now()) {
@@ -41,7 +46,8 @@ void Progress::report_loop() {
   const auto period = terminal_ ? std::chrono::milliseconds(250) : std::chrono::milliseconds(10000);
   std::unique_lock lock(mutex_);
   if (wake_.wait_for(lock, first, [this] { return stop_; })) return;
-  do print(false);
+  do
+    print(false);
   while (!wake_.wait_for(lock, period, [this] { return stop_; }));
 }
 
@@ -49,7 +55,8 @@ void Progress::print(bool final_line) {
   printed_ = true;
   const uint64_t done = std::min(done_.load(std::memory_order_relaxed), total_);
   const double fraction = total_ ? double(done) / double(total_) : 1.0;
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const std::string eta = fraction > 0 ? format_seconds(elapsed / fraction - elapsed) : "?";
   char line[160];
   if (terminal_) {

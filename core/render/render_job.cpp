@@ -32,20 +32,22 @@ struct RenderJob::Plugins {
 namespace {
 
 SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name) {
-  if (!name) return scene.cameras.empty() ? frame_bounds(scene.world_bounds()) : scene.cameras.front();
+  if (!name)
+    return scene.cameras.empty() ? frame_bounds(scene.world_bounds()) : scene.cameras.front();
   for (const SceneCamera& camera : scene.cameras)
     if (camera.name == *name) return camera;
   std::string known;
-  for (const SceneCamera& camera : scene.cameras) known += (known.empty() ? "" : ", ") + camera.name;
+  for (const SceneCamera& camera : scene.cameras)
+    known += (known.empty() ? "" : ", ") + camera.name;
   throw UsageError("--camera '" + *name + "': the scene has no camera of that name (" +
                    (known.empty() ? "it has no camera at all" : "it has: " + known) + ")");
 }
 
-
 ImageMetadata::Matrix to_float_matrix(const Transform& t) {
   ImageMetadata::Matrix m;
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m[r * 4 + c] = float(t(r, c));
+    for (int c = 0; c < 4; ++c)
+      m[r * 4 + c] = float(t(r, c));
   return m;
 }
 
@@ -54,7 +56,7 @@ Transform ndc_from_camera(const fb_camera_setup& setup) {
   const ViewPlane v = view_plane(setup);
   const double w = setup.image_width_px, h = setup.image_height_px;
   if (setup.projection == FB_PROJECTION_ORTHOGRAPHIC)
-    return Transform::from_rows({v.fx / w, 0, 0, v.cx / w,  //
+    return Transform::from_rows({v.fx / w, 0, 0, v.cx / w,   //
                                  0, -v.fy / h, 0, v.cy / h,  //
                                  0, 0, 1, 0,                 //
                                  0, 0, 0, 1});
@@ -68,12 +70,14 @@ Transform ndc_from_camera(const fb_camera_setup& setup) {
 // Loads the plugin `text` names ("NAME[:k=v,...]") and creates an instance with its parameters;
 // usage errors say which option they came from.
 template <typename Instance, typename... Setup>
-std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind, const std::string& text,
-                                      const char* option, const Setup&... setup) {
+std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
+                                      const std::string& text, const char* option,
+                                      const Setup&... setup) {
   const PluginSpec spec = parse_plugin_spec(text, option);
   auto library = loader.load(kind, spec.name);
   try {
-    return std::make_unique<Instance>(library, BoundParams(library->descriptor(), spec.settings), setup...);
+    return std::make_unique<Instance>(library, BoundParams(library->descriptor(), spec.settings),
+                                      setup...);
   } catch (const UsageError& e) {
     throw UsageError(std::string(option) + " '" + text + "': " + e.what());
   }
@@ -84,8 +88,10 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
 std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
   const double aspect = camera.intended_aspect.value_or(16.0 / 9.0);
   if (aspect >= 1.0)
-    return {kDefaultLongSidePx, std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx / aspect)))};
-  return {std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx * aspect))), kDefaultLongSidePx};
+    return {kDefaultLongSidePx,
+            std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx / aspect)))};
+  return {std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx * aspect))),
+          kDefaultLongSidePx};
 }
 
 RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader)
@@ -103,10 +109,12 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
   const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
   p.camera = instantiate<CameraInstance>(
-      loader, FB_KIND_CAMERA, options.camera_model.value_or(orthographic ? "orthographic" : "perspective"),
+      loader, FB_KIND_CAMERA,
+      options.camera_model.value_or(orthographic ? "orthographic" : "perspective"),
       "--camera-model", setup);
   p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
-  p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text, "--integrator");
+  p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text,
+                                                 "--integrator");
 
   // Render space: world translated so the camera is at the origin; only this is narrowed to float.
   p.render_from_world = Transform::translate(-camera_.world_from_camera.translation());
@@ -128,7 +136,8 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   Vec3f(normalize(camera_.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
 
   const uint32_t needs = p.camera->needs();
-  camera_reason_ = (needs & FB_CAMERA_NEEDS_LENS) ? "with lens samples" : "pinhole: no lens samples";
+  camera_reason_ =
+      (needs & FB_CAMERA_NEEDS_LENS) ? "with lens samples" : "pinhole: no lens samples";
 }
 
 RenderJob::~RenderJob() = default;
@@ -147,11 +156,18 @@ std::string RenderJob::plan() const {
 RenderResult RenderJob::run() const {
   const Plugins& p = *plugins_;
   Film film(width_, height_, p.integrator->channels());
-  const RenderInputs inputs{*p.camera,   *p.filter, *p.integrator, *p.geometry, *p.lights, p.scene,
-                            camera_.world_from_camera.without_scale_and_translation(), spp_,
+  const RenderInputs inputs{*p.camera,
+                            *p.filter,
+                            *p.integrator,
+                            *p.geometry,
+                            *p.lights,
+                            p.scene,
+                            camera_.world_from_camera.without_scale_and_translation(),
+                            spp_,
                             options_.seed};
   std::optional<Progress> progress;
-  if (options_.show_progress) progress.emplace(tile_count(width_, height_), std::cerr, stderr_is_terminal());
+  if (options_.show_progress)
+    progress.emplace(tile_count(width_, height_), std::cerr, stderr_is_terminal());
   RenderStats stats = render_image(inputs, film, progress ? &*progress : nullptr);
   progress.reset();
   return {film.resolve(), stats};
@@ -170,8 +186,9 @@ ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
                                    {"filmback/shift_x", float(setup.shift_x)},
                                    {"filmback/shift_y", float(setup.shift_y)},
                                    {"filmback/render_seconds", float(stats.seconds)}});
-  m.ints = {{"filmback/samples_per_pixel", int(spp_)},
-            {"filmback/dropped_samples", int(std::min<uint64_t>(stats.dropped_samples, INT32_MAX))}};
+  m.ints = {
+      {"filmback/samples_per_pixel", int(spp_)},
+      {"filmback/dropped_samples", int(std::min<uint64_t>(stats.dropped_samples, INT32_MAX))}};
   m.strings = {{"Software", "filmback"},
                {"filmback/scene", scene_.file.filename().string()},
                {"filmback/camera", camera_.name},

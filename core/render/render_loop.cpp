@@ -1,10 +1,10 @@
 #include "core/render/render_loop.h"
 
+#include <pmmintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <xmmintrin.h>
-#include <pmmintrin.h>
 
 #include <algorithm>
 #include <atomic>
@@ -22,10 +22,12 @@ struct Rotation {
   float m[3][3];
   explicit Rotation(const Transform& t) {
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) m[r][c] = float(t(r, c));
+      for (int c = 0; c < 3; ++c)
+        m[r][c] = float(t(r, c));
   }
   void apply(const float v[3], float out[3]) const {
-    for (int r = 0; r < 3; ++r) out[r] = m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2];
+    for (int r = 0; r < 3; ++r)
+      out[r] = m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2];
   }
 };
 
@@ -74,7 +76,8 @@ class TileRenderer {
     for (uint32_t by = y0; by < y1; by += 4)
       for (uint32_t bx = x0; bx < x1; bx += 4)
         for (uint32_t y = by; y < std::min(by + 4, y1); ++y)
-          for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x, ++i) w.px[i] = x, w.py[i] = y;
+          for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x, ++i)
+            w.px[i] = x, w.py[i] = y;
     fb_trace_context& context = w.context;
     context.geometry = &in_.geometry;
     context.lights = &in_.lights;
@@ -114,7 +117,8 @@ class TileRenderer {
         float* v = &w.values[i * channels_];
         const float camera_weight = w.camera_rays[i].weight;
         if (camera_weight > 0.f) {
-          for (size_t c = 0; c < channels_; ++c) v[c] *= camera_weight;
+          for (size_t c = 0; c < channels_; ++c)
+            v[c] *= camera_weight;
         } else {
           std::fill_n(v, channels_, 0.f);
         }

@@ -29,14 +29,15 @@ float light_pdf(fb_trace_context* c, const float position[3], const fb_hit* hit)
 
 void next_samples(fb_trace_context* c, size_t path, float* u, uint32_t count) {
   SampleKey& key = c->paths[path];
-  for (uint32_t i = 0; i < count; ++i, ++key.dimension) u[i] = c->sampler->get(key);
+  for (uint32_t i = 0; i < count; ++i, ++key.dimension)
+    u[i] = c->sampler->get(key);
 }
 
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
-  static const fb_scene_api api{sizeof(fb_scene_api), intersect, intersect_batch, occluded, sample_light, light_pdf,
-                                next_samples};
+  static const fb_scene_api api{sizeof(fb_scene_api), intersect, intersect_batch, occluded,
+                                sample_light,         light_pdf, next_samples};
   return api;
 }
 

@@ -43,17 +43,19 @@ CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px
   q.imaged_sensor_height_mm = v.extent_y * camera.focal_length_mm;
   q.equivalent_35mm_width_mm =
       camera.focal_length_mm * kFullFrameWidthMm / q.imaged_sensor_width_mm;
-  q.equivalent_35mm_diagonal_mm =
-      camera.focal_length_mm * kFullFrameDiagonalMm /
-      std::hypot(q.imaged_sensor_width_mm, q.imaged_sensor_height_mm);
+  q.equivalent_35mm_diagonal_mm = camera.focal_length_mm * kFullFrameDiagonalMm /
+                                  std::hypot(q.imaged_sensor_width_mm, q.imaged_sensor_height_mm);
   return q;
 }
 
 const char* sensor_fit_name(uint32_t fit) {
   switch (fit) {
-    case FB_SENSOR_FIT_HORIZONTAL: return "horizontal";
-    case FB_SENSOR_FIT_VERTICAL: return "vertical";
-    default: return "auto";
+    case FB_SENSOR_FIT_HORIZONTAL:
+      return "horizontal";
+    case FB_SENSOR_FIT_VERTICAL:
+      return "vertical";
+    default:
+      return "auto";
   }
 }
 

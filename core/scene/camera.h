@@ -28,8 +28,8 @@ struct SceneCamera {
   std::string name;    // the glTF camera's name, else its node's name
   std::string source;  // where it came from: "nodes[3] (cameras[0])"
   PhysicalCamera physical;
-  Transform world_from_camera;               // scale removed: cameras look down -Z, +Y up
-  std::optional<double> intended_aspect;     // width / height the shot was made for
+  Transform world_from_camera;            // scale removed: cameras look down -Z, +Y up
+  std::optional<double> intended_aspect;  // width / height the shot was made for
 };
 
 // The quantities `filmback info` reports, for a given image size.

@@ -14,7 +14,9 @@ namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
-double fov_deg(double side_mm, double focal_mm) { return 2 * std::atan(side_mm / (2 * focal_mm)) * kDeg; }
+double fov_deg(double side_mm, double focal_mm) {
+  return 2 * std::atan(side_mm / (2 * focal_mm)) * kDeg;
+}
 
 PhysicalCamera camera(double focal_mm, uint32_t fit = FB_SENSOR_FIT_AUTO) {
   PhysicalCamera c;
@@ -29,7 +31,8 @@ TEST(CameraQuantities, LandscapeAutoFitSpansTheSensorWidthAcross) {
   EXPECT_NEAR(q.horizontal_fov_deg, fov_deg(36, 50), 1e-12);
   EXPECT_NEAR(q.vertical_fov_deg, fov_deg(36 * 1080.0 / 1920, 50), 1e-12);
   EXPECT_NEAR(q.equivalent_35mm_width_mm, 50, 1e-12);
-  EXPECT_NEAR(q.equivalent_35mm_diagonal_mm, 50 * std::hypot(36, 24) / std::hypot(36, 20.25), 1e-12);
+  EXPECT_NEAR(q.equivalent_35mm_diagonal_mm, 50 * std::hypot(36, 24) / std::hypot(36, 20.25),
+              1e-12);
 }
 
 TEST(CameraQuantities, PortraitAutoFitPutsTheSensorWidthAlongTheHeight) {

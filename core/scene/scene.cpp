@@ -4,7 +4,8 @@ namespace fb {
 
 size_t Scene::triangle_count() const {
   size_t count = 0;
-  for (const MeshInstance& instance : instances) count += meshes[instance.mesh].triangle_count();
+  for (const MeshInstance& instance : instances)
+    count += meshes[instance.mesh].triangle_count();
   return count;
 }
 

@@ -16,10 +16,10 @@
 namespace fb {
 
 struct TriangleMesh {
-  std::string name;              // for messages and `filmback info`
-  std::vector<Vec3f> positions;  // object space
-  std::vector<Vec3f> normals;    // empty, or one per position
-  std::vector<uint32_t> indices; // three per triangle, counter-clockwise front faces
+  std::string name;               // for messages and `filmback info`
+  std::vector<Vec3f> positions;   // object space
+  std::vector<Vec3f> normals;     // empty, or one per position
+  std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
   uint32_t material = 0;
   size_t triangle_count() const { return indices.size() / 3; }
 };

@@ -13,12 +13,15 @@ namespace {
 size_t component_size(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_INT:
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
   }
   return 0;
 }
@@ -52,7 +55,8 @@ struct AccessorView {
   const unsigned char* element(size_t i) const { return data + i * stride; }
 };
 
-const tinygltf::Accessor& checked_accessor(const AccessorContext& ctx, int index, const std::string& where) {
+const tinygltf::Accessor& checked_accessor(const AccessorContext& ctx, int index,
+                                           const std::string& where) {
   if (index < 0 || size_t(index) >= ctx.model.accessors.size())
     throw_input(ctx.file, where,
                 "accessor index " + std::to_string(index) + " is out of range (the file has " +
@@ -93,11 +97,13 @@ AccessorView view(const AccessorContext& ctx, int index, const std::string& wher
                 "buffer index " + std::to_string(bv.buffer) + " is out of range (the file has " +
                     std::to_string(ctx.model.buffers.size()) + " buffers)");
   const size_t buffer_size = ctx.model.buffers[size_t(bv.buffer)].data.size();
-  const size_t element_size = component_size(a.componentType) * size_t(tinygltf::GetNumComponentsInType(a.type));
+  const size_t element_size =
+      component_size(a.componentType) * size_t(tinygltf::GetNumComponentsInType(a.type));
   const size_t stride = bv.byteStride ? bv.byteStride : element_size;
   if (stride < element_size)
-    throw_input(ctx.file, bv_path, "byteStride " + std::to_string(stride) +
-                                       " is smaller than one element (" + std::to_string(element_size) + " bytes)");
+    throw_input(ctx.file, bv_path,
+                "byteStride " + std::to_string(stride) + " is smaller than one element (" +
+                    std::to_string(element_size) + " bytes)");
   // Overflow-safe: each term is checked against the sizes it must fit in before it is added.
   if (bv.byteOffset > buffer_size || bv.byteLength > buffer_size - bv.byteOffset)
     throw_input(ctx.file, bv_path,
@@ -113,7 +119,8 @@ AccessorView view(const AccessorContext& ctx, int index, const std::string& wher
                     " bytes at offset " + std::to_string(a.byteOffset) + " with stride " +
                     std::to_string(stride) + " do not fit in " + bv_path + " (" +
                     std::to_string(available) + " bytes)");
-  const unsigned char* base = ctx.model.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset + a.byteOffset;
+  const unsigned char* base =
+      ctx.model.buffers[size_t(bv.buffer)].data.data() + bv.byteOffset + a.byteOffset;
   return {base, stride, a.count};
 }
 
@@ -124,7 +131,8 @@ size_t accessor_count(const AccessorContext& ctx, int accessor, const std::strin
 }
 
 std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std::string& where) {
-  const AccessorView v = view(ctx, accessor, where, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+  const AccessorView v =
+      view(ctx, accessor, where, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
   std::vector<Vec3f> out(v.count);
   for (size_t i = 0; i < v.count; ++i) {
     float xyz[3];
@@ -137,8 +145,8 @@ std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std
   return out;
 }
 
-std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor, const std::string& where,
-                                   size_t vertex_count) {
+std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
+                                   const std::string& where, size_t vertex_count) {
   const AccessorView v =
       view(ctx, accessor, where, TINYGLTF_TYPE_SCALAR,
            {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,

@@ -24,8 +24,8 @@ struct AccessorContext {
 std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std::string& where);
 
 // A SCALAR unsigned byte/short/int accessor, each value below `vertex_count`.
-std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor, const std::string& where,
-                                   size_t vertex_count);
+std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
+                                   const std::string& where, size_t vertex_count);
 
 // The accessor's element count, after checking the index.
 size_t accessor_count(const AccessorContext& ctx, int accessor, const std::string& where);

@@ -24,7 +24,9 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-std::string index_path(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+std::string index_path(const char* array, size_t i) {
+  return std::string(array) + "[" + std::to_string(i) + "]";
+}
 
 // "mesh index 5 is out of range (the file has 1 meshes)": what was found and what was expected.
 std::string out_of_range(const char* what, long index, size_t count, const char* array) {
@@ -92,7 +94,9 @@ class Importer {
   }
 
  private:
-  void warn(const std::string& where, const std::string& what) { diagnostics_.warn(located(name_, where, what)); }
+  void warn(const std::string& where, const std::string& what) {
+    diagnostics_.warn(located(name_, where, what));
+  }
 
   void load() {
     const std::vector<unsigned char> bytes = read_file();
@@ -108,7 +112,10 @@ class Importer {
             ? loader.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), size, folder)
             : loader.LoadASCIIFromString(&model_, &err, &warnings,
                                          reinterpret_cast<const char*>(bytes.data()), size, folder);
-    if (!ok) throw_input(name_, "", "not a valid glTF " + std::string(binary ? "binary" : "JSON") + " file: " + trim(err));
+    if (!ok)
+      throw_input(
+          name_, "",
+          "not a valid glTF " + std::string(binary ? "binary" : "JSON") + " file: " + trim(err));
   }
 
   std::vector<unsigned char> read_file() {
@@ -127,19 +134,22 @@ class Importer {
   }
 
   static std::string trim(std::string s) {
-    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+      s.pop_back();
     return s.empty() ? "unknown reason" : s;
   }
 
   void check_extensions() {
-    static const std::set<std::string> kSupported = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+    static const std::set<std::string> kSupported = {"KHR_lights_punctual",
+                                                     "KHR_materials_emissive_strength"};
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
         throw_input(name_, index_path("extensionsRequired", i),
                     model_.extensionsRequired[i] + " is required by the file but not supported");
     for (size_t i = 0; i < model_.extensionsUsed.size(); ++i)
       if (!kSupported.count(model_.extensionsUsed[i]))
-        warn(index_path("extensionsUsed", i), model_.extensionsUsed[i] + " is not supported yet; ignored");
+        warn(index_path("extensionsUsed", i),
+             model_.extensionsUsed[i] + " is not supported yet; ignored");
   }
 
   void warn_if_present(const std::string& what, size_t n) {
@@ -158,11 +168,13 @@ class Importer {
       if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end())
         strength = number_or(it->second, "emissiveStrength", 1.0);
       if (g.emissiveFactor.size() == 3)
-        m.emission = Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
-                         float(g.emissiveFactor[2] * strength));
+        m.emission =
+            Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
+                float(g.emissiveFactor[2] * strength));
       m.double_sided = g.doubleSided;
-      if (!is_finite(m.base_color) || !is_finite(m.emission) || m.base_color.x < 0 || m.base_color.y < 0 ||
-          m.base_color.z < 0 || m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0)
+      if (!is_finite(m.base_color) || !is_finite(m.emission) || m.base_color.x < 0 ||
+          m.base_color.y < 0 || m.base_color.z < 0 || m.emission.x < 0 || m.emission.y < 0 ||
+          m.emission.z < 0)
         throw_input(name_, path, "base colour and emission must be finite and non-negative");
       // A black metal reflects nothing, as a black Lambertian surface: no warning for emitters.
       if (g.pbrMetallicRoughness.metallicFactor > 0 && max_component(m.base_color) > 0)
@@ -191,10 +203,13 @@ class Importer {
       std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
       t = Transform::from_columns(m);
     } else {
-      if (node.translation.size() == 3) t = Transform::translate({node.translation[0], node.translation[1], node.translation[2]});
+      if (node.translation.size() == 3)
+        t = Transform::translate({node.translation[0], node.translation[1], node.translation[2]});
       if (node.rotation.size() == 4)
-        t = t * Transform::rotate({node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]});
-      if (node.scale.size() == 3) t = t * Transform::scale({node.scale[0], node.scale[1], node.scale[2]});
+        t = t * Transform::rotate(
+                    {node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]});
+      if (node.scale.size() == 3)
+        t = t * Transform::scale({node.scale[0], node.scale[1], node.scale[2]});
     }
     if (!t.is_finite()) throw_input(name_, path, "the node's transform is not finite");
     return t;
@@ -218,7 +233,9 @@ class Importer {
       for (size_t r = roots.size(); r-- > 0;)
         stack.push_back(
             {roots[r], Transform(), index_path("scenes", s) + "." + index_path("nodes", r)});
-      if (model_.scenes.size() > 1) warn("scenes", "the file has " + std::to_string(model_.scenes.size()) + " scenes; rendering scenes[" + std::to_string(s) + "]");
+      if (model_.scenes.size() > 1)
+        warn("scenes", "the file has " + std::to_string(model_.scenes.size()) +
+                           " scenes; rendering scenes[" + std::to_string(s) + "]");
     } else {
       // No scene: every node without a parent is a root.
       std::vector<bool> is_child(model_.nodes.size(), false);
@@ -258,7 +275,8 @@ class Importer {
   }
 
   void visit(const tinygltf::Node& node, const std::string& path, const Transform& world) {
-    if (node.skin >= 0) warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
+    if (node.skin >= 0)
+      warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
     if (node.mesh >= 0) add_mesh(node, path, world);
     if (node.camera >= 0) add_camera(node, path, world);
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
@@ -274,7 +292,8 @@ class Importer {
       const auto key = std::pair{node.mesh, p};
       auto cached = primitive_meshes_.find(key);
       if (cached == primitive_meshes_.end()) {
-        const std::string ppath = index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
+        const std::string ppath =
+            index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
         std::optional<TriangleMesh> converted = convert_primitive(mesh, mesh.primitives[p], ppath);
         std::optional<uint32_t> index;
         if (converted) {
@@ -283,20 +302,26 @@ class Importer {
         }
         cached = primitive_meshes_.emplace(key, index).first;
       }
-      if (cached->second) scene_.instances.push_back({*cached->second, world, node.name.empty() ? path : node.name});
+      if (cached->second)
+        scene_.instances.push_back({*cached->second, world, node.name.empty() ? path : node.name});
     }
   }
 
-  std::optional<TriangleMesh> convert_primitive(const tinygltf::Mesh& mesh, const tinygltf::Primitive& prim,
+  std::optional<TriangleMesh> convert_primitive(const tinygltf::Mesh& mesh,
+                                                const tinygltf::Primitive& prim,
                                                 const std::string& path) {
     const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      warn(path + ".mode", "points and lines (mode " + std::to_string(mode) + ") are not supported yet; skipped");
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      warn(path + ".mode",
+           "points and lines (mode " + std::to_string(mode) + ") are not supported yet; skipped");
       return std::nullopt;
     }
-    if (!prim.targets.empty()) warn(path + ".targets", "morph targets are not supported yet; rendering the base shape");
+    if (!prim.targets.empty())
+      warn(path + ".targets", "morph targets are not supported yet; rendering the base shape");
     const auto position = prim.attributes.find("POSITION");
-    if (position == prim.attributes.end()) throw_input(name_, path + ".attributes", "a triangle primitive needs POSITION");
+    if (position == prim.attributes.end())
+      throw_input(name_, path + ".attributes", "a triangle primitive needs POSITION");
     const gltf::AccessorContext ctx{model_, name_};
     TriangleMesh out;
     out.name = mesh.name.empty() ? path : mesh.name;
@@ -305,14 +330,16 @@ class Importer {
       out.normals = gltf::read_vec3(ctx, normal->second, path + ".attributes.NORMAL");
       if (out.normals.size() != out.positions.size())
         throw_input(name_, path + ".attributes.NORMAL",
-                    std::to_string(out.normals.size()) + " normals for " + std::to_string(out.positions.size()) + " positions");
+                    std::to_string(out.normals.size()) + " normals for " +
+                        std::to_string(out.positions.size()) + " positions");
     }
     std::vector<uint32_t> vertices;
     if (prim.indices >= 0) {
       vertices = gltf::read_indices(ctx, prim.indices, path + ".indices", out.positions.size());
     } else {
       vertices.resize(out.positions.size());
-      for (size_t i = 0; i < vertices.size(); ++i) vertices[i] = uint32_t(i);
+      for (size_t i = 0; i < vertices.size(); ++i)
+        vertices[i] = uint32_t(i);
     }
     out.indices = triangle_list(vertices, mode, path);
     if (prim.material >= 0) {
@@ -328,17 +355,23 @@ class Importer {
   }
 
   // glTF §3.7.2.1: lists, strips (winding alternates) and fans, all as counter-clockwise lists.
-  std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode, const std::string& path) {
+  std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode,
+                                      const std::string& path) {
     std::vector<uint32_t> out;
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-      if (v.size() % 3 != 0) warn(path, std::to_string(v.size() % 3) + " trailing vertices do not form a triangle; ignored");
+      if (v.size() % 3 != 0)
+        warn(path,
+             std::to_string(v.size() % 3) + " trailing vertices do not form a triangle; ignored");
       out.assign(v.begin(), v.begin() + ptrdiff_t(v.size() - v.size() % 3));
       return out;
     }
     for (size_t i = 2; i < v.size(); ++i) {
-      if (mode == TINYGLTF_MODE_TRIANGLE_FAN) out.insert(out.end(), {v[0], v[i - 1], v[i]});
-      else if (i % 2 == 0) out.insert(out.end(), {v[i - 2], v[i - 1], v[i]});
-      else out.insert(out.end(), {v[i - 1], v[i - 2], v[i]});
+      if (mode == TINYGLTF_MODE_TRIANGLE_FAN)
+        out.insert(out.end(), {v[0], v[i - 1], v[i]});
+      else if (i % 2 == 0)
+        out.insert(out.end(), {v[i - 2], v[i - 1], v[i]});
+      else
+        out.insert(out.end(), {v[i - 1], v[i - 2], v[i]});
     }
     return out;
   }
@@ -353,16 +386,20 @@ class Importer {
     camera.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : cpath;
     camera.source = path + " (" + cpath + ")";
     // Blender ignores camera scale when projecting: keep rotation and position only.
-    camera.world_from_camera = Transform::translate(world.translation()) * world.without_scale_and_translation();
+    camera.world_from_camera =
+        Transform::translate(world.translation()) * world.without_scale_and_translation();
     if (!camera.world_from_camera.is_finite())
       throw_input(name_, path, "the camera's transform is degenerate (zero scale?)");
     PhysicalCamera& phys = camera.physical;
     if (g.type == "perspective") {
       const tinygltf::PerspectiveCamera& p = g.perspective;
       if (!(p.yfov > 0 && p.yfov < std::numbers::pi))
-        throw_input(name_, cpath + ".perspective.yfov", std::to_string(p.yfov) + " is not a field of view (expected 0 < yfov < pi)");
-      if (!(p.znear > 0)) throw_input(name_, cpath + ".perspective.znear", "expected a positive near clip distance");
-      if (p.zfar != 0 && !(p.zfar > p.znear)) throw_input(name_, cpath + ".perspective.zfar", "expected zfar > znear");
+        throw_input(name_, cpath + ".perspective.yfov",
+                    std::to_string(p.yfov) + " is not a field of view (expected 0 < yfov < pi)");
+      if (!(p.znear > 0))
+        throw_input(name_, cpath + ".perspective.znear", "expected a positive near clip distance");
+      if (p.zfar != 0 && !(p.zfar > p.znear))
+        throw_input(name_, cpath + ".perspective.zfar", "expected zfar > znear");
       if (p.aspectRatio < 0 || !std::isfinite(p.aspectRatio))
         throw_input(name_, cpath + ".perspective.aspectRatio", "expected a positive aspect ratio");
       // The glTF projection becomes Blender's physical set (docs/camera-model.md): with an
@@ -384,31 +421,38 @@ class Importer {
       const tinygltf::OrthographicCamera& o = g.orthographic;
       if (!(o.xmag > 0) || !(o.ymag > 0) || !std::isfinite(o.xmag) || !std::isfinite(o.ymag))
         throw_input(name_, cpath + ".orthographic", "expected positive xmag and ymag");
-      if (!(o.zfar > o.znear) || o.znear < 0) throw_input(name_, cpath + ".orthographic", "expected 0 <= znear < zfar");
+      if (!(o.zfar > o.znear) || o.znear < 0)
+        throw_input(name_, cpath + ".orthographic", "expected 0 <= znear < zfar");
       phys.projection = FB_PROJECTION_ORTHOGRAPHIC;
-      phys.ortho_scale_m = 2 * std::max(o.xmag, o.ymag);  // Blender: xmag = scale * w / max(w, h) / 2
+      phys.ortho_scale_m =
+          2 * std::max(o.xmag, o.ymag);  // Blender: xmag = scale * w / max(w, h) / 2
       camera.intended_aspect = o.xmag / o.ymag;
       phys.clip_near_m = o.znear;
       phys.clip_far_m = o.zfar;
     } else {
-      throw_input(name_, cpath + ".type", "'" + g.type + "' is not a camera type (expected perspective or orthographic)");
+      throw_input(name_, cpath + ".type",
+                  "'" + g.type + "' is not a camera type (expected perspective or orthographic)");
     }
     scene_.cameras.push_back(camera);
   }
 
-  void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world, int index) {
+  void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world,
+                 int index) {
     const std::string ext_path = path + ".extensions.KHR_lights_punctual";
     if (index < 0 || size_t(index) >= model_.lights.size())
       throw_input(name_, ext_path + ".light",
                   out_of_range("light", index, model_.lights.size(), "lights"));
     const tinygltf::Light& g = model_.lights[size_t(index)];
-    const std::string lpath = "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));
+    const std::string lpath =
+        "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));
     Light light;
     light.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : lpath;
-    light.world_from_light = Transform::translate(world.translation()) * world.without_scale_and_translation();
+    light.world_from_light =
+        Transform::translate(world.translation()) * world.without_scale_and_translation();
     Rgb color{1, 1, 1};
     if (g.color.size() == 3) color = Rgb(float(g.color[0]), float(g.color[1]), float(g.color[2]));
-    if (!is_finite(color) || color.x < 0 || color.y < 0 || color.z < 0 || !std::isfinite(g.intensity) || g.intensity < 0)
+    if (!is_finite(color) || color.x < 0 || color.y < 0 || color.z < 0 ||
+        !std::isfinite(g.intensity) || g.intensity < 0)
       throw_input(name_, lpath, "colour and intensity must be finite and non-negative");
     light.intensity = color * float(g.intensity / kLumensPerWatt);
     if (g.type == "point") {
@@ -419,13 +463,16 @@ class Importer {
       light.spot_outer_angle_rad = g.spot.outerConeAngle;
       if (!(g.spot.innerConeAngle >= 0 && g.spot.innerConeAngle < g.spot.outerConeAngle &&
             g.spot.outerConeAngle <= std::numbers::pi / 2))
-        throw_input(name_, lpath + ".spot", "expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
+        throw_input(name_, lpath + ".spot",
+                    "expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
     } else if (g.type == "directional") {
       light.type = LightType::kDirectional;
     } else {
-      throw_input(name_, lpath + ".type", "'" + g.type + "' is not a light type (expected point, spot or directional)");
+      throw_input(name_, lpath + ".type",
+                  "'" + g.type + "' is not a light type (expected point, spot or directional)");
     }
-    if (g.range > 0) warn(lpath + ".range", "range is ignored: lights fall off with the inverse square law");
+    if (g.range > 0)
+      warn(lpath + ".range", "range is ignored: lights fall off with the inverse square law");
     scene_.lights.push_back(light);
   }
 
@@ -440,6 +487,8 @@ class Importer {
 
 }  // namespace
 
-Scene import_gltf(const fs::path& file, Diagnostics& diagnostics) { return Importer(file, diagnostics).run(); }
+Scene import_gltf(const fs::path& file, Diagnostics& diagnostics) {
+  return Importer(file, diagnostics).run();
+}
 
 }  // namespace fb

@@ -30,19 +30,23 @@ Scene import(const std::filesystem::path& file) {
 // camera space is the node's inverse, x right, y up, looking down -z.
 Vec2d pinhole_raster(Vec3d camera_space, double yfov, double width, double height) {
   const double f = (height / 2) / std::tan(yfov / 2);
-  return {width / 2 + f * camera_space.x / -camera_space.z, height / 2 - f * camera_space.y / -camera_space.z};
+  return {width / 2 + f * camera_space.x / -camera_space.z,
+          height / 2 - f * camera_space.y / -camera_space.z};
 }
 
 TEST(GltfImporter, CameraProjectsKnownWorldPointsAsThePinholeFormulaSays) {
   const double yfov = 0.6, width = 300, height = 200;
   GltfBuilder gltf;
   const int cam = gltf.perspective_camera(yfov, width / height, 0.1, 1000, "Hero");
-  // A camera under a rotated, translated parent, placed with a column-major matrix, as exporters do.
+  // A camera under a rotated, translated parent, placed with a column-major matrix, as exporters
+  // do.
   GltfBuilder::Node camera_node;
   camera_node.camera = cam;
-  const Transform local = Transform::translate({0.5, 2, 7}) * Transform::rotate({0.05, -0.2, 0.02, 0.98});
+  const Transform local =
+      Transform::translate({0.5, 2, 7}) * Transform::rotate({0.05, -0.2, 0.02, 0.98});
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) camera_node.matrix.push_back(local(r, c));
+    for (int r = 0; r < 4; ++r)
+      camera_node.matrix.push_back(local(r, c));
   const int child = gltf.node(camera_node, false);
   GltfBuilder::Node parent;
   parent.translation = {100, -3, 20};
@@ -56,14 +60,17 @@ TEST(GltfImporter, CameraProjectsKnownWorldPointsAsThePinholeFormulaSays) {
   ASSERT_TRUE(camera.intended_aspect.has_value());
   EXPECT_DOUBLE_EQ(*camera.intended_aspect, 1.5);
 
-  const Transform world_from_camera =
-      Transform::translate({100, -3, 20}) * Transform::rotate({0, std::sin(0.3), 0, std::cos(0.3)}) * local;
+  const Transform world_from_camera = Transform::translate({100, -3, 20}) *
+                                      Transform::rotate({0, std::sin(0.3), 0, std::cos(0.3)}) *
+                                      local;
   const Transform camera_from_world = world_from_camera.inverse();
   auto library = test::loader().load(FB_KIND_CAMERA, "perspective");
-  const fb_camera_setup setup = make_camera_setup(camera.physical, uint32_t(width), uint32_t(height));
+  const fb_camera_setup setup =
+      make_camera_setup(camera.physical, uint32_t(width), uint32_t(height));
   const CameraInstance plugin(library, BoundParams(library->descriptor(), {}), setup);
   const double fy = view_plane(setup).fy;
-  for (Vec3d world : {Vec3d{100.5, -1, 13}, Vec3d{97, 0, 10}, Vec3d{104, -4, 2}, Vec3d{101, -2, 18.5}}) {
+  for (Vec3d world :
+       {Vec3d{100.5, -1, 13}, Vec3d{97, 0, 10}, Vec3d{104, -4, 2}, Vec3d{101, -2, 18.5}}) {
     const Vec3d p = camera_from_world.point(world);
     ASSERT_LT(p.z, 0) << "test point behind the camera";
     const Vec2d expected = pinhole_raster(p, yfov, width, height);
@@ -76,7 +83,8 @@ TEST(GltfImporter, CameraProjectsKnownWorldPointsAsThePinholeFormulaSays) {
     const Vec3d dir = normalize(camera.world_from_camera.vector(Vec3d(Vec3f(ray.direction))));
     const Vec3d to_point = world - origin;
     const double miss_m = length(to_point - dir * dot(to_point, dir));
-    EXPECT_LT(miss_m / -p.z * fy, 1e-4) << "world point " << world.x << "," << world.y << "," << world.z;
+    EXPECT_LT(miss_m / -p.z * fy, 1e-4)
+        << "world point " << world.x << "," << world.y << "," << world.z;
   }
 }
 
@@ -109,7 +117,8 @@ TEST(GltfImporter, EveryIndexTypeAndNonIndexedGiveTheSameTriangles) {
   GltfBuilder gltf;
   const int material = gltf.material({0.5f, 0.5f, 0.5f});
   std::vector<Vec3f> unrolled;
-  for (uint32_t i : kQuadIndices) unrolled.push_back(kQuad[i]);
+  for (uint32_t i : kQuadIndices)
+    unrolled.push_back(kQuad[i]);
   for (int type : {5121, 5123, 5125}) {
     GltfBuilder::Node n;
     n.mesh = gltf.mesh(kQuad, kQuadIndices, material, type);
@@ -143,14 +152,16 @@ TEST(GltfImporter, NodeHierarchyComposesParentAndChildAndSharesMeshes) {
   GltfBuilder::Node root;
   root.mesh = mesh;
   root.translation = {10, 0, 0};
-  root.rotation = {0, 0, std::sin(std::numbers::pi / 4), std::cos(std::numbers::pi / 4)};  // 90 deg about z
+  root.rotation = {0, 0, std::sin(std::numbers::pi / 4),
+                   std::cos(std::numbers::pi / 4)};  // 90 deg about z
   root.children = {child};
   gltf.node(root);
   const Scene scene = import(gltf.write(test::scratch_dir() / "tree.gltf"));
   ASSERT_EQ(scene.meshes.size(), 1u);  // one glTF mesh, two instances
   ASSERT_EQ(scene.instances.size(), 2u);
   EXPECT_EQ(scene.triangle_count(), 4u);
-  // leaf vertex (1, -1, 0): scaled to (2, -2, -2), rotated 90 deg about z to (2, 2, -2), moved by +10 x.
+  // leaf vertex (1, -1, 0): scaled to (2, -2, -2), rotated 90 deg about z to (2, 2, -2), moved by
+  // +10 x.
   const Vec3d p = scene.instances[1].world_from_object.point({1, -1, 0});
   EXPECT_NEAR(p.x, 12, 1e-12);
   EXPECT_NEAR(p.y, 2, 1e-12);
@@ -193,7 +204,8 @@ TEST(GltfImporter, MissingFileIsAnInputErrorNamingIt) {
     import(test::scratch_dir() / "nowhere.gltf");
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("nowhere.gltf: no such file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nowhere.gltf: no such file"), std::string::npos)
+        << e.what();
   }
 }
 

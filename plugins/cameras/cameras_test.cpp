@@ -36,7 +36,8 @@ TEST(PerspectiveCamera, RaysReprojectOntoTheirRasterPoints) {
   const auto camera = make_camera("perspective", setup);
   EXPECT_EQ(camera->needs(), 0u);  // a pinhole draws neither lens nor time samples
   const ViewPlane v = view_plane(setup);
-  for (auto [x, y] : {std::pair{0.f, 0.f}, {640.f, 360.f}, {17.25f, 300.5f}, {float(v.cx), float(v.cy)}}) {
+  for (auto [x, y] :
+       {std::pair{0.f, 0.f}, {640.f, 360.f}, {17.25f, 300.5f}, {float(v.cx), float(v.cy)}}) {
     const fb_camera_ray ray = generate(*camera, x, y);
     const double dx = ray.direction[0], dy = ray.direction[1], dz = ray.direction[2];
     EXPECT_NEAR(std::hypot(dx, dy, dz), 1.0, 1e-6);

@@ -49,7 +49,8 @@ TEST_P(FilterTest, SampleWeightsAreUnbiasedForTheFilter) {
   std::vector<float> u(2 * n);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> uniform(0.f, 0.99999994f);
-  for (float& x : u) x = uniform(rng);
+  for (float& x : u)
+    x = uniform(rng);
   std::vector<fb_filter_sample> samples(n);
   filter->sample(u, samples.data());
   auto g = [&](double x, double y) { return 1.0 + x * x / (r[0] * r[0]) + 0.5 * y; };
@@ -74,7 +75,8 @@ TEST_P(FilterTest, SampleWeightsAreUnbiasedForTheFilter) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Plugins, FilterTest,
-                         ::testing::Values("box", "box:radius=1.5", "gaussian", "gaussian:radius=2,sigma=0.8"),
+                         ::testing::Values("box", "box:radius=1.5", "gaussian",
+                                           "gaussian:radius=2,sigma=0.8"),
                          [](const auto& info) {
                            std::string name = info.param;
                            for (char& c : name)

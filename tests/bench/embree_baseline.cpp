@@ -84,36 +84,38 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per
                          y0 = uint32_t(tile / tiles_x) * kTileSize;
           uint64_t tile_hits = 0;
           for (uint32_t s = 0; s < samples_per_pixel; ++s)
-          for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
-            for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x) {
-              // The box filter's sample, (2u - 1) r with r = 0.5 px, at filmback's sample key.
-              const float ux = sampler.get({x, y, s, kFilterDimension});
-              const float uy = sampler.get({x, y, s, kFilterDimension + 1});
-              const float film_x = float(x) + 0.5f + (2.f * ux - 1.f) * 0.5f;
-              const float film_y = float(y) + 0.5f + (2.f * uy - 1.f) * 0.5f;
-              const float cam_x = float((film_x - cx_) / fx_), cam_y = float(-(film_y - cy_) / fy_);
-              const float inv_length = 1.f / std::sqrt(cam_x * cam_x + cam_y * cam_y + 1.f);
-              const float d[3] = {cam_x * inv_length, cam_y * inv_length, -inv_length};
-              const auto& m = render_from_camera_;
-              RTCRayHit rh;
-              rh.ray.org_x = rh.ray.org_y = rh.ray.org_z = 0.f;  // the camera is the origin
-              rh.ray.dir_x = m[0][0] * d[0] + m[0][1] * d[1] + m[0][2] * d[2];
-              rh.ray.dir_y = m[1][0] * d[0] + m[1][1] * d[1] + m[1][2] * d[2];
-              rh.ray.dir_z = m[2][0] * d[0] + m[2][1] * d[1] + m[2][2] * d[2];
-              rh.ray.tnear = 0.f;
-              rh.ray.tfar = INFINITY;
-              rh.ray.time = 0.f;
-              rh.ray.mask = 0xffffffffu;
-              rh.ray.id = 0;
-              rh.ray.flags = 0;
-              rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-              rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-              rtcIntersect1(scene_, &context, &rh);
-              const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-              tile_hits += hit;
-              // depth along the view axis = t cos(theta), cos(theta) = inv_length
-              if (s == 0) depth_m[size_t(y) * width_ + x] = hit ? rh.ray.tfar * inv_length : kMissDepth;
-            }
+            for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
+              for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x) {
+                // The box filter's sample, (2u - 1) r with r = 0.5 px, at filmback's sample key.
+                const float ux = sampler.get({x, y, s, kFilterDimension});
+                const float uy = sampler.get({x, y, s, kFilterDimension + 1});
+                const float film_x = float(x) + 0.5f + (2.f * ux - 1.f) * 0.5f;
+                const float film_y = float(y) + 0.5f + (2.f * uy - 1.f) * 0.5f;
+                const float cam_x = float((film_x - cx_) / fx_),
+                            cam_y = float(-(film_y - cy_) / fy_);
+                const float inv_length = 1.f / std::sqrt(cam_x * cam_x + cam_y * cam_y + 1.f);
+                const float d[3] = {cam_x * inv_length, cam_y * inv_length, -inv_length};
+                const auto& m = render_from_camera_;
+                RTCRayHit rh;
+                rh.ray.org_x = rh.ray.org_y = rh.ray.org_z = 0.f;  // the camera is the origin
+                rh.ray.dir_x = m[0][0] * d[0] + m[0][1] * d[1] + m[0][2] * d[2];
+                rh.ray.dir_y = m[1][0] * d[0] + m[1][1] * d[1] + m[1][2] * d[2];
+                rh.ray.dir_z = m[2][0] * d[0] + m[2][1] * d[1] + m[2][2] * d[2];
+                rh.ray.tnear = 0.f;
+                rh.ray.tfar = INFINITY;
+                rh.ray.time = 0.f;
+                rh.ray.mask = 0xffffffffu;
+                rh.ray.id = 0;
+                rh.ray.flags = 0;
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(scene_, &context, &rh);
+                const bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+                tile_hits += hit;
+                // depth along the view axis = t cos(theta), cos(theta) = inv_length
+                if (s == 0)
+                  depth_m[size_t(y) * width_ + x] = hit ? rh.ray.tfar * inv_length : kMissDepth;
+              }
           hits += tile_hits;
         }
       },

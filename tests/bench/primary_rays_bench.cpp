@@ -226,8 +226,10 @@ int run(int argc, char** argv) {
   const auto terrain_cells = uint32_t(std::lround(settings.segments / std::sqrt(2.0)));
   for (uint32_t spp : {1u, settings.samples_per_pixel}) {
     const std::string suffix = "/" + std::to_string(spp) + "spp";
-    cases.push_back(make_case("sphere_in" + suffix, spp, make_sphere_in(settings.segments), settings, loader));
-    cases.push_back(make_case("terrain" + suffix, spp, make_terrain(terrain_cells), settings, loader));
+    cases.push_back(
+        make_case("sphere_in" + suffix, spp, make_sphere_in(settings.segments), settings, loader));
+    cases.push_back(
+        make_case("terrain" + suffix, spp, make_terrain(terrain_cells), settings, loader));
   }
 
   std::printf("%u TBB threads\n", settings.threads);

@@ -23,7 +23,8 @@ struct GltfBuilder::Impl {
 
   int add_accessor(const void* data, size_t bytes, int component_type, int type, size_t count) {
     auto& buffer = model.buffers[0].data;
-    while (buffer.size() % 4) buffer.push_back(0);
+    while (buffer.size() % 4)
+      buffer.push_back(0);
     tinygltf::BufferView view;
     view.buffer = 0;
     view.byteOffset = buffer.size();
@@ -52,7 +53,8 @@ GltfBuilder::GltfBuilder() : impl_(std::make_unique<Impl>()) {
 
 GltfBuilder::~GltfBuilder() = default;
 
-int GltfBuilder::material(Rgb base_color, Rgb emission, double emissive_strength, bool double_sided) {
+int GltfBuilder::material(Rgb base_color, Rgb emission, double emissive_strength,
+                          bool double_sided) {
   tinygltf::Material m;
   m.pbrMetallicRoughness.baseColorFactor = {base_color.x, base_color.y, base_color.z, 1.0};
   m.pbrMetallicRoughness.metallicFactor = 0.0;
@@ -73,13 +75,13 @@ int GltfBuilder::mesh(const std::vector<Vec3f>& positions, const std::vector<uin
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.material = material;
-  prim.attributes["POSITION"] = impl_->add_accessor(positions.data(), positions.size() * sizeof(Vec3f),
-                                                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                                                    positions.size());
+  prim.attributes["POSITION"] =
+      impl_->add_accessor(positions.data(), positions.size() * sizeof(Vec3f),
+                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size());
   if (!normals.empty())
-    prim.attributes["NORMAL"] = impl_->add_accessor(normals.data(), normals.size() * sizeof(Vec3f),
-                                                    TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
-                                                    normals.size());
+    prim.attributes["NORMAL"] =
+        impl_->add_accessor(normals.data(), normals.size() * sizeof(Vec3f),
+                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
   if (index_component_type > 0) {
     std::vector<unsigned char> bytes;
     for (uint32_t i : indices) {
@@ -161,7 +163,8 @@ int GltfBuilder::node(const Node& n, bool root) {
 
 fs::path GltfBuilder::write(const fs::path& file) {
   // A file without geometry has no buffer: an empty data: URI is not valid glTF.
-  if (impl_->model.buffers.size() == 1 && impl_->model.buffers[0].data.empty()) impl_->model.buffers.clear();
+  if (impl_->model.buffers.size() == 1 && impl_->model.buffers[0].data.empty())
+    impl_->model.buffers.clear();
   tinygltf::TinyGLTF writer;
   const bool binary = file.extension() == ".glb";
   EXPECT_TRUE(writer.WriteGltfSceneToFile(&impl_->model, file.string(), true, true, true, binary))

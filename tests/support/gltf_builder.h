@@ -20,12 +20,14 @@ class GltfBuilder {
   GltfBuilder();
   ~GltfBuilder();
 
-  int material(Rgb base_color, Rgb emission = {}, double emissive_strength = 1.0, bool double_sided = true);
+  int material(Rgb base_color, Rgb emission = {}, double emissive_strength = 1.0,
+               bool double_sided = true);
   // Triangles with optional normals; indices of the given component type (5121, 5123, 5125) or
   // none (-1: non-indexed, positions taken three at a time).
   int mesh(const std::vector<Vec3f>& positions, const std::vector<uint32_t>& indices, int material,
            int index_component_type = 5125, const std::vector<Vec3f>& normals = {});
-  int perspective_camera(double yfov, double aspect_ratio, double znear, double zfar, const std::string& name = "");
+  int perspective_camera(double yfov, double aspect_ratio, double znear, double zfar,
+                         const std::string& name = "");
   int orthographic_camera(double xmag, double ymag, double znear, double zfar);
   int point_light(Rgb color, double intensity_cd);
 

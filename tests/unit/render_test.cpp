@@ -50,7 +50,8 @@ TEST(Render, EmissiveQuadFillingTheViewReturnsItsEmissionInEveryPixel) {
     for (uint32_t y = 0; y < 32; ++y)
       for (uint32_t x = 0; x < 48; ++x)
         for (int c = 0; c < 3; ++c)
-          ASSERT_NEAR(result.image.at(x, y, c), emission[c], 1e-6 * emission[c]) << filter << " at " << x << "," << y;
+          ASSERT_NEAR(result.image.at(x, y, c), emission[c], 1e-6 * emission[c])
+              << filter << " at " << x << "," << y;
   }
 }
 
@@ -120,7 +121,8 @@ TEST(Render, ImageIsBitIdenticalForAnyThreadCount) {
   }
   EXPECT_EQ(pixels[0], pixels[1]);
   double sum = 0;
-  for (float v : pixels[0]) sum += v;
+  for (float v : pixels[0])
+    sum += v;
   EXPECT_GT(sum, 0.0) << "the default camera should see the lit floor";
 }
 

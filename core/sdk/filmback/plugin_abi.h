@@ -167,7 +167,7 @@ typedef struct fb_ray {
 typedef struct fb_hit {
   float t;
   float position[3];
-  float position_error[3]; /* conservative bound on |position - exact|, per axis */
+  float position_error[3];   /* conservative bound on |position - exact|, per axis */
   float geometric_normal[3]; /* unit; the triangle's winding decides its side */
   float shading_normal[3];   /* unit; interpolated vertex normal, same side as geometric */
   uint32_t material;         /* index into fb_scene.materials */
@@ -175,8 +175,8 @@ typedef struct fb_hit {
 } fb_hit;
 
 typedef struct fb_material {
-  float base_color[3]; /* Lambertian albedo */
-  float emission[3];   /* radiance, W sr^-1 m^-2 */
+  float base_color[3];   /* Lambertian albedo */
+  float emission[3];     /* radiance, W sr^-1 m^-2 */
   uint32_t double_sided; /* emission leaves the back face too */
 } fb_material;
 
@@ -197,7 +197,8 @@ typedef struct fb_scene_api {
   /* The same for `count` rays at once, traced as coherent packets: for rays that start together
    * and point alike (camera rays), several times faster than one at a time. A miss leaves
    * hits[i].t = +infinity and the rest of hits[i] unset. */
-  void (*intersect_batch)(fb_trace_context* context, const fb_ray* rays, size_t count, fb_hit* hits);
+  void (*intersect_batch)(fb_trace_context* context, const fb_ray* rays, size_t count,
+                          fb_hit* hits);
   int (*occluded)(fb_trace_context* context, const fb_ray* ray);
   /* Picks a light (punctual or emissive triangle) and a point on it, as seen from `position`.
    * Returns 0 when the scene has no light or the sample carries no energy. */

@@ -52,14 +52,16 @@ void destroy_instance(void* instance) {
 template <typename Camera>
 constexpr fb_camera_api camera_api() {
   return {sizeof(fb_camera_api),
-          [](const fb_value* params, const fb_camera_setup* setup, void** instance, fb_error_buffer error) {
+          [](const fb_value* params, const fb_camera_setup* setup, void** instance,
+             fb_error_buffer error) {
             return create_instance<Camera>(instance, error, params, *setup);
           },
           destroy_instance<Camera>,
           [](const void* self) { return static_cast<const Camera*>(self)->needs(); },
           [](const void* self, const fb_camera_sample* samples, size_t count, fb_camera_ray* rays) {
             const auto& camera = *static_cast<const Camera*>(self);
-            for (size_t i = 0; i < count; ++i) camera.generate(samples[i], rays[i]);
+            for (size_t i = 0; i < count; ++i)
+              camera.generate(samples[i], rays[i]);
           }};
 }
 
@@ -75,12 +77,17 @@ constexpr fb_filter_api filter_api() {
             return create_instance<Filter>(instance, error, params);
           },
           destroy_instance<Filter>,
-          [](const void* self, float r[2]) { r[0] = r[1] = static_cast<const Filter*>(self)->radius(); },
-          [](const void* self, float x, float y) { return static_cast<const Filter*>(self)->evaluate(x, y); },
+          [](const void* self, float r[2]) {
+            r[0] = r[1] = static_cast<const Filter*>(self)->radius();
+          },
+          [](const void* self, float x, float y) {
+            return static_cast<const Filter*>(self)->evaluate(x, y);
+          },
           [](const void* self) { return static_cast<const Filter*>(self)->integral(); },
           [](const void* self, const float* u, size_t count, fb_filter_sample* samples) {
             const auto& filter = *static_cast<const Filter*>(self);
-            for (size_t i = 0; i < count; ++i) samples[i] = filter.sample(u[2 * i], u[2 * i + 1]);
+            for (size_t i = 0; i < count; ++i)
+              samples[i] = filter.sample(u[2 * i], u[2 * i + 1]);
           }};
 }
 
@@ -98,7 +105,8 @@ constexpr fb_integrator_api integrator_api() {
           },
           destroy_instance<Integrator>,
           [](const void*, const char** names, uint32_t capacity) {
-            for (uint32_t i = 0; i < kCount && i < capacity; ++i) names[i] = Integrator::kChannels[i];
+            for (uint32_t i = 0; i < kCount && i < capacity; ++i)
+              names[i] = Integrator::kChannels[i];
             return uint32_t(kCount);
           },
           [](const void* self, const fb_scene* scene, fb_trace_context* context, const fb_ray* rays,

@@ -66,7 +66,8 @@ class Tabulated1D {
       cdf_[i + 1] = cdf_[i] + std::abs(f(x));
     }
     total_ = cdf_.back();
-    for (double& c : cdf_) c /= total_;
+    for (double& c : cdf_)
+      c /= total_;
   }
 
   struct Sample {

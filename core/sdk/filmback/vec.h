@@ -39,21 +39,33 @@ struct Vec3 {
 };
 
 template <typename T>
-constexpr Vec3<T> operator*(T s, Vec3<T> v) { return v * s; }
+constexpr Vec3<T> operator*(T s, Vec3<T> v) {
+  return v * s;
+}
 template <typename T>
-constexpr T dot(Vec3<T> a, Vec3<T> b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr T dot(Vec3<T> a, Vec3<T> b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename T>
 constexpr Vec3<T> cross(Vec3<T> a, Vec3<T> b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 template <typename T>
-T length(Vec3<T> v) { return std::sqrt(dot(v, v)); }
+T length(Vec3<T> v) {
+  return std::sqrt(dot(v, v));
+}
 template <typename T>
-Vec3<T> normalize(Vec3<T> v) { return v / length(v); }
+Vec3<T> normalize(Vec3<T> v) {
+  return v / length(v);
+}
 template <typename T>
-constexpr Vec3<T> abs(Vec3<T> v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+constexpr Vec3<T> abs(Vec3<T> v) {
+  return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
+}
 template <typename T>
-constexpr T max_component(Vec3<T> v) { return v.x > v.y ? (v.x > v.z ? v.x : v.z) : (v.y > v.z ? v.y : v.z); }
+constexpr T max_component(Vec3<T> v) {
+  return v.x > v.y ? (v.x > v.z ? v.x : v.z) : (v.y > v.z ? v.y : v.z);
+}
 template <typename T>
 constexpr Vec3<T> min(Vec3<T> a, Vec3<T> b) {
   return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
@@ -63,7 +75,9 @@ constexpr Vec3<T> max(Vec3<T> a, Vec3<T> b) {
   return {a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
 template <typename T>
-bool is_finite(Vec3<T> v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool is_finite(Vec3<T> v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 using Vec2f = Vec2<float>;
 using Vec2d = Vec2<double>;
@@ -72,6 +86,8 @@ using Vec3d = Vec3<double>;
 using Rgb = Vec3<float>;  // linear Rec.709 radiance or reflectance
 
 // Rec.709 luminance weights (ITU-R BT.709), for light power and Russian roulette.
-constexpr float luminance(Rgb c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+constexpr float luminance(Rgb c) {
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
 
 }  // namespace fb

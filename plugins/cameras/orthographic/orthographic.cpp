@@ -10,7 +10,8 @@ class Orthographic {
   Orthographic(const fb_value*, const fb_camera_setup& setup)
       : plane_(fb::view_plane(setup)), near_(setup.clip_near_m), far_(setup.clip_far_m) {
     if (setup.projection != FB_PROJECTION_ORTHOGRAPHIC)
-      throw std::invalid_argument("the shot's camera is not an orthographic one (use the perspective camera)");
+      throw std::invalid_argument(
+          "the shot's camera is not an orthographic one (use the perspective camera)");
     if (!(setup.ortho_scale_m > 0)) throw std::invalid_argument("the ortho scale must be positive");
     if (!(far_ > near_)) throw std::invalid_argument("the clip range is empty");
   }
@@ -34,10 +35,15 @@ class Orthographic {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<Orthographic>();
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA, "orthographic", "1.0.0",
-                           "Parallel projection with Blender's ortho scale, sensor fit and lens shift",
-                           nullptr, 0, &kApi};
+const fb_plugin kPlugin = {
+    FB_ABI_VERSION, sizeof(fb_plugin),
+    FB_KIND_CAMERA, "orthographic",
+    "1.0.0",        "Parallel projection with Blender's ortho scale, sensor fit and lens shift",
+    nullptr,        0,
+    &kApi};
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
+  return &kPlugin;
+}

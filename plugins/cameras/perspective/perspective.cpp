@@ -13,8 +13,10 @@ class Perspective {
   Perspective(const fb_value*, const fb_camera_setup& setup)
       : plane_(fb::view_plane(setup)), near_(setup.clip_near_m), far_(setup.clip_far_m) {
     if (setup.projection != FB_PROJECTION_PERSPECTIVE)
-      throw std::invalid_argument("the shot's camera is not a perspective one (use the orthographic camera)");
-    if (!(setup.focal_length_mm > 0) || !(setup.sensor_width_mm > 0) || !(setup.sensor_height_mm > 0))
+      throw std::invalid_argument(
+          "the shot's camera is not a perspective one (use the orthographic camera)");
+    if (!(setup.focal_length_mm > 0) || !(setup.sensor_width_mm > 0) ||
+        !(setup.sensor_height_mm > 0))
       throw std::invalid_argument("focal length and sensor size must be positive");
     if (!(near_ >= 0) || !(far_ > near_)) throw std::invalid_argument("the clip range is empty");
   }
@@ -41,10 +43,15 @@ class Perspective {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<Perspective>();
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA, "perspective", "1.0.0",
-                           "Pinhole camera with Blender's sensor, focal length, sensor fit and lens shift",
-                           nullptr, 0, &kApi};
+const fb_plugin kPlugin = {
+    FB_ABI_VERSION, sizeof(fb_plugin),
+    FB_KIND_CAMERA, "perspective",
+    "1.0.0",        "Pinhole camera with Blender's sensor, focal length, sensor fit and lens shift",
+    nullptr,        0,
+    &kApi};
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
+  return &kPlugin;
+}

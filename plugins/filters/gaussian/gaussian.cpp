@@ -1,8 +1,8 @@
-// Filter `gaussian`: h(x, y) = g(x) g(y) / N^2 with g(x) = exp(-x^2 / 2 sigma^2) - exp(-r^2 / 2 sigma^2)
-// on |x| < r, so h falls continuously to zero at the radius (pbrt 4e §8.8.2), and
-// N = integral of g = sigma sqrt(2 pi) erf(r / (sigma sqrt 2)) - 2 r exp(-r^2 / 2 sigma^2),
-// so h integrates to 1. Positions are importance-sampled per axis from a 1024-bin table of g;
-// the weight h / pdf is then 1 up to the table's resolution.
+// Filter `gaussian`: h(x, y) = g(x) g(y) / N^2 with g(x) = exp(-x^2 / 2 sigma^2) - exp(-r^2 / 2
+// sigma^2) on |x| < r, so h falls continuously to zero at the radius (pbrt 4e §8.8.2), and N =
+// integral of g = sigma sqrt(2 pi) erf(r / (sigma sqrt 2)) - 2 r exp(-r^2 / 2 sigma^2), so h
+// integrates to 1. Positions are importance-sampled per axis from a 1024-bin table of g; the weight
+// h / pdf is then 1 up to the table's resolution.
 #include <filmback/plugin_sdk.h>
 #include <filmback/sampling.h>
 
@@ -18,7 +18,8 @@ class Gaussian {
       : radius_(radius_px),
         sigma_(sigma_px),
         floor_(std::exp(-radius_px * radius_px / (2 * sigma_px * sigma_px))),
-        norm_(sigma_px * std::sqrt(2 * std::numbers::pi) * std::erf(radius_px / (sigma_px * std::numbers::sqrt2)) -
+        norm_(sigma_px * std::sqrt(2 * std::numbers::pi) *
+                  std::erf(radius_px / (sigma_px * std::numbers::sqrt2)) -
               2 * radius_px * floor_),
         table_([this](double x) { return g(x); }, -radius_px, radius_px) {}
 
@@ -45,11 +46,19 @@ const fb_param_desc kParams[] = {
 };
 
 constexpr fb_filter_api kApi = fb::filter_api<Gaussian>();
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_FILTER, "gaussian", "1.0.0",
+const fb_plugin kPlugin = {FB_ABI_VERSION,
+                           sizeof(fb_plugin),
+                           FB_KIND_FILTER,
+                           "gaussian",
+                           "1.0.0",
                            "Gaussian filter, shifted to reach zero at its radius, normalised, "
                            "importance-sampled",
-                           kParams, sizeof kParams / sizeof kParams[0], &kApi};
+                           kParams,
+                           sizeof kParams / sizeof kParams[0],
+                           &kApi};
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
+  return &kPlugin;
+}

@@ -34,7 +34,8 @@ class Aov {
     thread_local std::vector<fb_hit> hits;
     hits.resize(count);
     scene.api->intersect_batch(ctx, rays, count, hits.data());
-    for (size_t i = 0; i < count; ++i) shade(scene, hits[i], values + i * std::size(kChannels));
+    for (size_t i = 0; i < count; ++i)
+      shade(scene, hits[i], values + i * std::size(kChannels));
   }
 
  private:
@@ -45,13 +46,20 @@ class Aov {
       return;
     }
     const fb_material& m = scene.materials[hit.material];
-    for (int c = 0; c < 3; ++c) v[3 + c] = m.base_color[c], v[6 + c] = hit.shading_normal[c];
+    for (int c = 0; c < 3; ++c)
+      v[3 + c] = m.base_color[c], v[6 + c] = hit.shading_normal[c];
     v[9] = fb::dot(fb::Vec3f(hit.position), fb::Vec3f(scene.view_axis));
     for (int c = 0; c < 3; ++c) {
       switch (show_) {
-        case Show::kAlbedo: v[c] = v[3 + c]; break;
-        case Show::kNormal: v[c] = 0.5f + 0.5f * v[6 + c]; break;
-        case Show::kDepth: v[c] = v[9]; break;
+        case Show::kAlbedo:
+          v[c] = v[3 + c];
+          break;
+        case Show::kNormal:
+          v[c] = 0.5f + 0.5f * v[6 + c];
+          break;
+        case Show::kDepth:
+          v[c] = v[9];
+          break;
       }
     }
   }
@@ -65,10 +73,18 @@ const fb_param_desc kParams[] = {
 };
 
 constexpr fb_integrator_api kApi = fb::integrator_api<Aov>();
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR, "aov", "1.0.0",
-                           "Depth, normal and albedo of what camera rays hit", kParams,
-                           sizeof kParams / sizeof kParams[0], &kApi};
+const fb_plugin kPlugin = {FB_ABI_VERSION,
+                           sizeof(fb_plugin),
+                           FB_KIND_INTEGRATOR,
+                           "aov",
+                           "1.0.0",
+                           "Depth, normal and albedo of what camera rays hit",
+                           kParams,
+                           sizeof kParams / sizeof kParams[0],
+                           &kApi};
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
+  return &kPlugin;
+}

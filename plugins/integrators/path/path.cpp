@@ -31,11 +31,13 @@ class PathTracer {
     thread_local std::vector<fb_hit> first_hits;
     first_hits.resize(count);
     scene.api->intersect_batch(ctx, rays, count, first_hits.data());
-    for (size_t i = 0; i < count; ++i) trace(scene, ctx, i, rays[i], first_hits[i]).store(values + 3 * i);
+    for (size_t i = 0; i < count; ++i)
+      trace(scene, ctx, i, rays[i], first_hits[i]).store(values + 3 * i);
   }
 
  private:
-  Rgb trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray, fb_hit hit) const;
+  Rgb trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
+            fb_hit hit) const;
   int max_depth_;  // bounces; 0 shows emitters only
   int rr_depth_;
 };
@@ -50,7 +52,7 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
                       fb_hit hit) const {
   const fb_scene_api& api = *scene.api;
   Rgb L{}, beta{1.f, 1.f, 1.f};
-  float bsdf_pdf = 0.f;        // of the direction that produced `ray`
+  float bsdf_pdf = 0.f;           // of the direction that produced `ray`
   float previous[3] = {0, 0, 0};  // where that direction was sampled
   const float time_s = ray.time_s;
   for (int depth = 0;; ++depth) {
@@ -129,11 +131,19 @@ const fb_param_desc kParams[] = {
 };
 
 constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR, "path", "1.0.0",
+const fb_plugin kPlugin = {FB_ABI_VERSION,
+                           sizeof(fb_plugin),
+                           FB_KIND_INTEGRATOR,
+                           "path",
+                           "1.0.0",
                            "Path tracing with next-event estimation and MIS; Lambertian surfaces, "
                            "emission, punctual lights, uniform background",
-                           kParams, sizeof kParams / sizeof kParams[0], &kApi};
+                           kParams,
+                           sizeof kParams / sizeof kParams[0],
+                           &kApi};
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
+  return &kPlugin;
+}
