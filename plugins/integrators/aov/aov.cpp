@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 #include <iterator>
-#include <vector>
 
 namespace {
 
@@ -28,12 +27,9 @@ class Aov {
                                               : Show::kAlbedo;
   }
 
-  // Camera rays start together: one coherent batch through Embree's packets.
   void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
                 float* values) const {
-    thread_local std::vector<fb_hit> hits;
-    hits.resize(count);
-    scene.api->intersect_batch(ctx, rays, count, hits.data());
+    const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
     for (size_t i = 0; i < count; ++i)
       shade(scene, hits[i], values + i * std::size(kChannels));
   }

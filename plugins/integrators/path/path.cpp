@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <vector>
 
 namespace {
 
@@ -25,14 +24,11 @@ class PathTracer {
   static constexpr const char* kChannels[] = {"R", "G", "B"};
   explicit PathTracer(const fb_value* params)
       : max_depth_(int(params[0].number[0])), rr_depth_(int(params[1].number[0])) {}
-  // Camera rays start together: their first hits come from one coherent batch.
   void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
                 float* values) const {
-    thread_local std::vector<fb_hit> first_hits;
-    first_hits.resize(count);
-    scene.api->intersect_batch(ctx, rays, count, first_hits.data());
+    const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
     for (size_t i = 0; i < count; ++i)
-      trace(scene, ctx, i, rays[i], first_hits[i]).store(values + 3 * i);
+      trace(scene, ctx, i, rays[i], hits[i]).store(values + 3 * i);
   }
 
  private:
