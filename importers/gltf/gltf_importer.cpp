@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -12,17 +11,12 @@
 
 #include "core/util/error.h"
 #include "importers/gltf/gltf_accessors.h"
+#include "importers/gltf/gltf_file.h"
 
 namespace fb {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Textures are not used yet: skip decoding them (untrusted input, and time).
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
-  return true;
-}
 
 std::string index_path(const char* array, size_t i) {
   return std::string(array) + "[" + std::to_string(i) + "]";
@@ -32,42 +26,6 @@ std::string index_path(const char* array, size_t i) {
 std::string out_of_range(const char* what, long index, size_t count, const char* array) {
   return std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
          std::to_string(count) + " " + array + ")";
-}
-
-// The GLB container (glTF 2.0 §4.4): a 12-byte header (magic "glTF", version 2, total length)
-// and chunks of (length, type, data), the first one JSON. Checked before tinygltf sees the bytes:
-// tinygltf 2.7.0 compares a BIN chunk's length with the file size without the chunk's 8-byte
-// header, so a chunk claiming 8 bytes too many is read past the end of the file.
-void check_glb_container(const std::vector<unsigned char>& bytes, const std::string& file) {
-  auto fail = [&](const std::string& what) {
-    throw_input(file, "", "not a valid glTF binary file: " + what);
-  };
-  auto u32 = [&](size_t at) {  // little-endian, whatever the host
-    return uint32_t(bytes[at]) | uint32_t(bytes[at + 1]) << 8 | uint32_t(bytes[at + 2]) << 16 |
-           uint32_t(bytes[at + 3]) << 24;
-  };
-  const size_t size = bytes.size();
-  if (size < 12)
-    fail("the file has " + std::to_string(size) + " bytes, expected at least the 12-byte header");
-  if (std::memcmp(bytes.data(), "glTF", 4) != 0)
-    fail("expected the magic bytes 'glTF' at the start");
-  if (u32(4) != 2) fail("container version " + std::to_string(u32(4)) + ", expected 2");
-  if (u32(8) != size)
-    fail("the header gives a length of " + std::to_string(u32(8)) + " bytes, but the file has " +
-         std::to_string(size) + (u32(8) > size ? " (truncated?)" : ""));
-  constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
-  size_t at = 12;
-  for (size_t chunk = 0; at < size || chunk == 0; ++chunk) {
-    const std::string where = "chunk " + std::to_string(chunk) + " at byte " + std::to_string(at);
-    if (size - at < 8)
-      fail(where + ": expected an 8-byte chunk header, found " + std::to_string(size - at) +
-           " bytes");
-    if (u32(at) > size - at - 8)
-      fail(where + ": " + std::to_string(u32(at)) +
-           " bytes of data reach past the end of the file (" + std::to_string(size) + " bytes)");
-    if (chunk == 0 && u32(at + 4) != kJsonChunk) fail(where + ": expected the JSON chunk first");
-    at += 8 + size_t(u32(at));
-  }
 }
 
 double number_or(const tinygltf::Value& object, const char* key, double fallback) {
@@ -98,46 +56,7 @@ class Importer {
     diagnostics_.warn(located(name_, where, what));
   }
 
-  void load() {
-    const std::vector<unsigned char> bytes = read_file();
-    const bool binary = file_.extension() == ".glb";
-    if (binary) check_glb_container(bytes, name_);
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
-    std::string err, warnings;
-    const std::string folder = file_.parent_path().string();  // external buffers are relative to it
-    const auto size = unsigned(bytes.size());
-    const bool ok =
-        binary
-            ? loader.LoadBinaryFromMemory(&model_, &err, &warnings, bytes.data(), size, folder)
-            : loader.LoadASCIIFromString(&model_, &err, &warnings,
-                                         reinterpret_cast<const char*>(bytes.data()), size, folder);
-    if (!ok)
-      throw_input(
-          name_, "",
-          "not a valid glTF " + std::string(binary ? "binary" : "JSON") + " file: " + trim(err));
-  }
-
-  std::vector<unsigned char> read_file() {
-    std::error_code ec;
-    if (fs::is_directory(file_, ec)) throw_input(name_, "", "is a folder, expected a glTF file");
-    if (!fs::is_regular_file(file_, ec)) throw_input(name_, "", "no such file");
-    std::ifstream in(file_, std::ios::binary);
-    std::vector<unsigned char> bytes(fs::file_size(file_, ec));
-    if (ec || !in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size())))
-      throw_input(name_, "", "cannot read the file");
-    if (bytes.empty()) throw_input(name_, "", "the file is empty, expected a glTF document");
-    // tinygltf takes 32-bit sizes; a GLB's length field is 32-bit too (glTF 2.0 §4.4.2).
-    if (bytes.size() > std::numeric_limits<uint32_t>::max())
-      throw_input(name_, "", std::to_string(bytes.size()) + " bytes, expected at most 4 GiB");
-    return bytes;
-  }
-
-  static std::string trim(std::string s) {
-    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
-      s.pop_back();
-    return s.empty() ? "unknown reason" : s;
-  }
+  void load() { gltf::load_model(file_, model_); }
 
   void check_extensions() {
     static const std::set<std::string> kSupported = {"KHR_lights_punctual",

@@ -9,6 +9,7 @@ Run: cli_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints
 
 import argparse
 import math
+import json
 import os
 import shutil
 import struct
@@ -189,6 +190,48 @@ class CliTest(unittest.TestCase):
     def test_missing_external_buffer(self):
         text = triangle_scene().json_text(buffer_uri="missing.bin")
         self.assert_input_error(self.raw(text, "external.gltf"), None, "missing.bin")
+
+    def test_external_buffer_beside_the_scene_loads(self):
+        g = triangle_scene()
+        self.raw(bytes(g.bin), "triangle.bin")
+        self.assert_rendered(self.render(self.raw(g.json_text(buffer_uri="triangle.bin"), "external.gltf"),
+                                         *TINY), "image.exr")
+
+    def test_buffer_outside_the_scene_folder_is_refused(self):
+        g = triangle_scene()
+        self.raw(bytes(g.bin), "outside.bin")
+        (self.dir / "shots").mkdir()
+        for uri in ("../outside.bin", "./../outside.bin"):
+            scene = self.raw(g.json_text(buffer_uri=uri), "shots/escape.gltf")
+            self.assert_input_error(scene, None, "refers outside the scene's folder")
+        # An absolute URI is taken relative to the scene's folder (as tinygltf joins them): not found.
+        scene = self.raw(g.json_text(buffer_uri=str(self.dir / "outside.bin")), "shots/absolute.gltf")
+        self.assert_input_error(scene, None, "not found")
+
+    def test_buffer_symlink_out_of_the_folder_is_refused(self):
+        g = triangle_scene()
+        self.raw(bytes(g.bin), "outside.bin")
+        (self.dir / "shots").mkdir()
+        (self.dir / "shots" / "link.bin").symlink_to(self.dir / "outside.bin")
+        scene = self.raw(g.json_text(buffer_uri="link.bin"), "shots/link.gltf")
+        self.assert_input_error(scene, None, "refers outside the scene's folder")
+
+    def test_buffer_that_is_a_pipe_does_not_block(self):
+        os.mkfifo(self.dir / "pipe.bin")
+        scene = self.raw(triangle_scene().json_text(buffer_uri="pipe.bin"), "pipe.gltf")
+        self.assert_input_error(scene, None, "is not a regular file")
+
+    def test_deeply_nested_json_is_refused_with_line_and_column(self):
+        deep = '{"asset": {"version": "2.0"},\n "extras": ' + "[" * 20000 + "]" * 20000 + "}"
+        scene = self.raw(deep, "deep.gltf")
+        self.assert_error(self.render(scene, *TINY), INPUT, "%s:2:139: " % scene, "nested more than 128")
+
+    def test_deeply_nested_json_in_glb_is_refused(self):
+        g = triangle_scene()
+        g.doc["asset"]["extras"] = json.loads("[" * 200 + "]" * 200)
+        scene = self.raw(g.glb_bytes(), "deep.glb")
+        self.assert_error(self.render(scene, *TINY), INPUT, "%s: JSON chunk, byte " % scene,
+                          "nested more than 128")
 
     # --- data that points outside itself ------------------------------------------------------
 
