@@ -2,6 +2,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <limits>
 #include <string>
@@ -40,6 +42,34 @@ constexpr float gamma(int n) {
   return (n * u) / (1 - n * u);
 }
 
+// Embree (Debian builds keep its assertions) aborts the process on a ray with a NaN or a component
+// beyond FLT_LARGE (1.8e18); plugins must not be able to do that, so such rays are misses.
+constexpr double kLargestCoordinate = 1e18;
+
+bool traceable(const fb_ray& ray) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::abs(ray.origin[i]) <= kLargestCoordinate) ||
+        !(std::abs(ray.direction[i]) <= kLargestCoordinate))
+      return false;
+  return !std::isnan(ray.t_min) && !std::isnan(ray.t_max);
+}
+
+// Flattening copies every instance's triangles; refuse before allocating when that would take
+// more than half of this machine's memory (vertices, indices, normals and Embree's BVH: about
+// 120 bytes per triangle measured on Embree 3.13 MEDIUM builds, notes/deps.md).
+void check_memory_budget(const Scene& scene) {
+  constexpr double kBytesPerTriangle = 120;
+  const double triangles = double(scene.triangle_count());
+  const double budget = 0.5 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (triangles * kBytesPerTriangle > budget)
+    throw InputError(scene.file.string() + ": the scene flattens to " + number_text(triangles) +
+                     " triangles (every instance copied), about " +
+                     number_text(triangles * kBytesPerTriangle / 1e9) +
+                     " GB, more than half of this "
+                     "machine's " +
+                     number_text(2 * budget / 1e9) + " GB");
+}
+
 RTCRay to_embree(const fb_ray& ray) {
   RTCRay r;
   r.org_x = ray.origin[0], r.org_y = ray.origin[1], r.org_z = ray.origin[2];
@@ -73,6 +103,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   // into closed rooms), and single rays and packets agree on every hit.
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
 
+  check_memory_budget(scene);
   Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi = -lo;
   for (const MeshInstance& instance : scene.instances) {
     const TriangleMesh& source = scene.meshes[instance.mesh];
@@ -88,6 +119,9 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     mesh.positions.reserve(source.positions.size() + 1);
     for (const Vec3f& p : source.positions) {
       const Vec3d q = render_from_object.point(Vec3d(p));
+      if (!(max_component(abs(q)) <= kLargestCoordinate))
+        throw InputError("instance '" + instance.node + "' of mesh '" + source.name +
+                         "': a vertex lies beyond 1e18 m of the camera (scales multiply too far)");
       lo = min(lo, q), hi = max(hi, q);
       mesh.positions.emplace_back(q);
     }
@@ -144,6 +178,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
 RenderGeometry::~RenderGeometry() = default;
 
 bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh = to_embree_hit(ray);
@@ -199,6 +234,7 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
 }
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = to_embree(ray);

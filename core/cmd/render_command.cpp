@@ -52,8 +52,13 @@ Rgb parse_background(const std::string& text) {
 }  // namespace
 
 int run_render(RenderCommand& c) {
-  for (const std::filesystem::path& out : c.outputs) {
+  for (size_t i = 0; i < c.outputs.size(); ++i) {
+    const std::filesystem::path& out = c.outputs[i];
     image_format_for(out);
+    for (size_t j = 0; j < i; ++j)
+      if (std::filesystem::weakly_canonical(c.outputs[j]) == std::filesystem::weakly_canonical(out))
+        throw UsageError("output '" + out.string() + "': the same file as output '" +
+                         c.outputs[j].string() + "'");
     const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
     if (!std::filesystem::is_directory(folder))
       throw UsageError("output '" + out.string() + "': the folder '" + folder.string() +

@@ -97,27 +97,61 @@ ImageFormat image_format_for(const fs::path& file) {
 void write_images(const Image& image, const std::vector<fs::path>& files,
                   const ImageMetadata& metadata) {
   std::vector<fs::path> temporaries;
-  auto fail = [&](const fs::path& file, const std::string& why) -> InputError {
+  auto remove_all = [](const std::vector<fs::path>& paths, size_t from) {
     std::error_code ignored;
-    for (const fs::path& t : temporaries)
-      fs::remove(t, ignored);
+    for (size_t i = from; i < paths.size(); ++i)
+      fs::remove(paths[i], ignored);
+  };
+  auto fail = [](const fs::path& file, const std::string& why) {
     return InputError(located(file.string(), "", "cannot write the image: " + why));
   };
   for (const fs::path& file : files) {
-    temporaries.push_back(temporary_for(file));
-    if (std::string why = write_temporary(image, file, temporaries.back(), metadata); !why.empty())
-      throw fail(file, why);
-  }
-  for (size_t i = 0; i < files.size(); ++i) {
     std::error_code ec;
-    fs::rename(temporaries[i], files[i], ec);
-    if (ec) {
-      // None rather than some: the outputs already renamed into place go too.
-      for (size_t j = 0; j < i; ++j)
-        temporaries[j] = files[j];
-      throw fail(files[i], ec.message());
+    if (fs::is_directory(file, ec)) {
+      remove_all(temporaries, 0);
+      throw fail(file, "it is a folder");
+    }
+    temporaries.push_back(temporary_for(file));
+    if (std::string why = write_temporary(image, file, temporaries.back(), metadata);
+        !why.empty()) {
+      remove_all(temporaries, 0);
+      throw fail(file, why);
     }
   }
+  // Move each old file aside, then the new one in; if any step fails, undo in reverse, so the
+  // folder ends as it began: all new images, or all old ones.
+  std::vector<fs::path> previous(files.size());  // empty where no file was there before
+  std::error_code ec;
+  size_t installed = 0;
+  for (; installed < files.size(); ++installed) {
+    const fs::path& file = files[installed];
+    if (fs::exists(file, ec)) {
+      fs::path aside = temporaries[installed];
+      aside += ".previous";
+      fs::rename(file, aside, ec);
+      if (ec) break;
+      previous[installed] = aside;
+    }
+    fs::rename(temporaries[installed], file, ec);
+    if (ec) {
+      std::error_code ignored;
+      if (!previous[installed].empty()) fs::rename(previous[installed], file, ignored);
+      break;
+    }
+  }
+  if (installed < files.size()) {
+    const std::string why = ec.message();
+    for (size_t i = installed; i-- > 0;) {
+      std::error_code ignored;
+      if (previous[i].empty())
+        fs::remove(files[i], ignored);
+      else
+        fs::rename(previous[i], files[i], ignored);
+    }
+    remove_all(temporaries, installed);
+    throw fail(files[installed], why);
+  }
+  remove_all(previous, 0);
 }
 
 Image read_image(const fs::path& file) {

@@ -27,8 +27,9 @@ struct ImageMetadata {
 // Throws UsageError for an extension other than .exr or .png.
 ImageFormat image_format_for(const std::filesystem::path& file);
 
-// Writes every file, or none: all are written to temporaries first and renamed only when every
-// one succeeded. Throws InputError naming the file that failed; no temporary is left behind.
+// Writes every file, or none: all are written to temporaries first and renamed into place only
+// when every one succeeded; if a rename fails, the files that were there before are put back.
+// Throws InputError naming the file that failed; no temporary is left behind.
 void write_images(const Image& image, const std::vector<std::filesystem::path>& files,
                   const ImageMetadata& metadata);
 

@@ -37,7 +37,13 @@ IntegratorInstance::IntegratorInstance(std::shared_ptr<const PluginLibrary> libr
       api_(library->api<fb_integrator_api>()) {
   const char* names[FB_MAX_CHANNELS] = {};
   const uint32_t count = api_.channels(instance(), names, FB_MAX_CHANNELS);
-  for (uint32_t i = 0; i < count && i < FB_MAX_CHANNELS; ++i) {
+  // The film and the value buffers hold count channels per ray: more than declared would overflow.
+  if (count > FB_MAX_CHANNELS)
+    throw InputError(located(library->file().string(), "",
+                             "integrator declares " + std::to_string(count) +
+                                 " channels, at most " + std::to_string(FB_MAX_CHANNELS) +
+                                 " are allowed"));
+  for (uint32_t i = 0; i < count; ++i) {
     if (!names[i])
       throw InputError(
           located(library->file().string(), "", "channel " + std::to_string(i) + " has no name"));

@@ -194,8 +194,17 @@ PluginLibrary::~PluginLibrary() {
   if (handle_) dlclose(handle_);
 }
 
-PluginLoader::PluginLoader(std::vector<fs::path> search_dirs)
-    : search_dirs_(std::move(search_dirs)) {}
+// A folder named twice (say in FILMBACK_PLUGIN_PATH as well) is searched once: otherwise each of
+// its plugins would be "provided twice".
+PluginLoader::PluginLoader(std::vector<fs::path> search_dirs) {
+  for (const fs::path& dir : search_dirs) {
+    std::error_code ec;
+    const fs::path canonical = fs::weakly_canonical(dir, ec);
+    const fs::path& key = ec ? dir : canonical;
+    if (std::find(search_dirs_.begin(), search_dirs_.end(), key) == search_dirs_.end())
+      search_dirs_.push_back(key);
+  }
+}
 
 std::vector<fs::path> PluginLoader::default_search_dirs() {
   std::vector<fs::path> dirs;

@@ -177,7 +177,10 @@ ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
   const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
   const Transform camera_from_world = camera_.world_from_camera.inverse();
   ImageMetadata m;
-  m.matrices = {{"worldToCamera", to_float_matrix(camera_from_world)},
+  // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera); ours, glTF's,
+  // looks down -Z: flip z. worldToNDC needs no flip.
+  const Transform exr_camera_from_world = Transform::scale({1, 1, -1}) * camera_from_world;
+  m.matrices = {{"worldToCamera", to_float_matrix(exr_camera_from_world)},
                 {"worldToNDC", to_float_matrix(ndc_from_camera(setup) * camera_from_world)}};
   if (setup.projection == FB_PROJECTION_PERSPECTIVE)
     m.floats.push_back({"filmback/focal_length_mm", float(setup.focal_length_mm)});

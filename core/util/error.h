@@ -19,6 +19,9 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A number as a message shows it: shortest of fixed or exponent form, 6 significant digits.
+std::string number_text(double value);
+
 // "file: where: what", dropping empty parts.
 std::string located(std::string_view file, std::string_view where, std::string_view what);
 

@@ -34,6 +34,11 @@ double number_or(const tinygltf::Value& object, const char* key, double fallback
   return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
+// Bounds on camera shapes, far beyond any real shot, so that no camera reaches the renderer with a
+// view plane that float arithmetic cannot trace.
+constexpr double kMinAspect = 1e-4;
+constexpr double kMaxMagnification = 1e9;  // m
+
 class Importer {
  public:
   Importer(const fs::path& file, Diagnostics& diagnostics)
@@ -91,13 +96,18 @@ class Importer {
             Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
                 float(g.emissiveFactor[2] * strength));
       m.double_sided = g.doubleSided;
-      if (!is_finite(m.base_color) || !is_finite(m.emission) || m.base_color.x < 0 ||
-          m.base_color.y < 0 || m.base_color.z < 0 || m.emission.x < 0 || m.emission.y < 0 ||
-          m.emission.z < 0)
-        throw_input(name_, path, "base colour and emission must be finite and non-negative");
+      // glTF bounds baseColorFactor to [0, 1]: a surface reflecting more than it receives would
+      // make path throughput grow without bound.
+      if (!(is_finite(m.base_color) && min_component(m.base_color) >= 0 &&
+            max_component(m.base_color) <= 1))
+        throw_input(name_, path + ".pbrMetallicRoughness.baseColorFactor",
+                    "expected components in [0, 1]");
+      if (!(min_component(m.emission) >= 0 && is_finite(m.emission)))
+        throw_input(name_, path,
+                    "emission (emissiveFactor x emissiveStrength) must be finite and non-negative");
       // A black metal reflects nothing, as a black Lambertian surface: no warning for emitters.
       if (g.pbrMetallicRoughness.metallicFactor > 0 && max_component(m.base_color) > 0)
-        warn(path, "metallic " + std::to_string(g.pbrMetallicRoughness.metallicFactor) +
+        warn(path, "metallic " + number_text(g.pbrMetallicRoughness.metallicFactor) +
                        " is rendered as Lambertian (metallic-roughness is not supported yet)");
       if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
         warn(path + ".alphaMode", g.alphaMode + " is rendered as OPAQUE");
@@ -180,6 +190,10 @@ class Importer {
       visited[size_t(next.index)] = true;
       const tinygltf::Node& node = model_.nodes[size_t(next.index)];
       const Transform world = next.parent * local_transform(node, path);
+      if (!world.is_finite())
+        throw_input(name_, path,
+                    "the node's world transform overflows (its ancestors' scales multiply past "
+                    "double range)");
       visit(node, path, world);
       for (size_t c = node.children.size(); c-- > 0;)
         stack.push_back({node.children[c], world, path + "." + index_path("children", c)});
@@ -199,7 +213,7 @@ class Importer {
     if (node.mesh >= 0) add_mesh(node, path, world);
     if (node.camera >= 0) add_camera(node, path, world);
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
-      add_light(node, path, world, int(number_or(it->second, "light", -1)));
+      add_light(node, path, world, number_or(it->second, "light", -1));
   }
 
   void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world) {
@@ -314,13 +328,14 @@ class Importer {
       const tinygltf::PerspectiveCamera& p = g.perspective;
       if (!(p.yfov > 0 && p.yfov < std::numbers::pi))
         throw_input(name_, cpath + ".perspective.yfov",
-                    std::to_string(p.yfov) + " is not a field of view (expected 0 < yfov < pi)");
+                    number_text(p.yfov) + " is not a field of view (expected 0 < yfov < pi)");
       if (!(p.znear > 0))
         throw_input(name_, cpath + ".perspective.znear", "expected a positive near clip distance");
       if (p.zfar != 0 && !(p.zfar > p.znear))
         throw_input(name_, cpath + ".perspective.zfar", "expected zfar > znear");
-      if (p.aspectRatio < 0 || !std::isfinite(p.aspectRatio))
-        throw_input(name_, cpath + ".perspective.aspectRatio", "expected a positive aspect ratio");
+      if (p.aspectRatio != 0 && !(p.aspectRatio >= kMinAspect && p.aspectRatio <= 1 / kMinAspect))
+        throw_input(name_, cpath + ".perspective.aspectRatio",
+                    number_text(p.aspectRatio) + " is not an image shape (expected 1e-4 to 1e4)");
       // The glTF projection becomes Blender's physical set (docs/camera-model.md): with an
       // aspect ratio, a 36 mm sensor with AUTO fit, whose fitted side spans the larger image
       // side; without one, the vertical field of view is kept for any image shape.
@@ -338,8 +353,11 @@ class Importer {
       phys.clip_far_m = p.zfar > 0 ? p.zfar : HUGE_VAL;  // absent zfar: infinite projection
     } else if (g.type == "orthographic") {
       const tinygltf::OrthographicCamera& o = g.orthographic;
-      if (!(o.xmag > 0) || !(o.ymag > 0) || !std::isfinite(o.xmag) || !std::isfinite(o.ymag))
-        throw_input(name_, cpath + ".orthographic", "expected positive xmag and ymag");
+      if (!(o.xmag > 0 && o.xmag <= kMaxMagnification && o.ymag > 0 &&
+            o.ymag <= kMaxMagnification && o.xmag / o.ymag >= kMinAspect &&
+            o.xmag / o.ymag <= 1 / kMinAspect))
+        throw_input(name_, cpath + ".orthographic",
+                    "expected xmag and ymag in (0, 1e9] m with a ratio from 1e-4 to 1e4");
       if (!(o.zfar > o.znear) || o.znear < 0)
         throw_input(name_, cpath + ".orthographic", "expected 0 <= znear < zfar");
       phys.projection = FB_PROJECTION_ORTHOGRAPHIC;
@@ -356,11 +374,12 @@ class Importer {
   }
 
   void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                 int index) {
+                 double index) {
     const std::string ext_path = path + ".extensions.KHR_lights_punctual";
-    if (index < 0 || size_t(index) >= model_.lights.size())
+    if (!(index >= 0 && index < double(model_.lights.size()) && index == std::floor(index)))
       throw_input(name_, ext_path + ".light",
-                  out_of_range("light", index, model_.lights.size(), "lights"));
+                  "light index " + number_text(index) + ", expected a whole number below " +
+                      std::to_string(model_.lights.size()) + " (the number of lights)");
     const tinygltf::Light& g = model_.lights[size_t(index)];
     const std::string lpath =
         "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));

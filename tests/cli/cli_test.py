@@ -406,6 +406,16 @@ class CliTest(unittest.TestCase):
         self.assert_usage_error(scene, TINY, "output '%s': " % (self.out / "nowhere" / "image.exr"),
                                 "does not exist", outputs=("image.exr", "nowhere/image.exr"))
 
+    def test_same_output_twice_keeps_the_existing_file(self):
+        scene = self.scene(triangle_scene())
+        (self.out / "keep.exr").write_text("the previous render")
+        result = self.run_cli("render", scene, *TINY, "-o", self.out / "keep.exr", "-o",
+                              self.out / "." / "keep.exr")
+        self.assertEqual(result.returncode, USAGE, result.stderr)
+        self.assertIn("the same file as output", result.stderr)
+        self.assertEqual((self.out / "keep.exr").read_text(), "the previous render")
+        self.assertEqual(sorted(os.listdir(self.out)), ["keep.exr"])
+
     def test_output_is_a_folder(self):
         scene = self.scene(triangle_scene())
         (self.out / "b.png").mkdir()

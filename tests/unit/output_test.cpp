@@ -24,7 +24,8 @@ Vec3d imath_transform(const float m[16], Vec3d p) {
   const double v[4] = {p.x, p.y, p.z, 1};
   double out[4] = {0, 0, 0, 0};
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) out[c] += v[r] * m[r * 4 + c];
+    for (int r = 0; r < 4; ++r)
+      out[c] += v[r] * m[r * 4 + c];
   return {out[0] / out[3], out[1] / out[3], out[2] / out[3]};
 }
 
@@ -35,10 +36,12 @@ TEST(ImageOutput, ExrCarriesTheCameraAsOpenExrStandardAttributes) {
   camera.name = "shot";
   camera.physical.focal_length_mm = 35;
   camera.physical.shift_x = 0.05;
-  camera.world_from_camera = Transform::translate({3, 1, 12}) * Transform::rotate({0.1, 0.2, 0, 0.97});
+  camera.world_from_camera =
+      Transform::translate({3, 1, 12}) * Transform::rotate({0.1, 0.2, 0, 0.97});
   scene.cameras.push_back(camera);
   RenderOptions options;
-  options.width = 64, options.height = 40, options.samples_per_pixel = 1, options.show_progress = false;
+  options.width = 64, options.height = 40, options.samples_per_pixel = 1,
+  options.show_progress = false;
   const RenderJob job(scene, options, test::loader());
   const RenderResult result = job.run();
   const fs::path file = test::scratch_dir() / "shot.exr";
@@ -61,9 +64,12 @@ TEST(ImageOutput, ExrCarriesTheCameraAsOpenExrStandardAttributes) {
   for (Vec3d world : {Vec3d{3.5, 0.8, 5}, Vec3d{1, 2, 2}}) {
     const Vec3d c = camera_from_world.point(world);
     ASSERT_LT(c.z, 0);
+    // OpenEXR's camera space: x right, y up, +z the viewing direction (in front: z > 0).
     const Vec3d stored = imath_transform(world_to_camera, world);
     EXPECT_NEAR(stored.x, c.x, 1e-4);
-    EXPECT_NEAR(stored.z, c.z, 1e-4);
+    EXPECT_NEAR(stored.y, c.y, 1e-4);
+    EXPECT_NEAR(stored.z, -c.z, 1e-4);
+    EXPECT_GT(stored.z, 0);
     const Vec3d ndc = imath_transform(world_to_ndc, world);
     EXPECT_NEAR(ndc.x, (v.cx + v.fx * c.x / -c.z) / 64, 1e-5);
     EXPECT_NEAR(ndc.y, (v.cy - v.fy * c.y / -c.z) / 40, 1e-5);
@@ -71,7 +77,8 @@ TEST(ImageOutput, ExrCarriesTheCameraAsOpenExrStandardAttributes) {
 }
 
 TEST(ImageOutput, PngUsesTheSrgbTransferAndClamps) {
-  const Image image{3, 1, {"R", "G", "B"}, {0.5f, 0.5f, 0.5f, 0.0031308f, 0.f, 2.f, -1.f, 1.f, 0.18f}};
+  const Image image{
+      3, 1, {"R", "G", "B"}, {0.5f, 0.5f, 0.5f, 0.0031308f, 0.f, 2.f, -1.f, 1.f, 0.18f}};
   const fs::path file = test::scratch_dir() / "ramp.png";
   write_images(image, {file}, {});
   const Image back = read_image(file);
@@ -89,7 +96,8 @@ TEST(ImageOutput, AFailedWriteLeavesNoFileBehind) {
   fs::create_directory(dir / "taken.png");  // a folder where the second output should go
   EXPECT_THROW(write_images(image, {dir / "first.exr", dir / "taken.png"}, {}), InputError);
   size_t entries = 0;
-  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++entries;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir))
+    ++entries;
   EXPECT_EQ(entries, 1u) << "only the folder may remain: no first.exr, no temporary file";
 }
 

@@ -4,6 +4,8 @@
 // Derivation and measurements: docs/camera-model.md and shared notes/blender-camera.md.
 #pragma once
 
+#include <cmath>
+
 #include "plugin_abi.h"
 
 namespace fb {
@@ -44,6 +46,19 @@ inline ViewPlane view_plane(const fb_camera_setup& c) {
   v.cx = width / 2 - c.shift_x * s * v.fx;
   v.cy = height / 2 + c.shift_y * s * v.fy;
   return v;
+}
+
+// Why `v` cannot give usable rays in float, or nullptr: a view plane wider than 1e6 at unit depth
+// (a field of view within 0.0002 degrees of 180), degenerate, or not finite.
+inline const char* view_plane_problem(const ViewPlane& v, const fb_camera_setup& c) {
+  constexpr double kWidest = 1e6;
+  if (!(v.extent_x > 0 && v.extent_x <= kWidest && v.extent_y > 0 && v.extent_y <= kWidest))
+    return "the view plane is degenerate or too wide to trace in float (check focal length, "
+           "sensor, ortho scale and aspect)";
+  if (!(std::abs(v.cx) <= kWidest * c.image_width_px &&
+        std::abs(v.cy) <= kWidest * c.image_height_px))
+    return "the lens shift is not finite or too large";
+  return nullptr;
 }
 
 }  // namespace fb

@@ -190,7 +190,8 @@ typedef struct fb_light_sample {
 
 typedef struct fb_trace_context fb_trace_context; /* per-thread host state: opaque */
 
-/* What the host offers an integrator. All calls are thread-safe with distinct contexts. */
+/* What the host offers an integrator. All calls are thread-safe with distinct contexts. A ray
+ * with a NaN, or a coordinate beyond 1e18, is not traced: it misses and is not occluded. */
 typedef struct fb_scene_api {
   uint32_t struct_size;
   int (*intersect)(fb_trace_context* context, const fb_ray* ray, fb_hit* hit);

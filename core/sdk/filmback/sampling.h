@@ -11,8 +11,6 @@
 
 namespace fb {
 
-constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;  // largest float below 1
-
 // Shirley & Chiu's concentric map from [0,1)^2 onto the unit disk: area-preserving and with low
 // distortion, so stratified samples stay stratified (pbrt 4e §A.5.1).
 inline Vec2f sample_concentric_disk(Vec2f u) {
@@ -48,10 +46,12 @@ inline Vec2f sample_uniform_triangle(Vec2f u) {
   return {b0, b1};
 }
 
-// Veach's power heuristic (beta = 2) for two strategies with one sample each.
+// Veach's power heuristic (beta = 2) for two strategies with one sample each, written as
+// 1 / (1 + (b/a)^2) so that large pdfs (grazing angles, tiny emitters) cannot overflow to inf/inf.
 inline float power_heuristic(float pdf_a, float pdf_b) {
-  const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-  return a + b > 0.f ? a / (a + b) : 0.f;
+  if (!(pdf_a > 0.f)) return 0.f;
+  const float r = pdf_b / pdf_a;
+  return 1.f / (1.f + r * r);
 }
 
 // A piecewise-constant distribution over [lo, hi] proportional to |f| at bin centres: the
@@ -65,9 +65,9 @@ class Tabulated1D {
       const double x = lo + (i + 0.5) * width_ / bins;
       cdf_[i + 1] = cdf_[i] + std::abs(f(x));
     }
-    total_ = cdf_.back();
+    const double total = cdf_.back();
     for (double& c : cdf_)
-      c /= total_;
+      c /= total;
   }
 
   struct Sample {
@@ -88,7 +88,6 @@ class Tabulated1D {
  private:
   double lo_, width_;
   std::vector<double> cdf_;
-  double total_ = 0.0;
 };
 
 }  // namespace fb

@@ -67,6 +67,10 @@ constexpr T max_component(Vec3<T> v) {
   return v.x > v.y ? (v.x > v.z ? v.x : v.z) : (v.y > v.z ? v.y : v.z);
 }
 template <typename T>
+constexpr T min_component(Vec3<T> v) {
+  return v.x < v.y ? (v.x < v.z ? v.x : v.z) : (v.y < v.z ? v.y : v.z);
+}
+template <typename T>
 constexpr Vec3<T> min(Vec3<T> a, Vec3<T> b) {
   return {a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
 }

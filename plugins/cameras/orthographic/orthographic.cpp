@@ -14,6 +14,8 @@ class Orthographic {
           "the shot's camera is not an orthographic one (use the perspective camera)");
     if (!(setup.ortho_scale_m > 0)) throw std::invalid_argument("the ortho scale must be positive");
     if (!(far_ > near_)) throw std::invalid_argument("the clip range is empty");
+    if (const char* problem = fb::view_plane_problem(plane_, setup))
+      throw std::invalid_argument(problem);
   }
 
   uint32_t needs() const { return 0; }

@@ -19,6 +19,8 @@ class Perspective {
         !(setup.sensor_height_mm > 0))
       throw std::invalid_argument("focal length and sensor size must be positive");
     if (!(near_ >= 0) || !(far_ > near_)) throw std::invalid_argument("the clip range is empty");
+    if (const char* problem = fb::view_plane_problem(plane_, setup))
+      throw std::invalid_argument(problem);
   }
 
   uint32_t needs() const { return 0; }
