@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include <filmback/sampling.h>
+
+#include "core/util/error.h"
 
 namespace fb {
 namespace {
@@ -52,24 +55,58 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
     const Material& m = materials_[e.material];
     power.push_back(kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
   }
+  build_selection(power);
+}
+
+// Sample values are multiples of 2^-24 (plugin_abi.h), so a choice by u is exact only on that
+// grid: each light gets a whole number of the 2^24 cells, at least one if it carries any power,
+// and its probability is exactly its share of cells. A light with a smaller share than one cell
+// would otherwise be chosen never, or at the wrong rate, depending on its place in the list.
+void LightSampler::build_selection(const std::vector<double>& power) {
+  constexpr uint32_t kCells = kSelectionCells;
   double total = 0;
+  size_t lit = 0;
   for (double p : power)
-    total += std::max(p, 0.0);
-  if (!(total > 0)) return;  // no light carries energy: sample() always fails
-  cdf_.push_back(0);
-  for (double p : power) {
-    pmf_.push_back(float(std::max(p, 0.0) / total));
-    cdf_.push_back(cdf_.back() + std::max(p, 0.0) / total);
+    if (p > 0) total += p, ++lit;
+  if (!(total > 0) || !std::isfinite(total)) return;  // no light carries energy: never sampled
+  if (lit > kCells)
+    throw InputError("the scene has " + std::to_string(lit) +
+                     " emitting lights and triangles, more than the " + std::to_string(kCells) +
+                     " that light selection can tell apart");
+  std::vector<uint32_t> cells(power.size(), 0);
+  int64_t assigned = 0;
+  for (size_t i = 0; i < power.size(); ++i)
+    if (power[i] > 0)
+      assigned += cells[i] =
+          std::max<uint32_t>(1, uint32_t(std::llround(power[i] / total * kCells)));
+  // Settle rounding on the lights with the most cells, never taking one below a single cell.
+  std::vector<size_t> order(power.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cells[a] > cells[b]; });
+  for (size_t k = 0; assigned != kCells; k = (k + 1) % order.size()) {
+    uint32_t& c = cells[order[k]];
+    if (assigned < kCells) {
+      c += uint32_t(kCells - assigned);
+      assigned = kCells;
+    } else if (c > 1) {
+      const uint32_t take = uint32_t(std::min<int64_t>(assigned - kCells, c - 1));
+      c -= take;
+      assigned -= take;
+    }
+  }
+  first_cell_.assign(1, 0);
+  for (uint32_t c : cells) {
+    first_cell_.push_back(first_cell_.back() + c);
+    pmf_.push_back(float(c) / float(kCells));
   }
 }
 
 bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out) const {
   if (pmf_.empty()) return false;
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), double(u[0]));
-  size_t index = std::min<size_t>(std::max<ptrdiff_t>(it - cdf_.begin() - 1, 0), pmf_.size() - 1);
-  while (pmf_[index] == 0.f && index > 0)
-    --index;  // u landed on an empty interval's edge
-  if (pmf_[index] == 0.f) return false;
+  const uint32_t cell = std::min(uint32_t(u[0] * float(kSelectionCells)), kSelectionCells - 1);
+  const size_t index =
+      size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
+      1;
   const bool ok = index < punctual_.size()
                       ? sample_punctual(punctual_[index], position, out)
                       : sample_triangle(uint32_t(index - punctual_.size()), position, u + 1, out);

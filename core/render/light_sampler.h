@@ -19,7 +19,8 @@ class LightSampler {
                const RenderGeometry& geometry);
   bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
   float pdf(Vec3f position, const fb_hit& emitter_hit) const;
-  size_t light_count() const { return pmf_.size(); }
+  size_t punctual_light_count() const { return punctual_.size(); }
+  size_t emissive_triangle_count() const { return emitters_.size(); }
 
  private:
   struct Punctual {
@@ -36,8 +37,10 @@ class LightSampler {
   std::vector<Punctual> punctual_;
   const std::vector<EmissiveTriangle>& emitters_;  // light index punctual_.size() + i
   const std::vector<Material>& materials_;
-  std::vector<float> pmf_;
-  std::vector<double> cdf_;
+  static constexpr uint32_t kSelectionCells = 1u << 24;
+  void build_selection(const std::vector<double>& power);
+  std::vector<float> pmf_;            // per light: its cells / 2^24, exactly
+  std::vector<uint32_t> first_cell_;  // per light, and the total at the end
 };
 
 }  // namespace fb

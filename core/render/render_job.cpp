@@ -136,8 +136,9 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   Vec3f(normalize(camera_.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
 
   const uint32_t needs = p.camera->needs();
-  camera_reason_ =
-      (needs & FB_CAMERA_NEEDS_LENS) ? "with lens samples" : "pinhole: no lens samples";
+  camera_reason_ = (needs & FB_CAMERA_NEEDS_LENS) ? "it asks for lens samples"
+                   : orthographic                 ? "no aperture: no lens samples"
+                                                  : "pinhole, no aperture: no lens samples";
 }
 
 RenderJob::~RenderJob() = default;
@@ -148,8 +149,9 @@ std::string RenderJob::plan() const {
       << plugins_->camera->name() << " (" << camera_reason_ << "), " << width_ << "x" << height_
       << ", " << spp_ << " spp, filter " << plugins_->filter_text << ", integrator "
       << plugins_->integrator_text << "; static scene: no time samples; "
-      << plugins_->geometry->triangle_count() << " triangles, " << plugins_->lights->light_count()
-      << " lights";
+      << plugins_->geometry->triangle_count() << " triangles, "
+      << plugins_->lights->punctual_light_count() << " punctual lights, "
+      << plugins_->lights->emissive_triangle_count() << " emissive triangles";
   return out.str();
 }
 

@@ -208,7 +208,8 @@ typedef struct fb_scene_api {
   /* Solid-angle pdf with which sample_light() would have chosen `hit` (an emitter) from
    * `position`: for multiple importance sampling of emission found by BSDF sampling. */
   float (*light_pdf)(fb_trace_context* context, const float position[3], const fb_hit* hit);
-  /* The next `count` sample dimensions of path `path` of the current batch, in [0,1). */
+  /* The next `count` sample dimensions of path `path` of the current batch: multiples of 2^-24
+   * in [0,1), as every sample value the host hands out. */
   void (*next_samples)(fb_trace_context* context, size_t path, float* u, uint32_t count);
 } fb_scene_api;
 
