@@ -1,5 +1,5 @@
-// The one parameter parser: "name:key=value,key=value" on the command line and in scene render
-// settings, and each plugin's own default values, all go through here (docs/plugins.md).
+// The one parameter parser: "name:key=value,key=value" on the command line, each plugin's own
+// default values, and --background all go through here (docs/plugins.md).
 #pragma once
 
 #include <string>

@@ -126,10 +126,6 @@ AccessorView view(const AccessorContext& ctx, int index, const std::string& wher
 
 }  // namespace
 
-size_t accessor_count(const AccessorContext& ctx, int accessor, const std::string& where) {
-  return checked_accessor(ctx, accessor, where).count;
-}
-
 std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std::string& where) {
   const AccessorView v =
       view(ctx, accessor, where, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT});

@@ -27,7 +27,5 @@ std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std
 std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
                                    const std::string& where, size_t vertex_count);
 
-// The accessor's element count, after checking the index.
-size_t accessor_count(const AccessorContext& ctx, int accessor, const std::string& where);
 
 }  // namespace fb::gltf
