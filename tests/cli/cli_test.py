@@ -344,6 +344,35 @@ class CliTest(unittest.TestCase):
         self.assert_input_error(self.scene(g), "extensionsRequired[0]", "KHR_draco_mesh_compression",
                                 "not supported")
 
+    def test_camera_shape_beyond_float_is_refused(self):
+        g = triangle_scene()
+        g.doc["cameras"][0]["perspective"]["aspectRatio"] = 1e308  # Embree would abort on its rays
+        self.assert_input_error(self.scene(g), "cameras[0].perspective.aspectRatio", "1e+308",
+                                "expected 1e-4 to 1e4")
+
+    def test_world_transform_overflow_is_refused(self):
+        g = triangle_scene()
+        g.doc["nodes"][0]["scale"] = [1e200, 1e200, 1e200]
+        parent = g.node(scale=[1e200, 1e200, 1e200], children=[0])
+        g.doc["scenes"][0]["nodes"] = [parent, 1]
+        self.assert_input_error(self.scene(g), "nodes[0]", "overflows")
+
+    def test_light_index_must_be_a_whole_number_in_range(self):
+        g = triangle_scene()
+        g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+        g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [{"type": "point"}]}}
+        for index in (0.7, 1e20, -1):
+            g.doc["nodes"][1]["extensions"] = {"KHR_lights_punctual": {"light": index}}
+            self.assert_input_error(self.scene(g), "nodes[1].extensions.KHR_lights_punctual.light",
+                                    "expected a whole number below 1")
+
+    def test_base_colour_above_one_is_refused(self):
+        g = triangle_scene()
+        g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorFactor": [1.5, 0.5, 0.5, 1]}}]
+        g.doc["meshes"][0]["primitives"][0]["material"] = 0
+        self.assert_input_error(self.scene(g), "materials[0].pbrMetallicRoughness.baseColorFactor",
+                                "expected components in [0, 1]")
+
     def test_info_reports_bad_input_too(self):
         g = triangle_scene()
         g.doc["accessors"][0]["count"] = 4
