@@ -15,7 +15,10 @@ struct RenderCommand {
   std::vector<std::filesystem::path> outputs;
   std::string resolution;  // "WxH"
   std::string background;  // "r,g,b" or one grey value
-  unsigned threads = 0;    // 0: all cores
+  // The physical camera and shutter, as typed (parsed and checked by run_render).
+  std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
+  std::string shutter, frame, fps, sensor_model, iso;
+  unsigned threads = 0;  // 0: all cores
   bool quiet = false;
   RenderOptions options;
 };

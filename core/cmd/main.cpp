@@ -31,6 +31,25 @@ int main(int argc, char** argv) {
                          "integrator NAME[:k=v,...] (default path)");
   render_cmd->add_option("--background", render.background,
                          "uniform background radiance: one value or r,g,b (W/sr/m^2)");
+  CLI::Option_group* camera_group = render_cmd->add_option_group(
+      "physical camera", "each replaces the value the shot carries (docs/cli.md)");
+  camera_group->add_option("--focal-length", render.focal_length, "focal length in mm");
+  camera_group->add_option("--fstop", render.fstop,
+                           "f-number N (aperture diameter f/N); 0 or inf: a pinhole");
+  camera_group->add_option("--focus-distance", render.focus_distance,
+                           "focus distance in m along the view axis, or inf");
+  camera_group->add_option("--sensor", render.sensor, "sensor size WxH in mm (e.g. 36x24)");
+  camera_group->add_option("--sensor-fit", render.sensor_fit,
+                           "which image side the sensor size spans: auto, horizontal, vertical");
+  camera_group->add_option("--shift", render.shift,
+                           "lens shift X,Y as fractions of the fitted image side (Blender's)");
+  camera_group->add_option("--shutter", render.shutter,
+                           "shutter OPEN,CLOSE in s relative to the frame's time (default closed)");
+  camera_group->add_option("--frame", render.frame, "frame to render (time = frame / fps)");
+  camera_group->add_option("--fps", render.fps, "frames per second of the animation");
+  camera_group->add_option("--sensor-model", render.sensor_model,
+                           "simple (pixel = radiance, as Cycles; default) or physical (exposure)");
+  camera_group->add_option("--iso", render.iso, "physical sensor: ISO speed (default 100)");
   render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")
       ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");

@@ -49,6 +49,81 @@ Rgb parse_background(const std::string& text) {
   return Rgb(float(value.number[0]), float(value.number[1]), float(value.number[2]));
 }
 
+// "X<sep>Y" as two finite numbers, each in [lo, hi].
+Vec2d parse_pair(const std::string& text, char separator, const char* option, double lo,
+                 double hi) {
+  const size_t at = text.find(separator);
+  double v[2];
+  const std::string_view parts[2] = {
+      std::string_view(text).substr(0, at),
+      at == std::string::npos ? std::string_view() : std::string_view(text).substr(at + 1)};
+  for (int i = 0; i < 2; ++i) {
+    const auto [end, ec] =
+        std::from_chars(parts[i].data(), parts[i].data() + parts[i].size(), v[i]);
+    if (at == std::string::npos || ec != std::errc() || end != parts[i].data() + parts[i].size() ||
+        !(v[i] >= lo && v[i] <= hi))
+      throw UsageError(std::string(option) + " '" + text + "': expected two numbers in [" +
+                       number_text(lo) + ", " + number_text(hi) + "] separated by '" + separator +
+                       "'");
+  }
+  return {v[0], v[1]};
+}
+
+// One number in [lo, hi]; "inf" is accepted when hi is infinite.
+double parse_number(const std::string& text, const char* option, double lo, double hi) {
+  double v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  const bool infinite = text == "inf" && std::isinf(hi);
+  if (infinite) v = HUGE_VAL;
+  if (!infinite && (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) ||
+                    !(v >= lo && v <= hi)))
+    throw UsageError(std::string(option) + " '" + text + "': expected a number in [" +
+                     number_text(lo) + ", " + number_text(hi) + "]");
+  return v;
+}
+
+// The physical camera, shutter and sensor typed on the command line (docs/cli.md).
+void parse_physical(const RenderCommand& c, RenderOptions& o) {
+  CameraOverrides& cam = o.camera_overrides;
+  if (!c.focal_length.empty())
+    cam.focal_length_mm = parse_number(c.focal_length, "--focal-length", 1e-3, 1e5);
+  if (!c.fstop.empty()) {
+    const double n = parse_number(c.fstop, "--fstop", 0, HUGE_VAL);
+    cam.fstop = n > 0 ? n : HUGE_VAL;  // 0: no aperture, as "inf"
+  }
+  if (!c.focus_distance.empty())
+    cam.focus_distance_m = parse_number(c.focus_distance, "--focus-distance", 1e-6, HUGE_VAL);
+  if (!c.sensor.empty()) cam.sensor_mm = parse_pair(c.sensor, 'x', "--sensor", 1e-3, 1e4);
+  if (!c.shift.empty()) cam.shift = parse_pair(c.shift, ',', "--shift", -100, 100);
+  if (!c.sensor_fit.empty()) {
+    if (c.sensor_fit == "auto")
+      cam.sensor_fit = FB_SENSOR_FIT_AUTO;
+    else if (c.sensor_fit == "horizontal")
+      cam.sensor_fit = FB_SENSOR_FIT_HORIZONTAL;
+    else if (c.sensor_fit == "vertical")
+      cam.sensor_fit = FB_SENSOR_FIT_VERTICAL;
+    else
+      throw UsageError("--sensor-fit '" + c.sensor_fit +
+                       "': expected auto, horizontal or vertical");
+  }
+  if (!c.shutter.empty()) {
+    o.shutter_s = parse_pair(c.shutter, ',', "--shutter", -1e6, 1e6);
+    if (o.shutter_s->y < o.shutter_s->x)
+      throw UsageError("--shutter '" + c.shutter + "': expected OPEN,CLOSE with CLOSE >= OPEN");
+  }
+  if (!c.frame.empty()) o.frame = parse_number(c.frame, "--frame", -1e9, 1e9);
+  if (!c.fps.empty()) o.fps = parse_number(c.fps, "--fps", 1e-3, 1e6);
+  if (!c.sensor_model.empty()) {
+    if (c.sensor_model == "simple")
+      o.sensor_model = FB_SENSOR_SIMPLE;
+    else if (c.sensor_model == "physical")
+      o.sensor_model = FB_SENSOR_PHYSICAL;
+    else
+      throw UsageError("--sensor-model '" + c.sensor_model + "': expected simple or physical");
+  }
+  if (!c.iso.empty()) o.iso = parse_number(c.iso, "--iso", 1, 1e7);
+}
+
 }  // namespace
 
 int run_render(RenderCommand& c) {
@@ -68,6 +143,7 @@ int run_render(RenderCommand& c) {
       throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");
   }
   if (!c.resolution.empty()) parse_resolution(c.resolution, c.options);
+  parse_physical(c, c.options);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   c.options.show_progress = !c.quiet;
 

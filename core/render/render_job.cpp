@@ -83,6 +83,31 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
   }
 }
 
+// Only what the shot needs: a pinhole unless it has an aperture (docs/camera-model.md).
+std::string camera_model_for(const PhysicalCamera& camera, const SensorResponse& sensor) {
+  if (camera.projection == FB_PROJECTION_ORTHOGRAPHIC) {
+    if (sensor.model == FB_SENSOR_PHYSICAL)
+      throw UsageError(
+          "--sensor-model physical: an orthographic camera has no aperture to expose through");
+    return "orthographic";
+  }
+  if (camera.has_aperture()) return "thinlens";
+  if (sensor.model == FB_SENSOR_PHYSICAL)
+    throw UsageError("--sensor-model physical needs an aperture: give --fstop (the shot has none)");
+  return "perspective";
+}
+
+std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
+  if (!(needs & FB_CAMERA_NEEDS_LENS))
+    return camera.projection == FB_PROJECTION_ORTHOGRAPHIC
+               ? "no aperture: no lens samples"
+               : "pinhole, no aperture: no lens samples";
+  const std::string focus = std::isinf(camera.focus_distance_m)
+                                ? "infinity"
+                                : number_text(camera.focus_distance_m) + " m";
+  return "f/" + number_text(camera.fstop) + " focused at " + focus + ": lens samples";
+}
+
 }  // namespace
 
 std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
@@ -94,24 +119,40 @@ std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
           kDefaultLongSidePx};
 }
 
+void CameraOverrides::apply(PhysicalCamera& camera) const {
+  if (focal_length_mm) camera.focal_length_mm = *focal_length_mm;
+  if (fstop) camera.fstop = *fstop;
+  if (focus_distance_m) camera.focus_distance_m = *focus_distance_m;
+  if (sensor_mm) camera.sensor_width_mm = sensor_mm->x, camera.sensor_height_mm = sensor_mm->y;
+  if (sensor_fit) camera.sensor_fit = *sensor_fit;
+  if (shift) camera.shift_x = shift->x, camera.shift_y = shift->y;
+}
+
 RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader)
     : scene_(scene), options_(options), plugins_(std::make_unique<Plugins>()) {
   camera_ = choose_camera(scene, options.camera);
+  options.camera_overrides.apply(camera_.physical);
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
-  std::tie(width_, height_) =
-      options.width ? std::pair{*options.width, *options.height} : default_resolution(camera_);
+  const ShotSettings& shot = scene.settings;
+  std::tie(width_, height_) = options.width   ? std::pair{*options.width, *options.height}
+                              : shot.width_px ? std::pair{*shot.width_px, *shot.height_px}
+                                              : default_resolution(camera_);
   spp_ = options.samples_per_pixel.value_or(kDefaultSamplesPerPixel);
+  shutter_s_ = options.shutter_s.value_or(
+      shot.shutter_open_s ? Vec2d{*shot.shutter_open_s, *shot.shutter_close_s} : Vec2d{0, 0});
+  // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
+  const double open_s = shutter_s_.y - shutter_s_.x;
+  sensor_ = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
 
   Plugins& p = *plugins_;
-  const bool orthographic = camera_.physical.projection == FB_PROJECTION_ORTHOGRAPHIC;
   p.filter_text = options.filter.value_or(kDefaultFilter);
   p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
-  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
+  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_, 1.0, sensor_);
   p.camera = instantiate<CameraInstance>(
       loader, FB_KIND_CAMERA,
-      options.camera_model.value_or(orthographic ? "orthographic" : "perspective"),
-      "--camera-model", setup);
+      options.camera_model.value_or(camera_model_for(camera_.physical, sensor_)), "--camera-model",
+      setup);
   p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
   p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text,
                                                  "--integrator");
@@ -135,10 +176,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   p.scene.scene_radius_m = length(p.geometry->bounds_centre()) + p.geometry->bounds_radius();
   Vec3f(normalize(camera_.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
 
-  const uint32_t needs = p.camera->needs();
-  camera_reason_ = (needs & FB_CAMERA_NEEDS_LENS) ? "it asks for lens samples"
-                   : orthographic                 ? "no aperture: no lens samples"
-                                                  : "pinhole, no aperture: no lens samples";
+  camera_reason_ = describe_lens(camera_.physical, p.camera->needs());
 }
 
 RenderJob::~RenderJob() = default;

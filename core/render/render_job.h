@@ -18,6 +18,17 @@
 
 namespace fb {
 
+// Values typed on the command line that replace the scene camera's (docs/cli.md).
+struct CameraOverrides {
+  std::optional<double> focal_length_mm;
+  std::optional<double> fstop;  // HUGE_VAL: a pinhole
+  std::optional<double> focus_distance_m;
+  std::optional<Vec2d> sensor_mm;  // width, height
+  std::optional<uint32_t> sensor_fit;
+  std::optional<Vec2d> shift;
+  void apply(PhysicalCamera& camera) const;
+};
+
 struct RenderOptions {
   std::optional<uint32_t> width, height;  // both or neither
   std::optional<uint32_t> samples_per_pixel;
@@ -26,6 +37,11 @@ struct RenderOptions {
   std::optional<std::string> filter;        // "NAME[:k=v,...]"
   std::optional<std::string> integrator;    // "NAME[:k=v,...]"
   std::optional<Rgb> background;
+  CameraOverrides camera_overrides;
+  std::optional<Vec2d> shutter_s;  // open, close, relative to the frame's time
+  std::optional<double> frame, fps;
+  uint32_t sensor_model = FB_SENSOR_SIMPLE;
+  double iso = 100.0;
   uint64_t seed = 0;
   bool show_progress = true;
 };
@@ -66,6 +82,8 @@ class RenderJob {
   SceneCamera camera_;
   uint32_t width_ = 0, height_ = 0, spp_ = 0;
   std::string camera_reason_;
+  Vec2d shutter_s_;  // open, close, relative to the frame's time
+  SensorResponse sensor_;
   std::unique_ptr<Plugins> plugins_;
 };
 

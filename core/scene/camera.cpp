@@ -8,7 +8,8 @@
 namespace fb {
 
 fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_px,
-                                  uint32_t height_px, double pixel_aspect) {
+                                  uint32_t height_px, double pixel_aspect,
+                                  const SensorResponse& sensor) {
   fb_camera_setup setup{};
   setup.struct_size = sizeof(fb_camera_setup);
   setup.projection = camera.projection;
@@ -24,6 +25,14 @@ fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_p
   setup.ortho_scale_m = camera.ortho_scale_m;
   setup.clip_near_m = camera.clip_near_m;
   setup.clip_far_m = camera.clip_far_m;
+  setup.fstop = camera.fstop;
+  setup.focus_distance_m = camera.focus_distance_m;
+  setup.aperture_blades = camera.aperture_blades;
+  setup.aperture_rotation_rad = camera.aperture_rotation_rad;
+  setup.aperture_ratio = camera.aperture_ratio;
+  setup.sensor_model = sensor.model;
+  setup.exposure_time_s = sensor.exposure_time_s;
+  setup.iso = sensor.iso;
   return setup;
 }
 

@@ -22,6 +22,20 @@ struct PhysicalCamera {
   double ortho_scale_m = 1.0;
   double clip_near_m = 0.1;
   double clip_far_m = HUGE_VAL;
+  double fstop = HUGE_VAL;             // a pinhole unless the shot says otherwise
+  double focus_distance_m = HUGE_VAL;  // along the view axis
+  uint32_t aperture_blades = 0;        // 0: round
+  double aperture_rotation_rad = 0.0;
+  double aperture_ratio = 1.0;  // anamorphic bokeh, as Cycles
+
+  bool has_aperture() const { return std::isfinite(fstop) && fstop > 0; }
+};
+
+// How the sensor turns light into pixel values (docs/camera-model.md, "Exposure").
+struct SensorResponse {
+  uint32_t model = FB_SENSOR_SIMPLE;
+  double exposure_time_s = 1.0;  // PHYSICAL only
+  double iso = 100.0;            // PHYSICAL only
 };
 
 struct SceneCamera {
@@ -42,7 +56,8 @@ struct CameraQuantities {
 };
 
 fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_px,
-                                  uint32_t height_px, double pixel_aspect = 1.0);
+                                  uint32_t height_px, double pixel_aspect = 1.0,
+                                  const SensorResponse& sensor = {});
 CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px,
                                  uint32_t height_px);
 const char* sensor_fit_name(uint32_t fit);

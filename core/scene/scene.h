@@ -56,6 +56,14 @@ struct Bounds3d {
   void extend(Vec3d p) { lo = min(lo, p), hi = max(hi, p); }
 };
 
+// What a file says about how its shot is rendered (glTF: scenes[i].extras, docs/scenes.md).
+struct ShotSettings {
+  std::optional<uint32_t> width_px, height_px;
+  std::optional<double> fps;
+  std::optional<double> frame;
+  std::optional<double> shutter_open_s, shutter_close_s;  // relative to the frame's time
+};
+
 struct Scene {
   std::filesystem::path file;
   std::vector<TriangleMesh> meshes;
@@ -64,6 +72,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
   Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
+  ShotSettings settings;
 
   size_t triangle_count() const;
   Bounds3d world_bounds() const;  // of all instanced geometry

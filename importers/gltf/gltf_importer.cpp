@@ -11,6 +11,7 @@
 
 #include "core/util/error.h"
 #include "importers/gltf/gltf_accessors.h"
+#include "importers/gltf/gltf_extras.h"
 #include "importers/gltf/gltf_file.h"
 
 namespace fb {
@@ -158,6 +159,8 @@ class Importer {
       const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
       if (s >= model_.scenes.size())
         throw_input(name_, "scene", out_of_range("scene", long(s), model_.scenes.size(), "scenes"));
+      scene_.settings = gltf::read_shot_extras(model_.scenes[s].extras,
+                                               index_path("scenes", s) + ".extras", name_);
       const std::vector<int>& roots = model_.scenes[s].nodes;
       for (size_t r = roots.size(); r-- > 0;)
         stack.push_back(
@@ -370,7 +373,27 @@ class Importer {
       throw_input(name_, cpath + ".type",
                   "'" + g.type + "' is not a camera type (expected perspective or orthographic)");
     }
+    if (const ShotSettings& s = scene_.settings; s.width_px)
+      camera.intended_aspect = double(*s.width_px) / *s.height_px;
+    // Blender's physical camera, when the file carries it, replaces what yfov implied.
+    const PhysicalCamera from_yfov = phys;
+    if (gltf::apply_camera_extras(g.extras, cpath + ".extras", name_, phys) &&
+        g.type == "perspective" && camera.intended_aspect)
+      check_fov_agrees(from_yfov, phys, *camera.intended_aspect, cpath);
     scene_.cameras.push_back(camera);
+  }
+
+  // Both describe the same shot: warn when the vertical fields of view differ by more than 0.01°.
+  void check_fov_agrees(const PhysicalCamera& from_yfov, const PhysicalCamera& physical,
+                        double aspect, const std::string& cpath) {
+    constexpr uint32_t kHeight = 100000;
+    const auto width = uint32_t(std::max(1.0, std::round(aspect * kHeight)));
+    const double yfov = describe_camera(from_yfov, width, kHeight).vertical_fov_deg;
+    const double extras = describe_camera(physical, width, kHeight).vertical_fov_deg;
+    if (std::abs(yfov - extras) > 0.01)
+      warn(cpath, "yfov gives a vertical field of view of " + number_text(yfov) +
+                      " deg, the physical camera in extras " + number_text(extras) +
+                      " deg; using the physical camera");
   }
 
   void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world,

@@ -90,6 +90,8 @@ typedef struct fb_error_buffer {
 
 enum { FB_PROJECTION_PERSPECTIVE = 1, FB_PROJECTION_ORTHOGRAPHIC = 2 };
 enum { FB_SENSOR_FIT_AUTO = 0, FB_SENSOR_FIT_HORIZONTAL = 1, FB_SENSOR_FIT_VERTICAL = 2 };
+/* SIMPLE: pixel = radiance, as Cycles. PHYSICAL: pixel = exposure (docs/camera-model.md). */
+enum { FB_SENSOR_SIMPLE = 0, FB_SENSOR_PHYSICAL = 1 };
 
 /* The shot's physical camera, as Blender describes it (docs/camera-model.md). */
 typedef struct fb_camera_setup {
@@ -107,6 +109,16 @@ typedef struct fb_camera_setup {
   double ortho_scale_m; /* orthographic: view extent along the fitted side */
   double clip_near_m;   /* depth along the view axis */
   double clip_far_m;    /* HUGE_VAL for none */
+  /* the lens */
+  double fstop;                 /* HUGE_VAL: a pinhole */
+  double focus_distance_m;      /* along the view axis; HUGE_VAL: focused at infinity */
+  uint32_t aperture_blades;     /* 0: a round aperture */
+  double aperture_rotation_rad; /* of the blades */
+  double aperture_ratio;        /* anamorphic: the aperture's x is divided by it (Cycles) */
+  /* the sensor */
+  uint32_t sensor_model;  /* FB_SENSOR_* */
+  double exposure_time_s; /* PHYSICAL only */
+  double iso;             /* PHYSICAL only: ISO 12232 speed, 100 = unit gain */
 } fb_camera_setup;
 
 typedef struct fb_camera_sample {

@@ -21,6 +21,9 @@ class Perspective {
     if (!(near_ >= 0) || !(far_ > near_)) throw std::invalid_argument("the clip range is empty");
     if (const char* problem = fb::view_plane_problem(plane_, setup))
       throw std::invalid_argument(problem);
+    if (setup.sensor_model == FB_SENSOR_PHYSICAL)
+      throw std::invalid_argument(
+          "the physical sensor needs an aperture to expose through (use thinlens)");
   }
 
   uint32_t needs() const { return 0; }

@@ -1,0 +1,119 @@
+// Camera `thinlens`: depth of field as Blender/Cycles model it, from the photographer's numbers.
+//
+// The aperture is a disk (or a regular polygon of `aperture_blades` blades, rotated) of radius
+// f / (2N) at the camera origin; its x is divided by `aperture_ratio` (anamorphic bokeh). A ray
+// leaves a lens point and passes through the point where the pinhole ray of its raster position
+// meets the focus plane, at depth `focus_distance_m` along the view axis. This is a thin lens obeying
+// 1/f' = 1/D_obj + 1/D_img with the image distance D_img equal to the nominal focal length f
+// (so f' = f D_f / (D_f + f)): the field of view does not change with focus, as in Blender
+// (docs/camera-model.md derives it and the circle of confusion c = A |D - D_f| / D * f' / (D_f - f')).
+//
+// Sensor: SIMPLE weighs every ray 1 (Cycles' pixel values). PHYSICAL weighs it with the camera
+// equation H = L t (pi / 4N^2) cos^4(theta) (ISO 12232), times ISO/100 and the aperture's area
+// relative to the round one, theta being the chief ray's angle to the axis.
+#include <filmback/camera_projection.h>
+#include <filmback/plugin_sdk.h>
+#include <filmback/sampling.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace {
+
+using fb::Vec2f;
+
+constexpr double kPi = std::numbers::pi;
+
+// Uniform point in the regular polygon with `blades` corners on the unit circle, the first at
+// angle `rotation`: a wedge chosen by u.x, then a uniform point in its triangle.
+Vec2f sample_polygon(Vec2f u, uint32_t blades, float rotation) {
+  const float wedge_f = u.x * float(blades);
+  const uint32_t wedge = std::min(uint32_t(wedge_f), blades - 1);
+  const float ux = wedge_f - float(wedge);  // the remaining bits of u.x, uniform in [0,1)
+  const float a0 = rotation + 2.f * float(kPi) * float(wedge) / float(blades);
+  const float a1 = a0 + 2.f * float(kPi) / float(blades);
+  const Vec2f b = fb::sample_uniform_triangle({ux, u.y});  // weights of the two corners
+  return {b.y * std::cos(a0) + (1.f - b.x - b.y) * std::cos(a1),
+          b.y * std::sin(a0) + (1.f - b.x - b.y) * std::sin(a1)};
+}
+
+class ThinLens {
+ public:
+  ThinLens(const fb_value*, const fb_camera_setup& s)
+      : plane_(fb::view_plane(s)),
+        near_(s.clip_near_m),
+        far_(s.clip_far_m),
+        radius_m_(s.focal_length_mm * 1e-3 / (2 * s.fstop)),
+        focus_m_(s.focus_distance_m),
+        blades_(s.aperture_blades),
+        rotation_(float(s.aperture_rotation_rad)),
+        inverse_ratio_(float(1 / s.aperture_ratio)) {
+    if (s.projection != FB_PROJECTION_PERSPECTIVE)
+      throw std::invalid_argument("a thin lens needs a perspective projection");
+    if (!(s.fstop > 0 && std::isfinite(s.fstop)))
+      throw std::invalid_argument("a thin lens needs a finite, positive f-number");
+    if (!(s.focus_distance_m > 0)) throw std::invalid_argument("the focus distance must be positive");
+    if (s.aperture_blades == 1 || s.aperture_blades == 2)
+      throw std::invalid_argument("an aperture has 0 (round) or at least 3 blades");
+    if (!(s.aperture_ratio > 0)) throw std::invalid_argument("the aperture ratio must be positive");
+    if (!(s.focal_length_mm > 0) || !(near_ >= 0) || !(far_ > near_))
+      throw std::invalid_argument("focal length and clip range must be positive and non-empty");
+    if (const char* problem = fb::view_plane_problem(plane_, s)) throw std::invalid_argument(problem);
+    if (s.sensor_model == FB_SENSOR_PHYSICAL) {
+      const double n = double(s.aperture_blades);
+      const double area_vs_disk = (s.aperture_blades ? n * std::sin(2 * kPi / n) / (2 * kPi) : 1.0) /
+                                  s.aperture_ratio;
+      exposure_ = float(kPi / (4 * s.fstop * s.fstop) * s.exposure_time_s * s.iso / 100 * area_vs_disk);
+    }
+  }
+
+  uint32_t needs() const { return FB_CAMERA_NEEDS_LENS; }
+
+  void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
+    // The pinhole ray's direction at unit depth, and where it meets the focus plane.
+    const double x = (s.film_x - plane_.cx) / plane_.fx;
+    const double y = -(s.film_y - plane_.cy) / plane_.fy;
+    Vec2f lens = blades_ ? sample_polygon({s.lens_u, s.lens_v}, blades_, rotation_)
+                         : fb::sample_concentric_disk({s.lens_u, s.lens_v});
+    lens.x *= inverse_ratio_;
+    const double lx = lens.x * radius_m_, ly = lens.y * radius_m_;
+    // Towards the focus point (x D_f, y D_f, -D_f); at infinite focus, parallel to the chief ray.
+    const bool infinite = std::isinf(focus_m_);
+    const double dx = infinite ? x : x * focus_m_ - lx, dy = infinite ? y : y * focus_m_ - ly;
+    const double dz = infinite ? -1.0 : -focus_m_;
+    const double inv_length = 1.0 / std::sqrt(dx * dx + dy * dy + dz * dz);
+    ray.origin[0] = float(lx);
+    ray.origin[1] = float(ly);
+    ray.origin[2] = 0.f;
+    ray.direction[0] = float(dx * inv_length);
+    ray.direction[1] = float(dy * inv_length);
+    ray.direction[2] = float(dz * inv_length);
+    const double cos_axis = -dz * inv_length;  // clip by depth along the view axis
+    ray.t_min = float(near_ / cos_axis);
+    ray.t_max = float(far_ / cos_axis);
+    if (exposure_ > 0.f) {
+      const float cos2 = float(1.0 / (x * x + y * y + 1.0));  // the chief ray's cos^2(theta)
+      ray.weight = exposure_ * cos2 * cos2;
+    } else {
+      ray.weight = 1.f;
+    }
+  }
+
+ private:
+  fb::ViewPlane plane_;
+  double near_, far_;
+  double radius_m_, focus_m_;
+  uint32_t blades_;
+  float rotation_, inverse_ratio_;
+  float exposure_ = 0.f;  // 0: the simple sensor
+};
+
+constexpr fb_camera_api kApi = fb::camera_api<ThinLens>();
+const fb_plugin kPlugin = {
+    FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA, "thinlens", "1.0.0",
+    "Thin lens with Blender's f-number, focus distance, blades, rotation and anamorphic ratio",
+    nullptr, 0, &kApi};
+
+}  // namespace
+
+extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
