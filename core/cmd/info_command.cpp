@@ -22,9 +22,10 @@ std::string point(Vec3d p) {
   return format("(%.6g, %.6g, %.6g)", p.x, p.y, p.z);
 }
 
-void print_camera(const SceneCamera& camera) {
+void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
   const PhysicalCamera& c = camera.physical;
-  const auto [width, height] = default_resolution(camera);
+  const auto [width, height] =
+      shot.width_px ? std::pair{*shot.width_px, *shot.height_px} : default_resolution(camera);
   const CameraQuantities q = describe_camera(c, width, height);
   const bool ortho = c.projection == FB_PROJECTION_ORTHOGRAPHIC;
   std::cout << "  " << camera.name << "  [" << camera.source << "]  "
@@ -48,6 +49,18 @@ void print_camera(const SceneCamera& camera) {
         "43.27 mm)\n",
         q.equivalent_35mm_width_mm, q.equivalent_35mm_diagonal_mm);
   }
+  if (c.has_aperture())
+    std::cout << format(
+        "    aperture f/%.4g (%.4g mm across), focused at %s, %s, ratio %.4g\n", c.fstop,
+        c.focal_length_mm / c.fstop,
+        std::isinf(c.focus_distance_m) ? "infinity" : format("%.6g m", c.focus_distance_m).c_str(),
+        c.aperture_blades ? format("%u blades rotated %.4g deg", c.aperture_blades,
+                                   c.aperture_rotation_rad * 180 / M_PI)
+                                .c_str()
+                          : "round",
+        c.aperture_ratio);
+  else if (!ortho)
+    std::cout << "    pinhole (no aperture: everything in focus)\n";
   std::cout << format(
       "    clip %.6g m to %s, at %s m\n", c.clip_near_m,
       std::isinf(c.clip_far_m) ? "infinity" : format("%.6g m", c.clip_far_m).c_str(),
@@ -79,7 +92,7 @@ int run_info(const std::filesystem::path& file) {
                     : "")
             << '\n';
   for (const SceneCamera& camera : scene.cameras)
-    print_camera(camera);
+    print_camera(camera, scene.settings);
 
   std::cout << "lights (" << scene.lights.size() << ")\n";
   for (const Light& light : scene.lights) {

@@ -214,7 +214,7 @@ RenderResult RenderJob::run() const {
 }
 
 ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
-  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_);
+  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_, 1.0, sensor_);
   const Transform camera_from_world = camera_.world_from_camera.inverse();
   ImageMetadata m;
   // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera); ours, glTF's,
@@ -229,6 +229,16 @@ ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
                                    {"filmback/shift_x", float(setup.shift_x)},
                                    {"filmback/shift_y", float(setup.shift_y)},
                                    {"filmback/render_seconds", float(stats.seconds)}});
+  // OpenEXR's standard lens and exposure attributes (ImfStandardAttributes.h: focus in scene units,
+  // aperture as the f-number, expTime in seconds, isoSpeed), as OIIO names them.
+  if (camera_.physical.has_aperture()) {
+    m.floats.push_back({"FNumber", float(setup.fstop)});
+    if (std::isfinite(setup.focus_distance_m))
+      m.floats.push_back({"focus", float(setup.focus_distance_m)});
+  }
+  if (setup.sensor_model == FB_SENSOR_PHYSICAL)
+    m.floats.insert(m.floats.end(), {{"ExposureTime", float(setup.exposure_time_s)},
+                                     {"isoSpeed", float(setup.iso)}});
   m.ints = {
       {"filmback/samples_per_pixel", int(spp_)},
       {"filmback/dropped_samples", int(std::min<uint64_t>(stats.dropped_samples, INT32_MAX))}};

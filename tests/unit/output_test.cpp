@@ -36,6 +36,8 @@ TEST(ImageOutput, ExrCarriesTheCameraAsOpenExrStandardAttributes) {
   camera.name = "shot";
   camera.physical.focal_length_mm = 35;
   camera.physical.shift_x = 0.05;
+  camera.physical.fstop = 2.8;
+  camera.physical.focus_distance_m = 4;
   camera.world_from_camera =
       Transform::translate({3, 1, 12}) * Transform::rotate({0.1, 0.2, 0, 0.97});
   scene.cameras.push_back(camera);
@@ -56,6 +58,8 @@ TEST(ImageOutput, ExrCarriesTheCameraAsOpenExrStandardAttributes) {
   EXPECT_EQ(spec.get_string_attribute("filmback/camera"), "shot");
   EXPECT_EQ(spec.get_int_attribute("filmback/samples_per_pixel"), 1);
   EXPECT_FLOAT_EQ(spec.get_float_attribute("filmback/focal_length_mm"), 35.f);
+  EXPECT_FLOAT_EQ(spec.get_float_attribute("FNumber"), 2.8f);  // OpenEXR "aperture"
+  EXPECT_FLOAT_EQ(spec.get_float_attribute("focus"), 4.f);
 
   // A world point in front of the camera: camera space by the inverse placement, raster by
   // Blender's view plane, NDC = raster / size with (0,0) at the top-left corner.
