@@ -1,7 +1,9 @@
 // The scene's triangles in render space (world translated so the camera is at the origin, then
 // narrowed to float), with an Embree 3 BVH over them. Instances are flattened: every triangle
 // is stored once per instance, which keeps traversal single-level and fastest
-// (docs/architecture.md).
+// (docs/architecture.md). An instance that moves while the shutter is open is stored at several
+// evenly spaced times and intersected at the ray's time through Embree's vertex motion blur;
+// everything else is stored once, at the frame's time (docs/camera-model.md, "Time and motion").
 #pragma once
 
 #include <memory>
@@ -20,11 +22,22 @@ struct EmissiveTriangle {
   Vec3f normal;  // unit, front side (counter-clockwise winding)
   float area;
   uint32_t material;
+  // Moving during the shutter: where it is depends on the ray's time, so light sampling leaves it
+  // to BSDF sampling (p0, p1, p2 hold its pose at shutter open).
+  bool moving = false;
+};
+
+// How far a moving vertex may stray from its true path between two motion steps: absolute_m
+// plus per_metre times its distance from the camera (a fraction of a pixel's footprint).
+struct MotionTolerance {
+  double absolute_m = 0;
+  double per_metre = 0;
 };
 
 class RenderGeometry {
  public:
-  RenderGeometry(const Scene& scene, const Transform& render_from_world);
+  RenderGeometry(const Scene& scene, const Transform& render_from_world, const ShotTimes& times,
+                 const MotionTolerance& tolerance);
   ~RenderGeometry();
   RenderGeometry(const RenderGeometry&) = delete;
   RenderGeometry& operator=(const RenderGeometry&) = delete;
@@ -38,17 +51,28 @@ class RenderGeometry {
   Vec3f bounds_centre() const { return centre_; }
   float bounds_radius() const { return radius_; }
   size_t triangle_count() const { return triangle_count_; }
+  size_t moving_instance_count() const { return moving_instances_; }
+  uint32_t most_motion_steps() const { return most_motion_steps_; }  // 1 when nothing moves
 
  private:
   struct Mesh;
-  // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`.
-  static void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
+  // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`, at
+  // Embree's normalised time.
+  static void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
                        fb_hit& hit);
+  // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
+  float embree_time(float time_s) const;
+  Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
+                  const std::vector<Transform>& render_from_object_steps);
   std::vector<Mesh> meshes_;  // indexed by Embree geometry ID
   std::vector<EmissiveTriangle> emitters_;
+  Bounds3d bounds_;  // of every vertex at every motion step
   Vec3f centre_;
   float radius_ = 0.f;
   size_t triangle_count_ = 0;
+  size_t moving_instances_ = 0;
+  uint32_t most_motion_steps_ = 1;
+  float open_s_ = 0.f, inverse_duration_ = 0.f;  // the shutter relative to the frame's time
   struct Embree;
   std::unique_ptr<Embree> embree_;
 };

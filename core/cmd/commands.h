@@ -15,6 +15,8 @@ struct RenderCommand {
   std::vector<std::filesystem::path> outputs;
   std::string resolution;  // "WxH"
   std::string background;  // "r,g,b" or one grey value
+  // How samples become pixels: "importance" or "splat" (docs/filters.md).
+  std::string reconstruction = "importance";
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
   std::string shutter, frame, fps, sensor_model, iso;

@@ -27,6 +27,11 @@ int main(int argc, char** argv) {
       "camera plugin NAME[:k=v,...] (default: perspective or orthographic, as the shot's camera)");
   render_cmd->add_option("--filter", render.options.filter,
                          "pixel filter NAME[:k=v,...] (default gaussian)");
+  render_cmd
+      ->add_option("--reconstruction", render.reconstruction,
+                   "importance: each sample in its own pixel, weighted h/pdf; splat: spread to "
+                   "every pixel within the filter radius (default importance; docs/filters.md)")
+      ->check(CLI::IsMember({"importance", "splat"}));
   render_cmd->add_option("--integrator", render.options.integrator,
                          "integrator NAME[:k=v,...] (default path)");
   render_cmd->add_option("--background", render.background,
@@ -45,8 +50,13 @@ int main(int argc, char** argv) {
                            "lens shift X,Y as fractions of the fitted image side (Blender's)");
   camera_group->add_option("--shutter", render.shutter,
                            "shutter OPEN,CLOSE in s relative to the frame's time (default closed)");
-  camera_group->add_option("--frame", render.frame, "frame to render (time = frame / fps)");
-  camera_group->add_option("--fps", render.fps, "frames per second of the animation");
+  camera_group->add_option("--shutter-curve", render.options.shutter_curve,
+                           "how the shutter weighs time: box (default), trapezoid[:ramp=R] or "
+                           "table:values=[w0,w1,...]");
+  camera_group->add_option("--frame", render.frame,
+                           "frame to render, time = frame / fps (default: the scene's, else 0)");
+  camera_group->add_option("--fps", render.fps,
+                           "frames per second of the animation (default: the scene's, else 24)");
   camera_group->add_option("--sensor-model", render.sensor_model,
                            "simple (pixel = radiance, as Cycles; default) or physical (exposure)");
   camera_group->add_option("--iso", render.iso, "physical sensor: ISO speed (default 100)");

@@ -145,6 +145,7 @@ int run_render(RenderCommand& c) {
   if (!c.resolution.empty()) parse_resolution(c.resolution, c.options);
   parse_physical(c, c.options);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
+  if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
   c.options.show_progress = !c.quiet;
 
   Diagnostics diagnostics;

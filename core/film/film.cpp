@@ -36,6 +36,14 @@ bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
   return true;
 }
 
+void Film::add_sums(uint32_t x, uint32_t y, const double* sums, double weight) {
+  const size_t n = channels_.size();
+  const size_t pixel = size_t(y) * width_ + x;
+  for (size_t c = 0; c < n; ++c)
+    sums_[pixel * n + c] += sums[c];
+  weights_[pixel] += weight;
+}
+
 Image Film::resolve() const {
   const size_t n = channels_.size();
   Image image{width_, height_, channels_, std::vector<float>(size_t(width_) * height_ * n)};

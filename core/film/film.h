@@ -2,6 +2,7 @@
 // sum(w_i v_i) / sum(w_i), the estimator of the measurement equation's filter integral when the
 // positions are drawn from the filter (pbrt 4e §5.4.3). Each sample lands in its own pixel, so
 // tiles never share a pixel and the sum order is fixed: bit-identical images for any thread count.
+// Splatting forms its sums per tile (splat_tiles.h) and adds them here in a fixed order.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,15 @@
 
 namespace fb {
 
+// How samples become pixels (docs/filters.md): kImportance draws each sample's offset from the
+// filter and keeps it in its own pixel with weight h / pdf (this file); kSplat draws it uniformly
+// over the pixel and spreads it to every pixel within the filter's radius with weight h
+// (core/film/splat_tiles.h). Both resolve to a weighted mean.
+enum class Reconstruction { kImportance, kSplat };
+inline const char* reconstruction_name(Reconstruction r) {
+  return r == Reconstruction::kSplat ? "splat" : "importance";  // as typed: --reconstruction
+}
+
 class Film {
  public:
   Film(uint32_t width, uint32_t height, std::vector<std::string> channels);
@@ -20,6 +30,8 @@ class Film {
   // Adds one sample to pixel (x, y). A sample with any non-finite value is dropped (returns
   // false) so that no NaN or Inf ever reaches the image; the caller counts them.
   bool add(uint32_t x, uint32_t y, const float* values, float weight);
+  // Adds sums formed elsewhere (a splat tile's sum w v per channel, and sum w) to pixel (x, y).
+  void add_sums(uint32_t x, uint32_t y, const double* sums, double weight);
   Image resolve() const;
 
   uint32_t width() const { return width_; }

@@ -130,6 +130,10 @@ Transform Transform::without_scale_and_translation() const {
   return t;
 }
 
+Transform Transform::without_scale() const {
+  return translate(translation()) * without_scale_and_translation();
+}
+
 double Transform::determinant3x3() const {
   return m_[0][0] * (m_[1][1] * m_[2][2] - m_[1][2] * m_[2][1]) -
          m_[0][1] * (m_[1][0] * m_[2][2] - m_[1][2] * m_[2][0]) +

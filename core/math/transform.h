@@ -33,6 +33,7 @@ class Transform {
   Vec3d translation() const { return {m_[0][3], m_[1][3], m_[2][3]}; }
   // The rotation part with per-axis scale removed (Blender ignores camera scale when projecting).
   Transform without_scale_and_translation() const;
+  Transform without_scale() const;  // rotation and translation: how cameras and lights are placed
   double determinant3x3() const;
   bool is_finite() const;
 

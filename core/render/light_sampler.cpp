@@ -24,12 +24,12 @@ float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
 }  // namespace
 
 LightSampler::LightSampler(const Scene& scene, const Transform& render_from_world,
-                           const RenderGeometry& geometry)
+                           const RenderGeometry& geometry, double frame_s)
     : emitters_(geometry.emitters()), materials_(scene.materials) {
   std::vector<double> power;
   const double scene_radius = std::max(geometry.bounds_radius(), 1e-3f);
   for (const Light& light : scene.lights) {
-    const Transform render_from_light = render_from_world * light.world_from_light;
+    const Transform render_from_light = render_from_world * scene.world_from_light(light, frame_s);
     Punctual p{light.type,
                Vec3f(render_from_light.point({0, 0, 0})),
                Vec3f(normalize(render_from_light.vector({0, 0, -1}))),
@@ -53,7 +53,10 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
   }
   for (const EmissiveTriangle& e : emitters_) {
     const Material& m = materials_[e.material];
-    power.push_back(kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
+    // Zero power: never chosen, so its light_pdf is 0 and BSDF sampling alone (MIS weight 1)
+    // finds it where the ray's time put it.
+    power.push_back(e.moving ? 0.0
+                             : kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
   }
   build_selection(power);
 }

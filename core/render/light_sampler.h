@@ -15,8 +15,10 @@ namespace fb {
 
 class LightSampler {
  public:
+  // Punctual lights are placed at `frame_s` on the scene's timeline (they do not move within the
+  // shutter); emissive triangles that move are left to BSDF sampling (EmissiveTriangle::moving).
   LightSampler(const Scene& scene, const Transform& render_from_world,
-               const RenderGeometry& geometry);
+               const RenderGeometry& geometry, double frame_s);
   bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
   float pdf(Vec3f position, const fb_hit& emitter_hit) const;
   size_t punctual_light_count() const { return punctual_.size(); }

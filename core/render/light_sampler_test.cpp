@@ -22,8 +22,8 @@ TEST(LightSampler, ChoiceFrequenciesEqualTheirProbabilitiesOnTheSampleGrid) {
     Scene scene;
     const Light bright = point_light(1e9, {0, 10, 0}), dim = point_light(1e-3, {0, 1, 0});
     scene.lights = dim_first ? std::vector{dim, bright} : std::vector{bright, dim};
-    const RenderGeometry geometry(scene, Transform());
-    const LightSampler sampler(scene, Transform(), geometry);
+    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+    const LightSampler sampler(scene, Transform(), geometry, 0.0);
     std::map<float, std::pair<uint32_t, float>> chosen;  // by distance: times chosen, pdf
     constexpr uint32_t kGrid = 1u << 24;
     for (uint32_t k = 0; k < kGrid; ++k) {
@@ -45,8 +45,8 @@ TEST(LightSampler, ChoiceFrequenciesEqualTheirProbabilitiesOnTheSampleGrid) {
 TEST(LightSampler, LightsWithoutPowerAreNeverChosen) {
   Scene scene;
   scene.lights = {point_light(0, {0, 1, 0}), point_light(2, {0, 2, 0})};
-  const RenderGeometry geometry(scene, Transform());
-  const LightSampler sampler(scene, Transform(), geometry);
+  const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+  const LightSampler sampler(scene, Transform(), geometry, 0.0);
   for (float u0 : {0.f, 0.25f, 0.999f}) {
     const float u[3] = {u0, 0, 0};
     fb_light_sample s;

@@ -11,6 +11,8 @@
 #include "core/plugin/instances.h"
 #include "core/plugin/params.h"
 #include "core/render/light_sampler.h"
+#include "core/render/motion.h"
+#include "core/render/shutter.h"
 #include "core/render/trace_context.h"
 #include "core/scene/default_camera.h"
 #include "core/util/error.h"
@@ -25,17 +27,30 @@ struct RenderJob::Plugins {
   std::string filter_text, integrator_text;
   std::unique_ptr<RenderGeometry> geometry;
   std::unique_ptr<LightSampler> lights;
+  ShutterCurve shutter_curve;
+  TimeSampling time;
+  std::unique_ptr<CameraPath> camera_path;
   std::vector<fb_material> materials;
   fb_scene scene{};
 };
 
 namespace {
 
-SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name) {
+// The named camera (else the first, else one framing the scene), placed where it is at frame_s.
+SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name,
+                          double frame_s) {
+  const auto posed = [&](SceneCamera camera) {
+    camera.world_from_camera = scene.world_from_camera(camera, frame_s);
+    if (!camera.world_from_camera.is_finite())  // an animated scale of 0, say
+      throw InputError(scene.file.string() + ": camera '" + camera.name +
+                       "' at t = " + number_text(frame_s) + " s: its transform is degenerate");
+    return camera;
+  };
   if (!name)
-    return scene.cameras.empty() ? frame_bounds(scene.world_bounds()) : scene.cameras.front();
+    return scene.cameras.empty() ? frame_bounds(scene.world_bounds(frame_s))
+                                 : posed(scene.cameras.front());
   for (const SceneCamera& camera : scene.cameras)
-    if (camera.name == *name) return camera;
+    if (camera.name == *name) return posed(camera);
   std::string known;
   for (const SceneCamera& camera : scene.cameras)
     known += (known.empty() ? "" : ", ") + camera.name;
@@ -97,6 +112,16 @@ std::string camera_model_for(const PhysicalCamera& camera, const SensorResponse&
   return "perspective";
 }
 
+// A moving vertex may stray a twentieth of a pixel from its true path between motion steps: the
+// pixel's footprint per metre of distance (perspective) or in metres (orthographic).
+MotionTolerance motion_tolerance(const fb_camera_setup& setup) {
+  constexpr double kPixels = 0.05;
+  const ViewPlane v = view_plane(setup);
+  const double footprint = kPixels / std::max(v.fx, v.fy);
+  if (setup.projection == FB_PROJECTION_ORTHOGRAPHIC) return {footprint, 0};
+  return {0, footprint};
+}
+
 std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
   if (!(needs & FB_CAMERA_NEEDS_LENS))
     return camera.projection == FB_PROJECTION_ORTHOGRAPHIC
@@ -130,7 +155,12 @@ void CameraOverrides::apply(PhysicalCamera& camera) const {
 
 RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader)
     : scene_(scene), options_(options), plugins_(std::make_unique<Plugins>()) {
-  camera_ = choose_camera(scene, options.camera);
+  // The frame's time on the scene's timeline, t = frame / fps (glTF's, as Blender writes it): each
+  // from the command line, else the scene's extras, else frame 0 at kDefaultFps.
+  frame_ = options.frame.value_or(scene.settings.frame.value_or(0.0));
+  fps_ = options.fps.value_or(scene.settings.fps.value_or(kDefaultFps));
+  const double frame_s = frame_ / fps_;
+  camera_ = choose_camera(scene, options.camera, frame_s);
   options.camera_overrides.apply(camera_.physical);
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
@@ -144,8 +174,11 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
   const double open_s = shutter_s_.y - shutter_s_.x;
   sensor_ = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
+  times_ = {frame_s, frame_s + shutter_s_.x, frame_s + shutter_s_.y};
 
   Plugins& p = *plugins_;
+  if (options.shutter_curve)
+    p.shutter_curve = ShutterCurve::parse(*options.shutter_curve, "--shutter-curve");
   p.filter_text = options.filter.value_or(kDefaultFilter);
   p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
   const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_, 1.0, sensor_);
@@ -159,8 +192,10 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 
   // Render space: world translated so the camera is at the origin; only this is narrowed to float.
   p.render_from_world = Transform::translate(-camera_.world_from_camera.translation());
-  p.geometry = std::make_unique<RenderGeometry>(scene, p.render_from_world);
-  p.lights = std::make_unique<LightSampler>(scene, p.render_from_world, *p.geometry);
+  p.geometry =
+      std::make_unique<RenderGeometry>(scene, p.render_from_world, times_, motion_tolerance(setup));
+  p.lights = std::make_unique<LightSampler>(scene, p.render_from_world, *p.geometry, frame_s);
+  choose_time_samples(scene);
   for (const Material& m : scene.materials) {
     fb_material fm{};
     m.base_color.store(fm.base_color);
@@ -181,12 +216,49 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 
 RenderJob::~RenderJob() = default;
 
+// Time samples only when something moves while the shutter is open (docs/camera-model.md), and a
+// camera path only when the camera moves; time_reason_ says which for the plan line.
+void RenderJob::choose_time_samples(const Scene& scene) {
+  Plugins& p = *plugins_;
+  std::ostringstream out;
+  out << "frame " << number_text(frame_) << " at " << number_text(fps_)
+      << " fps (t = " << number_text(times_.frame_s) << " s), ";
+  if (!times_.shutter_open()) {
+    out << "shutter closed: no time samples";
+    time_reason_ = out.str();
+    return;
+  }
+  const bool camera_moves = scene.moves(camera_.node_index, times_.open_s, times_.close_s);
+  const size_t moving = p.geometry->moving_instance_count();
+  const bool camera_needs_time = p.camera->needs() & FB_CAMERA_NEEDS_TIME;
+  out << "shutter open " << number_text(shutter_s_.y - shutter_s_.x) << " s ("
+      << p.shutter_curve.description() << ")";
+  if (!camera_moves && moving == 0 && !camera_needs_time) {
+    out << ", nothing moves in it: no time samples";
+    time_reason_ = out.str();
+    return;
+  }
+  p.time = {&p.shutter_curve, shutter_s_.x, shutter_s_.y};
+  out << ": time samples for";
+  if (moving > 0)
+    out << " " << moving << " moving instance" << (moving > 1 ? "s" : "") << " (up to "
+        << p.geometry->most_motion_steps() << " motion steps)";
+  if (camera_moves) {
+    p.camera_path =
+        std::make_unique<CameraPath>(scene, camera_, p.render_from_world, times_.frame_s);
+    out << (moving > 0 ? "," : "") << " the moving camera";
+  }
+  if (camera_needs_time) out << (moving > 0 || camera_moves ? "," : "") << " the camera plugin";
+  time_reason_ = out.str();
+}
+
 std::string RenderJob::plan() const {
   std::ostringstream out;
   out << "filmback: camera '" << camera_.name << "' (" << camera_.source << ") through "
       << plugins_->camera->name() << " (" << camera_reason_ << "), " << width_ << "x" << height_
-      << ", " << spp_ << " spp, filter " << plugins_->filter_text << ", integrator "
-      << plugins_->integrator_text << "; static scene: no time samples; "
+      << ", " << spp_ << " spp, filter " << plugins_->filter_text << " ("
+      << reconstruction_name(options_.reconstruction) << "), integrator "
+      << plugins_->integrator_text << "; " << time_reason_ << "; "
       << plugins_->geometry->triangle_count() << " triangles, "
       << plugins_->lights->punctual_light_count() << " punctual lights, "
       << plugins_->lights->emissive_triangle_count() << " emissive triangles";
@@ -196,18 +268,21 @@ std::string RenderJob::plan() const {
 RenderResult RenderJob::run() const {
   const Plugins& p = *plugins_;
   Film film(width_, height_, p.integrator->channels());
-  const RenderInputs inputs{*p.camera,
-                            *p.filter,
-                            *p.integrator,
-                            *p.geometry,
-                            *p.lights,
-                            p.scene,
-                            camera_.world_from_camera.without_scale_and_translation(),
-                            spp_,
-                            options_.seed};
+  RenderInputs inputs{*p.camera,
+                      *p.filter,
+                      *p.integrator,
+                      *p.geometry,
+                      *p.lights,
+                      p.scene,
+                      camera_.world_from_camera.without_scale_and_translation(),
+                      spp_,
+                      options_.seed,
+                      options_.reconstruction};
+  inputs.time = p.time;
+  inputs.camera_path = p.camera_path.get();
   std::optional<Progress> progress;
   if (options_.show_progress)
-    progress.emplace(tile_count(width_, height_), std::cerr, stderr_is_terminal());
+    progress.emplace(tile_count(inputs, width_, height_), std::cerr, stderr_is_terminal());
   RenderStats stats = render_image(inputs, film, progress ? &*progress : nullptr);
   progress.reset();
   return {film.resolve(), stats};
@@ -248,6 +323,7 @@ ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
                {"filmback/sensor_fit", sensor_fit_name(setup.sensor_fit)},
                {"filmback/camera_model", plugins_->camera->name()},
                {"filmback/filter", plugins_->filter_text},
+               {"filmback/reconstruction", reconstruction_name(options_.reconstruction)},
                {"filmback/integrator", plugins_->integrator_text}};
   return m;
 }

@@ -38,11 +38,13 @@ struct RenderOptions {
   std::optional<std::string> integrator;    // "NAME[:k=v,...]"
   std::optional<Rgb> background;
   CameraOverrides camera_overrides;
-  std::optional<Vec2d> shutter_s;  // open, close, relative to the frame's time
+  std::optional<Vec2d> shutter_s;            // open, close, relative to the frame's time
+  std::optional<std::string> shutter_curve;  // "box", "trapezoid[:ramp=R]", "table:values=[...]"
   std::optional<double> frame, fps;
   uint32_t sensor_model = FB_SENSOR_SIMPLE;
   double iso = 100.0;
   uint64_t seed = 0;
+  Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   bool show_progress = true;
 };
 
@@ -51,6 +53,7 @@ constexpr uint32_t kDefaultLongSidePx = 1280;
 constexpr uint32_t kDefaultSamplesPerPixel = 64;
 constexpr const char* kDefaultFilter = "gaussian";
 constexpr const char* kDefaultIntegrator = "path";
+constexpr double kDefaultFps = 24;  // Blender's; matters only when the frame is not 0
 
 // The image size a render gets without --res: the long side kDefaultLongSidePx at the shot's
 // intended aspect (16:9 when the scene does not say).
@@ -77,12 +80,16 @@ class RenderJob {
 
  private:
   struct Plugins;
+  void choose_time_samples(const Scene& scene);  // sets time_reason_ and the time plugins_ need
   const Scene& scene_;
   RenderOptions options_;
   SceneCamera camera_;
   uint32_t width_ = 0, height_ = 0, spp_ = 0;
   std::string camera_reason_;
   Vec2d shutter_s_;  // open, close, relative to the frame's time
+  double frame_ = 0, fps_ = kDefaultFps;
+  ShotTimes times_;  // the shutter and the frame's time on the scene's timeline, s
+  std::string time_reason_;
   SensorResponse sensor_;
   std::unique_ptr<Plugins> plugins_;
 };

@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <optional>
 #include <vector>
 
+#include "core/film/splat_tiles.h"
 #include "core/render/sampler.h"
 #include "core/render/trace_context.h"
 
@@ -59,9 +61,12 @@ struct TileWork {
 
 class TileRenderer {
  public:
-  TileRenderer(const RenderInputs& in, Film& film)
+  TileRenderer(const RenderInputs& in, Film& film, SplatTiles* splats)
       : in_(in),
         film_(film),
+        splats_(splats),
+        margin_x_(splats ? float(splats->margin(0)) : 0.f),
+        margin_y_(splats ? float(splats->margin(1)) : 0.f),
         sampler_(in.seed),
         rotation_(in.render_from_camera),
         channels_(in.integrator.channels().size()),
@@ -83,6 +88,7 @@ class TileRenderer {
     context.lights = &in_.lights;
     context.sampler = &sampler_;
     context.rays_traced = 0;
+    SplatTiles::Tile* splat_tile = splats_ ? &splats_->tile(x0, y0) : nullptr;
 
     for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
       for (size_t i = 0; i < n; ++i) {
@@ -91,23 +97,37 @@ class TileRenderer {
         w.filter_u[2 * i + 1] = sampler_.get({key.pixel_x, key.pixel_y, s, kFilterDimension + 1});
         context.paths[i] = {key.pixel_x, key.pixel_y, s, kIntegratorDimension};
       }
-      in_.filter.sample(w.filter_u, w.filter_samples.data());
+      // Reconstruction (docs/filters.md): importance sampling draws the offset from the filter
+      // and weights the sample h / pdf; splatting draws it uniformly over the pixel and applies h
+      // when it spreads the sample to its neighbours (core/film/splat_tiles.h).
+      if (splat_tile) {
+        for (size_t i = 0; i < n; ++i)
+          w.filter_samples[i] = {w.filter_u[2 * i] - 0.5f, w.filter_u[2 * i + 1] - 0.5f, 1.f};
+      } else {
+        in_.filter.sample(w.filter_u, w.filter_samples.data());
+      }
       for (size_t i = 0; i < n; ++i) {
         fb_camera_sample& c = w.camera_samples[i];
         c = {};
-        c.film_x = float(w.px[i]) + 0.5f + w.filter_samples[i].x;
-        c.film_y = float(w.py[i]) + 0.5f + w.filter_samples[i].y;
+        c.film_x = float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x;
+        c.film_y = float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y;
         if (needs_ & FB_CAMERA_NEEDS_LENS) {
           c.lens_u = sampler_.get({w.px[i], w.py[i], s, kLensDimension});
           c.lens_v = sampler_.get({w.px[i], w.py[i], s, kLensDimension + 1});
         }
+        if (in_.time.curve)  // the shutter integral: only when something moves while it is open
+          c.time_s = in_.time.time_s(sampler_.get({w.px[i], w.py[i], s, kTimeDimension}));
       }
       in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
       for (size_t i = 0; i < n; ++i) {
         const fb_camera_ray& c = w.camera_rays[i];
         fb_ray& r = w.rays[i];
-        rotation_.apply(c.origin, r.origin);  // the camera sits at the render-space origin
-        rotation_.apply(c.direction, r.direction);
+        if (in_.camera_path) {
+          in_.camera_path->place(c, w.camera_samples[i].time_s, r);
+        } else {
+          rotation_.apply(c.origin, r.origin);  // the camera sits at the render-space origin
+          rotation_.apply(c.direction, r.direction);
+        }
         r.t_min = c.t_min;
         r.t_max = c.weight > 0.f ? c.t_max : -1.f;  // an empty interval: the integrator sees a miss
         r.time_s = w.camera_samples[i].time_s;
@@ -122,7 +142,10 @@ class TileRenderer {
         } else {
           std::fill_n(v, channels_, 0.f);
         }
-        if (!film_.add(w.px[i], w.py[i], v, w.filter_samples[i].weight)) ++stats.dropped_samples;
+        const fb_camera_sample& at = w.camera_samples[i];
+        const bool kept = splat_tile ? splats_->splat(*splat_tile, at.film_x, at.film_y, v)
+                                     : film_.add(w.px[i], w.py[i], v, w.filter_samples[i].weight);
+        if (!kept) ++stats.dropped_samples;
       }
       stats.samples += n;
     }
@@ -132,22 +155,40 @@ class TileRenderer {
  private:
   const RenderInputs& in_;
   Film& film_;
+  SplatTiles* splats_;         // null: importance sampling, every sample in its own pixel
+  float margin_x_, margin_y_;  // of the sample domain around the film (splatting only)
   IndependentSampler sampler_;
   Rotation rotation_;
   size_t channels_;
   uint32_t needs_;
 };
 
+// Pixel (x, y) of the sample domain is film pixel (x - margin, y - margin): splatting draws
+// samples a filter's reach beyond the film (core/film/splat_tiles.h); importance sampling does not.
+Vec2<uint32_t> sample_domain(const RenderInputs& inputs, uint32_t width, uint32_t height) {
+  if (inputs.reconstruction != Reconstruction::kSplat) return {width, height};
+  float radius[2];
+  inputs.filter.radius(radius);
+  return {width + 2 * SplatTiles::reach(radius[0]), height + 2 * SplatTiles::reach(radius[1])};
+}
+
 }  // namespace
 
-uint64_t tile_count(uint32_t width, uint32_t height) {
-  return uint64_t((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
+uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height) {
+  const Vec2<uint32_t> domain = sample_domain(inputs, width, height);
+  return uint64_t((domain.x + kTileSize - 1) / kTileSize) *
+         ((domain.y + kTileSize - 1) / kTileSize);
 }
 
 RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progress) {
-  const uint32_t tiles_x = (film.width() + kTileSize - 1) / kTileSize;
-  const uint64_t tiles = tile_count(film.width(), film.height());
-  const TileRenderer renderer(inputs, film);
+  std::optional<SplatTiles> splats;
+  if (inputs.reconstruction == Reconstruction::kSplat)
+    splats.emplace(film.width(), film.height(), kTileSize, inputs.integrator.channels().size(),
+                   inputs.filter);
+  const Vec2<uint32_t> domain = sample_domain(inputs, film.width(), film.height());
+  const uint32_t tiles_x = (domain.x + kTileSize - 1) / kTileSize;
+  const uint64_t tiles = tile_count(inputs, film.width(), film.height());
+  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr);
   tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
   const auto start = std::chrono::steady_clock::now();
@@ -161,8 +202,8 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progr
           const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize;
           const uint32_t y0 = uint32_t(tile / tiles_x) * kTileSize;
           RenderStats local;
-          renderer.render_tile(x0, y0, std::min(x0 + kTileSize, film.width()),
-                               std::min(y0 + kTileSize, film.height()), work.local(), local);
+          renderer.render_tile(x0, y0, std::min(x0 + kTileSize, domain.x),
+                               std::min(y0 + kTileSize, domain.y), work.local(), local);
           samples += local.samples;
           rays += local.rays;
           dropped += local.dropped_samples;
@@ -170,6 +211,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progr
         }
       },
       tbb::simple_partitioner());
+  if (splats) splats->add_to(film);
   RenderStats stats;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats.samples = samples;

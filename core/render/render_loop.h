@@ -13,6 +13,7 @@
 #include "core/math/transform.h"
 #include "core/plugin/instances.h"
 #include "core/render/light_sampler.h"
+#include "core/render/motion.h"
 #include "core/render/progress.h"
 
 namespace fb {
@@ -27,6 +28,11 @@ struct RenderInputs {
   Transform render_from_camera;  // a rotation: render space is centred on the camera
   uint32_t samples_per_pixel;
   uint64_t seed;
+  Reconstruction reconstruction = Reconstruction::kImportance;
+  // Time (docs/camera-model.md, "Time and motion"): drawn only when something moves while the
+  // shutter is open; a moving camera places each ray at its own time.
+  TimeSampling time = {};
+  const CameraPath* camera_path = nullptr;
 };
 
 struct RenderStats {
@@ -41,6 +47,7 @@ constexpr uint32_t kTileSize = 16;
 // Renders into `film` on the calling thread's TBB arena; `progress` counts tiles.
 RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progress);
 
-uint64_t tile_count(uint32_t width, uint32_t height);
+// Tiles of the sample domain: the film, and around it the filter's reach when splatting.
+uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height);
 
 }  // namespace fb

@@ -9,6 +9,7 @@
 #include <filmback/plugin_abi.h>
 
 #include "core/math/transform.h"
+#include "core/scene/animation.h"
 
 namespace fb {
 
@@ -42,7 +43,8 @@ struct SceneCamera {
   std::string name;    // the glTF camera's name, else its node's name
   std::string source;  // where it came from: "nodes[3] (cameras[0])"
   PhysicalCamera physical;
-  Transform world_from_camera;            // scale removed: cameras look down -Z, +Y up
+  Transform world_from_camera;            // rest pose, scale removed: looks down -Z, +Y up
+  uint32_t node_index = kNoNode;          // in Scene::hierarchy, whose animation may move it
   std::optional<double> intended_aspect;  // width / height the shot was made for
 };
 

@@ -9,12 +9,44 @@ size_t Scene::triangle_count() const {
   return count;
 }
 
-Bounds3d Scene::world_bounds() const {
+Bounds3d Scene::world_bounds(double time_s) const {
   Bounds3d bounds;
-  for (const MeshInstance& instance : instances)
+  for (const MeshInstance& instance : instances) {
+    const Transform world_from_object = this->world_from_object(instance, time_s);
     for (const Vec3f& p : meshes[instance.mesh].positions)
-      bounds.extend(instance.world_from_object.point(Vec3d(p)));
+      bounds.extend(world_from_object.point(Vec3d(p)));
+  }
   return bounds;
+}
+
+bool Scene::moves(uint32_t node_index, double t0, double t1) const {
+  return node_index != kNoNode && hierarchy.moves(node_index, t0, t1);
+}
+
+namespace {
+
+bool animated(const NodeHierarchy& hierarchy, uint32_t node_index) {
+  return node_index != kNoNode && hierarchy.nodes[node_index].animated;
+}
+
+}  // namespace
+
+Transform Scene::world_from_object(const MeshInstance& instance, double time_s) const {
+  return animated(hierarchy, instance.node_index)
+             ? hierarchy.world_from_node(instance.node_index, time_s)
+             : instance.world_from_object;
+}
+
+Transform Scene::world_from_camera(const SceneCamera& camera, double time_s) const {
+  return animated(hierarchy, camera.node_index)
+             ? hierarchy.world_from_node(camera.node_index, time_s).without_scale()
+             : camera.world_from_camera;
+}
+
+Transform Scene::world_from_light(const Light& light, double time_s) const {
+  return animated(hierarchy, light.node_index)
+             ? hierarchy.world_from_node(light.node_index, time_s).without_scale()
+             : light.world_from_light;
 }
 
 }  // namespace fb

@@ -11,6 +11,7 @@
 #include <filmback/vec.h>
 
 #include "core/math/transform.h"
+#include "core/scene/animation.h"
 #include "core/scene/camera.h"
 
 namespace fb {
@@ -26,8 +27,9 @@ struct TriangleMesh {
 
 struct MeshInstance {
   uint32_t mesh = 0;
-  Transform world_from_object;
+  Transform world_from_object;  // rest pose
   std::string node;
+  uint32_t node_index = kNoNode;  // in Scene::hierarchy, whose animation may move it
 };
 
 struct Material {
@@ -44,7 +46,8 @@ struct Light {
   LightType type = LightType::kPoint;
   // Radiant intensity in W/sr (point, spot) or irradiance in W/m^2 (directional), per channel.
   Rgb intensity{1.f, 1.f, 1.f};
-  Transform world_from_light;  // lights shine down their -Z axis
+  Transform world_from_light;  // rest pose; lights shine down their -Z axis
+  uint32_t node_index = kNoNode;
   double spot_inner_angle_rad = 0.0;
   double spot_outer_angle_rad = 0.7853981633974483;
 };
@@ -73,9 +76,17 @@ struct Scene {
   std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
   Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
   ShotSettings settings;
+  NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
 
   size_t triangle_count() const;
-  Bounds3d world_bounds() const;  // of all instanced geometry
+  Bounds3d world_bounds(double time_s) const;  // of all instanced geometry
+
+  // Placements at time t on the scene's timeline (s): the rest pose unless the node is animated.
+  Transform world_from_object(const MeshInstance& instance, double time_s) const;
+  Transform world_from_camera(const SceneCamera& camera, double time_s) const;  // scale removed
+  Transform world_from_light(const Light& light, double time_s) const;          // scale removed
+  // Whether the node's placement can change within [t0, t1] (never for kNoNode).
+  bool moves(uint32_t node_index, double t0, double t1) const;
 };
 
 }  // namespace fb

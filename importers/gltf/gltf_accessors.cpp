@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -167,6 +168,60 @@ std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
                       ", but there are only " + std::to_string(vertex_count) + " vertices");
     out[i] = index;
   }
+  return out;
+}
+
+std::vector<double> read_animation_values(const AccessorContext& ctx, int accessor,
+                                          const std::string& where, int type,
+                                          bool normalized_integers) {
+  const AccessorView v =
+      normalized_integers
+          ? view(ctx, accessor, where, type,
+                 {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT})
+          : view(ctx, accessor, where, type, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+  const tinygltf::Accessor& a = ctx.model.accessors[size_t(accessor)];
+  const std::string path = where + " (accessors[" + std::to_string(accessor) + "])";
+  if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized)
+    throw_input(ctx.file, path, "integer animation values must be normalized (normalized: true)");
+  const size_t width = size_t(tinygltf::GetNumComponentsInType(a.type));
+  const size_t size = component_size(a.componentType);
+  std::vector<double> out(v.count * width);
+  for (size_t i = 0; i < v.count; ++i)
+    for (size_t c = 0; c < width; ++c) {
+      const unsigned char* e = v.element(i) + c * size;
+      double x;
+      // glTF 2.0 §3.11: normalized integers map to [-1, 1] or [0, 1].
+      switch (a.componentType) {
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+          float f;
+          std::memcpy(&f, e, 4);
+          x = f;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+          x = std::max(double(int8_t(e[0])) / 127.0, -1.0);
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          x = double(e[0]) / 255.0;
+          break;
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+          int16_t h;
+          std::memcpy(&h, e, 2);
+          x = std::max(double(h) / 32767.0, -1.0);
+          break;
+        }
+        default: {
+          uint16_t h;
+          std::memcpy(&h, e, 2);
+          x = double(h) / 65535.0;
+        }
+      }
+      if (!std::isfinite(x))
+        throw_input(ctx.file, path, "element " + std::to_string(i) + " is not a finite number");
+      out[i * width + c] = x;
+    }
   return out;
 }
 

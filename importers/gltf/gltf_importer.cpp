@@ -11,6 +11,7 @@
 
 #include "core/util/error.h"
 #include "importers/gltf/gltf_accessors.h"
+#include "importers/gltf/gltf_animation.h"
 #include "importers/gltf/gltf_extras.h"
 #include "importers/gltf/gltf_file.h"
 
@@ -51,9 +52,14 @@ class Importer {
     scene_.file = file_;
     convert_materials();
     // Skins are reported where a node uses one (visit()), with what is rendered instead.
-    warn_if_present("animations", model_.animations.size());
     warn_if_present("textures", model_.textures.size());
+    // The node hierarchy is kept only when something can move: a static file costs nothing more.
+    keep_nodes_ = !model_.animations.empty();
     walk_nodes();
+    if (keep_nodes_) {
+      gltf::read_animations(model_, name_, scene_node_, scene_.hierarchy, diagnostics_);
+      scene_.hierarchy.finish();
+    }
     return std::move(scene_);
   }
 
@@ -126,7 +132,8 @@ class Importer {
     return *default_material_;
   }
 
-  Transform local_transform(const tinygltf::Node& node, const std::string& path) {
+  // The node's rest pose: its matrix, or T·R·S with `trs` set to the parts.
+  Transform local_transform(const tinygltf::Node& node, const std::string& path, Trs& trs) {
     Transform t;
     if (node.matrix.size() == 16) {
       std::array<double, 16> m;
@@ -134,12 +141,11 @@ class Importer {
       t = Transform::from_columns(m);
     } else {
       if (node.translation.size() == 3)
-        t = Transform::translate({node.translation[0], node.translation[1], node.translation[2]});
+        trs.translation = {node.translation[0], node.translation[1], node.translation[2]};
       if (node.rotation.size() == 4)
-        t = t * Transform::rotate(
-                    {node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]});
-      if (node.scale.size() == 3)
-        t = t * Transform::scale({node.scale[0], node.scale[1], node.scale[2]});
+        trs.rotation = {node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]};
+      if (node.scale.size() == 3) trs.scale = {node.scale[0], node.scale[1], node.scale[2]};
+      t = trs.matrix();
     }
     if (!t.is_finite()) throw_input(name_, path, "the node's transform is not finite");
     return t;
@@ -152,8 +158,10 @@ class Importer {
     struct Pending {
       int index;
       Transform parent;
-      std::string from;  // the JSON path of the reference to the node
+      uint32_t parent_node;  // in scene_.hierarchy when keep_nodes_
+      std::string from;      // the JSON path of the reference to the node
     };
+    scene_node_.assign(model_.nodes.size(), kNoNode);
     std::vector<Pending> stack;
     if (!model_.scenes.empty()) {
       const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
@@ -163,8 +171,8 @@ class Importer {
                                                index_path("scenes", s) + ".extras", name_);
       const std::vector<int>& roots = model_.scenes[s].nodes;
       for (size_t r = roots.size(); r-- > 0;)
-        stack.push_back(
-            {roots[r], Transform(), index_path("scenes", s) + "." + index_path("nodes", r)});
+        stack.push_back({roots[r], Transform(), kNoNode,
+                         index_path("scenes", s) + "." + index_path("nodes", r)});
       if (model_.scenes.size() > 1)
         warn("scenes", "the file has " + std::to_string(model_.scenes.size()) +
                            " scenes; rendering scenes[" + std::to_string(s) + "]");
@@ -175,7 +183,7 @@ class Importer {
         for (int c : node.children)
           if (c >= 0 && size_t(c) < is_child.size()) is_child[size_t(c)] = true;
       for (size_t i = model_.nodes.size(); i-- > 0;)
-        if (!is_child[i]) stack.push_back({int(i), Transform(), index_path("nodes", i)});
+        if (!is_child[i]) stack.push_back({int(i), Transform(), kNoNode, index_path("nodes", i)});
     }
     std::vector<bool> visited(model_.nodes.size(), false);
     while (!stack.empty()) {
@@ -192,14 +200,21 @@ class Importer {
                         "node hierarchy to be a set of trees");
       visited[size_t(next.index)] = true;
       const tinygltf::Node& node = model_.nodes[size_t(next.index)];
-      const Transform world = next.parent * local_transform(node, path);
+      Trs rest;
+      const Transform local = local_transform(node, path, rest);
+      const Transform world = next.parent * local;
       if (!world.is_finite())
         throw_input(name_, path,
                     "the node's world transform overflows (its ancestors' scales multiply past "
                     "double range)");
-      visit(node, path, world);
+      uint32_t scene_node = kNoNode;
+      if (keep_nodes_)
+        scene_node_[size_t(next.index)] = scene_node =
+            scene_.hierarchy.add_node(next.parent_node, local, rest);
+      visit(node, path, world, scene_node);
       for (size_t c = node.children.size(); c-- > 0;)
-        stack.push_back({node.children[c], world, path + "." + index_path("children", c)});
+        stack.push_back(
+            {node.children[c], world, scene_node, path + "." + index_path("children", c)});
     }
     // Without a scene every node is drawn; one that no root reaches hangs below a cycle.
     if (model_.scenes.empty())
@@ -210,16 +225,19 @@ class Importer {
                       "hierarchy to be a set of trees");
   }
 
-  void visit(const tinygltf::Node& node, const std::string& path, const Transform& world) {
+  // `scene_node` is the node's index in scene_.hierarchy, kNoNode when the file cannot move it.
+  void visit(const tinygltf::Node& node, const std::string& path, const Transform& world,
+             uint32_t scene_node) {
     if (node.skin >= 0)
       warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
-    if (node.mesh >= 0) add_mesh(node, path, world);
-    if (node.camera >= 0) add_camera(node, path, world);
+    if (node.mesh >= 0) add_mesh(node, path, world, scene_node);
+    if (node.camera >= 0) add_camera(node, path, world, scene_node);
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
-      add_light(node, path, world, number_or(it->second, "light", -1));
+      add_light(node, path, world, scene_node, number_or(it->second, "light", -1));
   }
 
-  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world) {
+  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
+                uint32_t scene_node) {
     if (size_t(node.mesh) >= model_.meshes.size())
       throw_input(name_, path + ".mesh",
                   out_of_range("mesh", node.mesh, model_.meshes.size(), "meshes"));
@@ -239,7 +257,8 @@ class Importer {
         cached = primitive_meshes_.emplace(key, index).first;
       }
       if (cached->second)
-        scene_.instances.push_back({*cached->second, world, node.name.empty() ? path : node.name});
+        scene_.instances.push_back(
+            {*cached->second, world, node.name.empty() ? path : node.name, scene_node});
     }
   }
 
@@ -312,7 +331,8 @@ class Importer {
     return out;
   }
 
-  void add_camera(const tinygltf::Node& node, const std::string& path, const Transform& world) {
+  void add_camera(const tinygltf::Node& node, const std::string& path, const Transform& world,
+                  uint32_t scene_node) {
     if (size_t(node.camera) >= model_.cameras.size())
       throw_input(name_, path + ".camera",
                   out_of_range("camera", node.camera, model_.cameras.size(), "cameras"));
@@ -321,9 +341,9 @@ class Importer {
     SceneCamera camera;
     camera.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : cpath;
     camera.source = path + " (" + cpath + ")";
+    camera.node_index = scene_node;
     // Blender ignores camera scale when projecting: keep rotation and position only.
-    camera.world_from_camera =
-        Transform::translate(world.translation()) * world.without_scale_and_translation();
+    camera.world_from_camera = world.without_scale();
     if (!camera.world_from_camera.is_finite())
       throw_input(name_, path, "the camera's transform is degenerate (zero scale?)");
     PhysicalCamera& phys = camera.physical;
@@ -397,7 +417,7 @@ class Importer {
   }
 
   void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                 double index) {
+                 uint32_t scene_node, double index) {
     const std::string ext_path = path + ".extensions.KHR_lights_punctual";
     if (!(index >= 0 && index < double(model_.lights.size()) && index == std::floor(index)))
       throw_input(name_, ext_path + ".light",
@@ -408,8 +428,8 @@ class Importer {
         "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));
     Light light;
     light.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : lpath;
-    light.world_from_light =
-        Transform::translate(world.translation()) * world.without_scale_and_translation();
+    light.world_from_light = world.without_scale();
+    light.node_index = scene_node;
     Rgb color{1, 1, 1};
     if (g.color.size() == 3) color = Rgb(float(g.color[0]), float(g.color[1]), float(g.color[2]));
     if (!is_finite(color) || color.x < 0 || color.y < 0 || color.z < 0 ||
@@ -444,6 +464,8 @@ class Importer {
   Scene scene_;
   std::optional<uint32_t> default_material_;
   std::map<std::pair<int, size_t>, std::optional<uint32_t>> primitive_meshes_;
+  bool keep_nodes_ = false;
+  std::vector<uint32_t> scene_node_;  // glTF node -> scene_.hierarchy index, when keep_nodes_
 };
 
 }  // namespace

@@ -19,12 +19,28 @@ import tempfile
 import unittest
 from pathlib import Path
 
-from gltf_files import FLOAT, TRIANGLE, Gltf, png_1x1_uri, triangle_scene
+from gltf_files import FLOAT, TRIANGLE, UNSIGNED_BYTE, Gltf, png_1x1_uri, triangle_scene
 
 FILMBACK = None  # set by main()
 SCRATCH = None
 TINY = ["--res", "16x16", "--spp", "1", "-q"]
 INPUT, USAGE = 1, 2
+
+
+def animated_scene(times=(0.0, 1.0), values=(0.0, 0.0, -3.0, 1.0, 0.0, -3.0), path="translation",
+                   interpolation="LINEAR"):
+    """triangle_scene() with one animation channel moving the triangle's node (nodes[0]): key
+    times and values as float accessors (SCALAR, then VEC3; VEC4 when there are 4 per key)."""
+    g = triangle_scene()
+    width = 4 if len(values) == 4 * len(times) and path == "rotation" else 3
+    times_view = g.view(struct.pack("<%df" % len(times), *times))
+    values_view = g.view(struct.pack("<%df" % len(values), *values))
+    g.doc["animations"] = [{
+        "channels": [{"sampler": 0, "target": {"node": 0, "path": path}}],
+        "samplers": [{"input": g.accessor(times_view, FLOAT, "SCALAR", len(times)),
+                      "output": g.accessor(values_view, FLOAT, "VEC%d" % width, len(values) // width),
+                      "interpolation": interpolation}]}]
+    return g
 
 
 def png_size(path):
@@ -397,7 +413,17 @@ class CliTest(unittest.TestCase):
 
     def test_unknown_filter(self):
         scene = self.scene(triangle_scene())
-        self.assert_usage_error(scene, TINY + ["--filter", "lanczos"], "", "filter", "'lanczos'")
+        self.assert_usage_error(scene, TINY + ["--filter", "kaiser"], "", "filter", "'kaiser'")
+
+    def test_unknown_reconstruction(self):
+        scene = self.scene(triangle_scene())
+        self.assert_usage_error(scene, TINY + ["--reconstruction", "gather"], "--reconstruction: ",
+                                "gather", "importance", "splat")
+
+    def test_splat_reconstruction_renders(self):
+        result = self.render(self.scene(triangle_scene()), *TINY, "--reconstruction", "splat",
+                             "--filter", "lanczos")
+        self.assert_rendered(result, "image.exr")
 
     def test_unknown_integrator(self):
         scene = self.scene(triangle_scene())
@@ -458,6 +484,114 @@ class CliTest(unittest.TestCase):
         scene = self.scene(triangle_scene())
         self.assert_usage_error(scene, TINY + ["--camera", "Camera.001"], "--camera 'Camera.001': ",
                                 "it has: shot")
+
+    # --- animation (glTF 2.0 §3.11) --------------------------------------------------------------
+
+    def test_animation_times_must_increase(self):
+        g = animated_scene(times=[0.0, 1.0, 1.0], values=[0.0] * 9)
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].input (accessors[2])",
+                                "key 2 at 1 s does not follow key 1 at 1 s", "strictly increasing")
+
+    def test_animation_time_must_be_finite(self):
+        g = animated_scene(times=[0.0, math.nan], values=[0.0] * 6)
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].input (accessors[2])",
+                                "element 1 is not a finite number")
+
+    def test_animation_values_must_match_the_keys(self):
+        g = animated_scene(times=[0.0, 1.0], values=[0.0] * 9)
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].output (accessors[3])",
+                                "3 values for 2 keys, expected 2")
+
+    def test_cubic_spline_needs_tangents(self):
+        g = animated_scene(times=[0.0, 1.0], values=[0.0] * 6, interpolation="CUBICSPLINE")
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].output (accessors[3])",
+                                "2 values for 2 keys, expected 6", "in-tangent, value, out-tangent")
+
+    def test_unknown_interpolation(self):
+        g = animated_scene(interpolation="SMOOTH")
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].interpolation",
+                                "'SMOOTH', expected LINEAR, STEP or CUBICSPLINE")
+
+    def test_animation_sampler_index_out_of_range(self):
+        g = animated_scene()
+        g.doc["animations"][0]["channels"][0]["sampler"] = 3
+        self.assert_input_error(self.scene(g), "animations[0].channels[0].sampler", "sampler index 3",
+                                "1 samplers")
+
+    def test_animation_target_node_out_of_range(self):
+        g = animated_scene()
+        g.doc["animations"][0]["channels"][0]["target"]["node"] = 9
+        self.assert_input_error(self.scene(g), "animations[0].channels[0].target.node", "node index 9",
+                                "2 nodes")
+
+    def test_animation_cannot_target_a_matrix_node(self):
+        g = animated_scene()
+        del g.doc["nodes"][0]["translation"]
+        g.doc["nodes"][0]["matrix"] = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -3, 1]
+        self.assert_input_error(self.scene(g), "animations[0].channels[0].target.node",
+                                "nodes[0] has a matrix")
+
+    def test_unknown_animated_property(self):
+        g = animated_scene()
+        g.doc["animations"][0]["channels"][0]["target"]["path"] = "colour"
+        self.assert_input_error(self.scene(g), "animations[0].channels[0].target.path",
+                                "'colour' is not an animated property")
+
+    def test_rotation_values_must_be_vec4(self):
+        g = animated_scene(path="rotation")
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].output (accessors[3])",
+                                "type VEC3, expected VEC4")
+
+    def test_rotation_must_not_be_zero(self):
+        g = animated_scene(path="rotation", values=[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0])
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].output (accessors[3])",
+                                "key 1 is not a rotation")
+
+    def test_integer_rotations_must_be_normalized(self):
+        g = animated_scene(path="rotation", values=[0.0, 0.0, 0.0, 1.0] * 2)
+        output = g.doc["animations"][0]["samplers"][0]["output"]
+        view = g.view(struct.pack("<8B", 0, 0, 0, 255, 0, 0, 0, 255))
+        g.doc["accessors"][output].update(bufferView=view, componentType=UNSIGNED_BYTE)
+        self.assert_input_error(self.scene(g), "animations[0].samplers[0].output (accessors[3])",
+                                "must be normalized")
+        g.doc["accessors"][output]["normalized"] = True
+        self.assert_rendered(self.render(self.scene(g, "normalized.gltf"), *TINY), "image.exr")
+
+    def test_weights_and_repeated_channels_warn(self):
+        g = animated_scene()
+        channels = g.doc["animations"][0]["channels"]
+        channels.append({"sampler": 0, "target": {"node": 0, "path": "weights"}})
+        channels.append({"sampler": 0, "target": {"node": 0, "path": "translation"}})
+        scene = self.scene(g)
+        result = self.render(scene, *TINY)
+        self.assert_rendered(result, "image.exr")
+        warnings = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
+        self.assertEqual(len(warnings), 2, result.stderr)
+        self.assertTrue(warnings[0].startswith(
+            "warning: %s: animations[0].channels[1].target.path: morph target weights" % scene), result.stderr)
+        self.assertTrue(warnings[1].startswith("warning: %s: animations[0].channels[2]: " % scene), result.stderr)
+        self.assertIn("already animated by animations[0].channels[0]", warnings[1])
+
+    def test_frame_and_shutter_decide_whether_time_is_sampled(self):
+        scene = self.scene(animated_scene())  # the triangle moves from t = 0 to t = 1 s
+        cases = [(["--shutter", "0,0.5"], "frame 0 at 24 fps (t = 0 s), shutter open 0.5 s (box): "
+                  "time samples for 1 moving instance"),
+                 (["--shutter", "0,0.5", "--frame", "36", "--fps", "24"], "frame 36 at 24 fps (t = 1.5 s), "
+                  "shutter open 0.5 s (box), nothing moves in it: no time samples"),
+                 (["--shutter-curve", "trapezoid:ramp=0.1", "--shutter", "-0.1,0.1", "--frame", "12"],
+                  "shutter open 0.2 s (trapezoid ramp 0.1): time samples"),
+                 ([], "frame 0 at 24 fps (t = 0 s), shutter closed: no time samples")]
+        for options, plan in cases:
+            with self.subTest(options=options):
+                result = self.render(scene, "--res", "16x16", "--spp", "1", *options)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                self.assertIn(plan, result.stdout)
+
+    def test_bad_shutter_curve(self):
+        self.assert_usage_error(self.scene(animated_scene()), TINY + ["--shutter-curve", "trapezoid:ramp=0.9"],
+                                "--shutter-curve 'trapezoid:ramp=0.9': ", "expected a number in [0, 0.5]")
+        self.assert_usage_error(self.scene(animated_scene()), TINY + ["--shutter-curve", "table:values=[0,0]"],
+                                "--shutter-curve 'table:values=[0,0]': ", "not all zero")
 
     # --- what works ----------------------------------------------------------------------------
 

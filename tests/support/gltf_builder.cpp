@@ -161,6 +161,28 @@ int GltfBuilder::node(const Node& n, bool root) {
   return index;
 }
 
+void GltfBuilder::animate(int node, const std::string& path, const std::vector<float>& times_s,
+                          const std::vector<float>& values, const std::string& interpolation) {
+  auto& model = impl_->model;
+  if (model.animations.empty()) model.animations.emplace_back();
+  tinygltf::AnimationSampler sampler;
+  sampler.interpolation = interpolation;
+  sampler.input =
+      impl_->add_accessor(times_s.data(), times_s.size() * sizeof(float),
+                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, times_s.size());
+  const bool rotation = path == "rotation";
+  sampler.output = impl_->add_accessor(
+      values.data(), values.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT,
+      rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, values.size() / (rotation ? 4 : 3));
+  tinygltf::Animation& animation = model.animations[0];
+  animation.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = int(animation.samplers.size() - 1);
+  channel.target_node = node;
+  channel.target_path = path;
+  animation.channels.push_back(channel);
+}
+
 fs::path GltfBuilder::write(const fs::path& file) {
   // A file without geometry has no buffer: an empty data: URI is not valid glTF.
   if (impl_->model.buffers.size() == 1 && impl_->model.buffers[0].data.empty())

@@ -41,6 +41,10 @@ class GltfBuilder {
     std::vector<int> children;
   };
   int node(const Node& node, bool root = true);
+  // A channel of animation 0 moving `path` ("translation", "rotation", "scale") of `node`: key
+  // times in s and 3 or 4 values per key (CUBICSPLINE: in-tangent, value, out-tangent per key).
+  void animate(int node, const std::string& path, const std::vector<float>& times_s,
+               const std::vector<float>& values, const std::string& interpolation = "LINEAR");
 
   // Writes .gltf (JSON, buffers embedded as data: URIs) or .glb, by extension.
   std::filesystem::path write(const std::filesystem::path& file);

@@ -124,7 +124,8 @@ typedef struct fb_camera_setup {
 typedef struct fb_camera_sample {
   float film_x, film_y; /* raster position, px */
   float lens_u, lens_v; /* [0,1)^2, drawn only if the camera needs lens samples */
-  float time_s;         /* within the shutter, drawn only if the scene moves */
+  float time_s; /* s after the frame's time, within the shutter; drawn only if something moves
+                  while it is open (or the camera needs time), else 0 */
 } fb_camera_sample;
 
 typedef struct fb_camera_ray {
@@ -171,7 +172,7 @@ typedef struct fb_ray {
   float origin[3]; /* render space: world translated so the camera is at the origin */
   float direction[3];
   float t_min, t_max;
-  float time_s;
+  float time_s; /* the camera ray's time (fb_camera_sample); rays a path spawns keep it */
 } fb_ray;
 
 #define FB_NONE 0xffffffffu

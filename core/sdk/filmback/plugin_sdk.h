@@ -8,6 +8,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -126,4 +127,38 @@ constexpr fb_integrator_api integrator_api() {
           }};
 }
 
+// The plugin's descriptor; its kind follows from the type of its function table.
+template <typename Api>
+constexpr uint32_t kind_of() {
+  if constexpr (std::is_same_v<Api, fb_camera_api>)
+    return FB_KIND_CAMERA;
+  else if constexpr (std::is_same_v<Api, fb_filter_api>)
+    return FB_KIND_FILTER;
+  else {
+    static_assert(std::is_same_v<Api, fb_integrator_api>, "not a filmback function table");
+    return FB_KIND_INTEGRATOR;
+  }
+}
+
+template <typename Api, size_t N>
+constexpr fb_plugin describe(const char* name, const char* version, const char* summary,
+                             const fb_param_desc (&params)[N], const Api& api) {
+  return {FB_ABI_VERSION, sizeof(fb_plugin), kind_of<Api>(),
+          name,           version,           summary,
+          params,         uint32_t(N),       &api};
+}
+
+template <typename Api>
+constexpr fb_plugin describe(const char* name, const char* version, const char* summary,
+                             const Api& api) {
+  return {
+      FB_ABI_VERSION, sizeof(fb_plugin), kind_of<Api>(), name, version, summary, nullptr, 0, &api};
+}
+
 }  // namespace fb
+
+// The one symbol a plugin exports (plugin_abi.h), returning its fb::describe() descriptor.
+#define FB_PLUGIN_ENTRY(descriptor)                                \
+  extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { \
+    return &(descriptor);                                          \
+  }

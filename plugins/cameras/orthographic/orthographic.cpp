@@ -40,15 +40,10 @@ class Orthographic {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<Orthographic>();
-const fb_plugin kPlugin = {
-    FB_ABI_VERSION, sizeof(fb_plugin),
-    FB_KIND_CAMERA, "orthographic",
-    "1.0.0",        "Parallel projection with Blender's ortho scale, sensor fit and lens shift",
-    nullptr,        0,
-    &kApi};
+constexpr fb_plugin kPlugin =
+    fb::describe("orthographic", "1.0.0",
+                 "Parallel projection with Blender's ortho scale, sensor fit and lens shift", kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
-  return &kPlugin;
-}
+FB_PLUGIN_ENTRY(kPlugin)

@@ -48,15 +48,10 @@ class Perspective {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<Perspective>();
-const fb_plugin kPlugin = {
-    FB_ABI_VERSION, sizeof(fb_plugin),
-    FB_KIND_CAMERA, "perspective",
-    "1.0.0",        "Pinhole camera with Blender's sensor, focal length, sensor fit and lens shift",
-    nullptr,        0,
-    &kApi};
+constexpr fb_plugin kPlugin = fb::describe(
+    "perspective", "1.0.0",
+    "Pinhole camera with Blender's sensor, focal length, sensor fit and lens shift", kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
-  return &kPlugin;
-}
+FB_PLUGIN_ENTRY(kPlugin)

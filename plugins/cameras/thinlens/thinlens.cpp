@@ -3,10 +3,11 @@
 // The aperture is a disk (or a regular polygon of `aperture_blades` blades, rotated) of radius
 // f / (2N) at the camera origin; its x is divided by `aperture_ratio` (anamorphic bokeh). A ray
 // leaves a lens point and passes through the point where the pinhole ray of its raster position
-// meets the focus plane, at depth `focus_distance_m` along the view axis. This is a thin lens obeying
-// 1/f' = 1/D_obj + 1/D_img with the image distance D_img equal to the nominal focal length f
-// (so f' = f D_f / (D_f + f)): the field of view does not change with focus, as in Blender
-// (docs/camera-model.md derives it and the circle of confusion c = A |D - D_f| / D * f' / (D_f - f')).
+// meets the focus plane, at depth `focus_distance_m` along the view axis. This is a thin lens
+// obeying 1/f' = 1/D_obj + 1/D_img with the image distance D_img equal to the nominal focal length
+// f (so f' = f D_f / (D_f + f)): the field of view does not change with focus, as in Blender
+// (docs/camera-model.md derives it and the circle of confusion c = A |D - D_f| / D * f' / (D_f -
+// f')).
 //
 // Sensor: SIMPLE weighs every ray 1 (Cycles' pixel values). PHYSICAL weighs it with the camera
 // equation H = L t (pi / 4N^2) cos^4(theta) (ISO 12232), times ISO/100 and the aperture's area
@@ -24,13 +25,15 @@ using fb::Vec2f;
 
 constexpr double kPi = std::numbers::pi;
 
-// Uniform point in the regular polygon with `blades` corners on the unit circle, the first at
-// angle `rotation`: a wedge chosen by u.x, then a uniform point in its triangle.
+// Uniform point in the regular polygon with `blades` corners on the unit circle at angles
+// rotation + (2k + 1) pi / blades, as Cycles places them (regular_polygon_sample in Cycles'
+// kernel/sample/mapping.h): rotation 0 puts an edge, not a corner, across +x. A wedge chosen by
+// u.x, then a uniform point in its triangle.
 Vec2f sample_polygon(Vec2f u, uint32_t blades, float rotation) {
   const float wedge_f = u.x * float(blades);
   const uint32_t wedge = std::min(uint32_t(wedge_f), blades - 1);
   const float ux = wedge_f - float(wedge);  // the remaining bits of u.x, uniform in [0,1)
-  const float a0 = rotation + 2.f * float(kPi) * float(wedge) / float(blades);
+  const float a0 = rotation + float(kPi) * float(2 * wedge + 1) / float(blades);
   const float a1 = a0 + 2.f * float(kPi) / float(blades);
   const Vec2f b = fb::sample_uniform_triangle({ux, u.y});  // weights of the two corners
   return {b.y * std::cos(a0) + (1.f - b.x - b.y) * std::cos(a1),
@@ -52,18 +55,21 @@ class ThinLens {
       throw std::invalid_argument("a thin lens needs a perspective projection");
     if (!(s.fstop > 0 && std::isfinite(s.fstop)))
       throw std::invalid_argument("a thin lens needs a finite, positive f-number");
-    if (!(s.focus_distance_m > 0)) throw std::invalid_argument("the focus distance must be positive");
+    if (!(s.focus_distance_m > 0))
+      throw std::invalid_argument("the focus distance must be positive");
     if (s.aperture_blades == 1 || s.aperture_blades == 2)
       throw std::invalid_argument("an aperture has 0 (round) or at least 3 blades");
     if (!(s.aperture_ratio > 0)) throw std::invalid_argument("the aperture ratio must be positive");
     if (!(s.focal_length_mm > 0) || !(near_ >= 0) || !(far_ > near_))
       throw std::invalid_argument("focal length and clip range must be positive and non-empty");
-    if (const char* problem = fb::view_plane_problem(plane_, s)) throw std::invalid_argument(problem);
+    if (const char* problem = fb::view_plane_problem(plane_, s))
+      throw std::invalid_argument(problem);
     if (s.sensor_model == FB_SENSOR_PHYSICAL) {
       const double n = double(s.aperture_blades);
-      const double area_vs_disk = (s.aperture_blades ? n * std::sin(2 * kPi / n) / (2 * kPi) : 1.0) /
-                                  s.aperture_ratio;
-      exposure_ = float(kPi / (4 * s.fstop * s.fstop) * s.exposure_time_s * s.iso / 100 * area_vs_disk);
+      const double area_vs_disk =
+          (s.aperture_blades ? n * std::sin(2 * kPi / n) / (2 * kPi) : 1.0) / s.aperture_ratio;
+      exposure_ =
+          float(kPi / (4 * s.fstop * s.fstop) * s.exposure_time_s * s.iso / 100 * area_vs_disk);
     }
   }
 
@@ -109,11 +115,11 @@ class ThinLens {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<ThinLens>();
-const fb_plugin kPlugin = {
-    FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA, "thinlens", "1.0.0",
+constexpr fb_plugin kPlugin = fb::describe(
+    "thinlens", "1.0.0",
     "Thin lens with Blender's f-number, focus distance, blades, rotation and anamorphic ratio",
-    nullptr, 0, &kApi};
+    kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) { return &kPlugin; }
+FB_PLUGIN_ENTRY(kPlugin)

@@ -27,14 +27,9 @@ const fb_param_desc kParams[] = {
     {"radius", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "half-width of the square support"},
 };
 constexpr fb_filter_api kApi = fb::filter_api<Box>();
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin),
-                           FB_KIND_FILTER, "box",
-                           "1.0.0",        "Box filter, normalised, sampled exactly",
-                           kParams,        sizeof kParams / sizeof kParams[0],
-                           &kApi};
+constexpr fb_plugin kPlugin =
+    fb::describe("box", "1.0.0", "Box filter, normalised, sampled exactly", kParams, kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
-  return &kPlugin;
-}
+FB_PLUGIN_ENTRY(kPlugin)

@@ -69,18 +69,9 @@ const fb_param_desc kParams[] = {
 };
 
 constexpr fb_integrator_api kApi = fb::integrator_api<Aov>();
-const fb_plugin kPlugin = {FB_ABI_VERSION,
-                           sizeof(fb_plugin),
-                           FB_KIND_INTEGRATOR,
-                           "aov",
-                           "1.0.0",
-                           "Depth, normal and albedo of what camera rays hit",
-                           kParams,
-                           sizeof kParams / sizeof kParams[0],
-                           &kApi};
+constexpr fb_plugin kPlugin =
+    fb::describe("aov", "1.0.0", "Depth, normal and albedo of what camera rays hit", kParams, kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
-  return &kPlugin;
-}
+FB_PLUGIN_ENTRY(kPlugin)

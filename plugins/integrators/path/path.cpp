@@ -127,19 +127,12 @@ const fb_param_desc kParams[] = {
 };
 
 constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
-const fb_plugin kPlugin = {FB_ABI_VERSION,
-                           sizeof(fb_plugin),
-                           FB_KIND_INTEGRATOR,
-                           "path",
-                           "1.0.0",
-                           "Path tracing with next-event estimation and MIS; Lambertian surfaces, "
-                           "emission, punctual lights, uniform background",
-                           kParams,
-                           sizeof kParams / sizeof kParams[0],
-                           &kApi};
+constexpr fb_plugin kPlugin =
+    fb::describe("path", "1.0.0",
+                 "Path tracing with next-event estimation and MIS; Lambertian surfaces, "
+                 "emission, punctual lights, uniform background",
+                 kParams, kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
-  return &kPlugin;
-}
+FB_PLUGIN_ENTRY(kPlugin)

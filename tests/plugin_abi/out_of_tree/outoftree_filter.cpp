@@ -37,14 +37,9 @@ void sample(const void* self, const float* u, size_t count, fb_filter_sample* ou
 const fb_filter_api kApi = {
     sizeof(fb_filter_api), create, fb::destroy_instance<Box>, radius, evaluate, integral, sample};
 
-const fb_plugin kPlugin = {FB_ABI_VERSION, sizeof(fb_plugin),
-                           FB_KIND_FILTER, "outoftree",
-                           "1.0.0",        "Box filter built out of tree against the installed SDK",
-                           kParams,        sizeof kParams / sizeof kParams[0],
-                           &kApi};
+constexpr fb_plugin kPlugin = fb::describe(
+    "outoftree", "1.0.0", "Box filter built out of tree against the installed SDK", kParams, kApi);
 
 }  // namespace
 
-extern "C" FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
-  return &kPlugin;
-}
+FB_PLUGIN_ENTRY(kPlugin)

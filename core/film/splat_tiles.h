@@ -1,0 +1,61 @@
+// Splatting reconstruction, the alternative to filter importance sampling (docs/filters.md). A
+// sample at film position p, drawn uniformly over its pixel, adds h(p - c_j) L and h(p - c_j) to
+// every pixel j whose centre c_j lies within the filter's reach, and each pixel resolves to
+// sum h L / sum h (pbrt 3e, Film::AddSample).
+//
+// Pixels at the film's border need the samples of pixels beyond it, so samples are drawn over a
+// larger domain: the film and a margin of the filter's reach around it (as pbrt 3e's
+// Film::GetSampleBounds grows by the filter radius); domain pixel (x, y) is film pixel
+// (x - margin, y - margin).
+//
+// A sample reaches pixels of the neighbouring tiles, which other threads render at the same time.
+// So each tile splats into its own buffer (the film pixels its samples can reach), and after
+// rendering the buffers are added into the film pixel by pixel in tile order: every sum is formed
+// in a fixed order and the image is bit-identical for any thread count (docs/conventions.md). The
+// buffers hold about (1 + 2 margin / tile size)^2 times the film's own sums.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/film/film.h"
+#include "core/plugin/instances.h"
+
+namespace fb {
+
+class SplatTiles {
+ public:
+  // A film of width x height pixels, rendered in tiles of tile_size over the sample domain.
+  SplatTiles(uint32_t width, uint32_t height, uint32_t tile_size, size_t channels,
+             const FilterInstance& filter);
+  ~SplatTiles();
+
+  // Pixels beyond a film pixel that its samples can reach, along x (0) or y (1); also the margin
+  // of the sample domain.
+  uint32_t margin(int axis) const { return margin_[axis]; }
+  // That margin for a filter radius: a sample at x reaches the pixels i with |i + 0.5 - x| <= r,
+  // the lowest of which, for x in pixel p, is ceil(p - 0.5 - r) = p - floor(r + 0.5).
+  static uint32_t reach(float radius_px) { return uint32_t(std::floor(radius_px + 0.5f)); }
+
+  struct Tile;
+  // The buffer of the tile whose first pixel is (x0, y0) in the sample domain; allocated by the
+  // thread that renders it.
+  Tile& tile(uint32_t x0, uint32_t y0);
+  // Splats one sample at film position (x, y) px into `tile`. A sample with any non-finite value
+  // is dropped (returns false) so that no NaN or Inf reaches the image, as in Film::add.
+  bool splat(Tile& tile, float film_x, float film_y, const float* values) const;
+  // Adds every tile's sums into `film`, each pixel's in tile order.
+  void add_to(Film& film) const;
+
+ private:
+  uint32_t width_, height_, tile_size_, tiles_x_;
+  size_t channels_;
+  const FilterInstance& filter_;
+  float radius_[2];
+  uint32_t margin_[2];  // pixels beyond a tile that its samples can reach
+  std::vector<std::unique_ptr<Tile>> tiles_;
+};
+
+}  // namespace fb

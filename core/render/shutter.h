@@ -1,0 +1,36 @@
+// The shutter curve: how much of the light arriving at each moment of the open interval the
+// sensor records. A camera ray's time is drawn from it by inverting its CDF, so the curve weighs
+// times by sample density, not by sample weight (Cycles does the same with `shutter_curve`, a
+// 256-entry inverted-CDF table; this inverts the piecewise-linear curve exactly).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fb {
+
+class ShutterCurve {
+ public:
+  ShutterCurve();  // box: every moment of the open interval counts the same
+  // "box", "trapezoid[:ramp=R]" (opens over the first R of the interval and closes over the last,
+  // 0 <= R <= 0.5, default 0.25) or "table:values=[w0,w1,...]" (at least two non-negative values
+  // at evenly spaced times from open to close, linear in between). The plugin-parameter syntax;
+  // throws UsageError naming `option`.
+  static ShutterCurve parse(std::string_view text, std::string_view option);
+
+  // The fraction s of the open interval (0 at open, 1 at close) for a sample u in [0, 1):
+  // the inverse of cdf().
+  double sample(double u) const;
+  double cdf(double s) const;  // of the curve normalised to unit area, s in [0, 1]
+  const std::string& description() const { return description_; }
+
+ private:
+  ShutterCurve(std::vector<double> knots, std::vector<double> values, std::string description);
+  std::vector<double> knots_;   // s from 0 to 1, non-decreasing
+  std::vector<double> values_;  // the curve at each knot, >= 0
+  std::vector<double> area_;    // under the curve from 0 to each knot; area_.back() > 0
+  std::string description_;     // for the plan line
+};
+
+}  // namespace fb
