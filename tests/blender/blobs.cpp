@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <complex>
 #include <iterator>
 #include <stdexcept>
 #include <string>
@@ -48,7 +50,7 @@ std::vector<Blob> find_blobs(const Image& image, double threshold) {
       blob.flux += v;
       sum_x += v * (double(x) + 0.5);
       sum_y += v * (double(y) + 0.5);
-      ++blob.pixel_count;
+      blob.pixels.push_back({uint32_t(x), uint32_t(y), v});
       for (int64_t dy = -1; dy <= 1; ++dy)
         for (int64_t dx = -1; dx <= 1; ++dx) {
           const int64_t nx = x + dx, ny = y + dy;
@@ -61,9 +63,33 @@ std::vector<Blob> find_blobs(const Image& image, double threshold) {
     }
     blob.x_px = sum_x / blob.flux;
     blob.y_px = sum_y / blob.flux;
-    blobs.push_back(blob);
+    blobs.push_back(std::move(blob));
   }
   return blobs;
+}
+
+Spread spread(const Blob& blob) {
+  Spread s;
+  for (const BlobPixel& p : blob.pixels) {
+    const double dx = p.x + 0.5 - blob.x_px, dy = p.y + 0.5 - blob.y_px;
+    s.xx += p.value * dx * dx;
+    s.yy += p.value * dy * dy;
+  }
+  s.xx /= blob.flux;
+  s.yy /= blob.flux;
+  return s;
+}
+
+double disk_diameter_px(double spread_px2) {
+  return 4 * std::sqrt(std::max(0.0, spread_px2 - 1.0 / 12));
+}
+
+double orientation_rad(const Blob& blob, unsigned n) {
+  std::complex<double> moment = 0;
+  for (const BlobPixel& p : blob.pixels)
+    moment += p.value *
+              std::pow(std::complex<double>(p.x + 0.5 - blob.x_px, p.y + 0.5 - blob.y_px), int(n));
+  return std::arg(moment) / n;
 }
 
 }  // namespace fb::test

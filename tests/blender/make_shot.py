@@ -1,55 +1,226 @@
-"""The Blender side of the alignment test (tests/blender/blender_alignment_test.cpp).
+"""The Blender side of the tests against Blender (tests/blender/blender_alignment_test.cpp).
 
-Builds a shot of small emissive spheres on a black world, seen by a rotated, displaced camera with a
-landscape 320x200 frame; exports it with Blender's own glTF exporter and renders it with Cycles.
+Builds one shot of the table SHOTS: small emissive spheres ("markers") on a black world, seen by a
+rotated, displaced camera with the shot's lens, sensor, fit, shift and aperture. Copies Blender's
+physical camera and shot settings into custom properties (store_physical_camera), exports the
+scene with Blender's own glTF exporter and renders it with Cycles.
 
-    blender -b --factory-startup --python make_shot.py -- OUTDIR [SAMPLES]
+    blender -b --factory-startup --python make_shot.py -- OUTDIR SHOT
 
 writes OUTDIR/shot.gltf (+ shot.bin), OUTDIR/cycles.exr (32-bit float, scene-linear) and
-OUTDIR/spheres.txt: one line "name x_px y_px" per sphere, where Blender projects its centre
-(raster convention of docs/conventions.md: origin at the top-left corner, y down).
+OUTDIR/manifest.txt, one record a line, "KIND key=value ...":
+  shot    name, samples (per pixel, for both renderers), width_px, height_px, camera_model (the
+          filmback camera the shot needs: perspective or thinlens), aperture_blades
+  marker  name; blender_x_px, blender_y_px: Blender's projection of the sphere's centre
+          (bpy_extras.object_utils.world_to_camera_view); image_x_px, image_y_px: the centre of
+          the sphere's image, an ellipse off the axis; diameter_x_px, diameter_y_px: the expected
+          disk diameters of the blob along x and y (blobs.h: the sphere's image and the aperture's
+          image, moments added); vertex_angle_rad: the raster angle of a bokeh polygon's vertex,
+          or nan when the blob has no polygonal shape to measure.
+Raster convention of docs/conventions.md: origin at the top-left corner, y down.
 """
 
 import math
 import os
 import sys
+from dataclasses import dataclass
 
 import bpy
 from bpy_extras.object_utils import world_to_camera_view
 from mathutils import Euler, Vector
 
-WIDTH_PX, HEIGHT_PX = 320, 200
-LENS_MM, SENSOR_WIDTH_MM = 35.0, 36.0
 
-# (name, target centre x_px, y_px, depth along the view axis m, radius px, linear colour, strength).
-# Targets sit at fractional pixel positions, some a dozen pixels from the frame's corners and edges
-# where the projection is most off-axis; depths span 3-40 m. Strengths above 1 make the exporter
-# write KHR_materials_emissive_strength, those below 1 a plain emissiveFactor.
-SPHERES = [
-    ("corner_top_left", 18.3, 16.7, 6.0, 5.0, (1.0, 1.0, 1.0), 1.0),
-    ("corner_bottom_right", 300.6, 185.2, 14.0, 4.5, (1.0, 0.6, 0.3), 5.0),
-    ("edge_right", 305.4, 70.9, 3.0, 6.5, (0.2, 0.5, 1.0), 0.8),
-    ("edge_top", 150.8, 12.4, 25.0, 3.5, (1.0, 1.0, 1.0), 12.0),
-    ("centre", 160.2, 99.6, 4.0, 9.0, (0.9, 0.9, 0.2), 2.5),
-    ("corner_bottom_left", 22.7, 181.3, 9.0, 5.5, (0.4, 1.0, 0.4), 1.5),
-    ("far", 231.1, 128.8, 40.0, 3.0, (1.0, 0.3, 0.8), 20.0),
-]
+@dataclass(frozen=True)
+class Marker:
+    name: str
+    u: float  # where the centre images, as fractions of the frame's width and height from its
+    v: float  # top-left corner
+    depth_m: float  # along the view axis
+    radius_px: float  # of the sphere's image, near the axis
+    colour: tuple
+    strength: float  # above 1 the exporter writes KHR_materials_emissive_strength
 
 
-def build_camera(scene):
+@dataclass(frozen=True)
+class Aperture:
+    fstop: float
+    focus_m: float  # focus distance along the view axis
+    # Focus on an empty at these frame fractions (at depth focus_m) instead of a distance: Blender
+    # then focuses on its plane, not at its Euclidean distance. focus_distance is set wrong on purpose.
+    focus_object_uv: tuple | None = None
+    blades: int = 0
+    rotation_deg: float = 0.0
+    ratio: float = 1.0
+
+
+@dataclass(frozen=True)
+class Shot:
+    width_px: int
+    height_px: int
+    lens_mm: float
+    markers: tuple
+    sensor_mm: tuple = (36.0, 24.0)
+    sensor_fit: str = "AUTO"
+    shift: tuple = (0.0, 0.0)
+    clip_m: tuple = (0.1, 200.0)
+    depth_scale: float = 1.0  # multiplies every marker's depth
+    aperture: Aperture | None = None
+    samples: int = 512
+
+
+# Markers at the frame's corners and edges, where the projection is most off-axis, and in the
+# middle; fractional positions, depths 3-40 m, colours and strengths that differ.
+FRAME_MARKERS = (
+    Marker("corner_top_left", 0.0572, 0.0835, 6.0, 5.0, (1.0, 1.0, 1.0), 1.0),
+    Marker("corner_top_right", 0.9300, 0.0700, 18.0, 4.0, (0.6, 0.8, 1.0), 3.0),
+    Marker("corner_bottom_right", 0.9394, 0.9260, 14.0, 4.5, (1.0, 0.6, 0.3), 5.0),
+    Marker("edge_right", 0.9544, 0.3545, 3.0, 6.5, (0.2, 0.5, 1.0), 0.8),
+    Marker("edge_top", 0.4713, 0.0620, 25.0, 3.5, (1.0, 1.0, 1.0), 12.0),
+    Marker("centre", 0.5006, 0.4980, 4.0, 9.0, (0.9, 0.9, 0.2), 2.5),
+    Marker("corner_bottom_left", 0.0709, 0.9065, 9.0, 5.5, (0.4, 1.0, 0.4), 1.5),
+    Marker("far", 0.7222, 0.6440, 40.0, 3.0, (1.0, 0.3, 0.8), 20.0),
+)
+
+# Around a focus plane at 3 m: two markers on it (one near a corner), two in front, two behind.
+# The spheres are large enough (5 px) that about 80 000 lens rays at 1024 spp reach each one:
+# flux noise about 0.4 % per renderer.
+FOCUS_MARKERS = (
+    Marker("in_focus_centre", 0.50, 0.50, 3.0, 4.0, (1.0, 1.0, 1.0), 4.0),
+    Marker("in_focus_corner", 0.10, 0.12, 3.0, 4.0, (0.6, 0.8, 1.0), 4.0),
+    Marker("front_near", 0.25, 0.32, 1.0, 5.0, (1.0, 0.6, 0.3), 20.0),
+    Marker("front", 0.76, 0.26, 1.5, 5.0, (0.2, 0.5, 1.0), 12.0),
+    Marker("behind", 0.30, 0.76, 6.0, 5.0, (0.4, 1.0, 0.4), 10.0),
+    Marker("behind_far", 0.72, 0.70, 40.0, 5.0, (1.0, 0.3, 0.8), 20.0),
+)
+
+# Bokeh around a focus plane at 1.5 m: polygons of circumradius 11-15 px, at least twice the
+# sphere's own image, so that their shape and orientation can be measured.
+BOKEH_MARKERS = (
+    Marker("in_focus_centre", 0.50, 0.50, 1.5, 4.0, (1.0, 1.0, 1.0), 4.0),
+    Marker("front_left", 0.20, 0.30, 0.8, 5.0, (1.0, 0.6, 0.3), 20.0),
+    Marker("front_right", 0.80, 0.72, 0.8, 5.0, (0.2, 0.5, 1.0), 12.0),
+    Marker("behind_left", 0.25, 0.75, 6.0, 5.0, (0.4, 1.0, 0.4), 10.0),
+    Marker("behind_right", 0.78, 0.26, 50.0, 5.0, (1.0, 0.3, 0.8), 20.0),
+)
+
+SHOTS = {
+    # The reference frame: landscape 320x200, 35 mm on a 36 mm sensor, fit AUTO (horizontal).
+    "landscape_auto": Shot(320, 200, 35.0, FRAME_MARKERS),
+    # Landscape, fit VERTICAL: sensor_height (20 mm) spans the image height.
+    "vertical_fit": Shot(320, 200, 30.0, FRAME_MARKERS, sensor_mm=(36.0, 20.0), sensor_fit="VERTICAL"),
+    # Portrait with AUTO: the fit turns vertical and sensor_width spans the image *height*.
+    "portrait_auto": Shot(200, 320, 35.0, FRAME_MARKERS),
+    # Shift with a horizontal fit: both shifts are fractions of the image width.
+    "lens_shift": Shot(320, 200, 35.0, FRAME_MARKERS, shift=(0.1, -0.07)),
+    # Shift in a portrait frame with a vertical fit: fractions of the image height.
+    "portrait_vertical_shift": Shot(200, 320, 40.0, FRAME_MARKERS, sensor_mm=(36.0, 30.0),
+                                    sensor_fit="VERTICAL", shift=(-0.08, 0.12)),
+    # 12 mm on 36 mm: 112 deg across, the corner markers about 60 deg off the axis.
+    "wide_12mm": Shot(320, 240, 12.0, FRAME_MARKERS, depth_scale=0.15),
+    # 600 mm: 3.4 deg across, markers 0.5-6 km away.
+    "tele_600mm": Shot(320, 200, 600.0, FRAME_MARKERS, depth_scale=150.0, clip_m=(1.0, 10000.0)),
+    # f/1.4 on 85 mm focused on an empty 3 m deep (off the axis); circles of confusion 8-31 px.
+    "dof_f1_4": Shot(320, 240, 85.0, FOCUS_MARKERS, samples=1024,
+                     aperture=Aperture(1.4, 3.0, focus_object_uv=(0.9, 0.85))),
+    # Six blades rotated 10 deg: hexagonal bokeh whose orientation is measured.
+    "bokeh_hexagon": Shot(320, 240, 85.0, BOKEH_MARKERS, samples=1024,
+                          aperture=Aperture(1.4, 1.5, blades=6, rotation_deg=10.0)),
+    # Anamorphic ratio 2: the aperture, and so the bokeh, half as wide as high.
+    "bokeh_anamorphic": Shot(320, 240, 85.0, BOKEH_MARKERS, samples=1024,
+                             aperture=Aperture(1.4, 1.5, ratio=2.0)),
+}
+
+CAMERA_LOCATION = (3.2, -6.5, 2.1)
+CAMERA_ROTATION_DEG = (74.0, -8.0, 23.0)
+
+
+def focus_distance_m(camera_object):
+    """Cycles' focus distance (intern/cycles/blender/camera.cpp, blender_camera_focal_distance):
+    with a focus object, its distance along the camera's Z axis, not its Euclidean distance."""
+    dof = camera_object.data.dof
+    if dof.focus_object is None:
+        return dof.focus_distance
+    if dof.focus_subtarget:
+        raise ValueError("a focus bone (focus_subtarget) is not carried")
+    matrix = camera_object.matrix_world.normalized()
+    view_axis = matrix.col[2].xyz.normalized()
+    return abs(view_axis.dot(matrix.translation - dof.focus_object.matrix_world.translation))
+
+
+def store_physical_camera(scene, camera_object):
+    """Copies what Blender renders with but its glTF exporter drops (lens, sensor, fit, shift,
+    depth of field, resolution, time) into custom properties, which the exporter writes as
+    `extras` with export_extras=True: the camera data's to cameras[i].extras, the scene's to
+    scenes[0].extras. Names carry units; filmback reads them in importers/gltf/gltf_extras.cpp.
+    Lengths are Blender units, which the exporter writes as glTF metres."""
+    camera, render = camera_object.data, scene.render
+    if camera.type not in {"PERSP", "ORTHO"}:
+        raise ValueError(f"camera type {camera.type} is not carried")
+    if render.pixel_aspect_x != render.pixel_aspect_y:
+        raise ValueError("non-square pixels are not carried")
+    if render.fps_base != 1.0:
+        raise ValueError("fps_base != 1 is not carried: the 3.4 exporter times keys by frame / fps")
+    camera["focal_length_mm"] = camera.lens
+    camera["sensor_width_mm"] = camera.sensor_width
+    camera["sensor_height_mm"] = camera.sensor_height
+    camera["sensor_fit"] = camera.sensor_fit
+    camera["shift_x"] = camera.shift_x
+    camera["shift_y"] = camera.shift_y
+    if camera.type == "ORTHO":
+        camera["ortho_scale_m"] = camera.ortho_scale
+    camera["clip_near_m"] = camera.clip_start
+    camera["clip_far_m"] = camera.clip_end
+    dof = camera.dof
+    if dof.use_dof:
+        # Cycles clamps both to 1e-5 (blender/camera.cpp, scene/camera.cpp) and renders fewer
+        # than 3 blades as a disk.
+        camera["fstop"] = max(dof.aperture_fstop, 1e-5)
+        camera["focus_distance_m"] = max(focus_distance_m(camera_object), 1e-5)
+        camera["aperture_blades"] = dof.aperture_blades if dof.aperture_blades >= 3 else 0
+        camera["aperture_rotation_rad"] = dof.aperture_rotation
+        camera["aperture_ratio"] = dof.aperture_ratio
+    scene["resolution_x_px"] = render.resolution_x * render.resolution_percentage // 100
+    scene["resolution_y_px"] = render.resolution_y * render.resolution_percentage // 100
+    scene["fps"] = render.fps
+    scene["frame"] = scene.frame_current
+    if render.use_motion_blur:
+        # The shutter in frames around the frame (scene.cycles.motion_blur_position), in seconds.
+        length = render.motion_blur_shutter
+        start = {"START": 0.0, "CENTER": -length / 2, "END": -length}[scene.cycles.motion_blur_position]
+        scene["shutter_open_s"] = start / render.fps
+        scene["shutter_close_s"] = (start + length) / render.fps
+
+
+def build_camera(scene, shot):
     data = bpy.data.cameras.new("Camera")
     data.type = "PERSP"
-    data.lens = LENS_MM
-    data.sensor_width = SENSOR_WIDTH_MM
-    data.sensor_fit = "AUTO"
-    data.clip_start = 0.1
-    data.clip_end = 200.0
+    data.lens = shot.lens_mm
+    data.sensor_width, data.sensor_height = shot.sensor_mm
+    data.sensor_fit = shot.sensor_fit
+    data.shift_x, data.shift_y = shot.shift
+    data.clip_start, data.clip_end = shot.clip_m
     camera = bpy.data.objects.new("Camera", data)
-    camera.location = (3.2, -6.5, 2.1)
-    camera.rotation_euler = Euler((math.radians(74.0), math.radians(-8.0), math.radians(23.0)), "XYZ")
+    camera.location = CAMERA_LOCATION
+    camera.rotation_euler = Euler([math.radians(a) for a in CAMERA_ROTATION_DEG], "XYZ")
     scene.collection.objects.link(camera)
     scene.camera = camera
     return camera
+
+
+class Frame:
+    """Blender's own view frame (Camera.view_frame: sensor, fit and shift applied), the only
+    source of the projection here: camera-space points for frame positions and pixel scales."""
+
+    def __init__(self, scene, camera):
+        corners = camera.data.view_frame(scene=scene)  # top-right, bottom-right, bottom-left, top-left
+        self.top_left, self.top_right, self.bottom_left = corners[3], corners[0], corners[2]
+        self.depth = -corners[0].z
+        self.px_per_unit = scene.render.resolution_x * self.depth / (self.top_right.x - self.top_left.x)
+
+    def point(self, u, v, depth_m):
+        across, down = self.top_right - self.top_left, self.bottom_left - self.top_left
+        on_frame = self.top_left + u * across + v * down
+        return on_frame * (depth_m / self.depth)
 
 
 def emission_material(name, colour, strength):
@@ -65,31 +236,101 @@ def emission_material(name, colour, strength):
     return material
 
 
-def add_sphere(scene, camera, name, x_px, y_px, depth_m, radius_px, colour, strength):
-    # Camera space: looks down -Z, +Y up; horizontal sensor fit, so fx = fy = W / (sensor / lens).
-    focal_px = WIDTH_PX * LENS_MM / SENSOR_WIDTH_MM
-    in_camera = Vector(((x_px - WIDTH_PX / 2) / focal_px * depth_m,
-                        -(y_px - HEIGHT_PX / 2) / focal_px * depth_m,
-                        -depth_m))
-    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32,
-                                         radius=radius_px / focal_px * depth_m,
-                                         location=camera.matrix_world @ in_camera)
+def add_sphere(camera, frame, marker, depth_m):
+    radius_m = marker.radius_px / frame.px_per_unit * depth_m
+    location = camera.matrix_world @ frame.point(marker.u, marker.v, depth_m)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=radius_m, location=location)
     sphere = bpy.context.active_object
-    sphere.name = name
+    sphere.name = marker.name
     bpy.ops.object.shade_smooth()
-    sphere.data.materials.append(emission_material(name, colour, strength))
-    return sphere
+    sphere.data.materials.append(emission_material(marker.name, marker.colour, marker.strength))
+    return sphere, radius_m
 
 
-def configure_cycles(scene, samples):
+def add_focus_object(scene, camera, frame, aperture):
+    target = bpy.data.objects.new("FocusTarget", None)
+    target.location = camera.matrix_world @ frame.point(*aperture.focus_object_uv, aperture.focus_m)
+    scene.collection.objects.link(target)
+    camera.data.dof.focus_object = target
+    camera.data.dof.focus_distance = 2 * aperture.focus_m  # unused: the object takes precedence
+
+
+def configure_dof(scene, camera, frame, aperture):
+    dof = camera.data.dof
+    dof.use_dof = True
+    dof.aperture_fstop = aperture.fstop
+    dof.aperture_blades = aperture.blades
+    dof.aperture_rotation = math.radians(aperture.rotation_deg)
+    dof.aperture_ratio = aperture.ratio
+    if aperture.focus_object_uv:
+        add_focus_object(scene, camera, frame, aperture)
+    else:
+        dof.focus_distance = aperture.focus_m
+
+
+def aperture_spread(blades):
+    """<x^2> = <y^2> of a uniform aperture of circumradius 1: a disk 1/4; a regular n-gon
+    (2 + cos(2 pi / n)) / 12, half its <r^2>, which each of its triangles (0, a, b) from the centre
+    gives as (|a|^2 + |b|^2 + a.b) / 6."""
+    return 0.25 if blades == 0 else (2 + math.cos(2 * math.pi / blades)) / 12
+
+
+def expected_image(scene, camera, frame, sphere, radius_m):
+    """The sphere's image through Blender's camera: where it is, its size, its bokeh's angle."""
+    to_camera = camera.matrix_world.normalized().inverted()
+    centre = to_camera @ sphere.matrix_world.translation
+    distance, depth = centre.length, -centre.z
+    # The pinhole image of a sphere of angular radius a seen at t off the axis is an ellipse:
+    # with k = cos^2 t - sin^2 a, semi-axes sin a cos a / k radially and sin a / sqrt(k)
+    # tangentially, centred where the centre's direction, moved sideways by cos^2 t / k, meets
+    # the frame (the cone x.c = |x| cos a cut by the plane z = -1).
+    sin_a, cos_t = radius_m / distance, depth / distance
+    cos_a, k = math.sqrt(1 - sin_a**2), cos_t**2 - sin_a**2
+    radial_px = frame.px_per_unit * sin_a * cos_a / k
+    tangential_px = frame.px_per_unit * sin_a / math.sqrt(k)
+    lateral = math.hypot(centre.x, centre.y)
+    ux, uy = (centre.x / lateral, -centre.y / lateral) if lateral > 0 else (1.0, 0.0)
+    image_centre = Vector((centre.x * cos_t**2 / k, centre.y * cos_t**2 / k, centre.z))
+    xx = (radial_px**2 * ux**2 + tangential_px**2 * uy**2) / 4
+    yy = (radial_px**2 * uy**2 + tangential_px**2 * ux**2) / 4
+    angle = math.nan
+    dof = camera.data.dof
+    if dof.use_dof:
+        # Cycles' thin lens (kernel/camera/camera.h): a lens point l (m) on an aperture of radius
+        # f / 2N moves the image of a point at depth D by px_per_unit * l * (1/D_f - 1/D), x and -y.
+        radius = camera.data.lens * 1e-3 / (2 * dof.aperture_fstop)
+        scale_px = frame.px_per_unit * radius * (1 / focus_distance_m(camera) - 1 / depth)
+        blades = dof.aperture_blades if dof.aperture_blades >= 3 else 0
+        xx += scale_px**2 * aperture_spread(blades) / dof.aperture_ratio**2
+        yy += scale_px**2 * aperture_spread(blades)
+        if blades and dof.aperture_ratio == 1 and abs(scale_px) > 2 * radial_px:
+            # Cycles' polygon (kernel/sample/mapping.h, regular_polygon_sample) has its vertices
+            # at rotation + pi/n + 2 pi j/n on the lens (x right, y up); the image flips y, and in
+            # front of the focus plane (scale < 0) turns it by pi too.
+            lens_angle = dof.aperture_rotation + math.pi / blades
+            raster_angle = -lens_angle + (math.pi if scale_px < 0 else 0.0)
+            sector = 2 * math.pi / blades
+            angle = math.remainder(raster_angle, sector)
+    w, h = scene.render.resolution_x, scene.render.resolution_y
+    image = world_to_camera_view(scene, camera, camera.matrix_world.normalized() @ image_centre)
+    return {
+        "image_x_px": image.x * w,
+        "image_y_px": (1 - image.y) * h,
+        "diameter_x_px": 4 * math.sqrt(xx),
+        "diameter_y_px": 4 * math.sqrt(yy),
+        "vertex_angle_rad": angle,
+    }
+
+
+def configure_cycles(scene, shot):
     scene.render.engine = "CYCLES"
-    scene.render.resolution_x, scene.render.resolution_y = WIDTH_PX, HEIGHT_PX
+    scene.render.resolution_x, scene.render.resolution_y = shot.width_px, shot.height_px
     scene.render.resolution_percentage = 100
     scene.render.pixel_aspect_x = scene.render.pixel_aspect_y = 1.0
     scene.render.use_motion_blur = False
     cycles = scene.cycles
     cycles.device = "CPU"
-    cycles.samples = samples
+    cycles.samples = shot.samples
     cycles.use_adaptive_sampling = False
     cycles.use_denoising = False
     cycles.seed = 1
@@ -108,12 +349,19 @@ def configure_cycles(scene, samples):
     image.exr_codec = "ZIP"
 
 
+def record(kind, **fields):
+    def text(value):
+        return f"{value:.6f}" if isinstance(value, float) else str(value)
+    return kind + "".join(f" {key}={text(value)}" for key, value in fields.items()) + "\n"
+
+
 def main():
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if not args:
-        raise SystemExit("usage: blender -b --factory-startup --python make_shot.py -- OUTDIR [SAMPLES]")
-    out_dir = os.path.abspath(args[0])
-    samples = int(args[1]) if len(args) > 1 else 256
+    if len(args) != 2 or args[1] not in SHOTS:
+        raise SystemExit("usage: blender -b --factory-startup --python make_shot.py -- OUTDIR SHOT\n"
+                         "shots: " + " ".join(SHOTS))
+    out_dir, name = os.path.abspath(args[0]), args[1]
+    shot = SHOTS[name]
     os.makedirs(out_dir, exist_ok=True)
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -123,22 +371,36 @@ def main():
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     scene.world = world
 
-    configure_cycles(scene, samples)
-    camera = build_camera(scene)
+    configure_cycles(scene, shot)
+    camera = build_camera(scene, shot)
     bpy.context.view_layer.update()
-    spheres = [add_sphere(scene, camera, *row) for row in SPHERES]
+    frame = Frame(scene, camera)
+    if shot.aperture:
+        configure_dof(scene, camera, frame, shot.aperture)
+    spheres = [(marker, *add_sphere(camera, frame, marker, marker.depth_m * shot.depth_scale))
+               for marker in shot.markers]
     bpy.context.view_layer.update()
+    store_physical_camera(scene, camera)
 
-    with open(os.path.join(out_dir, "spheres.txt"), "w") as manifest:
-        for sphere in spheres:
-            uv = world_to_camera_view(scene, camera, sphere.matrix_world.translation)
-            manifest.write(f"{sphere.name} {uv.x * WIDTH_PX:.4f} {(1.0 - uv.y) * HEIGHT_PX:.4f}\n")
+    w, h = shot.width_px, shot.height_px
+    with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        manifest.write(record("shot", name=name, samples=shot.samples, width_px=w, height_px=h,
+                              camera_model="thinlens" if shot.aperture else "perspective",
+                              aperture_blades=shot.aperture.blades if shot.aperture else 0))
+        for marker, sphere, radius_m in spheres:
+            centre = world_to_camera_view(scene, camera, sphere.matrix_world.translation)
+            manifest.write(record("marker", name=marker.name, blender_x_px=centre.x * w,
+                                  blender_y_px=(1.0 - centre.y) * h,
+                                  **expected_image(scene, camera, frame, sphere, radius_m)))
 
     bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=False, export_materials="EXPORT")
+                              export_cameras=True, export_lights=False, export_materials="EXPORT",
+                              export_extras=True)
 
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
 
 
-main()
+# Blender runs --python scripts as __main__; motion_shot.py imports this file for its helpers.
+if __name__ == "__main__":
+    main()
