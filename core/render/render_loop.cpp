@@ -92,10 +92,10 @@ class TileRenderer {
 
     for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
       for (size_t i = 0; i < n; ++i) {
-        const SampleKey key{w.px[i], w.py[i], s, kFilterDimension};
-        w.filter_u[2 * i] = sampler_.get(key);
-        w.filter_u[2 * i + 1] = sampler_.get({key.pixel_x, key.pixel_y, s, kFilterDimension + 1});
-        context.paths[i] = {key.pixel_x, key.pixel_y, s, kIntegratorDimension};
+        const Vec2f u = sampler_.get_2d({w.px[i], w.py[i], s, kFilterDimension});
+        w.filter_u[2 * i] = u.x;
+        w.filter_u[2 * i + 1] = u.y;
+        context.paths[i] = {w.px[i], w.py[i], s, kIntegratorDimension};
       }
       // Reconstruction (docs/filters.md): importance sampling draws the offset from the filter
       // and weights the sample h / pdf; splatting draws it uniformly over the pixel and applies h
@@ -112,11 +112,12 @@ class TileRenderer {
         c.film_x = float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x;
         c.film_y = float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y;
         if (needs_ & FB_CAMERA_NEEDS_LENS) {
-          c.lens_u = sampler_.get({w.px[i], w.py[i], s, kLensDimension});
-          c.lens_v = sampler_.get({w.px[i], w.py[i], s, kLensDimension + 1});
+          const Vec2f u = sampler_.get_2d({w.px[i], w.py[i], s, kLensDimension});
+          c.lens_u = u.x;
+          c.lens_v = u.y;
         }
         if (in_.time.curve)  // the shutter integral: only when something moves while it is open
-          c.time_s = in_.time.time_s(sampler_.get({w.px[i], w.py[i], s, kTimeDimension}));
+          c.time_s = in_.time.time_s(sampler_.get_1d({w.px[i], w.py[i], s, kTimeDimension}));
       }
       in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
       for (size_t i = 0; i < n; ++i) {
@@ -157,7 +158,7 @@ class TileRenderer {
   Film& film_;
   SplatTiles* splats_;         // null: importance sampling, every sample in its own pixel
   float margin_x_, margin_y_;  // of the sample domain around the film (splatting only)
-  IndependentSampler sampler_;
+  PixelSampler sampler_;
   Rotation rotation_;
   size_t channels_;
   uint32_t needs_;

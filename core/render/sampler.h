@@ -1,9 +1,16 @@
 // Deterministic sample values: each is a function of (seed, pixel, sample index, dimension) only,
-// so an image is identical for any thread count or tile order (docs/conventions.md). This is the
-// independent sampler; its values are hashed, never drawn from a stream.
+// so an image is identical for any thread count or tile order (docs/conventions.md). Values are
+// hashed, never drawn from a stream, and lie on the 2^-24 grid the plugin ABI promises.
+//
+// The camera's own dimensions (filter offset, lens point, time) are stratified: each pair is an
+// Owen-scrambled Sobol (0,2)-sequence, shuffled and scrambled per pixel and per pair (Burley 2020,
+// "Practical Hash-based Owen Scrambling", JCGT 9(4)), so 2^k samples of a pixel form a (0,k,2)-net
+// and any sample count stays unbiased. The integrator's dimensions are independent hashes.
 #pragma once
 
 #include <cstdint>
+
+#include <filmback/vec.h>
 
 namespace fb {
 
@@ -19,17 +26,69 @@ struct SampleKey {
   uint32_t pixel_x, pixel_y, sample_index, dimension;
 };
 
-class IndependentSampler {
+class PixelSampler {
  public:
-  explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
+  explicit PixelSampler(uint64_t seed) : seed_(seed) {}
+
+  // An independent uniform value in [0, 1).
   float get(const SampleKey& key) const {
-    uint64_t h = mix(seed_ ^ 0x9e3779b97f4a7c15ull);
-    h = mix(h ^ ((uint64_t(key.pixel_x) << 32) | key.pixel_y));
-    h = mix(h ^ ((uint64_t(key.sample_index) << 32) | key.dimension));
-    return float(h >> 40) * 0x1p-24f;  // 24 bits: exactly representable, always < 1
+    return to_unit(uint32_t(hash(key, key.sample_index) >> 32));
+  }
+
+  // Dimensions (key.dimension, key.dimension + 1) as one stratified 2-D point.
+  Vec2f get_2d(const SampleKey& key) const {
+    const uint32_t seed = uint32_t(hash(key, 0xffffffffu));
+    const uint32_t index = owen_scramble(key.sample_index, seed);  // shuffles the sample order
+    return {to_unit(owen_scramble(sobol(index, 0), seed ^ 0xa511e9b3u)),
+            to_unit(owen_scramble(sobol(index, 1), seed ^ 0x63d83595u))};
+  }
+
+  // Dimension key.dimension alone, stratified: the first coordinate of get_2d's sequence.
+  float get_1d(const SampleKey& key) const {
+    const uint32_t seed = uint32_t(hash(key, 0xffffffffu));
+    return to_unit(
+        owen_scramble(sobol(owen_scramble(key.sample_index, seed), 0), seed ^ 0xa511e9b3u));
+  }
+
+  // The first two dimensions of Sobol's sequence as 32-bit fractions: van der Corput, and the
+  // Pascal matrix mod 2 (direction numbers v_0 = 2^31, v_i = v_{i-1} ^ (v_{i-1} >> 1)).
+  static uint32_t sobol(uint32_t index, int dimension) {
+    if (dimension == 0) return reverse_bits(index);
+    uint32_t result = 0;
+    for (uint32_t v = 1u << 31; index; index >>= 1, v ^= v >> 1)
+      if (index & 1) result ^= v;
+    return result;
+  }
+
+  // Nested uniform (Owen) scrambling of a 32-bit fraction: each bit is flipped by a hash of the
+  // bits above it (Laine and Karras 2011's permutation on the reversed bits, as Burley 2020).
+  static uint32_t owen_scramble(uint32_t x, uint32_t seed) {
+    x = reverse_bits(x);
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return reverse_bits(x);
   }
 
  private:
+  static float to_unit(uint32_t bits) { return float(bits >> 8) * 0x1p-24f; }  // exact, < 1
+
+  static uint32_t reverse_bits(uint32_t x) {
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+    x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+    x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+    return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+  }
+
+  uint64_t hash(const SampleKey& key, uint32_t index) const {
+    uint64_t h = mix(seed_ ^ 0x9e3779b97f4a7c15ull);
+    h = mix(h ^ ((uint64_t(key.pixel_x) << 32) | key.pixel_y));
+    return mix(h ^ ((uint64_t(index) << 32) | key.dimension));
+  }
+
   // SplitMix64's finaliser (Steele et al. 2014): a bijective avalanche mix.
   static uint64_t mix(uint64_t z) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;

@@ -70,7 +70,7 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per
   depth_m.resize(size_t(width_) * height_);
   const uint32_t tiles_x = (width_ + kTileSize - 1) / kTileSize;
   const uint64_t tiles = uint64_t(tiles_x) * ((height_ + kTileSize - 1) / kTileSize);
-  const IndependentSampler sampler(0);
+  const PixelSampler sampler(0);
   std::atomic<uint64_t> hits{0};
   tbb::parallel_for(
       tbb::blocked_range<uint64_t>(0, tiles, 1),
@@ -87,10 +87,9 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per
             for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
               for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x) {
                 // The box filter's sample, (2u - 1) r with r = 0.5 px, at filmback's sample key.
-                const float ux = sampler.get({x, y, s, kFilterDimension});
-                const float uy = sampler.get({x, y, s, kFilterDimension + 1});
-                const float film_x = float(x) + 0.5f + (2.f * ux - 1.f) * 0.5f;
-                const float film_y = float(y) + 0.5f + (2.f * uy - 1.f) * 0.5f;
+                const Vec2f u = sampler.get_2d({x, y, s, kFilterDimension});
+                const float film_x = float(x) + 0.5f + (2.f * u.x - 1.f) * 0.5f;
+                const float film_y = float(y) + 0.5f + (2.f * u.y - 1.f) * 0.5f;
                 const float cam_x = float((film_x - cx_) / fx_),
                             cam_y = float(-(film_y - cy_) / fy_);
                 const float inv_length = 1.f / std::sqrt(cam_x * cam_x + cam_y * cam_y + 1.f);
