@@ -37,6 +37,7 @@ struct Rotation {
 // samples is too short to pay for a dozen heap allocations of its own.
 struct TileWork {
   std::vector<uint32_t> px, py;
+  std::vector<uint32_t> filter_seed, lens_seed, time_seed;  // per pixel (PixelSampler::pair_seed)
   std::vector<float> filter_u;
   std::vector<fb_filter_sample> filter_samples;
   std::vector<fb_camera_sample> camera_samples;
@@ -49,6 +50,7 @@ struct TileWork {
   // leaves a value unwritten cannot pass one tile's data to the next one on its thread.
   void reset(size_t samples, size_t channels) {
     px.resize(samples), py.resize(samples);
+    filter_seed.resize(samples), lens_seed.resize(samples), time_seed.resize(samples);
     filter_u.resize(2 * samples);
     filter_samples.assign(samples, {});
     camera_samples.resize(samples);
@@ -83,6 +85,11 @@ class TileRenderer {
         for (uint32_t y = by; y < std::min(by + 4, y1); ++y)
           for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x, ++i)
             w.px[i] = x, w.py[i] = y;
+    for (i = 0; i < n; ++i) {
+      w.filter_seed[i] = sampler_.pair_seed(w.px[i], w.py[i], kFilterDimension);
+      w.lens_seed[i] = sampler_.pair_seed(w.px[i], w.py[i], kLensDimension);
+      w.time_seed[i] = sampler_.pair_seed(w.px[i], w.py[i], kTimeDimension);
+    }
     fb_trace_context& context = w.context;
     context.geometry = &in_.geometry;
     context.lights = &in_.lights;
@@ -92,7 +99,7 @@ class TileRenderer {
 
     for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
       for (size_t i = 0; i < n; ++i) {
-        const Vec2f u = sampler_.get_2d({w.px[i], w.py[i], s, kFilterDimension});
+        const Vec2f u = PixelSampler::sobol_2d(w.filter_seed[i], s);
         w.filter_u[2 * i] = u.x;
         w.filter_u[2 * i + 1] = u.y;
         context.paths[i] = {w.px[i], w.py[i], s, kIntegratorDimension};
@@ -112,12 +119,12 @@ class TileRenderer {
         c.film_x = float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x;
         c.film_y = float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y;
         if (needs_ & FB_CAMERA_NEEDS_LENS) {
-          const Vec2f u = sampler_.get_2d({w.px[i], w.py[i], s, kLensDimension});
+          const Vec2f u = PixelSampler::sobol_2d(w.lens_seed[i], s);
           c.lens_u = u.x;
           c.lens_v = u.y;
         }
         if (in_.time.curve)  // the shutter integral: only when something moves while it is open
-          c.time_s = in_.time.time_s(sampler_.get_1d({w.px[i], w.py[i], s, kTimeDimension}));
+          c.time_s = in_.time.time_s(PixelSampler::sobol_1d(w.time_seed[i], s));
       }
       in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
       for (size_t i = 0; i < n; ++i) {

@@ -26,6 +26,25 @@ struct SampleKey {
   uint32_t pixel_x, pixel_y, sample_index, dimension;
 };
 
+// Sobol's second generator matrix (the Pascal matrix mod 2: direction numbers v_0 = 2^31,
+// v_i = v_{i-1} ^ (v_{i-1} >> 1)) applied to each byte of a 24-bit index: three lookups.
+struct PascalByteTables {
+  uint32_t byte[3][256];
+};
+constexpr PascalByteTables pascal_byte_tables() {
+  PascalByteTables t{};
+  uint32_t v[24] = {};
+  v[0] = 1u << 31;
+  for (int i = 1; i < 24; ++i)
+    v[i] = v[i - 1] ^ (v[i - 1] >> 1);
+  for (int b = 0; b < 3; ++b)
+    for (uint32_t x = 0; x < 256; ++x)
+      for (int bit = 0; bit < 8; ++bit)
+        if (x >> bit & 1) t.byte[b][x] ^= v[8 * b + bit];
+  return t;
+}
+inline constexpr PascalByteTables kPascal = pascal_byte_tables();
+
 class PixelSampler {
  public:
   explicit PixelSampler(uint64_t seed) : seed_(seed) {}
@@ -37,27 +56,31 @@ class PixelSampler {
 
   // Dimensions (key.dimension, key.dimension + 1) as one stratified 2-D point.
   Vec2f get_2d(const SampleKey& key) const {
-    const uint32_t seed = uint32_t(hash(key, 0xffffffffu));
-    const uint32_t index = owen_scramble(key.sample_index, seed);  // shuffles the sample order
+    return sobol_2d(pair_seed(key.pixel_x, key.pixel_y, key.dimension), key.sample_index);
+  }
+  // Dimension key.dimension alone, stratified: the first coordinate of get_2d's sequence.
+  float get_1d(const SampleKey& key) const {
+    return sobol_1d(pair_seed(key.pixel_x, key.pixel_y, key.dimension), key.sample_index);
+  }
+
+  // The same, split so that a loop over a pixel's samples hashes the pixel once.
+  uint32_t pair_seed(uint32_t pixel_x, uint32_t pixel_y, uint32_t dimension) const {
+    return uint32_t(hash({pixel_x, pixel_y, 0, dimension}, 0xffffffffu));
+  }
+  static Vec2f sobol_2d(uint32_t seed, uint32_t sample_index) {
+    const uint32_t index = shuffled(sample_index, seed);
     return {to_unit(owen_scramble(sobol(index, 0), seed ^ 0xa511e9b3u)),
             to_unit(owen_scramble(sobol(index, 1), seed ^ 0x63d83595u))};
   }
-
-  // Dimension key.dimension alone, stratified: the first coordinate of get_2d's sequence.
-  float get_1d(const SampleKey& key) const {
-    const uint32_t seed = uint32_t(hash(key, 0xffffffffu));
-    return to_unit(
-        owen_scramble(sobol(owen_scramble(key.sample_index, seed), 0), seed ^ 0xa511e9b3u));
+  static float sobol_1d(uint32_t seed, uint32_t sample_index) {
+    return to_unit(owen_scramble(sobol(shuffled(sample_index, seed), 0), seed ^ 0xa511e9b3u));
   }
 
-  // The first two dimensions of Sobol's sequence as 32-bit fractions: van der Corput, and the
-  // Pascal matrix mod 2 (direction numbers v_0 = 2^31, v_i = v_{i-1} ^ (v_{i-1} >> 1)).
+  // The first two dimensions of Sobol's sequence as 32-bit fractions, for indices below 2^24.
   static uint32_t sobol(uint32_t index, int dimension) {
     if (dimension == 0) return reverse_bits(index);
-    uint32_t result = 0;
-    for (uint32_t v = 1u << 31; index; index >>= 1, v ^= v >> 1)
-      if (index & 1) result ^= v;
-    return result;
+    return kPascal.byte[0][index & 0xff] ^ kPascal.byte[1][(index >> 8) & 0xff] ^
+           kPascal.byte[2][index >> 16];
   }
 
   // Nested uniform (Owen) scrambling of a 32-bit fraction: each bit is flipped by a hash of the
@@ -73,6 +96,13 @@ class PixelSampler {
   }
 
  private:
+  // Owen-scrambled sample order (Burley 2020, section 4): 2^k consecutive samples of a pixel are
+  // still 2^k consecutive, aligned Sobol indices. Index bits from 24 up would reach only output
+  // bits that to_unit() drops (both generator matrices are upper triangular), so they are cleared.
+  static uint32_t shuffled(uint32_t sample_index, uint32_t seed) {
+    return owen_scramble(sample_index, seed) & 0xffffffu;
+  }
+
   static float to_unit(uint32_t bits) { return float(bits >> 8) * 0x1p-24f; }  // exact, < 1
 
   static uint32_t reverse_bits(uint32_t x) {

@@ -83,11 +83,16 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per
           const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize,
                          y0 = uint32_t(tile / tiles_x) * kTileSize;
           uint64_t tile_hits = 0;
+          // The pixels' sample seeds, hashed once per tile as filmback's render loop does.
+          uint32_t seeds[kTileSize][kTileSize];
+          for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
+            for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x)
+              seeds[y - y0][x - x0] = sampler.pair_seed(x, y, kFilterDimension);
           for (uint32_t s = 0; s < samples_per_pixel; ++s)
             for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
               for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x) {
                 // The box filter's sample, (2u - 1) r with r = 0.5 px, at filmback's sample key.
-                const Vec2f u = sampler.get_2d({x, y, s, kFilterDimension});
+                const Vec2f u = PixelSampler::sobol_2d(seeds[y - y0][x - x0], s);
                 const float film_x = float(x) + 0.5f + (2.f * u.x - 1.f) * 0.5f;
                 const float film_y = float(y) + 0.5f + (2.f * u.y - 1.f) * 0.5f;
                 const float cam_x = float((film_x - cx_) / fx_),
