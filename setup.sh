@@ -11,10 +11,10 @@ case "$mode" in render|test) ;; *) echo "usage: $0 [test]" >&2; exit 2 ;; esac
 
 packages=(g++ cmake ninja-build pkg-config
           libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
-          libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev)
+          libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libosd-dev)
 # Peers the tests render with (Blender's Cycles and glTF exporter), the test drivers' Python,
 # and a second compiler that builds an out-of-tree plugin against the installed SDK.
-[ "$mode" = test ] && packages+=(blender python3 clang)
+[ "$mode" = test ] && packages+=(blender python3 python3-numpy clang npm)
 
 missing=()
 for p in "${packages[@]}"; do

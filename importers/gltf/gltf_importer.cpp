@@ -71,8 +71,11 @@ class Importer {
   void load() { gltf::load_model(file_, model_); }
 
   void check_extensions() {
-    static const std::set<std::string> kSupported = {"KHR_lights_punctual",
-                                                     "KHR_materials_emissive_strength"};
+    // One extension a line: each is read by its own part of the importer.
+    static const std::set<std::string> kSupported = {
+        "KHR_lights_punctual",
+        "KHR_materials_emissive_strength",
+    };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
         throw_input(name_, index_path("extensionsRequired", i),
