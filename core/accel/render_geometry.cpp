@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "core/render/sampler.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -17,9 +19,11 @@ struct RenderGeometry::Mesh {
   // Each motion step's vertices in turn, then one extra element: Embree reads 16 bytes past the
   // last vertex.
   std::vector<Vec3f> positions;
-  std::vector<Vec3f> normals;  // none, or each motion step's in turn
+  std::vector<Vec3f> normals;   // none, or each motion step's in turn
+  VertexTextureData texturing;  // tangents in render space at the first motion step
   std::vector<uint32_t> indices;
   uint32_t material = 0;
+  const SurfaceShader* shader = nullptr;  // set when the material has alpha: for the filter
   uint32_t first_emitter = FB_NONE;
   uint32_t step_count = 1;  // evenly spaced over the open shutter when more than one
   size_t vertex_count = 0;  // per step
@@ -175,6 +179,14 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
     }
   }
   mesh.positions.emplace_back();
+  mesh.texturing.texcoords = source.texturing.texcoords;
+  const Transform& first = render_from_object_steps.front();
+  for (const auto& t : source.texturing.tangents) {
+    const Vec3d m = first.vector(Vec3d{t[0], t[1], t[2]});
+    const double len = length(m);
+    const Vec3f u(len > 0 ? m / len : Vec3d{});
+    mesh.texturing.tangents.push_back({u.x, u.y, u.z, t[3]});
+  }
   mesh.indices = source.indices;
   // A mirroring transform turns counter-clockwise into clockwise: swap two corners so the
   // winding (and with it the front face) survives, as glTF requires.
@@ -186,7 +198,7 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
 
 RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_world,
                                const ShotTimes& times, const MotionTolerance& tolerance)
-    : embree_(std::make_unique<Embree>()) {
+    : shader_(std::make_unique<SurfaceShader>(scene)), embree_(std::make_unique<Embree>()) {
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) throw InputError("cannot create an Embree device");
   rtcSetDeviceErrorFunction(embree_->device, record_embree_error, &embree_->error);
@@ -196,6 +208,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
 
   check_memory_budget(scene);
+  meshes_.reserve(scene.instances.size());  // alpha filters keep pointers to their mesh
   if (times.shutter_open()) {
     open_s_ = float(times.open_s - times.frame_s);
     inverse_duration_ = float(1 / (times.close_s - times.open_s));
@@ -238,6 +251,13 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh.indices.data(), 0, 3 * sizeof(uint32_t),
                                mesh.indices.size() / 3);
+    if (shader_->has_alpha(mesh.material)) {
+      mesh.shader = shader_.get();
+      // The slot the mesh is moved into below; meshes_ never reallocates (reserved).
+      rtcSetGeometryUserData(geometry, meshes_.data() + meshes_.size());
+      rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
+    }
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(embree_->scene, geometry, static_cast<unsigned>(meshes_.size()));
     rtcReleaseGeometry(geometry);
@@ -292,8 +312,56 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   }
 }
 
+SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive, float u, float v) {
+  const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
+  const float b[3] = {1.f - u - v, u, v};
+  SurfacePoint point;
+  const VertexTextureData& data = mesh.texturing;
+  for (uint32_t set = 0; set < VertexTextureData::kSets && !data.texcoords[set].empty(); ++set) {
+    const std::vector<Vec2f>& uv = data.texcoords[set];
+    point.uv[set] = uv[tri[0]] * b[0] + uv[tri[1]] * b[1] + uv[tri[2]] * b[2];
+    point.uv_sets = set + 1;
+  }
+  if (!data.tangents.empty()) {
+    Vec3f t{};
+    for (int i = 0; i < 3; ++i) {
+      const auto& c = data.tangents[tri[i]];
+      t += Vec3f{c[0], c[1], c[2]} * b[i];
+    }
+    point.tangent = t;
+    point.bitangent_sign = data.tangents[tri[0]][3] < 0.f ? -1.f : 1.f;
+  }
+  return point;
+}
+
+// Embree's filter for materials with alpha (glTF "Alpha Coverage"): MASK drops hits below the
+// cutoff; BLEND keeps a hit with probability alpha (stochastic transparency, Enderton et al.
+// 2010), decided by a hash of the ray and the hit point so that a render stays deterministic.
+void RenderGeometry::alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const Mesh& mesh = *static_cast<const Mesh*>(args->geometryUserPtr);
+  const Material& material = mesh.shader->material(mesh.material);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    const float alpha = mesh.shader->alpha(mesh.material, surface_point(mesh, primitive, u, v));
+    bool keep;
+    if (material.alpha_mode == AlphaMode::kMask) {
+      keep = alpha >= material.alpha_cutoff;
+    } else {
+      const auto bits = [](float f) { return uint64_t(std::bit_cast<uint32_t>(f)); };
+      uint64_t h = PixelSampler::mix(uint64_t(primitive) << 32 | bits(u));
+      h = PixelSampler::mix(h ^ (bits(v) << 32 | bits(RTCRayN_dir_x(args->ray, args->N, i))));
+      h = PixelSampler::mix(h ^ (bits(RTCRayN_dir_y(args->ray, args->N, i)) << 32 |
+                                 bits(RTCRayN_dir_z(args->ray, args->N, i))));
+      keep = float(h >> 40) * 0x1p-24f < alpha;
+    }
+    if (!keep) args->valid[i] = 0;
+  }
+}
+
 void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
-                              float time, fb_hit& hit) {
+                              float time, fb_hit& hit) const {
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
   const float b[3] = {1.f - u - v, u, v};
   // The corners where Embree met them: at a motion step, or interpolated between two as Embree
@@ -338,6 +406,7 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
   hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
+  shader_->shade(mesh.material, surface_point(mesh, primitive, u, v), hit);
 }
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {

@@ -14,6 +14,9 @@
 
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
+#include "core/texture/surface_shader.h"
+
+struct RTCFilterFunctionNArguments;  // <embree3/rtcore.h>
 
 namespace fb {
 
@@ -58,13 +61,16 @@ class RenderGeometry {
   struct Mesh;
   // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`, at
   // Embree's normalised time.
-  static void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
-                       fb_hit& hit);
+  void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
+                fb_hit& hit) const;
+  static SurfacePoint surface_point(const Mesh& mesh, uint32_t primitive, float u, float v);
+  static void alpha_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
   float embree_time(float time_s) const;
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
                   const std::vector<Transform>& render_from_object_steps);
-  std::vector<Mesh> meshes_;  // indexed by Embree geometry ID
+  std::unique_ptr<SurfaceShader> shader_;  // materials' textures, evaluated at each hit
+  std::vector<Mesh> meshes_;               // indexed by Embree geometry ID
   std::vector<EmissiveTriangle> emitters_;
   Bounds3d bounds_;  // of every vertex at every motion step
   Vec3f centre_;

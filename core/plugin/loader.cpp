@@ -107,6 +107,13 @@ std::string check_descriptor(const fb_plugin* p) {
     if (!function)
       return std::string("incomplete plugin: its ") + kind_name(p->kind) +
              " function table lacks '" + name + "'";
+  if (p->kind == FB_KIND_INTEGRATOR) {
+    const uint32_t hit_size = static_cast<const fb_integrator_api*>(p->api)->hit_size;
+    if (hit_size != sizeof(fb_hit))
+      return "hit record size mismatch: the plugin's fb_hit is " + std::to_string(hit_size) +
+             " bytes, this filmback's is " + std::to_string(sizeof(fb_hit)) +
+             " (rebuild it against this SDK)";
+  }
   return {};
 }
 

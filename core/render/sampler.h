@@ -95,6 +95,14 @@ class PixelSampler {
     return reverse_bits(x);
   }
 
+  // SplitMix64's finaliser (Steele et al. 2014): a bijective avalanche mix. Also the hash of
+  // stochastic transparency (core/accel/render_geometry.cpp).
+  static uint64_t mix(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+
  private:
   // Owen-scrambled sample order (Burley 2020, section 4): 2^k consecutive samples of a pixel are
   // still 2^k consecutive, aligned Sobol indices. Index bits from 24 up would reach only output
@@ -119,12 +127,6 @@ class PixelSampler {
     return mix(h ^ ((uint64_t(index) << 32) | key.dimension));
   }
 
-  // SplitMix64's finaliser (Steele et al. 2014): a bijective avalanche mix.
-  static uint64_t mix(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
   uint64_t seed_;
 };
 

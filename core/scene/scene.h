@@ -13,6 +13,7 @@
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
+#include "core/scene/material_textures.h"
 
 namespace fb {
 
@@ -21,6 +22,7 @@ struct TriangleMesh {
   std::vector<Vec3f> positions;   // object space
   std::vector<Vec3f> normals;     // empty, or one per position
   std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
+  VertexTextureData texturing;    // texture coordinates and tangents, when a material needs them
   uint32_t material = 0;
   size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -33,11 +35,21 @@ struct MeshInstance {
 };
 
 struct Material {
+// glTF metallic-roughness (core/sdk/filmback/bsdf.h has the BSDF); factors multiply textures.
   std::string name;
-  Rgb base_color{1.f, 1.f, 1.f};  // Lambertian albedo (glTF's default base colour)
+  Rgb base_color{1.f, 1.f, 1.f};  // linear (glTF's default base colour)
   Rgb emission{0.f, 0.f, 0.f};    // radiance, W sr^-1 m^-2
   bool double_sided = false;
 };
+  float metallic = 0.f;      // the importer sets glTF's default of 1 for materials it reads
+  float roughness = 1.f;     // perceptual: GGX alpha = roughness^2
+  float transmission = 0.f;  // KHR_materials_transmission
+  float ior = 1.5f;          // KHR_materials_ior
+  float specular = 1.f;      // KHR_materials_specular specularFactor: 0 makes it Lambertian
+  MaterialTextures textures;  // none by default
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha = 1.f;         // baseColorFactor's fourth component
+  float alpha_cutoff = 0.5f;  // kMask
 
 enum class LightType { kPoint, kSpot, kDirectional };
 
@@ -75,6 +87,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
   Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
+  std::vector<TextureImage> images;  // what materials' textures read
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
 

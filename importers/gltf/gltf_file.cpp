@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -15,9 +16,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Textures are not used yet: skip decoding them (untrusted input, and time).
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
+// Images stay encoded (PNG, JPEG bytes in Image::image, width 0): the render decodes the ones a
+// material uses through OpenImageIO (core/texture/surface_shader.cpp), which checks their size.
+// tinygltf reads external ones through the confined callbacks below.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  image->image.assign(bytes, bytes + std::max(size, 0));
+  image->width = image->height = 0;
   return true;
 }
 
@@ -184,7 +189,7 @@ void load_model(const fs::path& file, tinygltf::Model& model) {
   std::error_code ec;
   Confinement confinement{fs::weakly_canonical(fs::absolute(file, ec).parent_path(), ec)};
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
+  loader.SetImageLoader(keep_encoded_image, nullptr);
   loader.SetFsCallbacks({any_file_exists, unexpanded, confined_read, refuse_write, &confinement});
   std::string err, warnings;
   const std::string folder = confinement.folder.string();  // external files are relative to it

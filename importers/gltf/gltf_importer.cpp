@@ -14,6 +14,7 @@
 #include "importers/gltf/gltf_animation.h"
 #include "importers/gltf/gltf_extras.h"
 #include "importers/gltf/gltf_file.h"
+#include "importers/gltf/gltf_materials.h"
 
 namespace fb {
 namespace {
@@ -50,9 +51,8 @@ class Importer {
     load();
     check_extensions();
     scene_.file = file_;
-    convert_materials();
+    gltf::read_materials(model_, name_, scene_, diagnostics_);
     // Skins are reported where a node uses one (visit()), with what is rendered instead.
-    warn_if_present("textures", model_.textures.size());
     // The node hierarchy is kept only when something can move: a static file costs nothing more.
     keep_nodes_ = !model_.animations.empty();
     walk_nodes();
@@ -76,6 +76,10 @@ class Importer {
         "KHR_lights_punctual",
         "KHR_materials_emissive_strength",
     };
+        "KHR_materials_ior",
+        "KHR_materials_specular",
+        "KHR_materials_transmission",
+        "KHR_texture_transform",
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
         throw_input(name_, index_path("extensionsRequired", i),
@@ -84,45 +88,6 @@ class Importer {
       if (!kSupported.count(model_.extensionsUsed[i]))
         warn(index_path("extensionsUsed", i),
              model_.extensionsUsed[i] + " is not supported yet; ignored");
-  }
-
-  void warn_if_present(const std::string& what, size_t n) {
-    if (n > 0) warn(what, "not supported yet; " + std::to_string(n) + " ignored");
-  }
-
-  void convert_materials() {
-    for (size_t i = 0; i < model_.materials.size(); ++i) {
-      const tinygltf::Material& g = model_.materials[i];
-      const std::string path = index_path("materials", i);
-      Material m;
-      m.name = g.name.empty() ? path : g.name;
-      const auto& base = g.pbrMetallicRoughness.baseColorFactor;
-      if (base.size() == 4) m.base_color = Rgb(float(base[0]), float(base[1]), float(base[2]));
-      double strength = 1.0;
-      if (auto it = g.extensions.find("KHR_materials_emissive_strength"); it != g.extensions.end())
-        strength = number_or(it->second, "emissiveStrength", 1.0);
-      if (g.emissiveFactor.size() == 3)
-        m.emission =
-            Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
-                float(g.emissiveFactor[2] * strength));
-      m.double_sided = g.doubleSided;
-      // glTF bounds baseColorFactor to [0, 1]: a surface reflecting more than it receives would
-      // make path throughput grow without bound.
-      if (!(is_finite(m.base_color) && min_component(m.base_color) >= 0 &&
-            max_component(m.base_color) <= 1))
-        throw_input(name_, path + ".pbrMetallicRoughness.baseColorFactor",
-                    "expected components in [0, 1]");
-      if (!(min_component(m.emission) >= 0 && is_finite(m.emission)))
-        throw_input(name_, path,
-                    "emission (emissiveFactor x emissiveStrength) must be finite and non-negative");
-      // A black metal reflects nothing, as a black Lambertian surface: no warning for emitters.
-      if (g.pbrMetallicRoughness.metallicFactor > 0 && max_component(m.base_color) > 0)
-        warn(path, "metallic " + number_text(g.pbrMetallicRoughness.metallicFactor) +
-                       " is rendered as Lambertian (metallic-roughness is not supported yet)");
-      if (g.alphaMode != "OPAQUE" && !g.alphaMode.empty())
-        warn(path + ".alphaMode", g.alphaMode + " is rendered as OPAQUE");
-      scene_.materials.push_back(m);
-    }
   }
 
   uint32_t default_material() {
@@ -316,6 +281,7 @@ class Importer {
   std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode,
                                       const std::string& path) {
     std::vector<uint32_t> out;
+    gltf::read_texturing(ctx, prim, path, scene_.materials[out.material], out);
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       if (v.size() % 3 != 0)
         warn(path,

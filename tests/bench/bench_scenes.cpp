@@ -36,7 +36,10 @@ Scene one_mesh_scene(std::string name, std::vector<Vec3f> positions, std::vector
   mesh.indices = std::move(indices);
   scene.meshes.push_back(std::move(mesh));
   scene.instances.push_back({0, Transform(), "mesh"});
-  scene.materials.push_back({"grey", {0.8f, 0.8f, 0.8f}, {0.f, 0.f, 0.f}, false});
+  Material grey;
+  grey.name = "grey";
+  grey.base_color = {0.8f, 0.8f, 0.8f};
+  scene.materials.push_back(grey);
   scene.cameras.push_back(std::move(camera));
   return scene;
 }

@@ -614,7 +614,7 @@ class CliTest(unittest.TestCase):
         scene = self.scene(g)
         result = self.render(scene, *TINY)
         self.assert_rendered(result, "image.exr")
-        expected = ["extensionsUsed[0]", "textures", "nodes[0].skin", "meshes[0].primitives[0].targets",
+        expected = ["extensionsUsed[0]", "nodes[0].skin", "meshes[0].primitives[0].targets",
                     "meshes[0].primitives[1].mode", "meshes[0].primitives[2].mode"]
         warnings = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
         self.assertEqual(len(warnings), len(expected), result.stderr)

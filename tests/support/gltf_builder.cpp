@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace fb::test {
@@ -58,6 +59,13 @@ int GltfBuilder::material(Rgb base_color, Rgb emission, double emissive_strength
   tinygltf::Material m;
   m.pbrMetallicRoughness.baseColorFactor = {base_color.x, base_color.y, base_color.z, 1.0};
   m.pbrMetallicRoughness.metallicFactor = 0.0;
+  // Lambertian: no specular layer (KHR_materials_specular), so tests can use closed forms.
+  tinygltf::Value::Object specular;
+  specular["specularFactor"] = tinygltf::Value(0.0);
+  m.extensions["KHR_materials_specular"] = tinygltf::Value(specular);
+  std::vector<std::string>& used = impl_->model.extensionsUsed;
+  if (std::find(used.begin(), used.end(), "KHR_materials_specular") == used.end())
+    used.push_back("KHR_materials_specular");
   m.emissiveFactor = {emission.x, emission.y, emission.z};
   m.doubleSided = double_sided;
   if (emissive_strength != 1.0) {

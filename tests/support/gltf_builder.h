@@ -20,6 +20,7 @@ class GltfBuilder {
   GltfBuilder();
   ~GltfBuilder();
 
+  // A Lambertian material: metallic 0 and no specular layer (KHR_materials_specular 0).
   int material(Rgb base_color, Rgb emission = {}, double emissive_strength = 1.0,
                bool double_sided = true);
   // Triangles with optional normals; indices of the given component type (5121, 5123, 5125) or

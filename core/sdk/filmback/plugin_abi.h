@@ -185,11 +185,26 @@ typedef struct fb_hit {
   float shading_normal[3];   /* unit; interpolated vertex normal, same side as geometric */
   uint32_t material;         /* index into fb_scene.materials */
   uint32_t emitter;          /* emissive-triangle light index, or FB_NONE */
+  /* The surface at the hit, its material's textures evaluated by the host (glTF
+   * metallic-roughness, docs/plugins.md "Surfaces"). shading_normal above already has the normal
+   * map applied. These fields were appended to fb_hit together with fb_integrator_api.hit_size:
+   * an integrator built before them has a smaller function table and is refused at load time. */
+  float base_color[3]; /* linear reflectance (metals: the colour at normal incidence) */
+  float metallic;      /* 0 dielectric ... 1 metal */
+  float roughness;     /* perceptual, as glTF and Blender: GGX alpha = roughness^2 */
+  float
+      transmission; /* fraction of the dielectric base that refracts (KHR_materials_transmission) */
+  float ior;        /* index of refraction of the material (outside it: 1) */
+  float specular;   /* scales the dielectric Fresnel (KHR_materials_specular); 0: Lambertian */
+  float
+      emission[3]; /* radiance leaving the front face (both faces if double-sided), W sr^-1 m^-2 */
 } fb_hit;
 
+/* A material's constant factors. The layout is frozen: what a material has beyond these reaches
+ * integrators evaluated per hit, in fb_hit. */
 typedef struct fb_material {
-  float base_color[3];   /* Lambertian albedo */
-  float emission[3];     /* radiance, W sr^-1 m^-2 */
+  float base_color[3];   /* base colour factor; textures may modulate it per hit */
+  float emission[3];     /* radiance, W sr^-1 m^-2, before emissive textures */
   uint32_t double_sided; /* emission leaves the back face too */
 } fb_material;
 
@@ -248,6 +263,9 @@ typedef struct fb_integrator_api {
   /* values[i * channel_count + c] for ray i; one call per batch of camera rays. */
   void (*radiance)(const void* instance, const fb_scene* scene, fb_trace_context* context,
                    const fb_ray* rays, size_t count, float* values);
+  /* sizeof(fb_hit) as the plugin was built: the host writes hit records into the plugin's
+   * memory, so the loader refuses a plugin whose records are not this host's. */
+  uint32_t hit_size;
 } fb_integrator_api;
 
 #ifdef __cplusplus

@@ -124,7 +124,8 @@ constexpr fb_integrator_api integrator_api() {
           [](const void* self, const fb_scene* scene, fb_trace_context* context, const fb_ray* rays,
              size_t count, float* values) {
             static_cast<const Integrator*>(self)->radiance(*scene, context, rays, count, values);
-          }};
+          },
+          sizeof(fb_hit)};
 }
 
 // The plugin's descriptor; its kind follows from the type of its function table.

@@ -1,22 +1,23 @@
 // Integrator `path`: unidirectional path tracing with next-event estimation (Kajiya 1986;
-// Veach 1997 ch. 9). Surfaces are two-sided Lambertian reflectors with optional emission; light
-// comes from punctual lights, emissive triangles and a uniform background. Emission found by
-// BSDF sampling and by light sampling is combined with the power heuristic; delta lights are
-// reached by light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased.
+// Veach 1997 ch. 9). Surfaces scatter by glTF's metallic-roughness BSDF (filmback/bsdf.h: a
+// Lambertian base under GGX specular, metals, rough dielectric transmission) with the parameters
+// the host evaluated at the hit; light comes from punctual lights, emissive triangles and a
+// uniform background. Emission found by BSDF sampling and by light sampling is combined with the
+// power heuristic; delta lights are reached by light sampling only. Russian roulette after
+// `rr_depth` bounces keeps it unbiased.
+#include <filmback/bsdf.h>
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
 #include <filmback/sampling.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace {
 
 using fb::Rgb;
 using fb::Vec3f;
 
-constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this short of the light
 
 class PathTracer {
@@ -41,8 +42,19 @@ class PathTracer {
 // Emission leaving the hit towards -direction: front faces only, unless the material is two-sided.
 Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
   if (!m.double_sided && fb::dot(Vec3f(hit.geometric_normal), direction) > 0.f) return {};
-  return Rgb(m.emission);
+  return Rgb(hit.emission);
 }
+
+// The BSDF at a hit, in the shading frame turned towards wo. Transmission makes the side matter:
+// a ray arriving at a back face leaves the material, so the index ratio inverts.
+struct Scatter {
+  fb::Frame frame;
+  fb::Bsdf bsdf;
+  Scatter(const fb_hit& hit, Vec3f ns, bool front)
+      : frame(ns),
+        bsdf({Rgb(hit.base_color), hit.metallic, hit.roughness, hit.transmission,
+              hit.transmission > 0.f && !front ? 1.f / hit.ior : hit.ior, hit.specular}) {}
+};
 
 Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
                       fb_hit hit) const {
@@ -58,7 +70,7 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
       break;
     }
     const fb_material& m = scene.materials[hit.material];
-    const Vec3f wo = -Vec3f(ray.direction);
+    const Vec3f wo_world = -Vec3f(ray.direction);
     if (hit.emitter != FB_NONE) {
       const Rgb Le = emitted(m, hit, Vec3f(ray.direction));
       const float weight =
@@ -67,40 +79,48 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     }
     if (depth >= max_depth_) break;
 
-    // Two-sided Lambertian: shade on the side the ray arrived from.
+    // Shade on the side the ray arrived from; the geometric normal decides which side that is.
     Vec3f ng(hit.geometric_normal), ns(hit.shading_normal);
-    if (fb::dot(ng, wo) < 0.f) ng = -ng, ns = -ns;
+    const bool front = fb::dot(ng, wo_world) >= 0.f;
+    if (!front) ng = -ng, ns = -ns;
     const Vec3f p(hit.position), p_error(hit.position_error);
-    const Rgb albedo(m.base_color);
-    const Rgb f = albedo * kInvPi;
+    const Scatter scatter(hit, ns, front);
+    const Vec3f wo = scatter.frame.to_local(wo_world);
+    if (!(wo.z > 0.f)) break;  // the shading normal turned away from the viewer: no light path
+    // A direction is valid when the shading and geometric normals agree on its side.
+    const auto consistent = [&](Vec3f wi_world, Vec3f wi) {
+      return (fb::dot(ng, wi_world) > 0.f) == (wi.z > 0.f);
+    };
 
     float u[3];
     api.next_samples(ctx, path, u, 3);
     fb_light_sample ls;
-    if (max_component(albedo) > 0.f && api.sample_light(ctx, hit.position, u, &ls)) {
-      const Vec3f wi(ls.direction);
-      const float cos_theta = fb::dot(ns, wi);
-      if (cos_theta > 0.f && fb::dot(ng, wi) > 0.f && ls.pdf > 0.f) {
+    if (api.sample_light(ctx, hit.position, u, &ls) && ls.pdf > 0.f) {
+      const Vec3f wi_world(ls.direction);
+      const Vec3f wi = scatter.frame.to_local(wi_world);
+      const Rgb f = scatter.bsdf.eval(wo, wi);
+      if (consistent(wi_world, wi) && fb::max_component(f) > 0.f) {
         fb_ray shadow{};
-        fb::offset_ray_origin(p, p_error, ng, wi).store(shadow.origin);
-        wi.store(shadow.direction);
+        fb::offset_ray_origin(p, p_error, ng, wi_world).store(shadow.origin);
+        wi_world.store(shadow.direction);
         shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
         shadow.time_s = time_s;
         if (!api.occluded(ctx, &shadow)) {
-          const float weight = ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, cos_theta * kInvPi);
-          L += beta * f * Rgb(ls.radiance) * (cos_theta * weight / ls.pdf);
+          const float weight =
+              ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, scatter.bsdf.pdf(wo, wi));
+          L += beta * f * Rgb(ls.radiance) * (std::abs(wi.z) * weight / ls.pdf);
         }
       }
     }
 
-    float v[2];
-    api.next_samples(ctx, path, v, 2);
-    const fb::Frame frame(ns);
-    const Vec3f local = fb::sample_cosine_hemisphere({v[0], v[1]});
-    const Vec3f wi = frame.to_world(local);
-    if (local.z <= 0.f || fb::dot(ng, wi) <= 0.f) break;  // below the true surface: no light path
-    beta *= albedo;  // f cos / pdf = (albedo / pi) cos / (cos / pi)
-    bsdf_pdf = local.z * kInvPi;
+    float v[3];
+    api.next_samples(ctx, path, v, 3);
+    fb::Bsdf::Sample s;
+    if (!scatter.bsdf.sample(wo, v[0], {v[1], v[2]}, s)) break;
+    const Vec3f wi = scatter.frame.to_world(s.wi);
+    if (!consistent(wi, s.wi)) break;  // across the true surface from where the BSDF meant it
+    beta *= s.weight;
+    bsdf_pdf = s.pdf;
     p.store(previous);
 
     if (depth + 1 >= rr_depth_) {
@@ -129,8 +149,8 @@ const fb_param_desc kParams[] = {
 constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
 constexpr fb_plugin kPlugin =
     fb::describe("path", "1.0.0",
-                 "Path tracing with next-event estimation and MIS; Lambertian surfaces, "
-                 "emission, punctual lights, uniform background",
+                 "Path tracing with next-event estimation and MIS; glTF metallic-roughness "
+                 "surfaces (GGX, transmission), emission, punctual lights, uniform background",
                  kParams, kApi);
 
 }  // namespace

@@ -1,0 +1,54 @@
+// The host's half of materials: evaluates a material's textures at a surface point (through
+// OpenImageIO's TextureSystem: tiled, cached, mip-mapped on demand) and writes the result into
+// the hit record integrators read (fb_hit's surface fields, docs/plugins.md "Surfaces").
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <filmback/plugin_abi.h>
+#include <filmback/vec.h>
+
+#include "core/scene/scene.h"
+
+namespace fb {
+
+// Where on a mesh a hit lies, interpolated from its vertices (render space).
+struct SurfacePoint {
+  std::array<Vec2f, VertexTextureData::kSets> uv{};
+  uint32_t uv_sets = 0;  // how many of `uv` the mesh has
+  Vec3f tangent{};       // unit, or zero when the mesh has none
+  float bitangent_sign = 1.f;
+};
+
+class SurfaceShader {
+ public:
+  // Opens every image a material uses; an image that cannot be read or is too large is an
+  // InputError naming it.
+  explicit SurfaceShader(const Scene& scene);
+  ~SurfaceShader();
+  SurfaceShader(const SurfaceShader&) = delete;
+  SurfaceShader& operator=(const SurfaceShader&) = delete;
+
+  // Fills hit.base_color ... hit.emission for `material` and applies its normal map to
+  // hit.shading_normal (which must hold the interpolated normal).
+  void shade(uint32_t material, const SurfacePoint& point, fb_hit& hit) const;
+  // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage").
+  float alpha(uint32_t material, const SurfacePoint& point) const;
+  bool has_alpha(uint32_t material) const {
+    return materials_[material].alpha_mode != AlphaMode::kOpaque;
+  }
+  const Material& material(uint32_t index) const { return materials_[index]; }
+
+ private:
+  // RGBA of texture `ref` at the point; `srgb` decodes the colour channels.
+  std::array<float, 4> lookup(const TextureRef& ref, const SurfacePoint& point, bool srgb) const;
+  const std::vector<Material>& materials_;
+  struct Textures;
+  std::unique_ptr<Textures> textures_;
+};
+
+// sRGB transfer function, decoding (IEC 61966-2-1).
+float srgb_to_linear(float v);
+
+}  // namespace fb

@@ -1,0 +1,285 @@
+#include "importers/gltf/gltf_materials.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/util/error.h"
+
+namespace fb::gltf {
+namespace {
+
+std::string index_path(const char* array, size_t i) {
+  return std::string(array) + "[" + std::to_string(i) + "]";
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const char* name) {
+  const auto it = map.find(name);
+  return it == map.end() ? nullptr : &it->second;
+}
+
+class MaterialReader {
+ public:
+  MaterialReader(const tinygltf::Model& model, const std::string& file, Diagnostics& diagnostics)
+      : model_(model), file_(file), diagnostics_(diagnostics) {}
+
+  Material read(const tinygltf::Material& g, const std::string& path) {
+    Material m;
+    m.name = g.name.empty() ? path : g.name;
+    const tinygltf::PbrMetallicRoughness& pbr = g.pbrMetallicRoughness;
+    const std::string pbr_path = path + ".pbrMetallicRoughness";
+    if (pbr.baseColorFactor.size() == 4) {
+      for (size_t c = 0; c < 4; ++c)
+        if (!(pbr.baseColorFactor[c] >= 0 && pbr.baseColorFactor[c] <= 1))
+          throw_input(file_, pbr_path + ".baseColorFactor", "expected components in [0, 1]");
+      m.base_color = Rgb(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                         float(pbr.baseColorFactor[2]));
+      m.alpha = float(pbr.baseColorFactor[3]);
+    }
+    m.metallic = unit_factor(pbr.metallicFactor, pbr_path + ".metallicFactor");
+    m.roughness = unit_factor(pbr.roughnessFactor, pbr_path + ".roughnessFactor");
+    m.textures.base_color = texture(pbr.baseColorTexture, pbr_path + ".baseColorTexture");
+    m.textures.metallic_roughness =
+        texture(pbr.metallicRoughnessTexture, pbr_path + ".metallicRoughnessTexture");
+    m.textures.normal = texture(g.normalTexture, path + ".normalTexture");
+    m.textures.normal_scale = float(g.normalTexture.scale);
+    if (!std::isfinite(m.textures.normal_scale))
+      throw_input(file_, path + ".normalTexture.scale", "expected a finite number");
+    m.textures.emissive = texture(g.emissiveTexture, path + ".emissiveTexture");
+    if (g.occlusionTexture.index >= 0)
+      warn(path + ".occlusionTexture",
+           "ignored: ambient occlusion is what the path tracer computes (glTF allows this)");
+
+    double strength = 1.0;
+    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_emissive_strength"))
+      strength = number(*e, "emissiveStrength", 1.0,
+                        path + ".extensions.KHR_materials_emissive_strength.emissiveStrength");
+    if (g.emissiveFactor.size() == 3)
+      m.emission = Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
+                       float(g.emissiveFactor[2] * strength));
+    if (!(min_component(m.emission) >= 0 && is_finite(m.emission)))
+      throw_input(file_, path,
+                  "emission (emissiveFactor x emissiveStrength) must be finite and non-negative");
+    m.double_sided = g.doubleSided;
+
+    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_transmission")) {
+      const std::string e_path = path + ".extensions.KHR_materials_transmission";
+      m.transmission = unit_factor(number(*e, "transmissionFactor", 0.0, e_path),
+                                   e_path + ".transmissionFactor");
+      if (e->Has("transmissionTexture"))
+        warn(e_path + ".transmissionTexture", "not supported yet; transmissionFactor used");
+    }
+    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_ior")) {
+      const std::string e_path = path + ".extensions.KHR_materials_ior.ior";
+      const double ior = number(*e, "ior", 1.5, e_path);
+      // The extension allows 0 for "no refraction" (F0 = 1); filmback keeps real materials only.
+      if (!(ior >= 1 && ior <= 10))
+        throw_input(file_, e_path,
+                    number_text(ior) + " is not an index of refraction (expected 1 to 10)");
+      m.ior = float(ior);
+    }
+    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_specular")) {
+      const std::string e_path = path + ".extensions.KHR_materials_specular";
+      m.specular = unit_factor(number(*e, "specularFactor", 1.0, e_path + ".specularFactor"),
+                               e_path + ".specularFactor");
+      if (e->Has("specularColorFactor") || e->Has("specularTexture") ||
+          e->Has("specularColorTexture"))
+        warn(e_path, "only specularFactor is carried (specular colour and textures are not)");
+    }
+
+    if (g.alphaMode == "MASK") {
+      m.alpha_mode = AlphaMode::kMask;
+      if (!(g.alphaCutoff >= 0 && std::isfinite(g.alphaCutoff)))
+        throw_input(file_, path + ".alphaCutoff", "expected a finite number >= 0");
+      m.alpha_cutoff = float(g.alphaCutoff);
+    } else if (g.alphaMode == "BLEND") {
+      m.alpha_mode = AlphaMode::kBlend;
+    } else if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
+      throw_input(file_, path + ".alphaMode",
+                  "'" + g.alphaMode + "' is not an alpha mode (expected OPAQUE, MASK or BLEND)");
+    }
+    // Fully covered everywhere: no need to test each hit.
+    if (m.alpha_mode == AlphaMode::kBlend && m.alpha >= 1 && !m.textures.base_color.present())
+      m.alpha_mode = AlphaMode::kOpaque;
+    return m;
+  }
+
+ private:
+  void warn(const std::string& where, const std::string& what) {
+    diagnostics_.warn(located(file_, where, what));
+  }
+
+  float unit_factor(double v, const std::string& where) {
+    if (!(v >= 0 && v <= 1))
+      throw_input(file_, where, number_text(v) + ", expected a value in [0, 1]");
+    return float(v);
+  }
+
+  double number(const tinygltf::Value& object, const char* key, double fallback,
+                const std::string& where) {
+    if (!object.IsObject() || !object.Has(key)) return fallback;
+    const tinygltf::Value& v = object.Get(key);
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()))
+      throw_input(file_, where, "expected a finite number");
+    return v.GetNumberAsDouble();
+  }
+
+  // A textureInfo (glTF 2.0 §5.29) with its sampler's wrap modes and KHR_texture_transform.
+  template <typename Info>
+  TextureRef texture(const Info& info, const std::string& where) {
+    TextureRef ref;
+    if (info.index < 0) return ref;
+    if (size_t(info.index) >= model_.textures.size())
+      throw_input(file_, where + ".index",
+                  "texture index " + std::to_string(info.index) +
+                      " is out of range (the file has " + std::to_string(model_.textures.size()) +
+                      " textures)");
+    const std::string t_path = index_path("textures", size_t(info.index));
+    const tinygltf::Texture& t = model_.textures[size_t(info.index)];
+    if (t.source < 0 || size_t(t.source) >= model_.images.size())
+      throw_input(file_, t_path + ".source",
+                  "expected an image index below " + std::to_string(model_.images.size()) +
+                      " (texture extensions such as KHR_texture_basisu are not supported)");
+    ref.image = uint32_t(t.source);
+    if (info.texCoord < 0 || uint32_t(info.texCoord) >= VertexTextureData::kSets)
+      throw_input(file_, where + ".texCoord", "expected 0 or 1 (TEXCOORD_0 or TEXCOORD_1)");
+    ref.texcoord = uint32_t(info.texCoord);
+    if (t.sampler >= 0) {
+      if (size_t(t.sampler) >= model_.samplers.size())
+        throw_input(file_, t_path + ".sampler", "sampler index out of range");
+      const tinygltf::Sampler& s = model_.samplers[size_t(t.sampler)];
+      ref.wrap_s = wrap(s.wrapS), ref.wrap_t = wrap(s.wrapT);
+    }
+    if (const tinygltf::Value* e = extension(info.extensions, "KHR_texture_transform"))
+      transform(*e, where + ".extensions.KHR_texture_transform", ref);
+    return ref;
+  }
+
+  static TextureWrap wrap(int mode) {
+    if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::kClamp;
+    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::kMirror;
+    return TextureWrap::kRepeat;
+  }
+
+  // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, with R = [c s; -s c]
+  // (the extension's README, "transform").
+  void transform(const tinygltf::Value& e, const std::string& where, TextureRef& ref) {
+    auto pair = [&](const char* key, double fallback) -> std::array<double, 2> {
+      if (!e.Has(key)) return {fallback, fallback};
+      const tinygltf::Value& v = e.Get(key);
+      if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+        throw_input(file_, where + "." + key, "expected two numbers");
+      const std::array<double, 2> out{v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble()};
+      if (!std::isfinite(out[0]) || !std::isfinite(out[1]))
+        throw_input(file_, where + "." + key, "expected finite numbers");
+      return out;
+    };
+    const auto offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+    const double rotation = number(e, "rotation", 0.0, where + ".rotation");
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    ref.uv_transform = {float(c * scale[0]),  float(s * scale[1]), float(offset[0]),
+                        float(-s * scale[0]), float(c * scale[1]), float(offset[1])};
+    if (e.Has("texCoord")) {
+      const double tc = number(e, "texCoord", 0.0, where + ".texCoord");
+      if (!(tc == 0 || tc == 1)) throw_input(file_, where + ".texCoord", "expected 0 or 1");
+      ref.texcoord = uint32_t(tc);
+    }
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& file_;
+  Diagnostics& diagnostics_;
+};
+
+// Per-vertex tangents from the triangles' position and texture-coordinate gradients (Lengyel
+// 2001, as MikkTSpace does before its splitting rules): summed over the triangles at a vertex,
+// made orthogonal to the vertex normal, with the bitangent's handedness in w.
+std::vector<std::array<float, 4>> computed_tangents(const TriangleMesh& mesh,
+                                                    const std::vector<Vec2f>& uv) {
+  const size_t n = mesh.positions.size();
+  std::vector<Vec3f> t_sum(n), b_sum(n), n_sum(n);
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+    const Vec3f e1 = mesh.positions[b] - mesh.positions[a];
+    const Vec3f e2 = mesh.positions[c] - mesh.positions[a];
+    const Vec2f d1 = uv[b] - uv[a], d2 = uv[c] - uv[a];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    const Vec3f face = cross(e1, e2);
+    if (!(std::abs(det) > 0.f)) continue;
+    const Vec3f t = (e1 * d2.y - e2 * d1.y) / det;
+    const Vec3f bt = (e2 * d1.x - e1 * d2.x) / det;
+    for (uint32_t v : {a, b, c})
+      t_sum[v] += t, b_sum[v] += bt, n_sum[v] += face;
+  }
+  std::vector<std::array<float, 4>> out(n, {0.f, 0.f, 0.f, 1.f});
+  for (size_t v = 0; v < n; ++v) {
+    Vec3f normal = mesh.normals.empty() ? n_sum[v] : mesh.normals[v];
+    if (!(length(normal) > 0.f)) continue;
+    normal = normalize(normal);
+    const Vec3f t = t_sum[v] - normal * dot(normal, t_sum[v]);
+    if (!(length(t) > 0.f) || !is_finite(t)) continue;
+    const Vec3f u = normalize(t);
+    const float w = dot(cross(normal, u), b_sum[v]) < 0.f ? -1.f : 1.f;
+    out[v] = {u.x, u.y, u.z, w};
+  }
+  return out;
+}
+
+}  // namespace
+
+void read_materials(tinygltf::Model& model, const std::string& file, Scene& scene,
+                    Diagnostics& diagnostics) {
+  MaterialReader reader(model, file, diagnostics);
+  for (size_t i = 0; i < model.materials.size(); ++i)
+    scene.materials.push_back(reader.read(model.materials[i], index_path("materials", i)));
+  for (size_t i = 0; i < model.images.size(); ++i) {
+    tinygltf::Image& g = model.images[i];
+    TextureImage image;
+    image.name =
+        index_path("images", i) +
+        (g.uri.empty() || g.uri.rfind("data:", 0) == 0 ? std::string() : " (" + g.uri + ")");
+    image.bytes = std::move(g.image);
+    scene.images.push_back(std::move(image));
+  }
+}
+
+void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
+                    const std::string& path, const Material& material, TriangleMesh& mesh) {
+  if (!material.textures.any() && material.alpha_mode == AlphaMode::kOpaque) return;
+  VertexTextureData& out = mesh.texturing;
+  for (uint32_t set = 0; set < VertexTextureData::kSets; ++set) {
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    const auto it = prim.attributes.find(name);
+    if (it == prim.attributes.end()) break;
+    const std::string where = path + ".attributes." + name;
+    const std::vector<double> values =
+        read_animation_values(ctx, it->second, where, TINYGLTF_TYPE_VEC2, true);
+    if (values.size() != 2 * mesh.positions.size())
+      throw_input(ctx.file, where,
+                  std::to_string(values.size() / 2) + " texture coordinates for " +
+                      std::to_string(mesh.positions.size()) + " positions");
+    out.texcoords[set].resize(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v)
+      out.texcoords[set][v] = {float(values[2 * v]), float(values[2 * v + 1])};
+  }
+  if (!material.textures.normal.present()) return;
+  if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
+    const std::string where = path + ".attributes.TANGENT";
+    const std::vector<double> values =
+        read_animation_values(ctx, it->second, where, TINYGLTF_TYPE_VEC4, false);
+    if (values.size() != 4 * mesh.positions.size())
+      throw_input(ctx.file, where,
+                  std::to_string(values.size() / 4) + " tangents for " +
+                      std::to_string(mesh.positions.size()) + " positions");
+    out.tangents.resize(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v)
+      out.tangents[v] = {float(values[4 * v]), float(values[4 * v + 1]), float(values[4 * v + 2]),
+                         values[4 * v + 3] < 0 ? -1.f : 1.f};
+  } else {
+    const uint32_t set = material.textures.normal.texcoord;
+    if (!out.texcoords[set].empty()) out.tangents = computed_tangents(mesh, out.texcoords[set]);
+  }
+}
+
+}  // namespace fb::gltf

@@ -1,0 +1,31 @@
+// glTF materials (metallic-roughness core, KHR_materials_emissive_strength, _transmission, _ior,
+// _specular, KHR_texture_transform) into filmback's Material, and the per-vertex data their
+// textures read (TEXCOORD_n, TANGENT or tangents computed from the texture coordinates).
+#pragma once
+
+#include <string>
+
+#include "core/scene/scene.h"
+#include "core/util/diagnostics.h"
+#include "importers/gltf/gltf_accessors.h"
+
+namespace tinygltf {
+class Model;
+struct Primitive;
+}  // namespace tinygltf
+
+namespace fb::gltf {
+
+// model.materials into scene.materials, index for index, and model.images into scene.images
+// (their encoded bytes are moved out of the model). Bad values throw an InputError naming the
+// JSON path; what is not carried is a warning.
+void read_materials(tinygltf::Model& model, const std::string& file, Scene& scene,
+                    Diagnostics& diagnostics);
+
+// The texture coordinates and tangents `material` reads, into mesh.texturing. `path` is the
+// primitive's JSON path. Tangents come from TANGENT, or are computed per vertex from the
+// triangles' texture-coordinate gradients when the material has a normal map and the file none.
+void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
+                    const std::string& path, const Material& material, TriangleMesh& mesh);
+
+}  // namespace fb::gltf
