@@ -60,6 +60,11 @@ int main(int argc, char** argv) {
   camera_group->add_option("--sensor-model", render.sensor_model,
                            "simple (pixel = radiance, as Cycles; default) or physical (exposure)");
   camera_group->add_option("--iso", render.iso, "physical sensor: ISO speed (default 100)");
+  render_cmd
+      ->add_option("--subdiv", render.subdiv,
+                   "subdivision surfaces: render (Blender's render level, default) or adaptive "
+                   "(cage edges cut to about one pixel through the camera)")
+      ->check(CLI::IsMember({"render", "adaptive"}));
   render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")
       ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");

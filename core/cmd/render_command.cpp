@@ -146,6 +146,7 @@ int run_render(RenderCommand& c) {
   parse_physical(c, c.options);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
+  if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
   c.options.show_progress = !c.quiet;
 
   Diagnostics diagnostics;

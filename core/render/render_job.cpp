@@ -15,6 +15,7 @@
 #include "core/render/shutter.h"
 #include "core/render/trace_context.h"
 #include "core/scene/default_camera.h"
+#include "core/subdiv/refine_scene.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -30,6 +31,8 @@ struct RenderJob::Plugins {
   ShutterCurve shutter_curve;
   TimeSampling time;
   std::unique_ptr<CameraPath> camera_path;
+  std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
+  std::string subdiv_summary;
   std::vector<fb_material> materials;
   fb_scene scene{};
 };
@@ -122,6 +125,13 @@ MotionTolerance motion_tolerance(const fb_camera_setup& setup) {
   return {0, footprint};
 }
 
+// Adaptive subdivision's view of the shot: the eye, and the pixels a metre spans (at 1 m).
+SubdivView subdiv_view(const fb_camera_setup& setup, const SceneCamera& camera) {
+  const ViewPlane v = view_plane(setup);
+  return {camera.world_from_camera.translation(), std::max(v.fx, v.fy),
+          setup.projection == FB_PROJECTION_ORTHOGRAPHIC};
+}
+
 std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
   if (!(needs & FB_CAMERA_NEEDS_LENS))
     return camera.projection == FB_PROJECTION_ORTHOGRAPHIC
@@ -192,9 +202,22 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 
   // Render space: world translated so the camera is at the origin; only this is narrowed to float.
   p.render_from_world = Transform::translate(-camera_.world_from_camera.translation());
-  p.geometry =
-      std::make_unique<RenderGeometry>(scene, p.render_from_world, times_, motion_tolerance(setup));
-  p.lights = std::make_unique<LightSampler>(scene, p.render_from_world, *p.geometry, frame_s);
+  // Subdivision surfaces become triangles here, where the camera that adaptive refinement needs
+  // is known; a scene without any never loads the subdivision module.
+  const Scene* geometry_scene = &scene;
+  if (!scene.subdivision_surfaces.empty()) {
+    p.refined = std::make_unique<Scene>(scene);
+    SubdivReport report =
+        refine_subdivision_surfaces(*p.refined, options.subdiv, subdiv_view(setup, camera_));
+    for (const std::string& warning : report.warnings)
+      std::cerr << "warning: " << warning << '\n';
+    p.subdiv_summary = std::move(report.summary);
+    geometry_scene = p.refined.get();
+  }
+  p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
+                                                motion_tolerance(setup));
+  p.lights =
+      std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry, frame_s);
   choose_time_samples(scene);
   for (const Material& m : scene.materials) {
     fb_material fm{};
@@ -262,6 +285,7 @@ std::string RenderJob::plan() const {
       << plugins_->geometry->triangle_count() << " triangles, "
       << plugins_->lights->punctual_light_count() << " punctual lights, "
       << plugins_->lights->emissive_triangle_count() << " emissive triangles";
+  if (!plugins_->subdiv_summary.empty()) out << "; " << plugins_->subdiv_summary;
   return out.str();
 }
 

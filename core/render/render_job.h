@@ -15,6 +15,7 @@
 #include "core/plugin/loader.h"
 #include "core/render/render_loop.h"
 #include "core/scene/scene.h"
+#include "core/subdiv/refine_scene.h"
 
 namespace fb {
 
@@ -45,6 +46,7 @@ struct RenderOptions {
   double iso = 100.0;
   uint64_t seed = 0;
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
+  SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
   bool show_progress = true;
 };
 

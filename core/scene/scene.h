@@ -14,6 +14,7 @@
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
 #include "core/scene/material_textures.h"
+#include "core/scene/subdivision_surface.h"
 
 namespace fb {
 
@@ -21,8 +22,8 @@ struct TriangleMesh {
   std::string name;               // for messages and `filmback info`
   std::vector<Vec3f> positions;   // object space
   std::vector<Vec3f> normals;     // empty, or one per position
-  std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
   VertexTextureData texturing;    // texture coordinates and tangents, when a material needs them
+  std::vector<uint32_t> indices;  // three per triangle, counter-clockwise front faces
   uint32_t material = 0;
   size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -34,13 +35,12 @@ struct MeshInstance {
   uint32_t node_index = kNoNode;  // in Scene::hierarchy, whose animation may move it
 };
 
-struct Material {
 // glTF metallic-roughness (core/sdk/filmback/bsdf.h has the BSDF); factors multiply textures.
+struct Material {
   std::string name;
   Rgb base_color{1.f, 1.f, 1.f};  // linear (glTF's default base colour)
   Rgb emission{0.f, 0.f, 0.f};    // radiance, W sr^-1 m^-2
   bool double_sided = false;
-};
   float metallic = 0.f;      // the importer sets glTF's default of 1 for materials it reads
   float roughness = 1.f;     // perceptual: GGX alpha = roughness^2
   float transmission = 0.f;  // KHR_materials_transmission
@@ -50,6 +50,7 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha = 1.f;         // baseColorFactor's fourth component
   float alpha_cutoff = 0.5f;  // kMask
+};
 
 enum class LightType { kPoint, kSpot, kDirectional };
 
@@ -83,11 +84,13 @@ struct Scene {
   std::filesystem::path file;
   std::vector<TriangleMesh> meshes;
   std::vector<MeshInstance> instances;
+  // Refined into meshes and instances by the render (core/subdiv/refine_scene.h), not before.
+  std::vector<SubdivisionSurface> subdivision_surfaces;
   std::vector<Material> materials;
+  std::vector<TextureImage> images;  // what materials' textures read
   std::vector<Light> lights;
   std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
   Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
-  std::vector<TextureImage> images;  // what materials' textures read
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
 

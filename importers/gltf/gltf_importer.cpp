@@ -15,6 +15,7 @@
 #include "importers/gltf/gltf_extras.h"
 #include "importers/gltf/gltf_file.h"
 #include "importers/gltf/gltf_materials.h"
+#include "importers/gltf/gltf_subdivision.h"
 
 namespace fb {
 namespace {
@@ -75,11 +76,12 @@ class Importer {
     static const std::set<std::string> kSupported = {
         "KHR_lights_punctual",
         "KHR_materials_emissive_strength",
-    };
         "KHR_materials_ior",
         "KHR_materials_specular",
         "KHR_materials_transmission",
         "KHR_texture_transform",
+        "FILMBACK_blender",
+    };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
         throw_input(name_, index_path("extensionsRequired", i),
@@ -198,7 +200,12 @@ class Importer {
              uint32_t scene_node) {
     if (node.skin >= 0)
       warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
-    if (node.mesh >= 0) add_mesh(node, path, world, scene_node);
+    if (auto surface = gltf::read_node_subdivision(model_, node, path, world, scene_node, name_)) {
+      if (surface->material == gltf::kNoSubdivisionMaterial) surface->material = default_material();
+      scene_.subdivision_surfaces.push_back(std::move(*surface));
+    } else if (node.mesh >= 0) {
+      add_mesh(node, path, world, scene_node);
+    }
     if (node.camera >= 0) add_camera(node, path, world, scene_node);
     if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
       add_light(node, path, world, scene_node, number_or(it->second, "light", -1));
@@ -274,6 +281,7 @@ class Importer {
     } else {
       out.material = default_material();
     }
+    gltf::read_texturing(ctx, prim, path, scene_.materials[out.material], out);
     return out;
   }
 
@@ -281,7 +289,6 @@ class Importer {
   std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& v, int mode,
                                       const std::string& path) {
     std::vector<uint32_t> out;
-    gltf::read_texturing(ctx, prim, path, scene_.materials[out.material], out);
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       if (v.size() % 3 != 0)
         warn(path,

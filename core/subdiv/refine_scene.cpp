@@ -1,0 +1,170 @@
+#include "core/subdiv/refine_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/subdiv/subdiv_loader.h"
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+// A cage edge is never cut into more segments than this, however close the camera.
+constexpr uint32_t kMaxEdgeRate = 4096;
+
+// The cage as the module's C structs, pointing into `storage`.
+struct CageData {
+  std::vector<float> positions;
+  std::vector<uint32_t> crease_edges, crease_vertices;
+  std::vector<float> edge_sharpness, vertex_sharpness;
+  fb_subdiv_cage cage{};
+};
+
+void fill_cage(const SubdivisionSurface& s, CageData& d) {
+  d.positions.reserve(3 * s.cage_positions.size());
+  for (const Vec3f& p : s.cage_positions)
+    d.positions.insert(d.positions.end(), {p.x, p.y, p.z});
+  const SubdivisionSettings& settings = s.settings;
+  if (settings.use_creases) {
+    for (const EdgeCrease& c : s.edge_creases)
+      if (c.weight > 0) {
+        d.crease_edges.insert(d.crease_edges.end(), {c.v0, c.v1});
+        d.edge_sharpness.push_back(crease_sharpness(c.weight));
+      }
+    for (const VertexCrease& c : s.vertex_creases)
+      if (c.weight > 0) {
+        d.crease_vertices.push_back(c.vertex);
+        d.vertex_sharpness.push_back(crease_sharpness(c.weight));
+      }
+  }
+  fb_subdiv_cage& c = d.cage;
+  c.struct_size = sizeof(fb_subdiv_cage);
+  c.abi_version = FB_SUBDIV_ABI_VERSION;
+  c.positions = d.positions.data();
+  c.vertex_count = uint32_t(s.cage_positions.size());
+  c.face_sizes = s.cage_face_sizes.data();
+  c.face_count = uint32_t(s.cage_face_sizes.size());
+  c.face_vertices = s.cage_face_vertices.data();
+  c.crease_edges = d.crease_edges.data();
+  c.crease_edge_sharpness = d.edge_sharpness.data();
+  c.crease_edge_count = uint32_t(d.edge_sharpness.size());
+  c.crease_vertices = d.crease_vertices.data();
+  c.crease_vertex_sharpness = d.vertex_sharpness.data();
+  c.crease_vertex_count = uint32_t(d.vertex_sharpness.size());
+  c.scheme = settings.scheme == SubdivisionSettings::Scheme::kSimple ? FB_SUBDIV_BILINEAR
+                                                                     : FB_SUBDIV_CATMULL_CLARK;
+  c.boundary = settings.boundary_smooth == SubdivisionSettings::Boundary::kPreserveCorners
+                   ? FB_SUBDIV_BOUNDARY_EDGE_AND_CORNER
+                   : FB_SUBDIV_BOUNDARY_EDGE_ONLY;
+}
+
+// Segments per cage edge (one per entry of cage_face_vertices) so that each is about
+// `target_px` long on the image: the edge's length over the distance of its nearer end
+// (perspective), times the pixels a metre spans there. The cage edge stands in for the limit
+// curve it becomes, which is no longer. A rate depends only on the edge, so the two faces of an
+// edge agree and the tessellation has no cracks.
+std::vector<uint32_t> edge_rates(const SubdivisionSurface& s, const SubdivView& view,
+                                 double target_px, uint64_t& estimate) {
+  std::vector<Vec3d> world(s.cage_positions.size());
+  for (size_t i = 0; i < world.size(); ++i)
+    world[i] = s.world_from_object.point(Vec3d(s.cage_positions[i]));
+  std::vector<uint32_t> rates(s.cage_face_vertices.size());
+  estimate = 0;
+  for (size_t f = 0, first = 0; f < s.cage_face_sizes.size(); first += s.cage_face_sizes[f++]) {
+    const size_t n = s.cage_face_sizes[f];
+    double sum = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const Vec3d a = world[s.cage_face_vertices[first + k]];
+      const Vec3d b = world[s.cage_face_vertices[first + (k + 1) % n]];
+      const double depth =
+          view.orthographic
+              ? 1.0
+              : std::max(std::min(length(a - view.eye_world), length(b - view.eye_world)), 1e-6);
+      const double px = length(b - a) * view.pixels_per_m / depth;
+      const double rate = std::clamp(std::ceil(px / target_px), 1.0, double(kMaxEdgeRate));
+      rates[first + k] = uint32_t(rate);
+      sum += rate;
+    }
+    // Bfr's pattern: an n-gon is n quads at half the rate, about 2 r^2 / 4 triangles each.
+    const double mean = sum / double(n);
+    estimate += uint64_t(double(n) * mean * mean / 2 + double(n));
+  }
+  return rates;
+}
+
+std::string where(const Scene& scene, const SubdivisionSurface& s) {
+  return scene.file.string() + ": subdivision surface '" + s.name + "' (" + s.node + ")";
+}
+
+}  // namespace
+
+SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const SubdivView& view,
+                                         uint64_t max_triangles) {
+  SubdivReport report;
+  if (scene.subdivision_surfaces.empty()) return report;
+  const SubdivModule& module = subdiv_module();
+  uint64_t made = 0;
+  for (const SubdivisionSurface& s : scene.subdivision_surfaces) {
+    CageData data;
+    fill_cage(s, data);
+    fb_subdiv_request request{};
+    request.struct_size = sizeof request;
+    request.level = s.settings.levels_render;
+    request.quality = s.settings.quality;
+    request.max_triangles = max_triangles - made;
+    std::vector<uint32_t> rates;
+    std::string how = "level " + std::to_string(s.settings.levels_render);
+    if (mode == SubdivMode::kAdaptive) {
+      double target_px = 1;
+      uint64_t estimate = 0;
+      rates = edge_rates(s, view, target_px, estimate);
+      if (estimate > request.max_triangles) {
+        // Coarser segments, in proportion: the triangle count goes as the square of the rate.
+        target_px *= 1.05 * std::sqrt(double(estimate) / double(request.max_triangles));
+        rates = edge_rates(s, view, target_px, estimate);
+        report.warnings.push_back(where(scene, s) +
+                                  ": adaptive subdivision would pass the limit "
+                                  "of " +
+                                  std::to_string(max_triangles) + " triangles; edges of about " +
+                                  number_text(target_px) + " px instead of 1");
+      }
+      how = "adaptive, edges of ~" + number_text(target_px) + " px";
+    } else if (s.settings.use_limit_surface && s.settings.levels_render > 0) {
+      // Blender's limit surface at its level: 2^level segments on every cage edge samples the
+      // parameters of uniform refinement's vertices.
+      rates.assign(s.cage_face_vertices.size(), 1u << std::min(s.settings.levels_render, 16u));
+    }
+    // Otherwise (use_limit_surface off, or level 0: Blender's modifier leaves the cage) uniform
+    // refinement of the cage itself.
+    request.edge_rates = rates.empty() ? nullptr : rates.data();
+    fb_subdiv_mesh out{};
+    if (module.refine(&data.cage, &request, &out) != 0)
+      throw InputError(where(scene, s) + ": " + out.error +
+                       (mode == SubdivMode::kRender
+                            ? " (lower the modifier's render level, or use --subdiv adaptive)"
+                            : ""));
+    TriangleMesh mesh;
+    mesh.name = s.name + " (subdivided)";
+    mesh.material = s.material;
+    mesh.positions.resize(out.vertex_count);
+    mesh.normals.resize(out.vertex_count);
+    for (size_t v = 0; v < out.vertex_count; ++v) {
+      mesh.positions[v] = {out.positions[3 * v], out.positions[3 * v + 1],
+                           out.positions[3 * v + 2]};
+      mesh.normals[v] = {out.normals[3 * v], out.normals[3 * v + 1], out.normals[3 * v + 2]};
+    }
+    mesh.indices.assign(out.indices, out.indices + 3 * out.triangle_count);
+    module.free(&out);
+    made += mesh.triangle_count();
+    report.summary += std::string(report.summary.empty() ? "" : ", ") + "'" + s.name + "' " + how +
+                      ": " + std::to_string(mesh.triangle_count()) + " triangles";
+    scene.instances.push_back(
+        {uint32_t(scene.meshes.size()), s.world_from_object, s.node, s.node_index});
+    scene.meshes.push_back(std::move(mesh));
+  }
+  scene.subdivision_surfaces.clear();
+  report.summary = "subdivision (" + module.file.filename().string() + "): " + report.summary;
+  return report;
+}
+
+}  // namespace fb

@@ -1,0 +1,201 @@
+// Refinement through the subdivision module (libfilmback_subdiv.so), as a render calls it.
+#include "core/subdiv/refine_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+// The cube [-1, 1]^3 as six quads, counter-clockwise seen from outside.
+SubdivisionSurface cube(uint32_t level) {
+  SubdivisionSurface s;
+  s.name = "Cube";
+  s.node = "nodes[0]";
+  for (int i = 0; i < 8; ++i)
+    s.cage_positions.push_back({i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f});
+  s.cage_face_sizes.assign(6, 4);
+  s.cage_face_vertices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+  s.settings.levels_render = level;
+  return s;
+}
+
+TriangleMesh refine(const SubdivisionSurface& s, SubdivMode mode = SubdivMode::kRender,
+                    const SubdivView& view = {}, uint64_t cap = kMaxSubdivTriangles) {
+  Scene scene;
+  scene.file = "test.gltf";
+  scene.subdivision_surfaces = {s};
+  refine_subdivision_surfaces(scene, mode, view, cap);
+  EXPECT_TRUE(scene.subdivision_surfaces.empty());
+  EXPECT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.instances.size(), 1u);
+  return scene.meshes.at(0);
+}
+
+// Each undirected edge of a closed, crack-free triangle mesh borders exactly two triangles, once
+// in each direction.
+void expect_watertight(const TriangleMesh& m) {
+  std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  for (size_t t = 0; t < m.indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k)
+      ++directed[{m.indices[t + k], m.indices[t + (k + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    ASSERT_EQ(count, 1) << edge.first << "-" << edge.second;
+    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u)
+        << "open edge " << edge.first << "-" << edge.second;
+  }
+}
+
+void expect_outward(const TriangleMesh& m) {
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    EXPECT_NEAR(length(m.normals[v]), 1.f, 1e-5f) << v;
+    EXPECT_GT(dot(m.normals[v], m.positions[v]), 0.f) << v;
+  }
+  // Geometric normals of the triangles point outward too (counter-clockwise as the cage).
+  for (size_t t = 0; t < m.indices.size(); t += 3) {
+    const Vec3f a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                c = m.positions[m.indices[t + 2]];
+    EXPECT_GT(dot(cross(b - a, c - a), a + b + c), 0.f) << t / 3;
+  }
+}
+
+TEST(Subdivision, CubeAtLevelsOneAndTwoHasCatmullClarksCounts) {
+  // V' = V + E + F per level: 8+12+6 = 26, then 26+48+24 = 98; faces 6*4^L quads, two triangles
+  // each.
+  const TriangleMesh one = refine(cube(1)), two = refine(cube(2));
+  EXPECT_EQ(one.positions.size(), 26u);
+  EXPECT_EQ(one.triangle_count(), 48u);
+  EXPECT_EQ(two.positions.size(), 98u);
+  EXPECT_EQ(two.triangle_count(), 192u);
+  expect_watertight(two);
+  expect_outward(two);
+  // On the limit surface, inside the cage's hull and symmetric under the cube's reflections.
+  float max_coord = 0;
+  for (const Vec3f& p : two.positions)
+    max_coord = std::max({max_coord, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  EXPECT_LT(max_coord, 1.f);
+  EXPECT_GT(max_coord, 0.5f);
+}
+
+TEST(Subdivision, LimitSurfaceIsInsideTheRefinedCage) {
+  SubdivisionSurface s = cube(2);
+  s.settings.use_limit_surface = false;
+  const TriangleMesh refined = refine(s);
+  const TriangleMesh limit = refine(cube(2));
+  ASSERT_EQ(refined.positions.size(), limit.positions.size());
+  int inside = 0;
+  for (size_t v = 0; v < refined.positions.size(); ++v)
+    inside += length(limit.positions[v]) < length(refined.positions[v]) - 1e-4f;
+  // Every vertex of a convex cage's refinement moves inwards to its limit.
+  EXPECT_EQ(inside, int(refined.positions.size()));
+}
+
+TEST(Subdivision, FullyCreasedCubeStaysACube) {
+  SubdivisionSurface s = cube(2);
+  for (uint32_t f = 0; f < 6; ++f)
+    for (uint32_t k = 0; k < 4; ++k) {
+      const uint32_t a = s.cage_face_vertices[4 * f + k],
+                     b = s.cage_face_vertices[4 * f + (k + 1) % 4];
+      if (a < b) s.edge_creases.push_back({a, b, 1.0f});
+    }
+  ASSERT_EQ(s.edge_creases.size(), 12u);
+  const TriangleMesh m = refine(s);
+  for (const Vec3f& p : m.positions)
+    EXPECT_NEAR(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}), 1.f, 1e-6f);
+  int corners = 0;
+  for (const Vec3f& p : m.positions)
+    corners += std::abs(p.x) > 1 - 1e-6f && std::abs(p.y) > 1 - 1e-6f && std::abs(p.z) > 1 - 1e-6f;
+  EXPECT_EQ(corners, 8);
+  // Without use_creases the same cage rounds off.
+  s.settings.use_creases = false;
+  const TriangleMesh round = refine(s);
+  for (const Vec3f& p : round.positions)
+    EXPECT_LT(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}), 1.f);
+}
+
+TEST(Subdivision, BlendersCreaseIsTenTimesItsSquare) {
+  EXPECT_EQ(crease_sharpness(0.f), 0.f);
+  EXPECT_FLOAT_EQ(crease_sharpness(0.5f), 2.5f);
+  EXPECT_FLOAT_EQ(crease_sharpness(1.f), 10.f);
+}
+
+TEST(Subdivision, SimpleSchemeKeepsTheCube) {
+  SubdivisionSurface s = cube(2);
+  s.settings.scheme = SubdivisionSettings::Scheme::kSimple;
+  const TriangleMesh m = refine(s);
+  EXPECT_EQ(m.positions.size(), 98u);
+  for (const Vec3f& p : m.positions)
+    EXPECT_NEAR(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}), 1.f, 1e-6f);
+}
+
+TEST(Subdivision, AdaptiveAtUniformRatesMeetsTheUniformLimitSurface) {
+  // Bfr's tessellation at 2^L segments per edge samples the same dyadic parameters as Far's level
+  // L: two independent routes through OpenSubdiv to the same limit points.
+  const SubdivisionSurface s = cube(2);
+  const TriangleMesh uniform = refine(s);
+  // The cube's edges are 2 m; 8 px per m at 1 m seen from 1e6 m away needs orthographic.
+  const SubdivView view{{0, 0, 0}, 2.0, true};  // 4 px per edge: rate 4 = 2^2
+  const TriangleMesh adaptive = refine(s, SubdivMode::kAdaptive, view);
+  ASSERT_EQ(adaptive.positions.size(), uniform.positions.size());
+  double worst = 0;
+  for (const Vec3f& p : adaptive.positions) {
+    double nearest = HUGE_VAL;
+    for (const Vec3f& q : uniform.positions)
+      nearest = std::min(nearest, double(length(p - q)));
+    worst = std::max(worst, nearest);
+  }
+  EXPECT_LT(worst, 1e-6);
+  expect_watertight(adaptive);
+  expect_outward(adaptive);
+}
+
+TEST(Subdivision, AdaptiveRatesFollowTheCameraWithoutCracks) {
+  // A perspective eye close to one corner: near edges get many segments, far ones few.
+  const SubdivisionSurface s = cube(0);
+  const SubdivView view{{1.5, 1.5, 1.5}, 20.0, false};
+  const TriangleMesh m = refine(s, SubdivMode::kAdaptive, view);
+  expect_watertight(m);
+  expect_outward(m);
+  // Segment lengths as seen: none much longer than a pixel's worth of the nearer end's distance.
+  double worst_px = 0;
+  for (size_t t = 0; t < m.indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d a(m.positions[m.indices[t + k]]), b(m.positions[m.indices[t + (k + 1) % 3]]);
+      const double d = std::min(length(a - view.eye_world), length(b - view.eye_world));
+      worst_px = std::max(worst_px, length(a - b) * view.pixels_per_m / d);
+    }
+  EXPECT_LT(worst_px, 2.5);  // diagonals of ~1 px cells, over the limit surface's stretch
+  EXPECT_GT(m.triangle_count(), 500u);
+}
+
+TEST(Subdivision, TooManyTrianglesIsAnErrorNamingTheSurface) {
+  try {
+    refine(cube(6), SubdivMode::kRender, {}, 1000);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("test.gltf: subdivision surface 'Cube' (nodes[0])"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("49152 triangles, more than the limit of 1000"), std::string::npos) << what;
+  }
+}
+
+TEST(Subdivision, AdaptiveCoarsensToTheCapWithAWarning) {
+  Scene scene;
+  scene.file = "test.gltf";
+  scene.subdivision_surfaces = {cube(0)};
+  const SubdivReport report =
+      refine_subdivision_surfaces(scene, SubdivMode::kAdaptive, {{0, 0, 0}, 1000.0, true}, 20000);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("limit of 20000 triangles"), std::string::npos);
+  EXPECT_LE(scene.meshes.at(0).triangle_count(), 20000u);
+  EXPECT_GT(scene.meshes.at(0).triangle_count(), 5000u);
+}
+
+}  // namespace
+}  // namespace fb
