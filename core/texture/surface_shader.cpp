@@ -69,6 +69,8 @@ SurfaceShader::SurfaceShader(const Scene& scene)
   // Untiled images (PNG, JPEG) are tiled and mip-mapped in the cache as they are read.
   tx.system->attribute("autotile", 64);
   tx.system->attribute("automip", 1);
+  // glTF colours with alpha are straight (unassociated), as PNG stores them: keep them so.
+  tx.system->attribute("unassociatedalpha", 1);
   tx.images.resize(scene.images.size());
   for (size_t i = 0; i < scene.images.size(); ++i) {
     if (!used[i]) continue;

@@ -1,0 +1,99 @@
+// Whole renders of glTF metallic-roughness surfaces under a uniform world (a furnace): a plane
+// seen at cos(theta) = mu under background radiance L returns L times the BSDF's directional
+// albedo at mu, which quadrature of filmback/bsdf.h gives independently of the integrator, the
+// host's hit records and the shading frame that this test exercises.
+#include <filmback/bsdf.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "core/render/render_job.h"
+#include "importers/gltf/gltf_importer.h"
+#include "support/gltf_builder.h"
+#include "support/plugins.h"
+
+namespace fb {
+namespace {
+
+using test::GltfBuilder;
+
+// Directional albedo: integral over the sphere of f(wo, wi) |cos wi|, midpoint rule in (theta,
+// phi), whose rows stay narrow at the poles where a lobe seen at normal incidence peaks.
+double albedo(const BsdfParams& params, double mu, int n = 1000) {
+  const Bsdf bsdf(params);
+  const double s = std::sqrt(1 - mu * mu);
+  const Vec3f wo(Vec3d{s, 0, mu});
+  const double d_theta = std::numbers::pi / (2 * n), d_phi = 2 * std::numbers::pi / n;
+  double sum = 0;
+  for (int i = 0; i < 2 * n; ++i) {
+    const double theta = (i + 0.5) * d_theta;
+    const double c = std::cos(theta), r = std::sin(theta);
+    for (int j = 0; j < n; ++j) {
+      const double phi = (j + 0.5) * d_phi;
+      const Vec3f wi(Vec3d{r * std::cos(phi), r * std::sin(phi), c});
+      sum += bsdf.eval(wo, wi).y * std::abs(c) * r;
+    }
+  }
+  return sum * d_theta * d_phi;
+}
+
+struct Furnace {
+  const char* name;
+  float metallic, roughness, transmission;
+};
+
+TEST(MaterialRender, PlaneUnderUniformWorldReturnsItsDirectionalAlbedo) {
+  constexpr float kL = 2.f;  // background radiance
+  for (double tilt_deg : {0.0, 60.0}) {
+    GltfBuilder gltf;
+    const std::vector<Vec3f> quad = {{-50, -50, 0}, {50, -50, 0}, {50, 50, 0}, {-50, 50, 0}};
+    GltfBuilder::Node plane;
+    plane.mesh = gltf.mesh(quad, {0, 1, 2, 0, 2, 3}, gltf.material({1, 1, 1}), 5125,
+                           std::vector<Vec3f>(4, Vec3f{0, 0, 1}));
+    const double half = tilt_deg * std::numbers::pi / 360;
+    plane.translation = {0, 0, -5};
+    plane.rotation = {std::sin(half), 0, 0, std::cos(half)};
+    gltf.node(plane);
+    GltfBuilder::Node camera;
+    camera.camera = gltf.orthographic_camera(0.5, 0.5, 0.1, 100);
+    gltf.node(camera);
+    Diagnostics diagnostics;
+    const Scene base = import_gltf(gltf.write(test::scratch_dir() / "furnace.gltf"), diagnostics);
+    const double mu = std::cos(tilt_deg * std::numbers::pi / 180);
+    for (const Furnace& f :
+         {Furnace{"rough metal", 1.f, 0.5f, 0.f}, Furnace{"glossy dielectric", 0.f, 0.3f, 0.f},
+          Furnace{"rough glass", 0.f, 0.4f, 1.f}}) {
+      Scene scene = base;
+      Material& m = scene.materials[0];
+      m.metallic = f.metallic, m.roughness = f.roughness, m.transmission = f.transmission;
+      m.specular = 1.f;
+      scene.background = {kL, kL, kL};
+      RenderOptions options;
+      options.width = options.height = 16;
+      options.samples_per_pixel = 64;
+      options.filter = "box";
+      options.show_progress = false;
+      const RenderResult result = RenderJob(scene, options, test::loader()).run();
+      // Pixels are independent estimates: their spread gives the standard error of the mean.
+      double sum = 0, sum2 = 0;
+      const int n = 16 * 16;
+      for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 16; ++x) {
+          const double v = result.image.at(x, y, 1);
+          ASSERT_TRUE(std::isfinite(v));
+          sum += v, sum2 += v * v;
+        }
+      const double mean = sum / n;
+      const double standard_error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
+      const double expected =
+          kL * albedo({{1, 1, 1}, f.metallic, f.roughness, f.transmission, 1.5f, 1.f}, mu);
+      EXPECT_NEAR(mean, expected, 4 * standard_error + 2e-3 * expected)
+          << f.name << " at mu " << mu << " (standard error " << standard_error << ")";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace fb
