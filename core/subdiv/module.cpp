@@ -30,7 +30,8 @@ extern "C" __attribute__((visibility("default"))) int filmback_subdiv_refine(
       throw std::runtime_error("the caller was built for another version of this module");
     auto refiner = fb::subdiv::make_refiner(*cage);
     const fb::subdiv::Triangles t =
-        request->edge_rates
+        request->cage_limit ? fb::subdiv::cage_limit(*refiner, *cage)
+        : request->edge_rates
             ? fb::subdiv::tessellate(*refiner, *cage, request->edge_rates, request->quality,
                                      request->max_triangles)
             : fb::subdiv::refine_uniform(*refiner, *cage, request->level, request->max_triangles);

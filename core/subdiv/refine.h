@@ -27,6 +27,9 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const fb_subdiv_cage& cage);
 Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage, uint32_t level,
                          uint64_t max_triangles);
 
+// The cage's vertices pushed to the limit surface (Far's limit masks), and no triangles.
+Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage);
+
 // Each face tessellated on the limit surface at its edges' rates, shared edges stitched. The
 // limit is evaluated as Blender evaluates it: patches isolated `quality` levels around
 // irregular and semi-sharp features.

@@ -58,16 +58,29 @@ void fill_cage(const SubdivisionSurface& s, CageData& d) {
                    : FB_SUBDIV_BOUNDARY_EDGE_ONLY;
 }
 
-// Segments per cage edge (one per entry of cage_face_vertices) so that each is about
-// `target_px` long on the image: the edge's length over the distance of its nearer end
-// (perspective), times the pixels a metre spans there. The cage edge stands in for the limit
-// curve it becomes, which is no longer. A rate depends only on the edge, so the two faces of an
-// edge agree and the tessellation has no cracks.
-std::vector<uint32_t> edge_rates(const SubdivisionSurface& s, const SubdivView& view,
-                                 double target_px, uint64_t& estimate) {
-  std::vector<Vec3d> world(s.cage_positions.size());
+// The cage's vertices on the limit surface, in world space: where the surface's edges run.
+std::vector<Vec3d> limit_corners(const SubdivModule& module, const fb_subdiv_cage& cage,
+                                 const SubdivisionSurface& s, const std::string& where) {
+  fb_subdiv_request request{};
+  request.struct_size = sizeof request;
+  request.cage_limit = 1;
+  fb_subdiv_mesh out{};
+  if (module.refine(&cage, &request, &out) != 0) throw InputError(where + ": " + out.error);
+  std::vector<Vec3d> world(out.vertex_count);
   for (size_t i = 0; i < world.size(); ++i)
-    world[i] = s.world_from_object.point(Vec3d(s.cage_positions[i]));
+    world[i] = s.world_from_object.point(
+        Vec3d(out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]));
+  module.free(&out);
+  return world;
+}
+
+// Segments per cage edge (one per entry of cage_face_vertices) so that each is about
+// `target_px` long on the image: the length between the edge's ends on the limit surface over
+// the distance of its nearer end (perspective), times the pixels a metre spans there. The chord
+// stands in for the limit curve, which is longer by a few per cent where the surface bends.
+// A rate depends only on the edge, so the two faces of an edge agree and there are no cracks.
+std::vector<uint32_t> edge_rates(const SubdivisionSurface& s, const std::vector<Vec3d>& world,
+                                 const SubdivView& view, double target_px, uint64_t& estimate) {
   std::vector<uint32_t> rates(s.cage_face_vertices.size());
   estimate = 0;
   for (size_t f = 0, first = 0; f < s.cage_face_sizes.size(); first += s.cage_face_sizes[f++]) {
@@ -117,11 +130,12 @@ SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const Su
     if (mode == SubdivMode::kAdaptive) {
       double target_px = 1;
       uint64_t estimate = 0;
-      rates = edge_rates(s, view, target_px, estimate);
+      const std::vector<Vec3d> corners = limit_corners(module, data.cage, s, where(scene, s));
+      rates = edge_rates(s, corners, view, target_px, estimate);
       if (estimate > request.max_triangles) {
         // Coarser segments, in proportion: the triangle count goes as the square of the rate.
         target_px *= 1.05 * std::sqrt(double(estimate) / double(request.max_triangles));
-        rates = edge_rates(s, view, target_px, estimate);
+        rates = edge_rates(s, corners, view, target_px, estimate);
         report.warnings.push_back(where(scene, s) +
                                   ": adaptive subdivision would pass the limit "
                                   "of " +

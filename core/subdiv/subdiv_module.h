@@ -50,6 +50,7 @@ typedef struct fb_subdiv_request {
   uint32_t level;
   const uint32_t* edge_rates;
   uint32_t quality;       /* limit evaluation: patches isolated this many levels (Blender's) */
+  uint32_t cage_limit;    /* non-zero: only the cage's vertices pushed to the limit, no triangles */
   uint64_t max_triangles; /* refuse (with an error) to make more */
 } fb_subdiv_request;
 

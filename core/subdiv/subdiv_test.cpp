@@ -138,8 +138,12 @@ TEST(Subdivision, AdaptiveAtUniformRatesMeetsTheUniformLimitSurface) {
   // L: two independent routes through OpenSubdiv to the same limit points.
   const SubdivisionSurface s = cube(2);
   const TriangleMesh uniform = refine(s);
-  // The cube's edges are 2 m; 8 px per m at 1 m seen from 1e6 m away needs orthographic.
-  const SubdivView view{{0, 0, 0}, 2.0, true};  // 4 px per edge: rate 4 = 2^2
+  // Rates come from the distance between the cage corners' limit points (the corners of the
+  // uniform mesh): 3.5 px each through an orthographic view gives rate 4 = 2^2.
+  float corner = 0;  // the limit point of the cage corner (1, 1, 1) is (c, c, c)
+  for (const Vec3f& p : uniform.positions)
+    corner = std::max(corner, (p.x + p.y + p.z) / 3);
+  const SubdivView view{{0, 0, 0}, 3.5 / (2 * corner), true};
   const TriangleMesh adaptive = refine(s, SubdivMode::kAdaptive, view);
   ASSERT_EQ(adaptive.positions.size(), uniform.positions.size());
   double worst = 0;

@@ -34,6 +34,18 @@ uint64_t triangle_count(const fb_subdiv_cage& cage, uint32_t level) {
 
 }  // namespace
 
+Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage) {
+  std::vector<Point> points(cage.vertex_count), limit(cage.vertex_count);
+  for (uint32_t v = 0; v < cage.vertex_count; ++v)
+    for (int i = 0; i < 3; ++i)
+      points[v].p[i] = cage.positions[3 * v + i];
+  Far::PrimvarRefiner(refiner).Limit(points.data(), limit);
+  Triangles out;
+  for (const Point& p : limit)
+    out.positions.insert(out.positions.end(), {p.p[0], p.p[1], p.p[2]});
+  return out;
+}
+
 Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage, uint32_t level,
                          uint64_t max_triangles) {
   const uint64_t count = level > 24 ? UINT64_MAX : triangle_count(cage, level);

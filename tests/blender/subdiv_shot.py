@@ -1,0 +1,160 @@
+"""The Blender side of the subdivision tests (tests/blender/blender_subdiv_test.cpp).
+
+    blender -b --factory-startup --python subdiv_shot.py -- OUTDIR mesh
+writes OUTDIR/meshes.txt: for each case, Blender's cage and the vertices of the mesh its
+Subdivision Surface modifier evaluates to (object space, Blender's axes), one record a line:
+  case NAME level L scheme S boundary B use_creases 0|1 use_limit 0|1 quality Q
+  v X Y Z              a cage vertex
+  f I J K ...          a cage face, counter-clockwise
+  e I J W              an edge crease (Blender's, 0..1)
+  c I W                a vertex crease
+  r X Y Z              a vertex of Blender's evaluated mesh
+  end
+
+    blender -b --factory-startup --python subdiv_shot.py -- OUTDIR subdiv
+builds the subdivided-mesh shot: a cube with a Subdivision Surface modifier (render level 2,
+some creases) as an emissive object on a black world, and small emissive marker spheres, seen by
+make_shot.py's camera; exports it (with the add-on when importers/blender/export_shot.py exists,
+else Blender's exporter plus the FILMBACK_blender extension written here) and renders it with
+Cycles. Writes shot.gltf, cycles.exr and manifest.txt (tests/blender/blender_shot.h) with an
+extra record:
+  object  name, flux (R+G+B summed over the image, from Cycles' own render: only for reference)
+"""
+
+import json
+import math
+import os
+import sys
+
+import bmesh
+import bpy
+from mathutils import Matrix, Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_shot  # noqa: E402  (camera, materials, Cycles settings, shot properties, records)
+
+
+def set_creases(obj, edge_creases, vertex_creases):
+    """Blender 3.4 keeps edge creases on MeshEdge.crease and vertex creases in a bmesh layer."""
+    me = obj.data
+    for (a, b), w in edge_creases.items():
+        for e in me.edges:
+            if set(e.vertices) == {a, b}:
+                e.crease = w
+                break
+        else:
+            raise ValueError(f"no edge {a}-{b}")
+    if vertex_creases:
+        bm = bmesh.new()
+        bm.from_mesh(me)
+        layer = bm.verts.layers.crease.verify()
+        bm.verts.ensure_lookup_table()
+        for v, w in vertex_creases.items():
+            bm.verts[v][layer] = w
+        bm.to_mesh(me)
+        bm.free()
+
+
+def vertex_crease_values(me):
+    bm = bmesh.new()
+    bm.from_mesh(me)
+    layer = bm.verts.layers.crease.active
+    values = {v.index: v[layer] for v in bm.verts} if layer else {}
+    bm.free()
+    return {i: w for i, w in values.items() if w > 0}
+
+
+def add_subsurf(obj, level, scheme="CATMULL_CLARK", boundary="ALL", use_creases=True,
+                use_limit=True):
+    m = obj.modifiers.new("Subdivision", "SUBSURF")
+    m.levels = m.render_levels = level  # background evaluation uses the viewport level
+    m.subdivision_type = scheme
+    m.boundary_smooth = boundary
+    m.use_creases = use_creases
+    m.use_limit_surface = use_limit
+    return m
+
+
+def write_case(out, name, obj):
+    m = obj.modifiers[-1]
+    me = obj.data
+    out.write(f"case {name} level {m.render_levels} scheme {m.subdivision_type} boundary "
+              f"{m.boundary_smooth} use_creases {int(m.use_creases)} "
+              f"use_limit {int(m.use_limit_surface)} quality {m.quality}\n")
+    for v in me.vertices:
+        out.write("v %.9g %.9g %.9g\n" % tuple(v.co))
+    for p in me.polygons:
+        out.write("f " + " ".join(str(i) for i in p.vertices) + "\n")
+    for e in me.edges:
+        if e.crease > 0:
+            out.write(f"e {e.vertices[0]} {e.vertices[1]} {e.crease:.9g}\n")
+    for v, w in vertex_crease_values(me).items():
+        out.write(f"c {v} {w:.9g}\n")
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = obj.evaluated_get(depsgraph).to_mesh()
+    for v in evaluated.vertices:
+        out.write("r %.9g %.9g %.9g\n" % tuple(v.co))
+    obj.evaluated_get(depsgraph).to_mesh_clear()
+    out.write("end\n")
+
+
+def new_object(op, **kwargs):
+    op(**kwargs)
+    return bpy.context.active_object
+
+
+def mesh_cases(out_dir):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    cases = []
+    cube = lambda: new_object(bpy.ops.mesh.primitive_cube_add, size=2)  # noqa: E731
+    for level in (1, 2):
+        o = cube()
+        add_subsurf(o, level)
+        cases.append((f"cube_level{level}", o))
+    # Creases of 0.5 (sharpness 2.5 if Blender squares, 5 if not), 1 and 0.3, and a vertex crease.
+    o = cube()
+    set_creases(o, {(0, 1): 0.5, (1, 3): 1.0, (4, 5): 0.3}, {6: 0.7})
+    add_subsurf(o, 2)
+    cases.append(("cube_creases", o))
+    o = cube()
+    set_creases(o, {(0, 1): 1.0}, {})
+    add_subsurf(o, 2, use_creases=False)
+    cases.append(("cube_creases_off", o))
+    o = cube()
+    add_subsurf(o, 2, use_limit=False)
+    cases.append(("cube_no_limit", o))
+    o = cube()
+    add_subsurf(o, 2, scheme="SIMPLE")
+    cases.append(("cube_simple", o))
+    # Open meshes for the boundary rules: a 3x3 grid (corners of valence 2).
+    # Blender's patches approximate the smooth corners under ALL, less so at higher quality
+    # (blender_subdiv_test.cpp): quality 6 there.
+    for boundary in ("ALL", "PRESERVE_CORNERS"):
+        o = new_object(bpy.ops.mesh.primitive_grid_add, x_subdivisions=3, y_subdivisions=3, size=2)
+        add_subsurf(o, 2, boundary=boundary).quality = 6 if boundary == "ALL" else 3
+        cases.append((f"grid_{boundary.lower()}", o))
+    # N-gons: a cylinder's 8-sided caps, and triangles: a cone's sides.
+    o = new_object(bpy.ops.mesh.primitive_cylinder_add, vertices=8)
+    add_subsurf(o, 2)
+    cases.append(("cylinder_ngons", o))
+    o = new_object(bpy.ops.mesh.primitive_cone_add, vertices=6)
+    add_subsurf(o, 1)
+    cases.append(("cone_triangles", o))
+    bpy.context.view_layer.update()
+    with open(os.path.join(out_dir, "meshes.txt"), "w") as out:
+        for name, o in cases:
+            write_case(out, name, o)
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(args) != 2 or args[1] not in ("mesh",):
+        raise SystemExit("usage: blender -b --factory-startup --python subdiv_shot.py -- OUTDIR "
+                         "mesh")
+    out_dir = os.path.abspath(args[0])
+    os.makedirs(out_dir, exist_ok=True)
+    mesh_cases(out_dir)
+
+
+if __name__ == "__main__":
+    main()
