@@ -4,6 +4,7 @@
 // same settings and each vertex of Blender's mesh must have one of ours within kMaxVertexError.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "core/subdiv/refine_scene.h"
 #include "tests/blender/blender_shot.h"
+#include "tests/blender/blobs.h"
 
 namespace fb::test {
 namespace {
@@ -145,6 +147,64 @@ TEST(BlenderSubdiv, RefinementMatchesBlendersEvaluatedMesh) {
     if (c.name == "cube_creases") {
       EXPECT_GT(linear_error, 100 * kMaxVertexError);
     }
+  }
+}
+
+// The subdivided-mesh shot: a creased cube with Blender's Subdivision Surface modifier (render
+// level 2), glowing on black among four marker spheres, rendered by Cycles from the .blend and by
+// filmback from the export (the cage and the modifier's settings, refined by the module). The
+// object's image is its silhouette times its radiance: its flux-weighted centroid and its flux
+// (area) must agree, and so must the markers' centroids.
+constexpr double kMaxObjectCentroidErrorPx = 0.1;
+constexpr double kMaxObjectFluxError = 0.01;
+constexpr double kMaxMarkerCentroidErrorPx = 0.05;
+constexpr double kMatchRadiusPx = 2.0;
+
+const Blob* nearest_blob(const std::vector<Blob>& blobs, double x_px, double y_px) {
+  for (const Blob& blob : blobs)
+    if (std::hypot(blob.x_px - x_px, blob.y_px - y_px) < kMatchRadiusPx) return &blob;
+  return nullptr;
+}
+
+TEST(BlenderSubdiv, SubdividedObjectMatchesCycles) {
+  const std::optional<fs::path> blender = find_blender();
+  if (!blender)
+    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
+                    "`blender` (apt-get install blender) to run the tests against Blender.";
+  const ShotRenders r = render_shot(
+      *blender, "subdiv", fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv", FILMBACK_MAKE_SHOT_PY);
+  ASSERT_NE(r.filmback_log.find("'SubdividedCube' level 2: 192 triangles"), std::string::npos)
+      << r.filmback_log;
+  const std::vector<Blob> cycles = find_blobs(r.cycles, 0.0);
+  const std::vector<Blob> filmback = find_blobs(r.filmback, 0.0);
+  ASSERT_EQ(cycles.size(), r.markers.size() + 1) << "blobs in the Cycles render";
+  ASSERT_EQ(filmback.size(), r.markers.size() + 1) << "blobs in the filmback render";
+  const auto largest = [](const std::vector<Blob>& blobs) {
+    return *std::max_element(blobs.begin(), blobs.end(),
+                             [](const Blob& a, const Blob& b) { return a.flux < b.flux; });
+  };
+  const Blob cycles_object = largest(cycles), filmback_object = largest(filmback);
+  const double dx = filmback_object.x_px - cycles_object.x_px;
+  const double dy = filmback_object.y_px - cycles_object.y_px;
+  const double flux_error = filmback_object.flux / cycles_object.flux - 1;
+  std::printf(
+      "subdivided object: Cycles centroid (%.3f, %.3f) flux %.2f, filmback (%.3f, %.3f) "
+      "flux %.2f: offset (%+.4f, %+.4f) px, flux %+.3f %%; Blender %.1f s (Cycles %.1f s), "
+      "filmback %.1f s\n",
+      cycles_object.x_px, cycles_object.y_px, cycles_object.flux, filmback_object.x_px,
+      filmback_object.y_px, filmback_object.flux, dx, dy, 100 * flux_error, r.blender_s, r.cycles_s,
+      r.filmback_s);
+  EXPECT_LT(std::hypot(dx, dy), kMaxObjectCentroidErrorPx);
+  EXPECT_LT(std::abs(flux_error), kMaxObjectFluxError);
+  for (const Record& m : r.markers) {
+    const double x = m.number("image_x_px"), y = m.number("image_y_px");
+    const Blob* c = nearest_blob(cycles, x, y);
+    const Blob* f = nearest_blob(filmback, x, y);
+    ASSERT_TRUE(c && f) << m.text("name");
+    std::printf("marker %-13s expected (%.3f, %.3f) Cycles (%.3f, %.3f) filmback (%.3f, %.3f)\n",
+                m.text("name").c_str(), x, y, c->x_px, c->y_px, f->x_px, f->y_px);
+    EXPECT_LT(std::hypot(f->x_px - c->x_px, f->y_px - c->y_px), kMaxMarkerCentroidErrorPx)
+        << m.text("name");
   }
 }
 

@@ -17,8 +17,7 @@ some creases) as an emissive object on a black world, and small emissive marker 
 make_shot.py's camera; exports it (with the add-on when importers/blender/export_shot.py exists,
 else Blender's exporter plus the FILMBACK_blender extension written here) and renders it with
 Cycles. Writes shot.gltf, cycles.exr and manifest.txt (tests/blender/blender_shot.h) with an
-extra record:
-  object  name, flux (R+G+B summed over the image, from Cycles' own render: only for reference)
+the markers' records; the subdivided object is compared between the two renders.
 """
 
 import json
@@ -146,14 +145,122 @@ def mesh_cases(out_dir):
             write_case(out, name, o)
 
 
+SHOT = make_shot.Shot(320, 200, 35.0, markers=(), samples=512)
+# Small glowing spheres around the object, for the geometry of the frame itself.
+MARKERS = (
+    make_shot.Marker("top_left", 0.12, 0.15, 5.0, 4.0, (1.0, 1.0, 1.0), 4.0),
+    make_shot.Marker("top_right", 0.88, 0.18, 7.0, 4.0, (0.6, 0.8, 1.0), 4.0),
+    make_shot.Marker("bottom_right", 0.85, 0.85, 4.0, 4.0, (1.0, 0.6, 0.3), 4.0),
+    make_shot.Marker("bottom_left", 0.15, 0.82, 6.0, 4.0, (0.4, 1.0, 0.4), 4.0),
+)
+OBJECT = "SubdividedCube"
+OBJECT_DEPTH_M = 6.0
+OBJECT_SIZE_M = 1.6
+# Blender's creases on the cube's cage (vertex indices of primitive_cube_add): one edge fully
+# sharp, one half, and a vertex crease, so the silhouette depends on the crease rule.
+EDGE_CREASES = {(0, 1): 1.0, (1, 3): 0.5, (4, 5): 0.8}
+VERTEX_CREASES = {6: 0.7}
+
+
+def build_object(camera, frame):
+    obj = new_object(bpy.ops.mesh.primitive_cube_add, size=OBJECT_SIZE_M,
+                     location=camera.matrix_world @ frame.point(0.5, 0.5, OBJECT_DEPTH_M),
+                     rotation=(0.4, 0.7, 0.2))
+    obj.name = OBJECT
+    set_creases(obj, EDGE_CREASES, VERTEX_CREASES)
+    add_subsurf(obj, 2)
+    obj.data.materials.append(make_shot.emission_material(OBJECT, (1.0, 0.9, 0.8), 1.0))
+    bpy.ops.object.shade_smooth()
+    return obj
+
+
+def subdivision_extension(obj):
+    """The FILMBACK_blender subdivision object the add-on writes (docs/blender.md, the schema in
+    importers/gltf/gltf_subdivision.h): the cage in glTF axes (x, z, -y) and the modifier."""
+    me, m = obj.data, obj.modifiers[-1]
+    positions = []
+    for v in me.vertices:
+        positions += [v.co.x, v.co.z, -v.co.y]
+    edge_creases = []
+    for e in me.edges:
+        if e.crease > 0:
+            edge_creases += [e.vertices[0], e.vertices[1], e.crease]
+    vertex_creases = []
+    for v, w in vertex_crease_values(me).items():
+        vertex_creases += [v, w]
+    return {
+        "levels_render": m.render_levels, "quality": m.quality, "scheme": m.subdivision_type,
+        "boundary_smooth": m.boundary_smooth, "use_creases": m.use_creases,
+        "use_limit_surface": m.use_limit_surface, "uv_smooth": m.uv_smooth,
+        "cage_positions": positions,
+        "cage_face_sizes": [len(p.vertices) for p in me.polygons],
+        "cage_face_vertices": [i for p in me.polygons for i in p.vertices],
+        "edge_creases": edge_creases, "vertex_creases": vertex_creases,
+    }
+
+
+def add_extension(gltf_path, obj):
+    """Until the add-on (importers/blender/export_shot.py) writes it: the extension, added to
+    the file Blender's own exporter wrote (which keeps the modifier unapplied: the cage)."""
+    with open(gltf_path) as f:
+        gltf = json.load(f)
+    node = next(n for n in gltf["nodes"] if n.get("name") == obj.name)
+    node.setdefault("extensions", {})["FILMBACK_blender"] = {
+        "subdivision": subdivision_extension(obj)}
+    used = gltf.setdefault("extensionsUsed", [])
+    if "FILMBACK_blender" not in used:
+        used.append("FILMBACK_blender")
+    with open(gltf_path, "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
+def build_shot(out_dir):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    scene.world = world
+    make_shot.configure_cycles(scene, SHOT)
+    camera = make_shot.build_camera(scene, SHOT)
+    bpy.context.view_layer.update()
+    frame = make_shot.Frame(scene, camera)
+    obj = build_object(camera, frame)
+    spheres = [(marker, *make_shot.add_sphere(camera, frame, marker, marker.depth_m))
+               for marker in MARKERS]
+    bpy.context.view_layer.update()
+    make_shot.store_physical_camera(scene, camera)
+
+    w, h = SHOT.width_px, SHOT.height_px
+    with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        manifest.write(make_shot.record("shot", name="subdiv", samples=SHOT.samples, width_px=w,
+                                        height_px=h, camera_model="perspective"))
+        for marker, sphere, radius_m in spheres:
+            centre = make_shot.world_to_camera_view(scene, camera, sphere.matrix_world.translation)
+            manifest.write(make_shot.record(
+                "marker", name=marker.name, blender_x_px=centre.x * w,
+                blender_y_px=(1.0 - centre.y) * h,
+                **make_shot.expected_image(scene, camera, frame, sphere, radius_m)))
+    gltf_path = os.path.join(out_dir, "shot.gltf")
+    bpy.ops.export_scene.gltf(filepath=gltf_path, export_format="GLTF_SEPARATE",
+                              export_cameras=True, export_lights=False, export_materials="EXPORT",
+                              export_extras=True, export_apply=False)
+    add_extension(gltf_path, obj)
+    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
+    bpy.ops.render.render(write_still=True)
+
+
 def main():
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in ("mesh",):
+    if len(args) != 2 or args[1] not in ("mesh", "subdiv"):
         raise SystemExit("usage: blender -b --factory-startup --python subdiv_shot.py -- OUTDIR "
-                         "mesh")
+                         "mesh|subdiv")
     out_dir = os.path.abspath(args[0])
     os.makedirs(out_dir, exist_ok=True)
-    mesh_cases(out_dir)
+    if args[1] == "mesh":
+        mesh_cases(out_dir)
+    else:
+        build_shot(out_dir)
 
 
 if __name__ == "__main__":
