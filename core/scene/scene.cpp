@@ -16,6 +16,14 @@ Bounds3d Scene::world_bounds(double time_s) const {
     for (const Vec3f& p : meshes[instance.mesh].positions)
       bounds.extend(world_from_object.point(Vec3d(p)));
   }
+  // A subdivision surface lies within its cage's convex hull (its refinement and limit masks
+  // are convex combinations of cage points), so the cage bounds it before it is refined.
+  for (const SubdivisionSurface& s : subdivision_surfaces) {
+    const Transform world_from_object =
+        this->world_from_object(MeshInstance{0, s.world_from_object, s.node, s.node_index}, time_s);
+    for (const Vec3f& p : s.cage_positions)
+      bounds.extend(world_from_object.point(Vec3d(p)));
+  }
   return bounds;
 }
 

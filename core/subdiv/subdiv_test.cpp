@@ -201,5 +201,18 @@ TEST(Subdivision, AdaptiveCoarsensToTheCapWithAWarning) {
   EXPECT_GT(scene.meshes.at(0).triangle_count(), 5000u);
 }
 
+TEST(Subdivision, UnrefinedSurfacesAreInTheSceneBounds) {
+  // A scene of nothing but a subdivision surface is framed (default camera) by its cage, which
+  // bounds the surface.
+  Scene scene;
+  SubdivisionSurface s = cube(2);
+  s.world_from_object = Transform::translate({10, 0, 0});
+  scene.subdivision_surfaces = {s};
+  const Bounds3d bounds = scene.world_bounds(0);
+  EXPECT_EQ(bounds.lo.x, 9.0);
+  EXPECT_EQ(bounds.hi.x, 11.0);
+  EXPECT_EQ(bounds.hi.z, 1.0);
+}
+
 }  // namespace
 }  // namespace fb
