@@ -19,7 +19,7 @@ struct SubdivisionSettings {
   enum class Scheme { kCatmullClark, kSimple };  // SIMPLE refines bilinearly
   enum class Boundary { kAll, kPreserveCorners };
   uint32_t levels_render = 2;
-  uint32_t quality = 3;  // Blender's patch isolation level; our limit evaluation is exact
+  uint32_t quality = 3;  // levels of patch isolation around irregular features, as Blender's
   Scheme scheme = Scheme::kCatmullClark;
   Boundary boundary_smooth = Boundary::kAll;
   bool use_creases = true;

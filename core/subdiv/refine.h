@@ -31,8 +31,8 @@ Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& ca
 Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage);
 
 // Each face tessellated on the limit surface at its edges' rates, shared edges stitched. The
-// limit is evaluated as Blender evaluates it: patches isolated `quality` levels around
-// irregular and semi-sharp features.
+// limit is evaluated through patches isolated `quality` levels deep around irregular and
+// semi-sharp features, as Blender's modifier does (docs/blender.md gives the differences).
 Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage,
                      const uint32_t* edge_rates, uint32_t quality, uint64_t max_triangles);
 
