@@ -5,6 +5,7 @@
 #include <numbers>
 #include <numeric>
 
+#include <filmback/geometry.h>
 #include <filmback/sampling.h>
 
 #include "core/util/error.h"
@@ -15,10 +16,21 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 
 // KHR_lights_punctual's recommended spot falloff: a smooth ramp in cos(angle) between the cones.
-float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
+float gltf_spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
   const float scale = 1.f / std::max(0.001f, cos_inner - cos_outer);
   const float t = std::clamp((cos_angle - cos_outer) * scale, 0.f, 1.f);
   return t * t;
+}
+
+// Cycles' spot_light_attenuation (intern/cycles/kernel/light/spot.h): the intensity falls with
+// cos(angle) inside the cone, times smoothstep over the last `smooth` of cos(angle) before its
+// edge.
+float cycles_spot_falloff(float cos_angle, float cos_outer, float smooth) {
+  if (cos_angle <= cos_outer) return 0.f;
+  const float t = cos_angle - cos_outer;
+  if (t >= smooth || smooth == 0.f) return cos_angle;
+  const float s = t / smooth;
+  return cos_angle * s * s * (3.f - 2.f * s);
 }
 
 }  // namespace
@@ -30,12 +42,17 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
   const double scene_radius = std::max(geometry.bounds_radius(), 1e-3f);
   for (const Light& light : scene.lights) {
     const Transform render_from_light = render_from_world * scene.world_from_light(light, frame_s);
+    const float cos_outer = float(std::cos(light.spot_outer_angle_rad));
     Punctual p{light.type,
                Vec3f(render_from_light.point({0, 0, 0})),
                Vec3f(normalize(render_from_light.vector({0, 0, -1}))),
                light.intensity,
+               light.spot_falloff,
                float(std::cos(light.spot_inner_angle_rad)),
-               float(std::cos(light.spot_outer_angle_rad))};
+               cos_outer,
+               float((1 - cos_outer) * light.spot_blend),  // Cycles' spot_smooth
+               float(light.radius_m),
+               float(std::tan(light.angle_rad / 2))};
     const double lum = luminance(light.intensity);
     switch (light.type) {
       case LightType::kPoint:
@@ -51,6 +68,16 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
     }
     punctual_.push_back(p);
   }
+  // Power ignores distance and aim: a spot lighting the frame beside a stronger point light would
+  // be chosen rarely and each choice weigh much. Half of the punctual lights' share is therefore
+  // spread evenly over those that emit (defensive mixture, Hesterberg 1995); their total share
+  // against emissive triangles is unchanged.
+  double punctual_power = 0;
+  size_t emitting = 0;
+  for (double w : power)
+    if (w > 0) punctual_power += w, ++emitting;
+  for (double& w : power)
+    if (w > 0) w = 0.5 * w + 0.5 * punctual_power / double(emitting);
   for (const EmissiveTriangle& e : emitters_) {
     const Material& m = materials_[e.material];
     // Zero power: never chosen, so its light_pdf is 0 and BSDF sampling alone (MIS weight 1)
@@ -111,31 +138,53 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
       size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
       1;
   const bool ok = index < punctual_.size()
-                      ? sample_punctual(punctual_[index], position, out)
+                      ? sample_punctual(punctual_[index], position, u + 1, out)
                       : sample_triangle(uint32_t(index - punctual_.size()), position, u + 1, out);
   out.pdf *= pmf_[index];
   return ok;
 }
 
-bool LightSampler::sample_punctual(const Punctual& light, Vec3f position,
+bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, const float u[2],
                                    fb_light_sample& out) const {
   out.is_delta = 1;
   out.pdf = 1.f;
+  const Vec2f disk = sample_concentric_disk({u[0], u[1]});
   if (light.type == LightType::kDirectional) {
-    light.axis.store(out.direction);
+    // Cycles' distant light: directions through a disk of radius tan(angle/2) one unit away, each
+    // carrying the full irradiance (its eval_fac equals its pdf), so E = S times the mean cosine.
+    Vec3f wi = light.axis;
+    if (light.tan_half_angle > 0.f)
+      wi = normalize(light.axis +
+                     Frame(light.axis).to_world({disk.x, disk.y, 0.f}) * light.tan_half_angle);
+    wi.store(out.direction);
     light.intensity.store(out.radiance);  // irradiance E, W/m^2
     out.distance = HUGE_VALF;
     return max_component(light.intensity) > 0.f;
   }
-  const Vec3f d = light.position - position;
+  // A soft light is Cycles' disk of radius r facing the shading point with radiance I / (pi r^2):
+  // a uniform point on it has solid-angle pdf d^2 / (cos_light pi r^2), so each sample brings
+  // I cos_light / d^2 over pdf 1.
+  const Vec3f centre_to_point = position - light.position;
+  Vec3f q = light.position;
+  float cos_light = 1.f;
+  if (light.radius > 0.f) {
+    const float centre_distance = length(centre_to_point);
+    if (!(centre_distance > 0.f)) return false;
+    const Vec3f facing = centre_to_point / centre_distance;
+    q += Frame(facing).to_world({disk.x, disk.y, 0.f}) * light.radius;
+    cos_light = std::max(0.f, dot(facing, normalize(position - q)));
+  }
+  const Vec3f d = q - position;
   const float distance2 = dot(d, d);
   if (!(distance2 > 0.f)) return false;
   out.distance = std::sqrt(distance2);
   const Vec3f wi = d / out.distance;
   wi.store(out.direction);
-  float scale = 1.f / distance2;  // I / d^2
+  float scale = cos_light / distance2;  // I / d^2 for a true point
   if (light.type == LightType::kSpot)
-    scale *= spot_falloff(dot(light.axis, -wi), light.cos_inner, light.cos_outer);
+    scale *= light.falloff == SpotFalloff::kCycles
+                 ? cycles_spot_falloff(dot(light.axis, -wi), light.cos_outer, light.spot_smooth)
+                 : gltf_spot_falloff(dot(light.axis, -wi), light.cos_inner, light.cos_outer);
   (light.intensity * scale).store(out.radiance);
   return scale > 0.f;
 }

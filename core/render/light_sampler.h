@@ -1,5 +1,9 @@
 // Next-event estimation's half of the lights: picks a light in proportion to its estimated power
 // (punctual lights and emissive triangles alike) and a point on it (pbrt 4e §12.6, power sampling).
+// Point, spot and sun lights are reached by light sampling only and are returned with is_delta set,
+// also when they have a size (a soft point light's disk, a sun's angle): each sample then carries
+// its own contribution over pdf 1, as Cycles' lamps are sampled (docs/blender.md, "Lights and
+// world"), and BSDF-sampled rays never see them, so no weight is shared.
 #pragma once
 
 #include <vector>
@@ -30,9 +34,14 @@ class LightSampler {
     Vec3f position;  // point, spot
     Vec3f axis;      // spot: where it shines; directional: towards the light
     Rgb intensity;
+    SpotFalloff falloff;
     float cos_inner, cos_outer;
+    float spot_smooth;     // SpotFalloff::kCycles: the width in cos(angle) of the fade
+    float radius;          // point, spot
+    float tan_half_angle;  // directional
   };
-  bool sample_punctual(const Punctual& light, Vec3f position, fb_light_sample& out) const;
+  bool sample_punctual(const Punctual& light, Vec3f position, const float u[2],
+                       fb_light_sample& out) const;
   bool sample_triangle(uint32_t index, Vec3f position, const float u[2],
                        fb_light_sample& out) const;
 

@@ -54,6 +54,12 @@ struct Material {
 
 enum class LightType { kPoint, kSpot, kDirectional };
 
+// How a spot fades between its cones: glTF's KHR_lights_punctual ramp, or Cycles' (Blender's
+// spot_size and spot_blend: cos(angle) times a smoothstep, docs/blender.md "Lights and world").
+enum class SpotFalloff { kGltf, kCycles };
+
+// Point, spot and sun lights. Area lights are emissive meshes (importers make them), so that light
+// sampling and BSDF-sampled rays both see them.
 struct Light {
   std::string name;
   LightType type = LightType::kPoint;
@@ -61,8 +67,16 @@ struct Light {
   Rgb intensity{1.f, 1.f, 1.f};
   Transform world_from_light;  // rest pose; lights shine down their -Z axis
   uint32_t node_index = kNoNode;
-  double spot_inner_angle_rad = 0.0;
-  double spot_outer_angle_rad = 0.7853981633974483;
+  SpotFalloff spot_falloff = SpotFalloff::kGltf;
+  double spot_inner_angle_rad = 0.0;  // kGltf: full intensity inside this half-angle
+  double spot_outer_angle_rad = 0.7853981633974483;  // half-angle of the cone
+  double spot_blend = 0.0;  // kCycles: fraction of the cone's (1 - cos) that fades
+  // Point and spot: Cycles' soft light, a disk of this radius facing the shading point with
+  // radiance I / (pi r^2); 0 is a true point.
+  double radius_m = 0.0;
+  // Directional: the sun's angular diameter, its directions spread over a disk of radius
+  // tan(angle/2) one unit away (Cycles' distant light); 0 is a single direction.
+  double angle_rad = 0.0;
 };
 
 struct Bounds3d {

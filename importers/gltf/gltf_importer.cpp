@@ -14,6 +14,7 @@
 #include "importers/gltf/gltf_animation.h"
 #include "importers/gltf/gltf_extras.h"
 #include "importers/gltf/gltf_file.h"
+#include "importers/gltf/gltf_lights.h"
 #include "importers/gltf/gltf_materials.h"
 #include "importers/gltf/gltf_subdivision.h"
 
@@ -30,12 +31,6 @@ std::string index_path(const char* array, size_t i) {
 std::string out_of_range(const char* what, long index, size_t count, const char* array) {
   return std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
          std::to_string(count) + " " + array + ")";
-}
-
-double number_or(const tinygltf::Value& object, const char* key, double fallback) {
-  if (!object.IsObject() || !object.Has(key)) return fallback;
-  const tinygltf::Value& v = object.Get(key);
-  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
 // Bounds on camera shapes, far beyond any real shot, so that no camera reaches the renderer with a
@@ -139,6 +134,7 @@ class Importer {
         throw_input(name_, "scene", out_of_range("scene", long(s), model_.scenes.size(), "scenes"));
       scene_.settings = gltf::read_shot_extras(model_.scenes[s].extras,
                                                index_path("scenes", s) + ".extras", name_);
+      gltf::read_world(model_, s, name_, scene_, diagnostics_);
       const std::vector<int>& roots = model_.scenes[s].nodes;
       for (size_t r = roots.size(); r-- > 0;)
         stack.push_back({roots[r], Transform(), kNoNode,
@@ -207,8 +203,7 @@ class Importer {
       add_mesh(node, path, world, scene_node);
     }
     if (node.camera >= 0) add_camera(node, path, world, scene_node);
-    if (auto it = node.extensions.find("KHR_lights_punctual"); it != node.extensions.end())
-      add_light(node, path, world, scene_node, number_or(it->second, "light", -1));
+    gltf::read_node_light(model_, node, path, world, scene_node, name_, scene_, diagnostics_);
   }
 
   void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
@@ -390,47 +385,6 @@ class Importer {
       warn(cpath, "yfov gives a vertical field of view of " + number_text(yfov) +
                       " deg, the physical camera in extras " + number_text(extras) +
                       " deg; using the physical camera");
-  }
-
-  void add_light(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                 uint32_t scene_node, double index) {
-    const std::string ext_path = path + ".extensions.KHR_lights_punctual";
-    if (!(index >= 0 && index < double(model_.lights.size()) && index == std::floor(index)))
-      throw_input(name_, ext_path + ".light",
-                  "light index " + number_text(index) + ", expected a whole number below " +
-                      std::to_string(model_.lights.size()) + " (the number of lights)");
-    const tinygltf::Light& g = model_.lights[size_t(index)];
-    const std::string lpath =
-        "extensions.KHR_lights_punctual." + index_path("lights", size_t(index));
-    Light light;
-    light.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : lpath;
-    light.world_from_light = world.without_scale();
-    light.node_index = scene_node;
-    Rgb color{1, 1, 1};
-    if (g.color.size() == 3) color = Rgb(float(g.color[0]), float(g.color[1]), float(g.color[2]));
-    if (!is_finite(color) || color.x < 0 || color.y < 0 || color.z < 0 ||
-        !std::isfinite(g.intensity) || g.intensity < 0)
-      throw_input(name_, lpath, "colour and intensity must be finite and non-negative");
-    light.intensity = color * float(g.intensity / kLumensPerWatt);
-    if (g.type == "point") {
-      light.type = LightType::kPoint;
-    } else if (g.type == "spot") {
-      light.type = LightType::kSpot;
-      light.spot_inner_angle_rad = g.spot.innerConeAngle;
-      light.spot_outer_angle_rad = g.spot.outerConeAngle;
-      if (!(g.spot.innerConeAngle >= 0 && g.spot.innerConeAngle < g.spot.outerConeAngle &&
-            g.spot.outerConeAngle <= std::numbers::pi / 2))
-        throw_input(name_, lpath + ".spot",
-                    "expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
-    } else if (g.type == "directional") {
-      light.type = LightType::kDirectional;
-    } else {
-      throw_input(name_, lpath + ".type",
-                  "'" + g.type + "' is not a light type (expected point, spot or directional)");
-    }
-    if (g.range > 0)
-      warn(lpath + ".range", "range is ignored: lights fall off with the inverse square law");
-    scene_.lights.push_back(light);
   }
 
   fs::path file_;

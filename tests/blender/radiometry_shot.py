@@ -1,0 +1,268 @@
+"""The Blender side of the radiometry tests (tests/blender/blender_radiometry_test.cpp).
+
+Builds one diffuse-only shot of SHOTS (a ground plane with a box and a sphere, lit by Blender
+lights and a uniform world), exports it with Blender's own glTF exporter and renders it with Cycles:
+
+    blender -b --factory-startup --python radiometry_shot.py -- OUTDIR SHOT
+
+writes OUTDIR/shot.gltf (+ shot.bin), OUTDIR/cycles.exr and OUTDIR/manifest.txt (one "shot"
+record: name, samples, width_px, height_px), as make_shot.py does, whose camera, Cycles and
+custom-property helpers it borrows.
+
+Two things differ between what is exported and what Cycles renders, on purpose:
+  * Materials are exported as Principled BSDFs with Specular 0 (filmback: a Lambertian base), but
+    Cycles renders a Diffuse BSDF of the same colour: Blender's Principled diffuse is not
+    Lambertian (its Disney retro-reflection brightens grazing views).
+  * Blender's Specular 0 is exported as KHR_materials_specular specularColorFactor [0, 0, 0],
+    which filmback does not carry; the script rewrites it as specularFactor 0, the same thing.
+  * Blender 3.4's exporter drops area lights and writes the others in photometric units. Until
+    the add-on (importers/blender/) writes it, this script adds the FILMBACK_blender light and
+    world extensions to the exported JSON itself, with the schema of docs/blender.md.
+
+Cycles renders with max_bounces = diffuse_bounces = 7, which is filmback's default path depth of 8
+(max_depth counts the direct-light bounce, Cycles' bounces do not), no clamping and no light
+threshold, so both estimate the same integral.
+"""
+
+import json
+import math
+import os
+import sys
+from dataclasses import dataclass
+
+import bpy
+from mathutils import Matrix, Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_shot  # noqa: E402  (Blender runs this file as __main__, so import by path)
+
+
+@dataclass(frozen=True)
+class LightSpec:
+    name: str
+    type: str  # POINT, SPOT, SUN, AREA
+    location: tuple
+    target: tuple  # where its -Z axis points
+    energy: float  # W, or W/m^2 for a sun
+    colour: tuple = (1.0, 1.0, 1.0)
+    radius: float = 0.0  # point and spot shadow_soft_size
+    spot_size_deg: float = 45.0
+    spot_blend: float = 0.15
+    angle_deg: float = 0.0  # sun
+    shape: str = "SQUARE"
+    size: float = 1.0
+    size_y: float = 1.0
+
+
+@dataclass(frozen=True)
+class Shot:
+    lights: tuple
+    world_colour: tuple = (0.0, 0.0, 0.0)
+    world_strength: float = 0.0
+    width_px: int = 128
+    height_px: int = 96
+    samples: int = 1024
+
+
+SHOTS = {
+    # A 10-degree sun from the front left and a blue-grey sky.
+    "sun_world": Shot((LightSpec("Sun", "SUN", (0, 0, 5), (1.2, 2.0, 0.0), 3.0,
+                                 colour=(1.0, 0.95, 0.85), angle_deg=10.0),),
+                      world_colour=(0.25, 0.32, 0.45), world_strength=0.8),
+    # A soft point light and a soft, blended spot, both above the frame. Each sample lights a
+    # pixel with one of the two, so it needs more samples for the same noise.
+    "point_spot": Shot((LightSpec("Point", "POINT", (-2.0, -1.0, 4.0), (0, 0, 0), 600.0,
+                                  colour=(1.0, 0.9, 0.8), radius=0.3),
+                        LightSpec("Spot", "SPOT", (1.8, -1.5, 4.2), (0.6, 0.4, 0.0), 1500.0,
+                                  colour=(0.8, 0.9, 1.0), radius=0.1, spot_size_deg=50.0,
+                                  spot_blend=0.4)),
+                       samples=4096),
+    # A square and a disk area light.
+    "area": Shot((LightSpec("Square", "AREA", (-1.4, -0.6, 3.5), (-0.3, 0.2, 0.0), 500.0,
+                            colour=(1.0, 0.9, 0.75), shape="RECTANGLE", size=1.5, size_y=0.8),
+                  LightSpec("Disk", "AREA", (1.6, 0.2, 3.2), (0.5, 0.4, 0.0), 350.0,
+                            colour=(0.75, 0.85, 1.0), shape="DISK", size=1.0))),
+}
+
+CAMERA_LOCATION = (0.3, -6.0, 3.2)
+CAMERA_TARGET = (0.0, 0.2, 0.45)
+
+
+def look_at(obj, location, target):
+    obj.location = location
+    direction = Vector(target) - Vector(location)
+    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
+
+
+def principled(name, colour):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
+    bsdf.inputs["Roughness"].default_value = 1.0
+    bsdf.inputs["Specular"].default_value = 0.0
+    bsdf.inputs["Metallic"].default_value = 0.0
+    return material
+
+
+def make_diffuse(material):
+    """Replaces the Principled BSDF by a Lambertian Diffuse BSDF (roughness 0) of its colour."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    colour = tuple(nodes["Principled BSDF"].inputs["Base Color"].default_value)
+    nodes.clear()
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = colour
+    diffuse.inputs["Roughness"].default_value = 0.0
+    output = nodes.new("ShaderNodeOutputMaterial")
+    links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
+
+
+def build_geometry(scene):
+    materials = []
+    bpy.ops.mesh.primitive_plane_add(size=12.0, location=(0, 0, 0))
+    ground = bpy.context.object
+    materials.append(principled("Ground", (0.55, 0.55, 0.5)))
+    ground.data.materials.append(materials[-1])
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.9, 0.5, 0.5), rotation=(0, 0, 0.5))
+    cube = bpy.context.object
+    materials.append(principled("Box", (0.8, 0.35, 0.2)))
+    cube.data.materials.append(materials[-1])
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=0.6,
+                                         location=(-0.9, 0.1, 0.6))
+    sphere = bpy.context.object
+    bpy.ops.object.shade_smooth()
+    materials.append(principled("Sphere", (0.25, 0.6, 0.35)))
+    sphere.data.materials.append(materials[-1])
+    return materials
+
+
+def add_light(scene, spec):
+    data = bpy.data.lights.new(spec.name, spec.type)
+    data.energy = spec.energy
+    data.color = spec.colour
+    if spec.type in {"POINT", "SPOT"}:
+        data.shadow_soft_size = spec.radius
+    if spec.type == "SPOT":
+        data.spot_size = math.radians(spec.spot_size_deg)
+        data.spot_blend = spec.spot_blend
+    if spec.type == "SUN":
+        data.angle = math.radians(spec.angle_deg)
+    if spec.type == "AREA":
+        data.shape = spec.shape
+        data.size, data.size_y = spec.size, spec.size_y
+    obj = bpy.data.objects.new(spec.name, data)
+    scene.collection.objects.link(obj)
+    look_at(obj, spec.location, spec.target)
+    return obj
+
+
+def light_extension(data):
+    """FILMBACK_blender.light (docs/blender.md) of one Blender light."""
+    light = {"type": data.type, "color": list(data.color), "energy_w": data.energy,
+             "use_nodes": data.use_nodes}
+    if data.type in {"POINT", "SPOT"}:
+        light["radius_m"] = data.shadow_soft_size
+    if data.type == "SPOT":
+        light["spot_size_rad"] = data.spot_size
+        light["spot_blend"] = data.spot_blend
+    if data.type == "SUN":
+        light["angle_rad"] = data.angle
+    if data.type == "AREA":
+        light.update(shape=data.shape, size_m=data.size, size_y_m=data.size_y)
+    return light
+
+
+# Blender (Z up) to glTF (Y up): (x, y, z) -> (x, z, -y); a light node's matrix is C times the
+# object's world matrix (notes: lights keep Blender's local axes, shining down -Z).
+BLENDER_TO_GLTF = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
+
+
+def add_extensions(path, scene, lights):
+    """Writes the FILMBACK_blender light and world extensions into the exported file: onto the
+    exporter's light nodes (found by name), and as new nodes for the area lights it drops."""
+    with open(path) as f:
+        gltf = json.load(f)
+    nodes = gltf.setdefault("nodes", [])
+    by_name = {node.get("name"): i for i, node in enumerate(nodes)}
+    roots = gltf["scenes"][0].setdefault("nodes", [])
+    for obj in lights:
+        ext = {"light": light_extension(obj.data)}
+        if obj.name in by_name:
+            node = nodes[by_name[obj.name]]
+        else:
+            matrix = BLENDER_TO_GLTF @ obj.matrix_world
+            node = {"name": obj.name,
+                    "matrix": [matrix[row][col] for col in range(4) for row in range(4)]}
+            roots.append(len(nodes))
+            nodes.append(node)
+        node.setdefault("extensions", {})["FILMBACK_blender"] = ext
+    background = scene.world.node_tree.nodes["Background"]
+    gltf["scenes"][0].setdefault("extensions", {})["FILMBACK_blender"] = {
+        "world_color": list(background.inputs["Color"].default_value)[:3],
+        "world_strength": background.inputs["Strength"].default_value,
+    }
+    # Blender writes Specular 0 as specularColorFactor [0, 0, 0], which filmback does not carry
+    # (only specularFactor): the same reflectance, said the way filmback reads it.
+    for material in gltf.get("materials", []):
+        specular = material.get("extensions", {}).get("KHR_materials_specular")
+        if specular is not None and specular.get("specularColorFactor") == [0, 0, 0]:
+            specular["specularFactor"] = 0.0
+            del specular["specularColorFactor"]
+    used = gltf.setdefault("extensionsUsed", [])
+    if "FILMBACK_blender" not in used:
+        used.append("FILMBACK_blender")
+    with open(path, "w") as f:
+        json.dump(gltf, f, indent=1)
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(args) != 2 or args[1] not in SHOTS:
+        raise SystemExit("usage: blender -b --factory-startup --python radiometry_shot.py -- "
+                         "OUTDIR SHOT\nshots: " + " ".join(SHOTS))
+    out_dir, name = os.path.abspath(args[0]), args[1]
+    shot = SHOTS[name]
+    os.makedirs(out_dir, exist_ok=True)
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (*shot.world_colour, 1.0)
+    background.inputs["Strength"].default_value = shot.world_strength
+    scene.world = world
+
+    make_shot.configure_cycles(scene, shot)
+    cycles = scene.cycles
+    cycles.max_bounces = cycles.diffuse_bounces = 7
+    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
+    cycles.light_sampling_threshold = 0.0
+    camera_data = bpy.data.cameras.new("Camera")
+    camera_data.lens, camera_data.sensor_width, camera_data.sensor_fit = 35.0, 36.0, "AUTO"
+    camera = bpy.data.objects.new("Camera", camera_data)
+    scene.collection.objects.link(camera)
+    look_at(camera, CAMERA_LOCATION, CAMERA_TARGET)
+    scene.camera = camera
+    materials = build_geometry(scene)
+    lights = [add_light(scene, spec) for spec in shot.lights]
+    bpy.context.view_layer.update()
+    make_shot.store_physical_camera(scene, camera)
+
+    with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        manifest.write(make_shot.record("shot", name=name, samples=shot.samples,
+                                        width_px=shot.width_px, height_px=shot.height_px))
+    gltf_path = os.path.join(out_dir, "shot.gltf")
+    bpy.ops.export_scene.gltf(filepath=gltf_path, export_format="GLTF_SEPARATE",
+                              export_cameras=True, export_lights=True, export_materials="EXPORT",
+                              export_extras=True)
+    add_extensions(gltf_path, scene, lights)
+
+    for material in materials:
+        make_diffuse(material)
+    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
+    bpy.ops.render.render(write_still=True)
+
+
+if __name__ == "__main__":
+    main()
