@@ -74,16 +74,17 @@ TEST(Bsdf, WhiteFurnaceReflectsNoMoreThanItReceives) {
   }
 }
 
-// Lambertian limit: a dielectric's diffuse part returns base_color (1 - F)^2 / pi at normal
-// incidence, where F = F0 = 0.04 at ior 1.5.
+// Lambertian limit: a dielectric's diffuse part returns base_color (1 - F)^2 / (1 - F_avg) / pi at
+// normal incidence, where F = F0 = 0.04 at ior 1.5 and F_avg = F0 + (1 - F0) / 21.
 TEST(Bsdf, DiffuseIsLambertianUnderTheFresnelLayer) {
   const Bsdf bsdf({{0.5f, 0.25f, 0.125f}, 0.f, 1.f, 0.f, 1.5f});
   const Vec3f wo = direction(1.0, 0), wi = direction(1.0, 0);
   const Rgb f = bsdf.eval(wo, wi);
   const Bsdf black({{0, 0, 0}, 0.f, 1.f, 0.f, 1.5f});  // the specular part alone
   const Rgb diffuse = f - black.eval(wo, wi);
-  EXPECT_NEAR(diffuse.x, 0.5 * 0.96 * 0.96 / kPi, 1e-6);
-  EXPECT_NEAR(diffuse.z, 0.125 * 0.96 * 0.96 / kPi, 1e-6);
+  const double through = 0.96 * 0.96 / (1 - (0.04 + 0.96 / 21));
+  EXPECT_NEAR(diffuse.x, 0.5 * through / kPi, 1e-6);
+  EXPECT_NEAR(diffuse.z, 0.125 * through / kPi, 1e-6);
 }
 
 TEST(Bsdf, ReflectionIsReciprocal) {

@@ -54,6 +54,19 @@ class Bsdf {
         alpha_(std::max(kMinAlpha, p.roughness * p.roughness)) {
     const float r = (eta_ - 1.f) / (eta_ + 1.f);
     f0_ = r * r;  // the same from either side
+    // Cosine-weighted average of Schlick's F over the hemisphere: 2 int (1 - mu)^5 mu dmu = 1/21.
+    // From the denser side total internal reflection adds to it: integrated numerically there.
+    if (eta_ >= 1.f) {
+      average_fresnel_ = specular_ * (f0_ + (1.f - f0_) / 21.f);
+    } else {
+      constexpr int kSteps = 64;
+      float sum = 0.f;
+      for (int i = 0; i < kSteps; ++i) {
+        const float mu = (i + 0.5f) / kSteps;
+        sum += fresnel(mu) * 2.f * mu / kSteps;
+      }
+      average_fresnel_ = std::min(sum, 0.999f);
+    }
   }
 
   // f(wo, wi), without the cosine. Reflection when wi.z > 0, transmission when wi.z < 0.
@@ -65,11 +78,13 @@ class Bsdf {
       const float F = fresnel(c);
       const Rgb spec = Rgb{1.f, 1.f, 1.f} * (d(h) * g2(wo, wi) / (4.f * wo.z * wi.z));
       const float dielectric = 1.f - metallic_;
-      // The diffuse base sees light that the specular layer let through on the way in and on
-      // the way out: (1 - F(wo.n)) (1 - F(wi.n)), reciprocal and, unlike glTF's reference
-      // (1 - F(wo.h)), never reflecting more than arrives at grazing angles (Shirley et al.
-      // 1997, "Reflection from Layered Surfaces due to Subsurface Scattering").
-      const float through = (1.f - fresnel(wo.z)) * (1.f - fresnel(wi.z));
+      // The diffuse base sees the light the specular layer let through on the way in and on
+      // the way out, (1 - F(wo.n)) (1 - F(wi.n)), normalised by the hemispherical average so
+      // that its albedo is exactly (1 - F(wo.n)) base: reciprocal and, unlike glTF's reference
+      // (1 - F(wo.h)), never reflecting more than arrives at grazing angles (Kelemen and
+      // Szirmay-Kalos 2001, with Schlick's F standing in for the specular albedo).
+      const float through =
+          (1.f - fresnel(wo.z)) * (1.f - fresnel(wi.z)) / (1.f - average_fresnel_);
       return base_ * (dielectric * through * (1.f - transmission_) * kInvPi) +
              spec * (dielectric * F) + spec * metal_fresnel(c) * metallic_;
     }
@@ -239,7 +254,7 @@ class Bsdf {
   }
 
   Rgb base_;
-  float metallic_, transmission_, eta_, specular_, alpha_, f0_ = 0.04f;
+  float metallic_, transmission_, eta_, specular_, alpha_, f0_ = 0.04f, average_fresnel_ = 0.f;
 };
 
 }  // namespace fb

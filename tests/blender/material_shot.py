@@ -1,0 +1,151 @@
+"""The Blender side of the materials shot (tests/blender/blender_material_test.cpp).
+
+A ground plane textured with an 8x8 red/white checker (a PNG this script writes) in a Principled
+BSDF, a glossy gold metal sphere and a glossy red dielectric sphere, lit by a sun (angle 0: a
+delta light, as glTF's) and a uniform grey world; exported with Blender's own glTF exporter (the
+add-on's export_shot.py replaces it once it carries the world) and rendered with Cycles at
+160x120 with a 1 px box filter.
+
+    blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT
+
+writes OUTDIR/shot.gltf (+ .bin, checker.png), OUTDIR/cycles.exr and OUTDIR/manifest.txt with
+one record: shot name, samples, width_px, height_px, background (the world's radiance r,g,b, which
+the exporter does not carry: the test passes it to filmback's --background), and
+checker_red/checker_white (the squares' base colours, linear) for the placement test.
+"""
+
+import math
+import os
+import sys
+
+import bpy
+from mathutils import Euler
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_shot  # noqa: E402  (camera, Cycles settings, shot properties, manifest records)
+
+SHOT = make_shot.Shot(160, 120, 35.0, (), samples=256)
+WORLD_RGB = (0.5, 0.5, 0.5)  # W sr^-1 m^-2
+SUN_W_PER_M2 = 3.0
+SUN_ROTATION_DEG = (40.0, 0.0, 30.0)
+CHECKER_SQUARES = 8
+CHECKER_PX = 256
+RED_SRGB = (0.8, 0.1, 0.1)
+WHITE_SRGB = (0.9, 0.9, 0.9)
+BOUNCES = 8  # filmback's path integrator's default max_depth
+
+
+def srgb_to_linear(v):
+    return v / 12.92 if v <= 0.04045 else ((v + 0.055) / 1.055) ** 2.4
+
+
+def checker_image(path):
+    """An 8x8 checker, red in the top-left square of the image file (row 0 at the top): glTF's
+    texture coordinates put (0, 0) there, so a flipped v turns every square's colour."""
+    image = bpy.data.images.new("checker", CHECKER_PX, CHECKER_PX, alpha=False)
+    pixels = []
+    side = CHECKER_PX // CHECKER_SQUARES
+    for row_from_bottom in range(CHECKER_PX):  # Blender stores the bottom row first
+        row = CHECKER_PX - 1 - row_from_bottom
+        for col in range(CHECKER_PX):
+            red = (row // side + col // side) % 2 == 0
+            pixels.extend((*(RED_SRGB if red else WHITE_SRGB), 1.0))
+    image.pixels = pixels
+    image.filepath_raw = path
+    image.file_format = "PNG"
+    image.save()
+    return image
+
+
+def principled(name, base_colour, metallic, roughness):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    bsdf.distribution = "GGX"
+    bsdf.inputs["Base Color"].default_value = (*base_colour, 1.0)
+    bsdf.inputs["Metallic"].default_value = metallic
+    bsdf.inputs["Roughness"].default_value = roughness
+    bsdf.inputs["Specular"].default_value = 0.5  # F0 = 0.08 * 0.5 = 0.04, glTF's ior 1.5
+    return material, bsdf
+
+
+def add_ground(image):
+    bpy.ops.mesh.primitive_plane_add(size=8.0, location=(0.0, 0.0, 0.0))
+    ground = bpy.context.active_object
+    ground.name = "ground"
+    material, bsdf = principled("checker", (1.0, 1.0, 1.0), 0.0, 0.6)
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    texture.interpolation = "Linear"
+    material.node_tree.links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
+    ground.data.materials.append(material)
+
+
+def add_sphere(name, location, radius, material):
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=radius, location=location)
+    sphere = bpy.context.active_object
+    sphere.name = name
+    bpy.ops.object.shade_smooth()
+    sphere.data.materials.append(material)
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(args) != 2 or args[1] != "materials":
+        raise SystemExit("usage: blender -b --factory-startup --python material_shot.py -- OUTDIR materials")
+    out_dir = os.path.abspath(args[0])
+    os.makedirs(out_dir, exist_ok=True)
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (*WORLD_RGB, 1.0)
+    background.inputs["Strength"].default_value = 1.0
+    scene.world = world
+
+    make_shot.configure_cycles(scene, SHOT)
+    cycles = scene.cycles
+    cycles.max_bounces = cycles.diffuse_bounces = cycles.glossy_bounces = BOUNCES
+    cycles.transmission_bounces = cycles.transparent_max_bounces = BOUNCES
+    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0  # no clamping: unbiased
+    cycles.caustics_reflective = cycles.caustics_refractive = True
+    cycles.blur_glossy = 0.0  # Filter Glossy off: it widens glossy lobes after a bounce
+
+    camera = make_shot.build_camera(scene, SHOT)
+    camera.location = (0.0, -6.0, 3.2)
+    camera.rotation_euler = Euler((math.radians(64.0), 0.0, 0.0), "XYZ")
+
+    add_ground(checker_image(os.path.join(out_dir, "checker.png")))
+    gold, _ = principled("gold metal", (1.0, 0.77, 0.34), 1.0, 0.3)
+    red, _ = principled("red dielectric", (0.6, 0.05, 0.05), 0.0, 0.2)
+    add_sphere("metal", (-0.9, 0.2, 0.7), 0.7, gold)
+    add_sphere("dielectric", (0.9, 0.4, 0.7), 0.7, red)
+
+    sun_data = bpy.data.lights.new("Sun", "SUN")
+    sun_data.energy = SUN_W_PER_M2
+    sun_data.angle = 0.0
+    sun = bpy.data.objects.new("Sun", sun_data)
+    sun.rotation_euler = Euler([math.radians(a) for a in SUN_ROTATION_DEG], "XYZ")
+    scene.collection.objects.link(sun)
+    bpy.context.view_layer.update()
+    make_shot.store_physical_camera(scene, camera)
+
+    linear = lambda c: ",".join(f"{srgb_to_linear(v):.6f}" for v in c)  # noqa: E731
+    with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        manifest.write(make_shot.record(
+            "shot", name="materials", samples=SHOT.samples, width_px=SHOT.width_px,
+            height_px=SHOT.height_px, background=",".join(f"{v:.6f}" for v in WORLD_RGB),
+            checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
+
+    bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
+                              export_cameras=True, export_lights=True, export_materials="EXPORT",
+                              export_extras=True)
+
+    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
+    bpy.ops.render.render(write_still=True)
+
+
+if __name__ == "__main__":
+    main()
