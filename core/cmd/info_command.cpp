@@ -118,6 +118,17 @@ int run_info(const std::filesystem::path& file) {
               << ", material '" << scene.materials[m.material].name << "', " << uses[uint32_t(i)]
               << " instance(s)\n";
   }
+  if (!scene.subdivision_surfaces.empty())
+    std::cout << "subdivision surfaces (" << scene.subdivision_surfaces.size()
+              << ", refined when rendered: docs/blender.md)\n";
+  for (const SubdivisionSurface& s : scene.subdivision_surfaces)
+    std::cout << "  " << s.name << "  cage of " << s.cage_face_sizes.size() << " faces, "
+              << s.cage_positions.size() << " vertices, " << s.edge_creases.size()
+              << " creased edges; "
+              << (s.settings.scheme == SubdivisionSettings::Scheme::kSimple ? "simple"
+                                                                             : "Catmull-Clark")
+              << " level " << s.settings.levels_render << ", material '"
+              << scene.materials[s.material].name << "'\n";
 
   std::cout << "materials (" << scene.materials.size() << ")\n";
   for (const Material& m : scene.materials)

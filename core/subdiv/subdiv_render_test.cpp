@@ -114,6 +114,15 @@ TEST(SubdivModule, LoadedOnlyForScenesWithSubdivisionSurfaces) {
   EXPECT_NE(subdivided.output.find("libfilmback_subdiv.so"), std::string::npos);
   EXPECT_NE(subdivided.output.find("'Cube' level 2: 192 triangles"), std::string::npos)
       << subdivided.output;
+  // `info` describes the cage without refining it: no module either.
+  const Outcome info = run("LD_DEBUG=files '" + std::string(FILMBACK_EXE) + "' info '" +
+                           (dir / "cube.gltf").string() + "'");
+  ASSERT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("Cube  cage of 6 faces, 8 vertices, 0 creased edges; Catmull-Clark "
+                             "level 2, material 'Glow'"),
+            std::string::npos)
+      << info.output;
+  EXPECT_EQ(info.output.find("libosdCPU"), std::string::npos);
 }
 
 TEST(SubdivModule, MissingModuleIsAnErrorNamingTheFile) {
