@@ -1,0 +1,269 @@
+// Lights and world in Blender's units (docs/blender.md, "Lights and world"): FILMBACK_blender.light
+// over KHR_lights_punctual, photometric values converted back, area lights as emissive meshes,
+// the uniform world, and errors naming the file and JSON path.
+#include "importers/gltf/gltf_lights.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "core/accel/render_geometry.h"
+#include "core/render/light_sampler.h"
+#include "core/util/error.h"
+#include "importers/gltf/gltf_importer.h"
+#include "support/gltf_builder.h"
+
+namespace fb {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// A file with one node (scaled by `scale`, which lights ignore and area lights take) carrying
+// `node_extensions`, an optional KHR light list, and scene extensions.
+std::filesystem::path write_gltf(const std::string& node_extensions,
+                                 const std::string& khr_lights = "",
+                                 const std::string& scene_fields = "", double scale = 1.0) {
+  const std::filesystem::path file = test::scratch_dir() / "lights.gltf";
+  std::ofstream(file) << R"({"asset": {"version": "2.0"},
+  "extensionsUsed": ["FILMBACK_blender", "KHR_lights_punctual"],)"
+                      << (khr_lights.empty()
+                              ? ""
+                              : R"("extensions": {"KHR_lights_punctual": {"lights": [)" +
+                                    khr_lights + "]}},")
+                      << R"("scene": 0, "scenes": [{"nodes": [0])" << scene_fields << R"(}],
+  "nodes": [{"name": "Lamp", "translation": [1, 2, 3], "scale": [)"
+                      << scale << "," << scale << "," << scale << R"(],
+             "extensions": {)"
+                      << node_extensions << "}}]}";
+  return file;
+}
+
+Scene import(const std::filesystem::path& file, size_t expected_warnings = 0) {
+  Diagnostics diagnostics;
+  Scene scene = import_gltf(file, diagnostics);
+  EXPECT_EQ(diagnostics.count(), expected_warnings);
+  return scene;
+}
+
+std::string blender_light(const std::string& fields) {
+  return R"("FILMBACK_blender": {"light": {)" + fields + "}}";
+}
+
+std::string error_of(const std::filesystem::path& file) {
+  try {
+    import(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const std::string kLight = "lights.gltf: nodes[0].extensions.FILMBACK_blender.light";
+
+TEST(GltfLights, BlenderPointLightIsPowerOverFourPiAndOverridesTheKhrLight) {
+  const Scene scene = import(write_gltf(blender_light(R"("type": "POINT", "color": [1, 0.5, 0.25],
+                                         "energy_w": 1000, "radius_m": 0.3)") +
+                                            R"(, "KHR_lights_punctual": {"light": 0})",
+                                        R"({"type": "point", "intensity": 99999})"));
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const Light& light = scene.lights[0];
+  EXPECT_EQ(light.type, LightType::kPoint);
+  EXPECT_NEAR(light.intensity.x, 1000 / (4 * kPi), 1e-4);
+  EXPECT_NEAR(light.intensity.y, 500 / (4 * kPi), 1e-4);
+  EXPECT_NEAR(light.intensity.z, 250 / (4 * kPi), 1e-4);
+  EXPECT_DOUBLE_EQ(light.radius_m, 0.3);
+  EXPECT_EQ(light.name, "Lamp");
+  EXPECT_NEAR(light.world_from_light.point({0, 0, 0}).y, 2.0, 1e-12);
+}
+
+TEST(GltfLights, KhrIntensitiesAreConvertedBackWithBlendersConstant) {
+  // What Blender 3.4 writes for a 1000 W point light and a 3 W/m^2 sun ("Standard" mode).
+  const double cd = 1000 / (4 * kPi) * 683, lux = 3 * 683;
+  for (const auto& [type, value, expected] :
+       {std::tuple{"point", cd, 1000 / (4 * kPi)}, std::tuple{"directional", lux, 3.0}}) {
+    const Scene scene = import(write_gltf(
+        R"("KHR_lights_punctual": {"light": 0})",
+        std::string(R"({"type": ")") + type + R"(", "intensity": )" + std::to_string(value) + "}"));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_NEAR(scene.lights[0].intensity.x, expected, 1e-6 * expected) << type;
+    EXPECT_EQ(scene.lights[0].spot_falloff, SpotFalloff::kGltf);
+  }
+}
+
+TEST(GltfLights, SpotAndSunKeepBlendersShape) {
+  const Scene spot = import(write_gltf(blender_light(R"("type": "SPOT", "energy_w": 100,
+      "spot_size_rad": 1.2, "spot_blend": 0.4, "radius_m": 0.1)")));
+  ASSERT_EQ(spot.lights.size(), 1u);
+  EXPECT_EQ(spot.lights[0].type, LightType::kSpot);
+  EXPECT_EQ(spot.lights[0].spot_falloff, SpotFalloff::kCycles);
+  EXPECT_DOUBLE_EQ(spot.lights[0].spot_outer_angle_rad, 0.6);  // half of the full cone
+  EXPECT_DOUBLE_EQ(spot.lights[0].spot_blend, 0.4);
+  EXPECT_NEAR(spot.lights[0].intensity.x, 100 / (4 * kPi), 1e-5);
+
+  const Scene sun =
+      import(write_gltf(blender_light(R"("type": "SUN", "energy_w": 4.5, "angle_rad": 0.1)")));
+  ASSERT_EQ(sun.lights.size(), 1u);
+  EXPECT_EQ(sun.lights[0].type, LightType::kDirectional);
+  EXPECT_FLOAT_EQ(sun.lights[0].intensity.x, 4.5f);  // irradiance, W/m^2
+  EXPECT_DOUBLE_EQ(sun.lights[0].angle_rad, 0.1);
+}
+
+double mesh_area(const TriangleMesh& mesh, const Transform& world) {
+  double area = 0;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3d a = world.point(Vec3d(mesh.positions[mesh.indices[3 * t]]));
+    const Vec3d b = world.point(Vec3d(mesh.positions[mesh.indices[3 * t + 1]]));
+    const Vec3d c = world.point(Vec3d(mesh.positions[mesh.indices[3 * t + 2]]));
+    area += length(cross(b - a, c - a)) / 2;
+  }
+  return area;
+}
+
+// Each triangle's front face (counter-clockwise) looks down the node's -Z.
+void expect_faces_down(const TriangleMesh& mesh) {
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3f a = mesh.positions[mesh.indices[3 * t]],
+                b = mesh.positions[mesh.indices[3 * t + 1]],
+                c = mesh.positions[mesh.indices[3 * t + 2]];
+    EXPECT_LT(cross(b - a, c - a).z, 0.f) << "triangle " << t;
+  }
+}
+
+TEST(GltfLights, AreaLightsAreOneSidedEmittersOfRadiancePowerOverFourArea) {
+  struct Case {
+    const char* fields;
+    double area_m2;  // in the light's own units, before the node's scale of 2
+  };
+  for (const Case& c : {Case{R"("shape": "SQUARE", "size_m": 0.5)", 0.25},
+                        Case{R"("shape": "RECTANGLE", "size_m": 0.5, "size_y_m": 2)", 1.0},
+                        Case{R"("shape": "DISK", "size_m": 1)", kPi / 4},
+                        Case{R"("shape": "ELLIPSE", "size_m": 1, "size_y_m": 0.5)", kPi / 8}}) {
+    const Scene scene = import(write_gltf(
+        blender_light(std::string(R"("type": "AREA", "color": [1, 0.5, 0], "energy_w": 300, )") +
+                      c.fields),
+        "", "", 2.0));
+    EXPECT_TRUE(scene.lights.empty());
+    ASSERT_EQ(scene.meshes.size(), 1u) << c.fields;
+    ASSERT_EQ(scene.instances.size(), 1u);
+    const double world_area = 4 * c.area_m2;
+    // The disk's polygon is widened to the ellipse's area, so its power is the ellipse's.
+    EXPECT_NEAR(mesh_area(scene.meshes[0], scene.instances[0].world_from_object), world_area,
+                1e-5 * world_area)
+        << c.fields;
+    expect_faces_down(scene.meshes[0]);
+    const Material& m = scene.materials[scene.meshes[0].material];
+    EXPECT_FALSE(m.double_sided);
+    EXPECT_EQ(max_component(m.base_color), 0.f);
+    EXPECT_NEAR(m.emission.x, 300 / (4 * world_area), 1e-4 * m.emission.x) << c.fields;
+    EXPECT_NEAR(m.emission.y, 150 / (4 * world_area), 1e-4 * m.emission.y);
+    EXPECT_EQ(m.emission.z, 0.f);
+  }
+}
+
+// Irradiance at `position` on a surface facing `normal`, estimated by the light sampler over a
+// stratified grid of all three sample dimensions (light choice and point on it).
+double irradiance(const Scene& scene, Vec3f position, Vec3f normal) {
+  const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+  const LightSampler sampler(scene, Transform(), geometry, 0.0);
+  constexpr int kChoices = 128, kGrid = 48;
+  double sum = 0;
+  for (int k = 0; k < kChoices; ++k)
+    for (int i = 0; i < kGrid; ++i)
+      for (int j = 0; j < kGrid; ++j) {
+        const float u[3] = {(k + 0.5f) / kChoices, (i + 0.5f) / kGrid, (j + 0.5f) / kGrid};
+        fb_light_sample s;
+        if (!sampler.sample(position, u, s) || !(s.pdf > 0.f)) continue;
+        const float cosine = dot(normal, Vec3f(s.direction));
+        if (cosine > 0.f) sum += double(s.radiance[0]) * cosine / s.pdf;
+      }
+  return sum / (double(kChoices) * kGrid * kGrid);
+}
+
+// The irradiance under an area light's centre, h below it, against the form factors of a disk,
+// pi L R^2 / (h^2 + R^2), and of a rectangle (four corner-aligned pieces, Howell's catalogue C-11),
+// with Cycles' radiance L = P / (4 A).
+TEST(GltfLights, AreaLightIrradianceMatchesTheFormFactor) {
+  constexpr double kPower = 100, kHeight = 1.5;
+  const Vec3f below(1, 2, float(3 - kHeight)), up(0, 0, 1);
+  const Scene disk = import(write_gltf(
+      blender_light(R"("type": "AREA", "energy_w": 100, "shape": "DISK", "size_m": 1.2)")));
+  const double radius = 0.6;
+  const double disk_expected = kPi * kPower / (4 * kPi * radius * radius) * radius * radius /
+                               (kHeight * kHeight + radius * radius);
+  EXPECT_NEAR(irradiance(disk, below, up), disk_expected, 2e-3 * disk_expected);
+
+  const Scene rect = import(write_gltf(blender_light(
+      R"("type": "AREA", "energy_w": 100, "shape": "RECTANGLE", "size_m": 1, "size_y_m": 2)")));
+  const double x = 0.5 / kHeight, y = 1.0 / kHeight;
+  const double quarter = (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
+                          y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
+                         (2 * kPi);
+  const double rect_expected = kPi * kPower / (4 * 2.0) * 4 * quarter;
+  EXPECT_NEAR(irradiance(rect, below, up), rect_expected, 2e-3 * rect_expected);
+  // One-sided: nothing above the light.
+  EXPECT_EQ(irradiance(rect, Vec3f(1, 2, 4), -up), 0.0);
+}
+
+TEST(GltfLights, WorldColourTimesStrengthIsTheBackground) {
+  const Scene ours = import(write_gltf(
+      "", "",
+      R"(, "extensions": {"FILMBACK_blender": {"world_color": [0.2, 0.4, 0.8], "world_strength": 2.5}})"));
+  EXPECT_FLOAT_EQ(ours.background.x, 0.5f);
+  EXPECT_FLOAT_EQ(ours.background.y, 1.0f);
+  EXPECT_FLOAT_EQ(ours.background.z, 2.0f);
+  const Scene extras = import(
+      write_gltf("", "", R"(, "extras": {"world_color": [1, 1, 1], "world_strength": 0.25})"));
+  EXPECT_FLOAT_EQ(extras.background.y, 0.25f);
+  const Scene hdr = import(write_gltf("", "",
+                                      R"(, "extensions": {"FILMBACK_blender": {
+      "world_color": [1, 1, 1], "world_strength": 1, "world_hdr_uri": "sky.hdr"}})"),
+                           1);
+  EXPECT_FLOAT_EQ(hdr.background.x, 1.f);
+}
+
+TEST(GltfLights, BadValuesAreErrorsNamingTheFileAndJsonPath) {
+  const struct {
+    std::string light, path, expected;
+  } cases[] = {
+      {R"("type": "HEMI", "energy_w": 1)", ".type", "not a light type"},
+      {R"("energy_w": 1)", "", "expected a type"},
+      {R"("type": "POINT")", ".energy_w", "power in W"},
+      {R"("type": "POINT", "energy_w": -5)", ".energy_w", "expected a number in [0, "},
+      {R"("type": "POINT", "energy_w": "bright")", ".energy_w", "expected a number"},
+      {R"("type": "POINT", "energy_w": 1, "color": [1, -1, 0])", ".color", "non-negative"},
+      {R"("type": "POINT", "energy_w": 1, "color": [1, 1])", ".color", "three"},
+      {R"("type": "POINT", "energy_w": 1, "radius_m": -0.1)", ".radius_m", "[0, "},
+      {R"("type": "SPOT", "energy_w": 1, "spot_size_rad": 4)", ".spot_size_rad", "number in"},
+      {R"("type": "SPOT", "energy_w": 1, "spot_blend": 1.5)", ".spot_blend", "[0, 1]"},
+      {R"("type": "SUN", "energy_w": 1, "angle_rad": -1)", ".angle_rad", "number in"},
+      {R"("type": "AREA", "energy_w": 1, "shape": "STAR")", ".shape", "not an area light shape"},
+      {R"("type": "AREA", "energy_w": 1, "size_m": 0)", ".size_m", "number in"},
+      {R"("type": "POINT", "energy_w": 1, "use_nodes": 1)", ".use_nodes", "true or false"},
+  };
+  for (const auto& c : cases) {
+    const std::string error = error_of(write_gltf(blender_light(c.light)));
+    EXPECT_NE(error.find(kLight + c.path + ": "), std::string::npos) << c.light << "\n" << error;
+    EXPECT_NE(error.find(c.expected), std::string::npos) << c.light << "\n" << error;
+  }
+  const std::string world = error_of(
+      write_gltf("", "", R"(, "extensions": {"FILMBACK_blender": {"world_strength": -1}})"));
+  EXPECT_NE(world.find("lights.gltf: scenes[0].extensions.FILMBACK_blender.world_strength: "),
+            std::string::npos)
+      << world;
+  const std::string khr = error_of(
+      write_gltf(R"("KHR_lights_punctual": {"light": 3})", R"({"type": "point", "intensity": 1})"));
+  EXPECT_NE(khr.find("lights.gltf: nodes[0].extensions.KHR_lights_punctual.light: "),
+            std::string::npos)
+      << khr;
+}
+
+TEST(GltfLights, ANodeTreeIsReportedAsNotCarried) {
+  const Scene scene =
+      import(write_gltf(blender_light(R"("type": "POINT", "energy_w": 10, "use_nodes": true)")), 1);
+  EXPECT_EQ(scene.lights.size(), 1u);
+}
+
+}  // namespace
+}  // namespace fb
