@@ -193,6 +193,32 @@ TEST(SurfaceShader, TextureTransformMovesTheLookup) {
   EXPECT_NEAR(hit.base_color[1], srgb_to_linear(128 / 255.f), 1e-4);
 }
 
+// glTF 2.0 §3.9.3: n = normalize(T x + B y + N z) with (x, y, z) = (2 rgb - 1) (scale, scale, 1)
+// and B = w (N x T); the texture is linear, not sRGB.
+TEST(SurfaceShader, NormalMapTiltsTheShadingNormalInTheTangentFrame) {
+  Scene scene;
+  scene.images.push_back({"images[0]", {}, png(1, 1, {191, 64, 221, 255})});
+  Material m;
+  m.textures.normal.image = 0;
+  m.textures.normal_scale = 0.5f;
+  scene.materials.push_back(m);
+  const SurfaceShader shader(scene);
+  for (float w : {1.f, -1.f}) {
+    SurfacePoint point = at_uv(0.5f, 0.5f);
+    point.tangent = {0, 0, -1};  // in the plane of the normal below
+    point.bitangent_sign = w;
+    fb_hit hit{};
+    hit.shading_normal[0] = 1;  // N = +x, T = -z, N x T = +y
+    shader.shade(0, point, hit);
+    const double x = (2 * 191 / 255.0 - 1) * 0.5, y = (2 * 64 / 255.0 - 1) * 0.5;
+    const double z = 2 * 221 / 255.0 - 1;
+    const double len = std::sqrt(x * x + y * y + z * z);
+    EXPECT_NEAR(hit.shading_normal[0], z / len, 1e-4) << "w " << w;      // along N
+    EXPECT_NEAR(hit.shading_normal[1], w * y / len, 1e-4) << "w " << w;  // along B
+    EXPECT_NEAR(hit.shading_normal[2], -x / len, 1e-4) << "w " << w;     // along T
+  }
+}
+
 TEST(SurfaceShader, UnreadableEmbeddedImageIsAnErrorNamingIt) {
   Scene scene;
   scene.file = "shot.gltf";
