@@ -135,14 +135,11 @@ ShotRenders render_shot(const fs::path& blender, const std::string& shot, const 
     else
       throw std::runtime_error("manifest: unknown record kind '" + record.kind + "'");
   }
-  // No --res: the shot's resolution comes from the file (scenes[0].extras). A world colour the
-  // export does not carry yet comes from the manifest (material_shot.py).
-  const auto background = r.shot.fields.find("background");
-  r.filmback_s = run_logged(
-      quoted(FILMBACK_EXE) + " render " + quoted(work / "shot.gltf") + " -o " +
-          quoted(work / "filmback.exr") + " --spp " + r.shot.text("samples") + " --filter box" +
-          (background == r.shot.fields.end() ? "" : " --background " + background->second),
-      work / "filmback.log");
+  // No --res: the shot's resolution comes from the file (scenes[0].extras).
+  r.filmback_s = run_logged(quoted(FILMBACK_EXE) + " render " + quoted(work / "shot.gltf") +
+                                " -o " + quoted(work / "filmback.exr") + " --spp " +
+                                r.shot.text("samples") + " --filter box",
+                            work / "filmback.log");
   r.filmback_log = read_text(work / "filmback.log");
   r.cycles = read_image(work / "cycles.exr");
   r.filmback = read_image(work / "filmback.exr");

@@ -2,16 +2,16 @@
 
 A ground plane textured with an 8x8 red/white checker (a PNG this script writes) in a Principled
 BSDF, a glossy gold metal sphere and a glossy red dielectric sphere, lit by a sun (angle 0: a
-delta light, as glTF's) and a uniform grey world; exported with Blender's own glTF exporter (the
-add-on's export_shot.py replaces it once it carries the world) and rendered with Cycles at
+delta light, as glTF's) and a uniform grey world; exported with Blender's own glTF exporter (until
+the add-on's export_shot.py lands) and rendered with Cycles at
 160x120 with a 1 px box filter.
 
     blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT
 
 writes OUTDIR/shot.gltf (+ .bin, checker.png), OUTDIR/cycles.exr and OUTDIR/manifest.txt with
-one record: shot name, samples, width_px, height_px, background (the world's radiance r,g,b, which
-the exporter does not carry: the test passes it to filmback's --background), and
-checker_red/checker_white (the squares' base colours, linear) for the placement test.
+one record: shot name, samples, width_px, height_px, and checker_red/checker_white (the squares'
+base colours, linear). The world, which the stock exporter drops, goes to scenes[0].extras as
+world_color and world_strength (the names of the FILMBACK_blender extension).
 """
 
 import math
@@ -131,13 +131,15 @@ def main():
     scene.collection.objects.link(sun)
     bpy.context.view_layer.update()
     make_shot.store_physical_camera(scene, camera)
+    # The world, which Blender's exporter drops: scenes[0].extras, read as FILMBACK_blender's.
+    scene["world_color"] = WORLD_RGB
+    scene["world_strength"] = 1.0
 
     linear = lambda c: ",".join(f"{srgb_to_linear(v):.6f}" for v in c)  # noqa: E731
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record(
             "shot", name="materials", samples=SHOT.samples, width_px=SHOT.width_px,
-            height_px=SHOT.height_px, background=",".join(f"{v:.6f}" for v in WORLD_RGB),
-            checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
+            height_px=SHOT.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
 
     bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
                               export_cameras=True, export_lights=True, export_materials="EXPORT",
