@@ -125,10 +125,10 @@ MotionTolerance motion_tolerance(const fb_camera_setup& setup) {
   return {0, footprint};
 }
 
-// Adaptive subdivision's view of the shot: the eye, and the pixels a metre spans (at 1 m).
+// Adaptive subdivision's view of the shot: the camera and its view plane's pixels per metre.
 SubdivView subdiv_view(const fb_camera_setup& setup, const SceneCamera& camera) {
   const ViewPlane v = view_plane(setup);
-  return {camera.world_from_camera.translation(), std::max(v.fx, v.fy),
+  return {camera.world_from_camera.inverse(), v.fx, v.fy,
           setup.projection == FB_PROJECTION_ORTHOGRAPHIC};
 }
 

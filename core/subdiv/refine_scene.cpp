@@ -58,28 +58,44 @@ void fill_cage(const SubdivisionSurface& s, CageData& d) {
                    : FB_SUBDIV_BOUNDARY_EDGE_ONLY;
 }
 
-// The cage's vertices on the limit surface, in world space: where the surface's edges run.
+// The cage's vertices on the limit surface, in camera space: where the surface's edges run.
 std::vector<Vec3d> limit_corners(const SubdivModule& module, const fb_subdiv_cage& cage,
-                                 const SubdivisionSurface& s, const std::string& where) {
+                                 const SubdivisionSurface& s, const SubdivView& view,
+                                 const std::string& where) {
   fb_subdiv_request request{};
   request.struct_size = sizeof request;
   request.cage_limit = 1;
   fb_subdiv_mesh out{};
   if (module.refine(&cage, &request, &out) != 0) throw InputError(where + ": " + out.error);
-  std::vector<Vec3d> world(out.vertex_count);
-  for (size_t i = 0; i < world.size(); ++i)
-    world[i] = s.world_from_object.point(
+  const Transform camera_from_object = view.camera_from_world * s.world_from_object;
+  std::vector<Vec3d> camera(out.vertex_count);
+  for (size_t i = 0; i < camera.size(); ++i)
+    camera[i] = camera_from_object.point(
         Vec3d(out.positions[3 * i], out.positions[3 * i + 1], out.positions[3 * i + 2]));
   module.free(&out);
-  return world;
+  return camera;
+}
+
+// The image length in pixels of the segment a-b (camera space), or at least its length seen
+// face-on from its nearer end: off the axis a perspective image stretches a segment (up to
+// 1/cos^2 of the angle), and a segment along the view direction, which projects short, still
+// shapes the surface seen from nearby.
+double image_length_px(Vec3d a, Vec3d b, const SubdivView& view) {
+  const double scale = std::max(view.fx, view.fy);
+  if (view.orthographic) return length(b - a) * scale;
+  const double nearer = std::max(std::min(length(a), length(b)), 1e-9);
+  double px = length(b - a) * scale / nearer;
+  if (a.z < 0 && b.z < 0)  // both in front: the projection itself
+    px = std::max(
+        px, std::hypot(view.fx * (a.x / -a.z - b.x / -b.z), view.fy * (a.y / -a.z - b.y / -b.z)));
+  return px;
 }
 
 // Segments per cage edge (one per entry of cage_face_vertices) so that each is about
-// `target_px` long on the image: the length between the edge's ends on the limit surface over
-// the distance of its nearer end (perspective), times the pixels a metre spans there. The chord
-// stands in for the limit curve, which is longer by a few per cent where the surface bends.
-// A rate depends only on the edge, so the two faces of an edge agree and there are no cracks.
-std::vector<uint32_t> edge_rates(const SubdivisionSurface& s, const std::vector<Vec3d>& world,
+// `target_px` long on the image, measured between the edge's ends on the limit surface (the
+// chord stands in for the limit curve, which is longer by a few per cent where the surface
+// bends). A rate depends only on the edge, so the two faces of an edge agree: no cracks.
+std::vector<uint32_t> edge_rates(const SubdivisionSurface& s, const std::vector<Vec3d>& camera,
                                  const SubdivView& view, double target_px, uint64_t& estimate) {
   std::vector<uint32_t> rates(s.cage_face_vertices.size());
   estimate = 0;
@@ -87,13 +103,8 @@ std::vector<uint32_t> edge_rates(const SubdivisionSurface& s, const std::vector<
     const size_t n = s.cage_face_sizes[f];
     double sum = 0;
     for (size_t k = 0; k < n; ++k) {
-      const Vec3d a = world[s.cage_face_vertices[first + k]];
-      const Vec3d b = world[s.cage_face_vertices[first + (k + 1) % n]];
-      const double depth =
-          view.orthographic
-              ? 1.0
-              : std::max(std::min(length(a - view.eye_world), length(b - view.eye_world)), 1e-6);
-      const double px = length(b - a) * view.pixels_per_m / depth;
+      const double px = image_length_px(camera[s.cage_face_vertices[first + k]],
+                                        camera[s.cage_face_vertices[first + (k + 1) % n]], view);
       const double rate = std::clamp(std::ceil(px / target_px), 1.0, double(kMaxEdgeRate));
       rates[first + k] = uint32_t(rate);
       sum += rate;
@@ -130,7 +141,7 @@ SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const Su
     if (mode == SubdivMode::kAdaptive) {
       double target_px = 1;
       uint64_t estimate = 0;
-      const std::vector<Vec3d> corners = limit_corners(module, data.cage, s, where(scene, s));
+      const std::vector<Vec3d> corners = limit_corners(module, data.cage, s, view, where(scene, s));
       rates = edge_rates(s, corners, view, target_px, estimate);
       if (estimate > request.max_triangles) {
         // Coarser segments, in proportion: the triangle count goes as the square of the rate.

@@ -15,10 +15,11 @@ enum class SubdivMode {
   kAdaptive,  // each cage edge cut into segments of about one pixel through the camera
 };
 
-// What adaptive refinement needs of the camera: where it is, and how many pixels a metre covers.
+// What adaptive refinement needs of the camera: where it is, where it looks, and how many pixels
+// a metre covers (the view plane's fx, fy: at 1 m depth in perspective, everywhere orthographic).
 struct SubdivView {
-  Vec3d eye_world;
-  double pixels_per_m = 1;  // perspective: at 1 m from the eye; orthographic: everywhere
+  Transform camera_from_world;  // the camera at the origin looking down -Z
+  double fx = 1, fy = 1;
   bool orthographic = false;
 };
 

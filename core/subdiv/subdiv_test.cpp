@@ -143,7 +143,8 @@ TEST(Subdivision, AdaptiveAtUniformRatesMeetsTheUniformLimitSurface) {
   float corner = 0;  // the limit point of the cage corner (1, 1, 1) is (c, c, c)
   for (const Vec3f& p : uniform.positions)
     corner = std::max(corner, (p.x + p.y + p.z) / 3);
-  const SubdivView view{{0, 0, 0}, 3.5 / (2 * corner), true};
+  const double scale = 3.5 / (2 * corner);
+  const SubdivView view{Transform(), scale, scale, true};
   const TriangleMesh adaptive = refine(s, SubdivMode::kAdaptive, view);
   ASSERT_EQ(adaptive.positions.size(), uniform.positions.size());
   double worst = 0;
@@ -161,7 +162,8 @@ TEST(Subdivision, AdaptiveAtUniformRatesMeetsTheUniformLimitSurface) {
 TEST(Subdivision, AdaptiveRatesFollowTheCameraWithoutCracks) {
   // A perspective eye close to one corner: near edges get many segments, far ones few.
   const SubdivisionSurface s = cube(0);
-  const SubdivView view{{1.5, 1.5, 1.5}, 20.0, false};
+  const Vec3d eye{1.5, 1.5, 1.5};
+  const SubdivView view{Transform::translate(-eye), 20.0, 20.0, false};
   const TriangleMesh m = refine(s, SubdivMode::kAdaptive, view);
   expect_watertight(m);
   expect_outward(m);
@@ -170,11 +172,25 @@ TEST(Subdivision, AdaptiveRatesFollowTheCameraWithoutCracks) {
   for (size_t t = 0; t < m.indices.size(); t += 3)
     for (int k = 0; k < 3; ++k) {
       const Vec3d a(m.positions[m.indices[t + k]]), b(m.positions[m.indices[t + (k + 1) % 3]]);
-      const double d = std::min(length(a - view.eye_world), length(b - view.eye_world));
-      worst_px = std::max(worst_px, length(a - b) * view.pixels_per_m / d);
+      const double d = std::min(length(a - eye), length(b - eye));
+      worst_px = std::max(worst_px, length(a - b) * view.fx / d);
     }
   EXPECT_LT(worst_px, 2.5);  // diagonals of ~1 px cells, over the limit surface's stretch
   EXPECT_GT(m.triangle_count(), 500u);
+}
+
+TEST(Subdivision, AdaptiveRatesFollowTheProjectionOffTheAxis) {
+  // The same cube at the same distance, on the view axis and 63 deg off it: a perspective image
+  // stretches it there (radially by 1/cos^2, tangentially by 1/cos), and so do the rates.
+  const SubdivView view{Transform(), 100.0, 100.0, false};
+  SubdivisionSurface on_axis = cube(0), off_axis = cube(0);
+  const double distance = std::sqrt(80.0);
+  on_axis.world_from_object = Transform::translate({0, 0, -distance});
+  off_axis.world_from_object = Transform::translate({8, 0, -4});
+  const double ratio = double(refine(off_axis, SubdivMode::kAdaptive, view).triangle_count()) /
+                       double(refine(on_axis, SubdivMode::kAdaptive, view).triangle_count());
+  const double cos_angle = 4 / distance;
+  EXPECT_GT(ratio, 0.7 / (cos_angle * cos_angle * cos_angle)) << ratio;
 }
 
 TEST(Subdivision, TooManyTrianglesIsAnErrorNamingTheSurface) {
@@ -193,8 +209,8 @@ TEST(Subdivision, AdaptiveCoarsensToTheCapWithAWarning) {
   Scene scene;
   scene.file = "test.gltf";
   scene.subdivision_surfaces = {cube(0)};
-  const SubdivReport report =
-      refine_subdivision_surfaces(scene, SubdivMode::kAdaptive, {{0, 0, 0}, 1000.0, true}, 20000);
+  const SubdivReport report = refine_subdivision_surfaces(
+      scene, SubdivMode::kAdaptive, {Transform(), 1000.0, 1000.0, true}, 20000);
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_NE(report.warnings[0].find("limit of 20000 triangles"), std::string::npos);
   EXPECT_LE(scene.meshes.at(0).triangle_count(), 20000u);
