@@ -12,7 +12,7 @@ namespace {
 // A cage edge is never cut into more segments than this, however close the camera.
 constexpr uint32_t kMaxEdgeRate = 4096;
 
-// The cage as the module's C structs, pointing into `storage`.
+// The cage as the module's C structs, pointing into these vectors and the surface's own.
 struct CageData {
   std::vector<float> positions;
   std::vector<uint32_t> crease_edges, crease_vertices;
