@@ -83,9 +83,10 @@ class MaterialReader {
       const std::string e_path = path + ".extensions.KHR_materials_specular";
       m.specular = unit_factor(number(*e, "specularFactor", 1.0, e_path + ".specularFactor"),
                                e_path + ".specularFactor");
-      if (e->Has("specularColorFactor") || e->Has("specularTexture") ||
-          e->Has("specularColorTexture"))
-        warn(e_path, "only specularFactor is carried (specular colour and textures are not)");
+      if (e->Has("specularColorFactor"))
+        fold_specular_colour(e->Get("specularColorFactor"), e_path + ".specularColorFactor", m);
+      if (e->Has("specularTexture") || e->Has("specularColorTexture"))
+        warn(e_path, "specular textures are not supported yet; the factors are used");
     }
 
     if (g.alphaMode == "MASK") {
@@ -108,6 +109,33 @@ class MaterialReader {
  private:
   void warn(const std::string& where, const std::string& what) {
     diagnostics_.warn(located(file_, where, what));
+  }
+
+  // KHR_materials_specular: F0 = min(((ior - 1) / (ior + 1))^2 specularColorFactor, 1). Blender
+  // writes Principled's Specular s so (F0 = 0.08 s at its IOR). For an opaque material ior matters
+  // only through F0, so the colour (grey: the BSDF's Fresnel is scalar) folds into the index that
+  // gives the same F0; a transmissive material keeps its ior, which refraction needs.
+  void fold_specular_colour(const tinygltf::Value& v, const std::string& where, Material& m) {
+    if (!v.IsArray() || v.ArrayLen() != 3) throw_input(file_, where, "expected three numbers");
+    std::array<double, 3> c{};
+    for (int i = 0; i < 3; ++i) {
+      if (!v.Get(i).IsNumber() || !(v.Get(i).GetNumberAsDouble() >= 0) ||
+          !std::isfinite(v.Get(i).GetNumberAsDouble()))
+        throw_input(file_, where, "expected three finite numbers >= 0");
+      c[size_t(i)] = v.Get(i).GetNumberAsDouble();
+    }
+    if (c[0] != c[1] || c[1] != c[2])
+      warn(where, "a coloured specular is carried as its luminance (the Fresnel term is grey)");
+    const double grey = luminance(Rgb(float(c[0]), float(c[1]), float(c[2])));
+    if (grey == 1) return;
+    if (m.transmission > 0) {
+      warn(where, "not carried on a transmissive material (its ior also sets refraction)");
+      return;
+    }
+    const double r = (m.ior - 1) / (m.ior + 1);
+    // Below 1, so the index stays finite (F0 = 0.99: ior 399).
+    const double root_f0 = std::sqrt(std::min(r * r * grey, 0.99));
+    m.ior = float((1 + root_f0) / (1 - root_f0));
   }
 
   float unit_factor(double v, const std::string& where) {

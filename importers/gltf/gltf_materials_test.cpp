@@ -131,6 +131,28 @@ TEST(GltfMaterials, FactorsAndExtensionsAreCarried) {
   EXPECT_EQ(diagnostics.count(), 0u);
 }
 
+// Blender writes Principled's Specular s as KHR_materials_ior 1.45 and a grey specularColorFactor
+// with F0 = 0.08 s; an opaque material carries it as the index giving that F0.
+TEST(GltfMaterials, SpecularColourFoldsIntoTheIndexOfAnOpaqueMaterial) {
+  for (double s : {0.0, 0.25, 1.0}) {
+    tinygltf::Material g;
+    tinygltf::Value::Object ior, specular;
+    ior["ior"] = tinygltf::Value(1.45);
+    const double f0_ior = std::pow(0.45 / 2.45, 2);
+    const tinygltf::Value c(0.08 * s / f0_ior);
+    specular["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{c, c, c});
+    g.extensions["KHR_materials_ior"] = tinygltf::Value(ior);
+    g.extensions["KHR_materials_specular"] = tinygltf::Value(specular);
+    tinygltf::Model model = one_material(g);
+    Scene scene;
+    Diagnostics diagnostics;
+    gltf::read_materials(model, "scene.gltf", scene, diagnostics);
+    const double eta = scene.materials[0].ior;
+    EXPECT_NEAR(std::pow((eta - 1) / (eta + 1), 2), 0.08 * s, 1e-6) << "Specular " << s;
+    EXPECT_EQ(diagnostics.count(), 0u);
+  }
+}
+
 // Pixels (RGBA 8-bit) written as a PNG; returns its bytes.
 std::vector<unsigned char> png(int width, int height, const std::vector<unsigned char>& rgba) {
   const fs::path file = test::scratch_dir() / "texture.png";
