@@ -71,10 +71,13 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     }
     const fb_material& m = scene.materials[hit.material];
     const Vec3f wo_world = -Vec3f(ray.direction);
-    if (hit.emitter != FB_NONE) {
+    if (fb::max_component(Rgb(hit.emission)) > 0.f) {
       const Rgb Le = emitted(m, hit, Vec3f(ray.direction));
-      const float weight =
-          depth == 0 ? 1.f : fb::power_heuristic(bsdf_pdf, api.light_pdf(ctx, previous, &hit));
+      // Emission light sampling does not know (hit.emitter == FB_NONE: textured emitters, see
+      // docs/plugins.md) is found by BSDF sampling alone, with full weight.
+      const float weight = depth == 0 || hit.emitter == FB_NONE
+                               ? 1.f
+                               : fb::power_heuristic(bsdf_pdf, api.light_pdf(ctx, previous, &hit));
       L += beta * Le * weight;
     }
     if (depth >= max_depth_) break;
