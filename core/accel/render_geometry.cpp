@@ -29,6 +29,20 @@ struct RenderGeometry::Mesh {
   size_t vertex_count = 0;  // per step
 };
 
+// Which call traced a ray, for light_filter: intersect_coherent takes camera rays (fb_scene_api's
+// intersect_batch), occluded shadow rays, intersect the rest.
+enum class RayKind { kCamera, kScatter, kShadow };
+struct RayContext : RTCIntersectContext {
+  RayKind kind;
+};
+
+RayContext ray_context(RayKind kind) {
+  RayContext context;
+  rtcInitIntersectContext(&context);
+  context.kind = kind;
+  return context;
+}
+
 struct RenderGeometry::Embree {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
@@ -251,7 +265,10 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh.indices.data(), 0, 3 * sizeof(uint32_t),
                                mesh.indices.size() / 3);
-    if (shader_->has_alpha(mesh.material)) {
+    if (scene.materials[mesh.material].is_light) {
+      rtcSetGeometryIntersectFilterFunction(geometry, light_filter);
+      rtcSetGeometryOccludedFilterFunction(geometry, light_filter);
+    } else if (shader_->has_alpha(mesh.material)) {
       mesh.shader = shader_.get();
       // The slot the mesh is moved into below; meshes_ never reallocates (reserved).
       rtcSetGeometryUserData(geometry, meshes_.data() + meshes_.size());
@@ -283,8 +300,7 @@ float RenderGeometry::embree_time(float time_s) const {
 
 bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  RayContext context = ray_context(RayKind::kScatter);
   const float time = embree_time(ray.time_s);
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
@@ -298,8 +314,7 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   stream.resize(count);
   for (size_t i = 0; i < count; ++i)
     stream[i] = to_embree_hit(rays[i], embree_time(rays[i].time_s));
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  RayContext context = ray_context(RayKind::kCamera);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // Embree packs the stream into packets
   rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
   for (size_t i = 0; i < count; ++i) {
@@ -360,6 +375,21 @@ void RenderGeometry::alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Cycles' lights are not surfaces: camera and shadow rays pass through them, and other rays meet
+// an area light only from the side it shines to (front faces: Embree's Ng is (v1 - v0) x (v2 -
+// v0)).
+void RenderGeometry::light_filter(const RTCFilterFunctionNArguments* args) {
+  const RayKind kind = static_cast<const RayContext*>(args->context)->kind;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const float facing =
+        RTCHitN_Ng_x(args->hit, args->N, i) * RTCRayN_dir_x(args->ray, args->N, i) +
+        RTCHitN_Ng_y(args->hit, args->N, i) * RTCRayN_dir_y(args->ray, args->N, i) +
+        RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
+    if (kind != RayKind::kScatter || !(facing < 0.f)) args->valid[i] = 0;
+  }
+}
+
 void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
                               float time, fb_hit& hit) const {
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
@@ -411,8 +441,7 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+  RayContext context = ray_context(RayKind::kShadow);
   RTCRay r = to_embree(ray, embree_time(ray.time_s));
   rtcOccluded1(embree_->scene, &context, &r);
   return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit

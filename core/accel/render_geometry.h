@@ -65,6 +65,7 @@ class RenderGeometry {
                 fb_hit& hit) const;
   static SurfacePoint surface_point(const Mesh& mesh, uint32_t primitive, float u, float v);
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
+  static void light_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
   float embree_time(float time_s) const;
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,

@@ -50,6 +50,9 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha = 1.f;         // baseColorFactor's fourth component
   float alpha_cutoff = 0.5f;  // kMask
+  // An area light's emitter (gltf_lights.cpp): like Cycles' lights, seen neither by camera nor by
+  // shadow rays, and by other rays only from the side it shines to.
+  bool is_light = false;
 };
 
 enum class LightType { kPoint, kSpot, kDirectional };

@@ -127,6 +127,7 @@ void add_area_light(const Fields& f, const tinygltf::Node& node, const std::stri
     f.fail_object("the node's transform collapses the area light to zero area");
   Material m;
   m.name = mesh.name;
+  m.is_light = true;
   m.base_color = {0.f, 0.f, 0.f};  // an emitter, not a reflector
   m.specular = 0.f;
   m.metallic = 0.f;

@@ -206,6 +206,31 @@ TEST(GltfLights, AreaLightIrradianceMatchesTheFormFactor) {
   EXPECT_EQ(irradiance(rect, Vec3f(1, 2, 4), -up), 0.0);
 }
 
+// As Cycles' lights, an area light is not a surface: camera rays (the coherent batch) and shadow
+// rays pass through it, and other rays meet only the side it shines to.
+TEST(GltfLights, AreaLightsAreSeenOnlyByScatteredRaysFromTheirLitSide) {
+  const Scene scene = import(write_gltf(
+      blender_light(R"("type": "AREA", "energy_w": 100, "shape": "SQUARE", "size_m": 1)")));
+  const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+  const auto ray = [](float from_z, float dz) {
+    fb_ray r{};
+    r.origin[0] = 1, r.origin[1] = 2, r.origin[2] = from_z;
+    r.direction[2] = dz;
+    r.t_max = HUGE_VALF;
+    return r;
+  };
+  const fb_ray from_below = ray(1, 1), from_above = ray(5, -1);
+  fb_hit hit;
+  ASSERT_TRUE(geometry.intersect(from_below, hit));
+  EXPECT_NEAR(hit.t, 2.f, 1e-5f);
+  EXPECT_NE(hit.emitter, FB_NONE);
+  EXPECT_FALSE(geometry.intersect(from_above, hit));
+  EXPECT_FALSE(geometry.occluded(from_below));
+  EXPECT_FALSE(geometry.occluded(from_above));
+  geometry.intersect_coherent(&from_below, 1, &hit);
+  EXPECT_TRUE(std::isinf(hit.t));
+}
+
 TEST(GltfLights, WorldColourTimesStrengthIsTheBackground) {
   const Scene ours = import(write_gltf(
       "", "",

@@ -225,7 +225,8 @@ typedef struct fb_scene_api {
   int (*intersect)(fb_trace_context* context, const fb_ray* ray, fb_hit* hit);
   /* The same for `count` rays at once, traced as coherent packets: for rays that start together
    * and point alike (camera rays), several times faster than one at a time. A miss leaves
-   * hits[i].t = +infinity and the rest of hits[i] unset. */
+   * hits[i].t = +infinity and the rest of hits[i] unset. Its rays are taken for camera rays: area
+   * lights, which Cycles does not show to the camera, are not hit (as by `occluded`). */
   void (*intersect_batch)(fb_trace_context* context, const fb_ray* rays, size_t count,
                           fb_hit* hits);
   int (*occluded)(fb_trace_context* context, const fb_ray* ray);
