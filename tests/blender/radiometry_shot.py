@@ -13,8 +13,9 @@ Two things differ between what is exported and what Cycles renders, on purpose:
   * Materials are exported as Principled BSDFs with Specular 0 (filmback: a Lambertian base), but
     Cycles renders a Diffuse BSDF of the same colour: Blender's Principled diffuse is not
     Lambertian (its Disney retro-reflection brightens grazing views).
-  * Blender's Specular 0 is exported as KHR_materials_specular specularColorFactor [0, 0, 0],
-    which filmback does not carry; the script rewrites it as specularFactor 0, the same thing.
+  * Blender's Specular 0 is exported as KHR_materials_specular specularColorFactor [0, 0, 0]
+    (F0 = 0), whose Schlick Fresnel still reflects at grazing angles; the script rewrites it as
+    specularFactor 0, the Lambertian base alone, which is what Cycles' Diffuse BSDF renders.
   * Blender 3.4's exporter drops area lights and writes the others in photometric units. Until
     the add-on (importers/blender/) writes it, this script adds the FILMBACK_blender light and
     world extensions to the exported JSON itself, with the schema of docs/blender.md.
@@ -202,8 +203,8 @@ def add_extensions(path, scene, lights):
         "world_color": list(background.inputs["Color"].default_value)[:3],
         "world_strength": background.inputs["Strength"].default_value,
     }
-    # Blender writes Specular 0 as specularColorFactor [0, 0, 0], which filmback does not carry
-    # (only specularFactor): the same reflectance, said the way filmback reads it.
+    # Blender writes Specular 0 as specularColorFactor [0, 0, 0]: F0 = 0, but Schlick's Fresnel
+    # still reflects at grazing angles. specularFactor 0 leaves the Lambertian base alone.
     for material in gltf.get("materials", []):
         specular = material.get("extensions", {}).get("KHR_materials_specular")
         if specular is not None and specular.get("specularColorFactor") == [0, 0, 0]:
