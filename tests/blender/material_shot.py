@@ -1,7 +1,9 @@
 """The Blender side of the materials shot (tests/blender/blender_material_test.cpp).
 
 A ground plane textured with an 8x8 red/white checker (a PNG this script writes) in a Principled
-BSDF, a glossy gold metal sphere and a glossy red dielectric sphere, lit by a sun (angle 0: a
+BSDF and spheres over it (SPHERES: "materials", a glossy gold metal and a glossy red dielectric;
+"glass", a rough glass; each also with a ground that is Lambertian in both renderers,
+make_lambertian), lit by a sun (angle 0: a
 delta light, as glTF's) and a uniform grey world; exported with Blender's own glTF exporter (until
 the add-on's export_shot.py lands) and rendered with Cycles at
 160x120 with a 1 px box filter.
@@ -14,6 +16,7 @@ base colours, linear). The world, which the stock exporter drops, goes to scenes
 world_color and world_strength (the names of the FILMBACK_blender extension).
 """
 
+import json
 import math
 import os
 import sys
@@ -79,6 +82,29 @@ def add_ground(image):
     texture.interpolation = "Linear"
     material.node_tree.links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
     ground.data.materials.append(material)
+    return material
+
+
+def make_lambertian(path, material):
+    """The ground as a Lambertian surface in both renderers, so that a shot measures its spheres
+    rather than the diffuse models (Principled's Burley against glTF's Fresnel-weighted Lambert):
+    the export gets KHR_materials_specular with specularFactor 0 (filmback: no specular layer),
+    and Cycles renders a Diffuse BSDF (roughness 0: Lambert) fed by the same image."""
+    with open(path) as f:
+        gltf = json.load(f)
+    for m in gltf["materials"]:
+        if m["name"] == material.name:
+            m.setdefault("extensions", {})["KHR_materials_specular"] = {"specularFactor": 0.0}
+    used = gltf.setdefault("extensionsUsed", [])
+    if "KHR_materials_specular" not in used:
+        used.append("KHR_materials_specular")
+    with open(path, "w") as f:
+        json.dump(gltf, f, indent=1)
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Roughness"].default_value = 0.0
+    links.new(nodes["Image Texture"].outputs["Color"], diffuse.inputs["Color"])
+    links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
 
 
 def add_sphere(name, location, radius, material):
@@ -89,11 +115,33 @@ def add_sphere(name, location, radius, material):
     sphere.data.materials.append(material)
 
 
+def glass():
+    """Principled with Transmission 1 (exported as KHR_materials_transmission and _ior): a rough
+    glass tinted by its base colour, its reflection and refraction equally rough (Transmission
+    Roughness 0)."""
+    material, bsdf = principled("glass", (0.9, 0.95, 1.0), 0.0, 0.15)
+    bsdf.inputs["Transmission"].default_value = 1.0
+    bsdf.inputs["IOR"].default_value = 1.5
+    return material
+
+
+SPHERES = {
+    # A glossy gold metal and a glossy red dielectric.
+    "materials": (("metal", (-0.9, 0.2, 0.7), lambda: principled("gold metal", (1.0, 0.77, 0.34), 1.0, 0.3)[0]),
+                  ("dielectric", (0.9, 0.4, 0.7), lambda: principled("red dielectric", (0.6, 0.05, 0.05), 0.0, 0.2)[0])),
+    # One rough glass sphere over the checker, which it refracts.
+    "glass": (("glass", (0.0, 0.3, 0.7), glass),),
+}
+SPHERES["materials_lambertian_ground"] = SPHERES["materials"]
+SPHERES["glass_lambertian_ground"] = SPHERES["glass"]
+
+
 def main():
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] != "materials":
-        raise SystemExit("usage: blender -b --factory-startup --python material_shot.py -- OUTDIR materials")
-    out_dir = os.path.abspath(args[0])
+    if len(args) != 2 or args[1] not in SPHERES:
+        raise SystemExit("usage: blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT\n"
+                         "shots: " + " ".join(SPHERES))
+    out_dir, name = os.path.abspath(args[0]), args[1]
     os.makedirs(out_dir, exist_ok=True)
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -117,11 +165,9 @@ def main():
     camera.location = (0.0, -6.0, 3.2)
     camera.rotation_euler = Euler((math.radians(64.0), 0.0, 0.0), "XYZ")
 
-    add_ground(checker_image(os.path.join(out_dir, "checker.png")))
-    gold, _ = principled("gold metal", (1.0, 0.77, 0.34), 1.0, 0.3)
-    red, _ = principled("red dielectric", (0.6, 0.05, 0.05), 0.0, 0.2)
-    add_sphere("metal", (-0.9, 0.2, 0.7), 0.7, gold)
-    add_sphere("dielectric", (0.9, 0.4, 0.7), 0.7, red)
+    ground = add_ground(checker_image(os.path.join(out_dir, "checker.png")))
+    for sphere_name, location, make_material in SPHERES[name]:
+        add_sphere(sphere_name, location, 0.7, make_material())
 
     sun_data = bpy.data.lights.new("Sun", "SUN")
     sun_data.energy = SUN_W_PER_M2
@@ -138,12 +184,14 @@ def main():
     linear = lambda c: ",".join(f"{srgb_to_linear(v):.6f}" for v in c)  # noqa: E731
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record(
-            "shot", name="materials", samples=SHOT.samples, width_px=SHOT.width_px,
+            "shot", name=name, samples=SHOT.samples, width_px=SHOT.width_px,
             height_px=SHOT.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
 
     bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
                               export_cameras=True, export_lights=True, export_materials="EXPORT",
                               export_extras=True)
+    if name.endswith("_lambertian_ground"):
+        make_lambertian(os.path.join(out_dir, "shot.gltf"), ground)
 
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
