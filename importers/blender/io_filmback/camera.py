@@ -1,0 +1,85 @@
+"""A Blender camera as the FILMBACK_blender camera extension and as EXT_camera_physical."""
+
+from mathutils import Vector
+
+# Frames over which a varying focus is written, at most: a bound on the file's size.
+MAX_FOCUS_FRAMES = 100000
+
+
+def camera_extension(obj, scene, frame):
+    """Every physical value of the camera at `frame`, in Blender's units (mm, f-number, metres,
+    radians)."""
+    cam = obj.data
+    out = {
+        "focal_length_mm": cam.lens,
+        "sensor_width_mm": cam.sensor_width,
+        "sensor_height_mm": cam.sensor_height,
+        "sensor_fit": cam.sensor_fit.lower(),
+        "shift_x": cam.shift_x,
+        "shift_y": cam.shift_y,
+        "clip_near_m": cam.clip_start,
+        "clip_far_m": cam.clip_end,
+    }
+    if cam.type == "ORTHO":
+        out["ortho_scale_m"] = cam.ortho_scale
+    elif cam.type == "PANO":
+        out["panoramic_unsupported"] = True
+    dof = cam.dof
+    if dof.use_dof:
+        out["fstop"] = dof.aperture_fstop
+        out["focus_distance_m"] = at_frame(scene, frame, lambda: focus_distance(obj))
+        out["aperture_blades"] = dof.aperture_blades
+        out["aperture_rotation_rad"] = dof.aperture_rotation
+        out["aperture_ratio"] = dof.aperture_ratio
+        per_frame = focus_per_frame(obj, scene)
+        if per_frame is not None:
+            out["focus_distance_per_frame_m"] = per_frame
+    return out
+
+
+def ext_camera_physical(cam):
+    """The draft extension's focal length and sensor size, in glTF's unit, the metre."""
+    if cam.type != "PERSP":
+        return None
+    return {"focalLength": cam.lens / 1000.0,
+            "sensorSize": [cam.sensor_width / 1000.0, cam.sensor_height / 1000.0]}
+
+
+def at_frame(scene, frame, evaluate):
+    """`evaluate()` with the scene at `frame`, the scene's frame restored after."""
+    current = scene.frame_current
+    scene.frame_set(frame)
+    try:
+        return evaluate()
+    finally:
+        scene.frame_set(current)
+
+
+def focus_distance(obj):
+    """Blender focuses on the plane through the focus object normal to the view axis (not at
+    its Euclidean distance), else at focus_distance."""
+    dof = obj.data.dof
+    if dof.focus_object is None:
+        return dof.focus_distance
+    axis = -(obj.matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
+    offset = dof.focus_object.matrix_world.translation - obj.matrix_world.translation
+    return max(offset.dot(axis), 1e-6)
+
+
+def focus_per_frame(obj, scene):
+    """The focus distance at each frame of the range, when a focus object or an animated focus
+    distance makes it vary; None when it is constant."""
+    dof = obj.data.dof
+    animated = obj.data.animation_data is not None and obj.data.animation_data.action is not None
+    if dof.focus_object is None and not animated:
+        return None
+    first, last = scene.frame_start, scene.frame_end
+    if last - first + 1 > MAX_FOCUS_FRAMES:
+        raise ValueError(f"{obj.name}: {last - first + 1} frames; the focus is written for at "
+                         f"most {MAX_FOCUS_FRAMES}")
+    values = [at_frame(scene, frame, lambda: focus_distance(obj))
+              for frame in range(first, last + 1)]
+    if max(values) == min(values):
+        return None
+    return {"first_frame": first, "values": values}
+

@@ -1,0 +1,94 @@
+"""Blender's render settings and world as the scene's FILMBACK_blender extension."""
+
+import os
+import shutil
+
+# Samples of the shutter curve written, uniformly spaced over the open shutter.
+SHUTTER_CURVE_SAMPLES = 65
+
+
+def scene_extension(scene, frame, export_settings):
+    r = scene.render
+    out = {
+        "resolution_x_px": r.resolution_x * r.resolution_percentage // 100,
+        "resolution_y_px": r.resolution_y * r.resolution_percentage // 100,
+        "resolution_percentage": r.resolution_percentage,
+        "pixel_aspect_x": r.pixel_aspect_x,
+        "pixel_aspect_y": r.pixel_aspect_y,
+        "fps": r.fps,
+        "fps_base": r.fps_base,
+        "frame": frame,
+        "frame_start": scene.frame_start,
+        "frame_end": scene.frame_end,
+        "exposure_stops": scene.view_settings.exposure,
+        "view_transform": scene.view_settings.view_transform,
+    }
+    if r.use_motion_blur:
+        out.update(shutter(scene))
+    cycles = getattr(scene, "cycles", None)
+    if cycles is not None:
+        out.update({
+            "filter_type": cycles.pixel_filter_type,
+            "filter_width_px": cycles.filter_width,
+            "film_exposure": cycles.film_exposure,
+            "samples": cycles.samples,
+            "max_bounces": cycles.max_bounces,
+            "diffuse_bounces": cycles.diffuse_bounces,
+            "glossy_bounces": cycles.glossy_bounces,
+            "transmission_bounces": cycles.transmission_bounces,
+        })
+    out.update(world(scene, export_settings))
+    return out
+
+
+def shutter(scene):
+    """Open and close times in seconds relative to the frame's time, and the curve's weights."""
+    r = scene.render
+    seconds_per_frame = r.fps_base / r.fps
+    length = r.motion_blur_shutter * seconds_per_frame
+    # Cycles' setting (scene.cycles); Eevee always centres the shutter on the frame.
+    position = getattr(getattr(scene, "cycles", None), "motion_blur_position", "CENTER")
+    start = {"START": 0.0, "CENTER": -0.5, "END": -1.0}[position] * length
+    mapping = r.motion_blur_shutter_curve
+    mapping.initialize()
+    curve = mapping.curves[0]
+    n = SHUTTER_CURVE_SAMPLES
+    return {"shutter_open_s": start, "shutter_close_s": start + length,
+            "shutter_curve": [mapping.evaluate(curve, i / (n - 1)) for i in range(n)]}
+
+
+def world(scene, export_settings):
+    """The world's Background colour and strength; an Environment Texture's image is copied
+    next to the exported file and named by a relative URI."""
+    w = scene.world
+    if w is None:
+        return {"world_color": [0.0, 0.0, 0.0], "world_strength": 0.0}
+    if not w.use_nodes:
+        return {"world_color": list(w.color), "world_strength": 1.0}
+    output = next((n for n in w.node_tree.nodes
+                   if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
+    links = output.inputs["Surface"].links if output is not None else []
+    if not links or links[0].from_node.type != "BACKGROUND":
+        return {"world_color": [0.0, 0.0, 0.0], "world_strength": 0.0, "world_unsupported": True}
+    background = links[0].from_node
+    out = {"world_color": list(background.inputs["Color"].default_value)[:3],
+           "world_strength": background.inputs["Strength"].default_value}
+    colour_links = background.inputs["Color"].links
+    if colour_links and colour_links[0].from_node.type == "TEX_ENVIRONMENT":
+        image = colour_links[0].from_node.image
+        if image is not None and image.filepath:
+            source = os.path.abspath(bpy_path(image.filepath))
+            name = os.path.basename(source)
+            folder = export_settings["gltf_filedirectory"]
+            if os.path.abspath(os.path.join(folder, name)) != source:
+                shutil.copyfile(source, os.path.join(folder, name))
+            out["world_hdr_uri"] = name
+            out["world_color"] = [1.0, 1.0, 1.0]
+    elif colour_links:
+        out["world_unsupported"] = True
+    return out
+
+
+def bpy_path(path):
+    import bpy
+    return bpy.path.abspath(path)
