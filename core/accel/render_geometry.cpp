@@ -239,7 +239,9 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     most_motion_steps_ = std::max(most_motion_steps_, mesh.step_count);
 
     const Material& material = scene.materials[mesh.material];
-    if (max_component(material.emission) > 0.f) {
+    // An emissive texture varies over the triangle while light sampling assumes the factor: such
+    // emitters are left to BSDF sampling, which sees the texture (hit.emitter stays FB_NONE).
+    if (max_component(material.emission) > 0.f && !material.textures.emissive.present()) {
       mesh.first_emitter = static_cast<uint32_t>(emitters_.size());
       for (size_t i = 0; i < mesh.indices.size(); i += 3) {
         EmissiveTriangle e{mesh.positions[mesh.indices[i]],

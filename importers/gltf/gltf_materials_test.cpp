@@ -3,12 +3,10 @@
 // and alpha coverage as Embree sees it (MASK drops hits, BLEND keeps a share of alpha).
 #include "importers/gltf/gltf_materials.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
 
 #include "core/accel/render_geometry.h"
@@ -16,11 +14,12 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/png.h"
 
 namespace fb {
 namespace {
 
-namespace fs = std::filesystem;
+using test::png;
 
 // The message of the InputError that reading `model`'s materials throws, or "" if none.
 std::string material_error(tinygltf::Model model) {
@@ -151,19 +150,6 @@ TEST(GltfMaterials, SpecularColourFoldsIntoTheIndexOfAnOpaqueMaterial) {
     EXPECT_NEAR(std::pow((eta - 1) / (eta + 1), 2), 0.08 * s, 1e-6) << "Specular " << s;
     EXPECT_EQ(diagnostics.count(), 0u);
   }
-}
-
-// Pixels (RGBA 8-bit) written as a PNG; returns its bytes.
-std::vector<unsigned char> png(int width, int height, const std::vector<unsigned char>& rgba) {
-  const fs::path file = test::scratch_dir() / "texture.png";
-  auto out = OIIO::ImageOutput::create(file.string());
-  OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as glTF's PNGs hold it
-  EXPECT_TRUE(out && out->open(file.string(), spec));
-  EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, rgba.data()));
-  out->close();
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Two texels: left (64, 128, 255) half transparent, right (255, 0, 0) opaque.

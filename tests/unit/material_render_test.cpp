@@ -10,9 +10,11 @@
 #include <numbers>
 
 #include "core/render/render_job.h"
+#include "core/texture/surface_shader.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
 #include "support/plugins.h"
+#include "support/png.h"
 
 namespace fb {
 namespace {
@@ -44,10 +46,11 @@ struct Furnace {
   float metallic, roughness, transmission;
 };
 
-// The world is either the uniform background (found by BSDF sampling only) or an emissive box
-// around the scene (found by both light and BSDF sampling, weighted by the power heuristic: the
-// weights must sum to one for the answer to hold).
-enum class World { kBackground, kEmissiveBox };
+// The world is the uniform background (found by BSDF sampling only), an emissive box around the
+// scene (found by both light and BSDF sampling, weighted by the power heuristic: the weights must
+// sum to one for the answer to hold), or that box with an emissive texture (left to BSDF
+// sampling: the emission light sampling does not know must count in full).
+enum class World { kBackground, kEmissiveBox, kTexturedEmissiveBox };
 
 Scene furnace_scene(double tilt_deg, World world, float radiance) {
   GltfBuilder gltf;
@@ -60,7 +63,7 @@ Scene furnace_scene(double tilt_deg, World world, float radiance) {
   plane.translation = {0, 0, -5};
   plane.rotation = {std::sin(half), 0, 0, std::cos(half)};
   gltf.node(plane);
-  if (world == World::kEmissiveBox) {
+  if (world != World::kBackground) {
     constexpr float b = 20.f;  // a cube of side 2b about the camera, emitting inwards and out
     std::vector<Vec3f> corners;
     for (int i = 0; i < 8; ++i)
@@ -77,12 +80,17 @@ Scene furnace_scene(double tilt_deg, World world, float radiance) {
   Diagnostics diagnostics;
   Scene scene = import_gltf(gltf.write(test::scratch_dir() / "furnace.gltf"), diagnostics);
   if (world == World::kBackground) scene.background = {radiance, radiance, radiance};
+  if (world == World::kTexturedEmissiveBox) {
+    // A grey emissive texture (sRGB 128: 0.2158 of the factor), left to BSDF sampling.
+    scene.images.push_back({"images[0]", {}, test::png(1, 1, {128, 128, 128, 255})});
+    scene.materials.back().textures.emissive.image = 0;
+  }
   return scene;
 }
 
 TEST(MaterialRender, PlaneInAUniformWorldReturnsItsDirectionalAlbedo) {
   constexpr float kL = 2.f;  // the world's radiance
-  for (World world : {World::kBackground, World::kEmissiveBox})
+  for (World world : {World::kBackground, World::kEmissiveBox, World::kTexturedEmissiveBox})
     for (double tilt_deg : {0.0, 60.0}) {
       const Scene base = furnace_scene(tilt_deg, world, kL);
       const double mu = std::cos(tilt_deg * std::numbers::pi / 180);
@@ -110,11 +118,13 @@ TEST(MaterialRender, PlaneInAUniformWorldReturnsItsDirectionalAlbedo) {
           }
         const double mean = sum / n;
         const double standard_error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
+        const double world_radiance =
+            kL * (world == World::kTexturedEmissiveBox ? srgb_to_linear(128 / 255.f) : 1.f);
         const double expected =
-            kL * albedo({{1, 1, 1}, f.metallic, f.roughness, f.transmission, 1.5f, 1.f}, mu);
+            world_radiance *
+            albedo({{1, 1, 1}, f.metallic, f.roughness, f.transmission, 1.5f, 1.f}, mu);
         EXPECT_NEAR(mean, expected, 4 * standard_error + 2e-3 * expected)
-            << f.name << " at mu " << mu
-            << (world == World::kBackground ? " (background)" : " (box)") << ", standard error "
+            << f.name << " at mu " << mu << " in world " << int(world) << ", standard error "
             << standard_error;
       }
     }
