@@ -184,7 +184,7 @@ std::vector<double> read_animation_values(const AccessorContext& ctx, int access
   const tinygltf::Accessor& a = ctx.model.accessors[size_t(accessor)];
   const std::string path = where + " (accessors[" + std::to_string(accessor) + "])";
   if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized)
-    throw_input(ctx.file, path, "integer animation values must be normalized (normalized: true)");
+    throw_input(ctx.file, path, "integer values must be normalized here (normalized: true)");
   const size_t width = size_t(tinygltf::GetNumComponentsInType(a.type));
   const size_t size = component_size(a.componentType);
   std::vector<double> out(v.count * width);

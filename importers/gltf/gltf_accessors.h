@@ -27,9 +27,9 @@ std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std
 std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
                                    const std::string& where, size_t vertex_count);
 
-// An animation sampler's accessor (glTF 2.0 §3.11) as doubles, every component finite: of the
-// given TINYGLTF_TYPE_*, float, or also normalized byte or short when `normalized_integers`
-// (rotations may be stored so).
+// An animation sampler's accessor (glTF 2.0 §3.11), or a texture coordinate or tangent
+// attribute, as doubles, every component finite: of the given TINYGLTF_TYPE_*, float, or also
+// normalized byte or short when `normalized_integers` (rotations and TEXCOORD_n may be stored so).
 std::vector<double> read_animation_values(const AccessorContext& ctx, int accessor,
                                           const std::string& where, int type,
                                           bool normalized_integers);

@@ -261,8 +261,21 @@ void read_materials(tinygltf::Model& model, const std::string& file, Scene& scen
   MaterialReader reader(model, file, diagnostics);
   for (size_t i = 0; i < model.materials.size(); ++i)
     scene.materials.push_back(reader.read(model.materials[i], index_path("materials", i)));
+  std::vector<bool> used(model.images.size(), false);
+  for (const Material& m : scene.materials)
+    for (const TextureRef* t : {&m.textures.base_color, &m.textures.metallic_roughness,
+                                &m.textures.normal, &m.textures.emissive})
+      if (t->present()) used[t->image] = true;
   for (size_t i = 0; i < model.images.size(); ++i) {
     tinygltf::Image& g = model.images[i];
+    // tinygltf only warns about an image it could not read; a material needs it.
+    if (used[i] && g.image.empty())
+      throw_input(file, index_path("images", i) + (g.uri.empty() ? ".bufferView" : ".uri"),
+                  g.uri.empty() || g.uri.rfind("data:", 0) == 0
+                      ? "no image data"
+                      : "'" + g.uri +
+                            "' could not be read (expected a regular file inside the scene's "
+                            "folder, at most 2 GiB)");
     TextureImage image;
     image.name =
         index_path("images", i) +
@@ -291,6 +304,12 @@ void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
     for (size_t v = 0; v < mesh.positions.size(); ++v)
       out.texcoords[set][v] = {float(values[2 * v]), float(values[2 * v + 1])};
   }
+  const MaterialTextures& t = material.textures;
+  for (const TextureRef* ref : {&t.base_color, &t.metallic_roughness, &t.normal, &t.emissive})
+    if (ref->present() && out.texcoords[ref->texcoord].empty())
+      throw_input(ctx.file, path + ".attributes",
+                  "material '" + material.name + "' reads TEXCOORD_" +
+                      std::to_string(ref->texcoord) + ", which the primitive does not have");
   if (!material.textures.normal.present()) return;
   if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
     const std::string where = path + ".attributes.TANGENT";

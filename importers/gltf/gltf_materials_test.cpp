@@ -7,6 +7,8 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <numbers>
 
 #include "core/accel/render_geometry.h"
@@ -37,6 +39,8 @@ tinygltf::Model one_material(const tinygltf::Material& m) {
   tinygltf::Model model;
   model.materials.push_back(m);
   model.images.emplace_back();
+  model.images.back().image = {
+      0x89};  // encoded bytes, as the loader keeps them; never decoded here
   tinygltf::Texture texture;
   texture.source = 0;
   model.textures.push_back(texture);
@@ -294,6 +298,98 @@ TEST(AlphaCoverage, BlendKeepsAShareOfHitsEqualToAlpha) {
   }
   // Binomial standard deviation sqrt(0.25 * 0.75 / 20000) = 0.003: five of them.
   EXPECT_NEAR(double(hits) / kN, 0.25, 0.015);
+}
+
+}  // namespace
+}  // namespace fb
+
+namespace fb {
+namespace {
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t n = uint32_t(bytes[i]) << 16 |
+                       (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                       (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0);
+    out += kDigits[n >> 18 & 63];
+    out += kDigits[n >> 12 & 63];
+    out += i + 1 < bytes.size() ? kDigits[n >> 6 & 63] : '=';
+    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
+  }
+  return out;
+}
+
+// A textured quad written by hand: positions, TEXCOORD_0 and indices in a data-URI buffer, the
+// image `image_uri`, the base colour texture reading TEXCOORD_n for n = `texcoord`.
+std::filesystem::path textured_quad(const std::string& image_uri, int texcoord = 0) {
+  const float data[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0,  // POSITION
+                        0,  1,  1, 1, 1,  0, 0, 0};              // TEXCOORD_0
+  const uint16_t indices[] = {0, 1, 2, 0, 2, 3};
+  std::vector<unsigned char> buffer(sizeof data + sizeof indices);
+  std::memcpy(buffer.data(), data, sizeof data);
+  std::memcpy(buffer.data() + sizeof data, indices, sizeof indices);
+  const std::filesystem::path file = test::scratch_dir() / "quad.gltf";
+  std::ofstream(file) << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
+                                "material": 0}]}],
+    "materials": [{"pbrMetallicRoughness": {"metallicFactor": 0,
+                   "baseColorTexture": {"index": 0, "texCoord": )"
+                      << texcoord << R"(}}}],
+    "textures": [{"source": 0}], "images": [{"uri": ")"
+                      << image_uri << R"("}],
+    "buffers": [{"byteLength": )"
+                      << buffer.size() << R"(, "uri": "data:application/octet-stream;base64,)"
+                      << base64(buffer) << R"("}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                    {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                   "min": [-1, -1, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                  {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  return file;
+}
+
+std::string import_error(const std::filesystem::path& file) {
+  Diagnostics diagnostics;
+  try {
+    import_gltf(file, diagnostics);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// The whole way from a .gltf: a data-URI PNG kept encoded by the importer, TEXCOORD_0 read, the
+// image decoded by the shader and looked up where the quad's corner maps.
+TEST(GltfMaterials, DataUriImageAndTexcoordsReachTheShader) {
+  const std::string uri = "data:image/png;base64," + base64(two_texels());
+  Diagnostics diagnostics;
+  const Scene scene = import_gltf(textured_quad(uri), diagnostics);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_EQ(scene.meshes[0].texturing.texcoords[0].size(), 4u);
+  EXPECT_EQ(diagnostics.count(), 0u);
+  const SurfaceShader shader(scene);
+  fb_hit hit{};
+  shader.shade(0, at_uv(0.75f, 0.5f), hit);  // the right texel: (255, 0, 0)
+  EXPECT_NEAR(hit.base_color[0], 1.f, 1e-4);
+  EXPECT_NEAR(hit.base_color[1], 0.f, 1e-4);
+}
+
+TEST(GltfMaterials, ImagesOutsideTheScenesFolderAndMissingTexcoordsAreErrors) {
+  const std::string outside = import_error(textured_quad("../outside.png"));
+  EXPECT_NE(outside.find("quad.gltf: images[0].uri: '../outside.png' could not be read"),
+            std::string::npos)
+      << outside;
+  const std::string uri = "data:image/png;base64," + base64(two_texels());
+  const std::string missing = import_error(textured_quad(uri, 1));
+  EXPECT_NE(missing.find("quad.gltf: meshes[0].primitives[0].attributes: material 'materials[0]' "
+                         "reads TEXCOORD_1, which the primitive does not have"),
+            std::string::npos)
+      << missing;
 }
 
 }  // namespace
