@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,8 @@ struct RenderCommand {
 };
 
 int run_render(RenderCommand& command);
-int run_info(const std::filesystem::path& scene);
+// `camera`: list only that camera (a UsageError naming the cameras there are when absent).
+int run_info(const std::filesystem::path& scene, const std::optional<std::string>& camera);
 int run_plugins();
 
 }  // namespace fb

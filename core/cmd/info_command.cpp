@@ -65,6 +65,39 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
       "    clip %.6g m to %s, at %s m\n", c.clip_near_m,
       std::isinf(c.clip_far_m) ? "infinity" : format("%.6g m", c.clip_far_m).c_str(),
       point(camera.world_from_camera.translation()).c_str());
+  if (camera.focus_track)
+    std::cout << format(
+        "    focus varies over frames %.17g to %.17g (%zu values)\n",
+        camera.focus_track->first_frame,
+        camera.focus_track->first_frame + double(camera.focus_track->distances_m.size() - 1),
+        camera.focus_track->distances_m.size());
+  // Every value exactly as imported (%.17g round-trips a double), under the names of the
+  // FILMBACK_blender extension, for scripts: docs/blender.md, "Cameras".
+  std::cout << "    exact: projection=" << (ortho ? "orthographic" : "perspective")
+            << format(" focal_length_mm=%.17g sensor_width_mm=%.17g sensor_height_mm=%.17g",
+                      c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm)
+            << " sensor_fit=" << sensor_fit_name(c.sensor_fit)
+            << format(
+                   " shift_x=%.17g shift_y=%.17g ortho_scale_m=%.17g clip_near_m=%.17g"
+                   " clip_far_m=%.17g fstop=%.17g focus_distance_m=%.17g aperture_blades=%u"
+                   " aperture_rotation_rad=%.17g aperture_ratio=%.17g\n",
+                   c.shift_x, c.shift_y, c.ortho_scale_m, c.clip_near_m, c.clip_far_m, c.fstop,
+                   c.focus_distance_m, c.aperture_blades, c.aperture_rotation_rad,
+                   c.aperture_ratio);
+}
+
+void print_shot(const ShotSettings& s) {
+  std::cout << "shot";
+  if (s.width_px) std::cout << format(" %ux%u px", *s.width_px, *s.height_px);
+  if (s.pixel_aspect) std::cout << format(", pixel aspect %.6g", *s.pixel_aspect);
+  if (s.fps) std::cout << format(", %.6g fps", *s.fps);
+  if (s.frame) std::cout << format(", frame %.6g", *s.frame);
+  if (s.shutter_open_s)
+    std::cout << format(", shutter %.6g s to %.6g s%s", *s.shutter_open_s, *s.shutter_close_s,
+                        s.shutter_curve.empty() ? "" : " with a curve");
+  if (s.filter) std::cout << ", filter " << *s.filter;
+  if (s.film_exposure != 1.0) std::cout << format(", film exposure x%.6g", s.film_exposure);
+  std::cout << '\n';
 }
 
 const char* light_type(LightType t) {
@@ -81,10 +114,16 @@ const char* light_type(LightType t) {
 
 }  // namespace
 
-int run_info(const std::filesystem::path& file) {
+int run_info(const std::filesystem::path& file, const std::optional<std::string>& only_camera) {
   Diagnostics diagnostics;
   const Scene scene = import_scene(file, diagnostics);
+  diagnostics.print(std::cerr);
+  if (only_camera) {
+    print_camera(find_camera(scene, *only_camera), scene.settings);
+    return 0;
+  }
   std::cout << "scene " << file.string() << '\n';
+  print_shot(scene.settings);
 
   std::cout << "cameras (" << scene.cameras.size() << ")"
             << (scene.cameras.empty()
@@ -126,7 +165,7 @@ int run_info(const std::filesystem::path& file) {
               << s.cage_positions.size() << " vertices, " << s.edge_creases.size()
               << " creased edges; "
               << (s.settings.scheme == SubdivisionSettings::Scheme::kSimple ? "simple"
-                                                                             : "Catmull-Clark")
+                                                                            : "Catmull-Clark")
               << " level " << s.settings.levels_render << ", material '"
               << scene.materials[s.material].name << "'\n";
 
@@ -134,7 +173,6 @@ int run_info(const std::filesystem::path& file) {
   for (const Material& m : scene.materials)
     std::cout << "  " << m.name << "  base colour " << rgb(m.base_color) << ", emission "
               << rgb(m.emission) << " W/sr/m^2" << (m.double_sided ? ", double-sided" : "") << '\n';
-  diagnostics.print(std::cerr);
   return 0;
 }
 

@@ -1,5 +1,6 @@
 // filmback's command-line front end: `render`, `info`, `plugins` (docs/cli.md).
 #include <CLI/CLI.hpp>
+#include <optional>
 
 #include <iostream>
 
@@ -74,6 +75,8 @@ int main(int argc, char** argv) {
   CLI::App* info_cmd =
       app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
   info_cmd->add_option("scene", info_scene, "scene file (.gltf, .glb)")->required();
+  std::optional<std::string> info_camera;
+  info_cmd->add_option("--camera", info_camera, "list only the camera of this name");
 
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list every plugin found, with its parameters");
@@ -88,7 +91,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (render_cmd->parsed()) return fb::run_render(render);
-    if (info_cmd->parsed()) return fb::run_info(info_scene);
+    if (info_cmd->parsed()) return fb::run_info(info_scene, info_camera);
     if (plugins_cmd->parsed()) return fb::run_plugins();
   } catch (const fb::UsageError& e) {
     std::cerr << "filmback: error: " << e.what() << '\n';

@@ -52,13 +52,17 @@ SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& 
   if (!name)
     return scene.cameras.empty() ? frame_bounds(scene.world_bounds(frame_s))
                                  : posed(scene.cameras.front());
-  for (const SceneCamera& camera : scene.cameras)
-    if (camera.name == *name) return posed(camera);
-  std::string known;
-  for (const SceneCamera& camera : scene.cameras)
-    known += (known.empty() ? "" : ", ") + camera.name;
-  throw UsageError("--camera '" + *name + "': the scene has no camera of that name (" +
-                   (known.empty() ? "it has no camera at all" : "it has: " + known) + ")");
+  return posed(find_camera(scene, *name));
+}
+
+// A shot's sampled shutter curve in --shutter-curve's table syntax.
+std::string table_curve(const std::vector<double>& values) {
+  std::string text = "table:values=[";
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) text += ',';
+    text += number_text(values[i]);
+  }
+  return text + "]";
 }
 
 ImageMetadata::Matrix to_float_matrix(const Transform& t) {
@@ -171,6 +175,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   fps_ = options.fps.value_or(scene.settings.fps.value_or(kDefaultFps));
   const double frame_s = frame_ / fps_;
   camera_ = choose_camera(scene, options.camera, frame_s);
+  if (camera_.focus_track) camera_.physical.focus_distance_m = camera_.focus_track->at(frame_);
   options.camera_overrides.apply(camera_.physical);
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
@@ -189,9 +194,15 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   Plugins& p = *plugins_;
   if (options.shutter_curve)
     p.shutter_curve = ShutterCurve::parse(*options.shutter_curve, "--shutter-curve");
-  p.filter_text = options.filter.value_or(kDefaultFilter);
+  else if (std::adjacent_find(shot.shutter_curve.begin(), shot.shutter_curve.end(),
+                              std::not_equal_to<>()) != shot.shutter_curve.end())  // not a box
+    p.shutter_curve = ShutterCurve::parse(table_curve(shot.shutter_curve),
+                                          scene.file.string() + ": the shot's shutter_curve");
+  p.filter_text = options.filter.value_or(shot.filter.value_or(kDefaultFilter));
+  pixel_aspect_ = shot.pixel_aspect.value_or(1.0);
   p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
-  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_, 1.0, sensor_);
+  const fb_camera_setup setup =
+      make_camera_setup(camera_.physical, width_, height_, pixel_aspect_, sensor_);
   p.camera = instantiate<CameraInstance>(
       loader, FB_KIND_CAMERA,
       options.camera_model.value_or(camera_model_for(camera_.physical, sensor_)), "--camera-model",
@@ -216,8 +227,8 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   }
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
                                                 motion_tolerance(setup));
-  p.lights =
-      std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry, frame_s);
+  p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
+                                            frame_s, options.background);
   choose_time_samples(scene);
   for (const Material& m : scene.materials) {
     fb_material fm{};
@@ -309,11 +320,18 @@ RenderResult RenderJob::run() const {
     progress.emplace(tile_count(inputs, width_, height_), std::cerr, stderr_is_terminal());
   RenderStats stats = render_image(inputs, film, progress ? &*progress : nullptr);
   progress.reset();
-  return {film.resolve(), stats};
+  Image image = film.resolve();
+  // Cycles' Film > Exposure: a gain on the rendered radiance, colour channels only.
+  if (const double gain = scene_.settings.film_exposure; gain != 1.0)
+    for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
+      for (size_t c = 0; c < 3; ++c)
+        image.pixels[i * image.channels.size() + c] *= float(gain);
+  return {std::move(image), stats};
 }
 
 ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
-  const fb_camera_setup setup = make_camera_setup(camera_.physical, width_, height_, 1.0, sensor_);
+  const fb_camera_setup setup =
+      make_camera_setup(camera_.physical, width_, height_, pixel_aspect_, sensor_);
   const Transform camera_from_world = camera_.world_from_camera.inverse();
   ImageMetadata m;
   // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera); ours, glTF's,

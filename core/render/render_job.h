@@ -90,7 +90,8 @@ class RenderJob {
   std::string camera_reason_;
   Vec2d shutter_s_;  // open, close, relative to the frame's time
   double frame_ = 0, fps_ = kDefaultFps;
-  ShotTimes times_;  // the shutter and the frame's time on the scene's timeline, s
+  double pixel_aspect_ = 1.0;  // pixel width / height
+  ShotTimes times_;            // the shutter and the frame's time on the scene's timeline, s
   std::string time_reason_;
   SensorResponse sensor_;
   std::unique_ptr<Plugins> plugins_;

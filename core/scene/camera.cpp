@@ -1,5 +1,6 @@
 #include "core/scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -66,6 +67,13 @@ const char* sensor_fit_name(uint32_t fit) {
     default:
       return "auto";
   }
+}
+
+double FocusTrack::at(double frame) const {
+  const double x = std::clamp(frame - first_frame, 0.0, double(distances_m.size() - 1));
+  const size_t i = std::min(size_t(x), distances_m.size() - 1);
+  if (i + 1 == distances_m.size()) return distances_m[i];
+  return std::lerp(distances_m[i], distances_m[i + 1], x - double(i));
 }
 
 }  // namespace fb

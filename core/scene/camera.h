@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <filmback/plugin_abi.h>
 
@@ -39,6 +40,14 @@ struct SensorResponse {
   double iso = 100.0;            // PHYSICAL only
 };
 
+// A focus distance per frame (Blender's focus object, or an animated focus distance), linear in
+// between and held beyond the ends.
+struct FocusTrack {
+  double first_frame = 0;
+  std::vector<double> distances_m;  // one per frame from first_frame on; not empty
+  double at(double frame) const;
+};
+
 struct SceneCamera {
   std::string name;    // the glTF camera's name, else its node's name
   std::string source;  // where it came from: "nodes[3] (cameras[0])"
@@ -46,6 +55,7 @@ struct SceneCamera {
   Transform world_from_camera;            // rest pose, scale removed: looks down -Z, +Y up
   uint32_t node_index = kNoNode;          // in Scene::hierarchy, whose animation may move it
   std::optional<double> intended_aspect;  // width / height the shot was made for
+  std::optional<FocusTrack> focus_track;  // replaces physical.focus_distance_m when present
 };
 
 // The quantities `filmback info` reports, for a given image size.

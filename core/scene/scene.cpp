@@ -1,5 +1,7 @@
 #include "core/scene/scene.h"
 
+#include "core/util/error.h"
+
 namespace fb {
 
 size_t Scene::triangle_count() const {
@@ -55,6 +57,16 @@ Transform Scene::world_from_light(const Light& light, double time_s) const {
   return animated(hierarchy, light.node_index)
              ? hierarchy.world_from_node(light.node_index, time_s).without_scale()
              : light.world_from_light;
+}
+
+const SceneCamera& find_camera(const Scene& scene, const std::string& name) {
+  for (const SceneCamera& camera : scene.cameras)
+    if (camera.name == name) return camera;
+  std::string known;
+  for (const SceneCamera& camera : scene.cameras)
+    known += (known.empty() ? "" : ", ") + camera.name;
+  throw UsageError("--camera '" + name + "': the scene has no camera of that name (" +
+                   (known.empty() ? "it has no camera at all" : "it has: " + known) + ")");
 }
 
 }  // namespace fb

@@ -82,6 +82,15 @@ struct Light {
   double angle_rad = 0.0;
 };
 
+// An equirectangular world image (Blender's Environment Texture, Cycles' mapping): column
+// u = 0.5 - atan2(y, x) / (2 pi), row v = acos(z) / pi from the top, in Blender's Z-up world
+// axes; texels are radiance (image times the world's strength), top row first.
+struct EnvironmentMap {
+  std::string name;  // the image file, for messages
+  uint32_t width = 0, height = 0;
+  std::vector<Rgb> texels;
+};
+
 struct Bounds3d {
   Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL};
   Vec3d hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -95,7 +104,16 @@ struct ShotSettings {
   std::optional<double> fps;
   std::optional<double> frame;
   std::optional<double> shutter_open_s, shutter_close_s;  // relative to the frame's time
+  std::vector<double> shutter_curve;  // weights evenly spaced over the open shutter; empty: box
+  std::optional<double> pixel_aspect;  // pixel width / height
+  std::optional<std::string> filter;   // the shot's pixel filter as a filter plugin, "NAME:k=v,..."
+  double film_exposure = 1.0;          // linear gain on the image (Cycles' Film > Exposure)
 };
+
+struct Scene;
+
+// The camera named `name`; throws UsageError ("--camera ...") listing the scene's cameras.
+const SceneCamera& find_camera(const Scene& scene, const std::string& name);
 
 struct Scene {
   std::filesystem::path file;
@@ -108,6 +126,7 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
   Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
+  std::optional<EnvironmentMap> environment;  // replaces `background` when present
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
 

@@ -12,10 +12,12 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_accessors.h"
 #include "importers/gltf/gltf_animation.h"
-#include "importers/gltf/gltf_extras.h"
+#include "importers/gltf/gltf_camera.h"
 #include "importers/gltf/gltf_file.h"
+#include "importers/gltf/gltf_json.h"
 #include "importers/gltf/gltf_lights.h"
 #include "importers/gltf/gltf_materials.h"
+#include "importers/gltf/gltf_shot.h"
 #include "importers/gltf/gltf_subdivision.h"
 
 namespace fb {
@@ -23,20 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string index_path(const char* array, size_t i) {
-  return std::string(array) + "[" + std::to_string(i) + "]";
-}
-
-// "mesh index 5 is out of range (the file has 1 meshes)": what was found and what was expected.
-std::string out_of_range(const char* what, long index, size_t count, const char* array) {
-  return std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
-         std::to_string(count) + " " + array + ")";
-}
-
-// Bounds on camera shapes, far beyond any real shot, so that no camera reaches the renderer with a
-// view plane that float arithmetic cannot trace.
-constexpr double kMinAspect = 1e-4;
-constexpr double kMaxMagnification = 1e9;  // m
+using gltf::index_path;
+using gltf::out_of_range;
 
 class Importer {
  public:
@@ -69,6 +59,7 @@ class Importer {
   void check_extensions() {
     // One extension a line: each is read by its own part of the importer.
     static const std::set<std::string> kSupported = {
+        "EXT_camera_physical",
         "KHR_lights_punctual",
         "KHR_materials_emissive_strength",
         "KHR_materials_ior",
@@ -85,6 +76,15 @@ class Importer {
       if (!kSupported.count(model_.extensionsUsed[i]))
         warn(index_path("extensionsUsed", i),
              model_.extensionsUsed[i] + " is not supported yet; ignored");
+  }
+
+  // FILMBACK_blender's settings when the scene has the extension, else extras of the same names.
+  ShotSettings read_shot_settings(const tinygltf::Scene& scene, const std::string& path) {
+    if (const auto ours = scene.extensions.find("FILMBACK_blender"); ours != scene.extensions.end())
+      return gltf::read_shot_settings(
+          gltf::Fields(ours->second, path + ".extensions.FILMBACK_blender", name_), diagnostics_);
+    return gltf::read_shot_settings(gltf::Fields(scene.extras, path + ".extras", name_),
+                                    diagnostics_);
   }
 
   uint32_t default_material() {
@@ -132,9 +132,8 @@ class Importer {
       const size_t s = model_.defaultScene >= 0 ? size_t(model_.defaultScene) : 0;
       if (s >= model_.scenes.size())
         throw_input(name_, "scene", out_of_range("scene", long(s), model_.scenes.size(), "scenes"));
-      scene_.settings = gltf::read_shot_extras(model_.scenes[s].extras,
-                                               index_path("scenes", s) + ".extras", name_);
-      gltf::read_world(model_, s, name_, scene_, diagnostics_);
+      scene_.settings = read_shot_settings(model_.scenes[s], index_path("scenes", s));
+      gltf::read_world(model_, s, name_, scene_);
       const std::vector<int>& roots = model_.scenes[s].nodes;
       for (size_t r = roots.size(); r-- > 0;)
         stack.push_back({roots[r], Transform(), kNoNode,
@@ -202,7 +201,9 @@ class Importer {
     } else if (node.mesh >= 0) {
       add_mesh(node, path, world, scene_node);
     }
-    if (node.camera >= 0) add_camera(node, path, world, scene_node);
+    if (node.camera >= 0)
+      scene_.cameras.push_back(gltf::read_camera(model_, node, path, world, scene_node,
+                                                 scene_.settings, name_, diagnostics_));
     gltf::read_node_light(model_, node, path, world, scene_node, name_, scene_, diagnostics_);
   }
 
@@ -300,91 +301,6 @@ class Importer {
         out.insert(out.end(), {v[i - 1], v[i - 2], v[i]});
     }
     return out;
-  }
-
-  void add_camera(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                  uint32_t scene_node) {
-    if (size_t(node.camera) >= model_.cameras.size())
-      throw_input(name_, path + ".camera",
-                  out_of_range("camera", node.camera, model_.cameras.size(), "cameras"));
-    const tinygltf::Camera& g = model_.cameras[size_t(node.camera)];
-    const std::string cpath = index_path("cameras", size_t(node.camera));
-    SceneCamera camera;
-    camera.name = !g.name.empty() ? g.name : !node.name.empty() ? node.name : cpath;
-    camera.source = path + " (" + cpath + ")";
-    camera.node_index = scene_node;
-    // Blender ignores camera scale when projecting: keep rotation and position only.
-    camera.world_from_camera = world.without_scale();
-    if (!camera.world_from_camera.is_finite())
-      throw_input(name_, path, "the camera's transform is degenerate (zero scale?)");
-    PhysicalCamera& phys = camera.physical;
-    if (g.type == "perspective") {
-      const tinygltf::PerspectiveCamera& p = g.perspective;
-      if (!(p.yfov > 0 && p.yfov < std::numbers::pi))
-        throw_input(name_, cpath + ".perspective.yfov",
-                    number_text(p.yfov) + " is not a field of view (expected 0 < yfov < pi)");
-      if (!(p.znear > 0))
-        throw_input(name_, cpath + ".perspective.znear", "expected a positive near clip distance");
-      if (p.zfar != 0 && !(p.zfar > p.znear))
-        throw_input(name_, cpath + ".perspective.zfar", "expected zfar > znear");
-      if (p.aspectRatio != 0 && !(p.aspectRatio >= kMinAspect && p.aspectRatio <= 1 / kMinAspect))
-        throw_input(name_, cpath + ".perspective.aspectRatio",
-                    number_text(p.aspectRatio) + " is not an image shape (expected 1e-4 to 1e4)");
-      // The glTF projection becomes Blender's physical set (docs/camera-model.md): with an
-      // aspect ratio, a 36 mm sensor with AUTO fit, whose fitted side spans the larger image
-      // side; without one, the vertical field of view is kept for any image shape.
-      const double tan_half_y = std::tan(p.yfov / 2);
-      phys.projection = FB_PROJECTION_PERSPECTIVE;
-      if (p.aspectRatio > 0) {
-        camera.intended_aspect = p.aspectRatio;
-        const double tan_half_fitted = p.aspectRatio >= 1 ? tan_half_y * p.aspectRatio : tan_half_y;
-        phys.focal_length_mm = phys.sensor_width_mm / (2 * tan_half_fitted);
-      } else {
-        phys.sensor_fit = FB_SENSOR_FIT_VERTICAL;
-        phys.focal_length_mm = phys.sensor_height_mm / (2 * tan_half_y);
-      }
-      phys.clip_near_m = p.znear;
-      phys.clip_far_m = p.zfar > 0 ? p.zfar : HUGE_VAL;  // absent zfar: infinite projection
-    } else if (g.type == "orthographic") {
-      const tinygltf::OrthographicCamera& o = g.orthographic;
-      if (!(o.xmag > 0 && o.xmag <= kMaxMagnification && o.ymag > 0 &&
-            o.ymag <= kMaxMagnification && o.xmag / o.ymag >= kMinAspect &&
-            o.xmag / o.ymag <= 1 / kMinAspect))
-        throw_input(name_, cpath + ".orthographic",
-                    "expected xmag and ymag in (0, 1e9] m with a ratio from 1e-4 to 1e4");
-      if (!(o.zfar > o.znear) || o.znear < 0)
-        throw_input(name_, cpath + ".orthographic", "expected 0 <= znear < zfar");
-      phys.projection = FB_PROJECTION_ORTHOGRAPHIC;
-      phys.ortho_scale_m =
-          2 * std::max(o.xmag, o.ymag);  // Blender: xmag = scale * w / max(w, h) / 2
-      camera.intended_aspect = o.xmag / o.ymag;
-      phys.clip_near_m = o.znear;
-      phys.clip_far_m = o.zfar;
-    } else {
-      throw_input(name_, cpath + ".type",
-                  "'" + g.type + "' is not a camera type (expected perspective or orthographic)");
-    }
-    if (const ShotSettings& s = scene_.settings; s.width_px)
-      camera.intended_aspect = double(*s.width_px) / *s.height_px;
-    // Blender's physical camera, when the file carries it, replaces what yfov implied.
-    const PhysicalCamera from_yfov = phys;
-    if (gltf::apply_camera_extras(g.extras, cpath + ".extras", name_, phys) &&
-        g.type == "perspective" && camera.intended_aspect)
-      check_fov_agrees(from_yfov, phys, *camera.intended_aspect, cpath);
-    scene_.cameras.push_back(camera);
-  }
-
-  // Both describe the same shot: warn when the vertical fields of view differ by more than 0.01°.
-  void check_fov_agrees(const PhysicalCamera& from_yfov, const PhysicalCamera& physical,
-                        double aspect, const std::string& cpath) {
-    constexpr uint32_t kHeight = 100000;
-    const auto width = uint32_t(std::max(1.0, std::round(aspect * kHeight)));
-    const double yfov = describe_camera(from_yfov, width, kHeight).vertical_fov_deg;
-    const double extras = describe_camera(physical, width, kHeight).vertical_fov_deg;
-    if (std::abs(yfov - extras) > 0.01)
-      warn(cpath, "yfov gives a vertical field of view of " + number_text(yfov) +
-                      " deg, the physical camera in extras " + number_text(extras) +
-                      " deg; using the physical camera");
   }
 
   fs::path file_;

@@ -1,0 +1,54 @@
+// Reading glTF's JSON (tinygltf::Value) with errors that name the file, the JSON path of the value
+// and what was expected: the one reader every part of the importer uses for extensions and extras.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <filmback/vec.h>
+
+namespace tinygltf {
+class Value;
+}
+
+namespace fb::gltf {
+
+// "nodes[3]"
+std::string index_path(const char* array, size_t i);
+
+// "mesh index 5 is out of range (the file has 1 meshes)": what was found and what was expected.
+std::string out_of_range(const char* what, long index, size_t count, const char* array);
+
+// The members of one JSON object (anything else reads as an object without members). Each getter
+// returns nothing for an absent member and throws InputError at `path.key` for a present one of
+// the wrong type or range.
+class Fields {
+ public:
+  Fields(const tinygltf::Value& object, std::string path, const std::string& file);
+
+  bool has(const char* key) const;
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+
+  std::optional<double> number(const char* key, double lo, double hi) const;
+  std::optional<double> whole(const char* key, double lo, double hi) const;  // an integer
+  std::optional<Rgb> color(const char* key) const;  // three finite, non-negative components
+  std::optional<std::string> word(const char* key) const;
+  std::optional<bool> flag(const char* key) const;
+  // An array of at most `max_count` numbers, each in [lo, hi].
+  std::optional<std::vector<double>> numbers(const char* key, size_t max_count, double lo,
+                                             double hi) const;
+  // A member object (absent: one without members), for nested fields.
+  Fields object(const char* key) const;
+
+  [[noreturn]] void fail(const char* key, const std::string& what) const;
+
+ private:
+  const tinygltf::Value& object_;
+  std::string path_;
+  const std::string& file_;
+};
+
+}  // namespace fb::gltf
