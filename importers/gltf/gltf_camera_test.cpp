@@ -1,0 +1,200 @@
+// Cameras and shot settings as Blender's add-on writes them (docs/blender.md, "Cameras"): the
+// precedence FILMBACK_blender > EXT_camera_physical > extras > yfov, the 0.01 degree agreement
+// check, focus tracks, the scene's settings, and errors naming the file and JSON path.
+#include "importers/gltf/gltf_camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+
+#include "core/util/error.h"
+#include "importers/gltf/gltf_importer.h"
+#include "support/gltf_builder.h"
+
+namespace fb {
+namespace {
+
+// yfov of Blender's default camera (50 mm on a 36 mm sensor, AUTO fit) at 16:9.
+const double kDefaultYfov = 2 * std::atan(36.0 / 100 / (16.0 / 9));
+
+// One camera node; `camera_members` and `scene_members` are spliced into the camera and scene
+// objects ("" for none).
+std::filesystem::path write_gltf(const std::string& camera_members,
+                                 const std::string& scene_members = "",
+                                 double yfov = kDefaultYfov) {
+  const std::filesystem::path file = test::scratch_dir() / "camera.gltf";
+  char perspective[160];
+  std::snprintf(
+      perspective, sizeof perspective,
+      R"("perspective": {"yfov": %.17g, "aspectRatio": 1.7777777777777777, "znear": 0.1})", yfov);
+  std::ofstream(file) << R"({"asset": {"version": "2.0"},
+  "extensionsUsed": ["FILMBACK_blender", "EXT_camera_physical"],
+  "scene": 0, "scenes": [{"nodes": [0])"
+                      << (scene_members.empty() ? "" : ", " + scene_members) << R"(}],
+  "nodes": [{"name": "Cam", "camera": 0}],
+  "cameras": [{"name": "Lens", "type": "perspective", )"
+                      << perspective << (camera_members.empty() ? "" : ", " + camera_members)
+                      << "}]}";
+  return file;
+}
+
+Scene import(const std::filesystem::path& file, Diagnostics& diagnostics) {
+  return import_gltf(file, diagnostics);
+}
+
+std::string error_of(const std::filesystem::path& file) {
+  Diagnostics diagnostics;
+  try {
+    import(file, diagnostics);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(GltfCamera, FilmbackExtensionOverridesExtPhysicalAndExtras) {
+  Diagnostics d;
+  const Scene scene =
+      import(write_gltf(R"("extras": {"focal_length_mm": 20, "fstop": 4, "shift_x": 0.25},
+      "extensions": {"EXT_camera_physical": {"focalLength": 0.035, "sensorSize": [0.036, 0.024]},
+                     "FILMBACK_blender": {"focal_length_mm": 50, "sensor_width_mm": 36,
+                                          "sensor_height_mm": 24, "sensor_fit": "auto",
+                                          "aperture_blades": 6}})"),
+             d);
+  const PhysicalCamera& c = scene.cameras.at(0).physical;
+  EXPECT_EQ(c.focal_length_mm, 50);  // ours over EXT's 35 and extras' 20
+  EXPECT_EQ(c.fstop, 4);             // only extras name it
+  EXPECT_EQ(c.shift_x, 0.25);        // only extras name it
+  EXPECT_EQ(c.aperture_blades, 6u);  // ours
+  EXPECT_EQ(d.count(), 0u);          // 50 mm AUTO reproduces yfov
+}
+
+TEST(GltfCamera, ExtCameraPhysicalAloneTakesTheFitThatGivesYfov) {
+  // 35 mm on 36 x 24 mm, vertical fit: yfov = 2 atan(12 / 35).
+  Diagnostics d;
+  const Scene scene = import(
+      write_gltf(
+          R"("extensions": {"EXT_camera_physical": {"focalLength": 0.035, "sensorSize": [0.036, 0.024]}})",
+          "", 2 * std::atan(12.0 / 35)),
+      d);
+  const PhysicalCamera& c = scene.cameras.at(0).physical;
+  EXPECT_DOUBLE_EQ(c.focal_length_mm, 35);
+  EXPECT_DOUBLE_EQ(c.sensor_height_mm, 24);
+  EXPECT_EQ(c.sensor_fit, uint32_t(FB_SENSOR_FIT_VERTICAL));
+  EXPECT_EQ(d.count(), 0u);
+}
+
+TEST(GltfCamera, ExtCameraPhysicalThatContradictsYfovIsWarnedAndYfovUsed) {
+  Diagnostics d;
+  const Scene scene = import(
+      write_gltf(
+          R"("extensions": {"EXT_camera_physical": {"focalLength": 0.2, "sensorSize": [0.036, 0.024]}})"),
+      d);
+  ASSERT_EQ(d.count(), 1u);
+  EXPECT_NE(d.messages().at(0).find("using yfov"), std::string::npos) << d.messages().at(0);
+  EXPECT_NEAR(scene.cameras.at(0).physical.focal_length_mm, 50, 1e-9);  // yfov's 36 mm AUTO
+}
+
+TEST(GltfCamera, DisagreementBeyondOneHundredthOfADegreeIsWarnedNamingTheSourceUsed) {
+  Diagnostics d;
+  const Scene scene =
+      import(write_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50.1}})"), d);
+  ASSERT_EQ(d.count(), 1u);
+  EXPECT_NE(d.messages().at(0).find("using FILMBACK_blender"), std::string::npos)
+      << d.messages().at(0);
+  EXPECT_EQ(scene.cameras.at(0).physical.focal_length_mm, 50.1);
+  // 50.001 mm changes the field of view by 0.0005 degrees: no warning.
+  Diagnostics quiet;
+  import(write_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50.001}})"), quiet);
+  EXPECT_EQ(quiet.count(), 0u);
+}
+
+TEST(GltfCamera, FocusTrackIsInterpolatedBetweenFramesAndHeldBeyond) {
+  Diagnostics d;
+  const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
+      "focus_distance_m": 3, "focus_distance_per_frame_m": {"first_frame": 10, "values": [2, 4, 8]}}})"),
+                             d);
+  const FocusTrack& t = scene.cameras.at(0).focus_track.value();
+  EXPECT_EQ(t.at(5), 2);
+  EXPECT_EQ(t.at(10), 2);
+  EXPECT_EQ(t.at(10.5), 3);
+  EXPECT_EQ(t.at(12), 8);
+  EXPECT_EQ(t.at(100), 8);
+}
+
+TEST(GltfCamera, FstopZeroIsBlendersDepthOfFieldOff) {
+  Diagnostics d;
+  const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 0}})"), d);
+  EXPECT_FALSE(scene.cameras.at(0).physical.has_aperture());
+}
+
+TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
+  Diagnostics d;
+  const Scene scene =
+      import(write_gltf("", R"("extensions": {"FILMBACK_blender": {"resolution_x_px": 960,
+      "resolution_y_px": 540, "pixel_aspect_x": 2, "pixel_aspect_y": 1, "fps": 30, "fps_base": 1.001,
+      "frame": 7, "shutter_open_s": -0.01, "shutter_close_s": 0.01, "shutter_curve": [0, 1, 0],
+      "filter_type": "GAUSSIAN", "filter_width_px": 2, "film_exposure": 0.5,
+      "view_transform": "Standard", "exposure_stops": 0}})"),
+             d);
+  const ShotSettings& s = scene.settings;
+  EXPECT_EQ(s.width_px, 960u);
+  EXPECT_EQ(s.pixel_aspect, 2.0);
+  EXPECT_DOUBLE_EQ(*s.fps, 30 / 1.001);
+  EXPECT_EQ(s.frame, 7.0);
+  EXPECT_EQ(s.shutter_curve, (std::vector<double>{0, 1, 0}));
+  EXPECT_EQ(s.filter, "gaussian:radius=3,sigma=0.5");  // Cycles: exp(-8x^2/w^2) cut at 1.5w
+  EXPECT_EQ(s.film_exposure, 0.5);
+  EXPECT_EQ(d.count(), 0u);
+}
+
+TEST(GltfShot, CyclesFiltersMapToFilterPlugins) {
+  const auto filter_of = [](const char* type) {
+    Diagnostics d;
+    return import(write_gltf(
+                      "", std::string(R"("extensions": {"FILMBACK_blender": {"filter_type": ")") +
+                              type + R"(", "filter_width_px": 1.5}})"),
+                  d)
+        .settings.filter.value_or("");
+  };
+  EXPECT_EQ(filter_of("BLACKMAN_HARRIS"), "blackman_harris:width=1.5");
+  EXPECT_EQ(filter_of("BOX"), "box:radius=0.75");
+}
+
+TEST(GltfShot, DisplayOnlyViewSettingsAreWarned) {
+  Diagnostics d;
+  import(write_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Filmic"}})"), d);
+  ASSERT_EQ(d.count(), 1u);
+  EXPECT_NE(d.messages().at(0).find("Filmic"), std::string::npos);
+}
+
+TEST(GltfCamera, BadValuesAreErrorsNamingTheFileAndJsonPath) {
+  EXPECT_NE(error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": -5}})"))
+                .find("cameras[0].extensions.FILMBACK_blender.focal_length_mm: expected a number"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"sensor_fit": "diagonal"}})"))
+          .find("FILMBACK_blender.sensor_fit: 'diagonal', expected auto"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(write_gltf(R"("extensions": {"EXT_camera_physical": {"sensorSize": [0.036]}})"))
+          .find("EXT_camera_physical.sensorSize: expected [width, height]"),
+      std::string::npos);
+  EXPECT_NE(error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"focus_distance_per_frame_m":
+                {"first_frame": 1, "values": [1, "x"]}}})"))
+                .find("focus_distance_per_frame_m.values[1]: expected a number"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"filter_type": "MITCHELL"}})"))
+          .find("scenes[0].extensions.FILMBACK_blender.filter_type: 'MITCHELL'"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"shutter_curve": [1]}})"))
+          .find("shutter_curve: expected at least two samples"),
+      std::string::npos);
+}
+
+}  // namespace
+}  // namespace fb
