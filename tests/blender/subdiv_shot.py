@@ -14,22 +14,21 @@ Subdivision Surface modifier evaluates to (object space, Blender's axes), one re
     blender -b --factory-startup --python subdiv_shot.py -- OUTDIR subdiv
 builds the subdivided-mesh shot: a cube with a Subdivision Surface modifier (render level 2,
 some creases) as an emissive object on a black world, and small emissive marker spheres, seen by
-make_shot.py's camera; exports it (with the add-on when importers/blender/export_shot.py exists,
-else Blender's exporter plus the FILMBACK_blender extension written here) and renders it with
-Cycles. Writes shot.gltf, cycles.exr and manifest.txt (tests/blender/blender_shot.h) with an
+make_shot.py's camera; exports it with filmback's add-on (importers/blender/export_shot.py) and
+renders it with Cycles. Writes shot.gltf, cycles.exr and manifest.txt (tests/blender/blender_shot.h) with an
 the markers' records; the subdivided object is compared between the two renders.
 """
 
-import json
-import math
 import os
 import sys
 
 import bmesh
 import bpy
-from mathutils import Matrix, Vector
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "..", "importers", "blender"))
+import export_shot  # noqa: E402  (filmback's add-on, enabled for the session)
 import make_shot  # noqa: E402  (camera, materials, Cycles settings, shot properties, records)
 
 
@@ -174,46 +173,6 @@ def build_object(camera, frame):
     return obj
 
 
-def subdivision_extension(obj):
-    """The FILMBACK_blender subdivision object the add-on writes (docs/blender.md, the schema in
-    importers/gltf/gltf_subdivision.h): the cage in glTF axes (x, z, -y) and the modifier."""
-    me, m = obj.data, obj.modifiers[-1]
-    positions = []
-    for v in me.vertices:
-        positions += [v.co.x, v.co.z, -v.co.y]
-    edge_creases = []
-    for e in me.edges:
-        if e.crease > 0:
-            edge_creases += [e.vertices[0], e.vertices[1], e.crease]
-    vertex_creases = []
-    for v, w in vertex_crease_values(me).items():
-        vertex_creases += [v, w]
-    return {
-        "levels_render": m.render_levels, "quality": m.quality, "scheme": m.subdivision_type,
-        "boundary_smooth": m.boundary_smooth, "use_creases": m.use_creases,
-        "use_limit_surface": m.use_limit_surface, "uv_smooth": m.uv_smooth,
-        "cage_positions": positions,
-        "cage_face_sizes": [len(p.vertices) for p in me.polygons],
-        "cage_face_vertices": [i for p in me.polygons for i in p.vertices],
-        "edge_creases": edge_creases, "vertex_creases": vertex_creases,
-    }
-
-
-def add_extension(gltf_path, obj):
-    """Until the add-on (importers/blender/export_shot.py) writes it: the extension, added to
-    the file Blender's own exporter wrote (which keeps the modifier unapplied: the cage)."""
-    with open(gltf_path) as f:
-        gltf = json.load(f)
-    node = next(n for n in gltf["nodes"] if n.get("name") == obj.name)
-    node.setdefault("extensions", {})["FILMBACK_blender"] = {
-        "subdivision": subdivision_extension(obj)}
-    used = gltf.setdefault("extensionsUsed", [])
-    if "FILMBACK_blender" not in used:
-        used.append("FILMBACK_blender")
-    with open(gltf_path, "w") as f:
-        json.dump(gltf, f, indent=1)
-
-
 def build_shot(out_dir):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -225,7 +184,7 @@ def build_shot(out_dir):
     camera = make_shot.build_camera(scene, SHOT)
     bpy.context.view_layer.update()
     frame = make_shot.Frame(scene, camera)
-    obj = build_object(camera, frame)
+    build_object(camera, frame)
     spheres = [(marker, *make_shot.add_sphere(camera, frame, marker, marker.depth_m))
                for marker in MARKERS]
     bpy.context.view_layer.update()
@@ -241,11 +200,8 @@ def build_shot(out_dir):
                 "marker", name=marker.name, blender_x_px=centre.x * w,
                 blender_y_px=(1.0 - centre.y) * h,
                 **make_shot.expected_image(scene, camera, frame, sphere, radius_m)))
-    gltf_path = os.path.join(out_dir, "shot.gltf")
-    bpy.ops.export_scene.gltf(filepath=gltf_path, export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=False, export_materials="EXPORT",
-                              export_extras=True, export_apply=False)
-    add_extension(gltf_path, obj)
+    # filmback's add-on writes the cage and the modifier (FILMBACK_blender.subdivision).
+    export_shot.export(os.path.join(out_dir, "shot.gltf"), export_lights=False)
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
 
