@@ -32,6 +32,10 @@ fi
 cmake --build build
 
 if [ "$mode" = test ]; then
+  # The Khronos glTF validator, from the npm registry, for the add-on's tests (tests/blender).
+  validator=gltf-validator@2.0.0-dev.3.10
+  [ -d build/npm/node_modules/gltf-validator ] ||
+    npm install --silent --no-audit --no-fund --prefix build/npm "$validator"
   ctest --test-dir build --output-on-failure -j 2
 else
   mkdir -p out
