@@ -222,7 +222,10 @@ class MaterialReader {
 
 // Per-vertex tangents from the triangles' position and texture-coordinate gradients (Lengyel
 // 2001, as MikkTSpace does before its splitting rules): summed over the triangles at a vertex,
-// made orthogonal to the vertex normal, with the bitangent's handedness in w.
+// made orthogonal to the vertex normal, with the bitangent's handedness in w. The tangent follows
+// +u; the bitangent follows -v, because glTF's v runs down the image while a normal texture's
+// green points up it (glTF 2.0, normalTextureInfo: "+X is right and +Y is up", OpenGL's
+// convention and Blender's), so B = w (N x T) points where -dp/dv does.
 std::vector<std::array<float, 4>> computed_tangents(const TriangleMesh& mesh,
                                                     const std::vector<Vec2f>& uv) {
   const size_t n = mesh.positions.size();
@@ -248,7 +251,7 @@ std::vector<std::array<float, 4>> computed_tangents(const TriangleMesh& mesh,
     const Vec3f t = t_sum[v] - normal * dot(normal, t_sum[v]);
     if (!(length(t) > 0.f) || !is_finite(t)) continue;
     const Vec3f u = normalize(t);
-    const float w = dot(cross(normal, u), b_sum[v]) < 0.f ? -1.f : 1.f;
+    const float w = dot(cross(normal, u), b_sum[v]) > 0.f ? -1.f : 1.f;
     out[v] = {u.x, u.y, u.z, w};
   }
   return out;

@@ -134,5 +134,13 @@ TEST(BlenderMaterials, SpheresOverALambertianGroundMatchCycles) {
   compare_with_cycles(*blender, "glass_lambertian_ground", {0.003, 0.015, 0.03});
 }
 
+// A normal-mapped Lambertian ground (ridges along the image's x and y): a tangent or bitangent
+// the wrong way round lights the other flank of each ridge.
+TEST(BlenderMaterials, NormalMappedGroundMatchesCycles) {
+  const std::optional<std::filesystem::path> blender = find_blender();
+  if (!blender) GTEST_SKIP() << "needs Debian's `blender` package (blender not on PATH)";
+  compare_with_cycles(*blender, "normal_map_lambertian_ground", {0.003, 0.1, 0.2});
+}
+
 }  // namespace
 }  // namespace fb::test

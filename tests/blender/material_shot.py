@@ -3,7 +3,7 @@
 A ground plane textured with an 8x8 red/white checker (a PNG this script writes) in a Principled
 BSDF and spheres over it (SPHERES: "materials", a glossy gold metal and a glossy red dielectric;
 "glass", a rough glass; each also with a ground that is Lambertian in both renderers,
-make_lambertian), lit by a sun (angle 0: a
+make_lambertian; and "normal_map_lambertian_ground", the ground alone with a normal map), lit by a sun (angle 0: a
 delta light, as glTF's) and a uniform grey world; exported with Blender's own glTF exporter (until
 the add-on's export_shot.py lands) and rendered with Cycles at
 160x120 with a 1 px box filter.
@@ -72,15 +72,47 @@ def principled(name, base_colour, metallic, roughness):
     return material, bsdf
 
 
-def add_ground(image):
+def ridges_image(path):
+    """A tangent-space normal map (OpenGL convention, as glTF and Blender: +X right, +Y up the
+    image) of the height field h = A sin(2 pi 4 x) + A sin(2 pi 3 y), x right and y up the image
+    in [0, 1]: slopes up to 0.5 along x and 0.38 along y, so that a flipped tangent or bitangent
+    lights the other flank of the ridges."""
+    image = bpy.data.images.new("ridges", CHECKER_PX, CHECKER_PX, alpha=False)
+    image.colorspace_settings.name = "Non-Color"
+    a = 0.5 / (2 * math.pi * 4)
+    pixels = []
+    for row_from_bottom in range(CHECKER_PX):
+        y = (row_from_bottom + 0.5) / CHECKER_PX
+        for col in range(CHECKER_PX):
+            x = (col + 0.5) / CHECKER_PX
+            n = (-a * 2 * math.pi * 4 * math.cos(2 * math.pi * 4 * x),
+                 -a * 2 * math.pi * 3 * math.cos(2 * math.pi * 3 * y), 1.0)
+            length = math.sqrt(sum(c * c for c in n))
+            pixels.extend((*(0.5 + 0.5 * c / length for c in n), 1.0))
+    image.pixels = pixels
+    image.filepath_raw = path
+    image.file_format = "PNG"
+    image.save()
+    return image
+
+
+def add_ground(image, normal_map=None):
     bpy.ops.mesh.primitive_plane_add(size=8.0, location=(0.0, 0.0, 0.0))
     ground = bpy.context.active_object
     ground.name = "ground"
     material, bsdf = principled("checker", (1.0, 1.0, 1.0), 0.0, 0.6)
-    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture = nodes.new("ShaderNodeTexImage")
     texture.image = image
     texture.interpolation = "Linear"
-    material.node_tree.links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
+    links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
+    if normal_map is not None:
+        normals = nodes.new("ShaderNodeTexImage")
+        normals.image = normal_map
+        normals.interpolation = "Linear"
+        mapping = nodes.new("ShaderNodeNormalMap")  # tangent space, strength 1: glTF scale 1
+        links.new(normals.outputs["Color"], mapping.inputs["Color"])
+        links.new(mapping.outputs["Normal"], bsdf.inputs["Normal"])
     ground.data.materials.append(material)
     return material
 
@@ -104,6 +136,8 @@ def make_lambertian(path, material):
     diffuse = nodes.new("ShaderNodeBsdfDiffuse")
     diffuse.inputs["Roughness"].default_value = 0.0
     links.new(nodes["Image Texture"].outputs["Color"], diffuse.inputs["Color"])
+    if "Normal Map" in nodes:
+        links.new(nodes["Normal Map"].outputs["Normal"], diffuse.inputs["Normal"])
     links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
 
 
@@ -134,6 +168,8 @@ SPHERES = {
 }
 SPHERES["materials_lambertian_ground"] = SPHERES["materials"]
 SPHERES["glass_lambertian_ground"] = SPHERES["glass"]
+# The ground alone with a normal map (ridges_image), Lambertian in both renderers.
+SPHERES["normal_map_lambertian_ground"] = ()
 
 
 def main():
@@ -165,7 +201,8 @@ def main():
     camera.location = (0.0, -6.0, 3.2)
     camera.rotation_euler = Euler((math.radians(64.0), 0.0, 0.0), "XYZ")
 
-    ground = add_ground(checker_image(os.path.join(out_dir, "checker.png")))
+    normal_map = ridges_image(os.path.join(out_dir, "ridges.png")) if name.startswith("normal_map") else None
+    ground = add_ground(checker_image(os.path.join(out_dir, "checker.png")), normal_map)
     for sphere_name, location, make_material in SPHERES[name]:
         add_sphere(sphere_name, location, 0.7, make_material())
 

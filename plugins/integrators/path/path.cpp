@@ -86,6 +86,7 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     Vec3f ng(hit.geometric_normal), ns(hit.shading_normal);
     const bool front = fb::dot(ng, wo_world) >= 0.f;
     if (!front) ng = -ng, ns = -ns;
+    ns = fb::ensure_valid_reflection(ng, wo_world, ns);
     const Vec3f p(hit.position), p_error(hit.position_error);
     const Scatter scatter(hit, ns, front);
     const Vec3f wo = scatter.frame.to_local(wo_world);
