@@ -4,16 +4,16 @@ A ground plane textured with an 8x8 red/white checker (a PNG this script writes)
 BSDF and spheres over it (SPHERES: "materials", a glossy gold metal and a glossy red dielectric;
 "glass", a rough glass; each also with a ground that is Lambertian in both renderers,
 make_lambertian; and "normal_map_lambertian_ground", the ground alone with a normal map), lit by a sun (angle 0: a
-delta light, as glTF's) and a uniform grey world; exported with Blender's own glTF exporter (until
-the add-on's export_shot.py lands) and rendered with Cycles at
+delta light) and a uniform grey world; exported through filmback's add-on
+(importers/blender/export_shot.py: the camera, the sun in Blender's units and the world travel in
+FILMBACK_blender) and rendered with Cycles at
 160x120 with a 1 px box filter.
 
     blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT
 
 writes OUTDIR/shot.gltf (+ .bin, checker.png), OUTDIR/cycles.exr and OUTDIR/manifest.txt with
 one record: shot name, samples, width_px, height_px, and checker_red/checker_white (the squares'
-base colours, linear). The world, which the stock exporter drops, goes to scenes[0].extras as
-world_color and world_strength (the names of the FILMBACK_blender extension).
+base colours, linear).
 """
 
 import json
@@ -25,7 +25,10 @@ import bpy
 from mathutils import Euler
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import make_shot  # noqa: E402  (camera, Cycles settings, shot properties, manifest records)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "importers",
+                                "blender"))
+import export_shot  # noqa: E402  (filmback's add-on: Blender's exporter plus FILMBACK_blender)
+import make_shot  # noqa: E402  (camera, Cycles settings, manifest records)
 
 SHOT = make_shot.Shot(160, 120, 35.0, (), samples=256)
 WORLD_RGB = (0.5, 0.5, 0.5)  # W sr^-1 m^-2
@@ -213,10 +216,6 @@ def main():
     sun.rotation_euler = Euler([math.radians(a) for a in SUN_ROTATION_DEG], "XYZ")
     scene.collection.objects.link(sun)
     bpy.context.view_layer.update()
-    make_shot.store_physical_camera(scene, camera)
-    # The world, which Blender's exporter drops: scenes[0].extras, read as FILMBACK_blender's.
-    scene["world_color"] = WORLD_RGB
-    scene["world_strength"] = 1.0
 
     linear = lambda c: ",".join(f"{srgb_to_linear(v):.6f}" for v in c)  # noqa: E731
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
@@ -224,9 +223,7 @@ def main():
             "shot", name=name, samples=SHOT.samples, width_px=SHOT.width_px,
             height_px=SHOT.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
 
-    bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=True, export_materials="EXPORT",
-                              export_extras=True)
+    export_shot.export(os.path.join(out_dir, "shot.gltf"))
     if name.endswith("_lambertian_ground"):
         make_lambertian(os.path.join(out_dir, "shot.gltf"), ground)
 
