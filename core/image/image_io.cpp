@@ -154,11 +154,17 @@ void write_images(const Image& image, const std::vector<fs::path>& files,
   remove_all(previous, 0);
 }
 
-Image read_image(const fs::path& file) {
+Image read_image(const fs::path& file, size_t max_pixels) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in)
     throw InputError(located(file.string(), "", "cannot read the image: " + OIIO::geterror()));
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
+      double(spec.width) * spec.height > double(max_pixels))
+    throw InputError(located(file.string(), "",
+                             "the image is " + std::to_string(spec.width) + "x" +
+                                 std::to_string(spec.height) + " pixels; expected at most " +
+                                 std::to_string(max_pixels)));
   Image image{uint32_t(spec.width), uint32_t(spec.height), spec.channelnames, {}};
   image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))

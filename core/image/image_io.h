@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -33,7 +34,7 @@ ImageFormat image_format_for(const std::filesystem::path& file);
 void write_images(const Image& image, const std::vector<std::filesystem::path>& files,
                   const ImageMetadata& metadata);
 
-// Throws InputError naming the file.
-Image read_image(const std::filesystem::path& file);
+// Throws InputError naming the file, also when it holds more than `max_pixels` pixels.
+Image read_image(const std::filesystem::path& file, size_t max_pixels = SIZE_MAX);
 
 }  // namespace fb

@@ -36,8 +36,11 @@ float cycles_spot_falloff(float cos_angle, float cos_outer, float smooth) {
 }  // namespace
 
 LightSampler::LightSampler(const Scene& scene, const Transform& render_from_world,
-                           const RenderGeometry& geometry, double frame_s)
-    : emitters_(geometry.emitters()), materials_(scene.materials) {
+                           const RenderGeometry& geometry, double frame_s,
+                           std::optional<Rgb> background_override)
+    : emitters_(geometry.emitters()),
+      background_(background_override.value_or(scene.background)),
+      materials_(scene.materials) {
   std::vector<double> power;
   const double scene_radius = std::max(geometry.bounds_radius(), 1e-3f);
   for (const Light& light : scene.lights) {
@@ -84,6 +87,11 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
     // finds it where the ray's time put it.
     power.push_back(e.moving ? 0.0
                              : kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
+  }
+  if (scene.environment && !background_override) {
+    environment_.emplace(*scene.environment);
+    // As a sun's: the irradiance pi L of a uniform world as bright, over the scene's disk.
+    power.push_back(kPi * scene_radius * scene_radius * kPi * environment_->mean_luminance());
   }
   build_selection(power);
 }
@@ -137,9 +145,21 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
   const size_t index =
       size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
       1;
-  const bool ok = index < punctual_.size()
-                      ? sample_punctual(punctual_[index], position, u + 1, out)
-                      : sample_triangle(uint32_t(index - punctual_.size()), position, u + 1, out);
+  bool ok;
+  if (index < punctual_.size()) {
+    ok = sample_punctual(punctual_[index], position, u + 1, out);
+  } else if (index < punctual_.size() + emitters_.size()) {
+    ok = sample_triangle(uint32_t(index - punctual_.size()), position, u + 1, out);
+  } else {
+    Vec3f w;
+    ok = environment_->sample({u[1], u[2]}, w, out.pdf);
+    if (ok) {
+      w.store(out.direction);
+      environment_->radiance(w).store(out.radiance);
+      out.distance = HUGE_VALF;
+      out.is_delta = 0;
+    }
+  }
   out.pdf *= pmf_[index];
   return ok;
 }
@@ -220,6 +240,15 @@ float LightSampler::pdf(Vec3f position, const fb_hit& hit) const {
   if (materials_[e.material].double_sided) cos_light = std::abs(cos_light);
   if (!(cos_light > 0.f) || !(e.area > 0.f)) return 0.f;
   return pmf_[punctual_.size() + hit.emitter] * distance2 / (cos_light * e.area);
+}
+
+Rgb LightSampler::background(Vec3f w, float& pdf) const {
+  if (!environment_) {
+    pdf = 0.f;
+    return background_;
+  }
+  pdf = pmf_.empty() ? 0.f : pmf_.back() * environment_->pdf(w);
+  return environment_->radiance(w);
 }
 
 }  // namespace fb

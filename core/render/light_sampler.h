@@ -6,6 +6,7 @@
 // world"), and BSDF-sampled rays never see them, so no weight is shared.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <filmback/plugin_abi.h>
@@ -13,6 +14,7 @@
 
 #include "core/accel/render_geometry.h"
 #include "core/math/transform.h"
+#include "core/render/environment.h"
 #include "core/scene/scene.h"
 
 namespace fb {
@@ -21,10 +23,17 @@ class LightSampler {
  public:
   // Punctual lights are placed at `frame_s` on the scene's timeline (they do not move within the
   // shutter); emissive triangles that move are left to BSDF sampling (EmissiveTriangle::moving).
+  // The world is the scene's environment image, sampled as a light, or its uniform background;
+  // `background_override` (the command line's) replaces both.
   LightSampler(const Scene& scene, const Transform& render_from_world,
-               const RenderGeometry& geometry, double frame_s);
+               const RenderGeometry& geometry, double frame_s,
+               std::optional<Rgb> background_override = {});
   bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
   float pdf(Vec3f position, const fb_hit& emitter_hit) const;
+  // Radiance of the world arriving from direction -w (w: the escaping ray's direction), and the
+  // solid-angle pdf with which sample() would have chosen w (0 for a uniform world, which only
+  // BSDF sampling finds).
+  Rgb background(Vec3f w, float& pdf) const;
   size_t punctual_light_count() const { return punctual_.size(); }
   size_t emissive_triangle_count() const { return emitters_.size(); }
 
@@ -47,6 +56,8 @@ class LightSampler {
 
   std::vector<Punctual> punctual_;
   const std::vector<EmissiveTriangle>& emitters_;  // light index punctual_.size() + i
+  std::optional<EnvironmentLight> environment_;    // the last light index, when present
+  Rgb background_;                                 // uniform world, when no environment
   const std::vector<Material>& materials_;
   static constexpr uint32_t kSelectionCells = 1u << 24;
   void build_selection(const std::vector<double>& power);

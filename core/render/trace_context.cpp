@@ -33,11 +33,15 @@ void next_samples(fb_trace_context* c, size_t path, float* u, uint32_t count) {
     u[i] = c->sampler->get(key);
 }
 
+void background(fb_trace_context* c, const float direction[3], float radiance[3], float* pdf) {
+  c->lights->background(Vec3f(direction), *pdf).store(radiance);
+}
+
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
   static const fb_scene_api api{sizeof(fb_scene_api), intersect, intersect_batch, occluded,
-                                sample_light,         light_pdf, next_samples};
+                                sample_light,         light_pdf, next_samples,    background};
   return api;
 }
 

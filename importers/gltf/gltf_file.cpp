@@ -173,6 +173,18 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
 
 }  // namespace
 
+fs::path confined_external_file(const fs::path& scene_file, const std::string& uri,
+                                const std::string& where) {
+  std::error_code ec;
+  Confinement confinement{fs::weakly_canonical(fs::absolute(scene_file, ec).parent_path(), ec)};
+  const fs::path path = confinement.folder / fs::path(uri);
+  if (uri.empty() || fs::path(uri).is_absolute())
+    throw_input(scene_file.string(), where, "expected a path relative to the scene's folder");
+  const std::string problem = confined_problem(path.string(), &confinement);
+  if (!problem.empty()) throw_input(scene_file.string(), where, "'" + uri + "' " + problem);
+  return fs::weakly_canonical(path, ec);
+}
+
 void load_model(const fs::path& file, tinygltf::Model& model) {
   const std::string name = file.string();
   const std::vector<unsigned char> bytes = read_scene_file(file, name);

@@ -22,4 +22,10 @@ constexpr uintmax_t kMaxExternalFileBytes = uintmax_t(1) << 31;
 // folder; `data:` URIs are decoded by tinygltf.
 void load_model(const std::filesystem::path& file, tinygltf::Model& model);
 
+// An external file that the scene names outside tinygltf's loader (an environment image): `uri`,
+// relative to `scene_file`'s folder, under the same rules as buffers and images. Throws
+// InputError naming the scene file, `where` (its JSON path) and what is wrong.
+std::filesystem::path confined_external_file(const std::filesystem::path& scene_file,
+                                             const std::string& uri, const std::string& where);
+
 }  // namespace fb::gltf

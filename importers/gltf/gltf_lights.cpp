@@ -6,7 +6,9 @@
 #include <numbers>
 #include <optional>
 
+#include "core/image/image_io.h"
 #include "core/util/error.h"
+#include "importers/gltf/gltf_file.h"
 #include "importers/gltf/gltf_importer.h"
 
 namespace fb::gltf {
@@ -229,6 +231,32 @@ void read_khr_light(const tinygltf::Model& model, const tinygltf::Value& ext,
   scene.lights.push_back(light);
 }
 
+// Largest environment image read: 8192 x 4096 RGB float is 400 MB.
+constexpr size_t kMaxEnvironmentPixels = size_t(8192) * 4096;
+
+// Blender's Environment Texture: the image (any format OpenImageIO reads, scene-linear) times the
+// world's strength, its first three channels (one channel: grey).
+EnvironmentMap read_environment(const std::string& file, const std::string& where,
+                                const std::string& uri, float strength) {
+  const std::filesystem::path path = confined_external_file(file, uri, where);
+  const Image image = read_image(path, kMaxEnvironmentPixels);
+  const size_t channels = image.channels.size();
+  EnvironmentMap map{uri, image.width, image.height, {}};
+  map.texels.reserve(size_t(image.width) * image.height);
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x) {
+      const Rgb texel = channels >= 3
+                            ? Rgb(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2))
+                            : Rgb(image.at(x, y, 0), image.at(x, y, 0), image.at(x, y, 0));
+      if (!is_finite(texel) || texel.x < 0 || texel.y < 0 || texel.z < 0)
+        throw_input(file, where,
+                    "'" + uri + "' pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                        ") is negative or not finite; expected radiance");
+      map.texels.push_back(texel * strength);
+    }
+  return map;
+}
+
 }  // namespace
 
 void read_node_light(const tinygltf::Model& model, const tinygltf::Node& node,
@@ -244,8 +272,7 @@ void read_node_light(const tinygltf::Model& model, const tinygltf::Node& node,
     read_khr_light(model, khr->second, node, path, world, scene_node, file, scene, diagnostics);
 }
 
-void read_world(const tinygltf::Model& model, size_t index, const std::string& file, Scene& scene,
-                Diagnostics& diagnostics) {
+void read_world(const tinygltf::Model& model, size_t index, const std::string& file, Scene& scene) {
   const tinygltf::Scene& s = model.scenes[index];
   const std::string spath = index_path("scenes", index);
   const auto ours = s.extensions.find("FILMBACK_blender");
@@ -260,10 +287,9 @@ void read_world(const tinygltf::Model& model, size_t index, const std::string& f
       throw_input(file, f.path(), "world_color times world_strength overflows single precision");
     scene.background = radiance;
   }
-  if (f.word("world_hdr_uri"))
-    diagnostics.warn(located(file, f.path() + ".world_hdr_uri",
-                             "environment images are not supported yet; rendering the uniform "
-                             "world colour instead"));
+  if (const std::optional<std::string> uri = f.word("world_hdr_uri"))
+    scene.environment =
+        read_environment(file, f.path() + ".world_hdr_uri", *uri, float(strength.value_or(1.0)));
 }
 
 }  // namespace fb::gltf

@@ -27,9 +27,9 @@ void read_node_light(const tinygltf::Model& model, const tinygltf::Node& node,
                      const std::string& path, const Transform& world, uint32_t scene_node,
                      const std::string& file, Scene& scene, Diagnostics& diagnostics);
 
-// The uniform world of scenes[index]: world_color times world_strength (FILMBACK_blender
-// extension, else the scene's extras with the same names) as Scene::background.
-void read_world(const tinygltf::Model& model, size_t index, const std::string& file, Scene& scene,
-                Diagnostics& diagnostics);
+// The world of scenes[index] (FILMBACK_blender extension, else the scene's extras with the same
+// names): world_color times world_strength as Scene::background, and world_hdr_uri, an
+// equirectangular image inside the scene's folder, times world_strength as Scene::environment.
+void read_world(const tinygltf::Model& model, size_t index, const std::string& file, Scene& scene);
 
 }  // namespace fb::gltf

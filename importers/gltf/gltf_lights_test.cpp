@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "core/accel/render_geometry.h"
+#include "core/image/image_io.h"
 #include "core/render/light_sampler.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
@@ -241,11 +242,40 @@ TEST(GltfLights, WorldColourTimesStrengthIsTheBackground) {
   const Scene extras = import(
       write_gltf("", "", R"(, "extras": {"world_color": [1, 1, 1], "world_strength": 0.25})"));
   EXPECT_FLOAT_EQ(extras.background.y, 0.25f);
-  const Scene hdr = import(write_gltf("", "",
-                                      R"(, "extensions": {"FILMBACK_blender": {
-      "world_color": [1, 1, 1], "world_strength": 1, "world_hdr_uri": "sky.hdr"}})"),
-                           1);
-  EXPECT_FLOAT_EQ(hdr.background.x, 1.f);
+}
+
+// world_hdr_uri: an image beside the file, times world_strength; paths out of the scene's
+// folder, missing files and pixels that are not radiance are errors.
+TEST(GltfLights, WorldImageIsReadBesideTheFile) {
+  const auto with_image = [](const std::string& uri, float texel) {
+    const std::filesystem::path file = write_gltf("", "",
+                                                  R"(, "extensions": {"FILMBACK_blender": {
+        "world_color": [1, 1, 1], "world_strength": 2, "world_hdr_uri": ")" +
+                                                      uri + R"("}})");
+    const Image image{4, 2, {"R", "G", "B"}, std::vector<float>(24, 0.5f)};
+    Image changed = image;
+    changed.pixels[3 * 5 + 1] = texel;  // pixel (1, 1), green
+    write_images(changed, {file.parent_path() / "sky.exr"}, {});
+    return file;
+  };
+  const Scene scene = import(with_image("sky.exr", 3.f));
+  ASSERT_TRUE(scene.environment.has_value());
+  EXPECT_EQ(scene.environment->width, 4u);
+  EXPECT_EQ(scene.environment->height, 2u);
+  EXPECT_FLOAT_EQ(scene.environment->texels[5].y, 6.f);
+  EXPECT_FLOAT_EQ(scene.environment->texels[0].x, 1.f);
+
+  const std::string where = "lights.gltf: scenes[0].extensions.FILMBACK_blender.world_hdr_uri: ";
+  for (const auto& [uri, texel, expected] :
+       {std::tuple{std::string("../sky.exr"), 1.f, "outside the scene's folder"},
+        std::tuple{std::string("missing.exr"), 1.f, "not found"},
+        std::tuple{std::string("/etc/passwd"), 1.f, "relative to the scene's folder"},
+        std::tuple{std::string("sky.exr"), -1.f, "negative or not finite"},
+        std::tuple{std::string("sky.exr"), NAN, "negative or not finite"}}) {
+    const std::string error = error_of(with_image(uri, texel));
+    EXPECT_NE(error.find(where), std::string::npos) << uri << "\n" << error;
+    EXPECT_NE(error.find(expected), std::string::npos) << uri << "\n" << error;
+  }
 }
 
 TEST(GltfLights, BadValuesAreErrorsNamingTheFileAndJsonPath) {

@@ -91,7 +91,7 @@ TEST_P(BlenderRadiometry, MatchesCycles) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shots, BlenderRadiometry,
-                         testing::Values("sun_world", "point_spot", "area"));
+                         testing::Values("sun_world", "point_spot", "area", "hdr_world"));
 
 }  // namespace
 }  // namespace fb::test

@@ -6,8 +6,8 @@ lights and a uniform world), exports it with Blender's own glTF exporter and ren
     blender -b --factory-startup --python radiometry_shot.py -- OUTDIR SHOT
 
 writes OUTDIR/shot.gltf (+ shot.bin), OUTDIR/cycles.exr and OUTDIR/manifest.txt (one "shot"
-record: name, samples, width_px, height_px), as make_shot.py does, whose camera, Cycles and
-custom-property helpers it borrows.
+record: name, samples, width_px, height_px), as make_shot.py does, whose Cycles settings and
+export it borrows.
 
 Two things differ between what is exported and what Cycles renders, on purpose:
   * Materials are exported as Principled BSDFs with Specular 0 (filmback: a Lambertian base), but
@@ -16,9 +16,8 @@ Two things differ between what is exported and what Cycles renders, on purpose:
   * Blender's Specular 0 is exported as KHR_materials_specular specularColorFactor [0, 0, 0]
     (F0 = 0), whose Schlick Fresnel still reflects at grazing angles; the script rewrites it as
     specularFactor 0, the Lambertian base alone, which is what Cycles' Diffuse BSDF renders.
-  * Blender 3.4's exporter drops area lights and writes the others in photometric units. Until
-    the add-on (importers/blender/) writes it, this script adds the FILMBACK_blender light and
-    world extensions to the exported JSON itself, with the schema of docs/blender.md.
+The export goes through filmback's add-on (importers/blender/export_shot.py), which writes the
+lights (area lights included) and the world, image and all, in the FILMBACK_blender extension.
 
 Cycles renders with max_bounces = diffuse_bounces = 7, which is filmback's default path depth of 8
 (max_depth counts the direct-light bounce, Cycles' bounces do not), no clamping and no light
@@ -32,7 +31,7 @@ import sys
 from dataclasses import dataclass
 
 import bpy
-from mathutils import Matrix, Vector
+from mathutils import Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_shot  # noqa: E402  (Blender runs this file as __main__, so import by path)
@@ -60,6 +59,7 @@ class Shot:
     lights: tuple
     world_colour: tuple = (0.0, 0.0, 0.0)
     world_strength: float = 0.0
+    sky: bool = False  # an equirectangular image (make_sky) through an Environment Texture
     width_px: int = 128
     height_px: int = 96
     samples: int = 1024
@@ -84,10 +84,42 @@ SHOTS = {
                             colour=(1.0, 0.9, 0.75), shape="RECTANGLE", size=1.5, size_y=0.8),
                   LightSpec("Disk", "AREA", (1.7, 1.2, 2.2), (0.3, 0.0, 0.0), 250.0,
                             colour=(0.75, 0.85, 1.0), shape="DISK", size=0.8))),
+    # No lights: an environment image with a bright patch (a low sun) and a sky gradient, which
+    # tests its orientation (the shadows' direction) and importance sampling.
+    "hdr_world": Shot((), world_strength=1.5, sky=True, samples=2048),
 }
 
 CAMERA_LOCATION = (0.3, -6.0, 3.2)
 CAMERA_TARGET = (0.0, 0.2, 0.45)
+
+
+SKY_SIZE = (64, 32)
+
+
+def make_sky(path):
+    """A 64x32 equirectangular sky written as a Radiance .hdr (flat RGBE scanlines, top row
+    first; Blender would colour-manage an image it saves itself): blue above the horizon, brown
+    below, and a 4x3-texel patch about 100 times brighter some 25 degrees up, lighting the scene
+    from the back left. Returns it loaded into Blender, which reads the same file as filmback."""
+    width, height = SKY_SIZE
+    data = bytearray()
+    for row in range(height):  # from the top
+        elevation = math.pi / 2 - (row + 0.5) / height * math.pi
+        for column in range(width):
+            if elevation > 0:
+                colour = (0.3 + 0.3 * (1 - math.sin(elevation)), 0.45, 0.9)
+            else:
+                colour = (0.25, 0.2, 0.15)
+            if 38 <= column < 42 and 10 <= row < 13:
+                colour = (60.0, 50.0, 40.0)
+            mantissa, exponent = math.frexp(max(colour))
+            scale = mantissa * 256.0 / max(colour)
+            data += bytes([int(c * scale) for c in colour] + [exponent + 128])
+    with open(path, "wb") as f:
+        f.write(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n")
+        f.write(f"-Y {height} +X {width}\n".encode())
+        f.write(bytes(data))
+    return bpy.data.images.load(path)
 
 
 def look_at(obj, location, target):
@@ -158,61 +190,17 @@ def add_light(scene, spec):
     return obj
 
 
-def light_extension(data):
-    """FILMBACK_blender.light (docs/blender.md) of one Blender light."""
-    light = {"type": data.type, "color": list(data.color), "energy_w": data.energy,
-             "use_nodes": data.use_nodes}
-    if data.type in {"POINT", "SPOT"}:
-        light["radius_m"] = data.shadow_soft_size
-    if data.type == "SPOT":
-        light["spot_size_rad"] = data.spot_size
-        light["spot_blend"] = data.spot_blend
-    if data.type == "SUN":
-        light["angle_rad"] = data.angle
-    if data.type == "AREA":
-        light.update(shape=data.shape, size_m=data.size, size_y_m=data.size_y)
-    return light
-
-
-# Blender (Z up) to glTF (Y up): (x, y, z) -> (x, z, -y); a light node's matrix is C times the
-# object's world matrix (notes: lights keep Blender's local axes, shining down -Z).
-BLENDER_TO_GLTF = Matrix(((1, 0, 0, 0), (0, 0, 1, 0), (0, -1, 0, 0), (0, 0, 0, 1)))
-
-
-def add_extensions(path, scene, lights):
-    """Writes the FILMBACK_blender light and world extensions into the exported file: onto the
-    exporter's light nodes (found by name), and as new nodes for the area lights it drops."""
+def make_lambertian(path):
+    """Blender writes Specular 0 as KHR_materials_specular specularColorFactor [0, 0, 0]: F0 = 0,
+    but Schlick's Fresnel still reflects at grazing angles. specularFactor 0 leaves filmback's
+    Lambertian base alone, which is what Cycles' Diffuse BSDF renders."""
     with open(path) as f:
         gltf = json.load(f)
-    nodes = gltf.setdefault("nodes", [])
-    by_name = {node.get("name"): i for i, node in enumerate(nodes)}
-    roots = gltf["scenes"][0].setdefault("nodes", [])
-    for obj in lights:
-        ext = {"light": light_extension(obj.data)}
-        if obj.name in by_name:
-            node = nodes[by_name[obj.name]]
-        else:
-            matrix = BLENDER_TO_GLTF @ obj.matrix_world
-            node = {"name": obj.name,
-                    "matrix": [matrix[row][col] for col in range(4) for row in range(4)]}
-            roots.append(len(nodes))
-            nodes.append(node)
-        node.setdefault("extensions", {})["FILMBACK_blender"] = ext
-    background = scene.world.node_tree.nodes["Background"]
-    gltf["scenes"][0].setdefault("extensions", {})["FILMBACK_blender"] = {
-        "world_color": list(background.inputs["Color"].default_value)[:3],
-        "world_strength": background.inputs["Strength"].default_value,
-    }
-    # Blender writes Specular 0 as specularColorFactor [0, 0, 0]: F0 = 0, but Schlick's Fresnel
-    # still reflects at grazing angles. specularFactor 0 leaves the Lambertian base alone.
     for material in gltf.get("materials", []):
         specular = material.get("extensions", {}).get("KHR_materials_specular")
         if specular is not None and specular.get("specularColorFactor") == [0, 0, 0]:
             specular["specularFactor"] = 0.0
             del specular["specularColorFactor"]
-    used = gltf.setdefault("extensionsUsed", [])
-    if "FILMBACK_blender" not in used:
-        used.append("FILMBACK_blender")
     with open(path, "w") as f:
         json.dump(gltf, f, indent=1)
 
@@ -233,6 +221,10 @@ def main():
     background = world.node_tree.nodes["Background"]
     background.inputs["Color"].default_value = (*shot.world_colour, 1.0)
     background.inputs["Strength"].default_value = shot.world_strength
+    if shot.sky:
+        texture = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+        texture.image = make_sky(os.path.join(out_dir, "sky.hdr"))
+        world.node_tree.links.new(texture.outputs["Color"], background.inputs["Color"])
     scene.world = world
 
     make_shot.configure_cycles(scene, shot)
@@ -247,18 +239,16 @@ def main():
     look_at(camera, CAMERA_LOCATION, CAMERA_TARGET)
     scene.camera = camera
     materials = build_geometry(scene)
-    lights = [add_light(scene, spec) for spec in shot.lights]
+    for spec in shot.lights:
+        add_light(scene, spec)
     bpy.context.view_layer.update()
-    make_shot.store_physical_camera(scene, camera)
 
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record("shot", name=name, samples=shot.samples,
                                         width_px=shot.width_px, height_px=shot.height_px))
     gltf_path = os.path.join(out_dir, "shot.gltf")
-    bpy.ops.export_scene.gltf(filepath=gltf_path, export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=True, export_materials="EXPORT",
-                              export_extras=True)
-    add_extensions(gltf_path, scene, lights)
+    make_shot.export_shot.export(gltf_path)  # filmback's add-on: lights and world included
+    make_lambertian(gltf_path)
 
     for material in materials:
         make_diffuse(material)

@@ -240,6 +240,11 @@ typedef struct fb_scene_api {
   /* The next `count` sample dimensions of path `path` of the current batch: multiples of 2^-24
    * in [0,1), as every sample value the host hands out. */
   void (*next_samples)(fb_trace_context* context, size_t path, float* u, uint32_t count);
+  /* Radiance of the world reaching a ray that escapes along `direction` (a uniform background or
+   * an environment image), and in *pdf the solid-angle pdf with which sample_light() would have
+   * chosen that direction: 0 when light sampling never picks the world (weight it fully). */
+  void (*background)(fb_trace_context* context, const float direction[3], float radiance[3],
+                     float* pdf);
 } fb_scene_api;
 
 typedef struct fb_scene {
@@ -247,7 +252,7 @@ typedef struct fb_scene {
   const fb_scene_api* api;
   const fb_material* materials;
   uint32_t material_count;
-  float background[3];  /* uniform radiance of rays that escape */
+  float background[3];  /* uniform radiance of rays that escape (api->background() is the world) */
   float scene_radius_m; /* a sphere of this radius about the camera holds the whole scene */
   float view_axis[3];   /* unit: where the camera looks; depth = dot(position, view_axis) */
 } fb_scene;

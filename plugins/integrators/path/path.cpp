@@ -1,10 +1,10 @@
 // Integrator `path`: unidirectional path tracing with next-event estimation (Kajiya 1986;
 // Veach 1997 ch. 9). Surfaces scatter by glTF's metallic-roughness BSDF (filmback/bsdf.h: a
 // Lambertian base under GGX specular, metals, rough dielectric transmission) with the parameters
-// the host evaluated at the hit; light comes from punctual lights, emissive triangles and a
-// uniform background. Emission found by BSDF sampling and by light sampling is combined with the
-// power heuristic; delta lights are reached by light sampling only. Russian roulette after
-// `rr_depth` bounces keeps it unbiased.
+// the host evaluated at the hit; light comes from punctual lights, emissive triangles and the
+// world (uniform, or an environment image that light sampling also picks). Emission found by BSDF
+// sampling and by light sampling is combined with the power heuristic; delta lights are reached by
+// light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased.
 #include <filmback/bsdf.h>
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
@@ -66,7 +66,11 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
   for (int depth = 0;; ++depth) {
     const bool found = depth == 0 ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
     if (!found) {
-      L += beta * Rgb(scene.background);
+      float le[3], world_pdf = 0.f;
+      api.background(ctx, ray.direction, le, &world_pdf);
+      const float weight =
+          depth == 0 || world_pdf == 0.f ? 1.f : fb::power_heuristic(bsdf_pdf, world_pdf);
+      L += beta * Rgb(le) * weight;
       break;
     }
     const fb_material& m = scene.materials[hit.material];
@@ -154,7 +158,7 @@ constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
 constexpr fb_plugin kPlugin =
     fb::describe("path", "1.0.0",
                  "Path tracing with next-event estimation and MIS; glTF metallic-roughness "
-                 "surfaces (GGX, transmission), emission, punctual lights, uniform background",
+                 "surfaces (GGX, transmission), emission, punctual lights, world",
                  kParams, kApi);
 
 }  // namespace
