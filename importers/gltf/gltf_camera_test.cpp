@@ -142,7 +142,7 @@ TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
   const ShotSettings& s = scene.settings;
   EXPECT_EQ(s.width_px, 960u);
   EXPECT_EQ(s.pixel_aspect, 2.0);
-  EXPECT_DOUBLE_EQ(*s.fps, 30 / 1.001);
+  EXPECT_EQ(s.fps, 30.0);  // the timeline of the keys, frame / fps, as Blender exports them
   EXPECT_EQ(s.frame, 7.0);
   EXPECT_EQ(s.shutter_curve, (std::vector<double>{0, 1, 0}));
   EXPECT_EQ(s.filter, "gaussian:radius=3,sigma=0.5");  // Cycles: exp(-8x^2/w^2) cut at 1.5w

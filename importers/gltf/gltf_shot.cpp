@@ -107,9 +107,10 @@ ShotSettings read_shot_settings(const Fields& f, Diagnostics& diagnostics) {
   const auto aspect_x = f.number("pixel_aspect_x", 1e-3, 1e3);
   const auto aspect_y = f.number("pixel_aspect_y", 1e-3, 1e3);
   if (aspect_x || aspect_y) s.pixel_aspect = aspect_x.value_or(1) / aspect_y.value_or(1);
-  // Blender's frame rate is fps / fps_base (29.97 = 30 / 1.001).
-  if (const auto fps = f.number("fps", 1e-3, 1e6))
-    s.fps = *fps / f.number("fps_base", 1e-6, 1e6).value_or(1.0);
+  // The file's timeline is frame / fps: Blender's exporter times animation keys so, leaving
+  // fps_base (29.97 = 30 / 1.001) out, and frames must land where their keys are.
+  s.fps = f.number("fps", 1e-3, 1e6);
+  f.number("fps_base", 1e-6, 1e6);  // checked only
   s.frame = f.number("frame", -1e9, 1e9);
   s.shutter_open_s = f.number("shutter_open_s", -1e6, 1e6);
   s.shutter_close_s = f.number("shutter_close_s", -1e6, 1e6);

@@ -1,6 +1,6 @@
 // The tests against Blender itself, one per shot of make_shot.py's table: Debian's Blender builds
 // the shot (emissive spheres, "markers", on a black world, seen through the shot's lens, sensor
-// fit, frame, shift and aperture), exports it with its own glTF exporter and renders it with
+// fit, frame, shift and aperture), exports it through filmback's add-on and renders it with
 // Cycles; filmback renders the export with the same 1 px box filter and sample count
 // (blender_shot.h). For each marker:
 //  - the image centroids agree within 0.1 px and the fluxes (sums of pixel values) within 2 %;
@@ -36,8 +36,11 @@ constexpr double kBlobThreshold = 0.0;
 
 // One per entry of SHOTS in make_shot.py.
 const char* const kShots[] = {
-    "landscape_auto", "vertical_fit", "portrait_auto", "lens_shift",    "portrait_vertical_shift",
-    "wide_12mm",      "tele_600mm",   "dof_f1_4",      "bokeh_hexagon", "bokeh_anamorphic",
+    "default_50mm",     "landscape_auto", "vertical_fit",
+    "portrait_auto",    "lens_shift",     "portrait_vertical_shift",
+    "wide_12mm",        "tele_600mm",     "far_from_origin",
+    "orthographic",     "dof_f1_4",       "bokeh_hexagon",
+    "bokeh_anamorphic",
 };
 
 const Blob* blob_at(const std::vector<Blob>& blobs, double x_px, double y_px) {

@@ -1,9 +1,9 @@
 """The Blender side of the tests against Blender (tests/blender/blender_alignment_test.cpp).
 
 Builds one shot of the table SHOTS: small emissive spheres ("markers") on a black world, seen by a
-rotated, displaced camera with the shot's lens, sensor, fit, shift and aperture. Copies Blender's
-physical camera and shot settings into custom properties (store_physical_camera), exports the
-scene with Blender's own glTF exporter and renders it with Cycles.
+rotated, displaced camera with the shot's lens, sensor, fit, shift and aperture. Exports the scene
+through filmback's add-on (importers/blender/export_shot.py: Blender's own glTF exporter plus the
+FILMBACK_blender extension) and renders it with Cycles.
 
     blender -b --factory-startup --python make_shot.py -- OUTDIR SHOT
 
@@ -28,6 +28,10 @@ from dataclasses import dataclass
 import bpy
 from bpy_extras.object_utils import world_to_camera_view
 from mathutils import Euler, Vector
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "importers",
+                                "blender"))
+import export_shot  # noqa: E402  (filmback's add-on, enabled for this session)
 
 
 @dataclass(frozen=True)
@@ -66,6 +70,8 @@ class Shot:
     depth_scale: float = 1.0  # multiplies every marker's depth
     aperture: Aperture | None = None
     samples: int = 512
+    origin_m: tuple = (0.0, 0.0, 0.0)  # added to the camera's location (markers follow it)
+    ortho_scale_m: float | None = None  # an orthographic camera of this scale
 
 
 # Markers at the frame's corners and edges, where the projection is most off-axis, and in the
@@ -104,6 +110,8 @@ BOKEH_MARKERS = (
 )
 
 SHOTS = {
+    # Blender's default camera: 50 mm on 36 x 24 mm, fit AUTO, at 16:9.
+    "default_50mm": Shot(320, 180, 50.0, FRAME_MARKERS),
     # The reference frame: landscape 320x200, 35 mm on a 36 mm sensor, fit AUTO (horizontal).
     "landscape_auto": Shot(320, 200, 35.0, FRAME_MARKERS),
     # Landscape, fit VERTICAL: sensor_height (20 mm) spans the image height.
@@ -122,6 +130,14 @@ SHOTS = {
     # f/1.4 on 85 mm focused on an empty 3 m deep (off the axis); circles of confusion 8-31 px.
     "dof_f1_4": Shot(320, 240, 85.0, FOCUS_MARKERS, samples=1024,
                      aperture=Aperture(1.4, 3.0, focus_object_uv=(0.9, 0.85))),
+    # The frame 1.4e5 m from the origin, where float32 world coordinates are 8-16 mm apart:
+    # Cycles keeps its meshes in float32 world space, so the markers are 10x as deep (and as
+    # large) for its spheres to keep their shape (at 1x Cycles' own images are 5 % off the math;
+    # filmback's, traced in camera-centred space, 0.2 %).
+    "far_from_origin": Shot(320, 200, 35.0, FRAME_MARKERS, depth_scale=10.0,
+                            clip_m=(1.0, 1000.0), origin_m=(1.2e5, -0.7e5, 0.3e5)),
+    # Orthographic, 12 m across, fit AUTO: markers keep their image size at every depth.
+    "orthographic": Shot(320, 200, 35.0, FRAME_MARKERS, ortho_scale_m=12.0),
     # Six blades rotated 10 deg: hexagonal bokeh whose orientation is measured.
     "bokeh_hexagon": Shot(320, 240, 85.0, BOKEH_MARKERS, samples=1024,
                           aperture=Aperture(1.4, 1.5, blades=6, rotation_deg=10.0)),
@@ -193,14 +209,16 @@ def store_physical_camera(scene, camera_object):
 
 def build_camera(scene, shot):
     data = bpy.data.cameras.new("Camera")
-    data.type = "PERSP"
+    data.type = "ORTHO" if shot.ortho_scale_m else "PERSP"
+    if shot.ortho_scale_m:
+        data.ortho_scale = shot.ortho_scale_m
     data.lens = shot.lens_mm
     data.sensor_width, data.sensor_height = shot.sensor_mm
     data.sensor_fit = shot.sensor_fit
     data.shift_x, data.shift_y = shot.shift
     data.clip_start, data.clip_end = shot.clip_m
     camera = bpy.data.objects.new("Camera", data)
-    camera.location = CAMERA_LOCATION
+    camera.location = Vector(CAMERA_LOCATION) + Vector(shot.origin_m)
     camera.rotation_euler = Euler([math.radians(a) for a in CAMERA_ROTATION_DEG], "XYZ")
     scene.collection.objects.link(camera)
     scene.camera = camera
@@ -215,12 +233,20 @@ class Frame:
         corners = camera.data.view_frame(scene=scene)  # top-right, bottom-right, bottom-left, top-left
         self.top_left, self.top_right, self.bottom_left = corners[3], corners[0], corners[2]
         self.depth = -corners[0].z
-        self.px_per_unit = scene.render.resolution_x * self.depth / (self.top_right.x - self.top_left.x)
+        self.ortho = camera.data.type == "ORTHO"
+        # Pixels per metre at the frame's depth; an orthographic frame has it at every depth.
+        self.px_per_unit = scene.render.resolution_x * (1.0 if self.ortho else self.depth) / (
+            self.top_right.x - self.top_left.x)
 
     def point(self, u, v, depth_m):
         across, down = self.top_right - self.top_left, self.bottom_left - self.top_left
         on_frame = self.top_left + u * across + v * down
+        if self.ortho:
+            return Vector((on_frame.x, on_frame.y, -depth_m))
         return on_frame * (depth_m / self.depth)
+
+    def metres_per_px(self, depth_m):
+        return (1.0 if self.ortho else depth_m) / self.px_per_unit
 
 
 def emission_material(name, colour, strength):
@@ -237,7 +263,7 @@ def emission_material(name, colour, strength):
 
 
 def add_sphere(camera, frame, marker, depth_m):
-    radius_m = marker.radius_px / frame.px_per_unit * depth_m
+    radius_m = marker.radius_px * frame.metres_per_px(depth_m)
     location = camera.matrix_world @ frame.point(marker.u, marker.v, depth_m)
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=radius_m, location=location)
     sphere = bpy.context.active_object
@@ -279,6 +305,14 @@ def expected_image(scene, camera, frame, sphere, radius_m):
     """The sphere's image through Blender's camera: where it is, its size, its bokeh's angle."""
     to_camera = camera.matrix_world.normalized().inverted()
     centre = to_camera @ sphere.matrix_world.translation
+    w, h = scene.render.resolution_x, scene.render.resolution_y
+    if frame.ortho:
+        # A parallel projection images a sphere as a disk of its own radius, at its centre's place.
+        image = world_to_camera_view(scene, camera, sphere.matrix_world.translation)
+        diameter_px = 2 * radius_m * frame.px_per_unit
+        return {"image_x_px": image.x * w, "image_y_px": (1 - image.y) * h,
+                "diameter_x_px": diameter_px, "diameter_y_px": diameter_px,
+                "vertex_angle_rad": math.nan}
     distance, depth = centre.length, -centre.z
     # The pinhole image of a sphere of angular radius a seen at t off the axis is an ellipse:
     # with k = cos^2 t - sin^2 a, semi-axes sin a cos a / k radially and sin a / sqrt(k)
@@ -311,7 +345,6 @@ def expected_image(scene, camera, frame, sphere, radius_m):
             raster_angle = -lens_angle + (math.pi if scale_px < 0 else 0.0)
             sector = 2 * math.pi / blades
             angle = math.remainder(raster_angle, sector)
-    w, h = scene.render.resolution_x, scene.render.resolution_y
     image = world_to_camera_view(scene, camera, camera.matrix_world.normalized() @ image_centre)
     return {
         "image_x_px": image.x * w,
@@ -349,6 +382,11 @@ def configure_cycles(scene, shot):
     image.exr_codec = "ZIP"
 
 
+def export(path):
+    """Through filmback's add-on: Blender's glTF exporter plus the FILMBACK_blender extension."""
+    export_shot.export(path, export_lights=False)
+
+
 def record(kind, **fields):
     def text(value):
         return f"{value:.6f}" if isinstance(value, float) else str(value)
@@ -380,12 +418,12 @@ def main():
     spheres = [(marker, *add_sphere(camera, frame, marker, marker.depth_m * shot.depth_scale))
                for marker in shot.markers]
     bpy.context.view_layer.update()
-    store_physical_camera(scene, camera)
 
     w, h = shot.width_px, shot.height_px
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(record("shot", name=name, samples=shot.samples, width_px=w, height_px=h,
-                              camera_model="thinlens" if shot.aperture else "perspective",
+                              camera_model="orthographic" if shot.ortho_scale_m else
+                              "thinlens" if shot.aperture else "perspective",
                               aperture_blades=shot.aperture.blades if shot.aperture else 0))
         for marker, sphere, radius_m in spheres:
             centre = world_to_camera_view(scene, camera, sphere.matrix_world.translation)
@@ -393,9 +431,7 @@ def main():
                                   blender_y_px=(1.0 - centre.y) * h,
                                   **expected_image(scene, camera, frame, sphere, radius_m)))
 
-    bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=False, export_materials="EXPORT",
-                              export_extras=True)
+    export(os.path.join(out_dir, "shot.gltf"))
 
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)

@@ -3,8 +3,8 @@
 Builds one shot of emissive spheres ("markers") on a black world, seen by make_shot.py's rotated,
 displaced camera: two move at constant speed (linear keyframes), one along the image's x axis and
 one along its y axis, and one stands still. Cycles renders it with motion blur, a box shutter half
-a frame long centred on the frame; Blender's own glTF exporter writes it with its animation, and
-the shutter, frame and fps as scene custom properties (make_shot.store_physical_camera).
+a frame long centred on the frame; filmback's add-on exports it with its animation, and the
+shutter, frame and fps in the scene's FILMBACK_blender extension.
 
     blender -b --factory-startup --python motion_shot.py -- OUTDIR motion
 
@@ -128,14 +128,14 @@ def main():
             animate(sphere, camera, frame, travel_px, marker.depth_m)
         spheres.append((sphere, radius_m))
     scene.frame_set(FRAME)
-    make_shot.store_physical_camera(scene, camera)
 
     half = SHUTTER_FRAMES / 2
+    shutter_open_s, shutter_close_s = -half / FPS, half / FPS
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record("shot", name="motion", samples=SHOT.samples,
                                         width_px=SHOT.width_px, height_px=SHOT.height_px,
-                                        shutter_open_s=scene["shutter_open_s"],
-                                        shutter_close_s=scene["shutter_close_s"],
+                                        shutter_open_s=shutter_open_s,
+                                        shutter_close_s=shutter_close_s,
                                         cycles_shutter_fraction=CYCLES_SHUTTER_FRACTION))
         for sphere, radius_m in spheres:
             start = centre_at(scene, sphere, FRAME - 1, 1.0 - half)
@@ -149,9 +149,7 @@ def main():
                 close_y_px=close_y, centroid_x_px=centroid[0], centroid_y_px=centroid[1],
                 cycles_centroid_x_px=cycles[0], cycles_centroid_y_px=cycles[1]))
 
-    bpy.ops.export_scene.gltf(filepath=os.path.join(out_dir, "shot.gltf"), export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=False, export_materials="EXPORT",
-                              export_extras=True, export_animations=True)
+    make_shot.export(os.path.join(out_dir, "shot.gltf"))
 
     scene.frame_set(FRAME)
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")

@@ -42,10 +42,11 @@ def scene_extension(scene, frame, export_settings):
 
 
 def shutter(scene):
-    """Open and close times in seconds relative to the frame's time, and the curve's weights."""
+    """Open and close times in seconds relative to the frame's time, and the curve's weights.
+    Seconds on the file's timeline, frame / fps: Blender's exporter times animation keys so,
+    leaving fps_base out, and the shutter must meet the keys where Blender's frames do."""
     r = scene.render
-    seconds_per_frame = r.fps_base / r.fps
-    length = r.motion_blur_shutter * seconds_per_frame
+    length = r.motion_blur_shutter / r.fps
     # Cycles' setting (scene.cycles); Eevee always centres the shutter on the frame.
     position = getattr(getattr(scene, "cycles", None), "motion_blur_position", "CENTER")
     start = {"START": 0.0, "CENTER": -0.5, "END": -1.0}[position] * length
