@@ -54,7 +54,8 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
                 self._add(gltf2_node.camera, "EXT_camera_physical", physical)
         elif blender_object.type == "LIGHT":
             data["light"] = lights.light_extension(blender_object.data)
-        elif blender_object.type == "MESH":
+        elif blender_object.type == "MESH" and not export_settings.get("gltf_apply"):
+            # With Apply Modifiers the exported mesh is already subdivided: no cage to carry.
             surface = subdivision.subdivision_extension(blender_object)
             if surface is not None:
                 data["subdivision"] = surface
