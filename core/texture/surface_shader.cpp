@@ -168,6 +168,7 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
     const auto c = lookup(t.emissive, point, true);
     emission *= Rgb(c[0], c[1], c[2]);
   }
+  std::copy(hit.shading_normal, hit.shading_normal + 3, hit.smooth_normal);
   if (t.normal.present() && dot(point.tangent, point.tangent) > 0.f) {
     const auto c = lookup(t.normal, point, false);
     // glTF 2.0 §3.9.3: n = normalize((2 rgb - 1) * (scale, scale, 1)) in the (T, B, N) frame,

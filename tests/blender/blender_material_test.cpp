@@ -135,11 +135,13 @@ TEST(BlenderMaterials, SpheresOverALambertianGroundMatchCycles) {
 }
 
 // A normal-mapped Lambertian ground (ridges along the image's x and y): a tangent or bitangent
-// the wrong way round lights the other flank of each ridge.
+// the wrong way round lights the other flank of each ridge. Measured: 0.38 % mean relative
+// difference against a noise floor of 0.52 %, worst block 0.11 %; with the bitangent flipped 12.7 %
+// and 40 %, without Cycles' terminator term (filmback/bsdf.h, bump_shadowing) 2.6 % and 5.7 %.
 TEST(BlenderMaterials, NormalMappedGroundMatchesCycles) {
   const std::optional<std::filesystem::path> blender = find_blender();
   if (!blender) GTEST_SKIP() << "needs Debian's `blender` package (blender not on PATH)";
-  compare_with_cycles(*blender, "normal_map_lambertian_ground", {0.003, 0.1, 0.2});
+  compare_with_cycles(*blender, "normal_map_lambertian_ground", {0.003, 0.015, 0.01});
 }
 
 }  // namespace

@@ -602,10 +602,7 @@ class CliTest(unittest.TestCase):
         g.doc["meshes"][0]["weights"] = [0.5]
         g.doc["meshes"][0]["primitives"] += [{"attributes": {"POSITION": position}, "mode": 1},
                                              {"attributes": {"POSITION": position}, "mode": 0}]
-        g.doc["images"] = [{"uri": png_1x1_uri()}]
-        g.doc["textures"] = [{"source": 0}]
-        g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
-                                                        "metallicFactor": 0.0},  # no metallic warning
+        g.doc["materials"] = [{"pbrMetallicRoughness": {"metallicFactor": 0.0},
                                "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}}]
         g.doc["meshes"][0]["primitives"][0]["material"] = 0
         g.doc["extensionsUsed"] = ["KHR_materials_clearcoat"]
@@ -622,6 +619,15 @@ class CliTest(unittest.TestCase):
             with self.subTest(path=path):
                 found = [w for w in warnings if w.startswith("warning: %s: %s: " % (scene, path))]
                 self.assertEqual(len(found), 1, "one warning for %s expected:\n%s" % (path, result.stderr))
+
+    def test_texture_without_its_texture_coordinates_is_an_error(self):
+        g = triangle_scene()
+        g.doc["images"] = [{"uri": png_1x1_uri()}]
+        g.doc["textures"] = [{"source": 0}]
+        g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        g.doc["meshes"][0]["primitives"][0]["material"] = 0
+        self.assert_input_error(self.scene(g), "meshes[0].primitives[0].attributes",
+                                "reads TEXCOORD_0, which the primitive does not have")
 
     def test_writes_exr_and_png(self):
         scene = self.scene(triangle_scene(), "scene.glb")

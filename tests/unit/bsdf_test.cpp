@@ -87,6 +87,27 @@ TEST(Bsdf, DiffuseIsLambertianUnderTheFresnelLayer) {
   EXPECT_NEAR(diffuse.z, 0.125 * through / kPi, 1e-6);
 }
 
+// Chiang et al. 2019's terminator term, as Cycles applies it to bumped diffuse lobes: no effect
+// without mapping or where the light is on the unshadowed side, zero for light below the smooth
+// surface, the smoothed ratio in between; and only on the diffuse part.
+TEST(Bsdf, BumpShadowingDimsOnlyLightTheSmoothSurfaceHidesFromTheBump) {
+  const Vec3f smooth = normalize(Vec3f{0.5f, 0.f, 1.f});        // the bump leans towards -x
+  EXPECT_EQ(bump_shadowing(smooth, direction(0.9, 0.0)), 1.f);  // towards +x: g > 1
+  EXPECT_EQ(bump_shadowing(smooth, normalize(Vec3f{-1.f, 0.f, 0.3f})), 0.f);  // below smooth
+  const Vec3f wi = normalize(Vec3f{-1.f, 0.f, 0.8f});
+  const double g = dot(smooth, wi) / (wi.z * smooth.z);
+  ASSERT_GT(g, 0);
+  ASSERT_LT(g, 1);
+  EXPECT_NEAR(bump_shadowing(smooth, wi), g + g * g - g * g * g, 1e-6);
+  const Vec3f wo = direction(1.0, 0.0);
+  const Bsdf flat({{0.5f, 0.5f, 0.5f}, 0.f, 1.f, 0.f, 1.5f, 0.f});
+  const Bsdf bumped({{0.5f, 0.5f, 0.5f}, 0.f, 1.f, 0.f, 1.5f, 0.f, smooth});
+  EXPECT_NEAR(bumped.eval(wo, wi).x, flat.eval(wo, wi).x * bump_shadowing(smooth, wi), 1e-7);
+  const Bsdf metal({{0.5f, 0.5f, 0.5f}, 1.f, 0.5f, 0.f, 1.5f, 1.f, smooth});
+  const Bsdf flat_metal({{0.5f, 0.5f, 0.5f}, 1.f, 0.5f, 0.f, 1.5f, 1.f});
+  EXPECT_EQ(metal.eval(wo, wi).x, flat_metal.eval(wo, wi).x);
+}
+
 TEST(Bsdf, ReflectionIsReciprocal) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);

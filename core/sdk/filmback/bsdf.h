@@ -38,7 +38,22 @@ struct BsdfParams {
   float transmission = 0.f;
   float eta = 1.5f;      // relative index of refraction across the surface, seen from wo's side
   float specular = 1.f;  // KHR_materials_specular: scales the dielectric Fresnel; 0 is Lambertian
+  // The interpolated normal before bump or normal mapping, in the local frame (+z: no mapping):
+  // the diffuse lobe is shadowed where the two disagree, as Cycles does (bump_shadowing()).
+  Vec3f smooth_normal{0.f, 0.f, 1.f};
 };
+
+// Chiang, Li and Burley 2019, "Taming the Shadow Terminator": light from `wi` reaching a diffuse
+// surface whose shading normal (+z, local frame) was bent away from the interpolated `smooth`
+// normal is shadowed by g = (smooth.wi) / ((n.wi)(smooth.n)), smoothed as -g^3 + g^2 + g; Cycles
+// (bump_shadowing_term, kernel/closure/bsdf.h) applies it to every diffuse closure whose normal
+// is not the smooth one.
+inline float bump_shadowing(Vec3f smooth, Vec3f wi) {
+  const float g = dot(smooth, wi) / (wi.z * smooth.z);
+  if (!(g < 1.f)) return 1.f;
+  if (!(g > 0.f)) return 0.f;
+  return g + g * g - g * g * g;
+}
 
 class Bsdf {
  public:
@@ -51,6 +66,8 @@ class Bsdf {
         transmission_(std::clamp(p.transmission, 0.f, 1.f)),
         eta_(p.eta > 0.f ? p.eta : 1.f),
         specular_(std::clamp(p.specular, 0.f, 1.f)),
+        smooth_(p.smooth_normal),
+        bumped_(p.smooth_normal.z < 1.f - 1e-6f),
         alpha_(std::max(kMinAlpha, p.roughness * p.roughness)) {
     const float r = (eta_ - 1.f) / (eta_ + 1.f);
     f0_ = r * r;  // the same from either side
@@ -83,8 +100,8 @@ class Bsdf {
       // that its albedo is exactly (1 - F(wo.n)) base: reciprocal and, unlike glTF's reference
       // (1 - F(wo.h)), never reflecting more than arrives at grazing angles (Kelemen and
       // Szirmay-Kalos 2001, with Schlick's F standing in for the specular albedo).
-      const float through =
-          (1.f - fresnel(wo.z)) * (1.f - fresnel(wi.z)) / (1.f - average_fresnel_);
+      float through = (1.f - fresnel(wo.z)) * (1.f - fresnel(wi.z)) / (1.f - average_fresnel_);
+      if (bumped_) through *= bump_shadowing(smooth_, wi);
       return base_ * (dielectric * through * (1.f - transmission_) * kInvPi) +
              spec * (dielectric * F) + spec * metal_fresnel(c) * metallic_;
     }
@@ -254,7 +271,10 @@ class Bsdf {
   }
 
   Rgb base_;
-  float metallic_, transmission_, eta_, specular_, alpha_, f0_ = 0.04f, average_fresnel_ = 0.f;
+  float metallic_, transmission_, eta_, specular_;
+  Vec3f smooth_;
+  bool bumped_;
+  float alpha_, f0_ = 0.04f, average_fresnel_ = 0.f;
 };
 
 // A shading normal that a ray seen from `wo` (unit, towards the viewer, on ng's side) can reflect

@@ -192,12 +192,15 @@ typedef struct fb_hit {
   float base_color[3]; /* linear reflectance (metals: the colour at normal incidence) */
   float metallic;      /* 0 dielectric ... 1 metal */
   float roughness;     /* perceptual, as glTF and Blender: GGX alpha = roughness^2 */
-  float
-      transmission; /* fraction of the dielectric base that refracts (KHR_materials_transmission) */
-  float ior;        /* index of refraction of the material (outside it: 1) */
-  float specular;   /* scales the dielectric Fresnel (KHR_materials_specular); 0: Lambertian */
-  float
-      emission[3]; /* radiance leaving the front face (both faces if double-sided), W sr^-1 m^-2 */
+  /* fraction of the dielectric base that refracts (KHR_materials_transmission) */
+  float transmission;
+  float ior;      /* index of refraction of the material (outside it: 1) */
+  float specular; /* scales the dielectric Fresnel (KHR_materials_specular); 0: Lambertian */
+  /* radiance leaving the front face (both faces if double-sided), W sr^-1 m^-2 */
+  float emission[3];
+  /* unit; the interpolated vertex normal before the normal map (shading_normal without it), for
+   * the shadowing term of bumped diffuse surfaces (filmback/bsdf.h) */
+  float smooth_normal[3];
 } fb_hit;
 
 /* A material's constant factors. The layout is frozen: what a material has beyond these reaches

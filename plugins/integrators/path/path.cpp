@@ -46,14 +46,16 @@ Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
 }
 
 // The BSDF at a hit, in the shading frame turned towards wo. Transmission makes the side matter:
-// a ray arriving at a back face leaves the material, so the index ratio inverts.
+// a ray arriving at a back face leaves the material, so the index ratio inverts. `smooth` is the
+// normal before normal mapping, on the same side as ns.
 struct Scatter {
   fb::Frame frame;
   fb::Bsdf bsdf;
-  Scatter(const fb_hit& hit, Vec3f ns, bool front)
+  Scatter(const fb_hit& hit, Vec3f ns, Vec3f smooth, bool front)
       : frame(ns),
         bsdf({Rgb(hit.base_color), hit.metallic, hit.roughness, hit.transmission,
-              hit.transmission > 0.f && !front ? 1.f / hit.ior : hit.ior, hit.specular}) {}
+              hit.transmission > 0.f && !front ? 1.f / hit.ior : hit.ior, hit.specular,
+              frame.to_local(smooth)}) {}
 };
 
 Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
@@ -87,12 +89,12 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     if (depth >= max_depth_) break;
 
     // Shade on the side the ray arrived from; the geometric normal decides which side that is.
-    Vec3f ng(hit.geometric_normal), ns(hit.shading_normal);
+    Vec3f ng(hit.geometric_normal), ns(hit.shading_normal), smooth(hit.smooth_normal);
     const bool front = fb::dot(ng, wo_world) >= 0.f;
-    if (!front) ng = -ng, ns = -ns;
+    if (!front) ng = -ng, ns = -ns, smooth = -smooth;
     ns = fb::ensure_valid_reflection(ng, wo_world, ns);
     const Vec3f p(hit.position), p_error(hit.position_error);
-    const Scatter scatter(hit, ns, front);
+    const Scatter scatter(hit, ns, smooth, front);
     const Vec3f wo = scatter.frame.to_local(wo_world);
     if (!(wo.z > 0.f)) break;  // the shading normal turned away from the viewer: no light path
     // A direction is valid when the shading and geometric normals agree on its side.
