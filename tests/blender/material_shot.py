@@ -3,7 +3,8 @@
 A ground plane textured with an 8x8 red/white checker (a PNG this script writes) in a Principled
 BSDF and spheres over it (SPHERES: "materials", a glossy gold metal and a glossy red dielectric;
 "glass", a rough glass; each also with a ground that is Lambertian in both renderers,
-make_lambertian; and "normal_map_lambertian_ground", the ground alone with a normal map), lit by a sun (angle 0: a
+make_lambertian; "normal_map_lambertian_ground", the ground alone with a normal map; and
+"alpha_lambertian_ground", the ground behind a card cut out by its texture's alpha), lit by a sun (angle 0: a
 delta light) and a uniform grey world; exported through filmback's add-on
 (importers/blender/export_shot.py: the camera, the sun in Blender's units and the world travel in
 FILMBACK_blender) and rendered with Cycles at
@@ -144,6 +145,59 @@ def make_lambertian(path, material):
     links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
 
 
+def cutout_image(path):
+    """A green card's colour and coverage: opaque inside a disk centred a third of the way from
+    the image's top-left corner and in a bar along its bottom, transparent elsewhere (straight
+    alpha, 0 or 1): a flipped or shifted lookup moves the holes."""
+    image = bpy.data.images.new("cutout", CHECKER_PX, CHECKER_PX, alpha=True)
+    pixels = []
+    for row_from_bottom in range(CHECKER_PX):
+        v = 1.0 - (row_from_bottom + 0.5) / CHECKER_PX  # from the top
+        for col in range(CHECKER_PX):
+            u = (col + 0.5) / CHECKER_PX
+            inside = (u - 0.33) ** 2 + (v - 0.33) ** 2 < 0.25 ** 2 or v > 0.8
+            pixels.extend((0.1, 0.8, 0.1, 1.0 if inside else 0.0))
+    image.pixels = pixels
+    image.filepath_raw = path
+    image.file_format = "PNG"
+    image.save()
+    return image
+
+
+def add_cutout(image):
+    """A 2 m card standing on the ground in front of the spheres' place, facing the camera, its
+    alpha from the image: exported as alphaMode MASK (blend method CLIP), rendered by Cycles as
+    the Principled BSDF's Alpha (a mix with a Transparent BSDF)."""
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.0, -0.5, 1.0), rotation=(math.radians(90.0), 0.0, 0.0))
+    card = bpy.context.active_object
+    card.name = "card"
+    material, bsdf = principled("cutout", (1.0, 1.0, 1.0), 0.0, 1.0)
+    material.blend_method = "CLIP"
+    material.alpha_threshold = 0.5
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    texture.interpolation = "Linear"
+    links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
+    links.new(texture.outputs["Alpha"], bsdf.inputs["Alpha"])
+    card.data.materials.append(material)
+    return material
+
+
+def make_lambertian_cutout(path, material):
+    """The card as a Lambertian surface in both renderers (as make_lambertian), its coverage a
+    mix with a Transparent BSDF in Cycles."""
+    make_lambertian(path, material)
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    diffuse = nodes["Diffuse BSDF"]
+    transparent = nodes.new("ShaderNodeBsdfTransparent")
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(nodes["Image Texture"].outputs["Alpha"], mix.inputs["Fac"])
+    links.new(transparent.outputs["BSDF"], mix.inputs[1])
+    links.new(diffuse.outputs["BSDF"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
+
+
 def add_sphere(name, location, radius, material):
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=radius, location=location)
     sphere = bpy.context.active_object
@@ -173,6 +227,8 @@ SPHERES["materials_lambertian_ground"] = SPHERES["materials"]
 SPHERES["glass_lambertian_ground"] = SPHERES["glass"]
 # The ground alone with a normal map (ridges_image), Lambertian in both renderers.
 SPHERES["normal_map_lambertian_ground"] = ()
+# The ground and a card cut out by its texture's alpha (cutout_image), Lambertian in both.
+SPHERES["alpha_lambertian_ground"] = ()
 
 
 def main():
@@ -208,6 +264,7 @@ def main():
     ground = add_ground(checker_image(os.path.join(out_dir, "checker.png")), normal_map)
     for sphere_name, location, make_material in SPHERES[name]:
         add_sphere(sphere_name, location, 0.7, make_material())
+    card = add_cutout(cutout_image(os.path.join(out_dir, "cutout.png"))) if name.startswith("alpha") else None
 
     sun_data = bpy.data.lights.new("Sun", "SUN")
     sun_data.energy = SUN_W_PER_M2
@@ -226,6 +283,8 @@ def main():
     export_shot.export(os.path.join(out_dir, "shot.gltf"))
     if name.endswith("_lambertian_ground"):
         make_lambertian(os.path.join(out_dir, "shot.gltf"), ground)
+    if card is not None:
+        make_lambertian_cutout(os.path.join(out_dir, "shot.gltf"), card)
 
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
