@@ -135,10 +135,11 @@ ShotRenders render_shot(const fs::path& blender, const std::string& shot, const 
     else
       throw std::runtime_error("manifest: unknown record kind '" + record.kind + "'");
   }
-  // No --res: the shot's resolution comes from the file (scenes[0].extras).
+  // No --res and no --filter: the shot's resolution and pixel filter (Cycles' 1 px box) come
+  // from the file's FILMBACK_blender extension.
   r.filmback_s = run_logged(quoted(FILMBACK_EXE) + " render " + quoted(work / "shot.gltf") +
                                 " -o " + quoted(work / "filmback.exr") + " --spp " +
-                                r.shot.text("samples") + " --filter box",
+                                r.shot.text("samples"),
                             work / "filmback.log");
   r.filmback_log = read_text(work / "filmback.log");
   r.cycles = read_image(work / "cycles.exr");

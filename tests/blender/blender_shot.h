@@ -1,7 +1,7 @@
 // Running one shot of make_shot.py through both renderers: Debian's Blender builds the shot,
-// exports it with its own glTF exporter and renders it with Cycles; the built `filmback` renders
-// the export at the shot's own resolution (from the file's extras) with the same 1 px box filter
-// and sample count. Shared by the tests against Blender.
+// exports it through filmback's add-on and renders it with Cycles; the built `filmback` renders
+// the export at the shot's own resolution and pixel filter (Cycles' 1 px box, both from the
+// file's FILMBACK_blender extension) and the same sample count. Shared by the tests against Blender.
 #pragma once
 
 #include <filesystem>

@@ -163,48 +163,16 @@ def focus_distance_m(camera_object):
     return abs(view_axis.dot(matrix.translation - dof.focus_object.matrix_world.translation))
 
 
-def store_physical_camera(scene, camera_object):
-    """Copies what Blender renders with but its glTF exporter drops (lens, sensor, fit, shift,
-    depth of field, resolution, time) into custom properties, which the exporter writes as
-    `extras` with export_extras=True: the camera data's to cameras[i].extras, the scene's to
-    scenes[0].extras. Names carry units; filmback reads them in importers/gltf/gltf_extras.cpp.
-    Lengths are Blender units, which the exporter writes as glTF metres."""
-    camera, render = camera_object.data, scene.render
-    if camera.type not in {"PERSP", "ORTHO"}:
-        raise ValueError(f"camera type {camera.type} is not carried")
-    if render.pixel_aspect_x != render.pixel_aspect_y:
-        raise ValueError("non-square pixels are not carried")
-    if render.fps_base != 1.0:
-        raise ValueError("fps_base != 1 is not carried: the 3.4 exporter times keys by frame / fps")
-    camera["focal_length_mm"] = camera.lens
-    camera["sensor_width_mm"] = camera.sensor_width
-    camera["sensor_height_mm"] = camera.sensor_height
-    camera["sensor_fit"] = camera.sensor_fit
-    camera["shift_x"] = camera.shift_x
-    camera["shift_y"] = camera.shift_y
-    if camera.type == "ORTHO":
-        camera["ortho_scale_m"] = camera.ortho_scale
-    camera["clip_near_m"] = camera.clip_start
-    camera["clip_far_m"] = camera.clip_end
-    dof = camera.dof
-    if dof.use_dof:
-        # Cycles clamps both to 1e-5 (blender/camera.cpp, scene/camera.cpp) and renders fewer
-        # than 3 blades as a disk.
-        camera["fstop"] = max(dof.aperture_fstop, 1e-5)
-        camera["focus_distance_m"] = max(focus_distance_m(camera_object), 1e-5)
-        camera["aperture_blades"] = dof.aperture_blades if dof.aperture_blades >= 3 else 0
-        camera["aperture_rotation_rad"] = dof.aperture_rotation
-        camera["aperture_ratio"] = dof.aperture_ratio
-    scene["resolution_x_px"] = render.resolution_x * render.resolution_percentage // 100
-    scene["resolution_y_px"] = render.resolution_y * render.resolution_percentage // 100
-    scene["fps"] = render.fps
-    scene["frame"] = scene.frame_current
-    if render.use_motion_blur:
-        # The shutter in frames around the frame (scene.cycles.motion_blur_position), in seconds.
-        length = render.motion_blur_shutter
-        start = {"START": 0.0, "CENTER": -length / 2, "END": -length}[scene.cycles.motion_blur_position]
-        scene["shutter_open_s"] = start / render.fps
-        scene["shutter_close_s"] = (start + length) / render.fps
+def new_world(scene, colour=(0.0, 0.0, 0.0), strength=0.0):
+    """A node world of uniform radiance colour x strength (black by default); returns its
+    Background node."""
+    world = bpy.data.worlds.new("World")
+    world.use_nodes = True
+    background = world.node_tree.nodes["Background"]
+    background.inputs["Color"].default_value = (*colour, 1.0)
+    background.inputs["Strength"].default_value = strength
+    scene.world = world
+    return background
 
 
 def build_camera(scene, shot):
@@ -404,10 +372,7 @@ def main():
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
+    new_world(scene)
 
     configure_cycles(scene, shot)
     camera = build_camera(scene, shot)

@@ -176,10 +176,7 @@ def build_object(camera, frame):
 def build_shot(out_dir):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
+    make_shot.new_world(scene)
     make_shot.configure_cycles(scene, SHOT)
     camera = make_shot.build_camera(scene, SHOT)
     bpy.context.view_layer.update()
@@ -188,7 +185,6 @@ def build_shot(out_dir):
     spheres = [(marker, *make_shot.add_sphere(camera, frame, marker, marker.depth_m))
                for marker in MARKERS]
     bpy.context.view_layer.update()
-    make_shot.store_physical_camera(scene, camera)
 
     w, h = SHOT.width_px, SHOT.height_px
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
