@@ -134,6 +134,9 @@ void add_area_light(const Fields& f, const tinygltf::Node& node, const std::stri
   m.specular = 0.f;
   m.metallic = 0.f;
   m.emission = color * float(power_w / (4 * area));
+  if (!is_finite(m.emission))
+    f.fail_object("colour times power over area (" + number_text(area) +
+                  " m^2) overflows single precision");
   mesh.material = uint32_t(scene.materials.size());
   scene.materials.push_back(m);
   scene.instances.push_back({uint32_t(scene.meshes.size()), world, node_path, scene_node});

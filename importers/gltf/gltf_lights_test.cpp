@@ -295,6 +295,7 @@ TEST(GltfLights, BadValuesAreErrorsNamingTheFileAndJsonPath) {
       {R"("type": "SUN", "energy_w": 1, "angle_rad": -1)", ".angle_rad", "number in"},
       {R"("type": "AREA", "energy_w": 1, "shape": "STAR")", ".shape", "not an area light shape"},
       {R"("type": "AREA", "energy_w": 1, "size_m": 0)", ".size_m", "number in"},
+      {R"("type": "AREA", "energy_w": 1e30, "size_m": 1e-6)", "", "overflows"},
       {R"("type": "POINT", "energy_w": 1, "use_nodes": 1)", ".use_nodes", "true or false"},
   };
   for (const auto& c : cases) {
