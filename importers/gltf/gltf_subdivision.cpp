@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "core/util/error.h"
+#include "importers/gltf/gltf_json.h"
 
 namespace fb::gltf {
 namespace {
@@ -19,40 +20,29 @@ constexpr size_t kMaxFaceVertices = size_t(1) << 26;
 constexpr double kMaxLevel = 11;  // Blender's hard maximum for levels_render
 constexpr double kMaxQuality = 10;
 
+// The subdivision object's members: gltf::Fields for scalars, plus the cage's arrays.
 class Reader {
  public:
   Reader(const tinygltf::Value& object, const std::string& path, const std::string& file)
-      : object_(object), path_(path), file_(file) {}
+      : fields_(object, path, file), object_(object), path_(path), file_(file) {}
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw_input(file_, path_ + (where.empty() ? "" : "." + where), what);
   }
 
-  std::optional<double> number(const char* key, double lo, double hi, bool whole) const {
-    if (!object_.Has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
-    const double x = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
-    if (!(x >= lo && x <= hi) || (whole && x != std::floor(x)))
-      fail(key, std::string("expected ") + (whole ? "a whole number" : "a number") + " in [" +
-                    number_text(lo) + ", " + number_text(hi) + "]");
-    return x;
+  std::optional<double> whole(const char* key, double lo, double hi) const {
+    return fields_.whole(key, lo, hi);
   }
-
-  std::optional<bool> flag(const char* key) const {
-    if (!object_.Has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
-    if (!v.IsBool()) fail(key, "expected true or false");
-    return v.Get<bool>();
-  }
+  std::optional<bool> flag(const char* key) const { return fields_.flag(key); }
 
   // One of `names` (as Blender spells them); returns its position in the list.
   std::optional<size_t> choice(const char* key, std::initializer_list<const char*> names) const {
-    if (!object_.Has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
+    const std::optional<std::string> word = fields_.word(key);
+    if (!word) return std::nullopt;
     std::string expected;
     size_t i = 0;
     for (const char* name : names) {
-      if (v.IsString() && v.Get<std::string>() == name) return i;
+      if (*word == name) return i;
       expected += (i++ ? " or " : "") + std::string(name);
     }
     fail(key, "expected " + expected);
@@ -96,6 +86,7 @@ class Reader {
   }
 
  private:
+  Fields fields_;
   const tinygltf::Value& object_;
   const std::string& path_;
   const std::string& file_;
@@ -106,8 +97,8 @@ uint64_t edge_key(uint32_t a, uint32_t b) {
 }
 
 void read_settings(const Reader& r, SubdivisionSettings& s) {
-  if (auto v = r.number("levels_render", 0, kMaxLevel, true)) s.levels_render = uint32_t(*v);
-  if (auto v = r.number("quality", 1, kMaxQuality, true)) s.quality = uint32_t(*v);
+  if (auto v = r.whole("levels_render", 0, kMaxLevel)) s.levels_render = uint32_t(*v);
+  if (auto v = r.whole("quality", 1, kMaxQuality)) s.quality = uint32_t(*v);
   if (auto v = r.choice("scheme", {"CATMULL_CLARK", "SIMPLE"}))
     s.scheme = SubdivisionSettings::Scheme(*v);
   if (auto v = r.choice("boundary_smooth", {"ALL", "PRESERVE_CORNERS"}))
