@@ -6,18 +6,10 @@
 #include <numbers>
 
 #include "core/util/error.h"
+#include "importers/gltf/gltf_json.h"
 
 namespace fb::gltf {
 namespace {
-
-std::string index_path(const char* array, size_t i) {
-  return std::string(array) + "[" + std::to_string(i) + "]";
-}
-
-const tinygltf::Value* extension(const tinygltf::ExtensionMap& map, const char* name) {
-  const auto it = map.find(name);
-  return it == map.end() ? nullptr : &it->second;
-}
 
 class MaterialReader {
  public:
@@ -51,10 +43,9 @@ class MaterialReader {
       warn(path + ".occlusionTexture",
            "ignored: ambient occlusion is what the path tracer computes (glTF allows this)");
 
-    double strength = 1.0;
-    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_emissive_strength"))
-      strength = number(*e, "emissiveStrength", 1.0,
-                        path + ".extensions.KHR_materials_emissive_strength.emissiveStrength");
+    const double strength = extension_fields(g.extensions, "KHR_materials_emissive_strength", path)
+                                .number("emissiveStrength", 0, HUGE_VAL)
+                                .value_or(1.0);
     if (g.emissiveFactor.size() == 3)
       m.emission = Rgb(float(g.emissiveFactor[0] * strength), float(g.emissiveFactor[1] * strength),
                        float(g.emissiveFactor[2] * strength));
@@ -63,31 +54,21 @@ class MaterialReader {
                   "emission (emissiveFactor x emissiveStrength) must be finite and non-negative");
     m.double_sided = g.doubleSided;
 
-    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_transmission")) {
-      const std::string e_path = path + ".extensions.KHR_materials_transmission";
-      m.transmission = unit_factor(number(*e, "transmissionFactor", 0.0, e_path),
-                                   e_path + ".transmissionFactor");
-      if (e->Has("transmissionTexture"))
-        warn(e_path + ".transmissionTexture", "not supported yet; transmissionFactor used");
-    }
-    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_ior")) {
-      const std::string e_path = path + ".extensions.KHR_materials_ior.ior";
-      const double ior = number(*e, "ior", 1.5, e_path);
-      // The extension allows 0 for "no refraction" (F0 = 1); filmback keeps real materials only.
-      if (!(ior >= 1 && ior <= 10))
-        throw_input(file_, e_path,
-                    number_text(ior) + " is not an index of refraction (expected 1 to 10)");
-      m.ior = float(ior);
-    }
-    if (const tinygltf::Value* e = extension(g.extensions, "KHR_materials_specular")) {
-      const std::string e_path = path + ".extensions.KHR_materials_specular";
-      m.specular = unit_factor(number(*e, "specularFactor", 1.0, e_path + ".specularFactor"),
-                               e_path + ".specularFactor");
-      if (e->Has("specularColorFactor"))
-        fold_specular_colour(e->Get("specularColorFactor"), e_path + ".specularColorFactor", m);
-      if (e->Has("specularTexture") || e->Has("specularColorTexture"))
-        warn(e_path, "specular textures are not supported yet; the factors are used");
-    }
+    const Fields transmission = extension_fields(g.extensions, "KHR_materials_transmission", path);
+    m.transmission = float(transmission.number("transmissionFactor", 0, 1).value_or(0.0));
+    if (transmission.has("transmissionTexture"))
+      warn(transmission.path() + ".transmissionTexture",
+           "not supported yet; transmissionFactor used");
+    // The extension allows 0 for "no refraction" (F0 = 1); filmback keeps real materials only.
+    m.ior = float(extension_fields(g.extensions, "KHR_materials_ior", path)
+                      .number("ior", 1, 10)
+                      .value_or(1.5));
+    const Fields specular = extension_fields(g.extensions, "KHR_materials_specular", path);
+    m.specular = float(specular.number("specularFactor", 0, 1).value_or(1.0));
+    if (const std::optional<Rgb> colour = specular.color("specularColorFactor"))
+      fold_specular_colour(*colour, specular.path() + ".specularColorFactor", m);
+    if (specular.has("specularTexture") || specular.has("specularColorTexture"))
+      warn(specular.path(), "specular textures are not supported yet; the factors are used");
 
     if (g.alphaMode == "MASK") {
       m.alpha_mode = AlphaMode::kMask;
@@ -115,18 +96,10 @@ class MaterialReader {
   // writes Principled's Specular s so (F0 = 0.08 s at its IOR). For an opaque material ior matters
   // only through F0, so the colour (grey: the BSDF's Fresnel is scalar) folds into the index that
   // gives the same F0; a transmissive material keeps its ior, which refraction needs.
-  void fold_specular_colour(const tinygltf::Value& v, const std::string& where, Material& m) {
-    if (!v.IsArray() || v.ArrayLen() != 3) throw_input(file_, where, "expected three numbers");
-    std::array<double, 3> c{};
-    for (int i = 0; i < 3; ++i) {
-      if (!v.Get(i).IsNumber() || !(v.Get(i).GetNumberAsDouble() >= 0) ||
-          !std::isfinite(v.Get(i).GetNumberAsDouble()))
-        throw_input(file_, where, "expected three finite numbers >= 0");
-      c[size_t(i)] = v.Get(i).GetNumberAsDouble();
-    }
-    if (c[0] != c[1] || c[1] != c[2])
+  void fold_specular_colour(Rgb c, const std::string& where, Material& m) {
+    if (c.x != c.y || c.y != c.z)
       warn(where, "a coloured specular is carried as its luminance (the Fresnel term is grey)");
-    const double grey = luminance(Rgb(float(c[0]), float(c[1]), float(c[2])));
+    const double grey = luminance(c);
     if (grey == 1) return;
     if (m.transmission > 0) {
       warn(where, "not carried on a transmissive material (its ior also sets refraction)");
@@ -144,13 +117,12 @@ class MaterialReader {
     return float(v);
   }
 
-  double number(const tinygltf::Value& object, const char* key, double fallback,
-                const std::string& where) {
-    if (!object.IsObject() || !object.Has(key)) return fallback;
-    const tinygltf::Value& v = object.Get(key);
-    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()))
-      throw_input(file_, where, "expected a finite number");
-    return v.GetNumberAsDouble();
+  // The members of extension `name` of an object at JSON path `path` (none when it is absent).
+  Fields extension_fields(const tinygltf::ExtensionMap& map, const char* name,
+                          const std::string& path) const {
+    static const tinygltf::Value kAbsent;
+    const auto it = map.find(name);
+    return Fields(it == map.end() ? kAbsent : it->second, path + ".extensions." + name, file_);
   }
 
   // A textureInfo (glTF 2.0 §5.29) with its sampler's wrap modes and KHR_texture_transform.
@@ -160,9 +132,7 @@ class MaterialReader {
     if (info.index < 0) return ref;
     if (size_t(info.index) >= model_.textures.size())
       throw_input(file_, where + ".index",
-                  "texture index " + std::to_string(info.index) +
-                      " is out of range (the file has " + std::to_string(model_.textures.size()) +
-                      " textures)");
+                  out_of_range("texture", info.index, model_.textures.size(), "textures"));
     const std::string t_path = index_path("textures", size_t(info.index));
     const tinygltf::Texture& t = model_.textures[size_t(info.index)];
     if (t.source < 0 || size_t(t.source) >= model_.images.size())
@@ -179,8 +149,7 @@ class MaterialReader {
       const tinygltf::Sampler& s = model_.samplers[size_t(t.sampler)];
       ref.wrap_s = wrap(s.wrapS), ref.wrap_t = wrap(s.wrapT);
     }
-    if (const tinygltf::Value* e = extension(info.extensions, "KHR_texture_transform"))
-      transform(*e, where + ".extensions.KHR_texture_transform", ref);
+    transform(extension_fields(info.extensions, "KHR_texture_transform", where), ref);
     return ref;
   }
 
@@ -192,27 +161,22 @@ class MaterialReader {
 
   // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv, with R = [c s; -s c]
   // (the extension's README, "transform").
-  void transform(const tinygltf::Value& e, const std::string& where, TextureRef& ref) {
+  void transform(const Fields& e, TextureRef& ref) {
     auto pair = [&](const char* key, double fallback) -> std::array<double, 2> {
-      if (!e.Has(key)) return {fallback, fallback};
-      const tinygltf::Value& v = e.Get(key);
-      if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
-        throw_input(file_, where + "." + key, "expected two numbers");
-      const std::array<double, 2> out{v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble()};
-      if (!std::isfinite(out[0]) || !std::isfinite(out[1]))
-        throw_input(file_, where + "." + key, "expected finite numbers");
-      return out;
+      const auto v = e.numbers(key, 2, -HUGE_VAL, HUGE_VAL);
+      if (!v) return {fallback, fallback};
+      if (v->size() != 2 || !std::isfinite((*v)[0]) || !std::isfinite((*v)[1]))
+        e.fail(key, "expected two finite numbers");
+      return {(*v)[0], (*v)[1]};
     };
     const auto offset = pair("offset", 0.0), scale = pair("scale", 1.0);
-    const double rotation = number(e, "rotation", 0.0, where + ".rotation");
+    const double rotation = e.number("rotation", -HUGE_VAL, HUGE_VAL).value_or(0.0);
+    if (!std::isfinite(rotation)) e.fail("rotation", "expected a finite number");
     const double c = std::cos(rotation), s = std::sin(rotation);
     ref.uv_transform = {float(c * scale[0]),  float(s * scale[1]), float(offset[0]),
                         float(-s * scale[0]), float(c * scale[1]), float(offset[1])};
-    if (e.Has("texCoord")) {
-      const double tc = number(e, "texCoord", 0.0, where + ".texCoord");
-      if (!(tc == 0 || tc == 1)) throw_input(file_, where + ".texCoord", "expected 0 or 1");
-      ref.texcoord = uint32_t(tc);
-    }
+    if (const auto tc = e.whole("texCoord", 0, VertexTextureData::kSets - 1))
+      ref.texcoord = uint32_t(*tc);
   }
 
   const tinygltf::Model& model_;
