@@ -10,6 +10,7 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_file.h"
 #include "importers/gltf/gltf_importer.h"
+#include "importers/gltf/gltf_json.h"
 
 namespace fb::gltf {
 namespace {
@@ -19,67 +20,6 @@ constexpr double kPi = std::numbers::pi;
 // Segments of a disk or ellipse light's polygon; its radii are widened so that the polygon has the
 // ellipse's area, and so its power.
 constexpr int kDiskSegments = 64;
-
-std::string index_path(const char* array, size_t i) {
-  return std::string(array) + "[" + std::to_string(i) + "]";
-}
-
-// Checked fields of one JSON object, each error naming the file and the field's JSON path.
-class Fields {
- public:
-  Fields(const tinygltf::Value& object, std::string path, const std::string& file)
-      : object_(object), path_(std::move(path)), file_(file) {}
-
-  bool has(const char* key) const { return object_.IsObject() && object_.Has(key); }
-  const std::string& path() const { return path_; }
-
-  std::optional<double> number(const char* key, double lo, double hi) const {
-    if (!has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
-    const double x = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
-    if (!(x >= lo && x <= hi))
-      fail(key, "expected a number in [" + number_text(lo) + ", " + number_text(hi) + "]");
-    return x;
-  }
-
-  std::optional<Rgb> color(const char* key) const {
-    if (!has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
-    Rgb c{NAN, NAN, NAN};
-    if (v.IsArray() && v.ArrayLen() == 3 && v.Get(0).IsNumber() && v.Get(1).IsNumber() &&
-        v.Get(2).IsNumber())
-      c = Rgb(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()),
-              float(v.Get(2).GetNumberAsDouble()));
-    if (!is_finite(c) || c.x < 0 || c.y < 0 || c.z < 0)
-      fail(key, "expected three finite, non-negative linear colour components");
-    return c;
-  }
-
-  std::optional<std::string> word(const char* key) const {
-    if (!has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
-    if (!v.IsString()) fail(key, "expected a string");
-    return v.Get<std::string>();
-  }
-
-  std::optional<bool> flag(const char* key) const {
-    if (!has(key)) return std::nullopt;
-    const tinygltf::Value& v = object_.Get(key);
-    if (!v.IsBool()) fail(key, "expected true or false");
-    return v.Get<bool>();
-  }
-
-  [[noreturn]] void fail_object(const std::string& what) const { throw_input(file_, path_, what); }
-
-  [[noreturn]] void fail(const char* key, const std::string& what) const {
-    throw_input(file_, path_ + "." + key, what);
-  }
-
- private:
-  const tinygltf::Value& object_;
-  std::string path_;
-  const std::string& file_;
-};
 
 std::string light_name(const std::string& own, const tinygltf::Node& node,
                        const std::string& path) {
@@ -126,7 +66,7 @@ void add_area_light(const Fields& f, const tinygltf::Node& node, const std::stri
   const Vec3d u = world.vector({size, 0, 0}), v = world.vector({0, size_y, 0});
   const double area = length(cross(u, v)) * (round ? kPi / 4 : 1.0);
   if (!(area > 0) || !std::isfinite(area))
-    f.fail_object("the node's transform collapses the area light to zero area");
+    throw_input(f.file(), f.path(), "the node's transform collapses the area light to zero area");
   Material m;
   m.name = mesh.name;
   m.is_light = true;
@@ -135,8 +75,9 @@ void add_area_light(const Fields& f, const tinygltf::Node& node, const std::stri
   m.metallic = 0.f;
   m.emission = color * float(power_w / (4 * area));
   if (!is_finite(m.emission))
-    f.fail_object("colour times power over area (" + number_text(area) +
-                  " m^2) overflows single precision");
+    throw_input(
+        f.file(), f.path(),
+        "colour times power over area (" + number_text(area) + " m^2) overflows single precision");
   mesh.material = uint32_t(scene.materials.size());
   scene.materials.push_back(m);
   scene.instances.push_back({uint32_t(scene.meshes.size()), world, node_path, scene_node});
