@@ -7,13 +7,10 @@
 
 #include "core/util/error.h"
 #include "importers/gltf/gltf_accessors.h"
+#include "importers/gltf/gltf_json.h"
 
 namespace fb::gltf {
 namespace {
-
-std::string index_path(const std::string& array, size_t i) {
-  return array + "[" + std::to_string(i) + "]";
-}
 
 class AnimationReader {
  public:
