@@ -4,7 +4,8 @@ A ground plane textured with an 8x8 red/white checker (a PNG this script writes)
 BSDF and spheres over it (SPHERES: "materials", a glossy gold metal and a glossy red dielectric;
 "glass", a rough glass; each also with a ground that is Lambertian in both renderers,
 make_lambertian; "normal_map_lambertian_ground", the ground alone with a normal map; and
-"alpha_lambertian_ground", the ground behind a card cut out by its texture's alpha), lit by a sun (angle 0: a
+"alpha_lambertian_ground", the ground behind a card cut out by its texture's alpha; and
+"emission_lambertian_ground", the ground lit only by a card emitting the checker), lit by a sun (angle 0: a
 delta light) and a uniform grey world; exported through filmback's add-on
 (importers/blender/export_shot.py: the camera, the sun in Blender's units and the world travel in
 FILMBACK_blender) and rendered with Cycles at
@@ -32,6 +33,8 @@ import export_shot  # noqa: E402  (filmback's add-on: Blender's exporter plus FI
 import make_shot  # noqa: E402  (camera, Cycles settings, manifest records)
 
 SHOT = make_shot.Shot(160, 120, 35.0, (), samples=256)
+# Lit by a textured emitter only, which filmback finds by BSDF sampling alone: more samples.
+EMISSION_SHOT = make_shot.Shot(160, 120, 35.0, (), samples=1024)
 WORLD_RGB = (0.5, 0.5, 0.5)  # W sr^-1 m^-2
 SUN_W_PER_M2 = 3.0
 SUN_ROTATION_DEG = (40.0, 0.0, 30.0)
@@ -40,6 +43,7 @@ CHECKER_PX = 256
 RED_SRGB = (0.8, 0.1, 0.1)
 WHITE_SRGB = (0.9, 0.9, 0.9)
 BOUNCES = 8  # filmback's path integrator's default max_depth
+EMISSION_STRENGTH = 4.0  # W sr^-1 m^-2 per unit of the emissive texture
 
 
 def srgb_to_linear(v):
@@ -184,6 +188,25 @@ def add_cutout(image):
     return material
 
 
+def add_emissive_card(image):
+    """A 2 m card standing behind the spheres' place, facing the camera, emitting the checker
+    image at strength EMISSION_STRENGTH (exported as emissiveTexture, emissiveFactor 1 and
+    KHR_materials_emissive_strength) and reflecting nothing (base colour black), so that it lights
+    the ground by its texture alone."""
+    bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.0, 1.0, 1.0), rotation=(math.radians(90.0), 0.0, 0.0))
+    card = bpy.context.active_object
+    card.name = "emitter"
+    material, bsdf = principled("emissive", (0.0, 0.0, 0.0), 0.0, 1.0)
+    bsdf.inputs["Specular"].default_value = 0.0
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    texture.interpolation = "Linear"
+    links.new(texture.outputs["Color"], bsdf.inputs["Emission"])
+    bsdf.inputs["Emission Strength"].default_value = EMISSION_STRENGTH
+    card.data.materials.append(material)
+
+
 def make_lambertian_cutout(path, material):
     """The card as a Lambertian surface in both renderers (as make_lambertian), its coverage a
     mix with a Transparent BSDF in Cycles."""
@@ -229,6 +252,8 @@ SPHERES["glass_lambertian_ground"] = SPHERES["glass"]
 SPHERES["normal_map_lambertian_ground"] = ()
 # The ground and a card cut out by its texture's alpha (cutout_image), Lambertian in both.
 SPHERES["alpha_lambertian_ground"] = ()
+# The ground lit by a card emitting the checker texture (add_emissive_card), no sun, no world.
+SPHERES["emission_lambertian_ground"] = ()
 
 
 def main():
@@ -245,10 +270,11 @@ def main():
     world.use_nodes = True
     background = world.node_tree.nodes["Background"]
     background.inputs["Color"].default_value = (*WORLD_RGB, 1.0)
-    background.inputs["Strength"].default_value = 1.0
+    background.inputs["Strength"].default_value = 0.0 if name.startswith("emission") else 1.0
     scene.world = world
 
-    make_shot.configure_cycles(scene, SHOT)
+    shot = EMISSION_SHOT if name.startswith("emission") else SHOT
+    make_shot.configure_cycles(scene, shot)
     cycles = scene.cycles
     cycles.max_bounces = cycles.diffuse_bounces = cycles.glossy_bounces = BOUNCES
     cycles.transmission_bounces = cycles.transparent_max_bounces = BOUNCES
@@ -256,7 +282,7 @@ def main():
     cycles.caustics_reflective = cycles.caustics_refractive = True
     cycles.blur_glossy = 0.0  # Filter Glossy off: it widens glossy lobes after a bounce
 
-    camera = make_shot.build_camera(scene, SHOT)
+    camera = make_shot.build_camera(scene, shot)
     camera.location = (0.0, -6.0, 3.2)
     camera.rotation_euler = Euler((math.radians(64.0), 0.0, 0.0), "XYZ")
 
@@ -265,9 +291,11 @@ def main():
     for sphere_name, location, make_material in SPHERES[name]:
         add_sphere(sphere_name, location, 0.7, make_material())
     card = add_cutout(cutout_image(os.path.join(out_dir, "cutout.png"))) if name.startswith("alpha") else None
+    if name.startswith("emission"):
+        add_emissive_card(bpy.data.images["checker"])
 
     sun_data = bpy.data.lights.new("Sun", "SUN")
-    sun_data.energy = SUN_W_PER_M2
+    sun_data.energy = 0.0 if name.startswith("emission") else SUN_W_PER_M2
     sun_data.angle = 0.0
     sun = bpy.data.objects.new("Sun", sun_data)
     sun.rotation_euler = Euler([math.radians(a) for a in SUN_ROTATION_DEG], "XYZ")
@@ -277,8 +305,8 @@ def main():
     linear = lambda c: ",".join(f"{srgb_to_linear(v):.6f}" for v in c)  # noqa: E731
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record(
-            "shot", name=name, samples=SHOT.samples, width_px=SHOT.width_px,
-            height_px=SHOT.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
+            "shot", name=name, samples=shot.samples, width_px=shot.width_px,
+            height_px=shot.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
 
     export_shot.export(os.path.join(out_dir, "shot.gltf"))
     if name.endswith("_lambertian_ground"):
