@@ -239,9 +239,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     most_motion_steps_ = std::max(most_motion_steps_, mesh.step_count);
 
     const Material& material = scene.materials[mesh.material];
-    // An emissive texture varies over the triangle while light sampling assumes the factor: such
-    // emitters are left to BSDF sampling, which sees the texture (hit.emitter stays FB_NONE).
-    if (max_component(material.emission) > 0.f && !material.textures.emissive.present()) {
+    if (max_component(material.emission) > 0.f) {
       mesh.first_emitter = static_cast<uint32_t>(emitters_.size());
       for (size_t i = 0; i < mesh.indices.size(); i += 3) {
         EmissiveTriangle e{mesh.positions[mesh.indices[i]],
@@ -250,6 +248,8 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
                            {},
                            0.f,
                            mesh.material,
+                           uint32_t(meshes_.size()),
+                           uint32_t(i / 3),
                            moving};
         const Vec3f c = cross(e.p1 - e.p0, e.p2 - e.p0);
         e.area = 0.5f * length(c);
@@ -390,6 +390,11 @@ void RenderGeometry::light_filter(const RTCFilterFunctionNArguments* args) {
         RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
     if (kind != RayKind::kScatter || !(facing < 0.f)) args->valid[i] = 0;
   }
+}
+
+Rgb RenderGeometry::emission_at(const EmissiveTriangle& emitter, float u, float v) const {
+  return shader_->emission(emitter.material,
+                           surface_point(meshes_[emitter.mesh], emitter.primitive, u, v));
 }
 
 void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,

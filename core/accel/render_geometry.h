@@ -25,6 +25,7 @@ struct EmissiveTriangle {
   Vec3f normal;  // unit, front side (counter-clockwise winding)
   float area;
   uint32_t material;
+  uint32_t mesh = 0, primitive = 0;  // where it is in the geometry, for textured emission
   // Moving during the shutter: where it is depends on the ray's time, so light sampling leaves it
   // to BSDF sampling (p0, p1, p2 hold its pose at shutter open).
   bool moving = false;
@@ -51,6 +52,9 @@ class RenderGeometry {
   bool occluded(const fb_ray& ray) const;
 
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_; }
+  // Radiance an emitter sends from barycentrics (u, v) (Embree's: p0 + u (p1 - p0) + v (p2 - p0)),
+  // its emissive texture evaluated there.
+  Rgb emission_at(const EmissiveTriangle& emitter, float u, float v) const;
   Vec3f bounds_centre() const { return centre_; }
   float bounds_radius() const { return radius_; }
   size_t triangle_count() const { return triangle_count_; }

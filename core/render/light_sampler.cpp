@@ -39,6 +39,7 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
                            const RenderGeometry& geometry, double frame_s,
                            std::optional<Rgb> background_override)
     : emitters_(geometry.emitters()),
+      geometry_(geometry),
       background_(background_override.value_or(scene.background)),
       materials_(scene.materials) {
   std::vector<double> power;
@@ -224,7 +225,8 @@ bool LightSampler::sample_triangle(uint32_t index, Vec3f position, const float u
   if (m.double_sided) cos_light = std::abs(cos_light);
   if (!(cos_light > 0.f)) return false;
   wi.store(out.direction);
-  m.emission.store(out.radiance);
+  // q = p0 b0 + p1 b1 + p2 (1 - b0 - b1): Embree's barycentrics are (b1, 1 - b0 - b1).
+  geometry_.emission_at(e, b.y, 1.f - b.x - b.y).store(out.radiance);
   // area measure to solid angle: pdf_w = pdf_A d^2 / cos(theta_light)
   out.pdf = distance2 / (cos_light * e.area);
   out.is_delta = 0;

@@ -56,6 +56,7 @@ class LightSampler {
 
   std::vector<Punctual> punctual_;
   const std::vector<EmissiveTriangle>& emitters_;  // light index punctual_.size() + i
+  const RenderGeometry& geometry_;                 // evaluates textured emission
   std::optional<EnvironmentLight> environment_;    // the last light index, when present
   Rgb background_;                                 // uniform world, when no environment
   const std::vector<Material>& materials_;

@@ -152,7 +152,7 @@ std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfaceP
 
 void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit) const {
   const Material& m = materials_[index];
-  Rgb base = m.base_color, emission = m.emission;
+  Rgb base = m.base_color;
   float metallic = m.metallic, roughness = m.roughness;
   const MaterialTextures& t = m.textures;
   if (t.base_color.present()) {
@@ -163,10 +163,6 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
     const auto c = lookup(t.metallic_roughness, point, false);
     roughness *= c[1];
     metallic *= c[2];
-  }
-  if (t.emissive.present()) {
-    const auto c = lookup(t.emissive, point, true);
-    emission *= Rgb(c[0], c[1], c[2]);
   }
   std::copy(hit.shading_normal, hit.shading_normal + 3, hit.smooth_normal);
   if (t.normal.present() && dot(point.tangent, point.tangent) > 0.f) {
@@ -194,7 +190,17 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   hit.transmission = clamp01(m.transmission);
   hit.ior = m.ior;
   hit.specular = clamp01(m.specular);
-  max(emission, Rgb{}).store(hit.emission);
+  emission(index, point).store(hit.emission);
+}
+
+Rgb SurfaceShader::emission(uint32_t index, const SurfacePoint& point) const {
+  const Material& m = materials_[index];
+  Rgb emission = m.emission;
+  if (m.textures.emissive.present()) {
+    const auto c = lookup(m.textures.emissive, point, true);
+    emission *= Rgb(c[0], c[1], c[2]);
+  }
+  return max(emission, Rgb{});
 }
 
 float SurfaceShader::alpha(uint32_t index, const SurfacePoint& point) const {

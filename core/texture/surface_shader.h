@@ -33,6 +33,8 @@ class SurfaceShader {
   // Fills hit.base_color ... hit.emission for `material` and applies its normal map to
   // hit.shading_normal (which must hold the interpolated normal).
   void shade(uint32_t material, const SurfacePoint& point, fb_hit& hit) const;
+  // Radiance leaving the point: the emissive factor (with its strength) times the texture.
+  Rgb emission(uint32_t material, const SurfacePoint& point) const;
   // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage").
   float alpha(uint32_t material, const SurfacePoint& point) const;
   bool has_alpha(uint32_t material) const {

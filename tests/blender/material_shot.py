@@ -33,8 +33,6 @@ import export_shot  # noqa: E402  (filmback's add-on: Blender's exporter plus FI
 import make_shot  # noqa: E402  (camera, Cycles settings, manifest records)
 
 SHOT = make_shot.Shot(160, 120, 35.0, (), samples=256)
-# Lit by a textured emitter only, which filmback finds by BSDF sampling alone: more samples.
-EMISSION_SHOT = make_shot.Shot(160, 120, 35.0, (), samples=1024)
 WORLD_RGB = (0.5, 0.5, 0.5)  # W sr^-1 m^-2
 SUN_W_PER_M2 = 3.0
 SUN_ROTATION_DEG = (40.0, 0.0, 30.0)
@@ -273,8 +271,7 @@ def main():
     background.inputs["Strength"].default_value = 0.0 if name.startswith("emission") else 1.0
     scene.world = world
 
-    shot = EMISSION_SHOT if name.startswith("emission") else SHOT
-    make_shot.configure_cycles(scene, shot)
+    make_shot.configure_cycles(scene, SHOT)
     cycles = scene.cycles
     cycles.max_bounces = cycles.diffuse_bounces = cycles.glossy_bounces = BOUNCES
     cycles.transmission_bounces = cycles.transparent_max_bounces = BOUNCES
@@ -282,7 +279,7 @@ def main():
     cycles.caustics_reflective = cycles.caustics_refractive = True
     cycles.blur_glossy = 0.0  # Filter Glossy off: it widens glossy lobes after a bounce
 
-    camera = make_shot.build_camera(scene, shot)
+    camera = make_shot.build_camera(scene, SHOT)
     camera.location = (0.0, -6.0, 3.2)
     camera.rotation_euler = Euler((math.radians(64.0), 0.0, 0.0), "XYZ")
 
@@ -305,8 +302,8 @@ def main():
     linear = lambda c: ",".join(f"{srgb_to_linear(v):.6f}" for v in c)  # noqa: E731
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record(
-            "shot", name=name, samples=shot.samples, width_px=shot.width_px,
-            height_px=shot.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
+            "shot", name=name, samples=SHOT.samples, width_px=SHOT.width_px,
+            height_px=SHOT.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
 
     export_shot.export(os.path.join(out_dir, "shot.gltf"))
     if name.endswith("_lambertian_ground"):

@@ -48,8 +48,8 @@ struct Furnace {
 
 // The world is the uniform background (found by BSDF sampling only), an emissive box around the
 // scene (found by both light and BSDF sampling, weighted by the power heuristic: the weights must
-// sum to one for the answer to hold), or that box with an emissive texture (left to BSDF
-// sampling: the emission light sampling does not know must count in full).
+// sum to one for the answer to hold), or that box with a grey emissive texture (light sampling
+// must evaluate the texture where it samples, or the two strategies disagree).
 enum class World { kBackground, kEmissiveBox, kTexturedEmissiveBox };
 
 Scene furnace_scene(double tilt_deg, World world, float radiance) {
@@ -81,7 +81,7 @@ Scene furnace_scene(double tilt_deg, World world, float radiance) {
   Scene scene = import_gltf(gltf.write(test::scratch_dir() / "furnace.gltf"), diagnostics);
   if (world == World::kBackground) scene.background = {radiance, radiance, radiance};
   if (world == World::kTexturedEmissiveBox) {
-    // A grey emissive texture (sRGB 128: 0.2158 of the factor), left to BSDF sampling.
+    // A grey emissive texture (sRGB 128: 0.2158 of the factor): light sampling must see it too.
     scene.images.push_back({"images[0]", {}, test::png(1, 1, {128, 128, 128, 255})});
     scene.materials.back().textures.emissive.image = 0;
   }
