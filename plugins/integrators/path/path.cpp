@@ -79,8 +79,8 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     const Vec3f wo_world = -Vec3f(ray.direction);
     if (fb::max_component(Rgb(hit.emission)) > 0.f) {
       const Rgb Le = emitted(m, hit, Vec3f(ray.direction));
-      // Emission light sampling does not know (hit.emitter == FB_NONE: textured emitters, see
-      // docs/plugins.md) is found by BSDF sampling alone, with full weight.
+      // Emission that light sampling does not know (hit.emitter == FB_NONE: the host registers
+      // every emissive triangle today, but the ABI allows it) counts with full weight.
       const float weight = depth == 0 || hit.emitter == FB_NONE
                                ? 1.f
                                : fb::power_heuristic(bsdf_pdf, api.light_pdf(ctx, previous, &hit));
