@@ -264,12 +264,7 @@ def main():
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    background = world.node_tree.nodes["Background"]
-    background.inputs["Color"].default_value = (*WORLD_RGB, 1.0)
-    background.inputs["Strength"].default_value = 0.0 if name.startswith("emission") else 1.0
-    scene.world = world
+    make_shot.new_world(scene, WORLD_RGB, 0.0 if name.startswith("emission") else 1.0)
 
     make_shot.configure_cycles(scene, SHOT)
     cycles = scene.cycles

@@ -216,16 +216,12 @@ def main():
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    world = bpy.data.worlds.new("World")
-    world.use_nodes = True
-    background = world.node_tree.nodes["Background"]
-    background.inputs["Color"].default_value = (*shot.world_colour, 1.0)
-    background.inputs["Strength"].default_value = shot.world_strength
+    background = make_shot.new_world(scene, shot.world_colour, shot.world_strength)
     if shot.sky:
-        texture = world.node_tree.nodes.new("ShaderNodeTexEnvironment")
+        tree = background.id_data
+        texture = tree.nodes.new("ShaderNodeTexEnvironment")
         texture.image = make_sky(os.path.join(out_dir, "sky.hdr"))
-        world.node_tree.links.new(texture.outputs["Color"], background.inputs["Color"])
-    scene.world = world
+        tree.links.new(texture.outputs["Color"], background.inputs["Color"])
 
     make_shot.configure_cycles(scene, shot)
     cycles = scene.cycles
