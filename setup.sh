@@ -14,7 +14,10 @@ packages=(g++ cmake ninja-build pkg-config
           libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libosd-dev)
 # Peers the tests render with (Blender's Cycles and glTF exporter), the test drivers' Python,
 # and a second compiler that builds an out-of-tree plugin against the installed SDK.
-[ "$mode" = test ] && packages+=(blender python3 python3-numpy clang npm)
+[ "$mode" = test ] && packages+=(blender python3 python3-numpy clang)
+# npm only when the machine has none: a Node.js from another Debian source (nodesource's `nodejs`,
+# which ships its own npm) conflicts with Debian's `npm` package.
+[ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
