@@ -5,7 +5,8 @@
 
 namespace fb {
 
-Scene import_scene(const std::filesystem::path& file, Diagnostics& diagnostics) {
+Scene import_scene(const std::filesystem::path& file, const ImportOptions& /*options*/,
+                   Diagnostics& diagnostics) {
   const std::string ext = file.extension().string();
   if (ext == ".gltf" || ext == ".glb") return import_gltf(file, diagnostics);
   throw UsageError("'" + file.string() + "': unknown scene type '" + ext +

@@ -1,14 +1,31 @@
 // The one entry the front end uses: picks the importer by file extension.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "core/scene/scene.h"
 #include "core/util/diagnostics.h"
 
 namespace fb {
 
+// What a scene's own language may ask of the render before the scene exists: POV-Ray scenes read
+// image_width/image_height, clock and frame_number, and include files from a library path
+// (POV-Ray's +W/+H, +K and +L). glTF files ignore all of it.
+struct ImportOptions {
+  std::optional<std::pair<uint32_t, uint32_t>> resolution;  // as typed; none: the scene's default
+  double clock = 0;
+  double frame = 0;
+  // Folders searched for #include after the scene's own; none given: POV-Ray's standard include
+  // folder when povray-includes is installed (docs/pov.md "The language").
+  std::vector<std::filesystem::path> library_paths;
+};
+
 // Throws UsageError for an unknown extension, InputError for a file that cannot be read.
-Scene import_scene(const std::filesystem::path& file, Diagnostics& diagnostics);
+Scene import_scene(const std::filesystem::path& file, const ImportOptions& options,
+                   Diagnostics& diagnostics);
 
 }  // namespace fb

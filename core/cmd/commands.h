@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/render/render_job.h"
+#include "importers/import_scene.h"
 
 namespace fb {
 
@@ -25,11 +26,25 @@ struct RenderCommand {
   unsigned threads = 0;  // 0: all cores
   bool quiet = false;
   RenderOptions options;
+  ImportOptions import;  // its resolution is filled from --res by run_render
 };
+
+// A filmback-made scene file from any scene filmback reads (docs/cli.md "convert").
+struct ConvertCommand {
+  std::filesystem::path input, output;
+  std::string resolution;     // "WxH": what a POV-Ray scene's image_width/image_height read
+  double tolerance_m = 1e-3;  // chord error of tessellated analytic shapes
+  ImportOptions import;
+};
+
+// "WxH" as typed after --res, each side 1..32768 and at most 2^28 pixels (UsageError).
+std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text);
 
 int run_render(RenderCommand& command);
 // `camera`: list only that camera (a UsageError naming the cameras there are when absent).
-int run_info(const std::filesystem::path& scene, const std::optional<std::string>& camera);
+int run_info(const std::filesystem::path& scene, const ImportOptions& options,
+             const std::optional<std::string>& camera);
+int run_convert(ConvertCommand& command);
 int run_plugins();
 
 }  // namespace fb

@@ -114,9 +114,10 @@ const char* light_type(LightType t) {
 
 }  // namespace
 
-int run_info(const std::filesystem::path& file, const std::optional<std::string>& only_camera) {
+int run_info(const std::filesystem::path& file, const ImportOptions& options,
+             const std::optional<std::string>& only_camera) {
   Diagnostics diagnostics;
-  const Scene scene = import_scene(file, diagnostics);
+  const Scene scene = import_scene(file, options, diagnostics);
   diagnostics.print(std::cerr);
   if (only_camera) {
     print_camera(find_camera(scene, *only_camera), scene.settings);

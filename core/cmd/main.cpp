@@ -1,4 +1,4 @@
-// filmback's command-line front end: `render`, `info`, `plugins` (docs/cli.md).
+// filmback's command-line front end: `render`, `info`, `convert`, `plugins` (docs/cli.md).
 #include <CLI/CLI.hpp>
 #include <optional>
 
@@ -7,13 +7,25 @@
 #include "core/cmd/commands.h"
 #include "core/util/error.h"
 
+namespace {
+
+// What a POV-Ray scene asks of the render while it is read (POV-Ray's +L and +K).
+void add_import_options(CLI::App* command, fb::ImportOptions& options) {
+  command->add_option("-L,--library-path", options.library_paths,
+                      "POV-Ray: folder searched for #include files (repeatable; default: "
+                      "POV-Ray's standard include folder when installed)");
+  command->add_option("--clock", options.clock, "POV-Ray: the value of `clock` (default 0)");
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"filmback: a physically based renderer that keeps the camera of the shot"};
   app.require_subcommand(1);
 
   fb::RenderCommand render;
   CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR and/or PNG");
-  render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb)")->required();
+  render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb, .pov)")->required();
   render_cmd->add_option("-o,--output", render.outputs, "output image, .exr or .png (repeatable)")
       ->required();
   render_cmd
@@ -70,13 +82,33 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");
   render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
+  add_import_options(render_cmd, render.import);
 
   std::filesystem::path info_scene;
   CLI::App* info_cmd =
       app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
-  info_cmd->add_option("scene", info_scene, "scene file (.gltf, .glb)")->required();
+  info_cmd->add_option("scene", info_scene, "scene file (.gltf, .glb, .pov)")->required();
   std::optional<std::string> info_camera;
   info_cmd->add_option("--camera", info_camera, "list only the camera of this name");
+  std::string info_resolution;
+  info_cmd->add_option("--res", info_resolution,
+                       "image size WxH the camera is described for (POV-Ray: image_width/height)");
+  fb::ImportOptions info_import;
+  add_import_options(info_cmd, info_import);
+
+  fb::ConvertCommand convert;
+  CLI::App* convert_cmd =
+      app.add_subcommand("convert", "write a scene as glTF 2.0 (analytic shapes tessellated)");
+  convert_cmd->add_option("input", convert.input, "scene file (.pov, .gltf, .glb)")->required();
+  convert_cmd->add_option("output", convert.output, "glTF file to write (.gltf)")->required();
+  convert_cmd->add_option("--res", convert.resolution,
+                          "image size WxH (POV-Ray: image_width/height; default 800x600)");
+  convert_cmd
+      ->add_option("--tolerance", convert.tolerance_m,
+                   "largest distance between an analytic surface and its triangles, m "
+                   "(default 0.001)")
+      ->check(CLI::Range(1e-6, 1e3));
+  add_import_options(convert_cmd, convert.import);
 
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list every plugin found, with its parameters");
@@ -91,7 +123,11 @@ int main(int argc, char** argv) {
   }
   try {
     if (render_cmd->parsed()) return fb::run_render(render);
-    if (info_cmd->parsed()) return fb::run_info(info_scene, info_camera);
+    if (info_cmd->parsed()) {
+      if (!info_resolution.empty()) info_import.resolution = fb::parse_resolution(info_resolution);
+      return fb::run_info(info_scene, info_import, info_camera);
+    }
+    if (convert_cmd->parsed()) return fb::run_convert(convert);
     if (plugins_cmd->parsed()) return fb::run_plugins();
   } catch (const fb::UsageError& e) {
     std::cerr << "filmback: error: " << e.what() << '\n';

@@ -28,17 +28,6 @@ uint32_t parse_side(std::string_view text, std::string_view whole) {
   return v;
 }
 
-void parse_resolution(const std::string& text, RenderOptions& options) {
-  const size_t x = text.find('x');
-  if (x == std::string::npos)
-    throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
-  options.width = parse_side(std::string_view(text).substr(0, x), text);
-  options.height = parse_side(std::string_view(text).substr(x + 1), text);
-  if (const uint64_t pixels = uint64_t(*options.width) * *options.height; pixels > kMaxPixels)
-    throw UsageError("--res '" + text + "': " + std::to_string(pixels) +
-                     " pixels, expected at most " + std::to_string(kMaxPixels));
-}
-
 // Same syntax and checks as an rgb plugin parameter: one grey value, or r,g,b.
 Rgb parse_background(const std::string& text) {
   const fb_param_desc desc{"background", FB_PARAM_RGB, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL, ""};
@@ -126,6 +115,18 @@ void parse_physical(const RenderCommand& c, RenderOptions& o) {
 
 }  // namespace
 
+std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text) {
+  const size_t x = text.find('x');
+  if (x == std::string::npos)
+    throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
+  const uint32_t width = parse_side(std::string_view(text).substr(0, x), text);
+  const uint32_t height = parse_side(std::string_view(text).substr(x + 1), text);
+  if (const uint64_t pixels = uint64_t(width) * height; pixels > kMaxPixels)
+    throw UsageError("--res '" + text + "': " + std::to_string(pixels) +
+                     " pixels, expected at most " + std::to_string(kMaxPixels));
+  return {width, height};
+}
+
 int run_render(RenderCommand& c) {
   for (size_t i = 0; i < c.outputs.size(); ++i) {
     const std::filesystem::path& out = c.outputs[i];
@@ -142,7 +143,10 @@ int run_render(RenderCommand& c) {
     if (std::filesystem::is_directory(out))
       throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");
   }
-  if (!c.resolution.empty()) parse_resolution(c.resolution, c.options);
+  if (!c.resolution.empty()) {
+    const auto [width, height] = parse_resolution(c.resolution);
+    c.options.width = width, c.options.height = height;
+  }
   parse_physical(c, c.options);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
@@ -150,7 +154,10 @@ int run_render(RenderCommand& c) {
   c.options.show_progress = !c.quiet;
 
   Diagnostics diagnostics;
-  const Scene scene = import_scene(c.scene, diagnostics);
+  c.import.resolution.reset();
+  if (c.options.width) c.import.resolution = {*c.options.width, *c.options.height};
+  if (c.options.frame) c.import.frame = *c.options.frame;
+  const Scene scene = import_scene(c.scene, c.import, diagnostics);
   diagnostics.print(std::cerr);
 
   std::optional<tbb::global_control> threads;

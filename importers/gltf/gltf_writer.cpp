@@ -1,0 +1,316 @@
+#include "importers/gltf/gltf_writer.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+namespace fs = std::filesystem;
+using tinygltf::Value;
+
+// Blender's exporter's PBR_WATTS_TO_LUMENS, which importers/gltf/gltf_lights.cpp divides by.
+constexpr double kLumensPerWatt = 683;
+
+Value number(double v) {
+  return Value(v);
+}
+Value numbers(std::initializer_list<double> values) {
+  Value::Array array;
+  for (double v : values)
+    array.emplace_back(v);
+  return Value(std::move(array));
+}
+Value rgb(Rgb c) {
+  return numbers({c.x, c.y, c.z});
+}
+
+// Appends `bytes` to the one buffer, aligned to 4 bytes; returns its buffer view.
+int add_view(tinygltf::Model& model, const void* bytes, size_t size, int target) {
+  std::vector<unsigned char>& data = model.buffers[0].data;
+  data.resize((data.size() + 3) & ~size_t(3));
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = data.size();
+  view.byteLength = size;
+  view.target = target;
+  data.insert(data.end(), static_cast<const unsigned char*>(bytes),
+              static_cast<const unsigned char*>(bytes) + size);
+  model.bufferViews.push_back(view);
+  return int(model.bufferViews.size() - 1);
+}
+
+int add_vec3_accessor(tinygltf::Model& model, const std::vector<Vec3f>& values, bool bounds) {
+  tinygltf::Accessor a;
+  a.bufferView =
+      add_view(model, values.data(), values.size() * sizeof(Vec3f), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.type = TINYGLTF_TYPE_VEC3;
+  a.count = values.size();
+  if (bounds) {  // glTF requires min and max on positions
+    Vec3f lo = values[0], hi = values[0];
+    for (const Vec3f& v : values)
+      lo = min(lo, v), hi = max(hi, v);
+    a.minValues = {lo.x, lo.y, lo.z};
+    a.maxValues = {hi.x, hi.y, hi.z};
+  }
+  model.accessors.push_back(a);
+  return int(model.accessors.size() - 1);
+}
+
+int add_mesh(tinygltf::Model& model, const TriangleMesh& mesh) {
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  primitive.material = int(mesh.material);
+  primitive.attributes["POSITION"] = add_vec3_accessor(model, mesh.positions, true);
+  if (!mesh.normals.empty())
+    primitive.attributes["NORMAL"] = add_vec3_accessor(model, mesh.normals, false);
+  tinygltf::Accessor indices;
+  indices.bufferView = add_view(model, mesh.indices.data(), mesh.indices.size() * 4,
+                                TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  indices.type = TINYGLTF_TYPE_SCALAR;
+  indices.count = mesh.indices.size();
+  model.accessors.push_back(indices);
+  primitive.indices = int(model.accessors.size() - 1);
+  tinygltf::Mesh out;
+  out.name = mesh.name;
+  out.primitives.push_back(primitive);
+  model.meshes.push_back(out);
+  return int(model.meshes.size() - 1);
+}
+
+tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
+  tinygltf::Material out;
+  out.name = m.name;
+  out.pbrMetallicRoughness.baseColorFactor = {m.base_color.x, m.base_color.y, m.base_color.z,
+                                              m.alpha};
+  out.pbrMetallicRoughness.metallicFactor = m.metallic;
+  out.pbrMetallicRoughness.roughnessFactor = m.roughness;
+  out.doubleSided = m.double_sided;
+  out.alphaMode = m.alpha_mode == AlphaMode::kMask    ? "MASK"
+                  : m.alpha_mode == AlphaMode::kBlend ? "BLEND"
+                                                      : "OPAQUE";
+  if (m.alpha_mode == AlphaMode::kMask) out.alphaCutoff = m.alpha_cutoff;
+  // glTF's emissiveFactor stops at 1: the rest goes to KHR_materials_emissive_strength.
+  const float strength = std::max(max_component(m.emission), 1.f);
+  out.emissiveFactor = {m.emission.x / strength, m.emission.y / strength, m.emission.z / strength};
+  if (strength > 1)
+    out.extensions["KHR_materials_emissive_strength"] =
+        Value(Value::Object{{"emissiveStrength", number(strength)}});
+  if (m.transmission > 0)
+    out.extensions["KHR_materials_transmission"] =
+        Value(Value::Object{{"transmissionFactor", number(m.transmission)}});
+  if (m.ior != 1.5f)
+    out.extensions["KHR_materials_ior"] = Value(Value::Object{{"ior", number(m.ior)}});
+  if (m.specular != 1.f)
+    out.extensions["KHR_materials_specular"] =
+        Value(Value::Object{{"specularFactor", number(m.specular)}});
+  if (m.textures.any())
+    diagnostics.warn("material '" + m.name + "': its textures are not written by convert");
+  if (m.is_light)
+    diagnostics.warn("material '" + m.name +
+                     "': an area light's emitter is written as a visible emissive surface");
+  return out;
+}
+
+// Column-major 4x4, as glTF's node "matrix".
+std::vector<double> column_major(const Transform& t) {
+  std::vector<double> m(16);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      m[size_t(c * 4 + r)] = t(r, c);
+  return m;
+}
+
+// KHR_lights_punctual for any viewer, and the exact light in our extension (gltf_lights.cpp).
+void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light) {
+  constexpr double kPi = std::numbers::pi;
+  tinygltf::Light out;
+  out.name = light.name;
+  const double peak = double(std::max(max_component(light.intensity), 0.f));
+  const Rgb colour = peak > 0 ? light.intensity * float(1 / peak) : Rgb(1.f, 1.f, 1.f);
+  out.color = {colour.x, colour.y, colour.z};
+  out.intensity = peak * kLumensPerWatt;
+  Value::Object ours{{"color", rgb(colour)}};
+  switch (light.type) {
+    case LightType::kPoint:
+    case LightType::kSpot:
+      out.type = light.type == LightType::kPoint ? "point" : "spot";
+      ours["type"] = Value(std::string(light.type == LightType::kPoint ? "POINT" : "SPOT"));
+      ours["energy_w"] = number(peak * 4 * kPi);
+      ours["radius_m"] = number(light.radius_m);
+      out.spot.innerConeAngle = light.spot_inner_angle_rad;
+      out.spot.outerConeAngle = light.spot_outer_angle_rad;
+      if (light.type == LightType::kSpot) {
+        ours["spot_size_rad"] = number(2 * light.spot_outer_angle_rad);
+        ours["spot_blend"] = number(light.spot_blend);
+      }
+      break;
+    case LightType::kDirectional:
+      out.type = "directional";
+      ours["type"] = Value(std::string("SUN"));
+      ours["energy_w"] = number(peak);
+      ours["angle_rad"] = number(light.angle_rad);
+      break;
+  }
+  model.lights.push_back(out);
+  node.extensions["KHR_lights_punctual"] =
+      Value(Value::Object{{"light", Value(int(model.lights.size() - 1))}});
+  // A spot with glTF's own falloff is exact in KHR_lights_punctual alone.
+  if (light.type != LightType::kSpot || light.spot_falloff == SpotFalloff::kCycles)
+    node.extensions["FILMBACK_blender"] = Value(Value::Object{{"light", Value(std::move(ours))}});
+}
+
+void add_camera(tinygltf::Model& model, tinygltf::Node& node, const SceneCamera& camera,
+                uint32_t width_px, uint32_t height_px) {
+  const PhysicalCamera& p = camera.physical;
+  tinygltf::Camera out;
+  out.name = camera.name;
+  const CameraQuantities q = describe_camera(p, width_px, height_px);
+  const double aspect = double(width_px) / height_px;
+  if (p.projection == FB_PROJECTION_ORTHOGRAPHIC) {
+    out.type = "orthographic";
+    const double half_width = p.ortho_scale_m / 2;
+    out.orthographic.xmag = q.horizontal_fit ? half_width : half_width * aspect;
+    out.orthographic.ymag = out.orthographic.xmag / aspect;
+    out.orthographic.znear = std::max(p.clip_near_m, 0.0);
+    out.orthographic.zfar = std::isfinite(p.clip_far_m) ? p.clip_far_m : 1e9;
+  } else {
+    out.type = "perspective";
+    out.perspective.yfov = q.vertical_fov_deg * std::numbers::pi / 180;
+    out.perspective.aspectRatio = aspect;
+    out.perspective.znear = p.clip_near_m;
+    if (std::isfinite(p.clip_far_m)) out.perspective.zfar = p.clip_far_m;
+  }
+  static const char* kFits[] = {"auto", "horizontal", "vertical"};
+  Value::Object ours{{"focal_length_mm", number(p.focal_length_mm)},
+                     {"sensor_width_mm", number(p.sensor_width_mm)},
+                     {"sensor_height_mm", number(p.sensor_height_mm)},
+                     {"sensor_fit", Value(std::string(kFits[p.sensor_fit % 3]))},
+                     {"shift_x", number(p.shift_x)},
+                     {"shift_y", number(p.shift_y)},
+                     {"clip_near_m", number(p.clip_near_m)},
+                     {"ortho_scale_m", number(p.ortho_scale_m)},
+                     {"aperture_blades", Value(int(p.aperture_blades))},
+                     {"aperture_rotation_rad", number(p.aperture_rotation_rad)},
+                     {"aperture_ratio", number(p.aperture_ratio)}};
+  if (std::isfinite(p.clip_far_m)) ours["clip_far_m"] = number(p.clip_far_m);
+  if (p.has_aperture()) ours["fstop"] = number(p.fstop);
+  if (std::isfinite(p.focus_distance_m)) ours["focus_distance_m"] = number(p.focus_distance_m);
+  out.extensions["FILMBACK_blender"] = Value(std::move(ours));
+  model.cameras.push_back(out);
+  node.camera = int(model.cameras.size() - 1);
+}
+
+Value::Object scene_settings(const Scene& scene, uint32_t width_px, uint32_t height_px) {
+  const ShotSettings& s = scene.settings;
+  Value::Object out{{"resolution_x_px", Value(int(width_px))},
+                    {"resolution_y_px", Value(int(height_px))},
+                    {"resolution_percentage", Value(100)},
+                    {"pixel_aspect_x", number(s.pixel_aspect.value_or(1.0))},
+                    {"pixel_aspect_y", number(1)},
+                    {"film_exposure", number(s.film_exposure)},
+                    {"world_color", rgb(scene.background)},
+                    {"world_strength", number(1)}};
+  if (s.fps) out["fps"] = number(*s.fps);
+  if (s.frame) out["frame"] = number(*s.frame);
+  return out;
+}
+
+void write_atomically(const fs::path& file, const std::string& text) {
+  const fs::path temporary = file.parent_path() / ("." + file.filename().string() + ".tmp");
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw InputError("'" + file.string() + "': could not be written (" + std::strerror(errno) +
+                       ")");
+    }
+  }
+  std::error_code ec;
+  fs::rename(temporary, file, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw InputError("'" + file.string() + "': could not be written (" + ec.message() + ")");
+  }
+}
+
+}  // namespace
+
+void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnostics) {
+  if (scene.environment)
+    diagnostics.warn("'" + file.string() + "': the world image '" + scene.environment->name +
+                     "' is not written; the world colour is");
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "filmback convert";
+  model.buffers.emplace_back();
+  for (const Material& m : scene.materials)
+    model.materials.push_back(material(m, diagnostics));
+  std::vector<int> mesh_of;
+  for (const TriangleMesh& mesh : scene.meshes)
+    mesh_of.push_back(add_mesh(model, mesh));
+
+  tinygltf::Scene root;
+  for (const MeshInstance& instance : scene.instances) {
+    tinygltf::Node node;
+    node.name = instance.node;
+    node.mesh = mesh_of[instance.mesh];
+    node.matrix = column_major(instance.world_from_object);
+    root.nodes.push_back(int(model.nodes.size()));
+    model.nodes.push_back(node);
+  }
+  for (const Light& light : scene.lights) {
+    tinygltf::Node node;
+    node.name = light.name;
+    node.matrix = column_major(light.world_from_light);
+    add_light(model, node, light);
+    root.nodes.push_back(int(model.nodes.size()));
+    model.nodes.push_back(node);
+  }
+  const uint32_t width = scene.settings.width_px.value_or(800);
+  const uint32_t height = scene.settings.height_px.value_or(600);
+  for (const SceneCamera& camera : scene.cameras) {
+    if (camera.world_from_camera.determinant3x3() < 0)
+      diagnostics.warn("camera '" + camera.name +
+                       "': a mirrored camera cannot be written to glTF; its image will be flipped");
+    tinygltf::Node node;
+    node.name = camera.name;
+    node.matrix = column_major(camera.world_from_camera);
+    add_camera(model, node, camera, width, height);
+    root.nodes.push_back(int(model.nodes.size()));
+    model.nodes.push_back(node);
+  }
+  root.extensions["FILMBACK_blender"] = Value(scene_settings(scene, width, height));
+  model.scenes.push_back(root);
+  model.defaultScene = 0;
+  if (!model.lights.empty()) model.extensionsUsed.push_back("KHR_lights_punctual");
+  model.extensionsUsed.push_back("FILMBACK_blender");
+  for (const char* ext : {"KHR_materials_emissive_strength", "KHR_materials_transmission",
+                          "KHR_materials_ior", "KHR_materials_specular"})
+    for (const tinygltf::Material& m : model.materials)
+      if (m.extensions.count(ext)) {
+        model.extensionsUsed.push_back(ext);
+        break;
+      }
+
+  std::ostringstream text;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, text, true, false))
+    throw InputError("'" + file.string() + "': the glTF writer failed");
+  write_atomically(file, text.str());
+}
+
+}  // namespace fb

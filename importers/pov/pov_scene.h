@@ -1,0 +1,212 @@
+// A POV-Ray scene as the SDL evaluator leaves it (importers/pov/sdl/): every directive, macro and
+// expression already evaluated, every #declare'd object copied in place, in POV-Ray's own
+// left-handed, +Y-up coordinates and units. The converters turn it into an fb::Scene:
+// pov_camera (the camera), pov_geometry (objects), pov_appearance (textures, lights, sky).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <filmback/vec.h>
+
+#include "core/math/transform.h"
+
+namespace fb::pov {
+
+// Where a statement starts: "file:line:column" in messages, with the include chain that led there.
+struct SourceLocation {
+  std::string file;  // as the user would find it: relative to the scene, or the library file
+  uint32_t line = 0, column = 0;
+  std::string text() const;  // "scene.pov:12:5"
+};
+
+// POV-Ray's row-vector matrices (p' = p M) held in column-vector form (p' = T p), so that
+// "A written before B" composes as B * A. Always in POV-Ray's coordinates.
+using Matrix = Transform;
+
+// A colour with POV-Ray's filter (coloured, refracting transparency) and transmit (plain
+// transparency) channels, as written (decoded by assumed_gamma in the converter, not here).
+struct Colour {
+  double r = 0, g = 0, b = 0, filter = 0, transmit = 0;
+};
+
+// ---- Appearance -------------------------------------------------------------------------------
+
+enum class Pattern {
+  kSolid,  // `colour` only
+  kChecker, kHexagon, kBrick,  // list patterns: `list` holds 2, 3, 2 entries
+  kGradient, kBozo, kSpotted, kGranite, kMarble, kWood, kAgate, kLeopard, kOnion, kRadial,
+  kSpiral1, kSpiral2, kWaves, kRipples, kWrinkles, kBumps, kDents, kCrackle, kCells,
+  kImageMap,  // not evaluated: the converter uses `average` (see pov_appearance)
+  kOther,     // a pattern the evaluator knows only by name (`name`); approximated by `average`
+};
+
+enum class Wave { kRamp, kTriangle, kSine, kScallop, kCubic, kPoly };
+
+struct ColourMapEntry {
+  double value = 0;  // in [0, 1]
+  Colour colour;
+};
+
+struct Pigment {
+  Pattern pattern = Pattern::kSolid;
+  std::string name;  // the pattern's keyword, for messages
+  Colour colour;     // kSolid; otherwise the pattern's average, as the parser estimates it
+  std::vector<ColourMapEntry> colour_map;  // value patterns; empty: POV-Ray's default grey ramp
+  std::vector<Pigment> list;               // list patterns (checker A, B ...)
+  Vec3d gradient{0, 1, 0};                 // kGradient's axis
+  Vec3d turbulence{0, 0, 0};
+  int octaves = 6;
+  double omega = 0.5, lambda = 2.0;
+  double frequency = 1, phase = 0;
+  Wave wave = Wave::kRamp;
+  double wave_exponent = 1;  // kPoly
+  Vec3d brick_size{8, 3, 4.5};
+  double mortar = 0.5;
+  // Pattern space from POV world space: the pigment's own transforms and every transform applied
+  // to the object after the pigment was attached, composed by the evaluator.
+  Matrix pattern_from_world;
+  SourceLocation where;
+};
+
+struct Finish {
+  Colour ambient{0.1, 0.1, 0.1};  // POV-Ray 3.7 defaults (the #default finish can change them)
+  Colour emission{0, 0, 0};
+  double diffuse = 0.6, brilliance = 1;
+  double specular = 0, roughness = 0.05;
+  double phong = 0, phong_size = 40;
+  Colour reflection_min{0, 0, 0}, reflection_max{0, 0, 0};
+  bool reflection_fresnel = false;
+  double reflection_metallic = 0;
+  double metallic = 0;
+  bool conserve_energy = false;
+};
+
+struct Interior {
+  double ior = 1;
+  double fade_distance = 0, fade_power = 0;
+  Colour fade_colour{0, 0, 0};
+};
+
+struct Texture {
+  Pigment pigment;
+  Finish finish;
+  bool has_normal = false;  // a `normal {}` perturbation was given (not rendered: reported)
+  SourceLocation where;
+};
+
+// ---- Objects ----------------------------------------------------------------------------------
+
+enum class Shape {
+  // analytic, parameters in object space
+  kSphere,    // centre a, radius r0
+  kBox,       // corners a, b
+  kPlane,     // normal a, distance r0: points p with dot(p, a) = r0; inside is dot < r0
+  kCylinder,  // base a, cap b, radius r0; open: no end caps
+  kCone,      // base a radius r0, cap b radius r1; open
+  kTorus,     // major r0, minor r1, in the XZ plane about the origin
+  kDisc,      // centre a, normal b, radius r0, hole radius r1
+  // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
+  kMesh,
+  // constructive solid geometry over `children`
+  kUnion, kMerge, kIntersection, kDifference,
+};
+
+struct Object {
+  Shape shape = Shape::kSphere;
+  std::string keyword;  // as written ("smooth_triangle", "mesh2", ...), for messages
+  SourceLocation where;
+  Vec3d a{0, 0, 0}, b{0, 0, 0};
+  double r0 = 0, r1 = 0;
+  bool open = false;
+  // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
+  // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
+  std::vector<Vec3d> vertices, normals;
+  std::vector<uint32_t> indices;
+  std::vector<uint32_t> triangle_textures;
+  std::vector<Texture> textures;
+  std::vector<Object> children;  // CSG; the first is the base of a difference
+  std::vector<Object> clipped_by;
+  // POV world from object, with every enclosing CSG's transforms folded in: a CSG node's own
+  // transforms are pushed into its children, so leaves carry the whole placement.
+  Matrix world_from_object;
+  bool inverse = false;
+  bool hollow = false, no_shadow = false, no_image = false, no_reflection = false;
+  bool double_illuminate = false;
+  // Every leaf ends up with a texture: its own, else the enclosing CSG's, else the #default one.
+  Texture texture;
+  std::optional<Interior> interior;
+};
+
+// ---- Lights, camera, environment ---------------------------------------------------------------
+
+enum class LightKind { kPoint, kSpot, kCylinder, kParallel };
+
+struct LightSource {
+  LightKind kind = LightKind::kPoint;
+  SourceLocation where;
+  Vec3d location{0, 0, 0};  // POV world space, transforms applied
+  Colour colour{1, 1, 1};
+  Vec3d point_at{0, 0, 1};
+  double radius_deg = 30, falloff_deg = 45, tightness = 0;  // kSpot, kCylinder
+  // area_light: a grid of size1 x size2 point lights spread over axis1 and axis2
+  bool area = false;
+  Vec3d axis1{0, 0, 0}, axis2{0, 0, 0};
+  int size1 = 0, size2 = 0;
+  bool circular = false, orient = false;
+  double fade_distance = 0, fade_power = 0;  // 0: no fading (POV-Ray's default)
+  bool shadowless = false;
+  bool has_looks_like = false;
+};
+
+enum class CameraType {
+  kPerspective, kOrthographic, kFisheye, kUltraWideAngle, kOmnimax, kPanoramic, kCylinder,
+  kSpherical, kMeshCamera
+};
+
+// A camera statement as written; pov_camera applies POV-Ray's fixed evaluation order
+// (docs/pov.md "Camera"). Keywords not given keep POV-Ray's defaults here.
+struct CameraStatement {
+  CameraType type = CameraType::kPerspective;
+  int cylinder_type = 0;
+  SourceLocation where;
+  Vec3d location{0, 0, 0}, direction{0, 0, 1}, right{1.33, 0, 0}, up{0, 1, 0}, sky{0, 1, 0};
+  bool right_given = false, up_given = false;
+  std::optional<Vec3d> look_at;
+  std::optional<double> angle_deg;  // horizontal field of view
+  std::optional<double> angle_v_deg;  // the second angle of `spherical`
+  std::optional<Vec3d> focal_point;
+  double aperture = 0;
+  int blur_samples = 0;
+  Matrix transform;  // camera transforms in the order written
+  bool has_normal = false;
+};
+
+// sky_sphere: pigments layered outside-in, evaluated on the unit direction.
+struct SkySphere {
+  std::vector<Pigment> pigments;
+  Matrix transform;
+};
+
+struct Unsupported {
+  std::string feature;  // "media", "photons", "isosurface", ...
+  SourceLocation where;
+};
+
+struct Scene {
+  std::optional<CameraStatement> camera;  // the last one executed; none: POV-Ray's default
+  std::vector<Object> objects;
+  std::vector<LightSource> lights;
+  std::optional<Colour> background;
+  std::optional<SkySphere> sky_sphere;
+  std::optional<double> assumed_gamma;
+  Colour ambient_light{1, 1, 1};
+  double version = 3.7;
+  // Features met but not rendered, in the order met; the converters report each once per scene.
+  std::vector<Unsupported> unsupported;
+  std::vector<std::string> warnings;  // #warning and the evaluator's own, with file:line:column
+};
+
+}  // namespace fb::pov
