@@ -471,6 +471,29 @@ class CliTest(unittest.TestCase):
         self.assertEqual((self.out / "keep.exr").read_text(), "the previous render")
         self.assertEqual(sorted(os.listdir(self.out)), ["keep.exr"])
 
+    # --- convert --------------------------------------------------------------------------------
+
+    def test_convert_then_render_gives_the_same_image(self):
+        """Everything the default scene holds survives the writer: the two renders agree to 1e-6."""
+        original = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
+        converted = self.dir / "converted.gltf"
+        result = self.run_cli("convert", original, converted)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["converted.gltf", "out"])  # no temporary
+        options = ["--res", "48x32", "--spp", "4", "-q"]
+        for scene, name in ((original, "a.exr"), (converted, "b.exr")):
+            result = self.render(scene, *options, outputs=(name,))
+            self.assertEqual(result.returncode, 0, result.stderr)
+        diff = subprocess.run(["oiiotool", self.out / "a.exr", self.out / "b.exr", "--diff",
+                               "--fail", "1e-6"], capture_output=True, text=True)
+        self.assertEqual(diff.returncode, 0, diff.stdout + diff.stderr)
+
+    def test_convert_writes_only_gltf(self):
+        scene = self.scene(triangle_scene())
+        result = self.run_cli("convert", scene, self.out / "scene.obj")
+        self.assert_error(result, USAGE, "output '%s': " % (self.out / "scene.obj"),
+                          "expected a .gltf file name")
+
     def test_output_is_a_folder(self):
         scene = self.scene(triangle_scene())
         (self.out / "b.png").mkdir()
