@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "tests/blender/blender_shot.h"
-#include "tests/blender/blobs.h"
+#include "tests/support/blobs.h"
 
 namespace fb::test {
 namespace {

@@ -16,7 +16,7 @@
 
 #include "core/subdiv/refine_scene.h"
 #include "tests/blender/blender_shot.h"
-#include "tests/blender/blobs.h"
+#include "tests/support/blobs.h"
 
 namespace fb::test {
 namespace {

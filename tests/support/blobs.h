@@ -1,6 +1,6 @@
 // Bright blobs on a black image: connected components of the pixels whose R+G+B exceeds a
 // threshold, with their flux-weighted centroid, spread and orientation. The tests against Blender
-// measure each render with them.
+// and against POV-Ray measure each render with them.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "tests/blender/blobs.h"
+#include "tests/support/blobs.h"
 
 #include <gtest/gtest.h>
 
