@@ -1,0 +1,365 @@
+// POV-Ray's camera rules (importers/pov/pov_camera.h) one by one, and the converted camera's rays
+// through the camera plugins against POV-Ray's own ray construction. The renders that confirm
+// these rules against POV-Ray itself are tests/pov/pov_camera_alignment_test.cpp.
+#include "importers/pov/pov_camera.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <filmback/camera_projection.h>
+
+#include "core/util/error.h"
+#include "support/pov_rays.h"
+
+namespace fb::pov {
+namespace {
+
+constexpr double kDegrees = 180 / std::numbers::pi;
+
+void expect_near(Vec3d a, Vec3d b, double tolerance, const char* what) {
+  EXPECT_NEAR(a.x, b.x, tolerance) << what;
+  EXPECT_NEAR(a.y, b.y, tolerance) << what;
+  EXPECT_NEAR(a.z, b.z, tolerance) << what;
+}
+
+PovCameraVectors evaluate(const CameraStatement& s) {
+  Diagnostics diagnostics;
+  return evaluate_camera(s, diagnostics);
+}
+
+// Every converted camera must give POV-Ray's rays: same origin, same direction, for raster points
+// over the whole image (corners, centre, off-centre), through the plugin filmback renders with.
+void expect_povray_rays(const CameraStatement& s, uint32_t width, uint32_t height,
+                        double tolerance = 2e-6) {
+  Diagnostics diagnostics;
+  const PovCameraVectors vectors = evaluate_camera(s, diagnostics);
+  const PovCamera camera = convert_camera(s, width, height, diagnostics);
+  const auto plugin = test::make_camera_plugin(camera, width, height);
+  for (const auto& [x, y] : {std::pair{0.0, 0.0},
+                             {double(width), double(height)},
+                             {double(width), 0.0},
+                             {width / 2.0, height / 2.0},
+                             {17.25, 3.5}}) {
+    const test::WorldRay pov = test::pov_ray(vectors, x, y, width, height);
+    // Lens (0.5, 0.5) is the centre of the thin lens: its chief ray.
+    const test::WorldRay ours =
+        test::filmback_ray(*plugin, camera.camera, {float(x), float(y), 0.5f, 0.5f, 0.f});
+    const double scale = std::max(1.0, length(pov.origin));
+    expect_near(ours.origin, pov.origin, tolerance * scale, "origin");
+    expect_near(ours.direction, pov.direction, tolerance, "direction");
+  }
+}
+
+TEST(PovCamera, DefaultCameraHasRight133) {
+  const CameraStatement defaults;
+  const PovCameraVectors v = evaluate(defaults);
+  expect_near(v.location, {0, 0, 0}, 0, "location");
+  expect_near(v.direction, {0, 0, 1}, 0, "direction");
+  expect_near(v.right, {1.33, 0, 0}, 0, "right");
+  expect_near(v.up, {0, 1, 0}, 0, "up");
+  EXPECT_FALSE(v.focal_blur);
+
+  Diagnostics diagnostics;
+  const PovCamera c = convert_camera(std::nullopt, 160, 120, diagnostics);
+  EXPECT_EQ(diagnostics.count(), 0u);
+  // 1.33 wide, 1 high at distance 1: 67.248 degrees, not 4/3's 67.380; pixels 0.9975 wide at 4:3.
+  const CameraQuantities q = describe_camera(c.camera.physical, 160, 120);
+  EXPECT_NEAR(q.horizontal_fov_deg, 2 * std::atan(0.665) * kDegrees, 1e-9);
+  EXPECT_NEAR(q.horizontal_fov_deg, 67.248, 5e-4);
+  EXPECT_NEAR(c.pixel_aspect, 1.33 * 120 / 160, 1e-12);
+  const ViewPlane plane =
+      view_plane(make_camera_setup(c.camera.physical, 160, 120, c.pixel_aspect));
+  EXPECT_NEAR(plane.extent_x, 1.33, 1e-12);
+  EXPECT_NEAR(plane.extent_y, 1.0, 1e-12);
+  // POV-Ray looks down +z of its left-handed space: our -z, so the camera is not rotated.
+  expect_near(c.camera.world_from_camera.vector({0, 0, -1}), {0, 0, -1}, 1e-15, "view axis");
+  expect_near(c.camera.world_from_camera.vector({1, 0, 0}), {1, 0, 0}, 1e-15, "right axis");
+  expect_povray_rays(defaults, 160, 120);
+}
+
+TEST(PovCamera, AngleRescalesDirectionFromTheLengthOfRight) {
+  for (const double angle : {30.0, 60.0, 100.0}) {
+    CameraStatement s;
+    s.angle_deg = angle;
+    s.direction = {0, 0, 3};  // only its direction survives
+    s.up = {0, 5, 0};         // plays no part
+    s.right = {2, 0, 0};
+    const PovCameraVectors v = evaluate(s);
+    EXPECT_NEAR(length(v.direction), 2 / (2 * std::tan(angle / 2 / kDegrees)), 1e-12) << angle;
+    EXPECT_NEAR(v.focal_distance, length(v.direction), 1e-12);  // Direction_Length follows angle
+    Diagnostics diagnostics;
+    const CameraQuantities q =
+        describe_camera(convert_camera(s, 200, 100, diagnostics).camera.physical, 200, 100);
+    EXPECT_NEAR(q.horizontal_fov_deg, angle, 1e-9);
+    expect_povray_rays(s, 200, 100);
+  }
+}
+
+TEST(PovCamera, AngleOf180OrMoreIsAnError) {
+  CameraStatement s;
+  s.where = {"scene.pov", 4, 10};
+  s.angle_deg = 180;
+  Diagnostics diagnostics;
+  try {
+    evaluate_camera(s, diagnostics);
+    FAIL() << "angle 180 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.pov: 4:10: viewing angle"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(PovCamera, LookAtKeepsLengthsAndRebuildsTheBasisFromSky) {
+  CameraStatement s;
+  s.location = {0, 0, -10};
+  s.look_at = Vec3d{1, 2, 3};
+  s.direction = {0, 0, 2};
+  s.right = {1.6, 0, 0};
+  s.up = {0, 1.2, 0};
+  const PovCameraVectors v = evaluate(s);
+  const Vec3d d = normalize(Vec3d{1, 2, 13});
+  const Vec3d r = normalize(cross(Vec3d{0, 1, 0}, d));
+  expect_near(v.direction, d * 2, 1e-12, "direction");
+  expect_near(v.right, r * 1.6, 1e-12, "right");
+  expect_near(v.up, cross(d, r) * 1.2, 1e-12, "up");
+  EXPECT_NEAR(v.right.y, 0, 1e-15);  // the default sky keeps the horizon level
+  expect_povray_rays(s, 160, 120);
+
+  s.sky = {1, 1, 0};  // a tilted sky rolls the camera
+  const PovCameraVectors tilted = evaluate(s);
+  EXPECT_GT(std::abs(tilted.right.y), 0.1);
+  expect_near(tilted.right, normalize(cross(s.sky, d)) * 1.6, 1e-12, "tilted right");
+  expect_povray_rays(s, 160, 120);
+}
+
+TEST(PovCamera, LookAtAtTheLocationIsAnError) {
+  CameraStatement s;
+  s.location = {1, 2, 3};
+  s.look_at = Vec3d{1, 2, 3};
+  EXPECT_THROW(evaluate(s), InputError);
+}
+
+TEST(PovCamera, LookingAlongSkyKeepsTheGivenRight) {
+  CameraStatement s;
+  s.location = {0, 10, 0};
+  s.look_at = Vec3d{0, 0, 0};
+  Diagnostics diagnostics;
+  const PovCameraVectors v = evaluate_camera(s, diagnostics);
+  EXPECT_EQ(diagnostics.count(), 1u);
+  expect_near(v.right, {1.33, 0, 0}, 1e-12, "right");
+  // up = direction x right: +z at the top of the image (pitfall 6 of the notes).
+  expect_near(normalize(v.up), {0, 0, 1}, 1e-12, "up");
+  expect_povray_rays(s, 160, 120);
+}
+
+TEST(PovCamera, HandednessDecidesTheMirror) {
+  // cornell.pov: a negative right without look_at mirrors the image.
+  CameraStatement mirrored;
+  mirrored.right = {-1.33, 0, 0};
+  Diagnostics diagnostics;
+  const PovCamera m = convert_camera(mirrored, 160, 120, diagnostics);
+  EXPECT_LT(m.camera.world_from_camera.determinant3x3(), 0);
+  expect_povray_rays(mirrored, 160, 120);
+
+  // benchmark.pov: direction y, sky z, up z, right -x: (up x direction) . right > 0, so with
+  // look_at it is not mirrored, though right is negative.
+  CameraStatement benchmark;
+  benchmark.direction = {0, 1, 0};
+  benchmark.sky = {0, 0, 1};
+  benchmark.up = {0, 0, 1};
+  benchmark.right = {-4.0 / 3, 0, 0};
+  benchmark.location = {0.5, -4, 3};
+  benchmark.look_at = Vec3d{0, 0, 0.5};
+  EXPECT_GT(dot(cross(benchmark.up, benchmark.direction), benchmark.right), 0);
+  const PovCamera b = convert_camera(benchmark, 160, 120, diagnostics);
+  EXPECT_GT(b.camera.world_from_camera.determinant3x3(), 0);
+  expect_povray_rays(benchmark, 160, 120);
+
+  // The same with right +x has negative handedness: look_at mirrors it.
+  benchmark.right = {4.0 / 3, 0, 0};
+  EXPECT_LT(
+      convert_camera(benchmark, 160, 120, diagnostics).camera.world_from_camera.determinant3x3(),
+      0);
+  expect_povray_rays(benchmark, 160, 120);
+  EXPECT_EQ(diagnostics.count(), 0u);
+}
+
+TEST(PovCamera, MismatchedAspectGivesNonSquarePixels) {
+  CameraStatement s;
+  s.right = {1, 0, 0};  // a square view ...
+  s.up = {0, 1, 0};
+  Diagnostics diagnostics;
+  const PovCamera c = convert_camera(s, 200, 100, diagnostics);  // ... on a 2:1 image
+  EXPECT_NEAR(c.pixel_aspect, 0.5, 1e-12);
+  const ViewPlane plane = view_plane(make_camera_setup(c.camera.physical, 200, 100, 0.5));
+  EXPECT_NEAR(plane.extent_x, 1, 1e-12);
+  EXPECT_NEAR(plane.extent_y, 1, 1e-12);
+  expect_povray_rays(s, 200, 100);
+
+  // Portrait: right x*image_width/image_height keeps pixels square and angle horizontal.
+  s.right = {90.0 / 160, 0, 0};
+  s.angle_deg = 50;
+  const PovCamera portrait = convert_camera(s, 90, 160, diagnostics);
+  EXPECT_NEAR(portrait.pixel_aspect, 1, 1e-12);
+  EXPECT_NEAR(describe_camera(portrait.camera.physical, 90, 160).horizontal_fov_deg, 50, 1e-9);
+  expect_povray_rays(s, 90, 160);
+}
+
+TEST(PovCamera, DirectionNotPerpendicularBecomesALensShift) {
+  CameraStatement s;
+  s.direction = {0.2, -0.1, 1};
+  Diagnostics diagnostics;
+  const PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  EXPECT_EQ(diagnostics.count(), 0u) << "exact: no warning";
+  EXPECT_NEAR(c.camera.physical.shift_x, 0.2 / 1.33, 1e-12);
+  EXPECT_NEAR(c.camera.physical.shift_y, -0.1 / 1.33, 1e-12);
+  expect_povray_rays(s, 160, 120);
+}
+
+TEST(PovCamera, RightNotPerpendicularToUpIsWarnedWithItsError) {
+  CameraStatement s;
+  s.up = {0.1, 1, 0};
+  Diagnostics diagnostics;
+  const PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  ASSERT_EQ(diagnostics.count(), 1u);
+  // 0.5 * 0.1 / 1.33 of the width: 6.015 px at the top and bottom edges.
+  EXPECT_NE(diagnostics.messages()[0].find("6.01504 px"), std::string::npos)
+      << diagnostics.messages()[0];
+  // The error is what the message says: the rays of the top edge's centre are 6 px apart.
+  const PovCameraVectors v = evaluate(s);
+  const auto plugin = test::make_camera_plugin(c, 160, 120);
+  const test::WorldRay pov = test::pov_ray(v, 80, 0, 160, 120);
+  const test::WorldRay ours = test::filmback_ray(*plugin, c.camera, {80.f, 0.f, 0.f, 0.f, 0.f});
+  // Where POV-Ray's ray crosses the view plane z = -1 (world), in pixels of 1.33 / 160 m.
+  const double pov_x = pov.direction.x / -pov.direction.z,
+               our_x = ours.direction.x / -ours.direction.z;
+  EXPECT_NEAR(std::abs(pov_x - our_x) * 160 / 1.33, 6.01504, 1e-4);
+}
+
+TEST(PovCamera, TransformsApplyLastWhateverTheirPlace) {
+  CameraStatement s;
+  s.location = {0, 1, -5};
+  s.look_at = Vec3d{0, 1, 0};
+  s.angle_deg = 60;
+  s.transform = Transform::translate({2, 0, 0}) * test::pov_rotate({0, 30, 0});
+  const PovCameraVectors v = evaluate(s);
+  CameraStatement plain = s;
+  plain.transform = Transform();
+  const PovCameraVectors u = evaluate(plain);
+  expect_near(v.location, s.transform.point(u.location), 1e-12, "location");
+  expect_near(v.direction, s.transform.vector(u.direction), 1e-12, "direction");
+  expect_near(v.right, s.transform.vector(u.right), 1e-12, "right");
+  // rotate y*30 maps +z towards +x (left-handed rotation seen from above): the view turns right.
+  EXPECT_GT(v.direction.x, 0);
+  expect_povray_rays(s, 160, 120);
+
+  // A non-uniform scale changes the field of view: right grows, direction does not.
+  s.transform = Transform::scale({2, 1, 1});
+  plain.location = {0, 0, -5};
+  plain.look_at = Vec3d{0, 0, 0};
+  plain.transform = s.transform;
+  const PovCameraVectors scaled = evaluate(plain);
+  EXPECT_NEAR(length(scaled.right), 2 * 1.33, 1e-12);
+  expect_povray_rays(plain, 160, 120);
+}
+
+TEST(PovCamera, OrthographicSizes) {
+  CameraStatement s;
+  s.type = CameraType::kOrthographic;
+  s.location = {0, 0, -10};
+  s.look_at = Vec3d{0, 0, 0};
+  // Neither right nor up: the area a perspective camera sees in the plane through look_at.
+  PovCameraVectors v = evaluate(s);
+  EXPECT_NEAR(length(v.right), 13.3, 1e-12);
+  EXPECT_NEAR(length(v.up), 10, 1e-12);
+  Diagnostics diagnostics;
+  PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  EXPECT_EQ(c.camera.physical.projection, uint32_t(FB_PROJECTION_ORTHOGRAPHIC));
+  EXPECT_NEAR(c.camera.physical.ortho_scale_m, 13.3, 1e-12);
+  expect_povray_rays(s, 160, 120);
+
+  // right and up given: exactly that many units.
+  s.right = {4, 0, 0};
+  s.up = {0, 3, 0};
+  s.right_given = s.up_given = true;
+  v = evaluate(s);
+  EXPECT_NEAR(length(v.right), 4, 1e-12);
+  EXPECT_NEAR(length(v.up), 3, 1e-12);
+  expect_povray_rays(s, 160, 120);
+
+  // ... unless angle is given: width 2 |look_at - location| tan(angle / 2).
+  s.angle_deg = 40;
+  v = evaluate(s);
+  EXPECT_NEAR(length(v.right), 2 * 10 * std::tan(20 / kDegrees), 1e-12);
+  expect_povray_rays(s, 160, 120);
+
+  // Without look_at the distance is to POV-Ray's internal look_at <0, 0, 1>.
+  CameraStatement no_look_at;
+  no_look_at.type = CameraType::kOrthographic;
+  no_look_at.location = {0, 0, -4};
+  EXPECT_NEAR(length(evaluate(no_look_at).right), 1.33 * 5, 1e-12);
+  expect_povray_rays(no_look_at, 160, 120);
+}
+
+TEST(PovCamera, FocalBlurIsAThinLensOfRadiusAperture4) {
+  CameraStatement s;
+  s.location = {0, 0, -10};
+  s.look_at = Vec3d{0, 0, 0};
+  s.angle_deg = 45;
+  s.aperture = 0.5;
+  s.blur_samples = 20;
+  s.focal_point = Vec3d{3, 0, -8};
+  Diagnostics diagnostics;
+  const PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  const PhysicalCamera& p = c.camera.physical;
+  ASSERT_TRUE(p.has_aperture());
+  EXPECT_NEAR(p.focal_length_mm * 1e-3 / (2 * p.fstop), 0.125, 1e-12);  // lens radius, m
+  // The focal plane at the Euclidean distance to focal_point, not its depth 2.
+  EXPECT_NEAR(p.focus_distance_m, std::sqrt(13.0), 1e-12);
+  expect_povray_rays(s, 160, 120);
+
+  // Without focal_point: Parse_Camera's Direction_Length, 1 unless angle or look_at set it.
+  CameraStatement plain;
+  plain.direction = {0, 0, 3};
+  plain.aperture = 1;
+  plain.blur_samples = 10;
+  EXPECT_NEAR(convert_camera(plain, 160, 120, diagnostics).camera.physical.focus_distance_m, 1,
+              1e-12);
+  plain.look_at = Vec3d{0, 0, 5};
+  EXPECT_NEAR(convert_camera(plain, 160, 120, diagnostics).camera.physical.focus_distance_m, 3,
+              1e-12);
+  // No blur_samples: no blur.
+  plain.blur_samples = 0;
+  EXPECT_FALSE(convert_camera(plain, 160, 120, diagnostics).camera.physical.has_aperture());
+}
+
+TEST(PovCamera, ExoticTypesAreWarnedAndRenderedAsPerspective) {
+  CameraStatement s;
+  s.type = CameraType::kFisheye;
+  s.where = {"scene.pov", 7, 1};
+  s.angle_deg = 180;  // legal for a fisheye, and it does not rescale direction
+  Diagnostics diagnostics;
+  const PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  ASSERT_EQ(diagnostics.count(), 1u);
+  EXPECT_NE(diagnostics.messages()[0].find("scene.pov: 7:1: unsupported feature 'camera type "
+                                           "fisheye'"),
+            std::string::npos)
+      << diagnostics.messages()[0];
+  EXPECT_EQ(c.camera.physical.projection, uint32_t(FB_PROJECTION_PERSPECTIVE));
+  EXPECT_NEAR(length(evaluate(s).direction), 1, 1e-15);
+}
+
+TEST(PovCamera, DegenerateVectorsAreAnError) {
+  CameraStatement s;
+  s.up = {1, 0, 0};  // parallel to right
+  Diagnostics diagnostics;
+  EXPECT_THROW(convert_camera(s, 160, 120, diagnostics), InputError);
+  s.up = {0, 1, 0};
+  s.transform = Transform::scale({1, 0, 1});
+  EXPECT_THROW(convert_camera(s, 160, 120, diagnostics), InputError);
+}
+
+}  // namespace
+}  // namespace fb::pov
