@@ -212,7 +212,8 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
 
 RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_world,
                                const ShotTimes& times, const MotionTolerance& tolerance)
-    : shader_(std::make_unique<SurfaceShader>(scene)), embree_(std::make_unique<Embree>()) {
+    : shader_(std::make_unique<SurfaceShader>(scene, render_from_world.inverse())),
+      embree_(std::make_unique<Embree>()) {
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) throw InputError("cannot create an Embree device");
   rtcSetDeviceErrorFunction(embree_->device, record_embree_error, &embree_->error);
@@ -333,6 +334,10 @@ SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive,
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
   const float b[3] = {1.f - u - v, u, v};
   SurfacePoint point;
+  // At the first motion step: solid textures on moving meshes are not supported (only POV-Ray
+  // scenes have them, and nothing moves there).
+  point.position = mesh.positions[tri[0]] * b[0] + mesh.positions[tri[1]] * b[1] +
+                   mesh.positions[tri[2]] * b[2];
   const VertexTextureData& data = mesh.texturing;
   for (uint32_t set = 0; set < VertexTextureData::kSets && !data.texcoords[set].empty(); ++set) {
     const std::vector<Vec2f>& uv = data.texcoords[set];

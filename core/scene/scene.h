@@ -14,6 +14,7 @@
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
 #include "core/scene/material_textures.h"
+#include "core/scene/solid_texture.h"
 #include "core/scene/subdivision_surface.h"
 
 namespace fb {
@@ -47,6 +48,10 @@ struct Material {
   float ior = 1.5f;          // KHR_materials_ior
   float specular = 1.f;      // KHR_materials_specular specularFactor: 0 makes it Lambertian
   MaterialTextures textures;  // none by default
+  // A POV-Ray pigment (importers/pov): the base colour is base_color times this solid texture's
+  // colour at the hit's world position, its transmit scales the coverage (alpha) and its filter
+  // the transmission (docs/pov.md, "Appearance").
+  std::optional<SolidPattern> base_color_pattern;
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha = 1.f;         // baseColorFactor's fourth component
   float alpha_cutoff = 0.5f;  // kMask
@@ -59,7 +64,14 @@ enum class LightType { kPoint, kSpot, kDirectional };
 
 // How a spot fades between its cones: glTF's KHR_lights_punctual ramp, or Cycles' (Blender's
 // spot_size and spot_blend: cos(angle) times a smoothstep, docs/blender.md "Lights and world").
-enum class SpotFalloff { kGltf, kCycles };
+// kPov: POV-Ray's spotlight, cos(angle)^tightness times a cubic from 0 at the outer cone
+// (falloff) to 1 at the inner one (radius) (POV-Ray's Attenuate_Light).
+enum class SpotFalloff { kGltf, kCycles, kPov };
+
+// How a point or spot light dims with distance d: physically (1/d^2, glTF and Blender), or as
+// POV-Ray does, not at all unless fade_power > 0, then by 2 / (1 + (d / fade_distance)^fade_power)
+// (d^-fade_power for a zero fade_distance) (POV-Ray's Attenuate_Light, docs/pov.md "Appearance").
+enum class LightDecay { kInverseSquare, kPovRay };
 
 // Point, spot and sun lights. Area lights are emissive meshes (importers make them), so that light
 // sampling and BSDF-sampled rays both see them.
@@ -80,11 +92,24 @@ struct Light {
   // Directional: the sun's angular diameter, its directions spread over a disk of radius
   // tan(angle/2) one unit away (Cycles' distant light); 0 is a single direction.
   double angle_rad = 0.0;
+  LightDecay decay = LightDecay::kInverseSquare;
+  double fade_distance_m = 0.0, fade_power = 0.0;  // LightDecay::kPovRay
+  double spot_tightness = 0.0;                     // SpotFalloff::kPov
+  bool casts_shadows = true;  // false: POV-Ray's `shadowless`, no shadow ray is traced
+  // POV-Ray's area_light: area_size1 x area_size2 points spread evenly over area_axis1 and
+  // area_axis2 (light space, centred on the light), each with 1 / (size1 size2) of the intensity;
+  // each light sample takes one of them. `area_circular` folds the grid onto the ellipse the axes
+  // span; `area_orient` turns the axes to face the lit point.
+  Vec3d area_axis1{0, 0, 0}, area_axis2{0, 0, 0};
+  uint32_t area_size1 = 1, area_size2 = 1;
+  bool area_circular = false, area_orient = false;
 };
 
 // An equirectangular world image (Blender's Environment Texture, Cycles' mapping): column
 // u = 0.5 - atan2(y, x) / (2 pi), row v = acos(z) / pi from the top, in Blender's Z-up world
-// axes; texels are radiance (image times the world's strength), top row first.
+// axes; texels are radiance (image times the world's strength), top row first. A world (glTF,
+// Y-up) direction (x, y, z) is Blender's (x, -z, y): the image's centre column (u = 0.5) looks down
+// world +X, its top row up world +Y, and u = 0.25 looks down world -Z (core/render/environment.cpp).
 struct EnvironmentMap {
   std::string name;  // the image file, for messages
   uint32_t width = 0, height = 0;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/texture/solid_pattern.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -55,8 +56,10 @@ struct SurfaceShader::Textures {
   }
 };
 
-SurfaceShader::SurfaceShader(const Scene& scene)
-    : materials_(scene.materials), textures_(std::make_unique<Textures>()) {
+SurfaceShader::SurfaceShader(const Scene& scene, const Transform& world_from_render)
+    : materials_(scene.materials),
+      world_from_render_(world_from_render),
+      textures_(std::make_unique<Textures>()) {
   std::vector<bool> used(scene.images.size(), false);
   for (const Material& m : scene.materials)
     for (const TextureRef* t : {&m.textures.base_color, &m.textures.metallic_roughness,
@@ -122,6 +125,11 @@ SurfaceShader::SurfaceShader(const Scene& scene)
 
 SurfaceShader::~SurfaceShader() = default;
 
+SolidColour SurfaceShader::solid_colour(const SolidPattern& pattern,
+                                        const SurfacePoint& point) const {
+  return evaluate_solid(pattern, world_from_render_.point(Vec3d(point.position)));
+}
+
 std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfacePoint& point,
                                            bool srgb) const {
   const Textures::Image& image = textures_->images[ref.image];
@@ -153,7 +161,12 @@ std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfaceP
 void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit) const {
   const Material& m = materials_[index];
   Rgb base = m.base_color;
-  float metallic = m.metallic, roughness = m.roughness;
+  float metallic = m.metallic, roughness = m.roughness, transmission = m.transmission;
+  if (m.base_color_pattern) {
+    const SolidColour c = solid_colour(*m.base_color_pattern, point);
+    base *= c.rgb;
+    transmission = std::max(transmission, c.filter);
+  }
   const MaterialTextures& t = m.textures;
   if (t.base_color.present()) {
     const auto c = lookup(t.base_color, point, true);
@@ -187,7 +200,7 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   min(max(base, Rgb{}), Rgb{1.f, 1.f, 1.f}).store(hit.base_color);
   hit.metallic = clamp01(metallic);
   hit.roughness = clamp01(roughness);
-  hit.transmission = clamp01(m.transmission);
+  hit.transmission = clamp01(transmission);
   hit.ior = m.ior;
   hit.specular = clamp01(m.specular);
   emission(index, point).store(hit.emission);
@@ -207,6 +220,7 @@ float SurfaceShader::alpha(uint32_t index, const SurfacePoint& point) const {
   const Material& m = materials_[index];
   float a = m.alpha;
   if (m.textures.base_color.present()) a *= lookup(m.textures.base_color, point, true)[3];
+  if (m.base_color_pattern) a *= 1.f - solid_colour(*m.base_color_pattern, point).transmit;
   return a;
 }
 

@@ -13,8 +13,12 @@
 
 namespace fb {
 
-// Where on a mesh a hit lies, interpolated from its vertices (render space).
+// Where on a surface a hit lies, interpolated from its vertices (render space).
 struct SurfacePoint {
+  // The hit's position in render space, for solid textures (Material::base_color_pattern), which
+  // SurfaceShader evaluates in world space. Filled by render_geometry for meshes and analytic
+  // solids alike.
+  Vec3f position{};
   std::array<Vec2f, VertexTextureData::kSets> uv{};
   uint32_t uv_sets = 0;  // how many of `uv` the mesh has
   Vec3f tangent{};       // unit, or zero when the mesh has none
@@ -24,8 +28,8 @@ struct SurfacePoint {
 class SurfaceShader {
  public:
   // Opens every image a material uses; an image that cannot be read or is too large is an
-  // InputError naming it.
-  explicit SurfaceShader(const Scene& scene);
+  // InputError naming it. `world_from_render` places SurfacePoint::position in the world.
+  explicit SurfaceShader(const Scene& scene, const Transform& world_from_render = Transform());
   ~SurfaceShader();
   SurfaceShader(const SurfaceShader&) = delete;
   SurfaceShader& operator=(const SurfaceShader&) = delete;
@@ -35,7 +39,8 @@ class SurfaceShader {
   void shade(uint32_t material, const SurfacePoint& point, fb_hit& hit) const;
   // Radiance leaving the point: the emissive factor (with its strength) times the texture.
   Rgb emission(uint32_t material, const SurfacePoint& point) const;
-  // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage").
+  // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage"),
+  // times 1 - transmit of a solid texture.
   float alpha(uint32_t material, const SurfacePoint& point) const;
   bool has_alpha(uint32_t material) const {
     return materials_[material].alpha_mode != AlphaMode::kOpaque;
@@ -45,7 +50,9 @@ class SurfaceShader {
  private:
   // RGBA of texture `ref` at the point; `srgb` decodes the colour channels.
   std::array<float, 4> lookup(const TextureRef& ref, const SurfacePoint& point, bool srgb) const;
+  SolidColour solid_colour(const SolidPattern& pattern, const SurfacePoint& point) const;
   const std::vector<Material>& materials_;
+  Transform world_from_render_;
   struct Textures;
   std::unique_ptr<Textures> textures_;
 };
