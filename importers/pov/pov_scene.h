@@ -137,6 +137,7 @@ struct Object {
   bool double_illuminate = false;
   // Every leaf ends up with a texture: its own, else the enclosing CSG's, else the #default one.
   Texture texture;
+  bool texture_given = false;  // the evaluator's bookkeeping: written here, not yet inherited
   std::optional<Interior> interior;
 };
 

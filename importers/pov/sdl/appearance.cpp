@@ -1,0 +1,592 @@
+// Appearance statements: pigment (colours, patterns, colour maps), finish, texture, interior,
+// material, and the transforms (translate/rotate/scale/matrix/transform) they and objects share.
+#include <cmath>
+#include <numbers>
+
+#include "importers/pov/sdl/parser.h"
+
+namespace fb::pov::sdl {
+namespace {
+
+// POV-Ray's `rotate <a, b, c>`: about x by a, then y by b, then z by c, each the ordinary
+// right-hand-rule matrix (column form Rz * Ry * Rx; ../shared/notes/povray-camera.md 1.1).
+Matrix rotation(Vec3d degrees) {
+  auto axis = [](int i, double deg) {
+    double r = deg * std::numbers::pi / 180, c = std::cos(r), s = std::sin(r);
+    if (i == 0) return Matrix::from_rows({1, 0, 0, 0, 0, c, -s, 0, 0, s, c, 0, 0, 0, 0, 1});
+    if (i == 1) return Matrix::from_rows({c, 0, s, 0, 0, 1, 0, 0, -s, 0, c, 0, 0, 0, 0, 1});
+    return Matrix::from_rows({c, -s, 0, 0, s, c, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+  };
+  return axis(2, degrees.z) * axis(1, degrees.y) * axis(0, degrees.x);
+}
+
+const char* const kPatterns[] = {
+    "checker", "hexagon", "brick", "gradient", "bozo", "spotted", "granite", "marble", "wood",
+    "agate", "leopard", "onion", "radial", "spiral1", "spiral2", "waves", "ripples", "wrinkles",
+    "bumps", "dents", "crackle", "cells", "image_map", "boxed", "cylindrical", "spherical",
+    "planar", "mandel", "julia", "magnet", "object", "function", "pigment_pattern",
+    "density_file", "facets", "quilted", "tiling", "pavement", "slope", "aoi", "cubic",
+    "average", "image_pattern", "square", "triangular", "agate_turb", "bump_map", "uv_mapping",
+};
+
+bool is_pattern(const std::string& w) {
+  for (const char* p : kPatterns) {
+    if (w == p) return true;
+  }
+  return false;
+}
+
+Pattern pattern_of(const std::string& w) {
+  static const std::pair<const char*, Pattern> kMap[] = {
+      {"checker", Pattern::kChecker}, {"hexagon", Pattern::kHexagon},
+      {"brick", Pattern::kBrick},     {"gradient", Pattern::kGradient},
+      {"bozo", Pattern::kBozo},       {"spotted", Pattern::kSpotted},
+      {"granite", Pattern::kGranite}, {"marble", Pattern::kMarble},
+      {"wood", Pattern::kWood},       {"agate", Pattern::kAgate},
+      {"leopard", Pattern::kLeopard}, {"onion", Pattern::kOnion},
+      {"radial", Pattern::kRadial},   {"spiral1", Pattern::kSpiral1},
+      {"spiral2", Pattern::kSpiral2}, {"waves", Pattern::kWaves},
+      {"ripples", Pattern::kRipples}, {"wrinkles", Pattern::kWrinkles},
+      {"bumps", Pattern::kBumps},     {"dents", Pattern::kDents},
+      {"crackle", Pattern::kCrackle}, {"cells", Pattern::kCells},
+      {"image_map", Pattern::kImageMap},
+  };
+  for (const auto& [name, pattern] : kMap) {
+    if (w == name) return pattern;
+  }
+  return Pattern::kOther;
+}
+
+Colour mix(const Colour& a, const Colour& b, double t) {
+  return {a.r + (b.r - a.r) * t, a.g + (b.g - a.g) * t, a.b + (b.b - a.b) * t,
+          a.filter + (b.filter - a.filter) * t, a.transmit + (b.transmit - a.transmit) * t};
+}
+
+// The mean of a colour map over [0, 1]: piecewise linear between entries, constant outside.
+Colour map_average(const ColourMap& map) {
+  if (map.empty()) return {0.5, 0.5, 0.5, 0, 0};  // POV-Ray's default map runs black to white
+  Colour sum{};
+  auto add = [&](const Colour& c, double w) {
+    sum.r += c.r * w;
+    sum.g += c.g * w;
+    sum.b += c.b * w;
+    sum.filter += c.filter * w;
+    sum.transmit += c.transmit * w;
+  };
+  add(map.front().colour, std::clamp(map.front().value, 0.0, 1.0));
+  for (size_t i = 1; i < map.size(); ++i) {
+    double a = std::clamp(map[i - 1].value, 0.0, 1.0), b = std::clamp(map[i].value, 0.0, 1.0);
+    add(mix(map[i - 1].colour, map[i].colour, 0.5), std::max(0.0, b - a));
+  }
+  add(map.back().colour, 1 - std::clamp(map.back().value, 0.0, 1.0));
+  return sum;
+}
+
+Colour list_average(const std::vector<Pigment>& list) {
+  Colour sum{};
+  for (const Pigment& p : list) {
+    sum.r += p.colour.r / list.size();
+    sum.g += p.colour.g / list.size();
+    sum.b += p.colour.b / list.size();
+    sum.filter += p.colour.filter / list.size();
+    sum.transmit += p.colour.transmit / list.size();
+  }
+  return sum;
+}
+
+Pigment solid(const Colour& c) {
+  Pigment p;
+  p.colour = c;
+  return p;
+}
+
+void move_pigment(Pigment& pigment, const Matrix& inverse) {
+  pigment.pattern_from_world = pigment.pattern_from_world * inverse;
+  for (Pigment& entry : pigment.list) move_pigment(entry, inverse);
+}
+
+}  // namespace
+
+// The pattern follows later transforms: pattern_from_world gains inverse(M) on the right.
+void transform_texture(Texture& texture, const Matrix& inverse) {
+  move_pigment(texture.pigment, inverse);
+}
+
+Matrix Parser::parse_transform_block() {
+  Matrix m;
+  if (!peek().symbol("{")) {
+    // `transform Ident`
+    Tok tok = next();
+    if (!tok.identifier || !tok.value.get<Matrix>()) fail("expected a transform");
+    return *tok.value.get<Matrix>();
+  }
+  expect("{");
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    if (tok.identifier && tok.value.get<Matrix>()) {
+      m = *tok.value.get<Matrix>() * m;
+    } else if (tok.word("inverse")) {
+      m = m.inverse();
+    } else if (auto t = parse_transform_item(tok)) {
+      m = *t * m;
+    } else {
+      fail("unexpected '" + tok.token.text + "' in transform");
+    }
+  }
+  return m;
+}
+
+std::optional<Matrix> Parser::parse_transform_item(const Tok& tok) {
+  if (!tok.keyword()) return std::nullopt;
+  const std::string& w = tok.token.text;
+  if (w == "translate") {
+    Vec3d t = parse_vector();
+    return Matrix::translate(t);
+  }
+  if (w == "rotate") return rotation(parse_vector());
+  if (w == "scale") {
+    Vec3d s = parse_vector();
+    // POV-Ray replaces a zero scale by 1 with a warning
+    for (double* c : {&s.x, &s.y, &s.z}) {
+      if (*c == 0) {
+        warn("scale by 0 changed to 1");
+        *c = 1;
+      }
+    }
+    return Matrix::scale(s);
+  }
+  if (w == "matrix") {
+    // `matrix <m00, m01, m02, m10, ..., m32>`: POV-Ray's row-vector layout (p' = p M, the last
+    // triple the translation), transposed into column form
+    expect("<");
+    int saved = vector_level_;
+    vector_level_ = nesting + 1;
+    double e[12];
+    for (int i = 0; i < 12; ++i) {
+      if (i) expect(",");
+      e[i] = parse_float();
+    }
+    vector_level_ = saved;
+    expect(">");
+    return Matrix::from_rows({e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8],
+                              e[11], 0, 0, 0, 1});
+  }
+  if (w == "transform") return parse_transform_block();
+  return std::nullopt;
+}
+
+ColourMap Parser::parse_colour_map(bool pigment_map) {
+  ColourMap map;
+  expect("{");
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    if (tok.identifier && tok.value.get<ColourMap>()) {
+      map = *tok.value.get<ColourMap>();
+      continue;
+    }
+    if (!tok.symbol("[")) fail("expected '[' in a colour map");
+    double value = parse_float();
+    if (accept(",")) {
+      // old form [v1, v2 colour c1 colour c2]
+      double value2 = parse_float();
+      Colour c1 = parse_colour(), c2 = parse_colour();
+      map.push_back({value, c1});
+      map.push_back({value2, c2});
+    } else {
+      const Tok& entry = peek();
+      if (pigment_map && !entry.word("pigment") &&
+          !(entry.identifier && (entry.value.get<Pigment>() || entry.value.numeric()))) {
+        // pigment_map entries hold a pigment's body: [0.5 bozo colour_map {...}]
+        map.push_back({value, parse_pigment_items("]").colour});
+        continue;
+      } else if (entry.word("pigment")) {
+        next();
+        map.push_back({value, parse_pigment().colour});
+      } else if (entry.identifier && entry.value.get<Pigment>()) {
+        map.push_back({value, next().value.get<Pigment>()->colour});
+      } else {
+        map.push_back({value, parse_colour()});
+      }
+    }
+    expect("]");
+    if (map.size() > 256) fail("a colour map has at most 256 entries");
+  }
+  return map;
+}
+
+Pigment Parser::parse_pigment() {
+  expect("{");
+  return parse_pigment_items("}");
+}
+
+Pigment Parser::parse_pigment_items(const char* closing) {
+  Nesting guard(*this);
+  Pigment p = default_texture_.pigment;
+  p.where = here();
+  auto add_list_entries = [&](size_t max) {
+    p.list.clear();
+    for (;;) {
+      const Tok& tok = peek();
+      if (p.list.size() >= max) break;
+      if (tok.word("pigment")) {
+        next();
+        p.list.push_back(parse_pigment());
+      } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric()) ||
+                 tok.symbol("<") || tok.token.kind == TokenKind::kNumber) {
+        Pigment entry;
+        entry.colour = parse_colour();
+        p.list.push_back(entry);
+      } else if (tok.identifier && tok.value.get<Pigment>()) {
+        p.list.push_back(*next().value.get<Pigment>());
+      } else {
+        break;
+      }
+      accept(",");
+    }
+  };
+  bool first = true;
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol(closing)) break;
+    const std::string& w = tok.token.text;
+    if (first && tok.identifier && tok.value.get<Pigment>()) {
+      p = *tok.value.get<Pigment>();
+    } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric())) {
+      unget(std::move(tok));
+      p.pattern = Pattern::kSolid;
+      p.name.clear();
+      p.colour = parse_colour();
+    } else if (tok.keyword() && is_pattern(w)) {
+      p.pattern = pattern_of(w);
+      p.name = w;
+      p.colour_map.clear();
+      p.list.clear();
+      if (w == "checker" || w == "brick") {
+        add_list_entries(2);
+        // defaults (POV-Ray manual 3.5.11): checker blue and green, brick white mortar and red
+        Colour a = w == "checker" ? Colour{0, 0, 1} : Colour{1, 1, 1};
+        Colour b = w == "checker" ? Colour{0, 1, 0} : Colour{1, 0, 0};
+        if (p.list.size() < 1) p.list.push_back(solid(a));
+        if (p.list.size() < 2) p.list.push_back(solid(b));
+      } else if (w == "hexagon") {
+        add_list_entries(3);
+        const Colour defaults[3] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};  // blue, green, red
+        while (p.list.size() < 3) p.list.push_back(solid(defaults[p.list.size()]));
+      } else if (w == "gradient") {
+        p.gradient = parse_vector();
+      } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" ||
+                 w == "magnet" || w == "agate_turb") {
+        parse_float();
+      } else if (w == "julia") {
+        parse_numeric(2);
+        accept(",");
+        parse_float();
+      } else if (w == "slope") {
+        parse_vector();
+        if (accept(",")) {
+          parse_float();
+          accept(",");
+          parse_float();
+        }
+      } else if (w == "image_map" || w == "pigment_pattern" || w == "image_pattern" ||
+                 w == "function" || w == "object") {
+        skip_block();
+      } else if (w == "density_file") {
+        next();  // df3
+        parse_expression();
+      }
+      if (p.pattern == Pattern::kOther) unsupported("pattern " + w, location_of(tok));
+    } else if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
+      p.colour_map = parse_colour_map(w == "pigment_map");
+    } else if (tok.identifier && tok.value.get<ColourMap>()) {
+      p.colour_map = *tok.value.get<ColourMap>();
+    } else if (w == "turbulence") {
+      p.turbulence = parse_vector();
+    } else if (w == "octaves") {
+      p.octaves = static_cast<int>(parse_float());
+    } else if (w == "omega") {
+      p.omega = parse_float();
+    } else if (w == "lambda") {
+      p.lambda = parse_float();
+    } else if (w == "frequency") {
+      p.frequency = parse_float();
+    } else if (w == "phase") {
+      p.phase = parse_float();
+    } else if (w == "ramp_wave" || w == "triangle_wave" || w == "sine_wave" ||
+               w == "scallop_wave" || w == "cubic_wave" || w == "poly_wave") {
+      p.wave = w == "ramp_wave" ? Wave::kRamp : w == "triangle_wave" ? Wave::kTriangle
+               : w == "sine_wave" ? Wave::kSine : w == "scallop_wave" ? Wave::kScallop
+               : w == "cubic_wave" ? Wave::kCubic : Wave::kPoly;
+      if (w == "poly_wave") {
+        const Tok& n = peek();
+        if (n.token.kind == TokenKind::kNumber || (n.identifier && n.value.kind == ValueKind::kFloat)) {
+          p.wave_exponent = parse_float();
+        }
+      }
+    } else if (w == "brick_size") {
+      p.brick_size = parse_vector();
+    } else if (w == "mortar") {
+      p.mortar = parse_float();
+    } else if (w == "quick_color" || w == "quick_colour") {
+      parse_colour();
+    } else if (w == "noise_generator" || w == "metric" || w == "offset" || w == "control0" ||
+               w == "control1" || w == "interpolate" || w == "map_type") {
+      parse_float();
+    } else if (w == "form") {
+      parse_vector();
+    } else if (w == "solid" || w == "once" || w == "use_colour" || w == "use_color" ||
+               w == "use_index" || w == "use_alpha" || w == "orientation" || w == "dist_exp" ||
+               w == "major_radius" || w == "exponent" || w == "coords" || w == "accuracy" ||
+               w == "repeat" || w == "flip" || w == "precision" || w == "color_space") {
+      const Tok& n = peek();
+      if (n.token.kind == TokenKind::kNumber || n.symbol("<") || n.symbol("-") ||
+          (n.identifier && n.value.numeric())) {
+        parse_expression();
+      }
+    } else if (w == "warp") {
+      unsupported("warp", location_of(tok));
+      skip_block();
+    } else if (auto m = parse_transform_item(tok)) {
+      move_pigment(p, m->inverse());
+    } else {
+      fail("unexpected '" + w + "' in pigment");
+    }
+    first = false;
+  }
+  // the parser's estimate of the pattern's mean, which converters use where they cannot
+  // evaluate the pattern
+  if (p.pattern != Pattern::kSolid) {
+    p.colour = p.list.empty() ? map_average(p.colour_map) : list_average(p.list);
+  }
+  return p;
+}
+
+Finish Parser::parse_finish() {
+  Finish f = default_texture_.finish;
+  expect("{");
+  auto optional_albedo = [&] {
+    if (peek().word("albedo")) next();
+  };
+  bool first = true;
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    const std::string& w = tok.token.text;
+    if (first && tok.identifier && tok.value.get<Finish>()) {
+      f = *tok.value.get<Finish>();
+    } else if (w == "ambient") {
+      f.ambient = parse_colour(false);
+    } else if (w == "emission") {
+      f.emission = parse_colour(false);
+    } else if (w == "diffuse") {
+      optional_albedo();
+      f.diffuse = parse_float();
+      if (accept(",")) parse_float();  // back-side diffuse
+    } else if (w == "brilliance") {
+      f.brilliance = parse_float();
+    } else if (w == "specular") {
+      optional_albedo();
+      f.specular = parse_float();
+    } else if (w == "roughness") {
+      f.roughness = parse_float();
+    } else if (w == "phong") {
+      optional_albedo();
+      f.phong = parse_float();
+    } else if (w == "phong_size") {
+      f.phong_size = parse_float();
+    } else if (w == "metallic") {
+      const Tok& n = peek();
+      bool has_value = n.token.kind == TokenKind::kNumber ||
+                       (n.identifier && n.value.kind == ValueKind::kFloat) || n.symbol("(");
+      f.metallic = has_value ? parse_float() : 1;
+    } else if (w == "reflection") {
+      if (peek().symbol("{")) {
+        next();
+        Colour first_colour = parse_colour(false);
+        f.reflection_min = f.reflection_max = first_colour;
+        if (accept(",")) f.reflection_max = parse_colour(false);
+        for (;;) {
+          Tok item = next();
+          if (item.symbol("}")) break;
+          if (item.word("fresnel")) {
+            f.reflection_fresnel = parse_bool_option();
+          } else if (item.word("metallic")) {
+            f.reflection_metallic = parse_bool_option() ? 1 : 0;
+          } else if (item.word("falloff") || item.word("exponent")) {
+            parse_float();
+          } else {
+            fail("unexpected '" + item.token.text + "' in reflection");
+          }
+        }
+      } else {
+        f.reflection_min = f.reflection_max = parse_colour(false);
+      }
+    } else if (w == "reflection_exponent" || w == "crand" || w == "refraction" || w == "ior" ||
+               w == "caustics" || w == "fade_distance" || w == "fade_power") {
+      parse_float();
+    } else if (w == "conserve_energy") {
+      f.conserve_energy = parse_bool_option();
+    } else if (w == "irid" || w == "subsurface") {
+      unsupported(w, location_of(tok));
+      skip_block();
+    } else if (w == "fresnel") {
+      parse_bool_option();
+    } else {
+      fail("unexpected '" + w + "' in finish");
+    }
+    first = false;
+  }
+  return f;
+}
+
+Texture Parser::parse_texture() {
+  Nesting guard(*this);
+  Texture t = default_texture_;
+  t.where = here();
+  t.has_normal = false;
+  expect("{");
+  bool first = true;
+  bool patterned = false;     // texture { checker texture {..} ... }: the first texture is used
+  std::optional<Texture> first_sub;
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    const std::string& w = tok.token.text;
+    if (first && tok.identifier && tok.value.get<Texture>()) {
+      t = *tok.value.get<Texture>();
+    } else if (patterned && tok.identifier && tok.value.get<Texture>()) {
+      if (!first_sub) first_sub = *tok.value.get<Texture>();
+    } else if (w == "pigment") {
+      t.pigment = parse_pigment();
+    } else if (tok.identifier && tok.value.get<Pigment>()) {
+      t.pigment = *tok.value.get<Pigment>();
+    } else if (w == "finish") {
+      t.finish = parse_finish();
+    } else if (tok.identifier && tok.value.get<Finish>()) {
+      t.finish = *tok.value.get<Finish>();
+    } else if (w == "normal") {
+      t.has_normal = true;
+      unsupported("normal", location_of(tok));
+      skip_block();
+    } else if (w == "texture" && patterned) {
+      Texture sub = parse_texture();
+      if (!first_sub) first_sub = sub;
+    } else if ((w == "texture_map" || w == "material_map") && patterned) {
+      expect("{");
+      for (;;) {
+        Tok entry = next();
+        if (entry.symbol("}")) break;
+        if (!entry.symbol("[")) {
+          if (w == "material_map") continue;  // image file and options
+          fail("expected '[' in texture_map");
+        }
+        parse_float();
+        Tok what = next();
+        Texture sub = t;
+        if (what.word("texture")) {
+          sub = parse_texture();
+        } else if (what.identifier && what.value.get<Texture>()) {
+          sub = *what.value.get<Texture>();
+        } else {
+          fail("expected a texture in texture_map");
+        }
+        if (!first_sub) first_sub = sub;
+        expect("]");
+      }
+    } else if (tok.keyword() && (is_pattern(w) || w == "material_map")) {
+      patterned = true;
+      unsupported("texture pattern " + w + " (first texture used)", location_of(tok));
+      if (w == "material_map") {
+        unget(std::move(tok));
+      } else if (w == "gradient") {
+        parse_vector();
+      } else if (w == "image_map" || w == "function" || w == "object" || w == "pigment_pattern") {
+        skip_block();
+      } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling") {
+        parse_float();
+      }
+    } else if (auto m = parse_transform_item(tok)) {
+      transform_texture(t, m->inverse());
+      if (first_sub) transform_texture(*first_sub, m->inverse());
+    } else if (patterned) {
+      // the pattern's own modifiers (turbulence, octaves ...): read and dropped
+      unget(std::move(tok));
+      const Tok& n = next();
+      (void)n;
+      const Tok& arg = peek();
+      if (arg.token.kind == TokenKind::kNumber || arg.symbol("<") ||
+          (arg.identifier && arg.value.numeric())) {
+        parse_expression();
+      }
+    } else {
+      fail("unexpected '" + w + "' in texture");
+    }
+    first = false;
+  }
+  if (first_sub) {
+    SourceLocation where = t.where;
+    t = *first_sub;
+    t.where = where;
+  }
+  return t;
+}
+
+Interior Parser::parse_interior() {
+  Interior in;
+  expect("{");
+  bool first = true;
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    const std::string& w = tok.token.text;
+    if (first && tok.identifier && tok.value.get<Interior>()) {
+      in = *tok.value.get<Interior>();
+    } else if (w == "ior") {
+      in.ior = parse_float();
+    } else if (w == "fade_distance") {
+      in.fade_distance = parse_float();
+    } else if (w == "fade_power") {
+      in.fade_power = parse_float();
+    } else if (w == "fade_colour" || w == "fade_color") {
+      in.fade_colour = parse_colour(false);
+    } else if (w == "caustics" || w == "dispersion" || w == "dispersion_samples") {
+      parse_float();
+    } else if (w == "media") {
+      unsupported("media", location_of(tok));
+      skip_block();
+    } else if (tok.identifier && tok.value.kind == ValueKind::kOpaque) {
+      // a declared media
+    } else {
+      fail("unexpected '" + w + "' in interior");
+    }
+    first = false;
+  }
+  return in;
+}
+
+MaterialValue Parser::parse_material() {
+  MaterialValue m;
+  expect("{");
+  bool first = true;
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    if (first && tok.identifier && tok.value.get<MaterialValue>()) {
+      m = *tok.value.get<MaterialValue>();
+    } else if (tok.word("texture")) {
+      m.texture = parse_texture();
+    } else if (tok.word("interior")) {
+      m.interior = parse_interior();
+    } else if (auto t = parse_transform_item(tok)) {
+      if (m.texture) transform_texture(*m.texture, t->inverse());
+    } else {
+      fail("unexpected '" + tok.token.text + "' in material");
+    }
+    first = false;
+  }
+  return m;
+}
+
+}  // namespace fb::pov::sdl

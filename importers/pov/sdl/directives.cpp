@@ -1,0 +1,504 @@
+// Directives: #declare/#local/#undef, #if/#ifdef/#ifndef/#else/#elseif, #while/#for, #switch,
+// #macro, #include, #default, #version, #debug/#warning/#error, #fopen/#read/#write/#fclose.
+#include <cmath>
+#include <cstdio>
+
+#include "importers/pov/sdl/parser.h"
+
+namespace fb::pov::sdl {
+namespace {
+
+bool opens_block(const std::string& d) {
+  return d == "if" || d == "ifdef" || d == "ifndef" || d == "while" || d == "for" ||
+         d == "switch" || d == "macro";
+}
+
+}  // namespace
+
+bool Parser::parse_condition() {
+  expect("(");
+  Value value = parse_expression();
+  expect(")");
+  if (value.kind != ValueKind::kFloat) fail("expected a float condition");
+  return std::abs(value.v[0]) > 1e-10;  // POV-Ray's "true": |x| > EPSILON
+}
+
+// Skips raw tokens of the current frame until the #end that closes `levels` open blocks.
+void Parser::skip_levels(int levels) {
+  int depth = levels;
+  for (;;) {
+    Token token = raw_next();
+    if (token.kind == TokenKind::kEnd) fail("missing #end");
+    if (token.kind != TokenKind::kDirective) continue;
+    if (opens_block(token.text)) ++depth;
+    if (token.text == "end" && --depth == 0) return;
+  }
+}
+
+// After a false #if/#ifdef/#elseif: skips to the branch that runs (#else, a true #elseif) or past
+// the #end. A branch that runs pushes its kIf.
+void Parser::skip_to_branch(bool) {
+  int depth = 0;
+  for (;;) {
+    Token token = raw_next();
+    if (token.kind == TokenKind::kEnd) fail("#if without #end");
+    if (token.kind != TokenKind::kDirective) continue;
+    if (opens_block(token.text)) {
+      ++depth;
+    } else if (token.text == "end") {
+      if (depth-- == 0) return;
+    } else if (depth == 0 && token.text == "else") {
+      conds_.emplace_back();  // a kIf
+      return;
+    } else if (depth == 0 && token.text == "elseif") {
+      if (parse_condition()) {
+        conds_.emplace_back();  // a kIf
+        return;
+      }
+    }
+  }
+}
+
+// #switch looking for its #case/#range/#else: skips raw tokens, testing each label.
+void Parser::run_switch_search() {
+  int depth = 0;
+  for (;;) {
+    Token token = raw_next();
+    if (token.kind == TokenKind::kEnd) fail("#switch without #end");
+    if (token.kind != TokenKind::kDirective) continue;
+    if (opens_block(token.text)) {
+      ++depth;
+      continue;
+    }
+    if (token.text == "end") {
+      if (depth-- == 0) {
+        conds_.pop_back();
+        return;
+      }
+      continue;
+    }
+    if (depth > 0) continue;
+    Cond& cond = conds_.back();
+    if (token.text == "else") {
+      cond.switch_running = true;
+      return;
+    }
+    if (token.text == "case") {
+      expect("(");
+      double value = parse_float();
+      expect(")");
+      if (std::abs(value - cond.switch_value) < 1e-10) {
+        conds_.back().switch_running = true;
+        return;
+      }
+    } else if (token.text == "range") {
+      expect("(");
+      double low = parse_float();
+      expect(",");
+      double high = parse_float();
+      expect(")");
+      if (cond.switch_value >= low && cond.switch_value <= high) {
+        conds_.back().switch_running = true;
+        return;
+      }
+    }
+  }
+}
+
+void Parser::skip_parenthesised() {
+  expect("(");
+  int depth = 1;
+  while (depth > 0) {
+    Tok tok = next();
+    if (tok.token.kind == TokenKind::kEnd) fail("missing ')'");
+    if (tok.symbol("(")) ++depth;
+    if (tok.symbol(")")) --depth;
+  }
+}
+
+void Parser::run_end() {
+  Frame& frame = frames_.back();
+  if (conds_.size() == frame.cond_base) {
+    if (frame.macro) return end_macro();
+    fail("#end without #if, #while, #switch or #macro");
+  }
+  Cond& cond = conds_.back();
+  auto count_loop = [&] {
+    if (++loop_iterations_ > options_.limits.loop_iterations) {
+      fail("more than " + std::to_string(options_.limits.loop_iterations) +
+           " loop iterations (limit)");
+    }
+  };
+  switch (cond.kind) {
+    case CondKind::kIf:
+    case CondKind::kSwitch:
+      conds_.pop_back();
+      return;
+    case CondKind::kWhile:
+      count_loop();
+      frame.pos = cond.loop_pos;  // back to the #while, which tests again
+      conds_.pop_back();
+      return;
+    case CondKind::kFor: {
+      count_loop();
+      Value* variable = lookup(cond.variable);
+      if (!variable || variable->kind != ValueKind::kFloat) fail("#for variable changed its type");
+      double value = variable->v[0] + cond.step;
+      *variable = Value::number(value);
+      if (cond.step > 0 ? value <= cond.end + 1e-10 : value >= cond.end - 1e-10) {
+        frame.pos = cond.loop_pos;
+      } else {
+        conds_.pop_back();
+      }
+      return;
+    }
+  }
+}
+
+void Parser::run_declare(bool local) {
+  Token name = raw_next();
+  if (name.kind == TokenKind::kWord && name.text == "deprecated") {
+    // 3.7: #declare deprecated [once] "message" Name = ...
+    if (raw().kind == TokenKind::kWord && raw().text == "once") raw_next();
+    if (raw().kind == TokenKind::kString) raw_next();
+    name = raw_next();
+  }
+  if (name.kind != TokenKind::kWord) fail("expected an identifier after #declare");
+  Value* existing = lookup(name.text);
+  // #declare A[i][j] = ...
+  if (existing && existing->kind == ValueKind::kArray && raw().kind == TokenKind::kSymbol &&
+      raw().text == "[") {
+    std::shared_ptr<ArrayValue> array = existing->array;
+    size_t index = 0;
+    for (size_t d = 0; d < array->sizes.size(); ++d) {
+      expect("[");
+      double i = parse_float();
+      expect("]");
+      if (!(i >= 0 && i < static_cast<double>(array->sizes[d]))) {
+        fail("array index " + std::to_string(static_cast<long long>(i)) + " out of range 0.." +
+             std::to_string(array->sizes[d] - 1));
+      }
+      index = index * array->sizes[d] + static_cast<size_t>(i);
+    }
+    expect("=");
+    Value value = parse_rvalue();
+    accept(";");
+    if (value.kind == ValueKind::kString) check_string(value.text);
+    array->elements[index] = std::move(value);
+    return;
+  }
+  expect("=");
+  Value value = parse_rvalue();
+  accept(";");
+  if (value.kind == ValueKind::kNone) fail("nothing to declare");
+  assign(name.text, std::move(value), local);
+}
+
+void Parser::run_include() {
+  Value name = parse_expression();
+  if (name.kind != ValueKind::kString) fail("#include expects a file name string");
+  if (frames_.size() > options_.limits.include_depth + options_.limits.macro_depth) {
+    fail("too deeply nested includes");
+  }
+  size_t include_frames = 0;
+  for (const Frame& f : frames_) include_frames += !f.macro;
+  if (include_frames > options_.limits.include_depth) {
+    fail("includes nested deeper than " + std::to_string(options_.limits.include_depth) +
+         " (limit)");
+  }
+  std::filesystem::path folder;
+  auto path = resolve_include(name.text, &folder, false);
+  if (!path) {
+    fail("cannot include \"" + name.text +
+         "\": not found in the scene's folder or a library path (absolute paths and paths "
+         "leaving those folders are refused)");
+  }
+  std::string display = path->lexically_relative(scene_folder_.lexically_normal()).string();
+  if (display.empty() || display.rfind("..", 0) == 0) display = path->string();
+  std::string from = "included from " + last_.text();
+  unread_pushback();
+  Frame frame;
+  frame.file = load(*path, display);
+  frame.from = from;
+  frame.cond_base = conds_.size();
+  frame.scope = scopes_.size();
+  frame.folder = folder;
+  scopes_.emplace_back();
+  frames_.push_back(std::move(frame));
+}
+
+void Parser::run_macro_definition() {
+  Token name = raw_next();
+  if (name.kind != TokenKind::kWord) fail("expected the macro's name");
+  auto macro = std::make_shared<Macro>();
+  macro->name = name.text;
+  macro->where = last_;
+  macro->file = frames_.back().file;
+  Token open = raw_next();
+  if (!(open.kind == TokenKind::kSymbol && open.text == "(")) fail("expected '(' after macro name");
+  for (;;) {
+    Token token = raw_next();
+    if (token.kind == TokenKind::kSymbol && token.text == ")") break;
+    if (token.kind == TokenKind::kSymbol && token.text == ",") continue;
+    if (token.kind == TokenKind::kWord && token.text == "optional") continue;
+    if (token.kind != TokenKind::kWord) fail("expected a macro parameter name");
+    macro->params.push_back(token.text);
+  }
+  macro->body = frames_.back().pos;
+  skip_levels(1);
+  Value value;
+  value.kind = ValueKind::kMacro;
+  value.macro = macro;
+  scopes_[0][name.text] = std::move(value);  // macros are global (POV-Ray manual 3.3.8)
+}
+
+void Parser::run_fopen() {
+  Token name = raw_next();
+  if (name.kind != TokenKind::kWord) fail("expected a file identifier after #fopen");
+  Value file_name = parse_expression();
+  if (file_name.kind != ValueKind::kString) fail("#fopen expects a file name string");
+  Tok mode = next();
+  if (mode.word("write") || mode.word("append")) {
+    unsupported("#fopen for writing", here());
+    Value sink;
+    sink.kind = ValueKind::kFile;  // #write to it is parsed and dropped
+    assign(name.text, std::move(sink), false);
+    return;
+  }
+  if (!mode.word("read")) fail("expected read, write or append");
+  auto path = resolve_include(file_name.text, nullptr, true);
+  if (!path) fail("cannot #fopen \"" + file_name.text + "\" for reading inside the scene's folder");
+  Value handle;
+  handle.kind = ValueKind::kFile;
+  handle.file = std::make_shared<ReadFile>();
+  handle.file->tokens = load(*path, file_name.text);
+  assign(name.text, std::move(handle), false);
+}
+
+// #read (File, A, B ...): each identifier takes the next comma-separated value of the file; at
+// the end of the file the handle becomes undefined (POV-Ray's `#while (defined(File))` idiom).
+void Parser::run_read() {
+  expect("(");
+  Token handle_name = raw_next();
+  Value* handle = lookup(handle_name.text);
+  if (!handle || handle->kind != ValueKind::kFile || !handle->file) fail("#read needs a file opened for reading");
+  std::shared_ptr<ReadFile> file = handle->file;
+  const std::vector<Token>& tokens = file->tokens->tokens;
+  while (accept(",")) {
+    Token target = raw_next();
+    if (target.kind != TokenKind::kWord) fail("expected an identifier in #read");
+    while (file->pos < tokens.size() && tokens[file->pos].kind == TokenKind::kSymbol &&
+           tokens[file->pos].text == ",") {
+      ++file->pos;
+    }
+    if (tokens[file->pos].kind == TokenKind::kEnd) break;
+    const Token& t = tokens[file->pos];
+    Value value;
+    auto read_number = [&]() -> double {
+      double sign = 1;
+      while (tokens[file->pos].kind == TokenKind::kSymbol && tokens[file->pos].text == "-") {
+        sign = -sign;
+        ++file->pos;
+      }
+      if (tokens[file->pos].kind != TokenKind::kNumber) fail("#read: expected a number");
+      return sign * tokens[file->pos++].number;
+    };
+    if (t.kind == TokenKind::kString) {
+      value = Value::string(t.text);
+      ++file->pos;
+    } else if (t.kind == TokenKind::kSymbol && t.text == "<") {
+      ++file->pos;
+      value.kind = ValueKind::kVector;
+      value.dims = 0;
+      for (;;) {
+        if (value.dims == 5) fail("#read: vector with more than 5 components");
+        value.v[value.dims++] = read_number();
+        const Token& sep = tokens[file->pos++];
+        if (sep.kind == TokenKind::kSymbol && sep.text == ">") break;
+        if (!(sep.kind == TokenKind::kSymbol && sep.text == ",")) fail("#read: bad vector");
+      }
+    } else {
+      value = Value::number(read_number());
+    }
+    assign(target.text, std::move(value), false);
+  }
+  expect(")");
+  while (file->pos < tokens.size() && tokens[file->pos].kind == TokenKind::kSymbol &&
+         tokens[file->pos].text == ",") {
+    ++file->pos;
+  }
+  if (tokens[file->pos].kind == TokenKind::kEnd) {
+    for (auto& scope : scopes_) scope.erase(handle_name.text);
+  }
+}
+
+void Parser::directive(const Token& token) {
+  const std::string& d = token.text;
+  if (d == "declare" || d == "local") return run_declare(d == "local");
+  if (d == "if") {
+    if (parse_condition()) {
+      conds_.emplace_back();  // a kIf
+    } else {
+      skip_to_branch(true);
+    }
+    return;
+  }
+  if (d == "ifdef" || d == "ifndef") {
+    expect("(");
+    Token name = raw_next();
+    bool defined = name.kind == TokenKind::kWord && lookup(name.text) != nullptr;
+    if (defined && raw().kind == TokenKind::kSymbol && raw().text == "[") {
+      Value* array = lookup(name.text);
+      size_t index = 0;
+      bool inside = array->kind == ValueKind::kArray;
+      for (size_t dim = 0; inside && dim < array->array->sizes.size(); ++dim) {
+        expect("[");
+        double i = parse_float();
+        expect("]");
+        inside = i >= 0 && i < static_cast<double>(array->array->sizes[dim]);
+        if (inside) index = index * array->array->sizes[dim] + static_cast<size_t>(i);
+      }
+      defined = inside && array->array->elements[index].has_value();
+    }
+    expect(")");
+    if (defined == (d == "ifdef")) {
+      conds_.emplace_back();  // a kIf
+    } else {
+      skip_to_branch(true);
+    }
+    return;
+  }
+  if (d == "else" || d == "elseif") {
+    // reached from a branch that ran: skip the rest up to the #end
+    if (conds_.size() == frames_.back().cond_base) fail("#" + d + " without #if");
+    Cond& cond = conds_.back();
+    if (d == "elseif" && cond.kind != CondKind::kIf) fail("#elseif without #if");
+    conds_.pop_back();
+    skip_levels(1);
+    return;
+  }
+  if (d == "end") return run_end();
+  if (d == "while") {
+    size_t at = frames_.back().pos - 1;
+    if (parse_condition()) {
+      Cond cond;
+      cond.kind = CondKind::kWhile;
+      cond.loop_pos = at;
+      conds_.push_back(cond);
+    } else {
+      skip_levels(1);
+    }
+    return;
+  }
+  if (d == "for") {
+    expect("(");
+    Token variable = raw_next();
+    if (variable.kind != TokenKind::kWord) fail("expected the #for variable");
+    expect(",");
+    double start = parse_float();
+    expect(",");
+    double end = parse_float();
+    double step = accept(",") ? parse_float() : 1;
+    expect(")");
+    if (step == 0) fail("#for step 0 never ends");
+    assign(variable.text, Value::number(start), false);
+    if (step > 0 ? start <= end : start >= end) {
+      Cond cond;
+      cond.kind = CondKind::kFor;
+      cond.loop_pos = frames_.back().pos;
+      cond.variable = variable.text;
+      cond.end = end;
+      cond.step = step;
+      conds_.push_back(cond);
+    } else {
+      skip_levels(1);
+    }
+    return;
+  }
+  if (d == "switch") {
+    expect("(");
+    Cond cond;
+      cond.kind = CondKind::kSwitch;
+    cond.switch_value = parse_float();
+    expect(")");
+    conds_.push_back(cond);
+    return run_switch_search();
+  }
+  if (d == "case" || d == "range") {
+    // met while a case runs: falls through (POV-Ray runs on to #break)
+    if (conds_.size() == frames_.back().cond_base || conds_.back().kind != CondKind::kSwitch) {
+      fail("#" + d + " outside #switch");
+    }
+    skip_parenthesised();
+    return;
+  }
+  if (d == "break") {
+    // leaves the innermost #switch, #while or #for
+    int levels = 0;
+    for (size_t i = conds_.size(); i-- > frames_.back().cond_base;) {
+      ++levels;
+      if (conds_[i].kind != CondKind::kIf) {
+        conds_.resize(i);
+        return skip_levels(levels);
+      }
+    }
+    fail("#break outside #switch, #while or #for");
+  }
+  if (d == "macro") return run_macro_definition();
+  if (d == "include") return run_include();
+  if (d == "undef") {
+    Token name = raw_next();
+    for (size_t i = scopes_.size(); i-- > 0;) {
+      if (scopes_[i].erase(name.text)) break;
+    }
+    return;
+  }
+  if (d == "version") {
+    double version = parse_float();
+    accept(";");
+    scene_.version = version;
+    Value v = Value::number(version);
+    scopes_[0]["version"] = v;
+    return;
+  }
+  if (d == "debug" || d == "warning" || d == "error" || d == "render" || d == "statistics") {
+    Value text = parse_expression();
+    if (text.kind != ValueKind::kString) fail("#" + d + " expects a string");
+    if (d == "warning") warn(text.text);
+    if (d == "error") fail("#error: " + text.text);
+    return;
+  }
+  if (d == "default") {
+    expect("{");
+    for (;;) {
+      Tok tok = next();
+      if (tok.symbol("}")) break;
+      if (tok.word("texture")) {
+        default_texture_ = parse_texture();
+      } else if (tok.word("pigment")) {
+        default_texture_.pigment = parse_pigment();
+      } else if (tok.word("finish")) {
+        default_texture_.finish = parse_finish();
+      } else if (tok.word("normal")) {
+        skip_block();
+      } else {
+        fail("expected texture, pigment, finish or normal in #default");
+      }
+    }
+    return;
+  }
+  if (d == "fopen") return run_fopen();
+  if (d == "fclose") {
+    Token name = raw_next();
+    for (auto& scope : scopes_) scope.erase(name.text);
+    return;
+  }
+  if (d == "read") return run_read();
+  if (d == "write") {
+    unsupported("#write", here());
+    return skip_parenthesised();
+  }
+  fail("unknown directive #" + d);
+}
+
+}  // namespace fb::pov::sdl

@@ -1,0 +1,530 @@
+// Expressions: floats, vectors (2 to 5 components), colours and strings with POV-Ray's promotion
+// rules (manual 3.3.1): a float where a vector is expected fills every component, a vector where
+// a colour is expected gives its red, green, blue (filter, transmit) in order.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "importers/pov/sdl/builtins.h"
+#include "importers/pov/sdl/parser.h"
+
+namespace fb::pov::sdl {
+namespace {
+
+bool is_colour_word(const std::string& w) {
+  static const char* const kWords[] = {"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb",
+                                       "srgbf", "srgbt", "srgbft", "red", "green", "blue",
+                                       "filter", "transmit", "gray", "grey"};
+  for (const char* k : kWords) {
+    if (w == k) return true;
+  }
+  return false;
+}
+
+double srgb_decode(double c) {
+  // IEC 61966-2-1, which POV-Ray 3.7's srgb keyword applies
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+}  // namespace
+
+Colour to_colour(const Value& value, bool float_fills_filter_transmit) {
+  Colour c;
+  if (value.kind == ValueKind::kFloat) {
+    c.r = c.g = c.b = value.v[0];
+    if (float_fills_filter_transmit) c.filter = c.transmit = value.v[0];
+    return c;
+  }
+  c.r = value.v[0];
+  c.g = value.dims > 1 ? value.v[1] : 0;
+  c.b = value.dims > 2 ? value.v[2] : 0;
+  c.filter = value.dims > 3 ? value.v[3] : 0;
+  c.transmit = value.dims > 4 ? value.v[4] : 0;
+  return c;
+}
+
+bool Parser::starts_colour(const Tok& tok) const {
+  if (tok.keyword()) return is_colour_word(tok.token.text);
+  return false;
+}
+
+// `colour` bodies: keywords rgb/rgbf/... and red/green/... in any order, or an expression
+// followed by component keywords (`Red filter 0.5`).
+Colour Parser::parse_colour(bool float_fills_filter_transmit) {
+  Colour c;
+  bool any = false;
+  for (;;) {
+    Tok tok = next();
+    const std::string& w = tok.token.text;
+    if (tok.word("color") || tok.word("colour")) {
+      if (!any) continue;
+      unget(std::move(tok));  // the next colour of a list
+      break;
+    }
+    if (tok.keyword() && (w.rfind("rgb", 0) == 0 || w.rfind("srgb", 0) == 0) &&
+        is_colour_word(w)) {
+      bool srgb = w[0] == 's';
+      std::string channels = w.substr(srgb ? 4 : 3);
+      int dims = 3 + static_cast<int>(channels.size());
+      Value value = parse_expression();
+      if (!value.numeric()) fail("expected a colour vector after " + w);
+      double comp[5] = {0, 0, 0, 0, 0};
+      for (int i = 0; i < dims; ++i) {
+        comp[i] = value.kind == ValueKind::kFloat ? value.v[0] : (i < value.dims ? value.v[i] : 0);
+      }
+      c.r = comp[0];
+      c.g = comp[1];
+      c.b = comp[2];
+      c.filter = c.transmit = 0;
+      if (channels == "f" || channels == "ft") c.filter = comp[3];
+      if (channels == "t") c.transmit = comp[3];
+      if (channels == "ft") c.transmit = comp[4];
+      if (srgb) {
+        c.r = srgb_decode(c.r);
+        c.g = srgb_decode(c.g);
+        c.b = srgb_decode(c.b);
+      }
+      any = true;
+    } else if (tok.keyword() && (w == "red" || w == "green" || w == "blue" || w == "filter" ||
+                                 w == "transmit" || w == "gray" || w == "grey")) {
+      double f = parse_float();
+      if (w == "red") c.r = f;
+      if (w == "green") c.g = f;
+      if (w == "blue") c.b = f;
+      if (w == "filter") c.filter = f;
+      if (w == "transmit") c.transmit = f;
+      if (w == "gray" || w == "grey") c.r = c.g = c.b = f;
+      any = true;
+    } else if (!any && tok.token.kind != TokenKind::kEnd && !tok.symbol("}") &&
+               !tok.symbol("]") && !tok.symbol(",")) {
+      unget(std::move(tok));
+      Value value = parse_expression();
+      if (!value.numeric()) fail("expected a colour");
+      c = to_colour(value, float_fills_filter_transmit);
+      any = true;
+    } else {
+      unget(std::move(tok));
+      break;
+    }
+  }
+  if (!any) fail("expected a colour");
+  return c;
+}
+
+double Parser::parse_float() {
+  Value value = parse_expression();
+  if (value.kind != ValueKind::kFloat) {
+    // POV-Ray takes the first component of a vector where a float is expected
+    if (value.kind == ValueKind::kVector || value.kind == ValueKind::kColour) return value.v[0];
+    fail("expected a float");
+  }
+  return value.v[0];
+}
+
+Value Parser::parse_numeric(int dims) {
+  Value value = parse_expression();
+  if (!value.numeric()) fail("expected a " + std::string(dims == 1 ? "float" : "vector"));
+  Value out;
+  out.kind = dims == 1 ? ValueKind::kFloat : ValueKind::kVector;
+  out.dims = dims;
+  for (int i = 0; i < dims; ++i) {
+    out.v[i] = value.kind == ValueKind::kFloat ? value.v[0] : (i < value.dims ? value.v[i] : 0);
+  }
+  return out;
+}
+
+Vec3d Parser::parse_vector() {
+  Value value = parse_numeric(3);
+  return {value.v[0], value.v[1], value.v[2]};
+}
+
+bool Parser::parse_bool_option() {
+  const Tok& tok = peek();
+  bool has_value = tok.token.kind == TokenKind::kNumber || tok.symbol("(") || tok.symbol("!") ||
+                   tok.word("on") || tok.word("off") || tok.word("true") || tok.word("false") ||
+                   tok.word("yes") || tok.word("no") ||
+                   (tok.identifier && tok.value.kind == ValueKind::kFloat);
+  if (!has_value) return true;
+  return std::abs(parse_float()) > 1e-10;
+}
+
+namespace {
+
+// The shape of a binary operation's result: floats promote to the other operand's size.
+Value combine(Parser& parser, const Value& a, const Value& b, double (*op)(double, double)) {
+  if (a.kind == ValueKind::kString || b.kind == ValueKind::kString) {
+    parser.fail("arithmetic on a string");
+  }
+  if (!a.numeric() || !b.numeric()) parser.fail("arithmetic on something that is not a number");
+  Value out;
+  if (a.kind == ValueKind::kFloat && b.kind == ValueKind::kFloat) {
+    out = Value::number(op(a.v[0], b.v[0]));
+    return out;
+  }
+  out.kind = (a.kind == ValueKind::kColour || b.kind == ValueKind::kColour) ? ValueKind::kColour
+                                                                             : ValueKind::kVector;
+  out.dims = out.kind == ValueKind::kColour ? 5 : std::max(a.dims, b.dims);
+  for (int i = 0; i < out.dims; ++i) {
+    double x = a.kind == ValueKind::kFloat ? a.v[0] : (i < a.dims ? a.v[i] : 0);
+    double y = b.kind == ValueKind::kFloat ? b.v[0] : (i < b.dims ? b.v[i] : 0);
+    out.v[i] = op(x, y);
+  }
+  return out;
+}
+
+double truth(bool b) { return b ? 1.0 : 0.0; }
+
+}  // namespace
+
+Value Parser::parse_rvalue() {
+  Tok tok = next();
+  if (tok.keyword()) {
+    const std::string& w = tok.token.text;
+    if (is_object_keyword(tok)) return Value::of(parse_object(tok));
+    if (w == "pigment") return Value::of(parse_pigment());
+    if (w == "finish") return Value::of(parse_finish());
+    if (w == "texture") {
+      Texture texture = parse_texture();
+      // layered textures (`texture {..} texture {..}`): the first, the base layer, is kept
+      while (peek().word("texture")) {
+        unsupported("layered texture (base layer used)", here());
+        next();
+        parse_texture();
+      }
+      return Value::of(std::move(texture));
+    }
+    if (w == "interior") return Value::of(parse_interior());
+    if (w == "material") return Value::of(parse_material());
+    if (w == "camera") return Value::of(parse_camera(tok));
+    if (w == "transform") return Value::of(parse_transform_block());
+    if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
+      return Value::of(parse_colour_map(w == "pigment_map"));
+    }
+    if (w == "sky_sphere") {
+      Tok brace = tok;
+      unget(std::move(tok));
+      next();
+      (void)brace;
+      SkySphere sky;
+      expect("{");
+      for (;;) {
+        Tok item = next();
+        if (item.symbol("}")) break;
+        if (item.identifier && item.value.get<SkySphere>()) {
+          sky = *item.value.get<SkySphere>();
+        } else if (item.word("pigment")) {
+          sky.pigments.push_back(parse_pigment());
+        } else if (auto m = parse_transform_item(item)) {
+          sky.transform = *m * sky.transform;
+        } else if (item.word("emission")) {
+          parse_colour();
+        } else {
+          fail("unexpected " + item.token.text + " in sky_sphere");
+        }
+      }
+      return Value::of(std::move(sky));
+    }
+    if (w == "normal" || w == "texture_map" || w == "normal_map" || w == "slope_map" ||
+        w == "density_map" || w == "media" || w == "density" || w == "fog" || w == "rainbow" ||
+        w == "spline" || w == "interior_texture" || w == "photons" || w == "radiosity") {
+      skip_block();
+      Value value;
+      value.kind = ValueKind::kOpaque;
+      value.text = w;
+      return value;
+    }
+    if (w == "function") {
+      if (peek().symbol("(")) skip_parenthesised();
+      skip_block();
+      Value value;
+      value.kind = ValueKind::kFunction;
+      return value;
+    }
+    if (w == "array") {
+      std::vector<size_t> sizes;
+      while (peek().symbol("[")) {
+        next();
+        double n = parse_float();
+        expect("]");
+        if (!(n >= 1 && n <= static_cast<double>(options_.limits.array_elements))) {
+          fail("array size " + std::to_string(static_cast<long long>(n)) + " out of range");
+        }
+        sizes.push_back(static_cast<size_t>(n));
+      }
+      if (sizes.empty()) fail("expected the array's size [n]");
+      uint64_t total = 1;
+      for (size_t s : sizes) {
+        total *= s;
+        count_array_elements(0);
+        if (total > options_.limits.array_elements) count_array_elements(total);
+      }
+      count_array_elements(total);
+      auto array = std::make_shared<ArrayValue>();
+      array->sizes = sizes;
+      array->elements.resize(total);
+      if (peek().symbol("{")) {
+        // nested initialiser lists, one level per dimension
+        size_t index = 0;
+        std::vector<size_t> count(sizes.size(), 0);
+        std::function<void(size_t)> fill = [&](size_t dim) {
+          expect("{");
+          size_t n = 0;
+          for (;;) {
+            if (accept("}")) break;
+            if (n > 0 && !accept(",")) {
+              expect("}");
+              break;
+            }
+            if (accept("}")) break;
+            if (n >= sizes[dim]) fail("too many array initialisers");
+            if (dim + 1 < sizes.size()) {
+              fill(dim + 1);
+            } else {
+              array->elements[index++] = parse_rvalue();
+            }
+            ++n;
+          }
+          if (n != sizes[dim]) fail("array initialiser has " + std::to_string(n) +
+                                    " elements, the array " + std::to_string(sizes[dim]));
+        };
+        fill(0);
+      }
+      Value value;
+      value.kind = ValueKind::kArray;
+      value.array = std::move(array);
+      return value;
+    }
+  }
+  unget(std::move(tok));
+  return parse_expression();
+}
+
+Value Parser::parse_expression() {
+  Nesting guard(*this);
+  return parse_ternary();
+}
+
+// The branches stay at the same nesting level, so a '>' after them still closes a vector.
+Value Parser::parse_ternary() {
+  Value cond = parse_logic();
+  if (peek().symbol("?")) {
+    next();
+    if (cond.kind != ValueKind::kFloat) fail("expected a float before '?'");
+    Value a = parse_ternary();
+    expect(":");
+    Value b = parse_ternary();
+    return std::abs(cond.v[0]) > 1e-10 ? a : b;
+  }
+  return cond;
+}
+
+Value Parser::parse_logic() {
+  Value left = parse_relation();
+  for (;;) {
+    const Tok& tok = peek();
+    bool is_and = tok.symbol("&");
+    if (!is_and && !tok.symbol("|")) return left;
+    next();
+    Value right = parse_relation();
+    if (left.kind != ValueKind::kFloat || right.kind != ValueKind::kFloat) {
+      fail("'&' and '|' need floats");
+    }
+    bool a = std::abs(left.v[0]) > 1e-10, b = std::abs(right.v[0]) > 1e-10;
+    left = Value::number(truth(is_and ? a && b : a || b));
+  }
+}
+
+Value Parser::parse_relation() {
+  Value left = parse_additive();
+  for (;;) {
+    const Tok& tok = peek();
+    if (tok.token.kind != TokenKind::kSymbol) return left;
+    std::string op = tok.token.text;
+    if (op != "<" && op != "<=" && op != "=" && op != "!=" && op != ">=" && op != ">") return left;
+    if (op == ">" && nesting == vector_level_) return left;  // closes the vector literal
+    // after a vector, '<' opens the next one (`box { <0,0,0> <1,1,1> }` needs no comma)
+    if (left.kind == ValueKind::kVector && op != "=" && op != "!=") return left;
+    next();
+    Value right = parse_additive();
+    if (left.kind == ValueKind::kString && right.kind == ValueKind::kString) {
+      int c = left.text.compare(right.text);
+      left = Value::number(truth(op == "<" ? c < 0 : op == "<=" ? c <= 0 : op == "=" ? c == 0
+                                 : op == "!=" ? c != 0 : op == ">=" ? c >= 0 : c > 0));
+      continue;
+    }
+    if (left.kind != ValueKind::kFloat || right.kind != ValueKind::kFloat) {
+      if (left.numeric() && right.numeric() && (op == "=" || op == "!=")) {
+        Value diff = combine(*this, left, right, [](double a, double b) { return a - b; });
+        bool equal = true;
+        for (int i = 0; i < diff.dims; ++i) equal = equal && std::abs(diff.v[i]) < 1e-10;
+        left = Value::number(truth(op == "=" ? equal : !equal));
+        continue;
+      }
+      fail("comparison '" + op + "' needs floats");
+    }
+    double a = left.v[0], b = right.v[0];
+    left = Value::number(truth(op == "<" ? a < b : op == "<=" ? a <= b : op == "=" ? a == b
+                               : op == "!=" ? a != b : op == ">=" ? a >= b : a > b));
+  }
+}
+
+Value Parser::parse_additive() {
+  Value left = parse_multiplicative();
+  for (;;) {
+    const Tok& tok = peek();
+    bool plus = tok.symbol("+");
+    if (!plus && !tok.symbol("-")) return left;
+    next();
+    Value right = parse_multiplicative();
+    left = plus ? combine(*this, left, right, [](double a, double b) { return a + b; })
+                : combine(*this, left, right, [](double a, double b) { return a - b; });
+  }
+}
+
+Value Parser::parse_multiplicative() {
+  Value left = parse_unary();
+  for (;;) {
+    const Tok& tok = peek();
+    bool times = tok.symbol("*");
+    if (!times && !tok.symbol("/")) return left;
+    next();
+    Value right = parse_unary();
+    // POV-Ray divides by zero without stopping; keep the result finite (manual: "division by
+    // zero" is a warning) so no NaN reaches the scene
+    left = times ? combine(*this, left, right, [](double a, double b) { return a * b; })
+                 : combine(*this, left, right, [](double a, double b) {
+                     return b == 0 ? (a == 0 ? 0.0 : std::copysign(1e300, a)) : a / b;
+                   });
+  }
+}
+
+Value Parser::parse_unary() {
+  Tok tok = next();
+  if (tok.symbol("-") || tok.symbol("+")) {
+    Value value = parse_unary();
+    if (!value.numeric()) fail("expected a number after '" + tok.token.text + "'");
+    if (tok.symbol("-")) {
+      for (int i = 0; i < value.dims; ++i) value.v[i] = -value.v[i];
+    }
+    return value;
+  }
+  if (tok.symbol("!")) {
+    Value value = parse_unary();
+    if (value.kind != ValueKind::kFloat) fail("'!' needs a float");
+    return Value::number(truth(std::abs(value.v[0]) <= 1e-10));
+  }
+  unget(std::move(tok));
+  return parse_postfix();
+}
+
+Value Parser::parse_postfix() {
+  Value value = parse_primary();
+  while (peek().symbol(".")) {
+    next();
+    Tok member = next();
+    if (member.token.kind != TokenKind::kWord) fail("expected a component name after '.'");
+    const std::string& m = member.token.text;
+    if (!value.numeric()) fail("'." + m + "' needs a vector or colour");
+    int index = -1;
+    if (m == "x" || m == "u" || m == "red") index = 0;
+    if (m == "y" || m == "v" || m == "green") index = 1;
+    if (m == "z" || m == "blue") index = 2;
+    if (m == "t" || m == "filter") index = 3;
+    if (m == "transmit") index = 4;
+    if (m == "gray" || m == "grey") {
+      // POV-Ray's grey: 0.297 R + 0.589 G + 0.114 B (colour.h GREY_SCALE)
+      value = Value::number(0.297 * value.v[0] + 0.589 * value.v[1] + 0.114 * value.v[2]);
+      continue;
+    }
+    if (index < 0) fail("unknown component '." + m + "'");
+    if (value.kind == ValueKind::kFloat) {
+      // a float promotes to a vector of any size, so every component is the float
+      continue;
+    }
+    if (index >= value.dims) fail("'." + m + "' is past the vector's " + std::to_string(value.dims) + " components");
+    value = Value::number(value.v[index]);
+  }
+  return value;
+}
+
+Value Parser::index_array(const Value& array_value) {
+  const ArrayValue& array = *array_value.array;
+  size_t index = 0;
+  for (size_t d = 0; d < array.sizes.size(); ++d) {
+    expect("[");
+    double i = parse_float();
+    expect("]");
+    if (!(i >= 0 && i < static_cast<double>(array.sizes[d]))) {
+      fail("array index " + number_string(i) + " out of range 0.." +
+           std::to_string(array.sizes[d] - 1));
+    }
+    index = index * array.sizes[d] + static_cast<size_t>(i);
+  }
+  if (!array.elements[index]) fail("array element " + std::to_string(index) + " not initialised");
+  return *array.elements[index];
+}
+
+Value Parser::parse_primary() {
+  Tok tok = next();
+  switch (tok.token.kind) {
+    case TokenKind::kNumber: return Value::number(tok.token.number);
+    case TokenKind::kString: return Value::string(tok.token.text);
+    case TokenKind::kEnd: fail("unexpected end of file in an expression");
+    case TokenKind::kDirective: fail("unexpected #" + tok.token.text + " in an expression");
+    default: break;
+  }
+  if (tok.symbol("(")) {
+    Value value = parse_expression();
+    expect(")");
+    return value;
+  }
+  if (tok.symbol("<")) {
+    Value value;
+    value.kind = ValueKind::kVector;
+    value.dims = 0;
+    int saved = vector_level_;
+    vector_level_ = nesting + 1;
+    for (;;) {
+      Value c = parse_expression();
+      if (c.kind != ValueKind::kFloat) fail("vector components must be floats");
+      if (value.dims == 5) fail("a vector has at most 5 components");
+      value.v[value.dims++] = c.v[0];
+      if (peek().symbol(",")) {
+        next();
+        continue;
+      }
+      break;
+    }
+    vector_level_ = saved;
+    expect(">");
+    if (value.dims == 1) return Value::number(value.v[0]);
+    return value;
+  }
+  if (tok.token.kind == TokenKind::kSymbol) fail("unexpected '" + tok.token.text + "' in an expression");
+  if (tok.identifier) {
+    const Value& value = tok.value;
+    if (value.kind == ValueKind::kArray && peek().symbol("[")) return index_array(value);
+    if (value.kind == ValueKind::kFunction) {
+      // user functions are parsed, not evaluated
+      if (peek().symbol("(")) skip_parenthesised();
+      unsupported("function", location_of(tok));
+      return Value::number(0);
+    }
+    if (value.kind == ValueKind::kOpaque && value.text == "spline") {
+      if (peek().symbol("(")) skip_parenthesised();
+      unsupported("spline", location_of(tok));
+      return Value::vector({0, 0, 0});
+    }
+    return value;
+  }
+  const std::string& w = tok.token.text;
+  if (is_colour_word(w)) {
+    unget(std::move(tok));
+    return Value::colour(parse_colour());
+  }
+  if (auto value = builtin(*this, tok)) return *value;
+  fail("unknown identifier or keyword '" + w + "' in an expression");
+}
+
+}  // namespace fb::pov::sdl

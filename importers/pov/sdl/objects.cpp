@@ -1,0 +1,600 @@
+// Objects: the finite and infinite primitives, triangle meshes, polygon, object references, CSG,
+// and the modifiers every object takes (transforms, texture, flags, clipped_by).
+#include <algorithm>
+#include <cmath>
+
+#include "importers/pov/sdl/parser.h"
+
+namespace fb::pov::sdl {
+namespace {
+
+const char* const kSupported[] = {"sphere", "box", "plane", "cylinder", "cone", "torus", "disc",
+                                  "triangle", "smooth_triangle", "mesh", "mesh2", "polygon",
+                                  "object", "union", "merge", "difference", "intersection",
+                                  "light_source"};
+// parsed and reported: their geometry needs code the renderer does not have yet
+const char* const kUnsupported[] = {
+    "text", "height_field", "blob", "lathe", "sor", "prism", "superellipsoid", "isosurface",
+    "quadric", "quartic", "poly", "cubic", "polynomial", "julia_fractal", "parametric",
+    "sphere_sweep", "bicubic_patch", "ovus", "lemon", "fractal"};
+
+bool is_csg(Shape s) {
+  return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
+         s == Shape::kDifference;
+}
+
+void transform_object(Object& o, const Matrix& m, const Matrix& inverse) {
+  if (is_csg(o.shape)) {
+    for (Object& child : o.children) transform_object(child, m, inverse);
+  } else {
+    o.world_from_object = m * o.world_from_object;
+  }
+  if (o.texture_given) transform_texture(o.texture, inverse);
+  for (Texture& t : o.textures) transform_texture(t, inverse);
+  for (Object& clip : o.clipped_by) transform_object(clip, m, inverse);
+}
+
+void transform_node(Node& node, const Matrix& m) {
+  Matrix inverse = m.inverse();
+  if (node.object) transform_object(*node.object, m, inverse);
+  for (LightSource& light : node.lights) {
+    light.location = m.point(light.location);
+    light.point_at = m.point(light.point_at);
+    light.axis1 = m.vector(light.axis1);
+    light.axis2 = m.vector(light.axis2);
+  }
+}
+
+// A CSG's texture and interior go to the children that have none (POV-Ray manual 3.4.6).
+void inherit(Object& o, const Texture* texture, const std::optional<Interior>& interior) {
+  for (Object& child : o.children) {
+    if (texture && !child.texture_given) {
+      if (is_csg(child.shape)) {
+        inherit(child, texture, std::nullopt);
+      } else {
+        child.texture = *texture;
+      }
+      child.texture_given = true;
+    }
+    if (interior && !child.interior) {
+      if (is_csg(child.shape)) inherit(child, nullptr, interior);
+      child.interior = interior;
+    }
+  }
+}
+
+Vec3d sub(Vec3d a, Vec3d b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3d cross(Vec3d a, Vec3d b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Ear clipping of one closed loop of `count` points starting at `first`, in the plane of its
+// Newell normal. Long loops (> 2000 points) and degenerate ones fall back to a fan.
+void triangulate_loop(const std::vector<Vec3d>& points, uint32_t first, uint32_t count,
+                      std::vector<uint32_t>& indices) {
+  if (count < 3) return;
+  Vec3d n{0, 0, 0};
+  for (uint32_t i = 0; i < count; ++i) {
+    Vec3d a = points[first + i], b = points[first + (i + 1) % count];
+    n.x += (a.y - b.y) * (a.z + b.z);
+    n.y += (a.z - b.z) * (a.x + b.x);
+    n.z += (a.x - b.x) * (a.y + b.y);
+  }
+  int drop = std::abs(n.x) > std::abs(n.y) ? (std::abs(n.x) > std::abs(n.z) ? 0 : 2)
+                                           : (std::abs(n.y) > std::abs(n.z) ? 1 : 2);
+  auto p2 = [&](uint32_t i) -> std::pair<double, double> {
+    Vec3d p = points[first + i];
+    if (drop == 0) return {p.y, p.z};
+    if (drop == 1) return {p.z, p.x};
+    return {p.x, p.y};
+  };
+  std::vector<uint32_t> ring(count);
+  for (uint32_t i = 0; i < count; ++i) ring[i] = i;
+  double area = 0;
+  for (uint32_t i = 0; i < count; ++i) {
+    auto [ax, ay] = p2(i);
+    auto [bx, by] = p2((i + 1) % count);
+    area += ax * by - bx * ay;
+  }
+  if (area < 0) std::reverse(ring.begin(), ring.end());
+  auto cross2 = [&](uint32_t a, uint32_t b, uint32_t c) {
+    auto [ax, ay] = p2(a);
+    auto [bx, by] = p2(b);
+    auto [cx, cy] = p2(c);
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+  };
+  auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
+    indices.insert(indices.end(), {first + a, first + b, first + c});
+  };
+  while (ring.size() > 3 && count <= 2000) {
+    bool clipped = false;
+    for (size_t i = 0; i < ring.size(); ++i) {
+      uint32_t a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i],
+               c = ring[(i + 1) % ring.size()];
+      if (cross2(a, b, c) <= 0) continue;  // reflex corner
+      bool empty = true;
+      for (uint32_t q : ring) {
+        if (q == a || q == b || q == c) continue;
+        if (cross2(a, b, q) >= 0 && cross2(b, c, q) >= 0 && cross2(c, a, q) >= 0) {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty) continue;
+      emit(a, b, c);
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+      clipped = true;
+      break;
+    }
+    if (!clipped) break;
+  }
+  for (size_t i = 1; i + 1 < ring.size(); ++i) emit(ring[0], ring[i], ring[i + 1]);
+}
+
+}  // namespace
+
+bool Parser::is_object_keyword(const Tok& tok) const {
+  if (!tok.keyword()) return false;
+  for (const char* w : kSupported) {
+    if (tok.token.text == w) return true;
+  }
+  for (const char* w : kUnsupported) {
+    if (tok.token.text == w) return true;
+  }
+  return false;
+}
+
+Node Parser::parse_object(const Tok& keyword) {
+  Nesting guard(*this);
+  const std::string& w = keyword.token.text;
+  SourceLocation where = location_of(keyword);
+  for (const char* u : kUnsupported) {
+    if (w == u) {
+      unsupported(w, where);
+      skip_block();
+      return {};
+    }
+  }
+  count_objects(1);
+  if (w == "light_source") {
+    Node node;
+    node.lights.push_back(parse_light(keyword));
+    return node;
+  }
+  Node node;
+  Object o;
+  o.keyword = w;
+  o.where = where;
+  expect("{");
+  bool dropped = false;  // an unsupported object left out of this CSG
+  if (w == "sphere") {
+    o.shape = Shape::kSphere;
+    o.a = parse_vector();
+    accept(",");
+    o.r0 = parse_float();
+  } else if (w == "box") {
+    o.shape = Shape::kBox;
+    o.a = parse_vector();
+    accept(",");
+    o.b = parse_vector();
+  } else if (w == "plane") {
+    o.shape = Shape::kPlane;
+    o.a = parse_vector();
+    accept(",");
+    o.r0 = parse_float();
+  } else if (w == "cylinder") {
+    o.shape = Shape::kCylinder;
+    o.a = parse_vector();
+    accept(",");
+    o.b = parse_vector();
+    accept(",");
+    o.r0 = parse_float();
+  } else if (w == "cone") {
+    o.shape = Shape::kCone;
+    o.a = parse_vector();
+    accept(",");
+    o.r0 = parse_float();
+    accept(",");
+    o.b = parse_vector();
+    accept(",");
+    o.r1 = parse_float();
+  } else if (w == "torus") {
+    o.shape = Shape::kTorus;
+    o.r0 = parse_float();
+    accept(",");
+    o.r1 = parse_float();
+  } else if (w == "disc") {
+    o.shape = Shape::kDisc;
+    o.a = parse_vector();
+    accept(",");
+    o.b = parse_vector();
+    accept(",");
+    o.r0 = parse_float();
+    if (accept(",")) o.r1 = parse_float();
+  } else if (w == "triangle" || w == "smooth_triangle") {
+    o.shape = Shape::kMesh;
+    bool smooth = w == "smooth_triangle";
+    for (int i = 0; i < 3; ++i) {
+      if (i) accept(",");
+      o.vertices.push_back(parse_vector());
+      if (smooth) {
+        accept(",");
+        o.normals.push_back(parse_vector());
+      }
+    }
+    o.indices = {0, 1, 2};
+  } else if (w == "mesh") {
+    parse_mesh(o);
+  } else if (w == "mesh2") {
+    parse_mesh2(o);
+  } else if (w == "polygon") {
+    o.shape = Shape::kMesh;
+    double n = parse_float();
+    if (!(n >= 3 && n <= static_cast<double>(options_.limits.objects))) fail("polygon needs at least 3 points");
+    count_objects(static_cast<uint64_t>(n));
+    std::vector<Vec3d> points;
+    for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
+      accept(",");
+      Value v = parse_numeric(3);
+      points.push_back({v.v[0], v.v[1], v.v[2]});
+    }
+    // sub-polygons close where a point repeats the first of its loop (POV-Ray manual 3.4.2.4);
+    // each loop is triangulated on its own (holes are not cut)
+    size_t start = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      bool closes = i > start + 1 && points[i].x == points[start].x &&
+                    points[i].y == points[start].y && points[i].z == points[start].z;
+      if (closes || i + 1 == points.size()) {
+        size_t end = closes ? i : i + 1;
+        uint32_t first = static_cast<uint32_t>(o.vertices.size());
+        o.vertices.insert(o.vertices.end(), points.begin() + static_cast<std::ptrdiff_t>(start),
+                          points.begin() + static_cast<std::ptrdiff_t>(end));
+        triangulate_loop(o.vertices, first, static_cast<uint32_t>(end - start), o.indices);
+        start = i + 1;
+      }
+    }
+  } else if (w == "object") {
+    Tok first = next();
+    if (first.identifier && first.value.get<Node>()) {
+      node = *first.value.get<Node>();
+    } else if (is_object_keyword(first)) {
+      node = parse_object(first);
+    } else {
+      fail("expected an object identifier in object { }");
+    }
+    if (!node.object) {
+      // an unsupported or light-only object: transforms still move its lights
+      parse_object_mods(node);
+      return node;
+    }
+    parse_object_mods(node);
+    return node;
+  } else {
+    o.shape = w == "union" ? Shape::kUnion : w == "merge" ? Shape::kMerge
+              : w == "intersection" ? Shape::kIntersection : Shape::kDifference;
+    for (;;) {
+      Tok tok = next();
+      if (!is_object_keyword(tok)) {
+        unget(std::move(tok));
+        break;
+      }
+      Node child = parse_object(tok);
+      node.lights.insert(node.lights.end(), child.lights.begin(), child.lights.end());
+      if (child.object) {
+        o.children.push_back(std::move(*child.object));
+      } else if (child.lights.empty()) {
+        if (o.shape == Shape::kDifference && o.children.empty()) dropped = true;
+      }
+    }
+  }
+  node.object = std::move(o);
+  parse_object_mods(node);
+  if (dropped) node.object.reset();  // a difference whose base is unsupported
+  return node;
+}
+
+void Parser::parse_mesh(Object& o) {
+  o.shape = Shape::kMesh;
+  bool smooth = false;
+  std::vector<bool> textured;
+  for (;;) {
+    Tok tok = next();
+    bool tri = tok.word("triangle"), smooth_tri = tok.word("smooth_triangle");
+    if (!tri && !smooth_tri) {
+      if (tok.word("inside_vector")) {
+        parse_vector();
+        continue;
+      }
+      unget(std::move(tok));
+      break;
+    }
+    count_objects(1);
+    expect("{");
+    uint32_t base = static_cast<uint32_t>(o.vertices.size());
+    for (int i = 0; i < 3; ++i) {
+      if (i) accept(",");
+      o.vertices.push_back(parse_vector());
+      if (smooth_tri) {
+        accept(",");
+        Vec3d n = parse_vector();
+        if (!smooth) o.normals.resize(base, Vec3d{0, 0, 0});
+        smooth = true;
+        o.normals.push_back(n);
+      } else if (smooth) {
+        o.normals.push_back({0, 0, 0});  // filled with the face normal below
+      }
+    }
+    o.indices.insert(o.indices.end(), {base, base + 1, base + 2});
+    std::optional<uint32_t> texture;
+    for (;;) {
+      Tok item = next();
+      if (item.symbol("}")) break;
+      if (item.word("texture")) {
+        // `texture { T }` per triangle
+        o.textures.push_back(parse_texture());
+        texture = static_cast<uint32_t>(o.textures.size() - 1);
+      } else if (item.word("uv_vectors")) {
+        parse_numeric(2);
+        accept(",");
+        parse_numeric(2);
+        accept(",");
+        parse_numeric(2);
+      } else {
+        fail("unexpected '" + item.token.text + "' in a mesh triangle");
+      }
+    }
+    o.triangle_textures.push_back(texture.value_or(UINT32_MAX));
+  }
+  // flat triangles among smooth ones get their face normal at every corner
+  for (size_t t = 0; smooth && t < o.indices.size() / 3; ++t) {
+    Vec3d a = o.vertices[3 * t], b = o.vertices[3 * t + 1], c = o.vertices[3 * t + 2];
+    Vec3d n = cross(sub(b, a), sub(c, a));
+    for (int k = 0; k < 3; ++k) {
+      Vec3d& m = o.normals[3 * t + k];
+      if (m.x == 0 && m.y == 0 && m.z == 0) m = n;
+    }
+  }
+  bool any_texture = std::any_of(o.triangle_textures.begin(), o.triangle_textures.end(),
+                                 [](uint32_t t) { return t != UINT32_MAX; });
+  if (!any_texture) o.triangle_textures.clear();
+}
+
+void Parser::parse_mesh2(Object& o) {
+  o.shape = Shape::kMesh;
+  auto count_of = [&]() {
+    expect("{");
+    double n = parse_float();
+    if (!(n >= 0 && n <= static_cast<double>(options_.limits.objects))) fail("bad mesh2 count");
+    count_objects(static_cast<uint64_t>(n));
+    return static_cast<size_t>(n);
+  };
+  std::vector<Vec3d> normals;
+  std::vector<uint32_t> normal_indices;
+  for (;;) {
+    Tok tok = next();
+    const std::string& w = tok.token.text;
+    if (w == "vertex_vectors" || w == "normal_vectors") {
+      size_t n = count_of();
+      std::vector<Vec3d>& target = w == "vertex_vectors" ? o.vertices : normals;
+      for (size_t i = 0; i < n; ++i) {
+        accept(",");
+        target.push_back(parse_vector());
+      }
+      accept(",");
+      expect("}");
+    } else if (w == "uv_vectors") {
+      size_t n = count_of();
+      for (size_t i = 0; i < n; ++i) {
+        accept(",");
+        parse_numeric(2);
+      }
+      accept(",");
+      expect("}");
+    } else if (w == "texture_list") {
+      size_t n = count_of();
+      for (size_t i = 0; i < n; ++i) {
+        accept(",");
+        Tok t = next();
+        if (!t.word("texture")) fail("expected texture in texture_list");
+        o.textures.push_back(parse_texture());
+      }
+      accept(",");
+      expect("}");
+    } else if (w == "face_indices" || w == "normal_indices" || w == "uv_indices") {
+      size_t n = count_of();
+      for (size_t i = 0; i < n; ++i) {
+        accept(",");
+        Value v = parse_numeric(3);
+        for (int k = 0; k < 3; ++k) {
+          if (!(v.v[k] >= 0 && v.v[k] < 4294967295.0)) fail("negative or huge mesh2 index");
+          uint32_t index = static_cast<uint32_t>(v.v[k]);
+          if (w == "face_indices") o.indices.push_back(index);
+          if (w == "normal_indices") normal_indices.push_back(index);
+        }
+        if (w != "face_indices") continue;
+        // optional texture indices after the face: one, or one per corner
+        accept(",");
+        const Tok& after = peek();
+        if (after.symbol("<") || after.symbol("}") || after.token.kind == TokenKind::kDirective) continue;
+        double t = parse_float();
+        if (!(t >= 0 && t < 4294967295.0)) fail("bad mesh2 texture index");
+        o.triangle_textures.resize(o.indices.size() / 3 - 1, 0);
+        o.triangle_textures.push_back(static_cast<uint32_t>(t));
+        for (int k = 0; k < 2; ++k) {
+          if (!peek().symbol(",")) break;
+          next();
+          const Tok& more = peek();
+          if (more.symbol("<") || more.symbol("}")) break;
+          parse_float();
+        }
+      }
+      accept(",");
+      expect("}");
+    } else if (w == "inside_vector") {
+      parse_vector();
+    } else {
+      unget(std::move(tok));
+      break;
+    }
+  }
+  if (!o.triangle_textures.empty()) o.triangle_textures.resize(o.indices.size() / 3, 0);
+  for (uint32_t t : o.triangle_textures) {
+    if (t >= o.textures.size()) fail("mesh2 texture index past the texture_list");
+  }
+  for (uint32_t i : o.indices) {
+    if (i >= o.vertices.size()) fail("mesh2 face index " + std::to_string(i) + " past the vertex_vectors");
+  }
+  if (!normals.empty() && !normal_indices.empty()) {
+    if (normal_indices.size() != o.indices.size()) fail("mesh2 normal_indices and face_indices differ in count");
+    // one normal per corner: corners become vertices of their own
+    std::vector<Vec3d> vertices, corner_normals;
+    for (size_t i = 0; i < o.indices.size(); ++i) {
+      if (normal_indices[i] >= normals.size()) fail("mesh2 normal index past the normal_vectors");
+      vertices.push_back(o.vertices[o.indices[i]]);
+      corner_normals.push_back(normals[normal_indices[i]]);
+      o.indices[i] = static_cast<uint32_t>(i);
+    }
+    o.vertices = std::move(vertices);
+    o.normals = std::move(corner_normals);
+  } else if (normals.size() == o.vertices.size()) {
+    o.normals = std::move(normals);
+  }
+}
+
+void Parser::ensure_texture(Object& o) {
+  if (o.texture_given) return;
+  o.texture = default_texture_;
+  o.texture.where = here();
+  o.texture.has_normal = false;
+  o.texture_given = true;
+}
+
+void Parser::parse_object_mods(Node& node) {
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    if (tok.token.kind == TokenKind::kEnd) fail("missing '}' at the end of an object");
+    const std::string& w = tok.token.text;
+    if (auto m = parse_transform_item(tok)) {
+      transform_node(node, *m);
+      continue;
+    }
+    // modifiers of a light-only or unsupported object: parsed, nothing to change
+    Object scratch;
+    Object& o = node.object ? *node.object : scratch;
+    if (w == "texture") {
+      Texture t = parse_texture();
+      if (o.texture_given && o.shape != Shape::kMesh) continue;  // layered: the first stays
+      o.texture = std::move(t);
+      o.texture_given = true;
+    } else if (w == "pigment") {
+      Pigment p = parse_pigment();
+      ensure_texture(o);
+      o.texture.pigment = std::move(p);
+    } else if (w == "finish") {
+      Finish f = parse_finish();
+      ensure_texture(o);
+      o.texture.finish = f;
+    } else if (w == "normal") {
+      unsupported("normal", location_of(tok));
+      skip_block();
+      ensure_texture(o);
+      o.texture.has_normal = true;
+    } else if (w == "interior") {
+      o.interior = parse_interior();
+    } else if (w == "material") {
+      MaterialValue m = parse_material();
+      if (m.texture) {
+        o.texture = *m.texture;
+        o.texture_given = true;
+      }
+      if (m.interior) o.interior = m.interior;
+    } else if (w == "inverse") {
+      o.inverse = !o.inverse;
+    } else if (w == "hollow") {
+      o.hollow = parse_bool_option();
+    } else if (w == "no_shadow") {
+      o.no_shadow = parse_bool_option();
+    } else if (w == "no_image") {
+      o.no_image = parse_bool_option();
+    } else if (w == "no_reflection") {
+      o.no_reflection = parse_bool_option();
+    } else if (w == "double_illuminate") {
+      o.double_illuminate = parse_bool_option();
+    } else if (w == "open") {
+      o.open = parse_bool_option();
+    } else if (w == "no_radiosity" || w == "sturm" || w == "split_union" ||
+               w == "cutaway_textures" || w == "hierarchy" || w == "smooth" || w == "uv_mapping") {
+      parse_bool_option();
+    } else if (w == "inside_vector") {
+      parse_vector();
+    } else if (w == "clipped_by") {
+      expect("{");
+      for (;;) {
+        Tok item = next();
+        if (item.symbol("}")) break;
+        if (item.word("bounded_by")) continue;  // clipped_by { bounded_by }: nothing to clip
+        if (!is_object_keyword(item)) fail("expected an object in clipped_by");
+        Node clip = parse_object(item);
+        if (clip.object) o.clipped_by.push_back(std::move(*clip.object));
+      }
+    } else if (w == "bounded_by") {
+      skip_block();  // only a speed hint
+    } else if (w == "photons" || w == "radiosity" || w == "interior_texture") {
+      unsupported(w, location_of(tok));
+      skip_block();
+    } else if (tok.identifier && tok.value.get<Texture>()) {
+      // a texture identifier after a texture is a layer; as the first one it is the texture
+      if (!o.texture_given) {
+        o.texture = *tok.value.get<Texture>();
+        o.texture_given = true;
+      }
+    } else if (tok.identifier && tok.value.get<MaterialValue>()) {
+      const MaterialValue& m = *tok.value.get<MaterialValue>();
+      if (m.texture) {
+        o.texture = *m.texture;
+        o.texture_given = true;
+      }
+      if (m.interior) o.interior = m.interior;
+    } else {
+      fail("unexpected '" + w + "' in " + (node.object ? node.object->keyword : "object"));
+    }
+  }
+  if (!node.object) return;
+  Object& o = *node.object;
+  if (is_csg(o.shape)) inherit(o, o.texture_given ? &o.texture : nullptr, o.interior);
+  if (!o.triangle_textures.empty()) {
+    // mesh triangles without their own texture take the mesh's
+    uint32_t own = static_cast<uint32_t>(o.textures.size());
+    bool used = false;
+    for (uint32_t& t : o.triangle_textures) {
+      if (t == UINT32_MAX) {
+        t = own;
+        used = true;
+      }
+    }
+    if (used) {
+      ensure_texture(o);
+      o.textures.push_back(o.texture);
+    }
+  }
+}
+
+// A top-level object joins the scene: leaves without a texture take the #default one.
+void Parser::emit(Node node) {
+  std::function<void(Object&)> fill = [&](Object& o) {
+    if (!o.texture_given) {
+      o.texture = default_texture_;
+      o.texture.where = o.where;
+      o.texture_given = true;
+    }
+    for (Object& child : o.children) fill(child);
+  };
+  scene_.lights.insert(scene_.lights.end(), node.lights.begin(), node.lights.end());
+  if (node.object) {
+    fill(*node.object);
+    scene_.objects.push_back(std::move(*node.object));
+  }
+}
+
+}  // namespace fb::pov::sdl

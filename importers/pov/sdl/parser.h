@@ -1,0 +1,300 @@
+// The SDL interpreter. Like POV-Ray's own parser it reads a token stream in which directives are
+// executed as they are met: #while jumps back to its condition, a macro call pushes a frame that
+// reads the macro's body, #include pushes one that reads another file. The scene grammar
+// (objects.cpp, appearance.cpp, statements.cpp) and the expressions (expressions.cpp) pull
+// tokens from that stream (stream.cpp, directives.cpp).
+#pragma once
+
+#include <array>
+#include <functional>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <variant>
+#include <vector>
+
+#include "importers/pov/pov_scene.h"
+#include "importers/pov/sdl/evaluate.h"
+#include "importers/pov/sdl/lexer.h"
+
+namespace fb::pov::sdl {
+
+// A declared object: the geometry (none when it was unsupported) and the lights it carries.
+struct Node {
+  std::optional<Object> object;
+  std::vector<LightSource> lights;
+};
+
+struct MaterialValue {
+  std::optional<Texture> texture;
+  std::optional<Interior> interior;
+};
+
+using ColourMap = std::vector<ColourMapEntry>;
+
+using Item = std::variant<Node, Pigment, Finish, Texture, Interior, MaterialValue, CameraStatement,
+                          Matrix, ColourMap, SkySphere>;
+
+struct Macro {
+  std::string name;
+  std::vector<std::string> params;
+  std::shared_ptr<TokenFile> file;
+  size_t body = 0;  // index of the first body token
+  SourceLocation where;
+};
+
+struct ArrayValue;
+struct ReadFile;
+
+enum class ValueKind {
+  kNone, kFloat, kVector, kColour, kString, kArray, kItem, kMacro, kFunction, kOpaque, kFile
+};
+
+struct Value {
+  ValueKind kind = ValueKind::kNone;
+  int dims = 1;  // kFloat 1, kVector 2..5, kColour 5
+  std::array<double, 5> v{};
+  std::string text;  // kString; kOpaque: what it is ("normal", "spline", ...)
+  std::shared_ptr<ArrayValue> array;
+  std::shared_ptr<const Item> item;
+  std::shared_ptr<const Macro> macro;
+  std::shared_ptr<ReadFile> file;
+
+  bool numeric() const {
+    return kind == ValueKind::kFloat || kind == ValueKind::kVector || kind == ValueKind::kColour;
+  }
+  static Value number(double f) {
+    Value value;
+    value.kind = ValueKind::kFloat;
+    value.v[0] = f;
+    return value;
+  }
+  static Value vector(std::initializer_list<double> c) {
+    Value value;
+    value.kind = ValueKind::kVector;
+    value.dims = static_cast<int>(c.size());
+    int i = 0;
+    for (double d : c) value.v[i++] = d;
+    return value;
+  }
+  static Value colour(const Colour& c) {
+    Value value;
+    value.kind = ValueKind::kColour;
+    value.dims = 5;
+    value.v = {c.r, c.g, c.b, c.filter, c.transmit};
+    return value;
+  }
+  static Value string(std::string s) {
+    Value value;
+    value.kind = ValueKind::kString;
+    value.text = std::move(s);
+    return value;
+  }
+  template <typename T>
+  static Value of(T item) {
+    Value value;
+    value.kind = ValueKind::kItem;
+    value.item = std::make_shared<const Item>(std::move(item));
+    return value;
+  }
+  template <typename T>
+  const T* get() const {
+    return kind == ValueKind::kItem ? std::get_if<T>(item.get()) : nullptr;
+  }
+};
+
+struct ArrayValue {
+  std::vector<size_t> sizes;
+  std::vector<std::optional<Value>> elements;
+};
+
+// A file opened by #fopen for reading: its tokens, read one value at a time by #read.
+struct ReadFile {
+  std::shared_ptr<TokenFile> tokens;
+  size_t pos = 0;
+};
+
+// A token with the value of the identifier it names, looked up when it was read (a macro's
+// locals are gone by the time its caller uses the result).
+struct Tok {
+  Token token;
+  bool identifier = false;
+  Value value;
+  std::string file;  // file name of the token, for locations
+
+  bool is(TokenKind kind, const char* text) const { return token.kind == kind && token.text == text; }
+  bool symbol(const char* text) const { return is(TokenKind::kSymbol, text); }
+  bool word(const char* text) const { return !identifier && is(TokenKind::kWord, text); }
+  bool keyword() const { return !identifier && token.kind == TokenKind::kWord; }
+};
+
+class Parser {
+ public:
+  explicit Parser(const EvaluateOptions& options);
+  Scene run();
+
+  // ---- token stream (stream.cpp) ----
+  Tok next();                  // the next token, directives executed, macros expanded
+  const Tok& peek();           // the next token; a directive not yet executed shows as kDirective
+  void unget(Tok tok);         // push back one token
+  void expect(const char* symbol);
+  bool accept(const char* symbol);  // consumes `symbol` if it is next
+  [[noreturn]] void fail(const std::string& what) const;
+  [[noreturn]] void fail_at(const SourceLocation& where, const std::string& what) const;
+  SourceLocation here() const { return last_; }
+  SourceLocation location_of(const Tok& tok) const;
+  std::string chain() const;  // " (included from ...)" for messages
+  void skip_block();          // a balanced { ... } (the '{' not yet read), directives executed
+  void skip_parenthesised();  // a balanced ( ... ) (the '(' not yet read)
+  void unsupported(const std::string& feature, const SourceLocation& where);
+  void warn(const std::string& what);
+
+  // ---- directives (directives.cpp) ----
+  void directive(const Token& token);
+
+  // ---- expressions (expressions.cpp) ----
+  Value parse_expression();
+  Value parse_rvalue();  // anything #declare can hold
+  Value index_array(const Value& array);  // after an array identifier: [i][j]...
+  double parse_float();
+  Vec3d parse_vector();
+  Value parse_numeric(int dims);  // a float or vector promoted to `dims` components
+  bool parse_bool_option();  // an optional boolean after a flag keyword (`hollow on`)
+  Colour parse_colour(bool float_fills_filter_transmit = true);
+  bool starts_colour(const Tok& tok) const;
+
+  // ---- appearance (appearance.cpp) ----
+  Pigment parse_pigment();  // after the `pigment` keyword
+  Finish parse_finish();
+  Texture parse_texture();
+  Interior parse_interior();
+  MaterialValue parse_material();
+  ColourMap parse_colour_map(bool pigment_map);  // after colour_map / pigment_map
+  Pigment parse_pigment_items(const char* closing);  // a pigment's body up to `closing`
+  std::optional<Matrix> parse_transform_item(const Tok& tok);  // translate/rotate/.../transform
+  Matrix parse_transform_block();  // after `transform`
+  const Texture& default_texture() const { return default_texture_; }
+
+  // ---- objects (objects.cpp) ----
+  bool is_object_keyword(const Tok& tok) const;
+  Node parse_object(const Tok& keyword);
+  void parse_mesh(Object& o);
+  void parse_mesh2(Object& o);
+  void parse_object_mods(Node& node);
+  void ensure_texture(Object& o);  // the object's own texture, from the #default one if none
+
+  // ---- scene statements (statements.cpp) ----
+  CameraStatement parse_camera(const Tok& keyword);
+  LightSource parse_light(const Tok& keyword);
+  void parse_statement(const Tok& tok);
+  void emit(Node node);
+  void count_objects(uint64_t n);
+
+ private:
+  friend class DirectiveRunner;
+  struct Frame {
+    std::shared_ptr<TokenFile> file;
+    size_t pos = 0;
+    bool macro = false;
+    std::string from;      // "included from a.pov:3:1" / "in macro M called from a.pov:9:5"
+    size_t cond_base = 0;  // conds_ size when the frame began
+    size_t scope = 0;      // scopes_ index it pushed
+    std::filesystem::path folder;  // include: the folder it was found in
+    // macro parameters passed by reference: (parameter, caller's identifier)
+    std::vector<std::pair<std::string, std::string>> by_reference;
+  };
+  enum class CondKind { kIf, kWhile, kFor, kSwitch };
+  struct Cond {
+    CondKind kind = CondKind::kIf;
+    size_t loop_pos = 0;      // kWhile: the #while token; kFor: first body token
+    std::string variable;     // kFor
+    double end = 0, step = 1;  // kFor
+    double switch_value = 0;  // kSwitch
+    bool switch_running = false;
+  };
+
+  // stream.cpp
+  const Token& raw() const;
+  Tok resolve(const Token& token);
+  bool pop_finished_frame();
+  bool transparent_directive(const Token& token) const;
+  Value* lookup(const std::string& name);
+  void call_macro(const Token& name, std::shared_ptr<const Macro> macro);
+  void end_macro();
+  void count_token();
+  void unread_pushback();
+
+ public:
+  // directives.cpp helpers used by expressions (defined(), #read)
+  Value* find(const std::string& name) { return lookup(name); }
+  void assign(const std::string& name, Value value, bool local);
+  std::shared_ptr<TokenFile> load(const std::filesystem::path& path, const std::string& display);
+  std::optional<std::filesystem::path> resolve_include(const std::string& name,
+                                                       std::filesystem::path* folder,
+                                                       bool scene_folder_only) const;
+  Token raw_next();  // the next raw token of the current frame (no directives, no lookups)
+  uint64_t next_random(size_t stream);
+  size_t new_random_stream(double seed);
+  void count_array_elements(uint64_t n);
+  void check_string(const std::string& s);
+  const EvaluateOptions& options() const { return options_; }
+  int nesting = 0;  // expression/block recursion, bounded so that deep nesting cannot overflow
+
+ private:
+  // expressions.cpp, by precedence
+  Value parse_ternary();
+  Value parse_logic();
+  Value parse_relation();
+  Value parse_additive();
+  Value parse_multiplicative();
+  Value parse_unary();
+  Value parse_postfix();
+  Value parse_primary();
+  int vector_level_ = -1;  // expression nesting at which '>' closes a vector literal
+
+  // directives.cpp
+  void skip_to_branch(bool from_if_start);
+  void skip_levels(int levels);
+  bool parse_condition();
+  void run_declare(bool local);
+  void run_include();
+  void run_macro_definition();
+  void run_end();
+  void run_switch_search();
+  void run_fopen();
+  void run_read();
+
+  EvaluateOptions options_;
+  Scene scene_;
+  std::filesystem::path scene_folder_;
+  std::vector<Frame> frames_;
+  std::vector<Cond> conds_;
+  std::vector<std::unordered_map<std::string, Value>> scopes_;
+  std::optional<Tok> pushback_;
+  Tok peeked_directive_;
+  SourceLocation last_;
+  std::map<std::string, std::shared_ptr<TokenFile>> file_cache_;
+  std::vector<uint32_t> random_streams_;
+  Texture default_texture_;
+  uint64_t tokens_ = 0, loop_iterations_ = 0, array_elements_ = 0, objects_ = 0;
+};
+
+// RAII bound on recursion depth (expressions in parentheses, nested blocks).
+class Nesting {
+ public:
+  explicit Nesting(Parser& parser);
+  ~Nesting() { --parser_.nesting; }
+
+ private:
+  Parser& parser_;
+};
+
+Colour to_colour(const Value& value, bool float_fills_filter_transmit);
+std::string number_string(double value);  // for messages
+// Moves a texture's patterns with a transform applied after it: `inverse` is the transform's inverse.
+void transform_texture(Texture& texture, const Matrix& inverse);
+
+}  // namespace fb::pov::sdl
