@@ -33,6 +33,32 @@ float cycles_spot_falloff(float cos_angle, float cos_outer, float smooth) {
   return cos_angle * s * s * (3.f - 2.f * s);
 }
 
+// POV-Ray's cubic_spline(): 0 below low, 1 from high on, smooth in between.
+float cubic_spline(float low, float high, float pos) {
+  if (pos < low) return 0.f;
+  if (pos >= high || !(high > low)) return 1.f;
+  const float t = (pos - low) / (high - low);
+  return (3.f - 2.f * t) * t * t;
+}
+
+// POV-Ray's spotlight (Attenuate_Light, SPOT_SOURCE): cos^tightness, faded by the cubic from the
+// falloff cone to the radius cone; nothing behind the light.
+float pov_spot_falloff(float cos_angle, float cos_radius, float cos_falloff, float tightness) {
+  if (!(cos_angle > 0.f)) return 0.f;
+  float a = tightness != 0.f ? std::pow(cos_angle, tightness) : 1.f;
+  if (cos_radius > 0.f && cos_angle < cos_radius)
+    a *= cubic_spline(cos_falloff, cos_radius, cos_angle);
+  return a;
+}
+
+// POV-Ray's distance attenuation (Attenuate_Light): none unless fade_power > 0.
+float pov_fade(float distance, float fade_distance, float fade_power) {
+  if (!(fade_power > 0.f)) return 1.f;
+  if (std::abs(fade_distance) >= 1e-10f)
+    return 2.f / (1.f + std::pow(distance / fade_distance, fade_power));
+  return std::pow(distance, -fade_power);
+}
+
 }  // namespace
 
 LightSampler::LightSampler(const Scene& scene, const Transform& render_from_world,
@@ -56,7 +82,18 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
                cos_outer,
                float((1 - cos_outer) * light.spot_blend),  // Cycles' spot_smooth
                float(light.radius_m),
-               float(std::tan(light.angle_rad / 2))};
+               float(std::tan(light.angle_rad / 2)),
+               light.decay,
+               float(light.fade_distance_m),
+               float(light.fade_power),
+               float(light.spot_tightness),
+               light.casts_shadows,
+               Vec3f(render_from_light.vector(light.area_axis1)),
+               Vec3f(render_from_light.vector(light.area_axis2)),
+               std::max(light.area_size1, 1u),
+               std::max(light.area_size2, 1u),
+               light.area_circular,
+               light.area_orient};
     const double lum = luminance(light.intensity);
     switch (light.type) {
       case LightType::kPoint:
@@ -179,7 +216,7 @@ bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, const 
                      Frame(light.axis).to_world({disk.x, disk.y, 0.f}) * light.tan_half_angle);
     wi.store(out.direction);
     light.intensity.store(out.radiance);  // irradiance E, W/m^2
-    out.distance = HUGE_VALF;
+    out.distance = light.casts_shadows ? HUGE_VALF : 0.f;
     return max_component(light.intensity) > 0.f;
   }
   // A soft light is Cycles' disk of radius r facing the shading point with radiance I / (pi r^2):
@@ -187,6 +224,7 @@ bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, const 
   // I cos_light / d^2 over pdf 1.
   const Vec3f centre_to_point = position - light.position;
   Vec3f q = light.position;
+  if (light.area_size1 * light.area_size2 > 1) q = area_point(light, position, u);
   float cos_light = 1.f;
   if (light.radius > 0.f) {
     const float centre_distance = length(centre_to_point);
@@ -201,13 +239,52 @@ bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, const 
   out.distance = std::sqrt(distance2);
   const Vec3f wi = d / out.distance;
   wi.store(out.direction);
-  float scale = cos_light / distance2;  // I / d^2 for a true point
-  if (light.type == LightType::kSpot)
-    scale *= light.falloff == SpotFalloff::kCycles
-                 ? cycles_spot_falloff(dot(light.axis, -wi), light.cos_outer, light.spot_smooth)
-                 : gltf_spot_falloff(dot(light.axis, -wi), light.cos_inner, light.cos_outer);
+  float scale = light.decay == LightDecay::kPovRay
+                    ? cos_light * pov_fade(out.distance, light.fade_distance, light.fade_power)
+                    : cos_light / distance2;  // I / d^2 for a true point
+  if (light.type == LightType::kSpot) {
+    const float cos_angle = dot(light.axis, -wi);
+    switch (light.falloff) {
+      case SpotFalloff::kGltf:
+        scale *= gltf_spot_falloff(cos_angle, light.cos_inner, light.cos_outer);
+        break;
+      case SpotFalloff::kCycles:
+        scale *= cycles_spot_falloff(cos_angle, light.cos_outer, light.spot_smooth);
+        break;
+      case SpotFalloff::kPov:
+        scale *=
+            pov_spot_falloff(cos_angle, light.cos_inner, light.cos_outer, light.spot_tightness);
+        break;
+    }
+  }
   (light.intensity * scale).store(out.radiance);
+  if (!light.casts_shadows) out.distance = 0.f;  // fb_light_sample: no shadow ray
   return scale > 0.f;
+}
+
+Vec3f LightSampler::area_point(const Punctual& light, Vec3f position, const float u[2]) {
+  // Grid point (i, j) at (i / (n1 - 1) - 1/2) axis1 + (j / (n2 - 1) - 1/2) axis2, as POV-Ray lays
+  // out its area_light (without jitter or adaptive subdivision).
+  const auto coordinate = [](float v, uint32_t n) {
+    if (n < 2) return 0.f;
+    const uint32_t i = std::min(uint32_t(v * float(n)), n - 1);
+    return float(i) / float(n - 1) - 0.5f;
+  };
+  float s = coordinate(u[0], light.area_size1), t = coordinate(u[1], light.area_size2);
+  if (light.area_circular) {
+    // The square grid folded onto the disk (Shirley and Chiu's concentric map of [-1, 1]^2).
+    const Vec2f d = sample_concentric_disk({s + 0.5f, t + 0.5f});
+    s = 0.5f * d.x, t = 0.5f * d.y;
+  }
+  Vec3f a1 = light.area_axis1, a2 = light.area_axis2;
+  const Vec3f to_point = position - light.position;
+  if (light.area_orient && dot(to_point, to_point) > 0.f) {
+    // The grid turned to face the lit point, each axis keeping its length.
+    const Frame frame(normalize(to_point));
+    a1 = frame.to_world({1.f, 0.f, 0.f}) * length(a1);
+    a2 = frame.to_world({0.f, 1.f, 0.f}) * length(a2);
+  }
+  return light.position + a1 * s + a2 * t;
 }
 
 bool LightSampler::sample_triangle(uint32_t index, Vec3f position, const float u[2],

@@ -48,7 +48,17 @@ class LightSampler {
     float spot_smooth;     // SpotFalloff::kCycles: the width in cos(angle) of the fade
     float radius;          // point, spot
     float tan_half_angle;  // directional
+    // POV-Ray's semantics (Light's opt-in fields, docs/pov.md "Appearance").
+    LightDecay decay;
+    float fade_distance, fade_power;
+    float spot_tightness;
+    bool casts_shadows;
+    Vec3f area_axis1, area_axis2;  // render space
+    uint32_t area_size1, area_size2;
+    bool area_circular, area_orient;
   };
+  // The point of an area light's grid that u picks, seen from `position`.
+  static Vec3f area_point(const Punctual& light, Vec3f position, const float u[2]);
   bool sample_punctual(const Punctual& light, Vec3f position, const float u[2],
                        fb_light_sample& out) const;
   bool sample_triangle(uint32_t index, Vec3f position, const float u[2],

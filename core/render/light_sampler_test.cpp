@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -133,6 +134,110 @@ TEST(LightSampler, SunAngleSpreadsItsDirectionsOverACone) {
       ASSERT_TRUE(sampler.sample({0, 0, 0}, u, s));
       EXPECT_GE(s.direction[2], float(std::cos(0.2)) - 1e-6f);
     }
+}
+
+// POV-Ray's light model (docs/pov.md, "Appearance"): no inverse-square law, but
+// 2 / (1 + (d / fade_distance)^fade_power) when fade_power > 0 (POV-Ray's Attenuate_Light).
+TEST(LightSampler, PovRayLightsFadeOnlyAsFadeDistanceAndPowerSay) {
+  struct Case {
+    double fade_distance, fade_power, distance, expected;
+  };
+  for (const Case& c : {Case{0, 0, 3, 1}, Case{0, 0, 40, 1}, Case{2, 2, 4, 2.0 / (1 + 4)},
+                        Case{2, 2, 2, 1}, Case{5, 1, 1, 2.0 / 1.2}, Case{0, 1, 4, 0.25}}) {
+    Scene scene;
+    Light light = point_light(3, {0, c.distance, 0});
+    light.decay = LightDecay::kPovRay;
+    light.fade_distance_m = c.fade_distance, light.fade_power = c.fade_power;
+    scene.lights = {light};
+    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+    const LightSampler sampler(scene, Transform(), geometry, 0.0);
+    const float u[3] = {0.5f, 0.5f, 0.5f};
+    fb_light_sample s;
+    ASSERT_TRUE(sampler.sample({0, 0, 0}, u, s));
+    EXPECT_NEAR(s.radiance[1], 3 * c.expected, 1e-5) << c.fade_distance << " " << c.fade_power;
+    EXPECT_NEAR(s.distance, c.distance, 1e-5);
+  }
+}
+
+// POV-Ray's spotlight: full inside `radius`, nothing beyond `falloff`, 3t^2 - 2t^3 in cos(angle)
+// between them, all times cos(angle)^tightness.
+TEST(LightSampler, PovRaySpotlightFollowsRadiusFalloffAndTightness) {
+  const double deg = std::numbers::pi / 180;
+  for (double tightness : {0.0, 10.0})
+    for (double angle_deg : {0.0, 20.0, 33.0, 37.5, 44.0, 50.0, 120.0}) {
+      Scene scene;
+      Light spot = point_light(1, {0, 0, 0});  // at the origin, shining down -z
+      spot.type = LightType::kSpot;
+      spot.spot_falloff = SpotFalloff::kPov;
+      spot.decay = LightDecay::kPovRay;
+      spot.spot_inner_angle_rad = 30 * deg, spot.spot_outer_angle_rad = 45 * deg;
+      spot.spot_tightness = tightness;
+      scene.lights = {spot};
+      const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+      const LightSampler sampler(scene, Transform(), geometry, 0.0);
+      const double a = angle_deg * deg;
+      const Vec3f at(Vec3d{std::sin(a) * 2, 0, -std::cos(a) * 2});
+      const double c = std::cos(a), c_radius = std::cos(30 * deg), c_falloff = std::cos(45 * deg);
+      double expected = c <= 0 ? 0 : std::pow(c, tightness);
+      if (c < c_radius) {
+        const double t = std::clamp((c - c_falloff) / (c_radius - c_falloff), 0.0, 1.0);
+        expected *= t * t * (3 - 2 * t);
+      }
+      const float u[3] = {0.5f, 0.5f, 0.5f};
+      fb_light_sample s;
+      const bool lit = sampler.sample(at, u, s);
+      EXPECT_EQ(lit, expected > 0) << angle_deg;
+      if (lit) {
+        EXPECT_NEAR(s.radiance[0], expected, 1e-5) << angle_deg << " " << tightness;
+      }
+    }
+}
+
+TEST(LightSampler, ShadowlessLightsAskForNoShadowRay) {
+  for (LightType type : {LightType::kPoint, LightType::kDirectional}) {
+    Scene scene;
+    Light light = point_light(1, {0, 5, 0});
+    light.type = type;
+    light.casts_shadows = false;
+    scene.lights = {light};
+    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+    const LightSampler sampler(scene, Transform(), geometry, 0.0);
+    const float u[3] = {0.5f, 0.5f, 0.5f};
+    fb_light_sample s;
+    ASSERT_TRUE(sampler.sample({0, 0, 0}, u, s));
+    EXPECT_EQ(s.distance, 0.f);
+  }
+}
+
+// POV-Ray's area_light <2,0,0>, <0,0,2>, 3, 2: points at x in {-1, 0, 1}, z in {-1, 1} about the
+// light, each chosen by its share of u; the estimate is the grid's mean.
+TEST(LightSampler, AreaLightSamplesItsGridPointsEvenly) {
+  Scene scene;
+  Light light = point_light(6, {0, 4, 0});
+  light.decay = LightDecay::kPovRay;
+  light.area_axis1 = {2, 0, 0}, light.area_axis2 = {0, 0, 2};
+  light.area_size1 = 3, light.area_size2 = 2;
+  scene.lights = {light};
+  const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+  const LightSampler sampler(scene, Transform(), geometry, 0.0);
+  std::map<std::pair<int, int>, int> hits;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 20; ++j) {
+      const float u[3] = {0.5f, (i + 0.5f) / 30, (j + 0.5f) / 20};
+      fb_light_sample s;
+      ASSERT_TRUE(sampler.sample({0, 0, 0}, u, s));
+      const Vec3f q = Vec3f(s.direction) * s.distance;
+      EXPECT_NEAR(q.y, 4, 1e-5);
+      EXPECT_NEAR(s.radiance[0], 6, 1e-5);  // no fading: every point brings the full intensity
+      ++hits[{int(std::lround(q.x)), int(std::lround(q.z))}];
+      EXPECT_NEAR(q.x, std::lround(q.x), 1e-5);
+    }
+  ASSERT_EQ(hits.size(), 6u);
+  for (const auto& [cell, count] : hits) {
+    EXPECT_EQ(count, 100) << cell.first << " " << cell.second;
+    EXPECT_LE(std::abs(cell.first), 1);
+    EXPECT_EQ(std::abs(cell.second), 1);
+  }
 }
 
 }  // namespace

@@ -214,7 +214,9 @@ typedef struct fb_material {
 typedef struct fb_light_sample {
   float radiance[3];  /* arriving at the shading point: L (area), I/d^2 (point, spot), E (sun) */
   float direction[3]; /* unit, from the shading point towards the light */
-  float distance;     /* to the light point; HUGE_VAL for a directional light */
+  /* to the light point; HUGE_VAL for a directional light; 0 for a light nothing shadows (POV-Ray's
+   * `shadowless`): trace no shadow ray (a shadow ray of length 0 is never occluded either) */
+  float distance;
   float pdf;          /* solid-angle pdf with the light choice; for delta lights the choice only */
   uint32_t is_delta;
 } fb_light_sample;

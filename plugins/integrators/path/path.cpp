@@ -115,7 +115,8 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
         wi_world.store(shadow.direction);
         shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
         shadow.time_s = time_s;
-        if (!api.occluded(ctx, &shadow)) {
+        // distance 0: a light that casts no shadows (fb_light_sample in plugin_abi.h).
+        if (ls.distance == 0.f || !api.occluded(ctx, &shadow)) {
           const float weight =
               ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, scatter.bsdf.pdf(wo, wi));
           L += beta * f * Rgb(ls.radiance) * (std::abs(wi.z) * weight / ls.pdf);
