@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "core/accel/embree_solids.h"
 #include "core/render/sampler.h"
 #include "core/util/error.h"
 
@@ -165,6 +166,18 @@ std::vector<Transform> motion_steps(const Scene& scene, const MeshInstance& inst
   }
 }
 
+// What bounds the unbounded solids (half-spaces) for Embree, which needs finite boxes: a cube about
+// the camera reaching twice as far as any bounded geometry, and at least 1000 km. Rays start
+// within it, so Embree always offers them the half-space, which thus acts as unbounded; Embree's
+// limit of 1e18 m stays far away.
+Bounds3d solid_reach(const Bounds3d& bounded) {
+  double reach = 1e6;
+  if (!bounded.empty())
+    reach = std::max(reach, 2 * max_component(max(abs(bounded.lo), abs(bounded.hi))));
+  reach = std::min(reach, 1e17);
+  return {{-reach, -reach, -reach}, {reach, reach, reach}};
+}
+
 }  // namespace
 
 RenderGeometry::Mesh RenderGeometry::build_mesh(
@@ -285,6 +298,20 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     meshes_.push_back(
         std::move(mesh));  // vector storage moves with it: the shared pointers stay valid
   }
+  Bounds3d bounded = bounds_;
+  for (const Solid& solid : scene.solids) {
+    const Bounds3d b = solid_bounds(solid, render_from_world);
+    if (b.finite()) bounded.extend(b);
+  }
+  const Bounds3d reach = solid_reach(bounded);
+  solids_.reserve(scene.solids.size());  // Embree keeps pointers to them
+  for (const Solid& solid : scene.solids) {
+    const RenderSolid& added = solids_.emplace_back(solid, render_from_world, reach);
+    if (added.bounds().empty()) continue;
+    if (added.bounded()) bounds_.extend(added.bounds());
+    attach_solid(embree_->device, embree_->scene, added,
+                 unsigned(meshes_.size() + solids_.size() - 1));
+  }
   rtcCommitScene(embree_->scene);
   if (!embree_->error.empty())
     throw InputError("Embree could not build the scene: " + embree_->error);
@@ -308,6 +335,7 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, ray, hit);
   fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, hit);
   return true;
 }
@@ -324,7 +352,9 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
     const RTCRayHit& rh = stream[i];
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       hits[i].t = HUGE_VALF;
-    else
+    else if (rh.hit.geomID >= meshes_.size()) {
+      if (!fill_solid_hit(rh.hit.geomID, rays[i], hits[i])) hits[i].t = HUGE_VALF;
+    } else
       fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, rh.ray.time,
                hits[i]);
   }
@@ -449,6 +479,23 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   hit.material = mesh.material;
   hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
   shader_->shade(mesh.material, surface_point(mesh, primitive, u, v), hit);
+}
+
+bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit) const {
+  const auto found = solids_[id - meshes_.size()].first_hit(
+      Vec3d(Vec3f(ray.origin)), Vec3d(Vec3f(ray.direction)), ray.t_min);
+  if (!found) return false;  // cannot happen: Embree's hit came from the same computation
+  hit.t = float(found->t);
+  Vec3f(found->position).store(hit.position);
+  Vec3f(found->position_error).store(hit.position_error);
+  Vec3f(found->normal).store(hit.geometric_normal);
+  Vec3f(found->normal).store(hit.shading_normal);
+  hit.material = found->material;
+  hit.emitter = FB_NONE;
+  SurfacePoint point;
+  point.position = Vec3f(found->position);  // for solid textures (SurfacePoint::position)
+  shader_->shade(found->material, point, hit);
+  return true;
 }
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {

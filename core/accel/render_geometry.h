@@ -4,6 +4,8 @@
 // (docs/architecture.md). An instance that moves while the shutter is open is stored at several
 // evenly spaced times and intersected at the ray's time through Embree's vertex motion blur;
 // everything else is stored once, at the frame's time (docs/camera-model.md, "Time and motion").
+// Analytic solids (Scene::solids) are Embree user geometry intersected exactly, at the frame's
+// time (core/accel/solid_intersect.h).
 #pragma once
 
 #include <memory>
@@ -19,6 +21,8 @@
 struct RTCFilterFunctionNArguments;  // <embree3/rtcore.h>
 
 namespace fb {
+
+class RenderSolid;
 
 struct EmissiveTriangle {
   Vec3f p0, p1, p2;
@@ -68,6 +72,8 @@ class RenderGeometry {
   void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
                 fb_hit& hit) const;
   static SurfacePoint surface_point(const Mesh& mesh, uint32_t primitive, float u, float v);
+  // The hit record of a ray Embree found ending on solid geometry `id`; false if it does not.
+  bool fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit) const;
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   static void light_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
@@ -76,6 +82,7 @@ class RenderGeometry {
                   const std::vector<Transform>& render_from_object_steps);
   std::unique_ptr<SurfaceShader> shader_;  // materials' textures, evaluated at each hit
   std::vector<Mesh> meshes_;               // indexed by Embree geometry ID
+  std::vector<RenderSolid> solids_;        // Embree geometry IDs from meshes_.size() on
   std::vector<EmissiveTriangle> emitters_;
   Bounds3d bounds_;  // of every vertex at every motion step
   Vec3f centre_;

@@ -26,6 +26,10 @@ Bounds3d Scene::world_bounds(double time_s) const {
     for (const Vec3f& p : s.cage_positions)
       bounds.extend(world_from_object.point(Vec3d(p)));
   }
+  for (const Solid& solid : solids) {  // half-spaces and complements are unbounded: left out
+    const Bounds3d b = solid_bounds(solid, Transform());
+    if (b.finite()) bounds.extend(b);
+  }
   return bounds;
 }
 

@@ -10,11 +10,13 @@
 
 #include <filmback/vec.h>
 
+#include "core/math/bounds.h"
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
 #include "core/scene/material_textures.h"
 #include "core/scene/solid_texture.h"
+#include "core/scene/solid.h"
 #include "core/scene/subdivision_surface.h"
 
 namespace fb {
@@ -116,13 +118,6 @@ struct EnvironmentMap {
   std::vector<Rgb> texels;
 };
 
-struct Bounds3d {
-  Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL};
-  Vec3d hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  bool empty() const { return lo.x > hi.x; }
-  void extend(Vec3d p) { lo = min(lo, p), hi = max(hi, p); }
-};
-
 // What a file says about how its shot is rendered (glTF: scenes[i].extras, docs/scenes.md).
 struct ShotSettings {
   std::optional<uint32_t> width_px, height_px;
@@ -146,6 +141,8 @@ struct Scene {
   std::vector<MeshInstance> instances;
   // Refined into meshes and instances by the render (core/subdiv/refine_scene.h), not before.
   std::vector<SubdivisionSurface> subdivision_surfaces;
+  // Analytic shapes and their CSG, intersected exactly by the render (POV-Ray's primitives).
+  std::vector<Solid> solids;
   std::vector<Material> materials;
   std::vector<TextureImage> images;  // what materials' textures read
   std::vector<Light> lights;
@@ -156,7 +153,7 @@ struct Scene {
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
 
   size_t triangle_count() const;
-  Bounds3d world_bounds(double time_s) const;  // of all instanced geometry
+  Bounds3d world_bounds(double time_s) const;  // of all instanced geometry and bounded solids
 
   // Placements at time t on the scene's timeline (s): the rest pose unless the node is animated.
   Transform world_from_object(const MeshInstance& instance, double time_s) const;

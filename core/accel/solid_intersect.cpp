@@ -1,0 +1,392 @@
+#include "core/accel/solid_intersect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/math/polynomial.h"
+#include "core/util/error.h"
+
+namespace fb {
+
+struct RenderSolid::Node {
+  SolidKind kind = SolidKind::kSphere;
+  bool inverse = false, open = false;
+  double radius0 = 1, radius1 = 1;
+  uint32_t material = 0;
+  Transform object_from_render;
+  Transform normal_from_object;  // inverse transpose of render_from_object
+  Bounds3d bounds;               // render space, of the set before `inverse`; may be infinite
+  double magnitude = 0;          // farthest corner of a bounded primitive from the render origin
+  std::vector<Node> children;
+};
+
+namespace {
+
+using Node = RenderSolid::Node;
+constexpr double kInf = HUGE_VAL;
+
+struct Ray {
+  Vec3d o, d;
+};
+
+// Where the ray crosses into or out of a set: on a primitive's surface part, or at the edge of
+// the window the spans are computed in (leaf == nullptr).
+struct Boundary {
+  double t = 0;
+  const Node* leaf = nullptr;
+  uint8_t part = 0;      // which face: box 2 axis + (max side); cone 0 side, 1 base, 2 cap
+  bool surface = false;  // false: bounds the set but is no surface (open caps, outside a disc)
+  bool flipped = false;  // the set's outside is the primitive's inside (an odd complement)
+};
+
+struct Span {
+  Boundary in, out;
+};
+using Spans = std::vector<Span>;
+
+Boundary on(const Node& leaf, double t, uint8_t part = 0, bool surface = true) {
+  return {t, &leaf, part, surface, false};
+}
+
+// Appends [in, out] clipped to the window [lo, hi]; what the window cuts is no surface.
+void push(Spans& spans, Boundary in, Boundary out, double lo, double hi) {
+  if (!(in.t >= lo)) in = {lo};
+  if (!(out.t <= hi)) out = {hi};
+  if (in.t < out.t) spans.push_back({in, out});
+}
+
+// The ray's parameter range inside an axis-aligned box, within [lo, hi]; false if it misses.
+bool clip_to_box(const Bounds3d& box, const Ray& r, double& lo, double& hi) {
+  if (box.empty()) return false;
+  for (int a = 0; a < 3; ++a) {
+    if (r.d[a] == 0) {
+      if (r.o[a] < box.lo[a] || r.o[a] > box.hi[a]) return false;
+      continue;
+    }
+    double t1 = (box.lo[a] - r.o[a]) / r.d[a], t2 = (box.hi[a] - r.o[a]) / r.d[a];
+    if (t1 > t2) std::swap(t1, t2);
+    lo = std::max(lo, t1), hi = std::min(hi, t2);
+  }
+  return lo <= hi;
+}
+
+// ---- Set operations on sorted, disjoint spans ------------------------------------------------
+
+void complement(Spans& spans, double lo, double hi) {
+  Spans gaps;
+  Boundary from{lo};
+  for (Span s : spans) {
+    s.in.flipped = !s.in.flipped, s.out.flipped = !s.out.flipped;
+    if (from.t < s.in.t) gaps.push_back({from, s.in});
+    from = s.out;
+  }
+  if (from.t < hi) gaps.push_back({from, Boundary{hi}});
+  spans = std::move(gaps);
+}
+
+Spans intersection(const Spans& a, const Spans& b) {
+  Spans out;
+  for (size_t i = 0, j = 0; i < a.size() && j < b.size();) {
+    const Boundary& in = a[i].in.t >= b[j].in.t ? a[i].in : b[j].in;
+    const bool a_ends_first = a[i].out.t <= b[j].out.t;
+    const Boundary& end = a_ends_first ? a[i].out : b[j].out;
+    if (in.t < end.t) out.push_back({in, end});
+    a_ends_first ? ++i : ++j;
+  }
+  return out;
+}
+
+Spans united(const Spans& a, const Spans& b) {
+  Spans merged;
+  std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(merged),
+             [](const Span& x, const Span& y) { return x.in.t < y.in.t; });
+  Spans out;
+  for (const Span& s : merged) {
+    if (!out.empty() && s.in.t <= out.back().out.t) {
+      if (s.out.t > out.back().out.t) out.back().out = s.out;
+    } else {
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+// ---- Primitives, in object space -------------------------------------------------------------
+
+// Re-centring on the point of the ray nearest the object's origin keeps the quadratic and quartic
+// coefficients small when the ray starts far away (Haines et al., "Precision Improvements for
+// Ray/Sphere Intersection", Ray Tracing Gems ch. 7): s = t - t0.
+double nearest_to_origin(const Ray& r) {
+  return -dot(r.o, r.d) / dot(r.d, r.d);
+}
+
+void sphere_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+  const double a = dot(r.d, r.d);
+  if (!(a > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d c = r.o + r.d * t0;
+  const double h2 = (1 - dot(c, c)) / a;
+  if (!(h2 > 0)) return;
+  const double h = std::sqrt(h2);
+  push(out, on(leaf, t0 - h), on(leaf, t0 + h), lo, hi);
+}
+
+void box_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+  Boundary in{-kInf}, exit{kInf};
+  for (int a = 0; a < 3; ++a) {
+    if (r.d[a] == 0) {
+      if (std::abs(r.o[a]) > 1) return;
+      continue;
+    }
+    const double t_low = (-1 - r.o[a]) / r.d[a], t_high = (1 - r.o[a]) / r.d[a];
+    const bool up = r.d[a] > 0;
+    const double t_in = up ? t_low : t_high, t_out = up ? t_high : t_low;
+    if (t_in > in.t) in = on(leaf, t_in, uint8_t(2 * a + (up ? 0 : 1)));
+    if (t_out < exit.t) exit = on(leaf, t_out, uint8_t(2 * a + (up ? 1 : 0)));
+  }
+  if (in.t < exit.t) push(out, in, exit, lo, hi);
+}
+
+// z <= 0; a disc's surface is only the annulus of its plane.
+void half_space_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+  if (r.d.z == 0) {
+    if (r.o.z <= 0) push(out, {lo}, {hi}, lo, hi);
+    return;
+  }
+  const double t = -r.o.z / r.d.z;
+  bool surface = true;
+  if (leaf.kind == SolidKind::kDisc) {
+    const double x = r.o.x + t * r.d.x, y = r.o.y + t * r.d.y, r2 = x * x + y * y;
+    surface = r2 <= 1 && r2 >= leaf.radius1 * leaf.radius1;
+  }
+  if (r.d.z > 0)
+    push(out, {-kInf}, on(leaf, t, 0, surface), lo, hi);
+  else
+    push(out, on(leaf, t, 0, surface), {kInf}, lo, hi);
+}
+
+// x^2 + y^2 <= r(z)^2 between the planes z = 0 and z = 1: the quadric's spans (A s^2 + 2 B s +
+// C <= 0, one span, two rays, all or nothing) intersected with the slab's.
+void cone_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+  const bool cylinder = leaf.kind == SolidKind::kCylinder;
+  const double r0 = cylinder ? 1 : leaf.radius0, k = cylinder ? 0 : leaf.radius1 - leaf.radius0;
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d c = r.o + r.d * t0, d = r.d;
+  const double rz = r0 + k * c.z;
+  const double A = d.x * d.x + d.y * d.y - k * k * d.z * d.z;
+  const double B = c.x * d.x + c.y * d.y - rz * k * d.z;
+  const double C = c.x * c.x + c.y * c.y - rz * rz;
+  Spans quadric;
+  const auto side = [&](double s) { return on(leaf, t0 + s, 0); };
+  if (A == 0) {
+    if (B == 0) {
+      if (C <= 0) quadric.push_back({{-kInf}, {kInf}});
+    } else {
+      const double s = -C / (2 * B);
+      quadric.push_back(B > 0 ? Span{{-kInf}, side(s)} : Span{side(s), {kInf}});
+    }
+  } else {
+    const double disc = B * B - A * C;
+    if (disc > 0) {
+      const double q = -(B + std::copysign(std::sqrt(disc), B));
+      const double s1 = std::min(q / A, C / q), s2 = std::max(q / A, C / q);
+      if (A > 0) {
+        quadric.push_back({side(s1), side(s2)});
+      } else {
+        quadric.push_back({{-kInf}, side(s1)});
+        quadric.push_back({side(s2), {kInf}});
+      }
+    } else if (A < 0) {
+      quadric.push_back({{-kInf}, {kInf}});
+    }
+  }
+  Spans slab;
+  const bool caps = !leaf.open;
+  if (d.z == 0) {
+    if (c.z >= 0 && c.z <= 1) slab.push_back({{-kInf}, {kInf}});
+  } else {
+    const double s_base = -c.z / d.z, s_cap = (1 - c.z) / d.z;
+    const Boundary base = on(leaf, t0 + s_base, 1, caps), cap = on(leaf, t0 + s_cap, 2, caps);
+    slab.push_back(d.z > 0 ? Span{base, cap} : Span{cap, base});
+  }
+  for (const Span& s : intersection(quadric, slab))
+    push(out, s.in, s.out, lo, hi);
+}
+
+// (|p|^2 + 1 - r^2)^2 - 4 (x^2 + y^2) <= 0, a quartic in s along the re-centred ray, solved
+// within the torus's box.
+void torus_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+  const double minor = leaf.radius1;
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Ray c{r.o + r.d * t0, r.d};
+  double s_lo = lo - t0, s_hi = hi - t0;
+  // The box a little wider than the torus, so that no root sits on the ends of the search.
+  const double R = 1.001 * (1 + minor), Z = 1.001 * minor;
+  if (!clip_to_box({{-R, -R, -Z}, {R, R, Z}}, c, s_lo, s_hi)) return;
+  const Vec3d o = c.o, d = c.d;
+  const double dd = dot(d, d), od = dot(o, d), k = dot(o, o) + 1 - minor * minor;
+  const double coefficients[5] = {
+      k * k - 4 * (o.x * o.x + o.y * o.y), 4 * od * k - 8 * (o.x * d.x + o.y * d.y),
+      4 * od * od + 2 * dd * k - 4 * (d.x * d.x + d.y * d.y), 4 * od * dd, dd * dd};
+  double roots[4];
+  const int count = sign_changes(coefficients, 4, s_lo, s_hi, roots);
+  Boundary from{t0 + s_lo};
+  for (int i = 0; i <= count; ++i) {
+    const double s_end = i < count ? roots[i] : s_hi;
+    const Boundary end = i < count ? on(leaf, t0 + s_end) : Boundary{t0 + s_hi};
+    const double mid = 0.5 * ((from.t - t0) + s_end);
+    if (evaluate_polynomial(coefficients, 4, mid) <= 0) push(out, from, end, lo, hi);
+    from = end;
+  }
+}
+
+void primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Spans& out) {
+  const Ray r{leaf.object_from_render.point(render_ray.o),
+              leaf.object_from_render.vector(render_ray.d)};
+  switch (leaf.kind) {
+    case SolidKind::kSphere:
+      return sphere_spans(leaf, r, lo, hi, out);
+    case SolidKind::kBox:
+      return box_spans(leaf, r, lo, hi, out);
+    case SolidKind::kHalfSpace:
+    case SolidKind::kDisc:
+      return half_space_spans(leaf, r, lo, hi, out);
+    case SolidKind::kCylinder:
+    case SolidKind::kCone:
+      return cone_spans(leaf, r, lo, hi, out);
+    case SolidKind::kTorus:
+      return torus_spans(leaf, r, lo, hi, out);
+    default:
+      return;
+  }
+}
+
+// The node's set along the ray within [lo, hi].
+void node_spans(const Node& node, const Ray& r, double lo, double hi, Spans& out) {
+  out.clear();
+  double box_lo = lo, box_hi = hi;
+  if (clip_to_box(node.bounds, r, box_lo, box_hi)) {
+    if (node.kind == SolidKind::kUnion) {
+      Spans child;
+      for (const Node& c : node.children) {
+        node_spans(c, r, lo, hi, child);
+        out = united(out, child);
+      }
+    } else if (node.kind == SolidKind::kIntersection) {
+      Spans child;
+      for (size_t i = 0; i < node.children.size(); ++i) {
+        node_spans(node.children[i], r, lo, hi, i == 0 ? out : child);
+        if (i > 0) out = intersection(out, child);
+        if (out.empty()) break;
+      }
+    } else {
+      primitive_spans(node, r, lo, hi, out);
+    }
+  }
+  if (node.inverse) complement(out, lo, hi);
+}
+
+// The primitive's outward gradient at object-space point p on surface `part`.
+Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
+  switch (leaf.kind) {
+    case SolidKind::kSphere:
+      return p;
+    case SolidKind::kBox: {
+      Vec3d n{0, 0, 0};
+      (part / 2 == 0 ? n.x : part / 2 == 1 ? n.y : n.z) = part % 2 ? 1 : -1;
+      return n;
+    }
+    case SolidKind::kCylinder:
+    case SolidKind::kCone: {
+      if (part != 0) return {0, 0, part == 1 ? -1.0 : 1.0};
+      const bool cylinder = leaf.kind == SolidKind::kCylinder;
+      const double r0 = cylinder ? 1 : leaf.radius0, k = cylinder ? 0 : leaf.radius1 - r0;
+      return {p.x, p.y, -(r0 + k * p.z) * k};
+    }
+    case SolidKind::kTorus: {
+      const double g = dot(p, p) + 1 - leaf.radius1 * leaf.radius1;
+      return {g * p.x - 2 * p.x, g * p.y - 2 * p.y, g * p.z};
+    }
+    default:
+      return {0, 0, 1};  // kHalfSpace, kDisc
+  }
+}
+
+Node build(const Solid& solid, const Transform& render_from_world) {
+  Node node;
+  node.kind = solid.kind;
+  node.inverse = solid.inverse;
+  node.open = solid.open;
+  node.radius0 = std::abs(solid.radius0);
+  node.radius1 = std::abs(solid.radius1);
+  node.material = solid.material;
+  node.bounds = uncomplemented_bounds(solid, render_from_world);
+  if (solid.is_primitive()) {
+    const Transform render_from_object = render_from_world * solid.world_from_object;
+    node.object_from_render = render_from_object.inverse();
+    node.normal_from_object = render_from_object.normal_transform();
+    if (!node.object_from_render.is_finite() || !node.normal_from_object.is_finite())
+      throw InputError("solid '" + solid.name + "': its placement cannot be inverted");
+    if (node.bounds.finite())
+      node.magnitude = length(max(abs(node.bounds.lo), abs(node.bounds.hi)));
+  }
+  for (const Solid& child : solid.children)
+    node.children.push_back(build(child, render_from_world));
+  return node;
+}
+
+}  // namespace
+
+RenderSolid::RenderSolid(const Solid& solid, const Transform& render_from_world,
+                         const Bounds3d& reach) {
+  root_.push_back(build(solid, render_from_world));
+  const Bounds3d set = solid_bounds(solid, render_from_world);
+  bounded_ = set.finite();
+  bounds_ = {max(set.lo, reach.lo), min(set.hi, reach.hi)};
+}
+
+RenderSolid::~RenderSolid() = default;
+RenderSolid::RenderSolid(RenderSolid&&) noexcept = default;
+
+std::optional<SolidHit> RenderSolid::first_hit(Vec3d origin, Vec3d direction, double t_min) const {
+  const Ray r{origin, direction};
+  double lo = t_min, hi = kInf;
+  if (!clip_to_box(bounds_, r, lo, hi)) return std::nullopt;
+  // The window is [t_min, infinity): cutting it at the bounds' exit would cut the surfaces that
+  // touch the bounds there.
+  lo = t_min, hi = kInf;
+  thread_local Spans spans;
+  node_spans(root_.front(), r, lo, hi, spans);
+  const Boundary* hit = nullptr;
+  for (const Span& s : spans) {
+    for (const Boundary* b : {&s.in, &s.out})
+      if (b->surface && b->t > t_min) {
+        hit = b;
+        break;
+      }
+    if (hit) break;
+  }
+  if (!hit) return std::nullopt;
+  const Node& leaf = *hit->leaf;
+  SolidHit result;
+  result.t = hit->t;
+  result.material = leaf.material;
+  result.position = r.o + r.d * hit->t;
+  const Vec3d p = leaf.object_from_render.point(r.o) + leaf.object_from_render.vector(r.d) * hit->t;
+  const Vec3d n = leaf.normal_from_object.vector(gradient(leaf, hit->part, p));
+  const double len = length(n);
+  result.normal = len > 0 ? n / len : -normalize(r.d);  // a cone's apex, a torus's centre
+  if (hit->flipped) result.normal = -result.normal;
+  // Rounding to float (half an ulp, bounded by epsilon |p|), plus the double-precision solve:
+  // roots and transforms are good to ~1e-15 of the magnitudes involved; 1e-9 of them is ample.
+  constexpr double kFloatRounding = std::numeric_limits<float>::epsilon();
+  const double solve = 1e-9 * (length(result.position) + leaf.magnitude);
+  result.position_error = abs(result.position) * kFloatRounding + Vec3d{solve, solve, solve};
+  return result;
+}
+
+}  // namespace fb

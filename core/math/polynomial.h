@@ -1,0 +1,20 @@
+// Real roots of small polynomials along a ray, for the analytic solids
+// (core/accel/solid_intersect).
+#pragma once
+
+namespace fb {
+
+constexpr int kMaxPolynomialDegree = 4;
+
+// c[0] + c[1] t + ... + c[degree] t^degree, by Horner's rule.
+double evaluate_polynomial(const double* c, int degree, double t);
+
+// The points in (lo, hi) where the polynomial (degree <= kMaxPolynomialDegree) changes between
+// > 0 and <= 0, ascending, written to `roots` (room for `degree`); returns how many. The interval
+// is cut at the sign changes of the derivative (found the same way), so each piece is monotone
+// and holds at most one root, which safeguarded Newton iteration (bisection when a Newton step
+// leaves the bracket) finds to the last bits of a double. Roots of even multiplicity (tangent
+// rays) are not sign changes and are not reported: a ray that grazes a surface does not enter it.
+int sign_changes(const double* c, int degree, double lo, double hi, double* roots);
+
+}  // namespace fb

@@ -1,0 +1,59 @@
+// Analytic solids: exact primitives combined by constructive solid geometry, as POV-Ray scenes
+// describe them (docs/architecture.md "Solids"). The render intersects them exactly (ray-interval
+// CSG, core/accel/solid_intersect.h); what needs triangles tessellates the primitives
+// (core/scene/tessellate.h).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math/bounds.h"
+#include "core/math/transform.h"
+
+namespace fb {
+
+enum class SolidKind : uint8_t {
+  // Primitives, each in its own canonical object space; world_from_object places, sizes and may
+  // shear or mirror it. Every primitive is a set of points (its inside) whose boundary is its
+  // surface; normals point out of the set.
+  kSphere,     // |p| <= 1
+  kBox,        // max(|x|, |y|, |z|) <= 1
+  kHalfSpace,  // z <= 0; the plane z = 0 is its surface
+  kCylinder,   // x^2 + y^2 <= 1, 0 <= z <= 1; `open`: the caps bound the set but are not surface
+  kCone,       // x^2 + y^2 <= r(z)^2, r(z) = radius0 + (radius1 - radius0) z, 0 <= z <= 1
+  kTorus,      // (sqrt(x^2 + y^2) - 1)^2 + z^2 <= radius1^2: major radius 1 about the z axis
+  // The unit disc in the plane z = 0 with a hole of radius `radius1`. Flat, so it bounds POV-Ray's
+  // set for it, the half-space z <= 0 (Disc::Inside), of whose plane only the annulus is surface.
+  kDisc,
+  // Set operations over `children` (world_from_object unused: children carry their placement).
+  // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
+  kUnion,
+  kIntersection,
+};
+
+struct Solid {
+  SolidKind kind = SolidKind::kSphere;
+  std::string name;  // for messages: where it came from
+  Transform world_from_object;
+  double radius0 = 1, radius1 = 1;  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1
+  bool open = false;                // kCylinder, kCone: no end caps
+  bool inverse = false;             // the complement of the set
+  uint32_t material = 0;            // of this primitive's surface (unused by set operations)
+  std::vector<Solid> children;
+
+  bool is_primitive() const { return kind < SolidKind::kUnion; }
+};
+
+// The primitive's set within its canonical object space, as a box (infinite for kHalfSpace and
+// kDisc, which are unbounded sets).
+Bounds3d object_bounds(const Solid& primitive);
+
+// Bounds of the solid's set in the space `space_from_world` maps to: corners of each primitive's
+// object box, combined through the tree (an intersection is bounded by its bounded children, a
+// complement by nothing). Unbounded sets give infinite bounds.
+Bounds3d solid_bounds(const Solid& solid, const Transform& space_from_world);
+// The same before the solid's own `inverse` applies.
+Bounds3d uncomplemented_bounds(const Solid& solid, const Transform& space_from_world);
+
+}  // namespace fb
