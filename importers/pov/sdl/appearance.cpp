@@ -188,7 +188,10 @@ ColourMap Parser::parse_colour_map(bool pigment_map) {
     }
     if (!tok.symbol("[")) fail("expected '[' in a colour map");
     double value = parse_float();
-    if (accept(",")) {
+    accept(",");
+    const Tok& after = peek();
+    if (!pigment_map && (after.token.kind == TokenKind::kNumber ||
+                         (after.identifier && after.value.kind == ValueKind::kFloat))) {
       // old form [v1, v2 colour c1 colour c2]
       double value2 = parse_float();
       Colour c1 = parse_colour(), c2 = parse_colour();
@@ -196,8 +199,7 @@ ColourMap Parser::parse_colour_map(bool pigment_map) {
       map.push_back({value2, c2});
     } else {
       const Tok& entry = peek();
-      if (pigment_map && !entry.word("pigment") &&
-          !(entry.identifier && (entry.value.get<Pigment>() || entry.value.numeric()))) {
+      if (pigment_map && !entry.word("pigment")) {
         // pigment_map entries hold a pigment's body: [0.5 bozo colour_map {...}]
         map.push_back({value, parse_pigment_items("]").colour});
         continue;

@@ -494,6 +494,12 @@ Value Parser::parse_primary() {
         next();
         continue;
       }
+      // POV-Ray also reads components separated by blanks: <4 0 0>
+      const Tok& more = peek();
+      if (more.token.kind == TokenKind::kNumber || more.symbol("(") ||
+          (more.identifier && more.value.kind == ValueKind::kFloat)) {
+        continue;
+      }
       break;
     }
     vector_level_ = saved;
@@ -504,7 +510,6 @@ Value Parser::parse_primary() {
   if (tok.token.kind == TokenKind::kSymbol) fail("unexpected '" + tok.token.text + "' in an expression");
   if (tok.identifier) {
     const Value& value = tok.value;
-    if (value.kind == ValueKind::kArray && peek().symbol("[")) return index_array(value);
     if (value.kind == ValueKind::kFunction) {
       // user functions are parsed, not evaluated
       if (peek().symbol("(")) skip_parenthesised();

@@ -206,12 +206,22 @@ Tok Parser::next() {
     if (token.kind == TokenKind::kDirective) {
       directive(token);
       unread_pushback();
+      if (pushback_) return next();
       continue;
     }
     Tok tok = resolve(token);
     if (tok.identifier && tok.value.kind == ValueKind::kMacro) {
       call_macro(token, tok.value.macro);
       continue;
+    }
+    if (tok.identifier && tok.value.kind == ValueKind::kArray) {
+      // an element A[i][j] stands for its value wherever an identifier may
+      const Token& after = frames_.back().file->tokens[frames_.back().pos];
+      if (after.kind == TokenKind::kSymbol && after.text == "[") {
+        Value array = std::move(tok.value);
+        tok.value = index_array(array);
+        last_ = location_of(tok);
+      }
     }
     return tok;
   }
@@ -260,6 +270,10 @@ const Tok& Parser::peek() {
 // included file) and resolved after what it assigned.
 void Parser::unread_pushback() {
   if (!pushback_) return;
+  if (pushback_->token.kind == TokenKind::kEnd) {
+    pushback_.reset();  // the end of a file is never consumed: it is met again
+    return;
+  }
   Frame& frame = frames_.back();
   if (frame.pos == 0 || frame.file->name != pushback_->file) return;
   const Token& previous = frame.file->tokens[frame.pos - 1];
