@@ -139,6 +139,11 @@ const Shot kShots[] = {
      .angle = 45,
      .aperture = 2,
      .blur_samples = 1024},
+    {.name = "focal_blur_default_focus",  // no focal_point: Direction_Length 1, not |direction| 3
+     .location = Vec3d{0, 0, -6},
+     .direction = Vec3d{0, 0, 3},
+     .aperture = 0.07,
+     .blur_samples = 1024},
 };
 
 std::string vec(Vec3d v) {
