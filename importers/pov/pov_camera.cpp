@@ -14,16 +14,17 @@ constexpr double kEpsilon = 1e-10;  // POV-Ray's EPSILON (frame.h), as Parse_Cam
 // Below this the camera model's approximation of a skewed camera is not worth a warning.
 constexpr double kNegligiblePx = 0.01;
 
-std::string line_column(const SourceLocation& where) {
-  return where.line ? std::to_string(where.line) + ":" + std::to_string(where.column) : "";
+// "file:line:column", as the SDL evaluator's messages; nothing for POV-Ray's default camera.
+std::string place(const CameraStatement& s) {
+  return s.where.file.empty() ? "" : s.where.text();
 }
 
 [[noreturn]] void fail(const CameraStatement& s, const std::string& what) {
-  throw_input(s.where.file, line_column(s.where), what);
+  throw_input(place(s), "", what);
 }
 
 void warn(Diagnostics& diagnostics, const CameraStatement& s, const std::string& what) {
-  diagnostics.warn(located(s.where.file, line_column(s.where), what));
+  diagnostics.warn(located(place(s), "", what));
 }
 
 const char* type_name(const CameraStatement& s) {
@@ -151,12 +152,11 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
   if (statement) s = *statement;
   const PovCameraVectors v = evaluate_camera(s, diagnostics);
   const bool orthographic = v.type == CameraType::kOrthographic;
-  if (!orthographic && v.type != CameraType::kPerspective)
+  // The evaluator itself reports mesh_camera and a camera normal (Scene::unsupported).
+  if (!orthographic && v.type != CameraType::kPerspective && v.type != CameraType::kMeshCamera)
     warn(diagnostics, s,
          std::string("unsupported feature 'camera type ") + type_name(s) +
              "': rendered as a perspective camera with the same location, direction, right and up");
-  if (s.has_normal)
-    warn(diagnostics, s, "unsupported feature 'camera normal': primary rays are not perturbed");
 
   const Vec3d location = world_from_pov(v.location), direction = world_from_pov(v.direction),
               right = world_from_pov(v.right), up = world_from_pov(v.up);
@@ -185,7 +185,7 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
   PovCamera out;
   SceneCamera& c = out.camera;
   c.name = "camera";
-  c.source = statement ? located(s.where.file, line_column(s.where), "camera")
+  c.source = statement ? "camera statement at " + place(s)
                        : "POV-Ray's default camera (the scene has none)";
   // Columns q1, q2, -q3: the camera looks down -Z. A mirrored POV-Ray camera (negative
   // handedness) gives a reflection here, which the renderer applies as it is (render_loop.cpp).

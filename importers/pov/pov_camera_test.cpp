@@ -106,7 +106,7 @@ TEST(PovCamera, AngleOf180OrMoreIsAnError) {
     evaluate_camera(s, diagnostics);
     FAIL() << "angle 180 was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("scene.pov: 4:10: viewing angle"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("scene.pov:4:10: viewing angle"), std::string::npos)
         << e.what();
   }
 }
@@ -343,9 +343,9 @@ TEST(PovCamera, ExoticTypesAreWarnedAndRenderedAsPerspective) {
   Diagnostics diagnostics;
   const PovCamera c = convert_camera(s, 160, 120, diagnostics);
   ASSERT_EQ(diagnostics.count(), 1u);
-  EXPECT_NE(diagnostics.messages()[0].find("scene.pov: 7:1: unsupported feature 'camera type "
-                                           "fisheye'"),
-            std::string::npos)
+  EXPECT_NE(
+      diagnostics.messages()[0].find("scene.pov:7:1: unsupported feature 'camera type fisheye'"),
+      std::string::npos)
       << diagnostics.messages()[0];
   EXPECT_EQ(c.camera.physical.projection, uint32_t(FB_PROJECTION_PERSPECTIVE));
   EXPECT_NEAR(length(evaluate(s).direction), 1, 1e-15);
