@@ -1,0 +1,181 @@
+#include "core/scene/tessellate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace fb {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// The largest factor by which the linear part of `t` stretches a vector: the square root of
+// the largest eigenvalue of M^T M, by power iteration (M^T M is symmetric positive semi-definite,
+// so it converges to that eigenvalue from almost any start).
+double largest_stretch(const Transform& t) {
+  Vec3d v = normalize(Vec3d{1, 0.7, 0.3});
+  double stretch = 0;
+  for (int i = 0; i < 100; ++i) {
+    const Vec3d w = t.vector(v);
+    const Vec3d back{t(0, 0) * w.x + t(1, 0) * w.y + t(2, 0) * w.z,
+                     t(0, 1) * w.x + t(1, 1) * w.y + t(2, 1) * w.z,
+                     t(0, 2) * w.x + t(1, 2) * w.y + t(2, 2) * w.z};  // M^T M v
+    const double len = length(back);
+    if (!(len > 0)) break;
+    stretch = std::sqrt(len);
+    v = back / len;
+  }
+  return stretch;
+}
+
+// A point of a profile curve in the (rho, z) half-plane that revolves about the z axis, with the
+// surface's outward normal there.
+struct ProfilePoint {
+  double rho, z, n_rho, n_z;
+};
+using Piece = std::vector<ProfilePoint>;  // a smooth run; pieces meet at sharp edges
+
+// Segments that keep the sagitta r (1 - cos(angle / 2 n)) of an arc within `error`.
+uint32_t arc_segments(double angle, double radius, double error, uint32_t most) {
+  if (!(radius > error)) return 1;
+  const double step = 2 * std::acos(1 - error / radius);
+  return std::clamp(uint32_t(std::ceil(angle / step)), 1u, most);
+}
+
+Piece arc(double rho0, double z0, double radius, double from, double to, uint32_t segments) {
+  Piece piece;
+  for (uint32_t i = 0; i <= segments; ++i) {
+    const double a = from + (to - from) * i / segments;
+    piece.push_back(
+        {rho0 + radius * std::cos(a), z0 + radius * std::sin(a), std::cos(a), std::sin(a)});
+  }
+  return piece;
+}
+
+Piece line(double rho0, double z0, double rho1, double z1) {
+  Vec3d n{z1 - z0, -(rho1 - rho0), 0};  // the profile's direction turned clockwise: outward
+  n = normalize(n);
+  return {{rho0, z0, n.x, n.y}, {rho1, z1, n.x, n.y}};
+}
+
+// Appends a triangle, wound counter-clockwise about its vertices' normals; degenerate ones (at
+// the axis) are left out.
+void triangle(TriangleMesh& mesh, uint32_t a, uint32_t b, uint32_t c) {
+  const Vec3f pa = mesh.positions[a], pb = mesh.positions[b], pc = mesh.positions[c];
+  const Vec3f n = cross(pb - pa, pc - pa);
+  if (!(dot(n, n) > 0)) return;
+  if (dot(n, mesh.normals[a] + mesh.normals[b] + mesh.normals[c]) < 0) std::swap(b, c);
+  mesh.indices.insert(mesh.indices.end(), {a, b, c});
+}
+
+void revolve(const std::vector<Piece>& pieces, uint32_t segments, TriangleMesh& mesh) {
+  for (const Piece& piece : pieces) {
+    const uint32_t base = uint32_t(mesh.positions.size()), row = segments + 1;
+    for (const ProfilePoint& p : piece)
+      for (uint32_t j = 0; j <= segments; ++j) {
+        const double phi = 2 * kPi * (j % segments) / segments;  // the seam shares its vertices
+        const double c = std::cos(phi), s = std::sin(phi);
+        mesh.positions.emplace_back(Vec3d{p.rho * c, p.rho * s, p.z});
+        mesh.normals.emplace_back(Vec3d{p.n_rho * c, p.n_rho * s, p.n_z});
+      }
+    for (uint32_t i = 0; i + 1 < piece.size(); ++i)
+      for (uint32_t j = 0; j < segments; ++j) {
+        const uint32_t a = base + i * row + j, b = a + row, c = b + 1, d = a + 1;
+        triangle(mesh, a, b, c);
+        triangle(mesh, a, c, d);
+      }
+  }
+}
+
+void box(TriangleMesh& mesh) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0}) {
+      Vec3d n{0, 0, 0}, u{0, 0, 0}, v{0, 0, 0};
+      (axis == 0 ? n.x : axis == 1 ? n.y : n.z) = side;
+      (axis == 0 ? u.y : axis == 1 ? u.z : u.x) = 1;
+      (axis == 0 ? v.z : axis == 1 ? v.x : v.y) = 1;  // u x v = +axis
+      if (side < 0) std::swap(u, v);
+      const uint32_t base = uint32_t(mesh.positions.size());
+      for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        mesh.positions.emplace_back(n + u * double(a) + v * double(b));
+        mesh.normals.emplace_back(n);
+      }
+      mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+}
+
+void plane_square(const Solid& primitive, const TessellationOptions& options, TriangleMesh& mesh) {
+  const Transform object_from_world = primitive.world_from_object.inverse();
+  const Vec3d q = object_from_world.point(options.plane_centre);
+  // Half-size in object units: the world half-size over the least stretch, the inverse's most.
+  const double h = options.plane_half_size_m * largest_stretch(object_from_world);
+  for (const auto& [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    mesh.positions.emplace_back(Vec3d{q.x + a * h, q.y + b * h, 0});
+    mesh.normals.emplace_back(0.f, 0.f, 1.f);
+  }
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+}
+
+}  // namespace
+
+TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& options) {
+  TriangleMesh mesh;
+  mesh.name = primitive.name;
+  mesh.material = primitive.material;
+  if (primitive.kind == SolidKind::kBox) {
+    box(mesh);
+    return mesh;
+  }
+  if (primitive.kind == SolidKind::kHalfSpace) {
+    plane_square(primitive, options, mesh);
+    return mesh;
+  }
+  // The tolerance in object units. Half of it goes to the angular segments, a quarter to the
+  // profile's: a flat triangle strays from the surface by about the sum of the two sagittas.
+  const double stretch = largest_stretch(primitive.world_from_object);
+  const Bounds3d box = object_bounds(primitive);
+  const double object_radius =
+      box.finite() ? length(max(abs(box.lo), abs(box.hi))) : 1.0;  // a disc's unit radius
+  double tolerance = HUGE_VAL;
+  if (options.tolerance_m > 0) tolerance = options.tolerance_m;
+  if (options.relative_tolerance > 0)
+    tolerance = std::min(tolerance, options.relative_tolerance * stretch * object_radius);
+  if (!std::isfinite(tolerance)) tolerance = 1e-3 * stretch * object_radius;
+  const double error = tolerance / stretch;
+  const uint32_t most = std::max(options.max_segments, 3u);
+  const double r0 = std::abs(primitive.radius0), r1 = std::abs(primitive.radius1);
+  std::vector<Piece> pieces;
+  double widest = 1;  // the largest rho the profile reaches
+  const bool caps = !primitive.open;
+  switch (primitive.kind) {
+    case SolidKind::kSphere:
+      pieces.push_back(arc(0, 0, 1, -kPi / 2, kPi / 2, arc_segments(kPi, 1, error / 4, most)));
+      pieces.back().front().rho = pieces.back().back().rho = 0;  // exactly on the axis
+      break;
+    case SolidKind::kCylinder:
+    case SolidKind::kCone: {
+      const bool cylinder = primitive.kind == SolidKind::kCylinder;
+      const double base = cylinder ? 1 : r0, cap = cylinder ? 1 : r1;
+      widest = std::max(base, cap);
+      if (caps && base > 0) pieces.push_back(line(0, 0, base, 0));
+      pieces.push_back(line(base, 0, cap, 1));
+      if (caps && cap > 0) pieces.push_back(line(cap, 1, 0, 1));
+      break;
+    }
+    case SolidKind::kTorus:
+      widest = 1 + r1;
+      pieces.push_back(arc(1, 0, r1, -kPi, kPi, arc_segments(2 * kPi, r1, error / 4, most)));
+      break;
+    case SolidKind::kDisc:
+      pieces.push_back(line(1, 0, std::min(r1, 1.0), 0));  // outward: +z
+      break;
+    default:
+      return mesh;  // set operations are not primitives
+  }
+  revolve(pieces, std::max(arc_segments(2 * kPi, widest, error / 2, most), 3u), mesh);
+  return mesh;
+}
+
+}  // namespace fb

@@ -1,0 +1,29 @@
+// Triangle meshes of analytic primitives (core/scene/solid.h) to a stated chord tolerance, for
+// what needs triangles (`filmback convert` to glTF). CSG is not tessellated: each primitive is.
+#pragma once
+
+#include "core/scene/scene.h"
+
+namespace fb {
+
+struct TessellationOptions {
+  // The largest distance allowed between the mesh and the surface, in world metres, and as a
+  // fraction of the primitive's bounding radius in the world; the smaller applies (<= 0: unused).
+  double tolerance_m = 1e-3;
+  double relative_tolerance = 1e-3;
+  // A half-space becomes a square of this half-size (world metres) in its plane, centred on the
+  // point of the plane nearest `plane_centre`.
+  double plane_half_size_m = 1e4;
+  Vec3d plane_centre{0, 0, 0};
+  // Per circle, at most this many segments: the tolerance is not met past it (a torus 1e6 times
+  // wider than the tolerance).
+  uint32_t max_segments = 4096;
+};
+
+// The primitive as a mesh in its object space (instance it with world_from_object), with outward
+// counter-clockwise faces and the surface's own normals at the vertices, and sharp edges
+// (box, caps) split. Every point of the mesh lies within the tolerance of the surface
+// (core/scene/tessellate_test.cpp measures it). The mesh takes the primitive's material and name.
+TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& options);
+
+}  // namespace fb

@@ -1,0 +1,113 @@
+// Tessellated primitives stay within their tolerance of the exact surface, and are not needlessly
+// finer than it.
+#include "core/scene/tessellate.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fb {
+namespace {
+
+// Distance from an object-space point inside the convex hull of the mesh to the exact surface.
+double surface_distance(const Solid& s, Vec3d p) {
+  const double rho = std::sqrt(p.x * p.x + p.y * p.y);
+  switch (s.kind) {
+    case SolidKind::kSphere:
+      return std::abs(length(p) - 1);
+    case SolidKind::kCylinder:
+      return std::min({std::abs(1 - rho), std::abs(p.z), std::abs(1 - p.z)});
+    case SolidKind::kCone: {
+      const double k = s.radius1 - s.radius0,
+                   side = (s.radius0 + k * p.z - rho) / std::sqrt(1 + k * k);
+      return std::min({std::abs(side), std::abs(p.z), std::abs(1 - p.z)});
+    }
+    case SolidKind::kTorus:
+      return std::abs(std::hypot(rho - 1, p.z) - s.radius1);
+    default:
+      return std::abs(p.z);
+  }
+}
+
+// The largest distance, in world metres, of points spread over every triangle.
+double largest_error(const Solid& s, const TriangleMesh& mesh, double world_scale) {
+  double worst = 0;
+  constexpr int kSteps = 6;
+  for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+    const Vec3d a(mesh.positions[mesh.indices[i]]), b(mesh.positions[mesh.indices[i + 1]]),
+        c(mesh.positions[mesh.indices[i + 2]]);
+    for (int u = 0; u <= kSteps; ++u)
+      for (int v = 0; u + v <= kSteps; ++v) {
+        const Vec3d p = a + (b - a) * (double(u) / kSteps) + (c - a) * (double(v) / kSteps);
+        worst = std::max(worst, surface_distance(s, p) * world_scale);
+      }
+  }
+  return worst;
+}
+
+Solid shape(SolidKind kind, double scale, double radius0 = 1, double radius1 = 1) {
+  Solid s;
+  s.kind = kind;
+  s.world_from_object = Transform::translate({4, -2, 7}) * Transform::rotate({0.3, 0.1, 0.2, 0.9}) *
+                        Transform::scale({scale, scale, scale});
+  s.radius0 = radius0, s.radius1 = radius1;
+  return s;
+}
+
+TEST(Tessellate, CurvedPrimitivesStayWithinTheTolerance) {
+  const double scale = 2.5;
+  for (const Solid& s :
+       {shape(SolidKind::kSphere, scale), shape(SolidKind::kCylinder, scale),
+        shape(SolidKind::kCone, scale, 1.5, 0.5), shape(SolidKind::kTorus, scale, 1, 0.25)}) {
+    for (double tolerance : {1e-2, 1e-3}) {
+      TessellationOptions options;
+      options.tolerance_m = tolerance, options.relative_tolerance = 0;
+      const TriangleMesh mesh = tessellate(s, options);
+      const double error = largest_error(s, mesh, scale);
+      EXPECT_LE(error, tolerance) << int(s.kind);
+      EXPECT_GT(error, tolerance / 8) << int(s.kind) << ": finer than it needs to be";
+      for (size_t i = 0; i < mesh.normals.size(); ++i)  // the surface's unit normals
+        ASSERT_NEAR(length(mesh.normals[i]), 1.f, 1e-6f);
+    }
+  }
+}
+
+TEST(Tessellate, FacesPointOutOfTheSolid) {
+  for (SolidKind kind : {SolidKind::kSphere, SolidKind::kBox, SolidKind::kCylinder,
+                         SolidKind::kCone, SolidKind::kTorus, SolidKind::kDisc}) {
+    Solid s = shape(kind, 1, 1, kind == SolidKind::kDisc ? 0.5 : 0.3);
+    TessellationOptions options;
+    options.tolerance_m = 1e-2;
+    const TriangleMesh mesh = tessellate(s, options);
+    ASSERT_GT(mesh.triangle_count(), 0u);
+    for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+      const Vec3f a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                  c = mesh.positions[mesh.indices[i + 2]];
+      const Vec3f n = mesh.normals[mesh.indices[i]] + mesh.normals[mesh.indices[i + 1]] +
+                      mesh.normals[mesh.indices[i + 2]];
+      ASSERT_GT(dot(cross(b - a, c - a), n), 0.f) << int(kind) << " triangle " << i / 3;
+    }
+  }
+}
+
+TEST(Tessellate, HalfSpaceIsASquareAboutTheNearestPoint) {
+  Solid s;
+  s.kind = SolidKind::kHalfSpace;
+  s.world_from_object = Transform::translate({0, 3, 0}) * Transform::scale({0.5, 0.5, 0.5});
+  TessellationOptions options;
+  options.plane_half_size_m = 100;
+  options.plane_centre = {10, 20, 30};
+  const TriangleMesh mesh = tessellate(s, options);
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  Bounds3d world;
+  for (const Vec3f& p : mesh.positions)
+    world.extend(s.world_from_object.point(Vec3d(p)));
+  EXPECT_NEAR(world.lo.x, 10 - 100, 1e-9);
+  EXPECT_NEAR(world.hi.y, 20 + 100, 1e-9);
+  EXPECT_NEAR(world.lo.z, 0, 1e-9);
+  EXPECT_NEAR(world.hi.z, 0, 1e-9);
+}
+
+}  // namespace
+}  // namespace fb
