@@ -26,7 +26,7 @@ const char* const kPatterns[] = {
     "bumps", "dents", "crackle", "cells", "image_map", "boxed", "cylindrical", "spherical",
     "planar", "mandel", "julia", "magnet", "object", "function", "pigment_pattern",
     "density_file", "facets", "quilted", "tiling", "pavement", "slope", "aoi", "cubic",
-    "average", "image_pattern", "square", "triangular", "agate_turb", "bump_map", "uv_mapping",
+    "average", "image_pattern", "square", "triangular", "bump_map",
 };
 
 bool is_pattern(const std::string& w) {
@@ -112,6 +112,37 @@ void transform_texture(Texture& texture, const Matrix& inverse) {
   move_pigment(texture.pigment, inverse);
 }
 
+// The arguments a pattern keyword takes right after it (POV-Ray manual 3.5.11).
+void Parser::parse_pattern_arguments(const std::string& w) {
+  if (w == "gradient") {
+    parse_vector();
+  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" ||
+             w == "magnet" || w == "agate_turb" || w == "pavement" || w == "facets") {
+    if (starts_value(peek())) parse_float();
+  } else if (w == "julia") {
+    parse_numeric(2);
+    accept(",");
+    parse_float();
+  } else if (w == "slope") {
+    if (peek().symbol("{")) {
+      skip_block();
+    } else {
+      parse_vector();
+      if (accept(",")) {
+        parse_float();
+        accept(",");
+        parse_float();
+      }
+    }
+  } else if (w == "image_map" || w == "pigment_pattern" || w == "image_pattern" ||
+             w == "function" || w == "object" || w == "bump_map") {
+    skip_block();
+  } else if (w == "density_file") {
+    next();  // df3
+    parse_expression();
+  }
+}
+
 Matrix Parser::parse_transform_block() {
   Matrix m;
   if (!peek().symbol("{")) {
@@ -187,7 +218,8 @@ ColourMap Parser::parse_colour_map(bool pigment_map) {
       continue;
     }
     if (!tok.symbol("[")) fail("expected '[' in a colour map");
-    double value = parse_float();
+    // `average` maps may leave the value out: [pigment {..}]
+    double value = starts_value(peek()) && !starts_colour(peek()) ? parse_float() : 0;
     accept(",");
     const Tok& after = peek();
     if (!pigment_map && (after.token.kind == TokenKind::kNumber ||
@@ -278,26 +310,8 @@ Pigment Parser::parse_pigment_items(const char* closing) {
         while (p.list.size() < 3) p.list.push_back(solid(defaults[p.list.size()]));
       } else if (w == "gradient") {
         p.gradient = parse_vector();
-      } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" ||
-                 w == "magnet" || w == "agate_turb") {
-        parse_float();
-      } else if (w == "julia") {
-        parse_numeric(2);
-        accept(",");
-        parse_float();
-      } else if (w == "slope") {
-        parse_vector();
-        if (accept(",")) {
-          parse_float();
-          accept(",");
-          parse_float();
-        }
-      } else if (w == "image_map" || w == "pigment_pattern" || w == "image_pattern" ||
-                 w == "function" || w == "object") {
-        skip_block();
-      } else if (w == "density_file") {
-        next();  // df3
-        parse_expression();
+      } else {
+        parse_pattern_arguments(w);
       }
       if (p.pattern == Pattern::kOther) unsupported("pattern " + w, location_of(tok));
     } else if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
@@ -333,6 +347,14 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       p.mortar = parse_float();
     } else if (w == "quick_color" || w == "quick_colour") {
       parse_colour();
+    } else if (w == "agate_turb") {
+      parse_float();
+    } else if (w == "uv_mapping") {
+      unsupported("uv_mapping", location_of(tok));
+    } else if (w == "interior" || w == "exterior") {
+      parse_float();  // mandel/julia: type, factor
+      accept(",");
+      parse_float();
     } else if (w == "noise_generator" || w == "metric" || w == "offset" || w == "control0" ||
                w == "control1" || w == "interpolate" || w == "map_type") {
       parse_float();
@@ -399,16 +421,13 @@ Finish Parser::parse_finish() {
     } else if (w == "phong_size") {
       f.phong_size = parse_float();
     } else if (w == "metallic") {
-      const Tok& n = peek();
-      bool has_value = n.token.kind == TokenKind::kNumber ||
-                       (n.identifier && n.value.kind == ValueKind::kFloat) || n.symbol("(");
-      f.metallic = has_value ? parse_float() : 1;
+      f.metallic = starts_value(peek()) ? parse_float() : 1;
     } else if (w == "reflection") {
       if (peek().symbol("{")) {
         next();
         Colour first_colour = parse_colour(false);
         f.reflection_min = f.reflection_max = first_colour;
-        if (accept(",")) f.reflection_max = parse_colour(false);
+        if (accept(",") || starts_value(peek())) f.reflection_max = parse_colour(false);
         for (;;) {
           Tok item = next();
           if (item.symbol("}")) break;
@@ -444,22 +463,32 @@ Finish Parser::parse_finish() {
 }
 
 Texture Parser::parse_texture() {
+  expect("{");
+  return parse_texture_items("}");
+}
+
+// A texture's body. Texture patterns (`checker texture {..} texture {..}`, texture_map,
+// material_map, tiles) are approximated by their first texture, and reported.
+Texture Parser::parse_texture_items(const char* closing) {
   Nesting guard(*this);
   Texture t = default_texture_;
   t.where = here();
   t.has_normal = false;
-  expect("{");
   bool first = true;
-  bool patterned = false;     // texture { checker texture {..} ... }: the first texture is used
+  bool patterned = false;
   std::optional<Texture> first_sub;
+  auto keep = [&](Texture sub) {
+    if (!first_sub) first_sub = std::move(sub);
+  };
   for (;;) {
     Tok tok = next();
-    if (tok.symbol("}")) break;
+    if (tok.symbol(closing)) break;
+    if (tok.token.kind == TokenKind::kEnd) fail(std::string("missing '") + closing + "' in texture");
     const std::string& w = tok.token.text;
     if (first && tok.identifier && tok.value.get<Texture>()) {
       t = *tok.value.get<Texture>();
     } else if (patterned && tok.identifier && tok.value.get<Texture>()) {
-      if (!first_sub) first_sub = *tok.value.get<Texture>();
+      keep(*tok.value.get<Texture>());
     } else if (w == "pigment") {
       t.pigment = parse_pigment();
     } else if (tok.identifier && tok.value.get<Pigment>()) {
@@ -473,55 +502,64 @@ Texture Parser::parse_texture() {
       unsupported("normal", location_of(tok));
       skip_block();
     } else if (w == "texture" && patterned) {
-      Texture sub = parse_texture();
-      if (!first_sub) first_sub = sub;
+      keep(parse_texture());
+    } else if (w == "tiles") {
+      patterned = true;
+      unsupported("texture pattern tiles (first texture used)", location_of(tok));
+      expect("{");
+      for (;;) {
+        Tok item = next();
+        if (item.symbol("}")) break;
+        if (item.word("texture")) {
+          keep(parse_texture());
+        } else if (!item.word("tile2")) {
+          fail("unexpected '" + item.token.text + "' in tiles");
+        }
+      }
     } else if ((w == "texture_map" || w == "material_map") && patterned) {
       expect("{");
       for (;;) {
         Tok entry = next();
         if (entry.symbol("}")) break;
+        if (entry.word("texture") && w == "material_map") {
+          keep(parse_texture());
+          continue;
+        }
         if (!entry.symbol("[")) {
           if (w == "material_map") continue;  // image file and options
           fail("expected '[' in texture_map");
         }
-        parse_float();
-        Tok what = next();
-        Texture sub = t;
-        if (what.word("texture")) {
-          sub = parse_texture();
-        } else if (what.identifier && what.value.get<Texture>()) {
-          sub = *what.value.get<Texture>();
+        if (starts_value(peek()) && !starts_colour(peek())) parse_float();
+        accept(",");
+        if (peek().word("texture")) {
+          next();
+          keep(parse_texture());
+          expect("]");
         } else {
-          fail("expected a texture in texture_map");
+          keep(parse_texture_items("]"));  // [v Ident], [v pigment {..} finish {..}]
         }
-        if (!first_sub) first_sub = sub;
-        expect("]");
       }
     } else if (tok.keyword() && (is_pattern(w) || w == "material_map")) {
       patterned = true;
       unsupported("texture pattern " + w + " (first texture used)", location_of(tok));
       if (w == "material_map") {
         unget(std::move(tok));
-      } else if (w == "gradient") {
-        parse_vector();
-      } else if (w == "image_map" || w == "function" || w == "object" || w == "pigment_pattern") {
-        skip_block();
-      } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling") {
-        parse_float();
+      } else {
+        parse_pattern_arguments(w);
       }
     } else if (auto m = parse_transform_item(tok)) {
       transform_texture(t, m->inverse());
       if (first_sub) transform_texture(*first_sub, m->inverse());
-    } else if (patterned) {
+    } else if (w == "warp") {
+      unsupported("warp", location_of(tok));
+      skip_block();
+    } else if (w == "uv_mapping") {
+      unsupported("uv_mapping", location_of(tok));
+    } else if (patterned && tok.keyword()) {
       // the pattern's own modifiers (turbulence, octaves ...): read and dropped
-      unget(std::move(tok));
-      const Tok& n = next();
-      (void)n;
-      const Tok& arg = peek();
-      if (arg.token.kind == TokenKind::kNumber || arg.symbol("<") ||
-          (arg.identifier && arg.value.numeric())) {
-        parse_expression();
-      }
+      if (starts_value(peek())) parse_expression();
+    } else if (patterned && tok.symbol(",")) {
+      // commas between the list's textures
     } else {
       fail("unexpected '" + w + "' in texture");
     }

@@ -188,9 +188,17 @@ void Parser::run_declare(bool local) {
     return;
   }
   expect("=");
+  // a macro called on the right may still be running when the value ends (`#local A = M();`
+  // with a ';' inside M): the identifier belongs to the scope the directive was written in
+  size_t scope = scopes_.size() - 1;
   Value value = parse_rvalue();
   accept(";");
   if (value.kind == ValueKind::kNone) fail("nothing to declare");
+  if (local && scope < scopes_.size()) {
+    if (value.kind == ValueKind::kString) check_string(value.text);
+    scopes_[scope][name.text] = std::move(value);
+    return;
+  }
   assign(name.text, std::move(value), local);
 }
 

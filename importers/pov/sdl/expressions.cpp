@@ -139,13 +139,15 @@ Vec3d Parser::parse_vector() {
   return {value.v[0], value.v[1], value.v[2]};
 }
 
+bool Parser::starts_value(const Tok& tok) const {
+  return tok.token.kind == TokenKind::kNumber || tok.symbol("(") || tok.symbol("!") ||
+         tok.symbol("-") || tok.symbol("+") || tok.symbol("<") || tok.word("on") ||
+         tok.word("off") || tok.word("true") || tok.word("false") || tok.word("yes") ||
+         tok.word("no") || (tok.identifier && tok.value.numeric()) || starts_colour(tok);
+}
+
 bool Parser::parse_bool_option() {
-  const Tok& tok = peek();
-  bool has_value = tok.token.kind == TokenKind::kNumber || tok.symbol("(") || tok.symbol("!") ||
-                   tok.word("on") || tok.word("off") || tok.word("true") || tok.word("false") ||
-                   tok.word("yes") || tok.word("no") ||
-                   (tok.identifier && tok.value.kind == ValueKind::kFloat);
-  if (!has_value) return true;
+  if (!starts_value(peek())) return true;
   return std::abs(parse_float()) > 1e-10;
 }
 
@@ -272,10 +274,7 @@ Value Parser::parse_rvalue() {
           size_t n = 0;
           for (;;) {
             if (accept("}")) break;
-            if (n > 0 && !accept(",")) {
-              expect("}");
-              break;
-            }
+            if (n > 0) accept(",");  // POV-Ray also takes elements separated by blanks
             if (accept("}")) break;
             if (n >= sizes[dim]) fail("too many array initialisers");
             if (dim + 1 < sizes.size()) {
@@ -492,6 +491,7 @@ Value Parser::parse_primary() {
       value.v[value.dims++] = c.v[0];
       if (peek().symbol(",")) {
         next();
+        if (peek().symbol(">")) break;  // a trailing comma, which POV-Ray accepts
         continue;
       }
       // POV-Ray also reads components separated by blanks: <4 0 0>
@@ -510,9 +510,9 @@ Value Parser::parse_primary() {
   if (tok.token.kind == TokenKind::kSymbol) fail("unexpected '" + tok.token.text + "' in an expression");
   if (tok.identifier) {
     const Value& value = tok.value;
-    if (value.kind == ValueKind::kFunction) {
+    if (value.kind == ValueKind::kFunction && peek().symbol("(")) {
       // user functions are parsed, not evaluated
-      if (peek().symbol("(")) skip_parenthesised();
+      skip_parenthesised();
       unsupported("function", location_of(tok));
       return Value::number(0);
     }

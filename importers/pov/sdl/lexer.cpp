@@ -29,6 +29,10 @@ class Lexer {
         return file;
       }
       char c = src_[pos_];
+      if (c == '#' && !directive_follows()) {
+        advance();  // a '#' with no directive after it is ignored, as POV-Ray does
+        continue;
+      }
       if (is_digit(c) || (c == '.' && pos_ + 1 < src_.size() && is_digit(src_[pos_ + 1]))) {
         read_number(token);
       } else if (is_word_start(c)) {
@@ -39,7 +43,9 @@ class Lexer {
       } else if (c == '#') {
         advance();
         skip_space_and_comments();
-        if (pos_ >= src_.size() || !is_word_start(src_[pos_])) fail(token, "expected a directive after '#'");
+        if (pos_ >= src_.size() || !is_word_start(src_[pos_])) {
+          fail(token, "expected a directive after '#'");
+        }
         token.kind = TokenKind::kDirective;
         token.text = read_word();
       } else {
@@ -52,6 +58,12 @@ class Lexer {
  private:
   [[noreturn]] void fail(const Token& at, const std::string& what) {
     throw_input(name_ + ":" + std::to_string(at.line) + ":" + std::to_string(at.column), "", what);
+  }
+
+  bool directive_follows() const {
+    size_t p = pos_ + 1;
+    while (p < src_.size() && (src_[p] == ' ' || src_[p] == '\t')) ++p;
+    return p < src_.size() && is_word_start(src_[p]);
   }
 
   void advance() {

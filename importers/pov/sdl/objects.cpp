@@ -11,7 +11,7 @@ namespace {
 const char* const kSupported[] = {"sphere", "box", "plane", "cylinder", "cone", "torus", "disc",
                                   "triangle", "smooth_triangle", "mesh", "mesh2", "polygon",
                                   "object", "union", "merge", "difference", "intersection",
-                                  "light_source"};
+                                  "light_source", "light_group"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 const char* const kUnsupported[] = {
     "text", "height_field", "blob", "lathe", "sor", "prism", "superellipsoid", "isosurface",
@@ -270,6 +270,7 @@ Node Parser::parse_object(const Tok& keyword) {
     parse_object_mods(node);
     return node;
   } else {
+    if (w == "light_group") unsupported("light_group (its lights light the whole scene)", where);
     o.shape = w == "union" ? Shape::kUnion : w == "merge" ? Shape::kMerge
               : w == "intersection" ? Shape::kIntersection : Shape::kDifference;
     for (;;) {
@@ -523,7 +524,7 @@ void Parser::parse_object_mods(Node& node) {
       o.double_illuminate = parse_bool_option();
     } else if (w == "open") {
       o.open = parse_bool_option();
-    } else if (w == "no_radiosity" || w == "sturm" || w == "split_union" ||
+    } else if (w == "no_radiosity" || w == "sturm" || w == "global_lights" || w == "split_union" ||
                w == "cutaway_textures" || w == "hierarchy" || w == "smooth" || w == "uv_mapping") {
       parse_bool_option();
     } else if (w == "inside_vector") {

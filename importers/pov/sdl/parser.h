@@ -162,7 +162,8 @@ class Parser {
   double parse_float();
   Vec3d parse_vector();
   Value parse_numeric(int dims);  // a float or vector promoted to `dims` components
-  bool parse_bool_option();  // an optional boolean after a flag keyword (`hollow on`)
+  bool parse_bool_option();
+  bool starts_value(const Tok& tok) const;  // a number, vector or colour starts at `tok`  // an optional boolean after a flag keyword (`hollow on`)
   Colour parse_colour(bool float_fills_filter_transmit = true);
   bool starts_colour(const Tok& tok) const;
 
@@ -174,6 +175,8 @@ class Parser {
   MaterialValue parse_material();
   ColourMap parse_colour_map(bool pigment_map);  // after colour_map / pigment_map
   Pigment parse_pigment_items(const char* closing);  // a pigment's body up to `closing`
+  Texture parse_texture_items(const char* closing);
+  void parse_pattern_arguments(const std::string& pattern);
   std::optional<Matrix> parse_transform_item(const Tok& tok);  // translate/rotate/.../transform
   Matrix parse_transform_block();  // after `transform`
   const Texture& default_texture() const { return default_texture_; }

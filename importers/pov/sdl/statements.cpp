@@ -163,6 +163,11 @@ LightSource Parser::parse_light(const Tok& keyword) {
 void Parser::parse_statement(const Tok& tok) {
   const std::string& w = tok.token.text;
   if (tok.symbol(";")) return;  // stray semicolons after statements, as POV-Ray accepts
+  if (tok.word("default")) {
+    // the pre-3.0 spelling of #default, still accepted by POV-Ray 3.7
+    Token directive_token = tok.token;
+    return directive(directive_token);
+  }
   if (is_object_keyword(tok)) return emit(parse_object(tok));
   if (w == "camera" && tok.keyword()) {
     if (scene_.camera) warn("more than one camera: the last one wins");
