@@ -122,6 +122,15 @@ double Parser::parse_float() {
   return value.v[0];
 }
 
+// A count before a list of vectors (`vertex_vectors { 3 <...>`): no comparison, so that the
+// '<' opens the first vector.
+double Parser::parse_count() {
+  Nesting guard(*this);
+  Value value = parse_additive();
+  if (value.kind != ValueKind::kFloat) fail("expected a count");
+  return value.v[0];
+}
+
 Value Parser::parse_numeric(int dims) {
   Value value = parse_expression();
   if (!value.numeric()) fail("expected a " + std::string(dims == 1 ? "float" : "vector"));
@@ -516,8 +525,8 @@ Value Parser::parse_primary() {
       unsupported("function", location_of(tok));
       return Value::number(0);
     }
-    if (value.kind == ValueKind::kOpaque && value.text == "spline") {
-      if (peek().symbol("(")) skip_parenthesised();
+    if (value.kind == ValueKind::kOpaque && value.text == "spline" && peek().symbol("(")) {
+      skip_parenthesised();
       unsupported("spline", location_of(tok));
       return Value::vector({0, 0, 0});
     }

@@ -229,7 +229,7 @@ Node Parser::parse_object(const Tok& keyword) {
     parse_mesh2(o);
   } else if (w == "polygon") {
     o.shape = Shape::kMesh;
-    double n = parse_float();
+    double n = parse_count();
     if (!(n >= 3 && n <= static_cast<double>(options_.limits.objects))) fail("polygon needs at least 3 points");
     count_objects(static_cast<uint64_t>(n));
     std::vector<Vec3d> points;
@@ -297,9 +297,19 @@ Node Parser::parse_object(const Tok& keyword) {
 void Parser::parse_mesh(Object& o) {
   o.shape = Shape::kMesh;
   bool smooth = false;
-  std::vector<bool> textured;
   for (;;) {
     Tok tok = next();
+    if (tok.identifier && tok.value.get<Node>() && tok.value.get<Node>()->object &&
+        tok.value.get<Node>()->object->shape == Shape::kMesh) {
+      // mesh { Declared_Mesh ... }
+      std::string keyword = o.keyword;
+      SourceLocation where = o.where;
+      o = *tok.value.get<Node>()->object;
+      o.keyword = keyword;
+      o.where = where;
+      smooth = !o.normals.empty();
+      continue;
+    }
     bool tri = tok.word("triangle"), smooth_tri = tok.word("smooth_triangle");
     if (!tri && !smooth_tri) {
       if (tok.word("inside_vector")) {
@@ -364,7 +374,7 @@ void Parser::parse_mesh2(Object& o) {
   o.shape = Shape::kMesh;
   auto count_of = [&]() {
     expect("{");
-    double n = parse_float();
+    double n = parse_count();
     if (!(n >= 0 && n <= static_cast<double>(options_.limits.objects))) fail("bad mesh2 count");
     count_objects(static_cast<uint64_t>(n));
     return static_cast<size_t>(n);

@@ -160,6 +160,7 @@ class Parser {
   Value parse_rvalue();  // anything #declare can hold
   Value index_array(const Value& array);  // after an array identifier: [i][j]...
   double parse_float();
+  double parse_count();
   Vec3d parse_vector();
   Value parse_numeric(int dims);  // a float or vector promoted to `dims` components
   bool parse_bool_option();

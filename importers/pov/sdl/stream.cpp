@@ -336,7 +336,7 @@ void Parser::call_macro(const Token& name, std::shared_ptr<const Macro> macro) {
   std::vector<std::pair<std::string, std::string>> by_reference;
   expect("(");
   for (size_t i = 0; i < macro->params.size(); ++i) {
-    if (i > 0) expect(",");
+    if (i > 0) accept(",");  // POV-Ray reads arguments without a comma after an object
     // A bare identifier is passed by reference (POV-Ray manual 3.3.8.3): #declare on the
     // parameter changes the caller's identifier.
     if (!pushback_) {
