@@ -13,6 +13,7 @@ namespace fb {
 struct RenderSolid::Node {
   SolidKind kind = SolidKind::kSphere;
   bool inverse = false, open = false;
+  bool surface = true;  // false below a `bounds_only` solid: its boundaries are no surface
   double radius0 = 1, radius1 = 1;
   uint32_t material = 0;
   Transform object_from_render;
@@ -47,7 +48,7 @@ struct Span {
 using Spans = std::vector<Span>;
 
 Boundary on(const Node& leaf, double t, uint8_t part = 0, bool surface = true) {
-  return {t, &leaf, part, surface, false};
+  return {t, &leaf, part, surface && leaf.surface, false};
 }
 
 // Appends [in, out] clipped to the window [lo, hi]; what the window cuts is no surface.
@@ -316,9 +317,10 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
   }
 }
 
-Node build(const Solid& solid, const Transform& render_from_world) {
+Node build(const Solid& solid, const Transform& render_from_world, bool surface) {
   Node node;
   node.kind = solid.kind;
+  node.surface = surface && !solid.bounds_only;
   node.inverse = solid.inverse;
   node.open = solid.open;
   node.radius0 = std::abs(solid.radius0);
@@ -335,7 +337,7 @@ Node build(const Solid& solid, const Transform& render_from_world) {
       node.magnitude = length(max(abs(node.bounds.lo), abs(node.bounds.hi)));
   }
   for (const Solid& child : solid.children)
-    node.children.push_back(build(child, render_from_world));
+    node.children.push_back(build(child, render_from_world, node.surface));
   return node;
 }
 
@@ -343,7 +345,7 @@ Node build(const Solid& solid, const Transform& render_from_world) {
 
 RenderSolid::RenderSolid(const Solid& solid, const Transform& render_from_world,
                          const Bounds3d& reach) {
-  root_.push_back(build(solid, render_from_world));
+  root_.push_back(build(solid, render_from_world, true));
   const Bounds3d set = solid_bounds(solid, render_from_world);
   bounded_ = set.finite();
   bounds_ = {max(set.lo, reach.lo), min(set.hi, reach.hi)};

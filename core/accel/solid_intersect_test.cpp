@@ -321,6 +321,19 @@ TEST(SolidCsg, HalfSpaceClipsASphereAndIsBoundedByIt) {
   EXPECT_FALSE(solid.first_hit({0.5, 0, 5}, {0, 1, 0}, 0));
 }
 
+TEST(SolidCsg, ClippingLeavesTheObjectOpen) {
+  // A unit sphere clipped_by z <= 0: a bowl, open at the top, seen from above through its rim.
+  Solid clip = primitive(SolidKind::kHalfSpace, Transform(), 3);
+  clip.bounds_only = true;
+  const Solid bowl = csg(SolidKind::kIntersection, {ball({0, 0, 0}, 1, 1), clip});
+  const auto inner = trace(bowl, {0, 0, 5}, {0, 0, -1});
+  ASSERT_TRUE(inner);
+  EXPECT_NEAR(inner->position.z, -1, 1e-14);  // the bowl's bottom, from inside
+  EXPECT_EQ(inner->material, 1u);
+  expect_unit_near(inner->normal, {0, 0, -1}, 1e-14);  // still the sphere's outward normal
+  EXPECT_FALSE(trace(bowl, {0, 0, 0.5}, {1, 0, 0}));   // above the cut: nothing left
+}
+
 // ---- Re-tracing from hits -----------------------------------------------------------------------
 
 // From every hit, rays leaving on either side must not meet the surface they leave: offset by

@@ -39,7 +39,10 @@ struct Solid {
   double radius0 = 1, radius1 = 1;  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1
   bool open = false;                // kCylinder, kCone: no end caps
   bool inverse = false;             // the complement of the set
-  uint32_t material = 0;            // of this primitive's surface (unused by set operations)
+  // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
+  // object open where it cuts.
+  bool bounds_only = false;
+  uint32_t material = 0;  // of this primitive's surface (unused by set operations)
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }
