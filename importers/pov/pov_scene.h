@@ -65,6 +65,8 @@ struct Pigment {
   double wave_exponent = 1;  // kPoly
   Vec3d brick_size{8, 3, 4.5};
   double mortar = 0.5;
+  int spiral_arms = 1;          // spiral1 / spiral2 N
+  double agate_turbulence = 1;  // agate_turb
   // Pattern space from POV world space: the pigment's own transforms and every transform applied
   // to the object after the pigment was attached, composed by the evaluator.
   Matrix pattern_from_world;

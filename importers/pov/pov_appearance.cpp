@@ -1,0 +1,414 @@
+#include "importers/pov/pov_appearance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "core/texture/solid_pattern.h"
+#include "importers/pov/pov_space.h"
+
+namespace fb::pov {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Rgb decode(const Colour& c, double gamma) {
+  const auto channel = [gamma](double v) { return float(std::pow(std::max(v, 0.0), gamma)); };
+  return {channel(c.r), channel(c.g), channel(c.b)};
+}
+
+SolidColour solid_colour(const Colour& c, double gamma) {
+  return {decode(c, gamma), float(std::clamp(c.filter, 0.0, 1.0)),
+          float(std::clamp(c.transmit, 0.0, 1.0))};
+}
+
+SolidPatternKind solid_kind(Pattern p) {
+  using K = SolidPatternKind;
+  switch (p) {
+    case Pattern::kChecker:
+      return K::kChecker;
+    case Pattern::kHexagon:
+      return K::kHexagon;
+    case Pattern::kBrick:
+      return K::kBrick;
+    case Pattern::kGradient:
+      return K::kGradient;
+    case Pattern::kBozo:
+      return K::kBozo;
+    case Pattern::kSpotted:
+      return K::kSpotted;
+    case Pattern::kGranite:
+      return K::kGranite;
+    case Pattern::kMarble:
+      return K::kMarble;
+    case Pattern::kWood:
+      return K::kWood;
+    case Pattern::kAgate:
+      return K::kAgate;
+    case Pattern::kLeopard:
+      return K::kLeopard;
+    case Pattern::kOnion:
+      return K::kOnion;
+    case Pattern::kRadial:
+      return K::kRadial;
+    case Pattern::kSpiral1:
+      return K::kSpiral1;
+    case Pattern::kSpiral2:
+      return K::kSpiral2;
+    case Pattern::kWaves:
+      return K::kWaves;
+    case Pattern::kRipples:
+      return K::kRipples;
+    case Pattern::kWrinkles:
+      return K::kWrinkles;
+    case Pattern::kBumps:
+      return K::kBumps;
+    case Pattern::kDents:
+      return K::kDents;
+    case Pattern::kCrackle:
+      return K::kCrackle;
+    case Pattern::kCells:
+      return K::kCells;
+    default:
+      return K::kSolid;  // a colour, or an image/unknown pattern by its average
+  }
+}
+
+SolidWave solid_wave(Wave w) {
+  switch (w) {
+    case Wave::kTriangle:
+      return SolidWave::kTriangle;
+    case Wave::kSine:
+      return SolidWave::kSine;
+    case Wave::kScallop:
+      return SolidWave::kScallop;
+    case Wave::kCubic:
+      return SolidWave::kCubic;
+    case Wave::kPoly:
+      return SolidWave::kPoly;
+    default:
+      return SolidWave::kRamp;
+  }
+}
+
+// A pigment as a solid texture; `pov_from_input` takes the points it will be evaluated at
+// (filmback's world for objects, the sky's own space for a sky_sphere) into POV-Ray's space.
+SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_input) {
+  SolidPattern s;
+  s.kind = solid_kind(p.pattern);
+  s.colour = solid_colour(p.colour, gamma);
+  if (s.kind == SolidPatternKind::kSolid) return s;
+  s.pattern_from_world = p.pattern_from_world * pov_from_input;
+  for (const ColourMapEntry& e : p.colour_map)
+    s.colour_map.push_back({float(std::clamp(e.value, 0.0, 1.0)), solid_colour(e.colour, gamma)});
+  for (const Pigment& entry : p.list)
+    s.list.push_back(to_solid(entry, gamma, pov_from_input));
+  s.turbulence = p.turbulence;
+  s.octaves = p.octaves, s.omega = p.omega, s.lambda = p.lambda;
+  s.frequency = p.frequency, s.phase = p.phase;
+  s.wave = solid_wave(p.wave);
+  // Marble and wood default to triangle_wave (POV-Ray 3.7 manual; checked against its render).
+  // pov::Pigment does not say whether a ramp_wave was written, so ramp means the default here.
+  if ((s.kind == SolidPatternKind::kMarble || s.kind == SolidPatternKind::kWood) &&
+      s.wave == SolidWave::kRamp)
+    s.wave = SolidWave::kTriangle;
+  s.wave_exponent = p.wave_exponent;
+  // POV-Ray normalises the gradient vector (checked: `gradient <2,0,0>` repeats every unit).
+  const double len = std::sqrt(dot(p.gradient, p.gradient));
+  s.gradient = len > 0 ? p.gradient / len : Vec3d{0, 0, 0};
+  s.brick_size = p.brick_size, s.mortar = p.mortar;
+  s.spiral_arms = p.spiral_arms;
+  s.agate_turbulence = p.agate_turbulence;
+  return s;
+}
+
+bool any_transmit(const SolidPattern& s) {
+  if (s.colour.transmit > 0) return true;
+  for (const SolidColourStop& stop : s.colour_map)
+    if (stop.colour.transmit > 0) return true;
+  for (const SolidPattern& entry : s.list)
+    if (any_transmit(entry)) return true;
+  return false;
+}
+
+// GGX alpha for a Blinn-Phong exponent n, by matching the lobes' widths (Walter et al. 2007,
+// §5.2: alpha_p = 2 / alpha_b^2 - 2); as perceptual roughness sqrt(alpha).
+double roughness_for_blinn_exponent(double n) {
+  return std::sqrt(std::sqrt(2 / (std::max(n, 0.0) + 2)));
+}
+
+// The highlight a finish asks for: its strength and GGX roughness. `specular` is Blinn's
+// exponent 1/roughness on the half vector; `phong` is an exponent on the mirror direction, about
+// a quarter of the equivalent Blinn exponent.
+struct Highlight {
+  double amount = 0, roughness = 1;
+};
+Highlight highlight(const Finish& f) {
+  Highlight h;
+  if (f.specular > 0)
+    h = {f.specular, roughness_for_blinn_exponent(1 / std::max(f.roughness, 1e-4))};
+  if (f.phong > h.amount) h = {f.phong, roughness_for_blinn_exponent(4 * f.phong_size)};
+  return h;
+}
+
+double max_channel(const Colour& c) {
+  return std::max({c.r, c.g, c.b});
+}
+
+// The content of a material, for finding identical ones: every field but the name.
+void append_pattern(std::string& key, const SolidPattern& s);
+void append(std::string& key, double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g,", v);
+  key += buf;
+}
+void append(std::string& key, Vec3d v) {
+  append(key, v.x), append(key, v.y), append(key, v.z);
+}
+void append(std::string& key, Rgb v) {
+  append(key, Vec3d(v));
+}
+void append(std::string& key, const SolidColour& c) {
+  append(key, c.rgb), append(key, c.filter), append(key, c.transmit);
+}
+void append_pattern(std::string& key, const SolidPattern& s) {
+  key += '{';
+  append(key, int(s.kind));
+  append(key, s.colour);
+  for (const SolidColourStop& stop : s.colour_map)
+    append(key, stop.value), append(key, stop.colour);
+  key += "|";
+  for (const SolidPattern& entry : s.list)
+    append_pattern(key, entry);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c)
+      append(key, s.pattern_from_world(r, c));
+  append(key, s.turbulence);
+  append(key, s.octaves), append(key, s.omega), append(key, s.lambda), append(key, s.frequency);
+  append(key, s.phase), append(key, int(s.wave)), append(key, s.wave_exponent);
+  append(key, s.gradient), append(key, s.brick_size), append(key, s.mortar);
+  append(key, s.spiral_arms), append(key, s.agate_turbulence);
+  key += "}";
+}
+std::string material_key(const Material& m) {
+  std::string key;
+  append(key, m.base_color), append(key, m.emission), append(key, m.double_sided);
+  append(key, m.metallic), append(key, m.roughness), append(key, m.transmission);
+  append(key, m.ior), append(key, m.specular), append(key, int(m.alpha_mode)), append(key, m.alpha);
+  if (m.base_color_pattern) append_pattern(key, *m.base_color_pattern);
+  return key;
+}
+
+// A light's placement: at `position`, shining down its -Z towards `target` (world space).
+Transform aimed(Vec3d position, Vec3d target) {
+  Vec3d d = target - position;
+  if (!(dot(d, d) > 0)) d = {0, 0, -1};
+  const Vec3d n = d / std::sqrt(dot(d, d));
+  const Vec3d up = std::abs(n.y) > 0.999 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
+  return Transform::look_at(position, position + n, up);
+}
+
+}  // namespace
+
+double colour_gamma(const Scene& scene) {
+  if (scene.assumed_gamma && *scene.assumed_gamma > 0) return *scene.assumed_gamma;
+  return scene.version >= 3.7 ? 1.0 : 2.2;
+}
+
+Material make_material(const Texture& texture, const std::optional<Interior>& interior,
+                       double gamma, const Colour& ambient_light) {
+  const Finish& f = texture.finish;
+  Material m;
+  m.name = texture.where.text();
+  m.double_sided = true;  // POV-Ray's surfaces look the same from both sides
+  const SolidPattern pigment = to_solid(texture.pigment, gamma, world_from_pov_space());
+  const bool patterned = pigment.kind != SolidPatternKind::kSolid;
+  // The pigment's colour: the pattern's average where one colour must stand for it (emission).
+  const Rgb rho = decode(texture.pigment.colour, gamma);
+  const float filter = patterned ? 0.f : pigment.colour.filter;
+  const float transmit = patterned ? 0.f : pigment.colour.transmit;
+  const double ior = interior ? interior->ior : 1.0;
+  const bool refracts = ior != 1.0;
+
+  // Transparency: filter is coloured transmission; transmit is plain see-through coverage, unless
+  // the interior refracts, when it is transmission too (tinted, unlike POV-Ray's).
+  m.transmission = std::clamp(filter + (refracts ? transmit : 0.f), 0.f, 1.f);
+  if (!refracts && (transmit > 0 || (patterned && any_transmit(pigment)))) {
+    m.alpha_mode = AlphaMode::kBlend;
+    m.alpha = 1.f - transmit;
+  }
+
+  const double reflection = max_channel(f.reflection_max);
+  const bool metal = reflection > 0 && (f.metallic > 0 || f.reflection_metallic > 0);
+  // Diffuse: albedo rho d, so that a light of colour c (intensity pi c) gives rho d c cos(theta)
+  // as POV-Ray's diffuse does. Transmissive and metallic surfaces tint by rho itself.
+  const float d = float(std::max(f.diffuse, 0.0));
+  const float scale = m.transmission > 0 || metal ? 1.f : d;
+  m.base_color = Rgb{scale, scale, scale};
+  if (patterned)
+    m.base_color_pattern = pigment;
+  else
+    m.base_color = m.base_color * pigment.colour.rgb;
+
+  // POV-Ray's ambient stands in for indirect light, which the path tracer computes: dropped,
+  // except on a finish without diffuse, which is self-lit (test markers, skies).
+  m.emission = rho * Rgb(float(f.emission.r), float(f.emission.g), float(f.emission.b));
+  if (d == 0.f)
+    m.emission += rho * Rgb(float(f.ambient.r), float(f.ambient.g), float(f.ambient.b)) *
+                  decode(ambient_light, gamma);
+
+  const Highlight h = highlight(f);
+  if (reflection > 0 || m.transmission > 0) {
+    // A mirror or glass: sharp, unless a highlight asks for some blur (kept small, since POV-Ray's
+    // highlights imitate the reflection of its point lights, which a mirror cannot show).
+    m.roughness = float(h.amount > 0 ? std::min(h.roughness, 0.15) : 0.0);
+    m.specular = 1.f;
+    if (refracts || f.reflection_fresnel) {
+      m.ior = float(ior);
+    } else if (reflection > 0) {
+      // The reflectance at normal incidence as Fresnel's F0 = ((n - 1) / (n + 1))^2; POV-Ray's
+      // reflection_max at grazing angles is left to Schlick's rise.
+      const double f0 =
+          std::clamp(std::max(max_channel(f.reflection_min), 0.25 * reflection), 0.01, 0.9);
+      m.ior = float((1 + std::sqrt(f0)) / (1 - std::sqrt(f0)));
+    } else {
+      m.ior = 1.f;
+    }
+    if (metal) m.metallic = float(std::clamp(reflection, 0.0, 1.0));
+  } else if (h.amount > 0) {
+    m.roughness = float(h.roughness);
+    m.specular = float(std::clamp(h.amount, 0.0, 1.0));
+  } else {
+    m.specular = 0.f;  // POV-Ray's default finish: Lambertian
+    m.roughness = 1.f;
+  }
+  return m;
+}
+
+MaterialTable::MaterialTable(const Scene& scene, fb::Scene& out, Diagnostics& diagnostics)
+    : out_(out),
+      diagnostics_(diagnostics),
+      gamma_(colour_gamma(scene)),
+      ambient_light_(scene.ambient_light) {}
+
+void MaterialTable::report(const Texture& texture) {
+  const auto once = [&](const std::string& feature, const SourceLocation& where) {
+    if (reported_.insert(feature).second)
+      diagnostics_.warn(where.text() + ": " + feature + " is not rendered (first met here)");
+  };
+  if (texture.has_normal) once("normal perturbation", texture.where);
+  if (texture.finish.brilliance != 1) once("finish brilliance", texture.where);
+  const auto walk = [&](const auto& self, const Pigment& p) -> void {
+    if (p.pattern == Pattern::kImageMap || p.pattern == Pattern::kOther)
+      once("pattern " + (p.name.empty() ? std::string("image_map") : p.name) +
+               " (its average colour is used)",
+           p.where);
+    for (const Pigment& entry : p.list)
+      self(self, entry);
+  };
+  walk(walk, texture.pigment);
+}
+
+uint32_t MaterialTable::material(const Texture& texture, const std::optional<Interior>& interior) {
+  report(texture);
+  Material m = make_material(texture, interior, gamma_, ambient_light_);
+  const auto [it, added] = index_.try_emplace(material_key(m), uint32_t(out_.materials.size()));
+  if (added) out_.materials.push_back(std::move(m));
+  return it->second;
+}
+
+void convert_lights(const Scene& scene, fb::Scene& out, Diagnostics& diagnostics) {
+  const double gamma = colour_gamma(scene);
+  bool looks_like_reported = false;
+  for (const LightSource& l : scene.lights) {
+    Light light;
+    light.name = l.where.text();
+    // A Lambertian albedo rho d lit by intensity pi c at any distance (no fading) reflects
+    // rho d c cos(theta): POV-Ray's diffuse term for a light of colour c.
+    light.intensity = decode(l.colour, gamma) * float(kPi);
+    light.decay = LightDecay::kPovRay;
+    light.fade_distance_m = l.fade_distance, light.fade_power = l.fade_power;
+    light.casts_shadows = !l.shadowless;
+    const Vec3d position = world_from_pov(l.location), target = world_from_pov(l.point_at);
+    switch (l.kind) {
+      case LightKind::kPoint:
+        light.world_from_light = Transform::translate(position);
+        break;
+      case LightKind::kSpot:
+        light.type = LightType::kSpot;
+        light.spot_falloff = SpotFalloff::kPov;
+        light.spot_inner_angle_rad = l.radius_deg * kPi / 180;
+        light.spot_outer_angle_rad = l.falloff_deg * kPi / 180;
+        light.spot_tightness = l.tightness;
+        light.world_from_light = aimed(position, target);
+        break;
+      case LightKind::kCylinder:
+        diagnostics.warn(l.where.text() +
+                         ": cylinder light rendered as a parallel light (no beam radius)");
+        [[fallthrough]];
+      case LightKind::kParallel:
+        light.type = LightType::kDirectional;  // irradiance pi c
+        light.world_from_light = aimed(position, target);
+        break;
+    }
+    if (l.area && l.size1 * l.size2 > 1) {
+      const Transform light_from_world = light.world_from_light.inverse();
+      light.area_axis1 = light_from_world.vector(world_from_pov(l.axis1));
+      light.area_axis2 = light_from_world.vector(world_from_pov(l.axis2));
+      light.area_size1 = uint32_t(std::clamp(l.size1, 1, 4096));
+      light.area_size2 = uint32_t(std::clamp(l.size2, 1, 4096));
+      light.area_circular = l.circular, light.area_orient = l.orient;
+    }
+    if (l.has_looks_like && !looks_like_reported) {
+      diagnostics.warn(l.where.text() + ": light_source looks_like is not rendered");
+      looks_like_reported = true;
+    }
+    out.lights.push_back(std::move(light));
+  }
+}
+
+void convert_environment(const Scene& scene, fb::Scene& out, Diagnostics& diagnostics) {
+  const double gamma = colour_gamma(scene);
+  const Rgb background = scene.background ? decode(*scene.background, gamma) : Rgb{};
+  out.background = background;
+  if (!scene.sky_sphere || scene.sky_sphere->pigments.empty()) return;
+  const SkySphere& sky = *scene.sky_sphere;
+  std::vector<SolidPattern> layers;
+  for (const Pigment& p : sky.pigments) {
+    if (p.pattern == Pattern::kImageMap || p.pattern == Pattern::kOther)
+      diagnostics.warn(p.where.text() + ": sky_sphere pattern " + p.name +
+                       " is not rendered (its average colour is used)");
+    layers.push_back(to_solid(p, gamma, Transform()));  // evaluated in the sky's own space
+  }
+  const Transform sky_from_pov = sky.transform.inverse();
+  EnvironmentMap map;
+  map.name = "sky_sphere (" + sky.pigments.front().where.text() + ")";
+  map.width = kSkyWidth, map.height = kSkyHeight;
+  map.texels.resize(size_t(kSkyWidth) * kSkyHeight);
+  for (uint32_t y = 0; y < kSkyHeight; ++y)
+    for (uint32_t x = 0; x < kSkyWidth; ++x) {
+      // The texel's direction in Blender's Z-up axes (scene.h, EnvironmentMap), then POV-Ray's:
+      // world (x, y, z) = Blender (x, z, -y), POV-Ray (x, y, -z) of the world.
+      const double phi = (0.5 - (x + 0.5) / kSkyWidth) * 2 * kPi,
+                   theta = (y + 0.5) / kSkyHeight * kPi;
+      const Vec3d blender{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta)};
+      const Vec3d pov_direction{blender.x, blender.z, blender.y};
+      // POV-Ray's ComputeSky: the ray direction, through the sky's inverse transform, as a point;
+      // the last pigment on top, each letting through its filter and transmit.
+      const Vec3d p = sky_from_pov.point(pov_direction);
+      Rgb colour{};
+      double through = 1, filter = 1, transmit = 1;
+      for (size_t i = layers.size(); i-- > 0;) {
+        const SolidColour c = evaluate_solid(layers[i], p);
+        colour += c.rgb * float(through * std::max(0.0, 1.0 - c.filter - c.transmit));
+        filter *= c.filter, transmit *= c.transmit;
+        through = std::abs(filter) + std::abs(transmit);
+      }
+      map.texels[size_t(y) * kSkyWidth + x] = colour + background * float(through);
+    }
+  out.environment = std::move(map);
+}
+
+}  // namespace fb::pov
