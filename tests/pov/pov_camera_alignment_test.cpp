@@ -1,26 +1,33 @@
 // POV-Ray's own renders against filmback's camera conversion (docs/pov.md "Camera"), label `pov`.
 // Each shot is a camera statement and nine small spheres, flat white (`finish { ambient 1
 // diffuse 0 }`) on black, placed on a 3 x 3 grid of the image at three depths. The test writes the
-// .pov (camera keywords deliberately out of POV-Ray's evaluation order), renders it with Debian's
-// `povray` at 160 x 120 or so without anti-aliasing (one ray through each pixel centre), and
-// renders the same spheres through the converted camera: the camera plugin filmback would use
-// (perspective, orthographic, thinlens) set up by make_camera_setup, its rays placed by
-// world_from_camera, intersected with the spheres analytically. For each sphere:
-//  - the image centroids agree within 0.1 px and the pixel areas within 2 %;
-//  - with focal blur, against the thin lens's coverage over random points of the pixel and the
-//    lens (POV-Ray jitters both): the same, and the blur diameters agree within 3 %;
-//  - a camera whose right and up are not perpendicular, which POV-Ray renders skewed and
-//    filmback cannot, is warned about, and no centroid is further off than the warning says.
-// Skips, naming the package, when `povray` is not on PATH. Work files go to work/<shot>/ in this
-// build folder.
+// .pov (camera keywords deliberately out of POV-Ray's evaluation order) and renders it with
+// Debian's `povray` at 160 x 120 or so.
+// (a) ConvertedCameraSeesWhatPovRaySees: the same spheres through the converted camera: the
+//     camera plugin filmback would use (perspective, orthographic, thinlens) set up by
+//     make_camera_setup, its rays placed by world_from_camera, intersected with the spheres
+//     analytically, with POV-Ray's samples: each pixel's centre and an 8 x 8 grid (+A0.0 +AM1
+//     +R8 -J, which supersamples every pixel). For each sphere the image centroids agree
+//     within 0.1 px and the pixel areas within 2 %. With focal blur, POV-Ray's blurred blobs
+//     against the thin lens's coverage over random points of the pixel and the lens (POV-Ray
+//     jitters both): the same, and the blur diameters agree within 3 %. A camera whose right and
+//     up are not perpendicular, which POV-Ray renders skewed and filmback cannot, is warned about,
+//     and no centroid is further off than the warning says.
+// (b) FilmbackRendersWhatPovRayRenders: `filmback render scene.pov` (1024 spp, 1 px box filter)
+//     against POV-Ray's anti-aliased render, or its focal blur, with the same tolerances; skipped
+//     while filmback does not import .pov scenes.
+// Skips, naming the package, when `povray` is not on PATH. Work files go to
+// work/<shot>/{camera,filmback}/ in this build folder.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -145,6 +152,11 @@ const Shot kShots[] = {
      .aperture = 0.07,
      .blur_samples = 1024},
 };
+
+// gtest names the case by this rather than by the struct's bytes.
+void PrintTo(const Shot& shot, std::ostream* out) {
+  *out << shot.name;
+}
 
 std::string vec(Vec3d v) {
   char text[96];
@@ -271,21 +283,8 @@ void set(Image& image, uint32_t x, uint32_t y, float value) {
     image.pixels[(size_t(y) * image.width + x) * 3 + c] = value;
 }
 
-// The spheres through filmback's camera, one ray through each pixel centre.
-Image pinhole_render(const pov::PovCamera& camera, const std::vector<Sphere>& spheres,
-                     uint32_t width, uint32_t height) {
-  const auto plugin = make_camera_plugin(camera, width, height);
-  Image image = blank(width, height);
-  for (uint32_t y = 0; y < height; ++y)
-    for (uint32_t x = 0; x < width; ++x) {
-      const fb_camera_sample sample{float(x + 0.5), float(y + 0.5), 0.f, 0.f, 0.f};
-      if (hits_any(filmback_ray(*plugin, camera.camera, sample), spheres)) set(image, x, y, 1.f);
-    }
-  return image;
-}
-
-// The same with the thin lens: the pixel's coverage over random points of the pixel and the lens
-// (POV-Ray's focal blur jitters both).
+// The spheres through filmback's thin lens: the pixel's coverage over random points of the pixel
+// and the lens (POV-Ray's focal blur jitters both).
 Image lens_render(const pov::PovCamera& camera, const std::vector<Sphere>& spheres, uint32_t width,
                   uint32_t height, int samples) {
   const auto plugin = make_camera_plugin(camera, width, height);
@@ -305,19 +304,45 @@ Image lens_render(const pov::PovCamera& camera, const std::vector<Sphere>& spher
   return image;
 }
 
+// POV-Ray's anti-aliasing with +A0.0 +AM1 +R<n> -J: every pixel differs from its neighbours by
+// at least the threshold 0, so every pixel averages its centre and an n x n grid
+// (tracetask.cpp SupersampleOnePixel). The same samples through filmback's camera.
+constexpr int kAntialiasGrid = 8;
+
+Image supersampled_render(const pov::PovCamera& camera, const std::vector<Sphere>& spheres,
+                          uint32_t width, uint32_t height) {
+  const auto plugin = make_camera_plugin(camera, width, height);
+  const double step = 1.0 / kAntialiasGrid, range = 0.5 - step / 2;
+  Image image = blank(width, height);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const auto hit = [&](double dx, double dy) {
+        const fb_camera_sample sample{float(x + 0.5 + dx), float(y + 0.5 + dy), 0.f, 0.f, 0.f};
+        return hits_any(filmback_ray(*plugin, camera.camera, sample), spheres) ? 1 : 0;
+      };
+      int hits = hit(0, 0);
+      for (int j = 0; j < kAntialiasGrid; ++j)
+        for (int i = 0; i < kAntialiasGrid; ++i)
+          hits += hit(-range + i * step, -range + j * step);
+      set(image, x, y, float(hits) / float(kAntialiasGrid * kAntialiasGrid + 1));
+    }
+  return image;
+}
+
+// POV-Ray's render of work/scene.pov, anti-aliased as above, or not: with focal blur POV-Ray
+// takes its own jittered samples of each pixel and does not anti-alias it. File_Gamma=1.0: linear
+// values; +FN16 keeps the faint edges of focal blur. POV-Ray writes only below its working folder
+// (povray.conf): run there.
 Image povray_render(const fs::path& povray, const fs::path& work, const Shot& shot,
-                    const std::string& sdl) {
-  {
-    std::ofstream out(work / "scene.pov");
-    out << sdl;
-  }
-  // -A: one ray through each pixel centre; File_Gamma=1.0: linear values; +FN16 keeps the faint
-  // edges of focal blur. POV-Ray writes only below its working folder (povray.conf): run there.
-  run_logged("cd " + quoted(work) + " && " + quoted(povray) +
-                 " +Iscene.pov +Opovray.png +FN16 File_Gamma=1.0 -D -V -A +W" +
-                 std::to_string(shot.width) + " +H" + std::to_string(shot.height),
-             work / "povray.log");
-  return read_image(work / "povray.png");
+                    bool antialiased) {
+  const std::string out = antialiased ? "povray_aa.png" : "povray.png";
+  const std::string sampling =
+      antialiased ? " +A0.0 +AM1 +R" + std::to_string(kAntialiasGrid) + " -J" : " -A";
+  run_logged("cd " + quoted(work) + " && " + quoted(povray) + " +Iscene.pov +O" + out +
+                 " +FN16 File_Gamma=1.0 -D -V" + sampling + " +W" + std::to_string(shot.width) +
+                 " +H" + std::to_string(shot.height),
+             work / (out + ".log"));
+  return read_image(work / out);
 }
 
 const Blob* blob_near(const std::vector<Blob>& blobs, double x, double y) {
@@ -331,85 +356,146 @@ double area_px(const Blob& blob) {
   return blob.flux / 3;
 }
 
-class PovCameraShot : public testing::TestWithParam<Shot> {};
+// What a comparison asserts.
+struct Checks {
+  double max_centroid_px = kMaxCentroidErrorPx;
+  bool area = true;   // within kMaxAreaError
+  bool blur = false;  // blur diameters within kMaxBlurDiameterError
+};
 
-TEST_P(PovCameraShot, SpheresLandWherePovRayPutsThem) {
-  const std::optional<fs::path> povray = find_on_path("povray");
-  if (!povray)
-    GTEST_SKIP() << "POV-Ray is not installed: no `povray` on PATH. Install Debian's package "
-                    "`povray` (apt-get install povray) to run the tests against POV-Ray.";
-  const Shot& shot = GetParam();
-  const fs::path work = fs::path(FILMBACK_POV_WORK_DIR) / shot.name;
-  fs::remove_all(work);
-  fs::create_directories(work);
+// Each sphere's blob in `candidate` against POV-Ray's at the same place; prints a table.
+void compare_blobs(const char* title, const Image& povray, const Image& candidate,
+                   size_t sphere_count, const Checks& checks) {
+  SCOPED_TRACE(title);
+  ASSERT_EQ(povray.width, candidate.width);
+  ASSERT_EQ(povray.height, candidate.height);
+  const std::vector<Blob> pov_blobs = find_blobs(povray, 0.0);
+  const std::vector<Blob> blobs = find_blobs(candidate, 0.0);
+  ASSERT_EQ(blobs.size(), sphere_count) << "every sphere is in view, apart";
+  EXPECT_EQ(pov_blobs.size(), sphere_count) << "blobs in POV-Ray's render";
 
-  const pov::CameraStatement s = statement(shot);  // POV-Ray's defaults without a camera
-  Diagnostics diagnostics;
-  const pov::PovCameraVectors vectors = pov::evaluate_camera(s, diagnostics);
-  const pov::PovCamera camera = pov::convert_camera(
-      shot.has_camera ? std::optional(s) : std::nullopt, shot.width, shot.height, diagnostics);
-  // The error a skew leaves: right's x is exact, up's component along right is dropped
-  // (pov_camera.cpp), which moves the top and bottom edges by half of it.
-  const double skew_px = 0.5 * std::abs(dot(vectors.up, normalize(vectors.right))) * shot.width /
-                         length(vectors.right);
-  EXPECT_EQ(diagnostics.count(), shot.skewed ? 1u : 0u)
-      << (diagnostics.count() ? diagnostics.messages().front() : "no warning");
-  const double max_centroid_error_px = kMaxCentroidErrorPx + (shot.skewed ? skew_px : 0);
-  const std::vector<Sphere> spheres = spheres_for(vectors, shot.width, shot.height);
-
-  const Image reference = povray_render(*povray, work, shot, scene_sdl(shot, spheres));
-  ASSERT_EQ(reference.width, shot.width);
-  ASSERT_EQ(reference.height, shot.height);
-  // Without blur POV-Ray traces one ray through each pixel centre: so does the model. With blur
-  // it jitters the ray within the pixel and over the lens: the model averages random ones.
-  const bool blurred = camera.camera.physical.has_aperture();
-  const Image model = blurred ? lens_render(camera, spheres, shot.width, shot.height, 1024)
-                              : pinhole_render(camera, spheres, shot.width, shot.height);
-  const std::vector<Blob> pov_blobs = find_blobs(reference, 0.0);
-  const std::vector<Blob> model_blobs = find_blobs(model, 0.0);
-  ASSERT_EQ(model_blobs.size(), spheres.size()) << "every sphere is in view, apart";
-  EXPECT_EQ(pov_blobs.size(), spheres.size()) << "blobs in POV-Ray's render";
-
-  std::printf("Shot %s, %ux%u, pixel aspect %.6f%s\n", shot.name, shot.width, shot.height,
-              camera.pixel_aspect, blurred ? ", focal blur" : "");
-  std::printf("%6s %9s %9s %8s %8s %8s %8s %8s", "sphere", "pov_x", "pov_y", "dx_px", "dy_px",
-              "|d|_px", "area_px", "area");
-  std::printf(blurred ? " %8s %8s\n" : "\n", "blur_px", "lens");
+  std::printf("%s\n%6s %9s %9s %8s %8s %8s %8s %8s", title, "sphere", "pov_x", "pov_y", "dx_px",
+              "dy_px", "|d|_px", "area_px", "area");
+  std::printf(checks.blur ? " %8s %8s\n" : "\n", "blur_px", "blur");
   double worst_px = 0, worst_area = 0, worst_blur = 0;
-  for (size_t i = 0; i < model_blobs.size(); ++i) {
-    const Blob& m = model_blobs[i];
-    const Blob* p = blob_near(pov_blobs, m.x_px, m.y_px);
+  for (size_t i = 0; i < blobs.size(); ++i) {
+    const Blob& b = blobs[i];
+    const Blob* p = blob_near(pov_blobs, b.x_px, b.y_px);
     if (!p) {
-      ADD_FAILURE() << "no POV-Ray blob within " << kMatchRadiusPx << " px of (" << m.x_px << ", "
-                    << m.y_px << ")";
+      ADD_FAILURE() << "no POV-Ray blob within " << kMatchRadiusPx << " px of (" << b.x_px << ", "
+                    << b.y_px << ")";
       continue;
     }
-    const double dx = m.x_px - p->x_px, dy = m.y_px - p->y_px, d = std::hypot(dx, dy);
-    const double area = area_px(m) / area_px(*p);
+    const double dx = b.x_px - p->x_px, dy = b.y_px - p->y_px, d = std::hypot(dx, dy);
+    const double area = area_px(b) / area_px(*p);
     worst_px = std::max(worst_px, d);
     worst_area = std::max(worst_area, std::abs(area - 1));
     std::printf("%6zu %9.4f %9.4f %+8.4f %+8.4f %8.4f %8.2f %8.4f", i, p->x_px, p->y_px, dx, dy, d,
                 area_px(*p), area);
-    EXPECT_LT(d, max_centroid_error_px) << "sphere " << i << ": centroids differ";
-    if (!shot.skewed) {  // a sheared disc covers other pixel centres
-      EXPECT_NEAR(area, 1.0, kMaxAreaError) << "sphere " << i << ": area filmback / POV-Ray";
+    EXPECT_LT(d, checks.max_centroid_px) << "sphere " << i << ": centroids differ";
+    if (checks.area) {
+      EXPECT_NEAR(area, 1.0, kMaxAreaError) << "sphere " << i << ": area / POV-Ray's";
     }
-    if (blurred) {
+    if (checks.blur) {
       // Blur diameter: the disk whose spread, along the wider axis, the blob has.
-      const Spread sp = spread(*p), sl = spread(m);
+      const Spread sp = spread(*p), sb = spread(b);
       const double pov_d = disk_diameter_px(std::max(sp.xx, sp.yy));
-      const double lens_d = disk_diameter_px(std::max(sl.xx, sl.yy));
-      worst_blur = std::max(worst_blur, std::abs(lens_d / pov_d - 1));
-      std::printf(" %8.3f %8.4f\n", pov_d, lens_d / pov_d);
-      EXPECT_NEAR(lens_d / pov_d, 1.0, kMaxBlurDiameterError) << "sphere " << i << ": blur";
+      const double ratio = disk_diameter_px(std::max(sb.xx, sb.yy)) / pov_d;
+      worst_blur = std::max(worst_blur, std::abs(ratio - 1));
+      std::printf(" %8.3f %8.4f\n", pov_d, ratio);
+      EXPECT_NEAR(ratio, 1.0, kMaxBlurDiameterError) << "sphere " << i << ": blur diameter";
     } else {
       std::printf("\n");
     }
   }
-  std::printf("Shot %s: worst centroid %.4f px, worst area %.2f %%", shot.name, worst_px,
-              100 * worst_area);
-  if (shot.skewed) std::printf(", skew warned as up to %.4f px", skew_px);
-  std::printf(blurred ? ", worst blur diameter %.2f %%\n" : "\n", 100 * worst_blur);
+  std::printf("%s: worst centroid %.4f px, worst area %.2f %%", title, worst_px, 100 * worst_area);
+  std::printf(checks.blur ? ", worst blur diameter %.2f %%\n" : "\n", 100 * worst_blur);
+}
+
+// A shot's scene, written to work/<name>/scene.pov, and its camera as filmback converts it.
+struct Prepared {
+  fs::path work;
+  pov::PovCamera camera;
+  std::vector<Sphere> spheres;
+  Checks checks;  // for the point-sampled (or blurred) render
+};
+
+Prepared prepare(const Shot& shot, const std::string& folder) {
+  Prepared p;
+  p.work = fs::path(FILMBACK_POV_WORK_DIR) / folder;
+  fs::remove_all(p.work);
+  fs::create_directories(p.work);
+  const pov::CameraStatement s = statement(shot);  // POV-Ray's defaults without a camera
+  Diagnostics diagnostics;
+  const pov::PovCameraVectors vectors = pov::evaluate_camera(s, diagnostics);
+  p.camera = pov::convert_camera(shot.has_camera ? std::optional(s) : std::nullopt, shot.width,
+                                 shot.height, diagnostics);
+  EXPECT_EQ(diagnostics.count(), shot.skewed ? 1u : 0u)
+      << (diagnostics.count() ? diagnostics.messages().front() : "no warning");
+  p.spheres = spheres_for(vectors, shot.width, shot.height);
+  std::ofstream(p.work / "scene.pov") << scene_sdl(shot, p.spheres);
+  p.checks.blur = p.camera.camera.physical.has_aperture();
+  if (shot.skewed) {
+    // The error a skew leaves: up's component along right is dropped (pov_camera.cpp), which
+    // moves the top and bottom edges by half of it. A sheared disc covers other pixel centres.
+    const double skew_px = 0.5 * std::abs(dot(vectors.up, normalize(vectors.right))) * shot.width /
+                           length(vectors.right);
+    std::printf("Shot %s: the skew is warned as up to %.4f px\n", shot.name, skew_px);
+    p.checks.max_centroid_px += skew_px;
+    p.checks.area = false;
+  }
+  std::printf("Shot %s, %ux%u, pixel aspect %.6f%s\n", shot.name, shot.width, shot.height,
+              p.camera.pixel_aspect, p.checks.blur ? ", focal blur" : "");
+  return p;
+}
+
+constexpr const char* kNoPovray =
+    "POV-Ray is not installed: no `povray` on PATH. Install Debian's package `povray` (apt-get "
+    "install povray) to run the tests against POV-Ray.";
+
+class PovCameraShot : public testing::TestWithParam<Shot> {};
+
+// (a) The converted camera, through the camera plugins, against POV-Ray's render.
+TEST_P(PovCameraShot, ConvertedCameraSeesWhatPovRaySees) {
+  const std::optional<fs::path> povray = find_on_path("povray");
+  if (!povray) GTEST_SKIP() << kNoPovray;
+  const Shot& shot = GetParam();
+  const Prepared p = prepare(shot, std::string(shot.name) + "/camera");
+  const size_t n = p.spheres.size();
+  if (p.checks.blur) {
+    // POV-Ray jitters the ray within the pixel and over the lens: the model averages random ones.
+    compare_blobs("focal blur, thin lens over 1024 random pixel and lens points",
+                  povray_render(*povray, p.work, shot, false),
+                  lens_render(p.camera, p.spheres, shot.width, shot.height, 1024), n, p.checks);
+    return;
+  }
+  compare_blobs("anti-aliased: pixel centre and an 8 x 8 grid",
+                povray_render(*povray, p.work, shot, true),
+                supersampled_render(p.camera, p.spheres, shot.width, shot.height), n, p.checks);
+}
+
+// (b) filmback's own render of the .pov (SDL evaluator, geometry, appearance and camera
+// conversion, importer glue) against POV-Ray's: anti-aliased, or with the same focal blur.
+TEST_P(PovCameraShot, FilmbackRendersWhatPovRayRenders) {
+  const std::optional<fs::path> povray = find_on_path("povray");
+  if (!povray) GTEST_SKIP() << kNoPovray;
+  const Shot& shot = GetParam();
+  const Prepared p = prepare(shot, std::string(shot.name) + "/filmback");
+  const std::string size = std::to_string(shot.width) + "x" + std::to_string(shot.height);
+  if (std::system((quoted(FILMBACK_EXE) + " info " + quoted(p.work / "scene.pov") + " --res " +
+                   size + " > " + quoted(p.work / "info.log") + " 2>&1")
+                      .c_str()) != 0) {
+    const std::string log = read_text(p.work / "info.log");
+    if (log.find("unknown scene type") != std::string::npos)
+      GTEST_SKIP() << "filmback does not import .pov scenes yet: " << log;
+    FAIL() << "filmback info failed: " << log;
+  }
+  run_logged(quoted(FILMBACK_EXE) + " render " + quoted(p.work / "scene.pov") + " -o " +
+                 quoted(p.work / "filmback.exr") + " --res " + size + " --spp 1024 --filter box -q",
+             p.work / "filmback.log");
+  compare_blobs(p.checks.blur ? "filmback, focal blur" : "filmback against POV-Ray anti-aliased",
+                povray_render(*povray, p.work, shot, !p.checks.blur),
+                read_image(p.work / "filmback.exr"), p.spheres.size(), p.checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(Povray, PovCameraShot, testing::ValuesIn(kShots),
