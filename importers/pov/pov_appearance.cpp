@@ -108,9 +108,11 @@ SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_
   s.octaves = p.octaves, s.omega = p.omega, s.lambda = p.lambda;
   s.frequency = p.frequency, s.phase = p.phase;
   s.wave = solid_wave(p.wave);
-  // Marble and wood default to triangle_wave (POV-Ray 3.7 manual; checked against its render).
-  // pov::Pigment does not say whether a ramp_wave was written, so ramp means the default here.
-  if ((s.kind == SolidPatternKind::kMarble || s.kind == SolidPatternKind::kWood) &&
+  // Marble, wood and the spirals default to triangle_wave (checked against POV-Ray's renders,
+  // pov_appearance_test). pov::Pigment does not say whether a ramp_wave was written, so ramp
+  // means the default here.
+  if ((s.kind == SolidPatternKind::kMarble || s.kind == SolidPatternKind::kWood ||
+       s.kind == SolidPatternKind::kSpiral1 || s.kind == SolidPatternKind::kSpiral2) &&
       s.wave == SolidWave::kRamp)
     s.wave = SolidWave::kTriangle;
   s.wave_exponent = p.wave_exponent;

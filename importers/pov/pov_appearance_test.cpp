@@ -353,5 +353,146 @@ TEST(PovAppearance, DiffusePlaneRendersAsPovRayDoes) {
   }
 }
 
+struct PatternCase {
+  const char* pov;  // the pigment's body as POV-Ray reads it
+  Pigment pigment;  // the same, as the SDL evaluator leaves it
+};
+
+Pigment value_pattern(Pattern kind, Matrix pattern_from_world = Matrix()) {
+  Pigment p;
+  p.pattern = kind;
+  p.colour_map = {{0, {0, 0, 0}}, {1, {1, 1, 1}}};
+  p.pattern_from_world = pattern_from_world;
+  return p;
+}
+
+// Deterministic patterns (no noise) against POV-Ray's render of them on a tilted plane, seen
+// through an orthographic camera: pixel (i, j) shows POV-Ray's point (x, y, -y), filmback's
+// (x, y, y). List patterns may differ only on cell borders; value patterns agree to 16-bit
+// rounding except in the few pixels straddling a jump.
+TEST(PovAppearance, DeterministicPatternsMatchPovRaysRenders) {
+  if (std::system("command -v povray > /dev/null 2>&1") != 0) GTEST_SKIP() << "no povray";
+  const auto scale = [](double x, double y, double z) { return Transform::scale({x, y, z}); };
+  const auto translate = [](double x, double y, double z) {
+    return Transform::translate({x, y, z});
+  };
+  std::vector<PatternCase> cases;
+  {
+    Pigment p;
+    p.pattern = Pattern::kChecker;
+    Pigment red, blue;
+    red.colour = {1, 0, 0}, blue.colour = {0, 0, 1};
+    red.pattern_from_world = blue.pattern_from_world = scale(2, 2, 2);
+    p.list = {red, blue};
+    p.pattern_from_world = scale(2, 2, 2);
+    cases.push_back({"checker rgb <1,0,0>, rgb <0,0,1> scale 0.5", p});
+  }
+  {
+    Pigment p;
+    p.pattern = Pattern::kHexagon;  // POV-Ray's default blue, green, red
+    p.pattern_from_world = scale(1 / 0.3, 1 / 0.3, 1 / 0.3);
+    cases.push_back({"hexagon scale 0.3", p});
+  }
+  {
+    Pigment p;
+    p.pattern = Pattern::kBrick;
+    Pigment mortar, brick;
+    mortar.colour = {0.2, 0.2, 0.2}, brick.colour = {0.9, 0.4, 0.3};
+    p.list = {mortar, brick};
+    p.pattern_from_world = scale(10, 10, 10);
+    cases.push_back({"brick rgb 0.2, rgb <0.9,0.4,0.3> scale 0.1", p});
+  }
+  {
+    Pigment p = value_pattern(Pattern::kGradient, scale(1 / 0.7, 2, 1) * translate(-0.2, -0.1, 0));
+    p.gradient = {1, 1, 0};
+    cases.push_back(
+        {"gradient <1,1,0> color_map { [0 rgb 0] [1 rgb 1] } scale <0.7,0.5,1> "
+         "translate <0.2,0.1,0>",
+         p});
+  }
+  {
+    Pigment p = value_pattern(Pattern::kGradient);
+    p.gradient = {0, 1, 0};
+    p.wave = Wave::kSine, p.frequency = 2, p.phase = 0.1;
+    cases.push_back(
+        {"gradient y sine_wave frequency 2 phase 0.1 color_map { [0 rgb 0] [1 rgb 1] }", p});
+  }
+  cases.push_back({"marble color_map { [0 rgb 0] [1 rgb 1] }", value_pattern(Pattern::kMarble)});
+  cases.push_back({"wood color_map { [0 rgb 0] [1 rgb 1] } scale 0.3",
+                   value_pattern(Pattern::kWood, scale(1 / 0.3, 1 / 0.3, 1 / 0.3))});
+  cases.push_back({"onion color_map { [0 rgb 0] [1 rgb 1] } scale 0.5",
+                   value_pattern(Pattern::kOnion, scale(2, 2, 2))});
+  cases.push_back({"leopard color_map { [0 rgb 0] [1 rgb 1] } scale 0.1",
+                   value_pattern(Pattern::kLeopard, scale(10, 10, 10))});
+  {
+    Pigment p;  // POV-Ray's default radial colour map
+    p.pattern = Pattern::kRadial;
+    p.frequency = 3;
+    cases.push_back({"radial frequency 3", p});
+  }
+  {
+    Pigment p = value_pattern(Pattern::kSpiral1, scale(2, 2, 2));
+    p.spiral_arms = 3;
+    cases.push_back({"spiral1 3 color_map { [0 rgb 0] [1 rgb 1] } scale 0.5", p});
+  }
+  {
+    Pigment p = value_pattern(Pattern::kSpiral2, scale(2, 2, 2));
+    p.spiral_arms = 2;
+    cases.push_back({"spiral2 2 color_map { [0 rgb 0] [1 rgb 1] } scale 0.5", p});
+  }
+
+  // Four patterns per render, one in each quadrant of the image (a clipped plane each), to run
+  // POV-Ray three times rather than twelve.
+  constexpr int kSize = 128, kHalf = kSize / 2;
+  const std::filesystem::path dir = test::scratch_dir();
+  for (size_t first = 0; first < cases.size(); first += 4) {
+    const std::filesystem::path pov_file = dir / ("patterns" + std::to_string(first) + ".pov");
+    const std::filesystem::path png = dir / ("patterns" + std::to_string(first) + ".png");
+    std::ofstream scene(pov_file);
+    scene << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n"
+             "camera { orthographic location <0,0,-10> look_at <0,0,0> right x*4 up y*4 }\n";
+    for (size_t q = 0; q < 4 && first + q < cases.size(); ++q) {
+      const int x0 = q % 2 ? 0 : -2, y0 = q / 2 ? -2 : 0;  // left to right, top to bottom
+      scene << "plane { <0,1,1>, 0 pigment { " << cases[first + q].pov
+            << " } finish { ambient 0 diffuse 0 emission 1 } clipped_by { box { <" << x0 << ","
+            << y0 << ",-10>, <" << x0 + 2 << "," << y0 + 2 << ",10> } } }\n";
+    }
+    scene.close();
+    const std::string command = "povray +W" + std::to_string(kSize) + " +H" +
+                                std::to_string(kSize) + " -D -A +FN16 File_Gamma=1.0 +I'" +
+                                pov_file.string() + "' +O'" + png.string() + "' > '" +
+                                (dir / "povray.log").string() + "' 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    int w = 0, h = 0;
+    const std::vector<float> reference = read_png(png, w, h);
+    ASSERT_EQ(w, kSize);
+    for (size_t q = 0; q < 4 && first + q < cases.size(); ++q) {
+      const PatternCase& c = cases[first + q];
+      Texture texture = plain_texture({0, 0, 0}, 1);
+      texture.pigment = c.pigment;
+      const Material m = make_material(texture, {}, 1.0, {1, 1, 1});
+      ASSERT_TRUE(m.base_color_pattern) << c.pov;
+      int differing = 0;
+      double sum = 0;
+      for (int j = (q / 2) * kHalf; j < (q / 2 + 1) * kHalf; ++j)
+        for (int i = (q % 2) * kHalf; i < (q % 2 + 1) * kHalf; ++i) {
+          const double x = -2 + (i + 0.5) * 4 / kSize, y = 2 - (j + 0.5) * 4 / kSize;
+          const Rgb ours = evaluate_solid(*m.base_color_pattern, {x, y, y}).rgb;
+          double worst = 0;
+          for (int ch = 0; ch < 3; ++ch) {
+            const double d = std::abs(ours[ch] - reference[(size_t(j) * kSize + i) * 3 + ch]);
+            worst = std::max(worst, d);
+            sum += d;
+          }
+          if (worst > 0.01) ++differing;
+        }
+      const double fraction = double(differing) / (kHalf * kHalf);
+      std::printf("%-40.40s: %5.2f %% of pixels differ, mean |difference| %.5f\n", c.pov,
+                  100 * fraction, sum / (3 * kHalf * kHalf));
+      EXPECT_LT(fraction, 0.005) << c.pov;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fb::pov
