@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "core/cmd/commands.h"
+#include "core/scene/tessellate.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_writer.h"
 
@@ -17,6 +18,7 @@ int run_convert(ConvertCommand& c) {
 
   Diagnostics diagnostics;
   Scene scene = import_scene(c.input, c.import, diagnostics);
+  tessellate_solids(scene, TessellationOptions(), diagnostics);  // glTF has only triangles
   write_gltf(scene, c.output, diagnostics);
   diagnostics.print(std::cerr);
   std::cout << "filmback: wrote " << c.output.string() << ": " << scene.meshes.size() << " meshes, "

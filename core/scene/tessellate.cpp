@@ -178,4 +178,48 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   return mesh;
 }
 
+namespace {
+
+// Whether the solid's surface is its primitives' surfaces, so that tessellating each one is exact.
+bool tessellable(const Solid& s) {
+  if (s.inverse || s.bounds_only) return false;
+  if (s.is_primitive()) return true;
+  return s.kind == SolidKind::kUnion &&
+         std::all_of(s.children.begin(), s.children.end(), tessellable);
+}
+
+void add_meshes(const Solid& s, const TessellationOptions& options, Scene& scene) {
+  if (!s.is_primitive()) {
+    for (const Solid& child : s.children)
+      add_meshes(child, options, scene);
+    return;
+  }
+  TriangleMesh mesh = tessellate(s, options);
+  if (mesh.indices.empty()) return;
+  scene.instances.push_back({uint32_t(scene.meshes.size()), s.world_from_object, s.name});
+  scene.meshes.push_back(std::move(mesh));
+}
+
+}  // namespace
+
+void tessellate_solids(Scene& scene, TessellationOptions options, Diagnostics& diagnostics) {
+  const Bounds3d bounds = scene.world_bounds(0);  // solids are static
+  options.plane_centre = scene.cameras.empty()
+                             ? Vec3d{0, 0, 0}
+                             : scene.cameras.front().world_from_camera.translation();
+  if (!bounds.empty())
+    options.plane_half_size_m = std::max(options.plane_half_size_m,
+                                         10 * length(max(abs(bounds.lo - options.plane_centre),
+                                                         abs(bounds.hi - options.plane_centre))));
+  for (const Solid& s : scene.solids) {
+    if (tessellable(s))
+      add_meshes(s, options, scene);
+    else
+      diagnostics.warn(s.name +
+                       ": CSG (intersection, difference, inverse or clipped_by) has no "
+                       "triangle form here: left out of the mesh");
+  }
+  scene.solids.clear();
+}
+
 }  // namespace fb

@@ -3,13 +3,16 @@
 #pragma once
 
 #include "core/scene/scene.h"
+#include "core/util/diagnostics.h"
 
 namespace fb {
 
 struct TessellationOptions {
   // The largest distance allowed between the mesh and the surface, in world metres, and as a
   // fraction of the primitive's bounding radius in the world; the smaller applies (<= 0: unused).
-  double tolerance_m = 1e-3;
+  // By default relative only: a silhouette within a thousandth of the object's size is within a
+  // pixel until the object spans a thousand pixels, at any scale.
+  double tolerance_m = 0;
   double relative_tolerance = 1e-3;
   // A half-space becomes a square of this half-size (world metres) in its plane, centred on the
   // point of the plane nearest `plane_centre`.
@@ -25,5 +28,12 @@ struct TessellationOptions {
 // (box, caps) split. Every point of the mesh lies within the tolerance of the surface
 // (core/scene/tessellate_test.cpp measures it). The mesh takes the primitive's material and name.
 TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& options);
+
+// Replaces scene.solids by meshes and instances: every primitive of a solid that is a primitive or
+// a union of them (a set whose surface is its members' surfaces). Half-spaces become squares about
+// the scene's first camera (else the origin) reaching at least options.plane_half_size_m and ten
+// times as far as the bounded geometry. Intersections, differences, complements and clips would
+// need mesh booleans: they are left out, each reported.
+void tessellate_solids(Scene& scene, TessellationOptions options, Diagnostics& diagnostics);
 
 }  // namespace fb

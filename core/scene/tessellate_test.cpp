@@ -109,5 +109,37 @@ TEST(Tessellate, HalfSpaceIsASquareAboutTheNearestPoint) {
   EXPECT_NEAR(world.hi.z, 0, 1e-9);
 }
 
+TEST(Tessellate, SceneSolidsBecomeMeshesExceptTrueCsg) {
+  Scene scene;
+  Solid pair;
+  pair.kind = SolidKind::kUnion;
+  pair.children = {shape(SolidKind::kSphere, 1), shape(SolidKind::kBox, 1)};
+  Solid ground = shape(SolidKind::kHalfSpace, 1);
+  Solid cut;
+  cut.kind = SolidKind::kIntersection;
+  cut.name = "cut";
+  cut.children = {shape(SolidKind::kSphere, 1), shape(SolidKind::kBox, 0.5)};
+  cut.children[1].inverse = true;
+  scene.solids = {pair, ground, cut};
+  SceneCamera camera;
+  camera.world_from_camera = Transform::translate({0, 0, 50});
+  scene.cameras.push_back(camera);
+  Diagnostics diagnostics;
+  tessellate_solids(scene, TessellationOptions(), diagnostics);
+  EXPECT_TRUE(scene.solids.empty());
+  ASSERT_EQ(scene.meshes.size(), 3u);  // sphere, box, ground
+  ASSERT_EQ(scene.instances.size(), 3u);
+  EXPECT_EQ(diagnostics.count(), 1u);
+  EXPECT_NE(diagnostics.messages()[0].find("cut"), std::string::npos);
+  // The ground reaches at least the default half-size around the camera's foot on the plane.
+  Bounds3d ground_bounds;
+  for (const Vec3f& p : scene.meshes[2].positions)
+    ground_bounds.extend(scene.instances[2].world_from_object.point(Vec3d(p)));
+  const Vec3d foot = ground.world_from_object.point(
+      ground.world_from_object.inverse().point({0, 0, 50}) * Vec3d{1, 1, 0});
+  EXPECT_LT(min_component(ground_bounds.hi - foot), 1e4 * 1.0001);
+  EXPECT_GT(max_component(ground_bounds.hi - foot), 1e4 * 0.9999);
+}
+
 }  // namespace
 }  // namespace fb
