@@ -358,9 +358,8 @@ double area_px(const Blob& blob) {
 
 // What a comparison asserts.
 struct Checks {
-  double max_centroid_px = kMaxCentroidErrorPx;
-  bool area = true;   // within kMaxAreaError
-  bool blur = false;  // blur diameters within kMaxBlurDiameterError
+  double max_centroid_px = kMaxCentroidErrorPx;  // and areas within kMaxAreaError
+  bool blur = false;                             // blur diameters within kMaxBlurDiameterError
 };
 
 // Each sphere's blob in `candidate` against POV-Ray's at the same place; prints a table.
@@ -393,9 +392,7 @@ void compare_blobs(const char* title, const Image& povray, const Image& candidat
     std::printf("%6zu %9.4f %9.4f %+8.4f %+8.4f %8.4f %8.2f %8.4f", i, p->x_px, p->y_px, dx, dy, d,
                 area_px(*p), area);
     EXPECT_LT(d, checks.max_centroid_px) << "sphere " << i << ": centroids differ";
-    if (checks.area) {
-      EXPECT_NEAR(area, 1.0, kMaxAreaError) << "sphere " << i << ": area / POV-Ray's";
-    }
+    EXPECT_NEAR(area, 1.0, kMaxAreaError) << "sphere " << i << ": area / POV-Ray's";
     if (checks.blur) {
       // Blur diameter: the disk whose spread, along the wider axis, the blob has.
       const Spread sp = spread(*p), sb = spread(b);
@@ -417,7 +414,7 @@ struct Prepared {
   fs::path work;
   pov::PovCamera camera;
   std::vector<Sphere> spheres;
-  Checks checks;  // for the point-sampled (or blurred) render
+  Checks checks;
 };
 
 Prepared prepare(const Shot& shot, const std::string& folder) {
@@ -437,12 +434,11 @@ Prepared prepare(const Shot& shot, const std::string& folder) {
   p.checks.blur = p.camera.camera.physical.has_aperture();
   if (shot.skewed) {
     // The error a skew leaves: up's component along right is dropped (pov_camera.cpp), which
-    // moves the top and bottom edges by half of it. A sheared disc covers other pixel centres.
+    // moves the top and bottom edges by half of it. A shear keeps areas.
     const double skew_px = 0.5 * std::abs(dot(vectors.up, normalize(vectors.right))) * shot.width /
                            length(vectors.right);
     std::printf("Shot %s: the skew is warned as up to %.4f px\n", shot.name, skew_px);
     p.checks.max_centroid_px += skew_px;
-    p.checks.area = false;
   }
   std::printf("Shot %s, %ux%u, pixel aspect %.6f%s\n", shot.name, shot.width, shot.height,
               p.camera.pixel_aspect, p.checks.blur ? ", focal blur" : "");
