@@ -3,7 +3,8 @@
 // diffuse 0 }`) on black, placed on a 3 x 3 grid of the image at three depths. The test writes the
 // .pov (camera keywords deliberately out of POV-Ray's evaluation order) and renders it with
 // Debian's `povray` at 160 x 120 or so.
-// (a) ConvertedCameraSeesWhatPovRaySees: the same spheres through the converted camera: the
+// (a) ConvertedCameraSeesWhatPovRaySees: the SDL evaluator reads the camera back from the .pov
+//     (its vectors must be the shot's), and the same spheres are seen through its conversion: the
 //     camera plugin filmback would use (perspective, orthographic, thinlens) set up by
 //     make_camera_setup, its rays placed by world_from_camera, intersected with the spheres
 //     analytically, with POV-Ray's samples: each pixel's centre and an 8 x 8 grid (+A0.0 +AM1
@@ -34,6 +35,7 @@
 
 #include "core/image/image_io.h"
 #include "importers/pov/pov_space.h"
+#include "importers/pov/sdl/evaluate.h"
 #include "support/blobs.h"
 #include "support/commands.h"
 #include "support/pov_rays.h"
@@ -425,12 +427,34 @@ Prepared prepare(const Shot& shot, const std::string& folder) {
   const pov::CameraStatement s = statement(shot);  // POV-Ray's defaults without a camera
   Diagnostics diagnostics;
   const pov::PovCameraVectors vectors = pov::evaluate_camera(s, diagnostics);
-  p.camera = pov::convert_camera(shot.has_camera ? std::optional(s) : std::nullopt, shot.width,
-                                 shot.height, diagnostics);
+  p.spheres = spheres_for(vectors, shot.width, shot.height);
+  {
+    std::ofstream out(p.work / "scene.pov");
+    out << scene_sdl(shot, p.spheres);
+  }
+
+  // The camera filmback renders with is the one the SDL evaluator reads from that file: it must
+  // be the statement the shot describes.
+  pov::EvaluateOptions options;
+  options.scene_file = p.work / "scene.pov";
+  options.image_width = shot.width;
+  options.image_height = shot.height;
+  const pov::Scene scene = pov::evaluate_pov(options);
+  EXPECT_EQ(scene.camera.has_value(), shot.has_camera);
+  const pov::PovCameraVectors read =
+      pov::evaluate_camera(scene.camera.value_or(pov::CameraStatement()), diagnostics);
+  EXPECT_EQ(read.type, vectors.type);
+  for (const auto& [a, b] : {std::pair{read.location, vectors.location},
+                             {read.direction, vectors.direction},
+                             {read.right, vectors.right},
+                             {read.up, vectors.up}})
+    EXPECT_LT(length(a - b), 1e-12 * std::max(1.0, length(b))) << "the camera as read";
+  EXPECT_NEAR(read.focal_distance, vectors.focal_distance, 1e-12);
+  EXPECT_EQ(read.focal_blur, vectors.focal_blur);
+  diagnostics = Diagnostics();
+  p.camera = pov::convert_camera(scene.camera, shot.width, shot.height, diagnostics);
   EXPECT_EQ(diagnostics.count(), shot.skewed ? 1u : 0u)
       << (diagnostics.count() ? diagnostics.messages().front() : "no warning");
-  p.spheres = spheres_for(vectors, shot.width, shot.height);
-  std::ofstream(p.work / "scene.pov") << scene_sdl(shot, p.spheres);
   p.checks.blur = p.camera.camera.physical.has_aperture();
   if (shot.skewed) {
     // The error a skew leaves: up's component along right is dropped (pov_camera.cpp), which
