@@ -68,8 +68,9 @@ struct Shot {
   std::optional<double> angle{};
   double aperture = 0;
   int blur_samples = 0;
-  std::vector<Op> transforms{};  // in the order written
-  bool skewed = false;           // right not perpendicular to up: a warning and a stated error
+  std::vector<Op> transforms{};     // in the order written
+  bool skewed = false;              // right not perpendicular to up: a warning and a stated error
+  const char* right_sdl = nullptr;  // how the .pov writes right, if not as the number
 };
 
 const Shot kShots[] = {
@@ -91,8 +92,9 @@ const Shot kShots[] = {
      .location = Vec3d{0, 2, -9},
      .look_at = Vec3d{0, 1, 0},
      .right = Vec3d{90.0 / 160, 0, 0},
-     .angle = 50},
-    {.name = "mismatched_aspect",  // a square view on a 4:3 image: non-square pixels
+     .angle = 50,
+     .right_sdl = "x*image_width/image_height"},  // the 3.7 templates' idiom
+    {.name = "mismatched_aspect",                 // a square view on a 4:3 image: non-square pixels
      .location = Vec3d{0, 0, -8},
      .look_at = Vec3d{0, 0, 0},
      .right = Vec3d{1, 0, 0},
@@ -217,7 +219,7 @@ std::string camera_sdl(const Shot& shot) {
   if (shot.location) out += "  location " + vec(*shot.location) + "\n";
   if (shot.sky) out += "  sky " + vec(*shot.sky) + "\n";
   if (shot.up) out += "  up " + vec(*shot.up) + "\n";
-  if (shot.right) out += "  right " + vec(*shot.right) + "\n";
+  if (shot.right) out += "  right " + (shot.right_sdl ? shot.right_sdl : vec(*shot.right)) + "\n";
   if (shot.direction) out += "  direction " + vec(*shot.direction) + "\n";
   return out + "}\n";
 }
