@@ -105,7 +105,7 @@ enum class Shape {
   // analytic, parameters in object space
   kSphere,    // centre a, radius r0
   kBox,       // corners a, b
-  kPlane,     // normal a, distance r0: points p with dot(p, a) = r0; inside is dot < r0
+  kPlane,     // normal a, distance r0: dot(p, a / |a|) = r0 (Parse_Plane); inside is dot < r0
   kCylinder,  // base a, cap b, radius r0; open: no end caps
   kCone,      // base a radius r0, cap b radius r1; open
   kTorus,     // major r0, minor r1, in the XZ plane about the origin
