@@ -2,29 +2,26 @@
 // Each shot is a camera statement and nine small spheres, flat white (`finish { ambient 1
 // diffuse 0 }`) on black, placed on a 3 x 3 grid of the image at three depths. The test writes the
 // .pov (camera keywords deliberately out of POV-Ray's evaluation order) and renders it with
-// Debian's `povray` at 160 x 120 or so.
-// (a) ConvertedCameraSeesWhatPovRaySees: the SDL evaluator reads the camera back from the .pov
-//     (its vectors must be the shot's), and the same spheres are seen through its conversion: the
-//     camera plugin filmback would use (perspective, orthographic, thinlens) set up by
-//     make_camera_setup, its rays placed by world_from_camera, intersected with the spheres
-//     analytically, with POV-Ray's samples: each pixel's centre and an 8 x 8 grid (+A0.0 +AM1
-//     +R8 -J, which supersamples every pixel). For each sphere the image centroids agree
-//     within 0.1 px and the pixel areas within 2 %. With focal blur, POV-Ray's blurred blobs
-//     against the thin lens's coverage over random points of the pixel and the lens (POV-Ray
-//     jitters both): the same, and the blur diameters agree within 3 %. A camera whose right and
-//     up are not perpendicular, which POV-Ray renders skewed and filmback cannot, is warned about,
-//     and no centroid is further off than the warning says.
-// (b) FilmbackRendersWhatPovRayRenders: `filmback render scene.pov` (1024 spp, 1 px box filter)
-//     against POV-Ray's anti-aliased render, or its focal blur, with the same tolerances; skipped
-//     while filmback does not import .pov scenes.
-// Skips, naming the package, when `povray` is not on PATH. Work files go to
-// work/<shot>/{camera,filmback}/ in this build folder.
+// Debian's `povray` at 160 x 120 or so, anti-aliased with every pixel's centre and an 8 x 8 grid
+// (+A0.0 +AM1 +R8 -J), or with focal blur, POV-Ray's own jittered pixel and lens samples. The SDL
+// evaluator reads the camera back from the .pov (its vectors must be the shot's), and
+//  (a) the same spheres are seen through its conversion: the camera plugin filmback would use
+//      (perspective, orthographic, thinlens) set up by make_camera_setup, its rays placed by
+//      world_from_camera, intersected with the spheres analytically, with POV-Ray's samples (with
+//      focal blur, 1024 random points of the pixel and the lens, as POV-Ray jitters both);
+//  (b) filmback renders the .pov: the importer's parts (evaluator, pov_camera, pov_geometry,
+//      pov_appearance) and RenderJob, 256 spp (1024 with focal blur), 1 px box filter.
+// For each sphere the image centroids agree with POV-Ray's within 0.1 px and the pixel areas
+// within 2 %; with focal blur (POV-Ray's 1/32 px sampling shift taken off, kPovFocalBlurShiftPx)
+// the blur diameters too, within 3 %. A camera whose right and up are
+// not perpendicular, which POV-Ray renders skewed and filmback cannot, is warned about, and no
+// centroid is further off than the warning says. Skips, naming the package, when `povray` is not
+// on PATH. Work files go to work/<shot>/ in this build folder.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -34,10 +31,14 @@
 #include <vector>
 
 #include "core/image/image_io.h"
+#include "core/render/render_job.h"
+#include "importers/pov/pov_appearance.h"
+#include "importers/pov/pov_geometry.h"
 #include "importers/pov/pov_space.h"
 #include "importers/pov/sdl/evaluate.h"
 #include "support/blobs.h"
 #include "support/commands.h"
+#include "support/plugins.h"
 #include "support/pov_rays.h"
 
 namespace fb::test {
@@ -51,6 +52,7 @@ constexpr double kMaxBlurDiameterError = 0.03;
 // A blob is a sphere's when their centroids are this close; spheres are > 25 px apart.
 constexpr double kMatchRadiusPx = 2.0;
 constexpr double kSphereRadiusPx = 5.0;  // in the image, about
+constexpr uint32_t kFilmbackSpp = 256, kFilmbackBlurSpp = 1024;
 
 struct Op {
   enum Kind { kRotate, kTranslate, kScale } kind;
@@ -364,7 +366,15 @@ double area_px(const Blob& blob) {
 struct Checks {
   double max_centroid_px = kMaxCentroidErrorPx;  // and areas within kMaxAreaError
   bool blur = false;                             // blur diameters within kMaxBlurDiameterError
+  double pov_shift_px = 0;  // of POV-Ray's image, right and down: taken off its centroids
 };
+
+// POV-Ray's focal blur draws each sample's offset in the pixel as (2i + 1) / 32 - 1/2 + (j - 1/2)
+// / 16 with j from its JitterTable, which spans [-1/2, 1/2] (tracepixel.cpp
+// TraceRayWithFocalBlur, jitter.cpp): the samples sit 1/32 px left of and above the pixel's
+// centre on average, so its blurred image lies 1/32 px right of and below where its camera puts
+// it.
+constexpr double kPovFocalBlurShiftPx = 1.0 / 32;
 
 // Each sphere's blob in `candidate` against POV-Ray's at the same place; prints a table.
 void compare_blobs(const char* title, const Image& povray, const Image& candidate,
@@ -389,11 +399,12 @@ void compare_blobs(const char* title, const Image& povray, const Image& candidat
                     << b.y_px << ")";
       continue;
     }
-    const double dx = b.x_px - p->x_px, dy = b.y_px - p->y_px, d = std::hypot(dx, dy);
+    const double pov_x = p->x_px - checks.pov_shift_px, pov_y = p->y_px - checks.pov_shift_px;
+    const double dx = b.x_px - pov_x, dy = b.y_px - pov_y, d = std::hypot(dx, dy);
     const double area = area_px(b) / area_px(*p);
     worst_px = std::max(worst_px, d);
     worst_area = std::max(worst_area, std::abs(area - 1));
-    std::printf("%6zu %9.4f %9.4f %+8.4f %+8.4f %8.4f %8.2f %8.4f", i, p->x_px, p->y_px, dx, dy, d,
+    std::printf("%6zu %9.4f %9.4f %+8.4f %+8.4f %8.4f %8.2f %8.4f", i, pov_x, pov_y, dx, dy, d,
                 area_px(*p), area);
     EXPECT_LT(d, checks.max_centroid_px) << "sphere " << i << ": centroids differ";
     EXPECT_NEAR(area, 1.0, kMaxAreaError) << "sphere " << i << ": area / POV-Ray's";
@@ -458,6 +469,7 @@ Prepared prepare(const Shot& shot, const std::string& folder) {
   EXPECT_EQ(diagnostics.count(), shot.skewed ? 1u : 0u)
       << (diagnostics.count() ? diagnostics.messages().front() : "no warning");
   p.checks.blur = p.camera.camera.physical.has_aperture();
+  if (p.checks.blur) p.checks.pov_shift_px = kPovFocalBlurShiftPx;
   if (shot.skewed) {
     // The error a skew leaves: up's component along right is dropped (pov_camera.cpp), which
     // moves the top and bottom edges by half of it. A shear keeps areas.
@@ -475,49 +487,62 @@ constexpr const char* kNoPovray =
     "POV-Ray is not installed: no `povray` on PATH. Install Debian's package `povray` (apt-get "
     "install povray) to run the tests against POV-Ray.";
 
-class PovCameraShot : public testing::TestWithParam<Shot> {};
-
-// (a) The converted camera, through the camera plugins, against POV-Ray's render.
-TEST_P(PovCameraShot, ConvertedCameraSeesWhatPovRaySees) {
-  const std::optional<fs::path> povray = find_on_path("povray");
-  if (!povray) GTEST_SKIP() << kNoPovray;
-  const Shot& shot = GetParam();
-  const Prepared p = prepare(shot, std::string(shot.name) + "/camera");
-  const size_t n = p.spheres.size();
-  if (p.checks.blur) {
-    // POV-Ray jitters the ray within the pixel and over the lens: the model averages random ones.
-    compare_blobs("focal blur, thin lens over 1024 random pixel and lens points",
-                  povray_render(*povray, p.work, shot, false),
-                  lens_render(p.camera, p.spheres, shot.width, shot.height, 1024), n, p.checks);
-    return;
-  }
-  compare_blobs("anti-aliased: pixel centre and an 8 x 8 grid",
-                povray_render(*povray, p.work, shot, true),
-                supersampled_render(p.camera, p.spheres, shot.width, shot.height), n, p.checks);
+// The .pov through filmback's importer parts (the SDL evaluator, pov_camera, pov_geometry,
+// pov_appearance) and renderer (RenderJob: the camera plugin, Embree's analytic spheres, the
+// emitting materials), 1 px box filter.
+Image filmback_render(const fs::path& scene_file, uint32_t width, uint32_t height, uint32_t spp) {
+  pov::EvaluateOptions evaluate;
+  evaluate.scene_file = scene_file;
+  evaluate.image_width = width;
+  evaluate.image_height = height;
+  const pov::Scene pov = pov::evaluate_pov(evaluate);
+  Diagnostics diagnostics;
+  Scene scene;
+  const pov::PovCamera camera = pov::convert_camera(pov.camera, width, height, diagnostics);
+  scene.cameras.push_back(camera.camera);
+  scene.settings.pixel_aspect = camera.pixel_aspect;
+  pov::MaterialTable materials(pov, scene, diagnostics);
+  pov::convert_objects(
+      pov,
+      [&](const pov::Texture& texture, const std::optional<pov::Interior>& interior) {
+        return materials.material(texture, interior);
+      },
+      scene, diagnostics);
+  pov::convert_environment(pov, scene, diagnostics);
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.samples_per_pixel = spp;
+  options.filter = "box";
+  options.show_progress = false;
+  return RenderJob(scene, options, loader()).run().image;
 }
 
-// (b) filmback's own render of the .pov (SDL evaluator, geometry, appearance and camera
-// conversion, importer glue) against POV-Ray's: anti-aliased, or with the same focal blur.
-TEST_P(PovCameraShot, FilmbackRendersWhatPovRayRenders) {
+class PovCameraShot : public testing::TestWithParam<Shot> {};
+
+// POV-Ray's render of each shot against (a) the converted camera's model render and (b)
+// filmback's render of the .pov.
+TEST_P(PovCameraShot, SpheresLandOnPovRaysPixels) {
   const std::optional<fs::path> povray = find_on_path("povray");
   if (!povray) GTEST_SKIP() << kNoPovray;
   const Shot& shot = GetParam();
-  const Prepared p = prepare(shot, std::string(shot.name) + "/filmback");
-  const std::string size = std::to_string(shot.width) + "x" + std::to_string(shot.height);
-  if (std::system((quoted(FILMBACK_EXE) + " info " + quoted(p.work / "scene.pov") + " --res " +
-                   size + " > " + quoted(p.work / "info.log") + " 2>&1")
-                      .c_str()) != 0) {
-    const std::string log = read_text(p.work / "info.log");
-    if (log.find("unknown scene type") != std::string::npos)
-      GTEST_SKIP() << "filmback does not import .pov scenes yet: " << log;
-    FAIL() << "filmback info failed: " << log;
+  const Prepared p = prepare(shot, shot.name);
+  const size_t n = p.spheres.size();
+  const Image image = filmback_render(p.work / "scene.pov", shot.width, shot.height,
+                                      p.checks.blur ? kFilmbackBlurSpp : kFilmbackSpp);
+  write_images(image, {p.work / "filmback.exr"}, {});
+  if (p.checks.blur) {
+    // POV-Ray jitters the ray within the pixel and over the lens: the model averages random ones.
+    const Image reference = povray_render(*povray, p.work, shot, false);
+    compare_blobs("(a) focal blur, thin lens over 1024 random pixel and lens points", reference,
+                  lens_render(p.camera, p.spheres, shot.width, shot.height, 1024), n, p.checks);
+    compare_blobs("(b) filmback, focal blur", reference, image, n, p.checks);
+    return;
   }
-  run_logged(quoted(FILMBACK_EXE) + " render " + quoted(p.work / "scene.pov") + " -o " +
-                 quoted(p.work / "filmback.exr") + " --res " + size + " --spp 1024 --filter box -q",
-             p.work / "filmback.log");
-  compare_blobs(p.checks.blur ? "filmback, focal blur" : "filmback against POV-Ray anti-aliased",
-                povray_render(*povray, p.work, shot, !p.checks.blur),
-                read_image(p.work / "filmback.exr"), p.spheres.size(), p.checks);
+  const Image reference = povray_render(*povray, p.work, shot, true);
+  compare_blobs("(a) anti-aliased: pixel centre and an 8 x 8 grid", reference,
+                supersampled_render(p.camera, p.spheres, shot.width, shot.height), n, p.checks);
+  compare_blobs("(b) filmback against POV-Ray anti-aliased", reference, image, n, p.checks);
 }
 
 INSTANTIATE_TEST_SUITE_P(Povray, PovCameraShot, testing::ValuesIn(kShots),
