@@ -35,7 +35,9 @@ PovCameraVectors evaluate_camera(const CameraStatement& statement, Diagnostics& 
 
 struct PovCamera {
   SceneCamera camera;
-  double pixel_aspect = 1;  // pixel width / height: |right| / |up| need not be W / H
+  // Pixel width / height: |right| / |up| need not be W / H. The render reads it from
+  // Scene::settings.pixel_aspect, where the importer puts it.
+  double pixel_aspect = 1;
 };
 
 // No statement: POV-Ray's default camera. Features the camera model cannot render exactly (exotic
