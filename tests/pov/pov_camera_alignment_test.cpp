@@ -55,7 +55,8 @@ constexpr double kSphereRadiusPx = 5.0;  // in the image, about
 constexpr uint32_t kFilmbackSpp = 256, kFilmbackBlurSpp = 1024;
 
 struct Op {
-  enum Kind { kRotate, kTranslate, kScale } kind;
+  // kShear: shear.pov's `matrix <1,0,0, 0,1,-s, 0,0,1, 0,0,0>`, z -= s y, with s = v.x
+  enum Kind { kRotate, kTranslate, kScale, kShear } kind;
   Vec3d v;
 };
 
@@ -118,6 +119,12 @@ const Shot kShots[] = {
      .transforms = {{Op::kScale, {1.2, 1, 1}},  // wider: right grows, up and direction do not
                     {Op::kRotate, {10, 30, 0}},
                     {Op::kTranslate, {1, -0.5, 2}}}},
+    {.name = "shear_sample",  // camera/shear.pov: a sheared camera keeps verticals vertical
+     .location = Vec3d{0, 1, 25},
+     .look_at = Vec3d{0, 10, 0},
+     .right = Vec3d{4.0 / 3, 0, 0},
+     .angle = 90,
+     .transforms = {{Op::kShear, {9.0 / 25, 0, 0}}, {Op::kRotate, {0, 45, 0}}}},
     {.name = "skewed_up",  // POV-Ray renders the skew; filmback warns
      .location = Vec3d{0, 0, -6},
      .up = Vec3d{0.05, 1, 0},
@@ -176,6 +183,34 @@ std::string number(double x) {
   return text;
 }
 
+Transform transform_of(const Op& op) {
+  switch (op.kind) {
+    case Op::kRotate:
+      return pov_rotate(op.v);
+    case Op::kTranslate:
+      return Transform::translate(op.v);
+    case Op::kScale:
+      return Transform::scale(op.v);
+    case Op::kShear:
+      return Transform::from_rows({1, 0, 0, 0, 0, 1, 0, 0, 0, -op.v.x, 1, 0, 0, 0, 0, 1});
+  }
+  return {};
+}
+
+std::string sdl_of(const Op& op) {
+  switch (op.kind) {
+    case Op::kRotate:
+      return "rotate " + vec(op.v);
+    case Op::kTranslate:
+      return "translate " + vec(op.v);
+    case Op::kScale:
+      return "scale " + vec(op.v);
+    case Op::kShear:
+      return "matrix <1, 0, 0, 0, 1, " + number(-op.v.x) + ", 0, 0, 1, 0, 0, 0>";
+  }
+  return {};
+}
+
 pov::CameraStatement statement(const Shot& shot) {
   pov::CameraStatement s;
   s.type = shot.orthographic ? pov::CameraType::kOrthographic : pov::CameraType::kPerspective;
@@ -192,10 +227,7 @@ pov::CameraStatement statement(const Shot& shot) {
   s.aperture = shot.aperture;
   s.blur_samples = shot.blur_samples;
   for (const Op& op : shot.transforms) {
-    const Transform m = op.kind == Op::kRotate      ? pov_rotate(op.v)
-                        : op.kind == Op::kTranslate ? Transform::translate(op.v)
-                                                    : Transform::scale(op.v);
-    s.transform = m * s.transform;  // written later, applied later
+    s.transform = transform_of(op) * s.transform;  // written later, applied later
   }
   return s;
 }
@@ -206,11 +238,7 @@ std::string camera_sdl(const Shot& shot) {
   std::string out = "camera {\n  ";
   out += shot.orthographic ? "orthographic\n" : "perspective\n";
   for (const Op& op : shot.transforms)
-    out += std::string("  ") +
-           (op.kind == Op::kRotate      ? "rotate "
-            : op.kind == Op::kTranslate ? "translate "
-                                        : "scale ") +
-           vec(op.v) + "\n";
+    out += "  " + sdl_of(op) + "\n";
   if (shot.focal_point) out += "  focal_point " + vec(*shot.focal_point) + "\n";
   if (shot.aperture != 0) out += "  aperture " + number(shot.aperture) + "\n";
   if (shot.blur_samples > 0)  // at least as many as at most: no adaptive early stop
