@@ -11,6 +11,7 @@
 #include <filmback/camera_projection.h>
 
 #include "core/util/error.h"
+#include "importers/pov/pov_space.h"
 #include "support/pov_rays.h"
 
 namespace fb::pov {
@@ -338,6 +339,27 @@ TEST(PovCamera, FocalBlurIsAThinLensOfRadiusAperture4) {
   // The focal plane at the Euclidean distance to focal_point, not its depth 2.
   EXPECT_NEAR(p.focus_distance_m, std::sqrt(13.0), 1e-12);
   expect_povray_rays(s, 160, 120);
+
+  // Every lens ray of a pixel passes where POV-Ray's do (JitterCameraRay): through the point
+  // (F / |D|) (D + x0 R + y0 U) from the location, leaving the lens disc of radius aperture / 4
+  // perpendicular to the view.
+  const PovCameraVectors v = evaluate(s);
+  const auto plugin = test::make_camera_plugin(c, 160, 120);
+  const double x = 40.25, y = 100.5;
+  const Vec3d focus = world_from_pov(
+      v.location + (v.direction + v.right * (x / 160 - 0.5) + v.up * (0.5 - y / 120)) *
+                       (v.focal_distance / length(v.direction)));
+  const Vec3d axis = normalize(world_from_pov(v.direction));
+  for (const auto& [u, w] : {std::pair{0.1f, 0.3f}, {0.9f, 0.7f}, {0.99f, 0.5f}, {0.5f, 0.02f}}) {
+    const test::WorldRay ray =
+        test::filmback_ray(*plugin, c.camera, {float(x), float(y), u, w, 0.f});
+    const Vec3d lens = ray.origin - world_from_pov(v.location);
+    EXPECT_LT(length(lens), 0.125 + 1e-6);
+    EXPECT_NEAR(dot(lens, axis), 0, 1e-6);
+    const Vec3d to_focus = focus - ray.origin;
+    EXPECT_LT(length(to_focus - ray.direction * dot(to_focus, ray.direction)), 1e-5)
+        << "lens sample (" << u << ", " << w << ")";
+  }
 
   // Without focal_point: Parse_Camera's Direction_Length, 1 unless angle or look_at set it.
   CameraStatement plain;
