@@ -52,11 +52,10 @@ const char* type_name(const CameraStatement& s) {
 }
 
 // An orthonormal frame built from three vectors in the order given (Gram-Schmidt): the first keeps
-// its direction, the second keeps its component perpendicular to the first, the third its
-// component perpendicular to both. Lengths of those components: `lengths`.
+// its direction, the second its component perpendicular to the first, the third its component
+// perpendicular to both. Not finite when they do not span space.
 struct Frame {
   Vec3d axis[3];
-  double lengths[3];
 };
 
 Frame gram_schmidt(Vec3d a, Vec3d b, Vec3d c) {
@@ -66,8 +65,7 @@ Frame gram_schmidt(Vec3d a, Vec3d b, Vec3d c) {
     Vec3d v = in[i];
     for (int j = 0; j < i; ++j)
       v = v - dot(v, f.axis[j]) * f.axis[j];
-    f.lengths[i] = length(v);
-    f.axis[i] = v * (1 / f.lengths[i]);
+    f.axis[i] = v * (1 / length(v));
   }
   return f;
 }
@@ -214,8 +212,10 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
   const double skew_px = 0.5 * std::abs(ux) * double(width_px) / rx;
   if (skew_px > kNegligiblePx)
     warn(diagnostics, s,
-         "the camera's right and up vectors are not perpendicular: POV-Ray renders the skew, "
-         "filmback cannot; objects at the top and bottom edges are up to " +
+         std::string("the camera's right and up vectors are not perpendicular") +
+             (orthographic ? " (seen along direction)" : "") +
+             ": POV-Ray renders the skew, filmback cannot; objects at the top and bottom edges "
+             "are up to " +
              number_text(skew_px) + " px off horizontally");
 
   if (v.focal_blur) {
@@ -223,7 +223,7 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
       warn(diagnostics, s, "unsupported feature 'focal_blur' with an orthographic camera");
     } else {
       // POV-Ray's lens samples lie in a disc of radius 0.5 scaled by aperture / 2 (tracepixel.cpp
-      // CreateCameraRay): lens radius aperture / 4. Its focal plane is where the rays
+      // JitterCameraRay): lens radius aperture / 4. Its focal plane is where the rays
       // (F / |direction|) (direction + x0 right + y0 up) end, at depth F dz / |direction|.
       const double lens_radius_m = std::abs(v.aperture) / 4;
       p.fstop = p.focal_length_mm * 1e-3 / (2 * lens_radius_m);
