@@ -409,7 +409,7 @@ class CliTest(unittest.TestCase):
 
     def test_unknown_scene_extension(self):
         scene = self.raw("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "scene.obj")
-        self.assert_usage_error(scene, TINY, "'%s': " % scene, "'.obj'", "expected .gltf or .glb")
+        self.assert_usage_error(scene, TINY, "'%s': " % scene, "'.obj'", "expected .gltf, .glb or .pov")
 
     def test_unknown_filter(self):
         scene = self.scene(triangle_scene())

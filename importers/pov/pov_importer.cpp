@@ -1,0 +1,79 @@
+#include "importers/pov/pov_importer.h"
+
+#include <map>
+
+#include "importers/pov/pov_appearance.h"
+#include "importers/pov/pov_camera.h"
+#include "importers/pov/pov_geometry.h"
+#include "importers/pov/sdl/evaluate.h"
+
+namespace fb {
+namespace {
+
+// What Debian's `povray` renders without options (its povray.ini: Width 800, Height 600).
+constexpr uint32_t kDefaultWidth = 800, kDefaultHeight = 600;
+const std::filesystem::path kStandardIncludes = "/usr/share/povray-3.7/include";
+
+// Objects whose absence leaves the geometry incomplete (docs/pov.md "What is not supported").
+bool is_object(const std::string& feature) {
+  static const char* kObjects[] = {"text",       "height_field",  "blob",           "lathe",
+                                   "sor",        "prism",         "superellipsoid", "isosurface",
+                                   "parametric", "julia_fractal", "quadric",        "quartic",
+                                   "poly",       "cubic",         "bicubic_patch",  "sphere_sweep",
+                                   "polynomial", "ovus",          "lemon",          "object"};
+  for (const char* name : kObjects)
+    if (feature == name) return true;
+  return false;
+}
+
+// Once per feature, at the first place it appears.
+void report_unsupported(const pov::Scene& pov, Diagnostics& diagnostics) {
+  std::map<std::string, bool> seen;
+  for (const pov::Unsupported& u : pov.unsupported) {
+    if (!seen.emplace(u.feature, true).second) continue;
+    diagnostics.warn(u.where.text() + ": unsupported " +
+                     (is_object(u.feature) ? "object '" + u.feature + "': not rendered"
+                                           : "feature '" + u.feature + "': ignored"));
+  }
+  for (const std::string& warning : pov.warnings)
+    diagnostics.warn(warning);
+}
+
+}  // namespace
+
+Scene import_pov(const std::filesystem::path& file, const ImportOptions& options,
+                 Diagnostics& diagnostics) {
+  const auto [width, height] =
+      options.resolution.value_or(std::pair{kDefaultWidth, kDefaultHeight});
+  pov::EvaluateOptions evaluate;
+  evaluate.scene_file = file;
+  evaluate.library_paths = options.library_paths;
+  if (evaluate.library_paths.empty() && std::filesystem::is_directory(kStandardIncludes))
+    evaluate.library_paths.push_back(kStandardIncludes);
+  evaluate.image_width = width;
+  evaluate.image_height = height;
+  evaluate.clock = options.clock;
+  evaluate.frame_number = options.frame;
+  const pov::Scene pov = pov::evaluate_pov(evaluate);
+  report_unsupported(pov, diagnostics);
+
+  Scene scene;
+  scene.file = file;
+  scene.settings.width_px = width;
+  scene.settings.height_px = height;
+  const pov::PovCamera camera = pov::convert_camera(pov.camera, width, height, diagnostics);
+  scene.cameras.push_back(camera.camera);
+  scene.settings.pixel_aspect = camera.pixel_aspect;
+  pov::MaterialTable materials(pov, scene, diagnostics);
+  pov::convert_objects(
+      pov,
+      [&](const pov::Texture& texture, const std::optional<pov::Interior>& interior) {
+        return materials.material(texture, interior);
+      },
+      scene, diagnostics);
+  pov::convert_lights(pov, scene, diagnostics);
+  pov::convert_environment(pov, scene, diagnostics);
+  return scene;
+}
+
+}  // namespace fb
