@@ -32,8 +32,7 @@
 
 #include "core/image/image_io.h"
 #include "core/render/render_job.h"
-#include "importers/pov/pov_appearance.h"
-#include "importers/pov/pov_geometry.h"
+#include "importers/pov/pov_importer.h"
 #include "importers/pov/pov_space.h"
 #include "importers/pov/sdl/evaluate.h"
 #include "support/blobs.h"
@@ -519,24 +518,10 @@ constexpr const char* kNoPovray =
 // pov_appearance) and renderer (RenderJob: the camera plugin, Embree's analytic spheres, the
 // emitting materials), 1 px box filter.
 Image filmback_render(const fs::path& scene_file, uint32_t width, uint32_t height, uint32_t spp) {
-  pov::EvaluateOptions evaluate;
-  evaluate.scene_file = scene_file;
-  evaluate.image_width = width;
-  evaluate.image_height = height;
-  const pov::Scene pov = pov::evaluate_pov(evaluate);
   Diagnostics diagnostics;
-  Scene scene;
-  const pov::PovCamera camera = pov::convert_camera(pov.camera, width, height, diagnostics);
-  scene.cameras.push_back(camera.camera);
-  scene.settings.pixel_aspect = camera.pixel_aspect;
-  pov::MaterialTable materials(pov, scene, diagnostics);
-  pov::convert_objects(
-      pov,
-      [&](const pov::Texture& texture, const std::optional<pov::Interior>& interior) {
-        return materials.material(texture, interior);
-      },
-      scene, diagnostics);
-  pov::convert_environment(pov, scene, diagnostics);
+  ImportOptions import;
+  import.resolution = {width, height};
+  const Scene scene = import_pov(scene_file, import, diagnostics);
   RenderOptions options;
   options.width = width;
   options.height = height;
