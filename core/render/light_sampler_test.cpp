@@ -17,6 +17,16 @@ Light point_light(double watts_per_sr, Vec3d at) {
   return light;
 }
 
+// Whether a scene holding only `light` lights `at`, and the sample it draws there (u mid-range).
+bool sample_only(const Light& light, Vec3f at, fb_light_sample& sample) {
+  Scene scene;
+  scene.lights = {light};
+  const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+  const LightSampler sampler(scene, Transform(), geometry, 0.0);
+  const float u[3] = {0.5f, 0.5f, 0.5f};
+  return sampler.sample(at, u, sample);
+}
+
 // Every value u can take (multiples of 2^-24) chooses each light exactly as often as its pdf says
 // (so the estimator is exact over the grid), however dim a light is beside the others and wherever
 // it is in the list.
@@ -144,16 +154,11 @@ TEST(LightSampler, PovRayLightsFadeOnlyAsFadeDistanceAndPowerSay) {
   };
   for (const Case& c : {Case{0, 0, 3, 1}, Case{0, 0, 40, 1}, Case{2, 2, 4, 2.0 / (1 + 4)},
                         Case{2, 2, 2, 1}, Case{5, 1, 1, 2.0 / 1.2}, Case{0, 1, 4, 0.25}}) {
-    Scene scene;
     Light light = point_light(3, {0, c.distance, 0});
     light.decay = LightDecay::kPovRay;
     light.fade_distance_m = c.fade_distance, light.fade_power = c.fade_power;
-    scene.lights = {light};
-    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
-    const LightSampler sampler(scene, Transform(), geometry, 0.0);
-    const float u[3] = {0.5f, 0.5f, 0.5f};
     fb_light_sample s;
-    ASSERT_TRUE(sampler.sample({0, 0, 0}, u, s));
+    ASSERT_TRUE(sample_only(light, {0, 0, 0}, s));
     EXPECT_NEAR(s.radiance[1], 3 * c.expected, 1e-5) << c.fade_distance << " " << c.fade_power;
     EXPECT_NEAR(s.distance, c.distance, 1e-5);
   }
@@ -165,16 +170,12 @@ TEST(LightSampler, PovRaySpotlightFollowsRadiusFalloffAndTightness) {
   const double deg = std::numbers::pi / 180;
   for (double tightness : {0.0, 10.0})
     for (double angle_deg : {0.0, 20.0, 33.0, 37.5, 44.0, 50.0, 120.0}) {
-      Scene scene;
       Light spot = point_light(1, {0, 0, 0});  // at the origin, shining down -z
       spot.type = LightType::kSpot;
       spot.spot_falloff = SpotFalloff::kPov;
       spot.decay = LightDecay::kPovRay;
       spot.spot_inner_angle_rad = 30 * deg, spot.spot_outer_angle_rad = 45 * deg;
       spot.spot_tightness = tightness;
-      scene.lights = {spot};
-      const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
-      const LightSampler sampler(scene, Transform(), geometry, 0.0);
       const double a = angle_deg * deg;
       const Vec3f at(Vec3d{std::sin(a) * 2, 0, -std::cos(a) * 2});
       const double c = std::cos(a), c_radius = std::cos(30 * deg), c_falloff = std::cos(45 * deg);
@@ -183,9 +184,8 @@ TEST(LightSampler, PovRaySpotlightFollowsRadiusFalloffAndTightness) {
         const double t = std::clamp((c - c_falloff) / (c_radius - c_falloff), 0.0, 1.0);
         expected *= t * t * (3 - 2 * t);
       }
-      const float u[3] = {0.5f, 0.5f, 0.5f};
       fb_light_sample s;
-      const bool lit = sampler.sample(at, u, s);
+      const bool lit = sample_only(spot, at, s);
       EXPECT_EQ(lit, expected > 0) << angle_deg;
       if (lit) {
         EXPECT_NEAR(s.radiance[0], expected, 1e-5) << angle_deg << " " << tightness;
@@ -195,16 +195,11 @@ TEST(LightSampler, PovRaySpotlightFollowsRadiusFalloffAndTightness) {
 
 TEST(LightSampler, ShadowlessLightsAskForNoShadowRay) {
   for (LightType type : {LightType::kPoint, LightType::kDirectional}) {
-    Scene scene;
     Light light = point_light(1, {0, 5, 0});
     light.type = type;
     light.casts_shadows = false;
-    scene.lights = {light};
-    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
-    const LightSampler sampler(scene, Transform(), geometry, 0.0);
-    const float u[3] = {0.5f, 0.5f, 0.5f};
     fb_light_sample s;
-    ASSERT_TRUE(sampler.sample({0, 0, 0}, u, s));
+    ASSERT_TRUE(sample_only(light, {0, 0, 0}, s));
     EXPECT_EQ(s.distance, 0.f);
   }
 }
