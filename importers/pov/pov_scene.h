@@ -36,9 +36,28 @@ struct Colour {
 
 enum class Pattern {
   kSolid,  // `colour` only
-  kChecker, kHexagon, kBrick,  // list patterns: `list` holds 2, 3, 2 entries
-  kGradient, kBozo, kSpotted, kGranite, kMarble, kWood, kAgate, kLeopard, kOnion, kRadial,
-  kSpiral1, kSpiral2, kWaves, kRipples, kWrinkles, kBumps, kDents, kCrackle, kCells,
+  kChecker,
+  kHexagon,
+  kBrick,  // list patterns: `list` holds 2, 3, 2 entries
+  kGradient,
+  kBozo,
+  kSpotted,
+  kGranite,
+  kMarble,
+  kWood,
+  kAgate,
+  kLeopard,
+  kOnion,
+  kRadial,
+  kSpiral1,
+  kSpiral2,
+  kWaves,
+  kRipples,
+  kWrinkles,
+  kBumps,
+  kDents,
+  kCrackle,
+  kCells,
   kImageMap,  // not evaluated: the converter uses `average` (see pov_appearance)
   kOther,     // a pattern the evaluator knows only by name (`name`); approximated by `average`
 };
@@ -113,7 +132,10 @@ enum class Shape {
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
-  kUnion, kMerge, kIntersection, kDifference,
+  kUnion,
+  kMerge,
+  kIntersection,
+  kDifference,
 };
 
 struct Object {
@@ -165,8 +187,15 @@ struct LightSource {
 };
 
 enum class CameraType {
-  kPerspective, kOrthographic, kFisheye, kUltraWideAngle, kOmnimax, kPanoramic, kCylinder,
-  kSpherical, kMeshCamera
+  kPerspective,
+  kOrthographic,
+  kFisheye,
+  kUltraWideAngle,
+  kOmnimax,
+  kPanoramic,
+  kCylinder,
+  kSpherical,
+  kMeshCamera
 };
 
 // A camera statement as written; pov_camera applies POV-Ray's fixed evaluation order
@@ -178,7 +207,7 @@ struct CameraStatement {
   Vec3d location{0, 0, 0}, direction{0, 0, 1}, right{1.33, 0, 0}, up{0, 1, 0}, sky{0, 1, 0};
   bool right_given = false, up_given = false;
   std::optional<Vec3d> look_at;
-  std::optional<double> angle_deg;  // horizontal field of view
+  std::optional<double> angle_deg;    // horizontal field of view
   std::optional<double> angle_v_deg;  // the second angle of `spherical`
   std::optional<Vec3d> focal_point;
   double aperture = 0;
@@ -198,6 +227,13 @@ struct Unsupported {
   SourceLocation where;
 };
 
+// What evaluating the scene used, to compare with pov::EvaluateLimits (docs/pov.md "The
+// language": the sample scenes' largest counts set the limits' defaults).
+struct EvaluationCounts {
+  uint64_t tokens = 0, loop_iterations = 0, array_elements = 0, objects = 0;
+  uint32_t include_depth = 0, macro_depth = 0, nesting = 0;  // deepest reached
+};
+
 struct Scene {
   std::optional<CameraStatement> camera;  // the last one executed; none: POV-Ray's default
   std::vector<Object> objects;
@@ -210,6 +246,7 @@ struct Scene {
   // Features met but not rendered, in the order met; the converters report each once per scene.
   std::vector<Unsupported> unsupported;
   std::vector<std::string> warnings;  // #warning and the evaluator's own, with file:line:column
+  EvaluationCounts counts;
 };
 
 }  // namespace fb::pov

@@ -38,7 +38,9 @@ Vec3d to_vec3(const Value& v) {
   return {v.v[0], v.dims > 1 ? v.v[1] : 0, v.dims > 2 ? v.v[2] : 0};
 }
 
-Value from_vec3(Vec3d v) { return Value::vector({v.x, v.y, v.z}); }
+Value from_vec3(Vec3d v) {
+  return Value::vector({v.x, v.y, v.z});
+}
 
 // Right-hand rotation of `v` about unit `axis` by `angle` radians (Rodrigues), which is what
 // POV-Ray's rotate does numerically (../shared/notes/povray-camera.md 1.1).
@@ -83,12 +85,15 @@ class Args {
   int count_ = 0;
 };
 
-Value boolean(bool b) { return Value::number(b ? 1 : 0); }
+Value boolean(bool b) {
+  return Value::number(b ? 1 : 0);
+}
 
 }  // namespace
 
 std::optional<Value> builtin(Parser& p, const Tok& tok) {
-  const std::string& w = tok.token.text;
+  const std::string& word = tok.token.text;
+  const std::string_view w = word;  // compared by length first
   const EvaluateOptions& o = p.options();
   // constants and settings
   if (w == "pi") return Value::number(std::numbers::pi);
@@ -112,13 +117,13 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
   if (w == "image_height") return Value::number(o.image_height);
   if (w == "version") return Value::number(3.7);
 
-  static const char* const kFloat1[] = {"abs", "acos", "acosh", "asin", "asinh", "atan", "atanh",
-                                        "ceil", "cos", "cosh", "degrees", "radians", "exp",
-                                        "floor", "int", "ln", "sin", "sinh", "sqrt", "tan", "tanh",
-                                        "log", "sqr"};
+  static const char* const kFloat1[] = {"abs",   "acos",  "acosh", "asin", "asinh",   "atan",
+                                        "atanh", "ceil",  "cos",   "cosh", "degrees", "radians",
+                                        "exp",   "floor", "int",   "ln",   "sin",     "sinh",
+                                        "sqrt",  "tan",   "tanh",  "log",  "sqr"};
   for (const char* name : kFloat1) {
     if (w != name) continue;
-    Args a(p, w);
+    Args a(p, word);
     double x = a.f();
     if (w == "atan" && a.more()) {
       double y = a.f();  // POV-Ray 3.7 accepts atan(a, b) as atan2
@@ -150,17 +155,17 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     if (w == "sqr") r = x * x;
     if (w == "tan") r = std::tan(x);
     if (w == "tanh") r = std::tanh(x);
-    if (!std::isfinite(r)) p.fail(w + "() overflows");
+    if (!std::isfinite(r)) p.fail(word + "() overflows");
     return Value::number(r);
   }
   if (w == "atan2" || w == "div" || w == "mod" || w == "pow" || w == "bitwise_and" ||
       w == "bitwise_or" || w == "bitwise_xor") {
-    Args a(p, w);
+    Args a(p, word);
     double x = a.f(), y = a.f();
     a.end();
     double r = 0;
     if (w == "atan2") r = std::atan2(x, y);
-    if ((w == "div" || w == "mod") && y == 0) p.fail(w + "() by zero");
+    if ((w == "div" || w == "mod") && y == 0) p.fail(word + "() by zero");
     if (w == "div") r = std::trunc(x / y);
     if (w == "mod") r = std::fmod(x, y);
     if (w == "pow") r = std::pow(x, y);
@@ -168,18 +173,19 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     if (w == "bitwise_and") r = static_cast<double>(i(x) & i(y));
     if (w == "bitwise_or") r = static_cast<double>(i(x) | i(y));
     if (w == "bitwise_xor") r = static_cast<double>(i(x) ^ i(y));
-    if (!std::isfinite(r)) p.fail(w + "() gives no finite number");
+    if (!std::isfinite(r)) p.fail(word + "() gives no finite number");
     return Value::number(r);
   }
   if (w == "max" || w == "min") {
-    Args a(p, w);
+    Args a(p, word);
     double r = a.f();
-    while (a.more()) r = w == "max" ? std::max(r, a.f()) : std::min(r, a.f());
+    while (a.more())
+      r = w == "max" ? std::max(r, a.f()) : std::min(r, a.f());
     a.end();
     return Value::number(r);
   }
   if (w == "select") {
-    Args a(p, w);
+    Args a(p, word);
     double s = a.f();
     Value neg = a.any(), zero = a.any();
     if (a.more()) {
@@ -191,7 +197,7 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return s < 0 ? neg : zero;
   }
   if (w == "vlength" || w == "vnormalize") {
-    Args a(p, w);
+    Args a(p, word);
     Vec3d v = a.vec();
     a.end();
     double len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
@@ -200,14 +206,14 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return from_vec3({v.x / len, v.y / len, v.z / len});
   }
   if (w == "vdot" || w == "vcross") {
-    Args a(p, w);
+    Args a(p, word);
     Vec3d u = a.vec(), v = a.vec();
     a.end();
     if (w == "vdot") return Value::number(u.x * v.x + u.y * v.y + u.z * v.z);
     return from_vec3({u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x});
   }
   if (w == "vrotate") {
-    Args a(p, w);
+    Args a(p, word);
     Vec3d v = a.vec(), r = a.vec();
     a.end();
     // about x, then y, then z, as `rotate`
@@ -217,7 +223,7 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return from_vec3(v);
   }
   if (w == "vaxis_rotate") {
-    Args a(p, w);
+    Args a(p, word);
     Vec3d v = a.vec(), axis = a.vec();
     double angle = a.f();
     a.end();
@@ -227,7 +233,7 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
   }
   if (w == "vturbulence") {
     // approximated: no displacement (docs/pov.md)
-    Args a(p, w);
+    Args a(p, word);
     a.f();
     a.f();
     a.f();
@@ -236,7 +242,7 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return from_vec3({0, 0, 0});
   }
   if (w == "vstr") {
-    Args a(p, w);
+    Args a(p, word);
     double n = a.f();
     Value v = a.any();
     std::string sep = a.s();
@@ -252,13 +258,13 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return Value::string(out);
   }
   if (w == "str") {
-    Args a(p, w);
+    Args a(p, word);
     double f = a.f(), width = a.f(), precision = a.f();
     a.end();
     return Value::string(format_float(f, width, precision));
   }
   if (w == "concat") {
-    Args a(p, w);
+    Args a(p, word);
     std::string out = a.s();
     while (a.more()) {
       out += a.s();
@@ -268,14 +274,14 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return Value::string(out);
   }
   if (w == "chr") {
-    Args a(p, w);
+    Args a(p, word);
     double c = a.f();
     a.end();
     return Value::string(std::string(1, static_cast<char>(static_cast<int>(c) & 0xff)));
   }
   if (w == "asc" || w == "strlen" || w == "val" || w == "strupr" || w == "strlwr" ||
       w == "file_exists") {
-    Args a(p, w);
+    Args a(p, word);
     std::string s = a.s();
     a.end();
     if (w == "asc") return Value::number(s.empty() ? 0 : static_cast<unsigned char>(s[0]));
@@ -289,14 +295,14 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return Value::string(s);
   }
   if (w == "strcmp") {
-    Args a(p, w);
+    Args a(p, word);
     std::string s = a.s(), t = a.s();
     a.end();
     int c = s.compare(t);
     return Value::number(c < 0 ? -1 : c > 0 ? 1 : 0);
   }
   if (w == "substr") {
-    Args a(p, w);
+    Args a(p, word);
     std::string s = a.s();
     double start = a.f(), length = a.f();
     a.end();
@@ -306,13 +312,13 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return Value::string(s.substr(static_cast<size_t>(start) - 1, static_cast<size_t>(length)));
   }
   if (w == "seed") {
-    Args a(p, w);
+    Args a(p, word);
     double s = a.f();
     a.end();
     return Value::number(static_cast<double>(p.new_random_stream(s)));
   }
   if (w == "rand") {
-    Args a(p, w);
+    Args a(p, word);
     double stream = a.f();
     a.end();
     if (!(stream >= 0 && stream < 1e9)) p.fail("rand() of something that is not a seed()");
@@ -346,9 +352,9 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     return boolean(defined);
   }
   if (w == "dimensions" || w == "dimension_size") {
-    Args a(p, w);
+    Args a(p, word);
     Value array = a.any();
-    if (array.kind != ValueKind::kArray) p.fail(w + "() expects an array");
+    if (array.kind != ValueKind::kArray) p.fail(word + "() expects an array");
     if (w == "dimensions") {
       a.end();
       return Value::number(static_cast<double>(array.array->sizes.size()));
@@ -364,7 +370,7 @@ std::optional<Value> builtin(Parser& p, const Tok& tok) {
     // need the geometry's intersection code: parsed, reported, answered with zeros
     SourceLocation where = p.location_of(tok);
     p.skip_parenthesised();
-    p.unsupported(w, where);
+    p.unsupported(word, where);
     if (w == "inside") return Value::number(0);
     return from_vec3({0, 0, 0});
   }

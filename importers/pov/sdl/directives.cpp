@@ -124,7 +124,7 @@ void Parser::run_end() {
   }
   Cond& cond = conds_.back();
   auto count_loop = [&] {
-    if (++loop_iterations_ > options_.limits.loop_iterations) {
+    if (++counts().loop_iterations > options_.limits.loop_iterations) {
       fail("more than " + std::to_string(options_.limits.loop_iterations) +
            " loop iterations (limit)");
     }
@@ -205,12 +205,7 @@ void Parser::run_declare(bool local) {
 void Parser::run_include() {
   Value name = parse_expression();
   if (name.kind != ValueKind::kString) fail("#include expects a file name string");
-  if (frames_.size() > options_.limits.include_depth + options_.limits.macro_depth) {
-    fail("too deeply nested includes");
-  }
-  size_t include_frames = 0;
-  for (const Frame& f : frames_) include_frames += !f.macro;
-  if (include_frames > options_.limits.include_depth) {
+  if (include_depth_ >= options_.limits.include_depth) {
     fail("includes nested deeper than " + std::to_string(options_.limits.include_depth) +
          " (limit)");
   }
@@ -223,7 +218,7 @@ void Parser::run_include() {
   }
   std::string display = path->lexically_relative(scene_folder_.lexically_normal()).string();
   if (display.empty() || display.rfind("..", 0) == 0) display = path->string();
-  std::string from = "included from " + last_.text();
+  std::string from = "included from " + here().text();
   unread_pushback();
   Frame frame;
   frame.file = load(*path, display);
@@ -233,6 +228,8 @@ void Parser::run_include() {
   frame.folder = folder;
   scopes_.emplace_back();
   frames_.push_back(std::move(frame));
+  ++include_depth_;
+  counts().include_depth = std::max(counts().include_depth, include_depth_);
 }
 
 void Parser::run_macro_definition() {
@@ -240,7 +237,7 @@ void Parser::run_macro_definition() {
   if (name.kind != TokenKind::kWord) fail("expected the macro's name");
   auto macro = std::make_shared<Macro>();
   macro->name = name.text;
-  macro->where = last_;
+  macro->where = here();
   macro->file = frames_.back().file;
   Token open = raw_next();
   if (!(open.kind == TokenKind::kSymbol && open.text == "(")) fail("expected '(' after macro name");
@@ -289,7 +286,8 @@ void Parser::run_read() {
   expect("(");
   Token handle_name = raw_next();
   Value* handle = lookup(handle_name.text);
-  if (!handle || handle->kind != ValueKind::kFile || !handle->file) fail("#read needs a file opened for reading");
+  if (!handle || handle->kind != ValueKind::kFile || !handle->file)
+    fail("#read needs a file opened for reading");
   std::shared_ptr<ReadFile> file = handle->file;
   const std::vector<Token>& tokens = file->tokens->tokens;
   while (accept(",")) {
@@ -336,14 +334,28 @@ void Parser::run_read() {
     ++file->pos;
   }
   if (tokens[file->pos].kind == TokenKind::kEnd) {
-    for (auto& scope : scopes_) scope.erase(handle_name.text);
+    for (auto& scope : scopes_)
+      scope.erase(handle_name.text);
   }
 }
 
 void Parser::directive(const Token& token) {
+  // Peeking past the end of the directive's own file must not pop it: a file that includes itself
+  // would pop and push one frame for ever instead of nesting to the include limit.
+  struct Restore {
+    size_t& frames;
+    size_t saved;
+    ~Restore() { frames = saved; }
+  } restore{directive_frames_, directive_frames_};
+  directive_frames_ = frames_.size();
+  run_directive(token);
+}
+
+void Parser::run_directive(const Token& token) {
   const std::string& d = token.text;
-  if (d == "declare" || d == "local") return run_declare(d == "local");
-  if (d == "if") {
+  const std::string_view which = d;  // compared by length first
+  if (which == "declare" || which == "local") return run_declare(which == "local");
+  if (which == "if") {
     if (parse_condition()) {
       conds_.emplace_back();  // a kIf
     } else {
@@ -351,7 +363,7 @@ void Parser::directive(const Token& token) {
     }
     return;
   }
-  if (d == "ifdef" || d == "ifndef") {
+  if (which == "ifdef" || which == "ifndef") {
     expect("(");
     Token name = raw_next();
     bool defined = name.kind == TokenKind::kWord && lookup(name.text) != nullptr;
@@ -369,24 +381,24 @@ void Parser::directive(const Token& token) {
       defined = inside && array->array->elements[index].has_value();
     }
     expect(")");
-    if (defined == (d == "ifdef")) {
+    if (defined == (which == "ifdef")) {
       conds_.emplace_back();  // a kIf
     } else {
       skip_to_branch(true);
     }
     return;
   }
-  if (d == "else" || d == "elseif") {
+  if (which == "else" || which == "elseif") {
     // reached from a branch that ran: skip the rest up to the #end
     if (conds_.size() == frames_.back().cond_base) fail("#" + d + " without #if");
     Cond& cond = conds_.back();
-    if (d == "elseif" && cond.kind != CondKind::kIf) fail("#elseif without #if");
+    if (which == "elseif" && cond.kind != CondKind::kIf) fail("#elseif without #if");
     conds_.pop_back();
     skip_levels(1);
     return;
   }
-  if (d == "end") return run_end();
-  if (d == "while") {
+  if (which == "end") return run_end();
+  if (which == "while") {
     size_t at = frames_.back().pos - 1;
     if (parse_condition()) {
       Cond cond;
@@ -398,7 +410,7 @@ void Parser::directive(const Token& token) {
     }
     return;
   }
-  if (d == "for") {
+  if (which == "for") {
     expect("(");
     Token variable = raw_next();
     if (variable.kind != TokenKind::kWord) fail("expected the #for variable");
@@ -423,16 +435,16 @@ void Parser::directive(const Token& token) {
     }
     return;
   }
-  if (d == "switch") {
+  if (which == "switch") {
     expect("(");
     Cond cond;
-      cond.kind = CondKind::kSwitch;
+    cond.kind = CondKind::kSwitch;
     cond.switch_value = parse_float();
     expect(")");
     conds_.push_back(cond);
     return run_switch_search();
   }
-  if (d == "case" || d == "range") {
+  if (which == "case" || which == "range") {
     // met while a case runs: falls through (POV-Ray runs on to #break)
     if (conds_.size() == frames_.back().cond_base || conds_.back().kind != CondKind::kSwitch) {
       fail("#" + d + " outside #switch");
@@ -440,7 +452,7 @@ void Parser::directive(const Token& token) {
     skip_parenthesised();
     return;
   }
-  if (d == "break") {
+  if (which == "break") {
     // leaves the innermost #switch, #while or #for
     int levels = 0;
     for (size_t i = conds_.size(); i-- > frames_.back().cond_base;) {
@@ -452,16 +464,16 @@ void Parser::directive(const Token& token) {
     }
     fail("#break outside #switch, #while or #for");
   }
-  if (d == "macro") return run_macro_definition();
-  if (d == "include") return run_include();
-  if (d == "undef") {
+  if (which == "macro") return run_macro_definition();
+  if (which == "include") return run_include();
+  if (which == "undef") {
     Token name = raw_next();
     for (size_t i = scopes_.size(); i-- > 0;) {
       if (scopes_[i].erase(name.text)) break;
     }
     return;
   }
-  if (d == "version") {
+  if (which == "version") {
     double version = parse_float();
     accept(";");
     scene_.version = version;
@@ -469,14 +481,15 @@ void Parser::directive(const Token& token) {
     scopes_[0]["version"] = v;
     return;
   }
-  if (d == "debug" || d == "warning" || d == "error" || d == "render" || d == "statistics") {
+  if (which == "debug" || which == "warning" || which == "error" || which == "render" ||
+      which == "statistics") {
     Value text = parse_expression();
     if (text.kind != ValueKind::kString) fail("#" + d + " expects a string");
-    if (d == "warning") warn(text.text);
-    if (d == "error") fail("#error: " + text.text);
+    if (which == "warning") warn(text.text);
+    if (which == "error") fail("#error: " + text.text);
     return;
   }
-  if (d == "default") {
+  if (which == "default") {
     expect("{");
     for (;;) {
       Tok tok = next();
@@ -495,14 +508,15 @@ void Parser::directive(const Token& token) {
     }
     return;
   }
-  if (d == "fopen") return run_fopen();
-  if (d == "fclose") {
+  if (which == "fopen") return run_fopen();
+  if (which == "fclose") {
     Token name = raw_next();
-    for (auto& scope : scopes_) scope.erase(name.text);
+    for (auto& scope : scopes_)
+      scope.erase(name.text);
     return;
   }
-  if (d == "read") return run_read();
-  if (d == "write") {
+  if (which == "read") return run_read();
+  if (which == "write") {
     unsupported("#write", here());
     return skip_parenthesised();
   }

@@ -2,4 +2,509 @@
 
 #include <gtest/gtest.h>
 
-TEST(PovSdl, Placeholder) { SUCCEED(); }
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/util/error.h"
+
+namespace fb::pov {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scene folder of its own per test, with helper files.
+class Sdl : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    root_ = fs::temp_directory_path() / ("filmback_pov_sdl_" + std::string(info->name()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "scene");
+    fs::create_directories(root_ / "lib");
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  void write(const fs::path& relative, const std::string& text) {
+    fs::create_directories((root_ / relative).parent_path());
+    std::ofstream(root_ / relative) << text;
+  }
+  Scene run(const std::string& text, EvaluateOptions options = {}) {
+    write("scene/scene.pov", text);
+    options.scene_file = root_ / "scene" / "scene.pov";
+    options.library_paths = {root_ / "lib"};
+    return evaluate_pov(options);
+  }
+  std::string error_of(const std::string& text, EvaluateOptions options = {}) {
+    try {
+      run(text, options);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+  // The sphere the scene's only object is: SDL values are read back through its centre/radius.
+  Vec3d centre(const std::string& text) {
+    Scene scene = run(text);
+    EXPECT_EQ(scene.objects.size(), 1u);
+    return scene.objects.empty() ? Vec3d{NAN, NAN, NAN} : scene.objects[0].a;
+  }
+  double number(const std::string& expression) {
+    Scene scene = run("sphere { 0, " + expression + " }");
+    return scene.objects.at(0).r0;
+  }
+  // Asserts an SDL condition inside the evaluator.
+  void sdl_true(const std::string& condition) {
+    EXPECT_NO_THROW(run("#if (!(" + condition + ")) #error \"false\" #end")) << condition;
+  }
+
+  fs::path root_;
+};
+
+TEST_F(Sdl, ArithmeticPrecedenceAndFunctions) {
+  EXPECT_DOUBLE_EQ(number("1 + 2 * 3 - 4 / 8"), 6.5);
+  EXPECT_DOUBLE_EQ(number("-2 * -3"), 6);
+  EXPECT_DOUBLE_EQ(number("(1 < 2) + (2 <= 2) + (3 = 3) + (3 != 3) + (1 > 2)"), 3);
+  EXPECT_DOUBLE_EQ(number("(1 & 0) + (1 | 0) + !0"), 2);
+  EXPECT_DOUBLE_EQ(number("0 ? 5 : 7"), 7);
+  // povray 3.7.0.10 prints 1038 and 1 for these (#debug str(...)): 4 + 1024 + 3 + 9 - 2, and
+  // fmod 1 + truncated 3 + truncated -2 + floor -3 + ceil 2
+  EXPECT_DOUBLE_EQ(number("sqrt(16) + pow(2, 10) + abs(-3) + max(1, 9, 4) + min(3, -2)"), 1038);
+  EXPECT_DOUBLE_EQ(number("mod(7, 3) + div(7, 2) + int(-2.7) + floor(-2.5) + ceil(1.2)"), 1);
+  EXPECT_NEAR(number("degrees(pi) + radians(180) + atan2(1, 1)"), 180 + M_PI + M_PI / 4, 1e-12);
+  EXPECT_NEAR(number("select(-1, 10, 20, 30) + select(0, 10, 20, 30) + select(1, 10, 20, 30)"), 60,
+              0);
+  EXPECT_DOUBLE_EQ(number("image_width / image_height"), 320.0 / 240.0);
+}
+
+TEST_F(Sdl, VectorPromotionAndComponents) {
+  Vec3d c = centre("#declare V = <1, 2, 3> * 2 + 1; sphere { V, 1 }");
+  EXPECT_EQ(c.x, 3);
+  EXPECT_EQ(c.y, 5);
+  EXPECT_EQ(c.z, 7);
+  c = centre("sphere { 2, 1 }");  // a float where a vector goes fills every component
+  EXPECT_EQ(c.x, 2);
+  EXPECT_EQ(c.z, 2);
+  c = centre("sphere { <1, 2>, 1 }");  // a 2-vector gains z = 0
+  EXPECT_EQ(c.y, 2);
+  EXPECT_EQ(c.z, 0);
+  c = centre("#declare V = <4, 5, 6>; sphere { <V.z, V.y, V.x> + x, 1 }");
+  EXPECT_EQ(c.x, 7);
+  EXPECT_EQ(c.z, 4);
+  // vrotate about y by 90 maps +x to -z (POV-Ray's rotate, ../shared/notes/povray-camera.md 1.1)
+  c = centre("sphere { vrotate(x, <0, 90, 0>), 1 }");
+  EXPECT_NEAR(c.x, 0, 1e-12);
+  EXPECT_NEAR(c.z, -1, 1e-12);
+  c = centre("sphere { vaxis_rotate(x, y, 90) + vcross(x, y) + vnormalize(<0, 3, 0>), 1 }");
+  EXPECT_NEAR(c.y, 1, 1e-12);
+  EXPECT_NEAR(c.z, 0, 1e-12);
+  EXPECT_DOUBLE_EQ(number("vlength(<3, 4, 0>) + vdot(x + y, y)"), 6);
+  // no comma is needed between two vectors, as in POV-Ray
+  Scene scene = run("box { <-1, -2, -3> <1, 2, 3> }");
+  EXPECT_EQ(scene.objects.at(0).b.z, 3);
+}
+
+TEST_F(Sdl, ColourPromotionAndKeywords) {
+  sdl_true("(rgb 1).filter = 0 & (rgb 1).transmit = 0 & (rgb 1).green = 1");
+  // a float where a colour goes fills all five components (POV-Ray manual 3.3.1.5)
+  sdl_true("(color 0.5).transmit = 0.5");
+  sdl_true("(rgbf <1, 2, 3, 4>).filter = 4 & (rgbt <1, 2, 3, 4>).transmit = 4");
+  sdl_true("(rgbft <1, 2, 3, 4, 5>).transmit = 5");
+  sdl_true("(color red 1 green 0.5 filter 0.25).green = 0.5");
+  sdl_true("(color rgb <1, 0, 0> transmit 0.5).transmit = 0.5");
+  sdl_true("abs((srgb 0.5).red - 0.21404114) < 1e-6");
+  Scene scene = run("#declare C = rgb <1, 0.5, 0> * 0.5; background { C }");
+  ASSERT_TRUE(scene.background);
+  EXPECT_DOUBLE_EQ(scene.background->g, 0.25);
+}
+
+TEST_F(Sdl, Strings) {
+  sdl_true("strcmp(str(2, -5, 1), \"002.0\") = 0");  // measured with povray 3.7.0.10
+  sdl_true("strcmp(str(3.14159, 0, 2), \"3.14\") = 0");
+  sdl_true("strcmp(str(2.5, 6, -1), \"2.500000\") = 0");
+  sdl_true("strcmp(concat(\"a\", \"bc\", chr(100)), \"abcd\") = 0");
+  sdl_true("strlen(\"hello\") = 5 & asc(\"A\") = 65 & val(\"2.5\") = 2.5");
+  sdl_true("strcmp(substr(\"abcdef\", 2, 3), \"bcd\") = 0");
+  sdl_true("strcmp(strupr(\"aB\"), \"AB\") = 0 & strcmp(strlwr(\"aB\"), \"ab\") = 0");
+  sdl_true("strcmp(\"tab\\there\", concat(\"tab\", chr(9), \"here\")) = 0");
+}
+
+TEST_F(Sdl, RandMatchesPovRay) {
+  // povray 3.7.0.10: seed(42) gives 0.723582911241, 0.329979259598, 0.755761670357
+  Scene scene =
+      run("#declare S = seed(42);"
+          "sphere { <rand(S), rand(S), rand(S)>, 1 }");
+  EXPECT_NEAR(scene.objects.at(0).a.x, 0.723582911241, 1e-12);
+  EXPECT_NEAR(scene.objects.at(0).a.y, 0.329979259598, 1e-12);
+  EXPECT_NEAR(scene.objects.at(0).a.z, 0.755761670357, 1e-12);
+}
+
+TEST_F(Sdl, CommentsNestAndDirectivesRun) {
+  Scene scene = run(
+      "/* outer /* inner */ still a comment */ // line\n"
+      "#declare N = 0;\n"
+      "#while (N < 5) #declare N = N + 1; #end\n"
+      "#for (I, 1, 3) #declare N = N + I; #end\n"  // 5 + 6
+      "#if (N = 11) #declare R = 1; #elseif (N = 12) #declare R = 2; #else #declare R = 3; #end\n"
+      "#switch (N)\n"
+      "  #case (3) #declare S = 30; #break\n"
+      "  #range (10, 12) #declare S = 40; #break\n"
+      "  #else #declare S = 50;\n"
+      "#end\n"
+      "#ifdef (R) #declare T = 1; #else #declare T = 2; #end\n"
+      "#ifndef (Nothing) #declare T = T + 10; #end\n"
+      "#undef R\n"
+      "#ifdef (R) #declare T = 100; #end\n"
+      "sphere { <N, S, T>, 1 }");
+  EXPECT_EQ(scene.objects.at(0).a.x, 11);
+  EXPECT_EQ(scene.objects.at(0).a.y, 40);
+  EXPECT_EQ(scene.objects.at(0).a.z, 11);
+}
+
+TEST_F(Sdl, MacrosScopesAndReferences) {
+  Scene scene =
+      run("#macro Fact(N) #if (N <= 1) 1 #else N * Fact(N - 1) #end #end\n"
+          "#macro SetTo(Target, V) #declare Target = V; #end\n"  // by-reference parameter
+          "#macro Local() #local Hidden = 5; Hidden * 2 #end\n"
+          "#declare A = 1;\n"
+          "SetTo(A, 7)\n"
+          "#declare B = Local();\n"
+          "#ifdef (Hidden) #error \"a macro's #local leaked\" #end\n"
+          "sphere { <Fact(5), A, B>, 1 }\n");
+  EXPECT_EQ(scene.objects.at(0).a.x, 120);
+  EXPECT_EQ(scene.objects.at(0).a.y, 7);
+  EXPECT_EQ(scene.objects.at(0).a.z, 10);
+  // a macro that writes object statements
+  scene = run("#macro Ball(P) sphere { P, 0.5 } #end Ball(x) Ball(y) union { Ball(z) Ball(-z) }");
+  EXPECT_EQ(scene.objects.size(), 3u);
+}
+
+TEST_F(Sdl, ArraysMultiDimensional) {
+  Scene scene =
+      run("#declare A = array[2][3] { {1, 2, 3}, {4, 5, 6} };\n"
+          "#declare B = array[4];\n"
+          "#declare B[2] = A[1][2] * 10;\n"
+          "#declare D = dimensions(A) + dimension_size(A, 2);\n"
+          "sphere { <B[2], D, defined(B[0]) + 2 * defined(B[2])>, 1 }");
+  EXPECT_EQ(scene.objects.at(0).a.x, 60);
+  EXPECT_EQ(scene.objects.at(0).a.y, 5);
+  EXPECT_EQ(scene.objects.at(0).a.z, 2);
+  EXPECT_NE(error_of("#declare A = array[2]; #declare B = A[2];").find("out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of("#declare A = array[2]; #declare B = A[1];").find("not initialised"),
+            std::string::npos);
+}
+
+TEST_F(Sdl, IncludesScopeAndLibraryPath) {
+  write("lib/lib.inc", "#declare FromLib = 3; #local Private = 1;");
+  write("scene/sub/near.inc", "#declare FromSub = 4;");
+  Scene scene =
+      run("#include \"lib.inc\"\n#include \"sub/near.inc\"\n"
+          "#ifdef (Private) #error \"an include's #local leaked\" #end\n"
+          "sphere { <FromLib, FromSub, 0>, 1 }");
+  EXPECT_EQ(scene.objects.at(0).a.x, 3);
+  EXPECT_EQ(scene.objects.at(0).a.y, 4);
+}
+
+TEST_F(Sdl, IncludesNeverEscapeTheAllowedFolders) {
+  write("outside.inc", "#declare Secret = 1;");
+  std::string error = error_of("#include \"../outside.inc\"");
+  EXPECT_NE(error.find("cannot include \"../outside.inc\""), std::string::npos) << error;
+  error = error_of("#include \"" + (root_ / "outside.inc").string() + "\"");
+  EXPECT_NE(error.find("cannot include"), std::string::npos) << error;
+  error = error_of("#include \"sub/../../outside.inc\"");
+  EXPECT_NE(error.find("cannot include"), std::string::npos) << error;
+  error = error_of("#fopen F \"../outside.inc\" read");
+  EXPECT_NE(error.find("cannot #fopen"), std::string::npos) << error;
+  sdl_true("!file_exists(\"../outside.inc\")");
+}
+
+TEST_F(Sdl, ErrorsCarryLocationAndIncludeChain) {
+  std::string error = error_of("#declare A = 1;\n\nsphere { 0, }");
+  EXPECT_EQ(error.rfind("scene.pov:3:13: ", 0), 0u) << error;
+  write("scene/bad.inc", "\n  #declare X = undefined_thing;");
+  error = error_of("// first line\n#include \"bad.inc\"");
+  EXPECT_EQ(error.rfind("bad.inc:2:16: ", 0), 0u) << error;
+  EXPECT_NE(error.find("(included from scene.pov:2:10)"), std::string::npos) << error;
+  error = error_of("#error \"stop here\"");
+  EXPECT_NE(error.find("scene.pov:1:"), std::string::npos);
+  EXPECT_NE(error.find("stop here"), std::string::npos);
+  error = error_of("#macro M() #declare Q = nope; #end\nM()");
+  EXPECT_NE(error.find("in macro M called from scene.pov:2:1"), std::string::npos) << error;
+  EXPECT_NE(error_of("\"unterminated").find("unterminated string"), std::string::npos);
+  EXPECT_NE(error_of("/* open").find("unterminated /* comment"), std::string::npos);
+}
+
+// Each runaway fails with its limit named, within a second (docs/pov.md "The language").
+TEST_F(Sdl, RunawayScenesFailCleanlyAndQuickly) {
+  const EvaluateLimits limits;
+  auto fails_quickly_with = [&](const std::string& text, const std::string& message) {
+    auto start = std::chrono::steady_clock::now();
+    std::string error = error_of(text);
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(error.find(message), std::string::npos) << error;
+    EXPECT_LT(seconds, 1.0) << message;
+    return error;
+  };
+  fails_quickly_with("#while (1) #end", "scene.pov:1:12: more than " +
+                                            std::to_string(limits.loop_iterations) +
+                                            " loop iterations (limit)");
+  // a macro calling itself twice: few loops, many tokens
+  fails_quickly_with("#macro R(N) #if (N > 0) R(N - 1) R(N - 1) #end #end R(60)",
+                     "more than " + std::to_string(limits.tokens) + " tokens read (limit)");
+  // the chain names the three innermost calls, how many more, and the call in the scene
+  std::string error =
+      fails_quickly_with("#macro R() R() #end\nR()", "macro calls nested deeper than 256 (limit)");
+  EXPECT_NE(error.find("(in macro R called from scene.pov:1:12, in macro R called from "
+                       "scene.pov:1:12, in macro R called from scene.pov:1:12, ... 252 more, "
+                       "in macro R called from scene.pov:2:1)"),
+            std::string::npos)
+      << error;
+  write("scene/self.inc", "#include \"self.inc\"");
+  error = fails_quickly_with("#include \"self.inc\"", "includes nested deeper than 32 (limit)");
+  EXPECT_NE(error.find("... 28 more, included from scene.pov:1:10)"), std::string::npos) << error;
+  const std::string elements = std::to_string(limits.array_elements);
+  fails_quickly_with("#declare A = array[100000000];",
+                     "scene.pov:1:29: array of 100000000 elements: more than " + elements +
+                         " array elements in all (limit)");
+  fails_quickly_with(
+      "#declare A = array[1000][1000][1000];",
+      "array of 1000000000 elements: more than " + elements + " array elements in all (limit)");
+  fails_quickly_with("#declare S = \"ab\"; #while (1) #declare S = concat(S, S); #end",
+                     "string longer than 1048576 bytes (limit)");
+  // deep nesting where an expression is expected, in each form that recurses
+  fails_quickly_with("sphere { 0, " + std::string(100000, '(') + "1 }",
+                     "nesting deeper than 400 levels");
+  fails_quickly_with("sphere { 0, " + std::string(100000, '-') + "1 }",
+                     "nesting deeper than 400 levels");
+  fails_quickly_with("sphere { " + std::string(100000, '<') + "1 }",
+                     "nesting deeper than 400 levels");
+  fails_quickly_with(std::string(100000, '(') + "1", "unexpected '(' at the top level");
+  EvaluateOptions tight;
+  tight.limits.tokens = 1000;
+  error = error_of("#declare I = 0; #while (I < 1000) #declare I = I + 1; #end", tight);
+  EXPECT_NE(error.find("more than 1000 tokens read (limit)"), std::string::npos) << error;
+}
+
+TEST_F(Sdl, TransformsInPovRayOrder) {
+  Scene scene = run("sphere { 0, 1 scale 2 rotate y * 90 translate x }");
+  const Object& o = scene.objects.at(0);
+  // (1,0,0) -> scale (2,0,0) -> rotate y 90 (+x to -z) -> (0,0,-2) -> translate (1,0,-2)
+  Vec3d p = o.world_from_object.point({1, 0, 0});
+  EXPECT_NEAR(p.x, 1, 1e-12);
+  EXPECT_NEAR(p.y, 0, 1e-12);
+  EXPECT_NEAR(p.z, -2, 1e-12);
+  // matrix <...> is POV-Ray's row-vector layout: the last triple translates
+  scene = run(
+      "#declare T = transform { matrix <1,0,0, 0,1,0, 0,0,1, 5,6,7> } sphere { 0, 1 transform T }");
+  p = scene.objects.at(0).world_from_object.point({0, 0, 0});
+  EXPECT_EQ(p.x, 5);
+  EXPECT_EQ(p.z, 7);
+  // a CSG's transforms reach its leaves; `inverse` in transform{} undoes
+  scene =
+      run("union { sphere { 0, 1 translate x } box { 0, 1 } translate y }"
+          "sphere { 0, 1 transform { translate z inverse } }");
+  EXPECT_EQ(scene.objects.at(0).children.at(0).world_from_object.point({0, 0, 0}).x, 1);
+  EXPECT_EQ(scene.objects.at(0).children.at(1).world_from_object.point({0, 0, 0}).y, 1);
+  EXPECT_EQ(scene.objects.at(1).world_from_object.point({0, 0, 0}).z, -1);
+}
+
+TEST_F(Sdl, TexturesInheritAndMoveWithTheObject) {
+  Scene scene =
+      run("#default { finish { ambient 0.3 } }\n"
+          "#declare F = finish { phong 1 }\n"
+          "union {\n"
+          "  sphere { 0, 1 }\n"
+          "  sphere { x, 1 pigment { rgb <0, 0, 1> } }\n"
+          "  pigment { checker rgb 1, rgb 0 scale 2 } finish { F }\n"
+          "  translate <3, 0, 0>\n"
+          "}\n"
+          "box { 0, 1 }");
+  const Object& u = scene.objects.at(0);
+  ASSERT_EQ(u.children.size(), 2u);
+  EXPECT_EQ(u.children[0].texture.pigment.pattern, Pattern::kChecker);
+  EXPECT_EQ(u.children[0].texture.finish.phong, 1);
+  EXPECT_EQ(u.children[1].texture.pigment.pattern, Pattern::kSolid);
+  EXPECT_EQ(u.children[1].texture.pigment.colour.b, 1);
+  EXPECT_EQ(u.children[1].texture.finish.ambient.r, 0.3);  // #default finish under its pigment
+  // pattern space = inverse(scale 2) then inverse(translate 3x): world (3,0,0) -> pattern origin
+  Vec3d p = u.children[0].texture.pigment.pattern_from_world.point({3, 0, 0});
+  EXPECT_NEAR(p.x, 0, 1e-12);
+  p = u.children[0].texture.pigment.pattern_from_world.point({5, 2, 0});
+  EXPECT_NEAR(p.x, 1, 1e-12);
+  EXPECT_NEAR(p.y, 1, 1e-12);
+  EXPECT_EQ(scene.objects.at(1).texture.finish.ambient.r, 0.3);  // the #default texture
+}
+
+TEST_F(Sdl, PigmentsAndMaps) {
+  Scene scene =
+      run("#declare M = color_map { [0 rgb 0] [1 rgb 1] }\n"
+          "sphere { 0, 1 pigment { gradient y color_map { M } turbulence 0.5 octaves 3"
+          "  omega 0.4 lambda 3 frequency 2 phase 0.1 sine_wave } }\n"
+          "sphere { 0, 1 pigment { bozo color_map { [0.0, 0.5 color rgb 1 color rgb 1]"
+          "  [0.5, 1.0 color rgb 0 color rgb 0] } } }\n");
+  const Pigment& g = scene.objects.at(0).texture.pigment;
+  EXPECT_EQ(g.pattern, Pattern::kGradient);
+  EXPECT_EQ(g.gradient.y, 1);
+  EXPECT_EQ(g.colour_map.size(), 2u);
+  EXPECT_NEAR(g.colour.r, 0.5, 1e-12);  // the map's mean
+  EXPECT_EQ(g.turbulence.x, 0.5);
+  EXPECT_EQ(g.octaves, 3);
+  EXPECT_EQ(g.wave, Wave::kSine);
+  EXPECT_EQ(g.frequency, 2);
+  const Pigment& b = scene.objects.at(1).texture.pigment;
+  EXPECT_EQ(b.colour_map.size(), 4u);  // the old two-colour form
+  EXPECT_NEAR(b.colour.r, 0.5, 1e-12);
+}
+
+TEST_F(Sdl, CameraLastExecutedWins) {
+  EvaluateOptions options;
+  options.image_width = 640;
+  options.image_height = 480;
+  Scene scene =
+      run("#declare Cam = camera { location <0, 1, -5> look_at 0 angle 40 "
+          "  right x * image_width / image_height }\n"
+          "#if (0) camera { location 100 } #end\n"
+          "camera { Cam rotate y * 30 }\n",
+          options);
+  ASSERT_TRUE(scene.camera);
+  const CameraStatement& c = *scene.camera;
+  EXPECT_EQ(c.location.y, 1);
+  ASSERT_TRUE(c.look_at);
+  EXPECT_EQ(*c.angle_deg, 40);
+  EXPECT_TRUE(c.right_given);
+  EXPECT_DOUBLE_EQ(c.right.x, 640.0 / 480.0);
+  EXPECT_NEAR(c.transform.vector({1, 0, 0}).z, -0.5, 1e-12);  // rotate y*30 kept
+  EXPECT_NE(error_of("#declare C = camera {} camera { C location 1 }").find("only transforms"),
+            std::string::npos);
+}
+
+TEST_F(Sdl, LightsAndGlobals) {
+  Scene scene =
+      run("global_settings { assumed_gamma 1.0 ambient_light rgb 0.5 }\n"
+          "light_source { <0, 10, 0>, rgb 1 spotlight point_at 0 radius 10 falloff 20 tightness 5"
+          "  fade_distance 2 fade_power 2 translate x }\n"
+          "light_source { 0, 1 area_light x, z, 3, 4 circular shadowless }\n"
+          "union { light_source { 0, 1 } sphere { 0, 1 } translate y }\n");
+  ASSERT_EQ(scene.lights.size(), 3u);
+  EXPECT_EQ(scene.lights[0].kind, LightKind::kSpot);
+  EXPECT_EQ(scene.lights[0].location.x, 1);
+  EXPECT_EQ(scene.lights[0].point_at.x, 1);  // transforms move point_at too
+  EXPECT_EQ(scene.lights[0].fade_power, 2);
+  EXPECT_TRUE(scene.lights[1].area);
+  EXPECT_EQ(scene.lights[1].size2, 4);
+  EXPECT_TRUE(scene.lights[1].shadowless);
+  EXPECT_EQ(scene.lights[2].location.y, 1);  // a light inside a union moves with it
+  EXPECT_EQ(*scene.assumed_gamma, 1.0);
+  EXPECT_EQ(scene.ambient_light.g, 0.5);
+}
+
+TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
+  Scene scene =
+      run("fog { distance 10 color rgb 1 }\n"
+          "text { ttf \"timrom.ttf\" \"Hi\" 1, 0 translate x }\n"
+          "#declare F = function(a) { a * 2 }\n"
+          "sphere { 0, 1 normal { bumps 0.5 } }\n"
+          "global_settings { radiosity { count 100 } }\n");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  ASSERT_GE(scene.unsupported.size(), 4u);
+  EXPECT_EQ(scene.unsupported[0].feature, "fog");
+  EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
+  EXPECT_EQ(scene.unsupported[1].feature, "text");
+  EXPECT_EQ(scene.unsupported[1].where.line, 2u);
+  EXPECT_TRUE(scene.objects[0].texture.has_normal);
+}
+
+TEST_F(Sdl, PolygonAndMeshes) {
+  // an L-shaped (concave) hexagon: 4 triangles covering area 3
+  Scene scene = run("polygon { 7, <0,0>, <2,0>, <2,1>, <1,1>, <1,2>, <0,2>, <0,0> }");
+  const Object& l = scene.objects.at(0);
+  ASSERT_EQ(l.indices.size(), 12u);
+  double area = 0;
+  for (size_t t = 0; t < l.indices.size(); t += 3) {
+    Vec3d a = l.vertices[l.indices[t]], b = l.vertices[l.indices[t + 1]],
+          c = l.vertices[l.indices[t + 2]];
+    area += 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  EXPECT_NEAR(area, 3, 1e-12);
+  scene =
+      run("mesh2 { vertex_vectors { 4, <0,0,0>, <1,0,0>, <1,1,0>, <0,1,0> }"
+          "  texture_list { 2, texture { pigment { rgb x } } texture { pigment { rgb y } } }"
+          "  face_indices { 2, <0,1,2>, 0, <0,2,3>, 1 } }\n"
+          "mesh { triangle { 0, x, y } smooth_triangle { 0, z, x, z, y, z } }");
+  const Object& m2 = scene.objects.at(0);
+  EXPECT_EQ(m2.indices.size(), 6u);
+  ASSERT_EQ(m2.triangle_textures.size(), 2u);
+  EXPECT_EQ(m2.triangle_textures[1], 1u);
+  EXPECT_EQ(m2.textures.at(1).pigment.colour.g, 1);
+  const Object& m = scene.objects.at(1);
+  EXPECT_EQ(m.vertices.size(), 6u);
+  EXPECT_EQ(m.normals.size(), 6u);
+  EXPECT_NE(error_of("mesh2 { vertex_vectors { 1, 0 } face_indices { 1, <0,1,2> } }")
+                .find("past the vertex_vectors"),
+            std::string::npos);
+}
+
+TEST_F(Sdl, ReadsDataFilesInTheSceneFolder) {
+  write("scene/data.txt", "1, <2, 3, 4>, \"five\",\n");
+  Scene scene =
+      run("#fopen F \"data.txt\" read\n"
+          "#read (F, A, V, S)\n"
+          "#if (defined(F)) #error \"the handle stays after the end\" #end\n"
+          "sphere { <A, V.z, strlen(S)>, 1 }");
+  EXPECT_EQ(scene.objects.at(0).a.x, 1);
+  EXPECT_EQ(scene.objects.at(0).a.y, 4);
+  EXPECT_EQ(scene.objects.at(0).a.z, 4);
+  scene = run("#fopen Out \"out.txt\" write #write (Out, \"x\") sphere { 0, 1 }");
+  EXPECT_EQ(scene.unsupported.at(0).feature, "#fopen for writing");
+  EXPECT_FALSE(fs::exists(root_ / "scene" / "out.txt"));
+}
+
+// The samples, when Debian's povray-examples is installed: a cut anywhere in a real scene ends
+// in a result or a located error, never a crash or a hang.
+TEST_F(Sdl, TruncatedSampleScenesFailCleanly) {
+  fs::path sample = "/usr/share/doc/povray/examples/advanced/woodbox.pov";
+  fs::path includes = "/usr/share/povray-3.7/include";
+  if (!fs::exists(sample) || !fs::exists(includes)) GTEST_SKIP() << "povray-examples not installed";
+  std::ifstream in(sample);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  int errors = 0;
+  for (size_t cut = 0; cut < text.size(); cut += 97) {
+    write("scene/scene.pov", text.substr(0, cut));
+    EvaluateOptions options;
+    options.scene_file = root_ / "scene" / "scene.pov";
+    options.library_paths = {includes};
+    try {
+      evaluate_pov(options);
+    } catch (const InputError& e) {
+      ++errors;
+      EXPECT_EQ(std::string(e.what()).find("internal"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_GT(errors, 0);
+}
+
+TEST_F(Sdl, SampleScenesEvaluate) {
+  fs::path examples = "/usr/share/doc/povray/examples";
+  fs::path includes = "/usr/share/povray-3.7/include";
+  if (!fs::exists(examples) || !fs::exists(includes))
+    GTEST_SKIP() << "povray-examples not installed";
+  for (const char* name :
+       {"advanced/woodbox.pov", "advanced/chess2.pov", "advanced/glasschess/glasschess.pov",
+        "advanced/benchmark/benchmark.pov", "language/tracevines.pov",
+        "animations/splinefollow/splinefollow.pov", "objects/mesh2.pov"}) {
+    EvaluateOptions options;
+    options.scene_file = examples / name;
+    options.library_paths = {includes};
+    Scene scene;
+    EXPECT_NO_THROW(scene = evaluate_pov(options)) << name;
+    EXPECT_FALSE(scene.objects.empty()) << name;
+    EXPECT_TRUE(scene.camera) << name;
+  }
+}
+
+}  // namespace
+}  // namespace fb::pov

@@ -13,10 +13,10 @@ namespace fb::pov::sdl {
 namespace {
 
 bool is_colour_word(const std::string& w) {
-  static const char* const kWords[] = {"color", "colour", "rgb", "rgbf", "rgbt", "rgbft", "srgb",
-                                       "srgbf", "srgbt", "srgbft", "red", "green", "blue",
-                                       "filter", "transmit", "gray", "grey"};
-  for (const char* k : kWords) {
+  static constexpr std::string_view kWords[] = {
+      "color",  "colour", "rgb",   "rgbf", "rgbt",   "rgbft",    "srgb", "srgbf", "srgbt",
+      "srgbft", "red",    "green", "blue", "filter", "transmit", "gray", "grey"};
+  for (std::string_view k : kWords) {
     if (w == k) return true;
   }
   return false;
@@ -62,8 +62,7 @@ Colour Parser::parse_colour(bool float_fills_filter_transmit) {
       unget(std::move(tok));  // the next colour of a list
       break;
     }
-    if (tok.keyword() && (w.rfind("rgb", 0) == 0 || w.rfind("srgb", 0) == 0) &&
-        is_colour_word(w)) {
+    if (tok.keyword() && (w.rfind("rgb", 0) == 0 || w.rfind("srgb", 0) == 0) && is_colour_word(w)) {
       bool srgb = w[0] == 's';
       std::string channels = w.substr(srgb ? 4 : 3);
       int dims = 3 + static_cast<int>(channels.size());
@@ -96,8 +95,8 @@ Colour Parser::parse_colour(bool float_fills_filter_transmit) {
       if (w == "transmit") c.transmit = f;
       if (w == "gray" || w == "grey") c.r = c.g = c.b = f;
       any = true;
-    } else if (!any && tok.token.kind != TokenKind::kEnd && !tok.symbol("}") &&
-               !tok.symbol("]") && !tok.symbol(",")) {
+    } else if (!any && tok.token.kind != TokenKind::kEnd && !tok.symbol("}") && !tok.symbol("]") &&
+               !tok.symbol(",")) {
       unget(std::move(tok));
       Value value = parse_expression();
       if (!value.numeric()) fail("expected a colour");
@@ -174,7 +173,7 @@ Value combine(Parser& parser, const Value& a, const Value& b, double (*op)(doubl
     return out;
   }
   out.kind = (a.kind == ValueKind::kColour || b.kind == ValueKind::kColour) ? ValueKind::kColour
-                                                                             : ValueKind::kVector;
+                                                                            : ValueKind::kVector;
   out.dims = out.kind == ValueKind::kColour ? 5 : std::max(a.dims, b.dims);
   for (int i = 0; i < out.dims; ++i) {
     double x = a.kind == ValueKind::kFloat ? a.v[0] : (i < a.dims ? a.v[i] : 0);
@@ -184,7 +183,9 @@ Value combine(Parser& parser, const Value& a, const Value& b, double (*op)(doubl
   return out;
 }
 
-double truth(bool b) { return b ? 1.0 : 0.0; }
+double truth(bool b) {
+  return b ? 1.0 : 0.0;
+}
 
 }  // namespace
 
@@ -254,26 +255,25 @@ Value Parser::parse_rvalue() {
     }
     if (w == "array") {
       std::vector<size_t> sizes;
+      double total = 1;
       while (peek().symbol("[")) {
         next();
         double n = parse_float();
         expect("]");
-        if (!(n >= 1 && n <= static_cast<double>(options_.limits.array_elements))) {
-          fail("array size " + std::to_string(static_cast<long long>(n)) + " out of range");
+        if (!(n >= 1)) fail("array size " + number_string(n) + ": an array needs at least 1");
+        total *= n;
+        if (!(total <= static_cast<double>(options_.limits.array_elements))) {
+          const std::string count =
+              total < 1e15 ? std::to_string(static_cast<uint64_t>(total)) : number_string(total);
+          fail("array of " + count + " elements: " + array_limit_message());
         }
         sizes.push_back(static_cast<size_t>(n));
       }
       if (sizes.empty()) fail("expected the array's size [n]");
-      uint64_t total = 1;
-      for (size_t s : sizes) {
-        total *= s;
-        count_array_elements(0);
-        if (total > options_.limits.array_elements) count_array_elements(total);
-      }
-      count_array_elements(total);
+      count_array_elements(static_cast<uint64_t>(total));
       auto array = std::make_shared<ArrayValue>();
       array->sizes = sizes;
-      array->elements.resize(total);
+      array->elements.resize(static_cast<size_t>(total));
       if (peek().symbol("{")) {
         // nested initialiser lists, one level per dimension
         size_t index = 0;
@@ -293,8 +293,9 @@ Value Parser::parse_rvalue() {
             }
             ++n;
           }
-          if (n != sizes[dim]) fail("array initialiser has " + std::to_string(n) +
-                                    " elements, the array " + std::to_string(sizes[dim]));
+          if (n != sizes[dim])
+            fail("array initialiser has " + std::to_string(n) + " elements, the array " +
+                 std::to_string(sizes[dim]));
         };
         fill(0);
       }
@@ -357,23 +358,32 @@ Value Parser::parse_relation() {
     Value right = parse_additive();
     if (left.kind == ValueKind::kString && right.kind == ValueKind::kString) {
       int c = left.text.compare(right.text);
-      left = Value::number(truth(op == "<" ? c < 0 : op == "<=" ? c <= 0 : op == "=" ? c == 0
-                                 : op == "!=" ? c != 0 : op == ">=" ? c >= 0 : c > 0));
+      left = Value::number(truth(op == "<"    ? c < 0
+                                 : op == "<=" ? c <= 0
+                                 : op == "="  ? c == 0
+                                 : op == "!=" ? c != 0
+                                 : op == ">=" ? c >= 0
+                                              : c > 0));
       continue;
     }
     if (left.kind != ValueKind::kFloat || right.kind != ValueKind::kFloat) {
       if (left.numeric() && right.numeric() && (op == "=" || op == "!=")) {
         Value diff = combine(*this, left, right, [](double a, double b) { return a - b; });
         bool equal = true;
-        for (int i = 0; i < diff.dims; ++i) equal = equal && std::abs(diff.v[i]) < 1e-10;
+        for (int i = 0; i < diff.dims; ++i)
+          equal = equal && std::abs(diff.v[i]) < 1e-10;
         left = Value::number(truth(op == "=" ? equal : !equal));
         continue;
       }
       fail("comparison '" + op + "' needs floats");
     }
     double a = left.v[0], b = right.v[0];
-    left = Value::number(truth(op == "<" ? a < b : op == "<=" ? a <= b : op == "=" ? a == b
-                               : op == "!=" ? a != b : op == ">=" ? a >= b : a > b));
+    left = Value::number(truth(op == "<"    ? a < b
+                               : op == "<=" ? a <= b
+                               : op == "="  ? a == b
+                               : op == "!=" ? a != b
+                               : op == ">=" ? a >= b
+                                            : a > b));
   }
 }
 
@@ -408,12 +418,14 @@ Value Parser::parse_multiplicative() {
 }
 
 Value Parser::parse_unary() {
+  Nesting guard(*this);  // `- - - ... 1` recurses here, not through parse_expression
   Tok tok = next();
   if (tok.symbol("-") || tok.symbol("+")) {
     Value value = parse_unary();
     if (!value.numeric()) fail("expected a number after '" + tok.token.text + "'");
     if (tok.symbol("-")) {
-      for (int i = 0; i < value.dims; ++i) value.v[i] = -value.v[i];
+      for (int i = 0; i < value.dims; ++i)
+        value.v[i] = -value.v[i];
     }
     return value;
   }
@@ -450,7 +462,8 @@ Value Parser::parse_postfix() {
       // a float promotes to a vector of any size, so every component is the float
       continue;
     }
-    if (index >= value.dims) fail("'." + m + "' is past the vector's " + std::to_string(value.dims) + " components");
+    if (index >= value.dims)
+      fail("'." + m + "' is past the vector's " + std::to_string(value.dims) + " components");
     value = Value::number(value.v[index]);
   }
   return value;
@@ -476,11 +489,16 @@ Value Parser::index_array(const Value& array_value) {
 Value Parser::parse_primary() {
   Tok tok = next();
   switch (tok.token.kind) {
-    case TokenKind::kNumber: return Value::number(tok.token.number);
-    case TokenKind::kString: return Value::string(tok.token.text);
-    case TokenKind::kEnd: fail("unexpected end of file in an expression");
-    case TokenKind::kDirective: fail("unexpected #" + tok.token.text + " in an expression");
-    default: break;
+    case TokenKind::kNumber:
+      return Value::number(tok.token.number);
+    case TokenKind::kString:
+      return Value::string(tok.token.text);
+    case TokenKind::kEnd:
+      fail("unexpected end of file in an expression");
+    case TokenKind::kDirective:
+      fail("unexpected #" + tok.token.text + " in an expression");
+    default:
+      break;
   }
   if (tok.symbol("(")) {
     Value value = parse_expression();
@@ -516,7 +534,8 @@ Value Parser::parse_primary() {
     if (value.dims == 1) return Value::number(value.v[0]);
     return value;
   }
-  if (tok.token.kind == TokenKind::kSymbol) fail("unexpected '" + tok.token.text + "' in an expression");
+  if (tok.token.kind == TokenKind::kSymbol)
+    fail("unexpected '" + tok.token.text + "' in an expression");
   if (tok.identifier) {
     const Value& value = tok.value;
     if (value.kind == ValueKind::kFunction && peek().symbol("(")) {

@@ -8,15 +8,16 @@
 namespace fb::pov::sdl {
 namespace {
 
-const char* const kSupported[] = {"sphere", "box", "plane", "cylinder", "cone", "torus", "disc",
-                                  "triangle", "smooth_triangle", "mesh", "mesh2", "polygon",
-                                  "object", "union", "merge", "difference", "intersection",
-                                  "light_source", "light_group"};
+constexpr std::string_view kSupported[] = {
+    "sphere",     "box",          "plane",        "cylinder",        "cone",
+    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
+    "mesh2",      "polygon",      "object",       "union",           "merge",
+    "difference", "intersection", "light_source", "light_group"};
 // parsed and reported: their geometry needs code the renderer does not have yet
-const char* const kUnsupported[] = {
-    "text", "height_field", "blob", "lathe", "sor", "prism", "superellipsoid", "isosurface",
-    "quadric", "quartic", "poly", "cubic", "polynomial", "julia_fractal", "parametric",
-    "sphere_sweep", "bicubic_patch", "ovus", "lemon", "fractal"};
+constexpr std::string_view kUnsupported[] = {
+    "text",       "height_field", "blob",          "lathe", "sor",   "prism",      "superellipsoid",
+    "isosurface", "quadric",      "quartic",       "poly",  "cubic", "polynomial", "julia_fractal",
+    "parametric", "sphere_sweep", "bicubic_patch", "ovus",  "lemon", "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -25,13 +26,16 @@ bool is_csg(Shape s) {
 
 void transform_object(Object& o, const Matrix& m, const Matrix& inverse) {
   if (is_csg(o.shape)) {
-    for (Object& child : o.children) transform_object(child, m, inverse);
+    for (Object& child : o.children)
+      transform_object(child, m, inverse);
   } else {
     o.world_from_object = m * o.world_from_object;
   }
   if (o.texture_given) transform_texture(o.texture, inverse);
-  for (Texture& t : o.textures) transform_texture(t, inverse);
-  for (Object& clip : o.clipped_by) transform_object(clip, m, inverse);
+  for (Texture& t : o.textures)
+    transform_texture(t, inverse);
+  for (Object& clip : o.clipped_by)
+    transform_object(clip, m, inverse);
 }
 
 void transform_node(Node& node, const Matrix& m) {
@@ -63,7 +67,9 @@ void inherit(Object& o, const Texture* texture, const std::optional<Interior>& i
   }
 }
 
-Vec3d sub(Vec3d a, Vec3d b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3d sub(Vec3d a, Vec3d b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 Vec3d cross(Vec3d a, Vec3d b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
@@ -89,7 +95,8 @@ void triangulate_loop(const std::vector<Vec3d>& points, uint32_t first, uint32_t
     return {p.x, p.y};
   };
   std::vector<uint32_t> ring(count);
-  for (uint32_t i = 0; i < count; ++i) ring[i] = i;
+  for (uint32_t i = 0; i < count; ++i)
+    ring[i] = i;
   double area = 0;
   for (uint32_t i = 0; i < count; ++i) {
     auto [ax, ay] = p2(i);
@@ -128,17 +135,18 @@ void triangulate_loop(const std::vector<Vec3d>& points, uint32_t first, uint32_t
     }
     if (!clipped) break;
   }
-  for (size_t i = 1; i + 1 < ring.size(); ++i) emit(ring[0], ring[i], ring[i + 1]);
+  for (size_t i = 1; i + 1 < ring.size(); ++i)
+    emit(ring[0], ring[i], ring[i + 1]);
 }
 
 }  // namespace
 
 bool Parser::is_object_keyword(const Tok& tok) const {
   if (!tok.keyword()) return false;
-  for (const char* w : kSupported) {
+  for (std::string_view w : kSupported) {
     if (tok.token.text == w) return true;
   }
-  for (const char* w : kUnsupported) {
+  for (std::string_view w : kUnsupported) {
     if (tok.token.text == w) return true;
   }
   return false;
@@ -148,7 +156,7 @@ Node Parser::parse_object(const Tok& keyword) {
   Nesting guard(*this);
   const std::string& w = keyword.token.text;
   SourceLocation where = location_of(keyword);
-  for (const char* u : kUnsupported) {
+  for (std::string_view u : kUnsupported) {
     if (w == u) {
       unsupported(w, where);
       skip_block();
@@ -230,7 +238,8 @@ Node Parser::parse_object(const Tok& keyword) {
   } else if (w == "polygon") {
     o.shape = Shape::kMesh;
     double n = parse_count();
-    if (!(n >= 3 && n <= static_cast<double>(options_.limits.objects))) fail("polygon needs at least 3 points");
+    if (!(n >= 3 && n <= static_cast<double>(options_.limits.objects)))
+      fail("polygon needs at least 3 points");
     count_objects(static_cast<uint64_t>(n));
     std::vector<Vec3d> points;
     for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
@@ -271,8 +280,10 @@ Node Parser::parse_object(const Tok& keyword) {
     return node;
   } else {
     if (w == "light_group") unsupported("light_group (its lights light the whole scene)", where);
-    o.shape = w == "union" ? Shape::kUnion : w == "merge" ? Shape::kMerge
-              : w == "intersection" ? Shape::kIntersection : Shape::kDifference;
+    o.shape = w == "union"          ? Shape::kUnion
+              : w == "merge"        ? Shape::kMerge
+              : w == "intersection" ? Shape::kIntersection
+                                    : Shape::kDifference;
     for (;;) {
       Tok tok = next();
       if (!is_object_keyword(tok)) {
@@ -426,7 +437,8 @@ void Parser::parse_mesh2(Object& o) {
         // optional texture indices after the face: one, or one per corner
         accept(",");
         const Tok& after = peek();
-        if (after.symbol("<") || after.symbol("}") || after.token.kind == TokenKind::kDirective) continue;
+        if (after.symbol("<") || after.symbol("}") || after.token.kind == TokenKind::kDirective)
+          continue;
         double t = parse_float();
         if (!(t >= 0 && t < 4294967295.0)) fail("bad mesh2 texture index");
         o.triangle_textures.resize(o.indices.size() / 3 - 1, 0);
@@ -453,10 +465,12 @@ void Parser::parse_mesh2(Object& o) {
     if (t >= o.textures.size()) fail("mesh2 texture index past the texture_list");
   }
   for (uint32_t i : o.indices) {
-    if (i >= o.vertices.size()) fail("mesh2 face index " + std::to_string(i) + " past the vertex_vectors");
+    if (i >= o.vertices.size())
+      fail("mesh2 face index " + std::to_string(i) + " past the vertex_vectors");
   }
   if (!normals.empty() && !normal_indices.empty()) {
-    if (normal_indices.size() != o.indices.size()) fail("mesh2 normal_indices and face_indices differ in count");
+    if (normal_indices.size() != o.indices.size())
+      fail("mesh2 normal_indices and face_indices differ in count");
     // one normal per corner: corners become vertices of their own
     std::vector<Vec3d> vertices, corner_normals;
     for (size_t i = 0; i < o.indices.size(); ++i) {
@@ -599,7 +613,8 @@ void Parser::emit(Node node) {
       o.texture.where = o.where;
       o.texture_given = true;
     }
-    for (Object& child : o.children) fill(child);
+    for (Object& child : o.children)
+      fill(child);
   };
   scene_.lights.insert(scene_.lights.end(), node.lights.begin(), node.lights.end());
   if (node.object) {

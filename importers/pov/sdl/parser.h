@@ -6,12 +6,13 @@
 #pragma once
 
 #include <array>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <variant>
 #include <vector>
@@ -50,7 +51,17 @@ struct ArrayValue;
 struct ReadFile;
 
 enum class ValueKind {
-  kNone, kFloat, kVector, kColour, kString, kArray, kItem, kMacro, kFunction, kOpaque, kFile
+  kNone,
+  kFloat,
+  kVector,
+  kColour,
+  kString,
+  kArray,
+  kItem,
+  kMacro,
+  kFunction,
+  kOpaque,
+  kFile
 };
 
 struct Value {
@@ -77,7 +88,8 @@ struct Value {
     value.kind = ValueKind::kVector;
     value.dims = static_cast<int>(c.size());
     int i = 0;
-    for (double d : c) value.v[i++] = d;
+    for (double d : c)
+      value.v[i++] = d;
     return value;
   }
   static Value colour(const Colour& c) {
@@ -117,17 +129,28 @@ struct ReadFile {
   size_t pos = 0;
 };
 
+// Where a token was read: its file's name (owned by the parser's file cache, so every token can
+// carry it without copying the string) and line and column.
+struct Place {
+  const std::string* file = nullptr;
+  uint32_t line = 0, column = 0;
+  SourceLocation location() const { return {file ? *file : std::string(), line, column}; }
+};
+
 // A token with the value of the identifier it names, looked up when it was read (a macro's
 // locals are gone by the time its caller uses the result).
 struct Tok {
   Token token;
   bool identifier = false;
   Value value;
-  std::string file;  // file name of the token, for locations
+  const std::string* file = nullptr;  // the name of the token's file, for locations
 
-  bool is(TokenKind kind, const char* text) const { return token.kind == kind && token.text == text; }
-  bool symbol(const char* text) const { return is(TokenKind::kSymbol, text); }
-  bool word(const char* text) const { return !identifier && is(TokenKind::kWord, text); }
+  // string_view: the literal's length is known, so most comparisons end at the size
+  bool is(TokenKind kind, std::string_view text) const {
+    return token.kind == kind && token.text == text;
+  }
+  bool symbol(std::string_view text) const { return is(TokenKind::kSymbol, text); }
+  bool word(std::string_view text) const { return !identifier && is(TokenKind::kWord, text); }
   bool keyword() const { return !identifier && token.kind == TokenKind::kWord; }
 };
 
@@ -137,14 +160,14 @@ class Parser {
   Scene run();
 
   // ---- token stream (stream.cpp) ----
-  Tok next();                  // the next token, directives executed, macros expanded
-  const Tok& peek();           // the next token; a directive not yet executed shows as kDirective
-  void unget(Tok tok);         // push back one token
+  Tok next();           // the next token, directives executed, macros expanded
+  const Tok& peek();    // the next token; a directive not yet executed shows as kDirective
+  void unget(Tok tok);  // push back one token
   void expect(const char* symbol);
   bool accept(const char* symbol);  // consumes `symbol` if it is next
   [[noreturn]] void fail(const std::string& what) const;
   [[noreturn]] void fail_at(const SourceLocation& where, const std::string& what) const;
-  SourceLocation here() const { return last_; }
+  SourceLocation here() const { return last_.location(); }
   SourceLocation location_of(const Tok& tok) const;
   std::string chain() const;  // " (included from ...)" for messages
   void skip_block();          // a balanced { ... } (the '{' not yet read), directives executed
@@ -154,17 +177,19 @@ class Parser {
 
   // ---- directives (directives.cpp) ----
   void directive(const Token& token);
+  EvaluationCounts& counts() { return scene_.counts; }
 
   // ---- expressions (expressions.cpp) ----
   Value parse_expression();
-  Value parse_rvalue();  // anything #declare can hold
+  Value parse_rvalue();                   // anything #declare can hold
   Value index_array(const Value& array);  // after an array identifier: [i][j]...
   double parse_float();
   double parse_count();
   Vec3d parse_vector();
   Value parse_numeric(int dims);  // a float or vector promoted to `dims` components
   bool parse_bool_option();
-  bool starts_value(const Tok& tok) const;  // a number, vector or colour starts at `tok`  // an optional boolean after a flag keyword (`hollow on`)
+  bool starts_value(const Tok& tok) const;  // a number, vector or colour starts at `tok`  // an
+                                            // optional boolean after a flag keyword (`hollow on`)
   Colour parse_colour(bool float_fills_filter_transmit = true);
   bool starts_colour(const Tok& tok) const;
 
@@ -174,12 +199,12 @@ class Parser {
   Texture parse_texture();
   Interior parse_interior();
   MaterialValue parse_material();
-  ColourMap parse_colour_map(bool pigment_map);  // after colour_map / pigment_map
+  ColourMap parse_colour_map(bool pigment_map);      // after colour_map / pigment_map
   Pigment parse_pigment_items(const char* closing);  // a pigment's body up to `closing`
   Texture parse_texture_items(const char* closing);
   void parse_pattern_arguments(const std::string& pattern);
   std::optional<Matrix> parse_transform_item(const Tok& tok);  // translate/rotate/.../transform
-  Matrix parse_transform_block();  // after `transform`
+  Matrix parse_transform_block();                              // after `transform`
   const Texture& default_texture() const { return default_texture_; }
 
   // ---- objects (objects.cpp) ----
@@ -203,9 +228,9 @@ class Parser {
     std::shared_ptr<TokenFile> file;
     size_t pos = 0;
     bool macro = false;
-    std::string from;      // "included from a.pov:3:1" / "in macro M called from a.pov:9:5"
-    size_t cond_base = 0;  // conds_ size when the frame began
-    size_t scope = 0;      // scopes_ index it pushed
+    std::string from;              // "included from a.pov:3:1" / "in macro M called from a.pov:9:5"
+    size_t cond_base = 0;          // conds_ size when the frame began
+    size_t scope = 0;              // scopes_ index it pushed
     std::filesystem::path folder;  // include: the folder it was found in
     // macro parameters passed by reference: (parameter, caller's identifier)
     std::vector<std::pair<std::string, std::string>> by_reference;
@@ -213,10 +238,10 @@ class Parser {
   enum class CondKind { kIf, kWhile, kFor, kSwitch };
   struct Cond {
     CondKind kind = CondKind::kIf;
-    size_t loop_pos = 0;      // kWhile: the #while token; kFor: first body token
-    std::string variable;     // kFor
+    size_t loop_pos = 0;       // kWhile: the #while token; kFor: first body token
+    std::string variable;      // kFor
     double end = 0, step = 1;  // kFor
-    double switch_value = 0;  // kSwitch
+    double switch_value = 0;   // kSwitch
     bool switch_running = false;
   };
 
@@ -243,6 +268,7 @@ class Parser {
   uint64_t next_random(size_t stream);
   size_t new_random_stream(double seed);
   void count_array_elements(uint64_t n);
+  std::string array_limit_message() const;
   void check_string(const std::string& s);
   const EvaluateOptions& options() const { return options_; }
   int nesting = 0;  // expression/block recursion, bounded so that deep nesting cannot overflow
@@ -260,6 +286,7 @@ class Parser {
   int vector_level_ = -1;  // expression nesting at which '>' closes a vector literal
 
   // directives.cpp
+  void run_directive(const Token& token);
   void skip_to_branch(bool from_if_start);
   void skip_levels(int levels);
   bool parse_condition();
@@ -279,11 +306,14 @@ class Parser {
   std::vector<std::unordered_map<std::string, Value>> scopes_;
   std::optional<Tok> pushback_;
   Tok peeked_directive_;
-  SourceLocation last_;
+  Place last_;
   std::map<std::string, std::shared_ptr<TokenFile>> file_cache_;
   std::vector<uint32_t> random_streams_;
   Texture default_texture_;
-  uint64_t tokens_ = 0, loop_iterations_ = 0, array_elements_ = 0, objects_ = 0;
+  uint32_t macro_depth_ = 0, include_depth_ = 0;  // macro and include frames open
+  // frames_.size() when the innermost running directive began (0: none): its expression ends
+  // with the file it is written in.
+  size_t directive_frames_ = 0;
 };
 
 // RAII bound on recursion depth (expressions in parentheses, nested blocks).
@@ -298,7 +328,8 @@ class Nesting {
 
 Colour to_colour(const Value& value, bool float_fills_filter_transmit);
 std::string number_string(double value);  // for messages
-// Moves a texture's patterns with a transform applied after it: `inverse` is the transform's inverse.
+// Moves a texture's patterns with a transform applied after it: `inverse` is the transform's
+// inverse.
 void transform_texture(Texture& texture, const Matrix& inverse);
 
 }  // namespace fb::pov::sdl

@@ -1,5 +1,6 @@
 // The token stream: frames for the scene file, includes and macro calls; identifiers resolved as
 // they are read; located errors with the include chain.
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -20,6 +21,8 @@ Nesting::Nesting(Parser& parser) : parser_(parser) {
     --parser_.nesting;
     parser_.fail("nesting deeper than 400 levels");
   }
+  EvaluationCounts& counts = parser_.counts();
+  counts.nesting = std::max(counts.nesting, static_cast<uint32_t>(parser_.nesting));
 }
 
 Parser::Parser(const EvaluateOptions& options) : options_(options) {
@@ -88,22 +91,36 @@ std::optional<std::filesystem::path> Parser::resolve_include(const std::string& 
 }
 
 std::string Parser::chain() const {
-  std::string text;
+  std::vector<const std::string*> links;  // innermost first
   for (size_t i = frames_.size(); i-- > 1;) {
-    if (frames_[i].from.empty()) continue;
-    text += text.empty() ? " (" : ", ";
-    text += frames_[i].from;
+    if (!frames_[i].from.empty()) links.push_back(&frames_[i].from);
+  }
+  // A runaway recursion would repeat one link hundreds of times: the innermost few, how many are
+  // left out, and the outermost, which names the place in the scene that started it.
+  constexpr size_t kInnermost = 3;
+  std::string text;
+  for (size_t i = 0; i < links.size(); ++i) {
+    text += i == 0 ? " (" : ", ";
+    if (i == kInnermost && links.size() > kInnermost + 2) {
+      text += "... " + std::to_string(links.size() - kInnermost - 1) + " more, ";
+      i = links.size() - 1;
+    }
+    text += *links[i];
   }
   return text.empty() ? text : text + ")";
 }
 
-void Parser::fail(const std::string& what) const { fail_at(last_, what); }
+void Parser::fail(const std::string& what) const {
+  fail_at(here(), what);
+}
 
 void Parser::fail_at(const SourceLocation& where, const std::string& what) const {
   throw_input(where.text(), "", what + chain());
 }
 
-void Parser::warn(const std::string& what) { scene_.warnings.push_back(last_.text() + ": " + what); }
+void Parser::warn(const std::string& what) {
+  scene_.warnings.push_back(here().text() + ": " + what);
+}
 
 void Parser::unsupported(const std::string& feature, const SourceLocation& where) {
   scene_.unsupported.push_back({feature, where});
@@ -111,7 +128,7 @@ void Parser::unsupported(const std::string& feature, const SourceLocation& where
 
 SourceLocation Parser::location_of(const Tok& tok) const {
   SourceLocation where;
-  where.file = tok.file;
+  if (tok.file) where.file = *tok.file;
   where.line = tok.token.line;
   where.column = tok.token.column;
   return where;
@@ -126,13 +143,13 @@ Token Parser::raw_next() {
   Frame& frame = frames_.back();
   const Token& token = frame.file->tokens[frame.pos];
   if (token.kind != TokenKind::kEnd) ++frame.pos;
-  last_ = {frame.file->name, token.line, token.column};
+  last_ = {&frame.file->name, token.line, token.column};
   count_token();
   return token;
 }
 
 void Parser::count_token() {
-  if (++tokens_ > options_.limits.tokens) {
+  if (++scene_.counts.tokens > options_.limits.tokens) {
     fail("more than " + std::to_string(options_.limits.tokens) + " tokens read (limit)");
   }
 }
@@ -149,7 +166,7 @@ Value* Parser::lookup(const std::string& name) {
 Tok Parser::resolve(const Token& token) {
   Tok tok;
   tok.token = token;
-  tok.file = frames_.back().file->name;
+  tok.file = &frames_.back().file->name;
   if (token.kind == TokenKind::kWord) {
     if (Value* value = lookup(token.text)) {
       tok.identifier = true;
@@ -162,10 +179,12 @@ Tok Parser::resolve(const Token& token) {
 // End of an include file: back to the includer. The scene file's end stays.
 bool Parser::pop_finished_frame() {
   Frame& frame = frames_.back();
-  if (frames_.size() == 1 || frame.macro) return false;
+  // a directive's expression never reads on into the includer
+  if (frames_.size() == 1 || frame.macro || frames_.size() == directive_frames_) return false;
   if (conds_.size() > frame.cond_base) fail("an #if, #while or #switch is missing its #end");
   scopes_.resize(frame.scope);
   frames_.pop_back();
+  --include_depth_;
   return true;
 }
 
@@ -186,7 +205,7 @@ Tok Parser::next() {
   if (pushback_) {
     Tok tok = std::move(*pushback_);
     pushback_.reset();
-    last_ = location_of(tok);
+    last_ = {tok.file, tok.token.line, tok.token.column};
     return tok;
   }
   for (;;) {
@@ -195,14 +214,16 @@ Tok Parser::next() {
     if (token.kind == TokenKind::kEnd) {
       if (frame.macro) fail("macro body without #end");
       if (pop_finished_frame()) continue;
-      if (!conds_.empty()) fail("an #if, #while or #switch is missing its #end");
+      if (frames_.size() == 1 && !conds_.empty()) {
+        fail("an #if, #while or #switch is missing its #end");
+      }
       Tok end = resolve(token);
-      last_ = location_of(end);
+      last_ = {end.file, end.token.line, end.token.column};
       return end;
     }
     ++frame.pos;
     count_token();
-    last_ = {frame.file->name, token.line, token.column};
+    last_ = {&frame.file->name, token.line, token.column};
     if (token.kind == TokenKind::kDirective) {
       directive(token);
       unread_pushback();
@@ -220,7 +241,7 @@ Tok Parser::next() {
       if (after.kind == TokenKind::kSymbol && after.text == "[") {
         Value array = std::move(tok.value);
         tok.value = index_array(array);
-        last_ = location_of(tok);
+        last_ = {tok.file, tok.token.line, tok.token.column};
       }
     }
     return tok;
@@ -236,14 +257,14 @@ const Tok& Parser::peek() {
       if (transparent_directive(token)) {
         ++frame.pos;
         count_token();
-        last_ = {frame.file->name, token.line, token.column};
+        last_ = {&frame.file->name, token.line, token.column};
         directive(token);
         unread_pushback();
         continue;
       }
       peeked_directive_ = Tok{};
       peeked_directive_.token = token;
-      peeked_directive_.file = frame.file->name;
+      peeked_directive_.file = &frame.file->name;
       return peeked_directive_;
     }
     if (token.kind == TokenKind::kEnd && pop_finished_frame()) continue;
@@ -254,11 +275,11 @@ const Tok& Parser::peek() {
         peeked_directive_ = Tok{};
         peeked_directive_.token = token;
         peeked_directive_.token.kind = TokenKind::kDirective;
-        peeked_directive_.file = frame.file->name;
+        peeked_directive_.file = &frame.file->name;
         return peeked_directive_;
       }
     }
-    SourceLocation keep = last_;
+    Place keep = last_;
     pushback_ = next();
     last_ = keep;
     return *pushback_;
@@ -275,7 +296,7 @@ void Parser::unread_pushback() {
     return;
   }
   Frame& frame = frames_.back();
-  if (frame.pos == 0 || frame.file->name != pushback_->file) return;
+  if (frame.pos == 0 || &frame.file->name != pushback_->file) return;
   const Token& previous = frame.file->tokens[frame.pos - 1];
   if (previous.line != pushback_->token.line || previous.column != pushback_->token.column) return;
   --frame.pos;
@@ -289,11 +310,16 @@ void Parser::unget(Tok tok) {
 
 static std::string describe(const Tok& tok) {
   switch (tok.token.kind) {
-    case TokenKind::kEnd: return "the end of the file";
-    case TokenKind::kNumber: return "a number";
-    case TokenKind::kString: return "a string";
-    case TokenKind::kDirective: return "#" + tok.token.text;
-    default: return "'" + tok.token.text + "'";
+    case TokenKind::kEnd:
+      return "the end of the file";
+    case TokenKind::kNumber:
+      return "a number";
+    case TokenKind::kString:
+      return "a string";
+    case TokenKind::kDirective:
+      return "#" + tok.token.text;
+    default:
+      return "'" + tok.token.text + "'";
   }
 }
 
@@ -321,17 +347,11 @@ void Parser::skip_block() {
 }
 
 void Parser::call_macro(const Token& name, std::shared_ptr<const Macro> macro) {
-  if (frames_.size() > options_.limits.macro_depth + options_.limits.include_depth + 1) {
+  if (macro_depth_ >= options_.limits.macro_depth) {
     fail("macro calls nested deeper than " + std::to_string(options_.limits.macro_depth) +
          " (limit)");
   }
-  size_t macro_frames = 0;
-  for (const Frame& f : frames_) macro_frames += f.macro;
-  if (macro_frames >= options_.limits.macro_depth) {
-    fail("macro calls nested deeper than " + std::to_string(options_.limits.macro_depth) +
-         " (limit)");
-  }
-  std::string call_site = last_.text();
+  std::string call_site = here().text();
   std::unordered_map<std::string, Value> locals;
   std::vector<std::pair<std::string, std::string>> by_reference;
   expect("(");
@@ -346,7 +366,8 @@ void Parser::call_macro(const Token& name, std::shared_ptr<const Macro> macro) {
       if (a.kind == TokenKind::kWord && b.kind == TokenKind::kSymbol &&
           (b.text == "," || b.text == ")")) {
         Value* found = lookup(a.text);
-        if (found && found->kind != ValueKind::kMacro) by_reference.emplace_back(macro->params[i], a.text);
+        if (found && found->kind != ValueKind::kMacro)
+          by_reference.emplace_back(macro->params[i], a.text);
       }
     }
     locals[macro->params[i]] = parse_rvalue();
@@ -363,12 +384,15 @@ void Parser::call_macro(const Token& name, std::shared_ptr<const Macro> macro) {
   frame.by_reference = std::move(by_reference);
   scopes_.push_back(std::move(locals));
   frames_.push_back(std::move(frame));
+  ++macro_depth_;
+  counts().macro_depth = std::max(counts().macro_depth, macro_depth_);
   (void)name;
 }
 
 void Parser::end_macro() {
   Frame frame = std::move(frames_.back());
   frames_.pop_back();
+  --macro_depth_;
   std::unordered_map<std::string, Value> locals = std::move(scopes_[frame.scope]);
   scopes_.resize(frame.scope);
   for (const auto& [param, caller] : frame.by_reference) {
@@ -402,17 +426,21 @@ void Parser::check_string(const std::string& s) {
   }
 }
 
+std::string Parser::array_limit_message() const {
+  return "more than " + std::to_string(options_.limits.array_elements) +
+         " array elements in all (limit)";
+}
+
 void Parser::count_array_elements(uint64_t n) {
-  array_elements_ += n;
-  if (n > options_.limits.array_elements || array_elements_ > options_.limits.array_elements) {
-    fail("more than " + std::to_string(options_.limits.array_elements) +
-         " array elements (limit)");
+  if (n > options_.limits.array_elements - scene_.counts.array_elements) {
+    fail(array_limit_message());
   }
+  scene_.counts.array_elements += n;
 }
 
 void Parser::count_objects(uint64_t n) {
-  objects_ += n;
-  if (n > options_.limits.objects || objects_ > options_.limits.objects) {
+  scene_.counts.objects += n;
+  if (n > options_.limits.objects || scene_.counts.objects > options_.limits.objects) {
     fail("more than " + std::to_string(options_.limits.objects) + " objects or triangles (limit)");
   }
 }

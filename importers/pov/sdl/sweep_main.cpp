@@ -1,8 +1,10 @@
 // Evaluates POV-Ray scenes with the SDL evaluator and prints one line per scene: ok or the error,
-// the objects, lights and unsupported features found. Used for the sample-scene count in
-// docs/pov.md: `filmback_pov_sdl_sweep -L /usr/share/povray-3.7/include scene.pov ...`.
+// the objects, lights, what the evaluation used (EvaluationCounts) and the unsupported features
+// found. Used for the sample-scene count in
+// docs/pov.md: `filmback_pov_sdl_sweep [-frame N] -L /usr/share/povray-3.7/include scene.pov ...`.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,6 +18,8 @@ int main(int argc, char** argv) {
     std::string arg = argv[i];
     if (arg == "-L" && i + 1 < argc) {
       base.library_paths.push_back(argv[++i]);
+    } else if (arg == "-frame" && i + 1 < argc) {
+      base.frame_number = std::atof(argv[++i]);
     } else {
       scenes.push_back(arg);
     }
@@ -30,11 +34,22 @@ int main(int argc, char** argv) {
       double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       std::map<std::string, int> features;
-      for (const auto& u : result.unsupported) ++features[u.feature];
+      for (const auto& u : result.unsupported)
+        ++features[u.feature];
       std::string list;
-      for (const auto& [name, count] : features) list += " " + name;
-      std::printf("ok %s: %zu objects, %zu lights, %.2f s, unsupported:%s\n", scene.c_str(),
-                  result.objects.size(), result.lights.size(), seconds, list.c_str());
+      for (const auto& [name, count] : features)
+        list += " " + name;
+      const fb::pov::EvaluationCounts& used = result.counts;
+      std::printf(
+          "ok %s: %zu objects, %zu lights, %.2f s, used: %llu tokens, %llu loop iterations, "
+          "%llu array elements, %llu objects, include depth %u, macro depth %u, nesting %u, "
+          "unsupported:%s\n",
+          scene.c_str(), result.objects.size(), result.lights.size(), seconds,
+          static_cast<unsigned long long>(used.tokens),
+          static_cast<unsigned long long>(used.loop_iterations),
+          static_cast<unsigned long long>(used.array_elements),
+          static_cast<unsigned long long>(used.objects), used.include_depth, used.macro_depth,
+          used.nesting, list.c_str());
       ++ok;
     } catch (const std::exception& e) {
       std::printf("FAIL %s: %s\n", scene.c_str(), e.what());
