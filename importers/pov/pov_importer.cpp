@@ -26,14 +26,28 @@ bool is_object(const std::string& feature) {
   return false;
 }
 
-// Once per feature, at the first place it appears.
+// SDL functions the evaluator answers with zeros: what the scene computes with them (often where
+// it places objects) is wrong, so the geometry counts as incomplete too.
+bool is_zero_function(const std::string& feature) {
+  static const char* kFunctions[] = {"trace",      "inside",   "min_extent",
+                                     "max_extent", "function", "spline"};
+  for (const char* name : kFunctions)
+    if (feature == name) return true;
+  return false;
+}
+
+// Once per feature, at the first place it appears (and where an unsupported object declared
+// elsewhere was placed).
 void report_unsupported(const pov::Scene& pov, Diagnostics& diagnostics) {
   std::map<std::string, bool> seen;
   for (const pov::Unsupported& u : pov.unsupported) {
     if (!seen.emplace(u.feature, true).second) continue;
-    diagnostics.warn(u.where.text() + ": unsupported " +
-                     (is_object(u.feature) ? "object '" + u.feature + "': not rendered"
-                                           : "feature '" + u.feature + "': ignored"));
+    std::string what = is_object(u.feature) ? "object '" + u.feature + "': not rendered"
+                       : is_zero_function(u.feature)
+                           ? "function '" + u.feature + "': evaluated as zero"
+                           : "feature '" + u.feature + "': ignored";
+    if (u.placed) what += " (placed at " + u.placed->text() + ")";
+    diagnostics.warn(u.where.text() + ": unsupported " + what);
   }
   for (const std::string& warning : pov.warnings)
     diagnostics.warn(warning);

@@ -225,6 +225,9 @@ struct SkySphere {
 struct Unsupported {
   std::string feature;  // "media", "photons", "isosurface", ...
   SourceLocation where;
+  // An unsupported object is reported when it is placed in the scene: the top-level statement
+  // that placed it, when that is not where it was written (`object { Declared }`, a CSG).
+  std::optional<SourceLocation> placed;
 };
 
 // What evaluating the scene used, to compare with pov::EvaluateLimits (docs/pov.md "The

@@ -22,8 +22,10 @@ from pathlib import Path
 
 EXAMPLES = Path("/usr/share/doc/povray/examples")
 # Warnings the POV-Ray importer prints (importers/pov/pov_importer.cpp): an object left out or
-# replaced makes the geometry incomplete; a feature "ignored" only changes the look.
-UNSUPPORTED = re.compile(r"unsupported (object|feature) '([^']+)'")
+# replaced, or a function evaluated as zero (trace(), a user function: what the scene computes
+# with it, often where objects go, is wrong), makes the geometry incomplete; a feature "ignored"
+# only changes the look.
+UNSUPPORTED = re.compile(r"unsupported (object|function|feature) '([^']+)'")
 
 
 def sample_scenes(every):
@@ -49,7 +51,7 @@ def run_scene(filmback, scene, args, scratch):
         return {"status": "timeout", "seconds": args.timeout, "unsupported": "", "geometry": ""}
     seconds = time.monotonic() - start
     found = UNSUPPORTED.findall(result.stderr)
-    objects = sorted({name for kind, name in found if kind == "object"})
+    objects = sorted({name for kind, name in found if kind in ("object", "function")})
     features = sorted({name for kind, name in found if kind == "feature"})
     row = {"seconds": round(seconds, 2),
            "unsupported": " ".join(objects + features),

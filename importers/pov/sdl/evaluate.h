@@ -17,9 +17,9 @@ namespace fb::pov {
 // need (docs/pov.md "The language" has the measured counts).
 struct EvaluateLimits {
   uint32_t include_depth = 32;
-  uint64_t loop_iterations = 1'000'000;  // #while/#for iterations, all loops together
+  uint64_t loop_iterations = 500'000;    // #while/#for iterations, all loops together
   uint32_t macro_depth = 256;            // nested macro calls
-  uint64_t tokens = 8'000'000;           // tokens read, macro and loop repeats included
+  uint64_t tokens = 5'000'000;           // tokens read, macro and loop repeats included
   uint64_t array_elements = 1'000'000;   // array elements allocated, all arrays together
   size_t string_bytes = 1 << 20;         // longest string
   uint64_t objects = 2'000'000;          // objects and triangles created

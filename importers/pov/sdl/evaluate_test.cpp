@@ -418,6 +418,41 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   EXPECT_TRUE(scene.objects[0].texture.has_normal);
 }
 
+// An unsupported object is reported where the scene places it, not where it is declared: an
+// include that declares shapes the scene never uses leaves its geometry complete.
+TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
+  write("lib/shapes.inc", "#declare Q = quadric { <1, 1, 1>, 0, 0, -1 }\n");
+  Scene scene = run("#include \"shapes.inc\"\nsphere { 0, 1 }");
+  EXPECT_TRUE(scene.unsupported.empty());
+  ASSERT_EQ(scene.objects.size(), 1u);
+
+  scene = run("#include \"shapes.inc\"\nobject { Q translate x }");
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "quadric");
+  const std::string written = scene.unsupported[0].where.text();
+  EXPECT_EQ(written.substr(written.size() - 19), "lib/shapes.inc:1:14") << written;
+  ASSERT_TRUE(scene.unsupported[0].placed);
+  EXPECT_EQ(scene.unsupported[0].placed->text(), "scene.pov:2:1");
+
+  // inside CSG, twice: once per placement; the placement is the top-level statement
+  scene =
+      run("#include \"shapes.inc\"\n#declare U = union { sphere { 0, 1 } object { Q } }\n"
+          "union { object { U } box { 0, 1 } }\nobject { U }");
+  ASSERT_EQ(scene.unsupported.size(), 2u);
+  EXPECT_EQ(scene.unsupported[0].placed->text(), "scene.pov:3:1");
+  EXPECT_EQ(scene.unsupported[1].placed->text(), "scene.pov:4:1");
+  EXPECT_EQ(scene.objects.size(), 2u);  // the union keeps its supported members
+
+  // written where it is placed: no separate placement; in clipped_by too
+  scene =
+      run("#include \"shapes.inc\"\nblob { sphere { 0, 1, 1 } }\n"
+          "sphere { 0, 1 clipped_by { object { Q } } }");
+  ASSERT_EQ(scene.unsupported.size(), 2u);
+  EXPECT_EQ(scene.unsupported[0].feature, "blob");
+  EXPECT_FALSE(scene.unsupported[0].placed);
+  EXPECT_EQ(scene.unsupported[1].placed->text(), "scene.pov:3:1");
+}
+
 TEST_F(Sdl, PolygonAndMeshes) {
   // an L-shaped (concave) hexagon: 4 triangles covering area 3
   Scene scene = run("polygon { 7, <0,0>, <2,0>, <2,1>, <1,1>, <1,2>, <0,2>, <0,0> }");

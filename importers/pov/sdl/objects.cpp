@@ -158,9 +158,10 @@ Node Parser::parse_object(const Tok& keyword) {
   SourceLocation where = location_of(keyword);
   for (std::string_view u : kUnsupported) {
     if (w == u) {
-      unsupported(w, where);
       skip_block();
-      return {};
+      Node node;
+      node.missing.push_back({w, where, std::nullopt});
+      return node;
     }
   }
   count_objects(1);
@@ -292,6 +293,7 @@ Node Parser::parse_object(const Tok& keyword) {
       }
       Node child = parse_object(tok);
       node.lights.insert(node.lights.end(), child.lights.begin(), child.lights.end());
+      node.missing.insert(node.missing.end(), child.missing.begin(), child.missing.end());
       if (child.object) {
         o.children.push_back(std::move(*child.object));
       } else if (child.lights.empty()) {
@@ -561,6 +563,7 @@ void Parser::parse_object_mods(Node& node) {
         if (item.word("bounded_by")) continue;  // clipped_by { bounded_by }: nothing to clip
         if (!is_object_keyword(item)) fail("expected an object in clipped_by");
         Node clip = parse_object(item);
+        node.missing.insert(node.missing.end(), clip.missing.begin(), clip.missing.end());
         if (clip.object) o.clipped_by.push_back(std::move(*clip.object));
       }
     } else if (w == "bounded_by") {
@@ -606,7 +609,11 @@ void Parser::parse_object_mods(Node& node) {
 }
 
 // A top-level object joins the scene: leaves without a texture take the #default one.
-void Parser::emit(Node node) {
+void Parser::emit(Node node, const SourceLocation& where) {
+  for (Unsupported& missing : node.missing) {
+    if (missing.where.text() != where.text()) missing.placed = where;
+    scene_.unsupported.push_back(std::move(missing));
+  }
   std::function<void(Object&)> fill = [&](Object& o) {
     if (!o.texture_given) {
       o.texture = default_texture_;

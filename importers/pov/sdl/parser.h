@@ -27,6 +27,9 @@ namespace fb::pov::sdl {
 struct Node {
   std::optional<Object> object;
   std::vector<LightSource> lights;
+  // The unsupported objects it holds, left out of `object`: reported when the node is placed in
+  // the scene, so a declared one that is never placed leaves the geometry complete.
+  std::vector<Unsupported> missing;
 };
 
 struct MaterialValue {
@@ -219,7 +222,7 @@ class Parser {
   CameraStatement parse_camera(const Tok& keyword);
   LightSource parse_light(const Tok& keyword);
   void parse_statement(const Tok& tok);
-  void emit(Node node);
+  void emit(Node node, const SourceLocation& where);  // a top-level object statement
   void count_objects(uint64_t n);
 
  private:

@@ -168,7 +168,7 @@ void Parser::parse_statement(const Tok& tok) {
     Token directive_token = tok.token;
     return directive(directive_token);
   }
-  if (is_object_keyword(tok)) return emit(parse_object(tok));
+  if (is_object_keyword(tok)) return emit(parse_object(tok), location_of(tok));
   if (w == "camera" && tok.keyword()) {
     if (scene_.camera) warn("more than one camera: the last one wins");
     scene_.camera = parse_camera(tok);

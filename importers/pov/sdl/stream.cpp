@@ -123,7 +123,7 @@ void Parser::warn(const std::string& what) {
 }
 
 void Parser::unsupported(const std::string& feature, const SourceLocation& where) {
-  scene_.unsupported.push_back({feature, where});
+  scene_.unsupported.push_back({feature, where, std::nullopt});
 }
 
 SourceLocation Parser::location_of(const Tok& tok) const {
