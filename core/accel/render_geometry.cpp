@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/accel/embree_solids.h"
-#include "core/render/sampler.h"
+#include "core/math/random.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -366,8 +366,8 @@ SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive,
   SurfacePoint point;
   // At the first motion step: solid textures on moving meshes are not supported (only POV-Ray
   // scenes have them, and nothing moves there).
-  point.position = mesh.positions[tri[0]] * b[0] + mesh.positions[tri[1]] * b[1] +
-                   mesh.positions[tri[2]] * b[2];
+  point.position =
+      mesh.positions[tri[0]] * b[0] + mesh.positions[tri[1]] * b[1] + mesh.positions[tri[2]] * b[2];
   const VertexTextureData& data = mesh.texturing;
   for (uint32_t set = 0; set < VertexTextureData::kSets && !data.texcoords[set].empty(); ++set) {
     const std::vector<Vec2f>& uv = data.texcoords[set];
@@ -402,10 +402,10 @@ void RenderGeometry::alpha_filter(const RTCFilterFunctionNArguments* args) {
       keep = alpha >= material.alpha_cutoff;
     } else {
       const auto bits = [](float f) { return uint64_t(std::bit_cast<uint32_t>(f)); };
-      uint64_t h = PixelSampler::mix(uint64_t(primitive) << 32 | bits(u));
-      h = PixelSampler::mix(h ^ (bits(v) << 32 | bits(RTCRayN_dir_x(args->ray, args->N, i))));
-      h = PixelSampler::mix(h ^ (bits(RTCRayN_dir_y(args->ray, args->N, i)) << 32 |
-                                 bits(RTCRayN_dir_z(args->ray, args->N, i))));
+      const uint64_t h = pcg_hash(uint64_t(primitive) << 32 | bits(u),
+                                  bits(v) << 32 | bits(RTCRayN_dir_x(args->ray, args->N, i)),
+                                  bits(RTCRayN_dir_y(args->ray, args->N, i)) << 32 |
+                                      bits(RTCRayN_dir_z(args->ray, args->N, i)));
       keep = float(h >> 40) * 0x1p-24f < alpha;
     }
     if (!keep) args->valid[i] = 0;
@@ -482,8 +482,8 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
 }
 
 bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit) const {
-  const auto found = solids_[id - meshes_.size()].first_hit(
-      Vec3d(Vec3f(ray.origin)), Vec3d(Vec3f(ray.direction)), ray.t_min);
+  const auto found = solids_[id - meshes_.size()].first_hit(Vec3d(Vec3f(ray.origin)),
+                                                            Vec3d(Vec3f(ray.direction)), ray.t_min);
   if (!found) return false;  // cannot happen: Embree's hit came from the same computation
   hit.t = float(found->t);
   Vec3f(found->position).store(hit.position);

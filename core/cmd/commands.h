@@ -20,6 +20,7 @@ struct RenderCommand {
   // How samples become pixels: "importance" or "splat" (docs/filters.md).
   std::string reconstruction = "importance";
   std::string subdiv = "render";  // or "adaptive" (docs/cli.md)
+  std::string sampler;            // a SamplerKind's name; empty: the default
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
   std::string shutter, frame, fps, sensor_model, iso;

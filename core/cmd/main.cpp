@@ -81,6 +81,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")
       ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");
+  render_cmd->add_option("--sampler", render.sampler,
+                         "independent, stratified, sobol (default) or zsobol (docs/sampling.md)");
   render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
   add_import_options(render_cmd, render.import);
 

@@ -151,6 +151,7 @@ int run_render(RenderCommand& c) {
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
   if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
+  if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");
   c.options.show_progress = !c.quiet;
 
   Diagnostics diagnostics;

@@ -290,9 +290,9 @@ std::string RenderJob::plan() const {
   std::ostringstream out;
   out << "filmback: camera '" << camera_.name << "' (" << camera_.source << ") through "
       << plugins_->camera->name() << " (" << camera_reason_ << "), " << width_ << "x" << height_
-      << ", " << spp_ << " spp, filter " << plugins_->filter_text << " ("
-      << reconstruction_name(options_.reconstruction) << "), integrator "
-      << plugins_->integrator_text << "; " << time_reason_ << "; "
+      << ", " << spp_ << " spp (" << sampler_name(options_.sampler) << "), filter "
+      << plugins_->filter_text << " (" << reconstruction_name(options_.reconstruction)
+      << "), integrator " << plugins_->integrator_text << "; " << time_reason_ << "; "
       << plugins_->geometry->triangle_count() << " triangles, "
       << plugins_->lights->punctual_light_count() << " punctual lights, "
       << plugins_->lights->emissive_triangle_count() << " emissive triangles";
@@ -311,6 +311,7 @@ RenderResult RenderJob::run() const {
                       p.scene,
                       camera_.world_from_camera.without_scale_and_translation(),
                       spp_,
+                      options_.sampler,
                       options_.seed,
                       options_.reconstruction};
   inputs.time = p.time;
@@ -366,6 +367,7 @@ ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
                {"filmback/camera_model", plugins_->camera->name()},
                {"filmback/filter", plugins_->filter_text},
                {"filmback/reconstruction", reconstruction_name(options_.reconstruction)},
+               {"filmback/sampler", sampler_name(options_.sampler)},
                {"filmback/integrator", plugins_->integrator_text}};
   return m;
 }

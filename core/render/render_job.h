@@ -45,6 +45,7 @@ struct RenderOptions {
   uint32_t sensor_model = FB_SENSOR_SIMPLE;
   double iso = 100.0;
   uint64_t seed = 0;
+  SamplerKind sampler = kDefaultSampler;                        // docs/sampling.md
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
   bool show_progress = true;

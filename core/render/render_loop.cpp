@@ -37,7 +37,7 @@ struct Rotation {
 // samples is too short to pay for a dozen heap allocations of its own.
 struct TileWork {
   std::vector<uint32_t> px, py;
-  std::vector<uint32_t> filter_seed, lens_seed, time_seed;  // per pixel (PixelSampler::pair_seed)
+  std::vector<DimensionSeed> filter_seed, lens_seed, time_seed;  // per pixel (Sampler::seed)
   std::vector<float> filter_u;
   std::vector<fb_filter_sample> filter_samples;
   std::vector<fb_camera_sample> camera_samples;
@@ -63,13 +63,13 @@ struct TileWork {
 
 class TileRenderer {
  public:
-  TileRenderer(const RenderInputs& in, Film& film, SplatTiles* splats)
+  TileRenderer(const RenderInputs& in, Film& film, SplatTiles* splats, Vec2<uint32_t> domain)
       : in_(in),
         film_(film),
         splats_(splats),
         margin_x_(splats ? float(splats->margin(0)) : 0.f),
         margin_y_(splats ? float(splats->margin(1)) : 0.f),
-        sampler_(in.seed),
+        sampler_(in.sampler, in.seed, in.samples_per_pixel, domain.x, domain.y),
         rotation_(in.render_from_camera),
         channels_(in.integrator.channels().size()),
         needs_(in.camera.needs()) {}
@@ -86,9 +86,10 @@ class TileRenderer {
           for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x, ++i)
             w.px[i] = x, w.py[i] = y;
     for (i = 0; i < n; ++i) {
-      w.filter_seed[i] = sampler_.pair_seed(w.px[i], w.py[i], kFilterDimension);
-      w.lens_seed[i] = sampler_.pair_seed(w.px[i], w.py[i], kLensDimension);
-      w.time_seed[i] = sampler_.pair_seed(w.px[i], w.py[i], kTimeDimension);
+      w.filter_seed[i] = sampler_.seed(w.px[i], w.py[i], kFilterDimension);
+      if (needs_ & FB_CAMERA_NEEDS_LENS)
+        w.lens_seed[i] = sampler_.seed(w.px[i], w.py[i], kLensDimension);
+      if (in_.time.curve) w.time_seed[i] = sampler_.seed(w.px[i], w.py[i], kTimeDimension);
     }
     fb_trace_context& context = w.context;
     context.geometry = &in_.geometry;
@@ -99,7 +100,7 @@ class TileRenderer {
 
     for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
       for (size_t i = 0; i < n; ++i) {
-        const Vec2f u = PixelSampler::sobol_2d(w.filter_seed[i], s);
+        const Vec2f u = sampler_.get_2d(w.filter_seed[i], s);
         w.filter_u[2 * i] = u.x;
         w.filter_u[2 * i + 1] = u.y;
         context.paths[i] = {w.px[i], w.py[i], s, kIntegratorDimension};
@@ -119,12 +120,12 @@ class TileRenderer {
         c.film_x = float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x;
         c.film_y = float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y;
         if (needs_ & FB_CAMERA_NEEDS_LENS) {
-          const Vec2f u = PixelSampler::sobol_2d(w.lens_seed[i], s);
+          const Vec2f u = sampler_.get_2d(w.lens_seed[i], s);
           c.lens_u = u.x;
           c.lens_v = u.y;
         }
         if (in_.time.curve)  // the shutter integral: only when something moves while it is open
-          c.time_s = in_.time.time_s(PixelSampler::sobol_1d(w.time_seed[i], s));
+          c.time_s = in_.time.time_s(sampler_.get_1d(w.time_seed[i], s));
       }
       in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
       for (size_t i = 0; i < n; ++i) {
@@ -165,7 +166,7 @@ class TileRenderer {
   Film& film_;
   SplatTiles* splats_;         // null: importance sampling, every sample in its own pixel
   float margin_x_, margin_y_;  // of the sample domain around the film (splatting only)
-  PixelSampler sampler_;
+  Sampler sampler_;
   Rotation rotation_;
   size_t channels_;
   uint32_t needs_;
@@ -196,7 +197,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progr
   const Vec2<uint32_t> domain = sample_domain(inputs, film.width(), film.height());
   const uint32_t tiles_x = (domain.x + kTileSize - 1) / kTileSize;
   const uint64_t tiles = tile_count(inputs, film.width(), film.height());
-  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr);
+  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr, domain);
   tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
   const auto start = std::chrono::steady_clock::now();

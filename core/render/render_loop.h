@@ -15,6 +15,7 @@
 #include "core/render/light_sampler.h"
 #include "core/render/motion.h"
 #include "core/render/progress.h"
+#include "core/render/sampler.h"
 
 namespace fb {
 
@@ -27,6 +28,7 @@ struct RenderInputs {
   const fb_scene& scene;
   Transform render_from_camera;  // a rotation: render space is centred on the camera
   uint32_t samples_per_pixel;
+  SamplerKind sampler;
   uint64_t seed;
   Reconstruction reconstruction = Reconstruction::kImportance;
   // Time (docs/camera-model.md, "Time and motion"): drawn only when something moves while the

@@ -28,9 +28,7 @@ float light_pdf(fb_trace_context* c, const float position[3], const fb_hit* hit)
 }
 
 void next_samples(fb_trace_context* c, size_t path, float* u, uint32_t count) {
-  SampleKey& key = c->paths[path];
-  for (uint32_t i = 0; i < count; ++i, ++key.dimension)
-    u[i] = c->sampler->get(key);
+  c->sampler->fill(c->paths[path], u, count);
 }
 
 void background(fb_trace_context* c, const float direction[3], float radiance[3], float* pdf) {

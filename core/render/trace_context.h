@@ -14,7 +14,7 @@
 struct fb_trace_context {
   const fb::RenderGeometry* geometry = nullptr;
   const fb::LightSampler* lights = nullptr;
-  const fb::PixelSampler* sampler = nullptr;
+  const fb::Sampler* sampler = nullptr;
   std::vector<fb::SampleKey> paths;  // one per ray of the current batch
   uint64_t rays_traced = 0;
 };

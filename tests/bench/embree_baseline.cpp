@@ -70,7 +70,7 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per
   depth_m.resize(size_t(width_) * height_);
   const uint32_t tiles_x = (width_ + kTileSize - 1) / kTileSize;
   const uint64_t tiles = uint64_t(tiles_x) * ((height_ + kTileSize - 1) / kTileSize);
-  const PixelSampler sampler(0);
+  const Sampler sampler(kDefaultSampler, 0, samples_per_pixel, width_, height_);
   std::atomic<uint64_t> hits{0};
   tbb::parallel_for(
       tbb::blocked_range<uint64_t>(0, tiles, 1),
@@ -84,15 +84,15 @@ uint64_t EmbreeBaseline::trace(std::vector<float>& depth_m, uint32_t samples_per
                          y0 = uint32_t(tile / tiles_x) * kTileSize;
           uint64_t tile_hits = 0;
           // The pixels' sample seeds, hashed once per tile as filmback's render loop does.
-          uint32_t seeds[kTileSize][kTileSize];
+          DimensionSeed seeds[kTileSize][kTileSize];
           for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
             for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x)
-              seeds[y - y0][x - x0] = sampler.pair_seed(x, y, kFilterDimension);
+              seeds[y - y0][x - x0] = sampler.seed(x, y, kFilterDimension);
           for (uint32_t s = 0; s < samples_per_pixel; ++s)
             for (uint32_t y = y0; y < std::min(y0 + kTileSize, height_); ++y)
               for (uint32_t x = x0; x < std::min(x0 + kTileSize, width_); ++x) {
                 // The box filter's sample, (2u - 1) r with r = 0.5 px, at filmback's sample key.
-                const Vec2f u = PixelSampler::sobol_2d(seeds[y - y0][x - x0], s);
+                const Vec2f u = sampler.get_2d(seeds[y - y0][x - x0], s);
                 const float film_x = float(x) + 0.5f + (2.f * u.x - 1.f) * 0.5f;
                 const float film_y = float(y) + 0.5f + (2.f * u.y - 1.f) * 0.5f;
                 const float cam_x = float((film_x - cx_) / fx_),

@@ -243,7 +243,9 @@ typedef struct fb_scene_api {
    * `position`: for multiple importance sampling of emission found by BSDF sampling. */
   float (*light_pdf)(fb_trace_context* context, const float position[3], const fb_hit* hit);
   /* The next `count` sample dimensions of path `path` of the current batch: multiples of 2^-24
-   * in [0,1), as every sample value the host hands out. */
+   * in [0,1), as every sample value the host hands out. The host stratifies a request as one
+   * 1-D value (when `count` is odd) followed by 2-D pairs, so ask for what belongs together in
+   * one call: a choice and a 2-D point (3 values), or a 2-D point alone (2). */
   void (*next_samples)(fb_trace_context* context, size_t path, float* u, uint32_t count);
   /* Radiance of the world reaching a ray that escapes along `direction` (a uniform background or
    * an environment image), and in *pdf the solid-angle pdf with which sample_light() would have
