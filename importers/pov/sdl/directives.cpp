@@ -1,5 +1,6 @@
 // Directives: #declare/#local/#undef, #if/#ifdef/#ifndef/#else/#elseif, #while/#for, #switch,
-// #macro, #include, #default, #version, #debug/#warning/#error, #fopen/#read/#write/#fclose.
+// #macro, #include, #default, #version, #debug/#warning/#error, #fclose (#fopen, #read and #write:
+// file_io.cpp).
 #include <cmath>
 #include <cstdio>
 
@@ -257,88 +258,6 @@ void Parser::run_macro_definition() {
   scopes_[0][name.text] = std::move(value);  // macros are global (POV-Ray manual 3.3.8)
 }
 
-void Parser::run_fopen() {
-  Token name = raw_next();
-  if (name.kind != TokenKind::kWord) fail("expected a file identifier after #fopen");
-  Value file_name = parse_expression();
-  if (file_name.kind != ValueKind::kString) fail("#fopen expects a file name string");
-  Tok mode = next();
-  if (mode.word("write") || mode.word("append")) {
-    unsupported("#fopen for writing", here());
-    Value sink;
-    sink.kind = ValueKind::kFile;  // #write to it is parsed and dropped
-    assign(name.text, std::move(sink), false);
-    return;
-  }
-  if (!mode.word("read")) fail("expected read, write or append");
-  auto path = resolve_include(file_name.text, nullptr, true);
-  if (!path) fail("cannot #fopen \"" + file_name.text + "\" for reading inside the scene's folder");
-  Value handle;
-  handle.kind = ValueKind::kFile;
-  handle.file = std::make_shared<ReadFile>();
-  handle.file->tokens = load(*path, file_name.text);
-  assign(name.text, std::move(handle), false);
-}
-
-// #read (File, A, B ...): each identifier takes the next comma-separated value of the file; at
-// the end of the file the handle becomes undefined (POV-Ray's `#while (defined(File))` idiom).
-void Parser::run_read() {
-  expect("(");
-  Token handle_name = raw_next();
-  Value* handle = lookup(handle_name.text);
-  if (!handle || handle->kind != ValueKind::kFile || !handle->file)
-    fail("#read needs a file opened for reading");
-  std::shared_ptr<ReadFile> file = handle->file;
-  const std::vector<Token>& tokens = file->tokens->tokens;
-  while (accept(",")) {
-    Token target = raw_next();
-    if (target.kind != TokenKind::kWord) fail("expected an identifier in #read");
-    while (file->pos < tokens.size() && tokens[file->pos].kind == TokenKind::kSymbol &&
-           tokens[file->pos].text == ",") {
-      ++file->pos;
-    }
-    if (tokens[file->pos].kind == TokenKind::kEnd) break;
-    const Token& t = tokens[file->pos];
-    Value value;
-    auto read_number = [&]() -> double {
-      double sign = 1;
-      while (tokens[file->pos].kind == TokenKind::kSymbol && tokens[file->pos].text == "-") {
-        sign = -sign;
-        ++file->pos;
-      }
-      if (tokens[file->pos].kind != TokenKind::kNumber) fail("#read: expected a number");
-      return sign * tokens[file->pos++].number;
-    };
-    if (t.kind == TokenKind::kString) {
-      value = Value::string(t.text);
-      ++file->pos;
-    } else if (t.kind == TokenKind::kSymbol && t.text == "<") {
-      ++file->pos;
-      value.kind = ValueKind::kVector;
-      value.dims = 0;
-      for (;;) {
-        if (value.dims == 5) fail("#read: vector with more than 5 components");
-        value.v[value.dims++] = read_number();
-        const Token& sep = tokens[file->pos++];
-        if (sep.kind == TokenKind::kSymbol && sep.text == ">") break;
-        if (!(sep.kind == TokenKind::kSymbol && sep.text == ",")) fail("#read: bad vector");
-      }
-    } else {
-      value = Value::number(read_number());
-    }
-    assign(target.text, std::move(value), false);
-  }
-  expect(")");
-  while (file->pos < tokens.size() && tokens[file->pos].kind == TokenKind::kSymbol &&
-         tokens[file->pos].text == ",") {
-    ++file->pos;
-  }
-  if (tokens[file->pos].kind == TokenKind::kEnd) {
-    for (auto& scope : scopes_)
-      scope.erase(handle_name.text);
-  }
-}
-
 void Parser::directive(const Token& token) {
   // Peeking past the end of the directive's own file must not pop it: a file that includes itself
   // would pop and push one frame for ever instead of nesting to the include limit.
@@ -516,10 +435,7 @@ void Parser::run_directive(const Token& token) {
     return;
   }
   if (which == "read") return run_read();
-  if (which == "write") {
-    unsupported("#write", here());
-    return skip_parenthesised();
-  }
+  if (which == "write") return run_write();
   fail("unknown directive #" + d);
 }
 

@@ -19,7 +19,7 @@ struct EvaluateLimits {
   uint32_t include_depth = 32;
   uint64_t loop_iterations = 500'000;    // #while/#for iterations, all loops together
   uint32_t macro_depth = 256;            // nested macro calls
-  uint64_t tokens = 5'000'000;           // tokens read, macro and loop repeats included
+  uint64_t tokens = 7'000'000;           // tokens read, macro and loop repeats included
   uint64_t array_elements = 1'000'000;   // array elements allocated, all arrays together
   size_t string_bytes = 1 << 20;         // longest string
   uint64_t objects = 2'000'000;          // objects and triangles created

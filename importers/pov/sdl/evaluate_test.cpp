@@ -483,6 +483,36 @@ TEST_F(Sdl, PolygonAndMeshes) {
             std::string::npos);
 }
 
+// shapes.inc's HFCreate_ writes face_indices as vector expressions `F1+A, F2+A,` with a trailing
+// comma: a face is never taken for the texture index of the one before.
+TEST_F(Sdl, Mesh2FacesFromVectorIdentifiers) {
+  Scene scene =
+      run("#declare F1 = <0, 1, 2>; #declare F2 = <0, 2, 3>; #declare T = 1;\n"
+          "mesh2 { vertex_vectors { 4, <0,0,0>, <1,0,0>, <1,1,0>, <0,1,0> }\n"
+          "  texture_list { 2, texture { pigment { rgb x } } texture { pigment { rgb y } } }\n"
+          "  face_indices { 3, F1 + 0, F2, T, <0, 1, 3>, } }");
+  const Object& m = scene.objects.at(0);
+  ASSERT_EQ(m.indices.size(), 9u);
+  EXPECT_EQ(m.indices[3], 0u);
+  EXPECT_EQ(m.indices[5], 3u);
+  ASSERT_EQ(m.triangle_textures.size(), 3u);
+  EXPECT_EQ(m.triangle_textures[0], 0u);
+  EXPECT_EQ(m.triangle_textures[1], 1u);  // T, a float identifier, is a texture index
+  EXPECT_EQ(m.indices[8], 3u);
+}
+
+// The sample that stopped inside shapes.inc's height-field macros now evaluates.
+TEST_F(Sdl, ShapesIncHeightFieldMacros) {
+  fs::path sample = "/usr/share/doc/povray/examples/incdemo/shapes.pov";
+  fs::path includes = "/usr/share/povray-3.7/include";
+  if (!fs::exists(sample) || !fs::exists(includes)) GTEST_SKIP() << "povray-examples not installed";
+  EvaluateOptions options;
+  options.scene_file = sample;
+  options.library_paths = {includes};
+  Scene scene = evaluate_pov(options);
+  EXPECT_EQ(scene.objects.size(), 15u);
+}
+
 TEST_F(Sdl, ReadsDataFilesInTheSceneFolder) {
   write("scene/data.txt", "1, <2, 3, 4>, \"five\",\n");
   Scene scene =
@@ -493,9 +523,23 @@ TEST_F(Sdl, ReadsDataFilesInTheSceneFolder) {
   EXPECT_EQ(scene.objects.at(0).a.x, 1);
   EXPECT_EQ(scene.objects.at(0).a.y, 4);
   EXPECT_EQ(scene.objects.at(0).a.z, 4);
-  scene = run("#fopen Out \"out.txt\" write #write (Out, \"x\") sphere { 0, 1 }");
-  EXPECT_EQ(scene.unsupported.at(0).feature, "#fopen for writing");
+  // a file written and read back, as language/fileio/fileio.pov does: in memory, never on disk
+  scene =
+      run("#fopen Out \"out.txt\" write\n"
+          "#write (Out, \"\\\"Testing 123\\\",\", 5, \",\", <1, 2.5, 3>, \"\\n\")\n"
+          "#fclose Out\n"
+          "#fopen Out \"out.txt\" append #write (Out, \",\", -0.25) #fclose Out\n"
+          "#fopen In \"out.txt\" read\n"
+          "#read (In, S, F, V, G)\n"
+          "sphere { <F, V.y, G>, strlen(S) }");
+  EXPECT_TRUE(scene.unsupported.empty());
+  EXPECT_EQ(scene.objects.at(0).a.x, 5);
+  EXPECT_EQ(scene.objects.at(0).a.y, 2.5);
+  EXPECT_EQ(scene.objects.at(0).a.z, -0.25);
+  EXPECT_EQ(scene.objects.at(0).r0, 11);  // "Testing 123"
   EXPECT_FALSE(fs::exists(root_ / "scene" / "out.txt"));
+  EXPECT_NE(error_of("#fopen In \"never.txt\" read").find("cannot #fopen \"never.txt\""),
+            std::string::npos);
 }
 
 // The samples, when Debian's povray-examples is installed: a cut anywhere in a real scene ends

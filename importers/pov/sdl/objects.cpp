@@ -438,9 +438,12 @@ void Parser::parse_mesh2(Object& o) {
         if (w != "face_indices") continue;
         // optional texture indices after the face: one, or one per corner
         accept(",");
+        // (a float; the next face is a vector, perhaps a vector identifier: `F1+A, F2+A` in
+        // shapes.inc's HFCreate_)
         const Tok& after = peek();
-        if (after.symbol("<") || after.symbol("}") || after.token.kind == TokenKind::kDirective)
-          continue;
+        const bool texture_index = after.token.kind == TokenKind::kNumber || after.symbol("(") ||
+                                   (after.identifier && after.value.kind == ValueKind::kFloat);
+        if (!texture_index) continue;
         double t = parse_float();
         if (!(t >= 0 && t < 4294967295.0)) fail("bad mesh2 texture index");
         o.triangle_textures.resize(o.indices.size() / 3 - 1, 0);

@@ -298,8 +298,10 @@ class Parser {
   void run_macro_definition();
   void run_end();
   void run_switch_search();
+  // file_io.cpp
   void run_fopen();
   void run_read();
+  void run_write();
 
   EvaluateOptions options_;
   Scene scene_;
@@ -317,6 +319,7 @@ class Parser {
   // frames_.size() when the innermost running directive began (0: none): its expression ends
   // with the file it is written in.
   size_t directive_frames_ = 0;
+  std::map<std::string, std::string> written_files_;  // #fopen ... write, by name
 };
 
 // RAII bound on recursion depth (expressions in parentheses, nested blocks).

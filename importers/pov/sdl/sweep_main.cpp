@@ -1,7 +1,8 @@
 // Evaluates POV-Ray scenes with the SDL evaluator and prints one line per scene: ok or the error,
 // the objects, lights, what the evaluation used (EvaluationCounts) and the unsupported features
 // found. Used for the sample-scene count in
-// docs/pov.md: `filmback_pov_sdl_sweep [-frame N] -L /usr/share/povray-3.7/include scene.pov ...`.
+// docs/pov.md: `filmback_pov_sdl_sweep [-frame N] [-tokens N] [-loops N] -L
+// /usr/share/povray-3.7/include scene.pov ...`.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,10 @@ int main(int argc, char** argv) {
       base.library_paths.push_back(argv[++i]);
     } else if (arg == "-frame" && i + 1 < argc) {
       base.frame_number = std::atof(argv[++i]);
+    } else if (arg == "-tokens" && i + 1 < argc) {  // to measure a scene past the limits
+      base.limits.tokens = std::strtoull(argv[++i], nullptr, 10);
+    } else if (arg == "-loops" && i + 1 < argc) {
+      base.limits.loop_iterations = std::strtoull(argv[++i], nullptr, 10);
     } else {
       scenes.push_back(arg);
     }
