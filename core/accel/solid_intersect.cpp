@@ -19,6 +19,8 @@ struct RenderSolid::Node {
   Transform object_from_render;
   Transform normal_from_object;  // inverse transpose of render_from_object
   Bounds3d bounds;               // render space, of the set before `inverse`; may be infinite
+  Polynomial3 polynomial;        // kPolynomial, in object space
+  Bounds3d window;               // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;          // farthest corner of a bounded primitive from the render origin
   std::vector<Node> children;
 };
@@ -245,6 +247,32 @@ void torus_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& ou
   }
 }
 
+// p(s) <= 0 along the re-centred ray, roots searched where the ray crosses the window (the
+// scene's reach): past it the set goes on, bounded by no surface.
+void polynomial_spans(const Node& leaf, const Ray& render_ray, const Ray& r, double lo, double hi,
+                      Spans& out) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  double w_lo = lo, w_hi = hi;
+  if (!clip_to_box(leaf.window, render_ray, w_lo, w_hi)) return;
+  const double t0 = nearest_to_origin(r);
+  double c[kMaxPolynomialDegree + 1];
+  restrict_to_ray(leaf.polynomial, r.o + r.d * t0, r.d, c);
+  int degree = kMaxPolynomialDegree;
+  while (degree > 0 && c[degree] == 0)
+    --degree;
+  const double s_lo = w_lo - t0, s_hi = w_hi - t0;
+  double roots[kMaxPolynomialDegree];
+  const int count = sign_changes(c, degree, s_lo, s_hi, roots);
+  Boundary from{w_lo};
+  for (int i = 0; i <= count; ++i) {
+    const double s_end = i < count ? roots[i] : s_hi;
+    const Boundary end = i < count ? on(leaf, t0 + s_end) : Boundary{w_hi};
+    const double mid = 0.5 * ((from.t - t0) + s_end);
+    if (evaluate_polynomial(c, degree, mid) <= 0) push(out, from, end, lo, hi);
+    from = end;
+  }
+}
+
 void primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Spans& out) {
   const Ray r{leaf.object_from_render.point(render_ray.o),
               leaf.object_from_render.vector(render_ray.d)};
@@ -261,6 +289,8 @@ void primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double 
       return cone_spans(leaf, r, lo, hi, out);
     case SolidKind::kTorus:
       return torus_spans(leaf, r, lo, hi, out);
+    case SolidKind::kPolynomial:
+      return polynomial_spans(leaf, render_ray, r, lo, hi, out);
     default:
       return;
   }
@@ -312,12 +342,15 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
       const double g = dot(p, p) + 1 - leaf.radius1 * leaf.radius1;
       return {g * p.x - 2 * p.x, g * p.y - 2 * p.y, g * p.z};
     }
+    case SolidKind::kPolynomial:
+      return polynomial3_gradient(leaf.polynomial, p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
 }
 
-Node build(const Solid& solid, const Transform& render_from_world, bool surface) {
+Node build(const Solid& solid, const Transform& render_from_world, const Bounds3d& reach,
+           bool surface) {
   Node node;
   node.kind = solid.kind;
   node.surface = surface && !solid.bounds_only;
@@ -327,6 +360,8 @@ Node build(const Solid& solid, const Transform& render_from_world, bool surface)
   node.radius1 = std::abs(solid.radius1);
   node.material = solid.material;
   node.bounds = uncomplemented_bounds(solid, render_from_world);
+  node.polynomial = solid.polynomial;
+  node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;
     node.object_from_render = render_from_object.inverse();
@@ -337,7 +372,7 @@ Node build(const Solid& solid, const Transform& render_from_world, bool surface)
       node.magnitude = length(max(abs(node.bounds.lo), abs(node.bounds.hi)));
   }
   for (const Solid& child : solid.children)
-    node.children.push_back(build(child, render_from_world, node.surface));
+    node.children.push_back(build(child, render_from_world, reach, node.surface));
   return node;
 }
 
@@ -345,7 +380,7 @@ Node build(const Solid& solid, const Transform& render_from_world, bool surface)
 
 RenderSolid::RenderSolid(const Solid& solid, const Transform& render_from_world,
                          const Bounds3d& reach) {
-  root_.push_back(build(solid, render_from_world, true));
+  root_.push_back(build(solid, render_from_world, reach, true));
   const Bounds3d set = solid_bounds(solid, render_from_world);
   bounded_ = set.finite();
   bounds_ = {max(set.lo, reach.lo), min(set.hi, reach.hi)};

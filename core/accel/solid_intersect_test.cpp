@@ -193,6 +193,94 @@ TEST(SolidIntersect, DiscAnnulusOnly) {
   EXPECT_FALSE(trace(s, {2.5, 0, 5}, {0, 0, -1}));    // beside it
 }
 
+// The polynomial solids (POV-Ray's quadric, cubic, quartic, poly), against closed forms.
+Solid polynomial(Polynomial3 p, const Transform& world_from_object = Transform()) {
+  Solid s = primitive(SolidKind::kPolynomial, world_from_object);
+  s.polynomial = std::move(p);
+  return s;
+}
+
+TEST(Polynomial, RestrictedToARayIsTheSubstitution) {
+  // x^2 y z + 3 z^4 - 2 along o + t d, checked at five values of t
+  const Polynomial3 p{{1, 2, 1, 1}, {3, 0, 0, 4}, {-2, 0, 0, 0}};
+  const Vec3d o{0.5, -1.5, 2}, d{1, 0.25, -0.75};
+  double c[5];
+  restrict_to_ray(p, o, d, c);
+  for (double t : {-2.0, -0.5, 0.0, 1.0, 3.0})
+    EXPECT_NEAR(evaluate_polynomial(c, 4, t), evaluate_polynomial3(p, o + d * t), 1e-12);
+  EXPECT_EQ(polynomial3_degree(p), 4);
+  const Vec3d g = polynomial3_gradient(p, o);  // 2xyz, x^2 z, x^2 y + 12 z^3
+  EXPECT_NEAR(g.x, 2 * 0.5 * -1.5 * 2, 1e-14);
+  EXPECT_NEAR(g.y, 0.25 * 2, 1e-14);
+  EXPECT_NEAR(g.z, 0.25 * -1.5 + 12 * 8, 1e-12);
+}
+
+TEST(SolidIntersect, QuadricSphereIsTheSphere) {
+  // x^2 + y^2 + z^2 - 4 <= 0, and the same as a sphere of radius 2, on random rays
+  const Solid q = polynomial({{1, 2, 0, 0}, {1, 0, 2, 0}, {1, 0, 0, 2}, {-4, 0, 0, 0}});
+  const Solid sphere = primitive(SolidKind::kSphere, Transform::scale({2, 2, 2}));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int hits = 0;
+  for (int i = 0; i < 500; ++i) {
+    // from anywhere in a box of half-size 5 (inside the sphere too) towards |p| <= 2.5
+    const Vec3d o{5 * u(rng), 5 * u(rng), 5 * u(rng)};
+    const Vec3d d = normalize(Vec3d{2.5 * u(rng), 2.5 * u(rng), 2.5 * u(rng)} - o);
+    const auto a = trace(q, o, d), b = trace(sphere, o, d);
+    ASSERT_EQ(bool(a), bool(b));
+    if (!a) continue;
+    ++hits;
+    EXPECT_NEAR(a->t, b->t, 1e-12);
+    expect_unit_near(a->normal, b->normal, 1e-12);
+  }
+  EXPECT_GT(hits, 250);
+}
+
+TEST(SolidIntersect, UnboundedQuadricCylinderCutByABox) {
+  // x^2 + y^2 - 1 <= 0 runs along z for ever; intersected with the box |p| <= 2 it is a capped
+  // cylinder of length 4
+  const Solid cylinder = polynomial({{1, 2, 0, 0}, {1, 0, 2, 0}, {-1, 0, 0, 0}});
+  const auto side = trace(cylinder, {-5, 0, 1e5}, {1, 0, 0});  // far along z: still there
+  ASSERT_TRUE(side);
+  EXPECT_NEAR(side->t, 4, 1e-9);
+  expect_unit_near(side->normal, {-1, 0, 0}, 1e-12);
+  const Solid capped = csg(SolidKind::kIntersection,
+                           {cylinder, primitive(SolidKind::kBox, Transform::scale({2, 2, 2}))});
+  const auto cap = trace(capped, {0.5, 0, 10}, {0, 0, -1});
+  ASSERT_TRUE(cap);
+  EXPECT_NEAR(cap->t, 8, 1e-12);
+  expect_unit_near(cap->normal, {0, 0, 1}, 1e-12);
+  EXPECT_FALSE(trace(capped, {1.5, 0, 10}, {0, 0, -1}));  // outside the cylinder, inside the box
+}
+
+TEST(SolidIntersect, QuarticTorusIsTheTorus) {
+  // (x^2 + y^2 + z^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2), R = 3, r = 1, expanded
+  const double R2 = 9, k = R2 - 1;
+  const Polynomial3 p{{1, 4, 0, 0},
+                      {1, 0, 4, 0},
+                      {1, 0, 0, 4},
+                      {2, 2, 2, 0},
+                      {2, 2, 0, 2},
+                      {2, 0, 2, 2},
+                      {2 * k - 4 * R2, 2, 0, 0},
+                      {2 * k - 4 * R2, 0, 2, 0},
+                      {2 * k, 0, 0, 2},
+                      {k * k, 0, 0, 0}};
+  const Solid quartic = polynomial(p, Transform::translate({0, 0, 1}));
+  const auto outer = trace(quartic, {-10, 0, 1}, {1, 0, 0});
+  ASSERT_TRUE(outer);
+  EXPECT_NEAR(outer->t, 6, 1e-12);
+  expect_unit_near(outer->normal, {-1, 0, 0}, 1e-12);
+  const auto hole = trace(quartic, {0, 0, 1}, {1, 0, 0});
+  ASSERT_TRUE(hole);
+  EXPECT_NEAR(hole->t, 2, 1e-12);
+  const auto top = trace(quartic, {3, 0, 10}, {0, 0, -1});
+  ASSERT_TRUE(top);
+  EXPECT_NEAR(top->t, 8, 1e-12);
+  expect_unit_near(top->normal, {0, 0, 1}, 1e-12);
+  EXPECT_FALSE(trace(quartic, {0, 0, 10}, {0, 0, -1}));  // down the hole
+}
+
 // ---- Transforms -------------------------------------------------------------------------------
 
 TEST(SolidIntersect, MirroredNonUniformSphereIsTheEllipsoid) {

@@ -1,5 +1,6 @@
 #include "core/math/polynomial.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fb {
@@ -55,6 +56,66 @@ int sign_changes(const double* c, int degree, double lo, double hi, double* root
     if (!touch && (pa > 0) != (pb > 0)) roots[count++] = bracketed_root(c, dc, degree, a, b);
   }
   return count;
+}
+
+namespace {
+
+double power(double v, int n) {
+  double r = 1;
+  for (int i = 0; i < n; ++i)
+    r *= v;
+  return r;
+}
+
+// (o + t d)^n as coefficients of t (binomial expansion), n <= kMaxPolynomialDegree.
+void binomial_power(double o, double d, int n, double* out) {
+  static constexpr double kChoose[5][5] = {
+      {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
+  for (int k = 0; k <= kMaxPolynomialDegree; ++k)
+    out[k] = k <= n ? kChoose[n][k] * power(o, n - k) * power(d, k) : 0;
+}
+
+}  // namespace
+
+double evaluate_polynomial3(const Polynomial3& p, Vec3d point) {
+  double v = 0;
+  for (const Monomial& m : p)
+    v += m.c * power(point.x, m.x) * power(point.y, m.y) * power(point.z, m.z);
+  return v;
+}
+
+Vec3d polynomial3_gradient(const Polynomial3& p, Vec3d q) {
+  Vec3d g{0, 0, 0};
+  for (const Monomial& m : p) {
+    const double px = power(q.x, m.x), py = power(q.y, m.y), pz = power(q.z, m.z);
+    if (m.x) g.x += m.c * m.x * power(q.x, m.x - 1) * py * pz;
+    if (m.y) g.y += m.c * m.y * px * power(q.y, m.y - 1) * pz;
+    if (m.z) g.z += m.c * m.z * px * py * power(q.z, m.z - 1);
+  }
+  return g;
+}
+
+int polynomial3_degree(const Polynomial3& p) {
+  int degree = 0;
+  for (const Monomial& m : p)
+    if (m.c != 0) degree = std::max(degree, m.x + m.y + m.z);
+  return degree;
+}
+
+void restrict_to_ray(const Polynomial3& p, Vec3d o, Vec3d d, double c[kMaxPolynomialDegree + 1]) {
+  constexpr int n = kMaxPolynomialDegree + 1;
+  for (int k = 0; k < n; ++k)
+    c[k] = 0;
+  for (const Monomial& m : p) {
+    double x[n], y[n], z[n];
+    binomial_power(o.x, d.x, m.x, x);
+    binomial_power(o.y, d.y, m.y, y);
+    binomial_power(o.z, d.z, m.z, z);
+    for (int i = 0; i <= m.x; ++i)
+      for (int j = 0; j <= m.y; ++j)
+        for (int k = 0; i + j + k < n && k <= m.z; ++k)
+          c[i + j + k] += m.c * x[i] * y[j] * z[k];
+  }
 }
 
 }  // namespace fb

@@ -2,6 +2,11 @@
 // (core/accel/solid_intersect).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
+#include <filmback/vec.h>
+
 namespace fb {
 
 constexpr int kMaxPolynomialDegree = 4;
@@ -16,5 +21,18 @@ double evaluate_polynomial(const double* c, int degree, double t);
 // leaves the bracket) finds to the last bits of a double. Roots of even multiplicity (tangent
 // rays) are not sign changes and are not reported: a ray that grazes a surface does not enter it.
 int sign_changes(const double* c, int degree, double lo, double hi, double* roots);
+
+// One term c x^x y^y z^z of a polynomial in three variables.
+struct Monomial {
+  double c = 0;
+  uint8_t x = 0, y = 0, z = 0;
+};
+using Polynomial3 = std::vector<Monomial>;
+
+double evaluate_polynomial3(const Polynomial3& p, Vec3d point);
+Vec3d polynomial3_gradient(const Polynomial3& p, Vec3d point);
+int polynomial3_degree(const Polynomial3& p);
+// c[0..4] of p(o + t d) as a polynomial in t; p's degree must be at most kMaxPolynomialDegree.
+void restrict_to_ray(const Polynomial3& p, Vec3d o, Vec3d d, double c[kMaxPolynomialDegree + 1]);
 
 }  // namespace fb

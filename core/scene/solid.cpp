@@ -29,7 +29,7 @@ Bounds3d object_bounds(const Solid& primitive) {
       const double r = std::abs(primitive.radius1);
       return {{-1 - r, -1 - r, -r}, {1 + r, 1 + r, r}};
     }
-    default:  // kHalfSpace, kDisc: half-spaces
+    default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/math/bounds.h"
+#include "core/math/polynomial.h"
 #include "core/math/transform.h"
 
 namespace fb {
@@ -26,6 +27,9 @@ enum class SolidKind : uint8_t {
   // The unit disc in the plane z = 0 with a hole of radius `radius1`. Flat, so it bounds POV-Ray's
   // set for it, the half-space z <= 0 (Disc::Inside), of whose plane only the annulus is surface.
   kDisc,
+  // polynomial(p) <= 0 for `polynomial`, of degree <= 4 (POV-Ray's quadric, cubic, quartic and
+  // poly): unbounded in general; POV-Ray scenes bound them by CSG.
+  kPolynomial,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -42,7 +46,8 @@ struct Solid {
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
   // object open where it cuts.
   bool bounds_only = false;
-  uint32_t material = 0;  // of this primitive's surface (unused by set operations)
+  uint32_t material = 0;   // of this primitive's surface (unused by set operations)
+  Polynomial3 polynomial;  // kPolynomial
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

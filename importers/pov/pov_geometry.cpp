@@ -124,6 +124,18 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       place = columns(u * r, v * r, n, o.a);
       break;
     }
+    case Shape::kPolynomial: {
+      // POV-Ray's poly order: x powers from the degree down, then y, then z
+      s.kind = SolidKind::kPolynomial;
+      size_t n = 0;
+      for (int i = o.order; i >= 0; --i)
+        for (int j = o.order - i; j >= 0; --j)
+          for (int k = o.order - i - j; k >= 0; --k, ++n)
+            if (n < o.coefficients.size() && o.coefficients[n] != 0)
+              s.polynomial.push_back({o.coefficients[n], uint8_t(i), uint8_t(j), uint8_t(k)});
+      degenerate = polynomial3_degree(s.polynomial) == 0;
+      break;
+    }
     default:
       return std::nullopt;
   }

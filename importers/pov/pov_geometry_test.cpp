@@ -171,6 +171,24 @@ TEST(PovGeometry, MeshGetsOneMeshPerTextureAndAMirroringInstance) {
   expect_near(world_from_object.point(Vec3d(c->scene.meshes[0].positions[1])), {1, 0, -3}, 1e-12);
 }
 
+TEST(PovGeometry, QuadricIsThePolynomialInPovRaysOrder) {
+  // quadric { <1, 2, 3>, <0, 0, 0>, <0, 0, 0>, -1 } in poly order (x2 xy xz x y2 yz y z2 z 1): the
+  // ellipsoid x^2 + 2 y^2 + 3 z^2 <= 1, mirrored in z
+  Object o = shape(Shape::kPolynomial, {}, {}, 0);
+  o.order = 2;
+  o.coefficients = {1, 0, 0, 0, 2, 0, 0, 3, 0, -1};
+  const auto c = convert({o});
+  ASSERT_EQ(c->scene.solids.size(), 1u);
+  EXPECT_EQ(c->scene.solids[0].kind, SolidKind::kPolynomial);
+  EXPECT_EQ(c->scene.solids[0].polynomial.size(), 4u);  // zero terms are left out
+  const auto z = trace(*c, {0, 0, 5}, {0, 0, -1});
+  ASSERT_TRUE(z);
+  EXPECT_NEAR(z->t, 5 - 1 / std::sqrt(3.0), 1e-12);
+  const auto y = trace(*c, {0, 5, 0}, {0, -1, 0});
+  ASSERT_TRUE(y);
+  EXPECT_NEAR(y->t, 5 - 1 / std::sqrt(2.0), 1e-12);
+}
+
 TEST(PovGeometry, WhatCannotBeConvertedIsReported) {
   Object hidden = shape(Shape::kSphere, {0, 0, 0}, {}, 1);
   hidden.no_image = true;

@@ -129,6 +129,9 @@ enum class Shape {
   kCone,      // base a radius r0, cap b radius r1; open
   kTorus,     // major r0, minor r1, in the XZ plane about the origin
   kDisc,      // centre a, normal b, radius r0, hole radius r1
+  // quadric, cubic, quartic, poly: `coefficients` of x^i y^j z^k in POV-Ray's poly order (i from
+  // the degree down, then j, then k), degree `order`; inside where the polynomial is < 0
+  kPolynomial,
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -145,6 +148,8 @@ struct Object {
   Vec3d a{0, 0, 0}, b{0, 0, 0};
   double r0 = 0, r1 = 0;
   bool open = false;
+  int order = 0;                     // kPolynomial
+  std::vector<double> coefficients;  // kPolynomial
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

@@ -60,6 +60,14 @@ const Shot kShots[] = {
      " triangle { <1, -1, 0.5>, <1.5, 1, 1>, <0, 1.2, -0.5> } rotate y * 30 }"},
     {"sheared_sphere",
      "sphere { 0, 1 matrix <1, 0, 0, 0.5, 1, 0, 0, 0, 1, 0, 0, 0> scale <1.2, 0.8, 1> }"},
+    // Polynomial solids: a tilted ellipsoid with a mixed term, an unbounded quadric cylinder cut
+    // by a box, and a torus written as a quartic (R = 1, r = 0.4, about POV-Ray's y axis).
+    {"quadric_ellipsoid", "quadric { <1, 2.5, 1.5>, <0.4, 0, 0>, 0, -1.2 rotate <20, 30, 0> }"},
+    {"quadric_cylinder_in_box",
+     "intersection { quadric { <1, 0, 1>, 0, 0, -0.49 } box { -1, 1 } rotate <30, 20, 0> }"},
+    {"quartic_torus",
+     "quartic { <1,0,0,0,2,0,0,2,0,-2.32,0,0,0,0,0,0,0,0,0,0,1,0,0,2,0,1.68,0,0,0,0,1,0,-2.32,0,"
+     "0.7056> rotate <60, 20, 0> }"},
 };
 
 std::string scene_sdl(const Shot& shot) {

@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -237,14 +237,15 @@ TEST_F(Sdl, ErrorsCarryLocationAndIncludeChain) {
   EXPECT_NE(error_of("/* open").find("unterminated /* comment"), std::string::npos);
 }
 
-// Each runaway fails with its limit named, within a second (docs/pov.md "The language").
+// Each runaway fails with its limit named, within a second of processor time (docs/pov.md "The
+// language").
 TEST_F(Sdl, RunawayScenesFailCleanlyAndQuickly) {
   const EvaluateLimits limits;
   auto fails_quickly_with = [&](const std::string& text, const std::string& message) {
-    auto start = std::chrono::steady_clock::now();
+    // processor time, so that other work on the machine does not count
+    const std::clock_t start = std::clock();
     std::string error = error_of(text);
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = double(std::clock() - start) / CLOCKS_PER_SEC;
     EXPECT_NE(error.find(message), std::string::npos) << error;
     EXPECT_LT(seconds, 1.0) << message;
     return error;
@@ -421,14 +422,14 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
 // An unsupported object is reported where the scene places it, not where it is declared: an
 // include that declares shapes the scene never uses leaves its geometry complete.
 TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
-  write("lib/shapes.inc", "#declare Q = quadric { <1, 1, 1>, 0, 0, -1 }\n");
+  write("lib/shapes.inc", "#declare Q = lathe { 2, <0, 0>, <1, 1> }\n");
   Scene scene = run("#include \"shapes.inc\"\nsphere { 0, 1 }");
   EXPECT_TRUE(scene.unsupported.empty());
   ASSERT_EQ(scene.objects.size(), 1u);
 
   scene = run("#include \"shapes.inc\"\nobject { Q translate x }");
   ASSERT_EQ(scene.unsupported.size(), 1u);
-  EXPECT_EQ(scene.unsupported[0].feature, "quadric");
+  EXPECT_EQ(scene.unsupported[0].feature, "lathe");
   const std::string written = scene.unsupported[0].where.text();
   EXPECT_EQ(written.substr(written.size() - 19), "lib/shapes.inc:1:14") << written;
   ASSERT_TRUE(scene.unsupported[0].placed);
@@ -451,6 +452,33 @@ TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
   EXPECT_EQ(scene.unsupported[0].feature, "blob");
   EXPECT_FALSE(scene.unsupported[0].placed);
   EXPECT_EQ(scene.unsupported[1].placed->text(), "scene.pov:3:1");
+}
+
+TEST_F(Sdl, PolynomialObjects) {
+  std::string coefficients35;
+  for (int i = 1; i <= 35; ++i)
+    coefficients35 += (i > 1 ? ", " : "") + std::to_string(i);
+  Scene scene =
+      run("quadric { <1, 2, 3>, <4, 5, 6>, <7, 8, 9>, 10 }\n"
+          "cubic { <1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20> sturm }\n"
+          "quartic { <" +
+          coefficients35 +
+          "> translate x }\n"
+          "poly { 5, <" +
+          coefficients35 +
+          ", 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, "
+          "1, 1, 1> }\n");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  // quadric: A x2 + B y2 + C z2 + D xy + E xz + F yz + G x + H y + I z + J in poly order
+  const std::vector<double> quadric{1, 4, 5, 7, 2, 6, 8, 3, 9, 10};
+  EXPECT_EQ(scene.objects[0].order, 2);
+  EXPECT_EQ(scene.objects[0].coefficients, quadric);
+  EXPECT_EQ(scene.objects[1].order, 3);
+  EXPECT_EQ(scene.objects[1].coefficients.size(), 20u);
+  EXPECT_EQ(scene.objects[2].coefficients.at(34), 35);
+  EXPECT_EQ(scene.objects[2].world_from_object.point({0, 0, 0}).x, 1);
+  ASSERT_EQ(scene.unsupported.size(), 1u);  // degree 5 is past what the renderer solves
+  EXPECT_EQ(scene.unsupported[0].feature, "poly");
 }
 
 TEST_F(Sdl, PolygonAndMeshes) {
@@ -528,7 +556,7 @@ TEST_F(Sdl, ReadsDataFilesInTheSceneFolder) {
       run("#fopen Out \"out.txt\" write\n"
           "#write (Out, \"\\\"Testing 123\\\",\", 5, \",\", <1, 2.5, 3>, \"\\n\")\n"
           "#fclose Out\n"
-          "#fopen Out \"out.txt\" append #write (Out, \",\", -0.25) #fclose Out\n"
+          "#fopen Out \"out.txt\" append #write (Out \",\", -0.25) #fclose Out\n"
           "#fopen In \"out.txt\" read\n"
           "#read (In, S, F, V, G)\n"
           "sphere { <F, V.y, G>, strlen(S) }");

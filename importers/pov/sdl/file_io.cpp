@@ -46,7 +46,9 @@ void Parser::run_write() {
     fail("#write needs a file opened for writing");
   }
   std::string& text = written_files_[handle->text];
-  while (accept(",")) {
+  for (;;) {
+    accept(",");  // POV-Ray also takes `#write (File "text")`
+    if (accept(")")) break;
     Value value = parse_expression();
     if (value.kind == ValueKind::kString) {
       text += value.text;
@@ -67,7 +69,6 @@ void Parser::run_write() {
            " bytes (limit)");
     }
   }
-  expect(")");
 }
 
 // #read (File, A, B ...): each identifier takes the next comma-separated value of the file; at

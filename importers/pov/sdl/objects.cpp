@@ -9,15 +9,15 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",     "box",          "plane",        "cylinder",        "cone",
-    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
-    "mesh2",      "polygon",      "object",       "union",           "merge",
-    "difference", "intersection", "light_source", "light_group"};
+    "sphere",      "box",      "plane",           "cylinder",   "cone",         "torus",
+    "disc",        "triangle", "smooth_triangle", "mesh",       "mesh2",        "polygon",
+    "object",      "union",    "merge",           "difference", "intersection", "light_source",
+    "light_group", "quadric",  "cubic",           "quartic",    "poly"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "text",       "height_field", "blob",          "lathe", "sor",   "prism",      "superellipsoid",
-    "isosurface", "quadric",      "quartic",       "poly",  "cubic", "polynomial", "julia_fractal",
-    "parametric", "sphere_sweep", "bicubic_patch", "ovus",  "lemon", "fractal"};
+    "text",           "height_field", "blob",       "lathe",         "sor",        "prism",
+    "superellipsoid", "isosurface",   "polynomial", "julia_fractal", "parametric", "sphere_sweep",
+    "bicubic_patch",  "ovus",         "lemon",      "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -232,6 +232,13 @@ Node Parser::parse_object(const Tok& keyword) {
       }
     }
     o.indices = {0, 1, 2};
+  } else if (w == "quadric" || w == "cubic" || w == "quartic" || w == "poly") {
+    if (!parse_polynomial(w, o)) {
+      skip_rest_of_block();
+      Node missing;
+      missing.missing.push_back({w, where, std::nullopt});  // above degree 4
+      return missing;
+    }
   } else if (w == "mesh") {
     parse_mesh(o);
   } else if (w == "mesh2") {
@@ -489,6 +496,45 @@ void Parser::parse_mesh2(Object& o) {
   } else if (normals.size() == o.vertices.size()) {
     o.normals = std::move(normals);
   }
+}
+
+// quadric { <A,B,C>, <D,E,F>, <G,H,I>, J }: A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x +
+// H y + I z + J; cubic { <20 terms> }, quartic { <35> }, poly { N, <(N+1)(N+2)(N+3)/6> } in
+// POV-Ray's order. False for a poly above the degree the renderer solves (4).
+bool Parser::parse_polynomial(const std::string& keyword, Object& o) {
+  o.shape = Shape::kPolynomial;
+  if (keyword == "quadric") {
+    o.order = 2;
+    Vec3d squares = parse_vector();
+    accept(",");
+    Vec3d mixed = parse_vector();
+    accept(",");
+    Vec3d linear = parse_vector();
+    accept(",");
+    const double constant = parse_float();
+    // in poly order: x2, xy, xz, x, y2, yz, y, z2, z, 1
+    o.coefficients = {squares.x, mixed.x,  mixed.y,   linear.x, squares.y,
+                      mixed.z,   linear.y, squares.z, linear.z, constant};
+    return true;
+  }
+  o.order = keyword == "cubic" ? 3 : keyword == "quartic" ? 4 : 0;
+  if (keyword == "poly") {
+    const double order = parse_float();
+    if (!(order >= 2 && order <= 15)) fail("poly order must be 2 to 15");
+    o.order = static_cast<int>(order);
+    accept(",");
+  }
+  const size_t terms = static_cast<size_t>((o.order + 1) * (o.order + 2) * (o.order + 3) / 6);
+  expect("<");
+  int saved = vector_level_;
+  vector_level_ = nesting + 1;
+  for (size_t i = 0; i < terms; ++i) {
+    if (i > 0) expect(",");
+    o.coefficients.push_back(parse_float());
+  }
+  vector_level_ = saved;
+  expect(">");
+  return o.order <= 4;
 }
 
 void Parser::ensure_texture(Object& o) {

@@ -215,6 +215,8 @@ class Parser {
   Node parse_object(const Tok& keyword);
   void parse_mesh(Object& o);
   void parse_mesh2(Object& o);
+  bool parse_polynomial(const std::string& keyword, Object& o);
+  void skip_rest_of_block();  // to the '}' closing a block already open
   void parse_object_mods(Node& node);
   void ensure_texture(Object& o);  // the object's own texture, from the #default one if none
 

@@ -337,6 +337,10 @@ bool Parser::accept(const char* symbol) {
 
 void Parser::skip_block() {
   expect("{");
+  skip_rest_of_block();
+}
+
+void Parser::skip_rest_of_block() {
   int depth = 1;
   while (depth > 0) {
     Tok tok = next();
