@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -58,6 +59,20 @@ namespace {
 
 void record_embree_error(void* user, RTCError, const char* message) {
   static_cast<std::string*>(user)->assign(message ? message : "unknown Embree error");
+}
+
+// RenderGeometry::live_bytes(): Embree reports each allocation (bytes > 0) before it is made and
+// each release (bytes < 0) after, from whichever thread builds.
+std::atomic<int64_t> live_bytes_total{0};
+
+bool count_embree_bytes(void*, ssize_t bytes, bool) {
+  live_bytes_total.fetch_add(bytes, std::memory_order_relaxed);
+  return true;
+}
+
+template <typename T>
+size_t bytes_of(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
 }
 
 // gamma(n) = n u / (1 - n u), the bound on n rounded float operations (pbrt 4e §6.8.1).
@@ -230,6 +245,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   embree_->device = rtcNewDevice(nullptr);
   if (!embree_->device) throw InputError("cannot create an Embree device");
   rtcSetDeviceErrorFunction(embree_->device, record_embree_error, &embree_->error);
+  rtcSetDeviceMemoryMonitorFunction(embree_->device, count_embree_bytes, nullptr);
   embree_->scene = rtcNewScene(embree_->device);
   // Watertight triangle tests: no ray slips between two triangles of a closed mesh (light leaks
   // into closed rooms), and single rays and packets agree on every hit.
@@ -319,9 +335,23 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     centre_ = Vec3f((bounds_.lo + bounds_.hi) * 0.5);
     radius_ = static_cast<float>(length(bounds_.hi - bounds_.lo) * 0.5);
   }
+  own_bytes_ = bytes_of(meshes_) + bytes_of(emitters_);
+  for (const Mesh& mesh : meshes_) {
+    own_bytes_ += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.indices) +
+                  bytes_of(mesh.texturing.tangents);
+    for (const auto& texcoords : mesh.texturing.texcoords)
+      own_bytes_ += bytes_of(texcoords);
+  }
+  live_bytes_total.fetch_add(int64_t(own_bytes_), std::memory_order_relaxed);
 }
 
-RenderGeometry::~RenderGeometry() = default;
+RenderGeometry::~RenderGeometry() {
+  live_bytes_total.fetch_sub(int64_t(own_bytes_), std::memory_order_relaxed);
+}
+
+size_t RenderGeometry::live_bytes() {
+  return size_t(std::max<int64_t>(live_bytes_total.load(std::memory_order_relaxed), 0));
+}
 
 float RenderGeometry::embree_time(float time_s) const {
   const float t = (time_s - open_s_) * inverse_duration_;

@@ -65,6 +65,12 @@ class RenderGeometry {
   size_t moving_instance_count() const { return moving_instances_; }
   uint32_t most_motion_steps() const { return most_motion_steps_; }  // 1 when nothing moves
 
+  // Bytes held by every RenderGeometry alive in this process: render-space vertices, normals,
+  // texture coordinates, tangents, indices and emitters, and what Embree's memory monitor reports
+  // for their devices (the BVH). Process-wide because a RenderJob keeps its geometry to itself;
+  // `filmback bench` holds one job at a time and reports this as the geometry it renders.
+  static size_t live_bytes();
+
  private:
   struct Mesh;
   // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`, at
@@ -91,6 +97,7 @@ class RenderGeometry {
   size_t moving_instances_ = 0;
   uint32_t most_motion_steps_ = 1;
   float open_s_ = 0.f, inverse_duration_ = 0.f;  // the shutter relative to the frame's time
+  size_t own_bytes_ = 0;  // this object's share of live_bytes(), Embree's aside
   struct Embree;
   std::unique_ptr<Embree> embree_;
 };
