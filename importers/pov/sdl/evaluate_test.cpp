@@ -464,11 +464,14 @@ TEST_F(Sdl, PolynomialObjects) {
           "quartic { <" +
           coefficients35 +
           "> translate x }\n"
+          "poly { 2 <1 0 0 0 1 0 0 1 0, -1> }\n"  // few commas, as objects/primitiv.pov
           "poly { 5, <" +
           coefficients35 +
           ", 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, "
           "1, 1, 1> }\n");
-  ASSERT_EQ(scene.objects.size(), 3u);
+  ASSERT_EQ(scene.objects.size(), 4u);
+  EXPECT_EQ(scene.objects[3].order, 2);
+  EXPECT_EQ(scene.objects[3].coefficients.at(9), -1);
   // quadric: A x2 + B y2 + C z2 + D xy + E xz + F yz + G x + H y + I z + J in poly order
   const std::vector<double> quadric{1, 4, 5, 7, 2, 6, 8, 3, 9, 10};
   EXPECT_EQ(scene.objects[0].order, 2);

@@ -519,7 +519,7 @@ bool Parser::parse_polynomial(const std::string& keyword, Object& o) {
   }
   o.order = keyword == "cubic" ? 3 : keyword == "quartic" ? 4 : 0;
   if (keyword == "poly") {
-    const double order = parse_float();
+    const double order = parse_count();  // `poly { 4 <...` has no comma: no comparison here
     if (!(order >= 2 && order <= 15)) fail("poly order must be 2 to 15");
     o.order = static_cast<int>(order);
     accept(",");
@@ -529,7 +529,7 @@ bool Parser::parse_polynomial(const std::string& keyword, Object& o) {
   int saved = vector_level_;
   vector_level_ = nesting + 1;
   for (size_t i = 0; i < terms; ++i) {
-    if (i > 0) expect(",");
+    if (i > 0) accept(",");  // POV-Ray also takes coefficients separated by blanks
     o.coefficients.push_back(parse_float());
   }
   vector_level_ = saved;
