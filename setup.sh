@@ -13,10 +13,10 @@ packages=(g++ cmake ninja-build pkg-config
           libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
           libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libosd-dev)
 # Peers the tests render with (Blender's Cycles and glTF exporter; POV-Ray with its include files
-# and sample scenes), the test drivers' Python, and a second compiler that builds an out-of-tree
-# plugin against the installed SDK.
+# and sample scenes), the test drivers' Python, matplotlib for `filmback bench`'s plots, and a second
+# compiler that builds an out-of-tree plugin against the installed SDK.
 [ "$mode" = test ] && packages+=(blender povray povray-includes povray-examples
-                                 python3 python3-numpy clang)
+                                 python3 python3-numpy python3-matplotlib clang)
 # npm only when the machine has none: a Node.js from another Debian source (nodesource's `nodejs`,
 # which ships its own npm) conflicts with Debian's `npm` package.
 [ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(npm)

@@ -38,6 +38,25 @@ struct ConvertCommand {
   ImportOptions import;
 };
 
+// `filmback bench` (docs/cli.md "bench"): every scene at every sample count and configuration
+// (samplers x filters), errors against references, times, memory; optionally Cycles beside it.
+struct BenchCommand {
+  std::vector<std::filesystem::path> scenes;  // .gltf, .glb, .pov; Blender shots .blend, .py
+  std::filesystem::path output;               // the report folder
+  std::vector<uint32_t> spp{1, 2, 4, 8, 16, 32, 64, 128, 256};
+  std::vector<std::string> samplers;              // names; none: the default
+  std::vector<std::string> filters;               // one plugin spec per --filter; none: the scene's
+  std::vector<std::filesystem::path> references;  // one per scene, or none
+  std::optional<uint32_t> reference_spp;          // none: 16 x the highest of `spp`
+  std::string resolution;                         // "WxH"; empty: each scene's
+  std::optional<double> target_error;
+  std::string against;  // "cycles", or empty
+  uint64_t seed = 0;
+  unsigned threads = 0;  // 0: all cores
+  ImportOptions import;
+  std::string command_line;  // as typed, for the report
+};
+
 // "WxH" as typed after --res, each side 1..32768 and at most 2^28 pixels (UsageError).
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text);
 
@@ -47,5 +66,6 @@ int run_info(const std::filesystem::path& scene, const ImportOptions& options,
              const std::optional<std::string>& camera);
 int run_convert(ConvertCommand& command);
 int run_plugins();
+int run_bench(BenchCommand& command);
 
 }  // namespace fb

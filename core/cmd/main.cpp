@@ -1,4 +1,4 @@
-// filmback's command-line front end: `render`, `info`, `convert`, `plugins` (docs/cli.md).
+// filmback's command-line front end: `render`, `info`, `convert`, `plugins`, `bench` (docs/cli.md).
 #include <CLI/CLI.hpp>
 #include <optional>
 
@@ -115,6 +115,65 @@ int main(int argc, char** argv) {
   CLI::App* plugins_cmd =
       app.add_subcommand("plugins", "list every plugin found, with its parameters");
 
+  fb::BenchCommand bench;
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench",
+      "render scenes at increasing sample counts: error against time, convergence "
+      "rates, memory; optionally against Cycles (docs/cli.md)");
+  bench_cmd
+      ->add_option(
+          "scene", bench.scenes,
+          "scene files (.gltf, .glb, .pov; Blender shots: .blend, or a .py that builds one)")
+      ->required();
+  bench_cmd->add_option("-o,--output", bench.output, "report folder (created if its parent exists)")
+      ->required();
+  // Each list option takes one argument per occurrence, so that it never swallows a scene.
+  bench_cmd
+      ->add_option("--spp", bench.spp, "sample counts, comma-separated (default 1,2,4,...,256)")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::Range(1u, 1000000u));
+  bench_cmd
+      ->add_option("--sampler", bench.samplers,
+                   "samplers, comma-separated or repeated: independent, stratified, sobol, zsobol "
+                   "(default sobol)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  bench_cmd
+      ->add_option("--filter", bench.filters,
+                   "a pixel filter NAME[:k=v,...], one per --filter, repeatable (default: the "
+                   "scene's)")
+      ->allow_extra_args(false);
+  CLI::Option* reference =
+      bench_cmd
+          ->add_option("--reference", bench.references,
+                       "the reference image (EXR) of each scene, one per --reference, in order")
+          ->allow_extra_args(false);
+  bench_cmd
+      ->add_option("--reference-spp", bench.reference_spp,
+                   "samples of filmback's (and Cycles') own references, even (default 16 x the "
+                   "highest --spp)")
+      ->check(CLI::Range(2u, 1000000u))
+      ->excludes(reference);
+  bench_cmd->add_option("--res", bench.resolution, "image size WxH (default: each scene's)");
+  bench_cmd
+      ->add_option("--target-error", bench.target_error,
+                   "the RMSE whose time is compared (default: the largest any configuration has "
+                   "at its highest spp)")
+      ->check(CLI::PositiveNumber);
+  bench_cmd
+      ->add_option("--against", bench.against,
+                   "cycles: render the Blender shots with Cycles too (blender on PATH)")
+      ->check(CLI::IsMember({"cycles"}));
+  bench_cmd
+      ->add_option("--seed", bench.seed,
+                   "seed of the measured renders; references use seed+1 and seed+2 (default 0)")
+      ->check(CLI::Range(uint64_t(0), uint64_t(2147483645)));  // Cycles' seed is an int
+  bench_cmd
+      ->add_option("--threads", bench.threads, "worker threads of both renderers (default 0: all)")
+      ->check(CLI::Range(0u, 4096u));
+  add_import_options(bench_cmd, bench.import);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -131,6 +190,12 @@ int main(int argc, char** argv) {
     }
     if (convert_cmd->parsed()) return fb::run_convert(convert);
     if (plugins_cmd->parsed()) return fb::run_plugins();
+    if (bench_cmd->parsed()) {
+      bench.command_line = "filmback";
+      for (int i = 1; i < argc; ++i)
+        bench.command_line += std::string(" ") + argv[i];
+      return fb::run_bench(bench);
+    }
   } catch (const fb::UsageError& e) {
     std::cerr << "filmback: error: " << e.what() << '\n';
     return 2;

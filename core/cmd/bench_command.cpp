@@ -1,0 +1,195 @@
+// `filmback bench` (docs/cli.md, "bench"): checks what was typed, runs every scene through
+// filmback (and Cycles), and writes the report folder.
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <set>
+
+#include "core/cmd/bench_cycles.h"
+#include "core/cmd/bench_filmback.h"
+#include "core/cmd/bench_process.h"
+#include "core/cmd/bench_report.h"
+#include "core/cmd/commands.h"
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A reference at this many times the highest sample count measured has, for Monte Carlo's
+// 1/sqrt(N), a quarter of that render's RMSE (its own noise is measured and reported).
+constexpr uint32_t kReferenceSppFactor = 16;
+constexpr uint32_t kMostSpp = 1000000;
+
+BenchSettings settings_from(const BenchCommand& c) {
+  BenchSettings s;
+  s.spp = c.spp;
+  std::sort(s.spp.begin(), s.spp.end());
+  s.spp.erase(std::unique(s.spp.begin(), s.spp.end()), s.spp.end());
+  if (s.spp.size() < 2)
+    throw UsageError("--spp: expected at least two different sample counts, to fit a rate");
+  s.filters.assign(c.filters.begin(), c.filters.end());
+  if (s.filters.empty()) s.filters.push_back(std::nullopt);
+  std::vector<SamplerKind> samplers;
+  for (const std::string& name : c.samplers) {
+    const SamplerKind kind = parse_sampler_kind(name, "--sampler");
+    if (std::find(samplers.begin(), samplers.end(), kind) == samplers.end())
+      samplers.push_back(kind);
+  }
+  if (samplers.empty()) samplers.push_back(kDefaultSampler);
+  for (size_t f = 0; f < s.filters.size(); ++f)
+    for (SamplerKind kind : samplers)
+      s.configurations.push_back({kind, s.filters[f], f});
+  if (!c.resolution.empty()) s.resolution = parse_resolution(c.resolution);
+  s.reference_spp =
+      c.reference_spp.value_or(std::min(kReferenceSppFactor * s.spp.back(), kMostSpp));
+  if (s.reference_spp % 2)
+    throw UsageError("--reference-spp " + std::to_string(s.reference_spp) +
+                     ": expected an even count (the reference is two renders of half of it)");
+  s.seed = c.seed;
+  s.threads = c.threads;
+  s.against_cycles = c.against == "cycles";
+  s.import = c.import;
+  return s;
+}
+
+void check_scenes(const BenchCommand& c, const BenchSettings& s) {
+  std::set<std::string> names;
+  bool any_blender_shot = false;
+  for (const fs::path& scene : c.scenes) {
+    if (!names.insert(scene.stem().string()).second)
+      throw UsageError("scene '" + scene.string() + "': another scene has the name '" +
+                       scene.stem().string() + "' (the report names scenes by file name)");
+    std::error_code ec;
+    if (!fs::is_regular_file(scene, ec)) throw_input(scene.string(), "", "no such file");
+    any_blender_shot |= is_blender_shot(scene);
+  }
+  if (!c.references.empty() && c.references.size() != c.scenes.size())
+    throw UsageError("--reference: given " + std::to_string(c.references.size()) + " times for " +
+                     std::to_string(c.scenes.size()) + " scenes; expected one per scene, in order");
+  if (!c.references.empty() && s.filters.size() > 1)
+    throw UsageError(
+        "--reference: one image can be the reference of only one pixel filter; "
+        "give one --filter");
+  if (s.against_cycles && !any_blender_shot)
+    throw UsageError(
+        "--against cycles: expected a Blender shot (.blend, or a .py that builds one) "
+        "among the scenes");
+}
+
+// The report folder: created when its parent exists.
+void make_output_folder(const fs::path& output) {
+  std::error_code ec;
+  if (fs::exists(output, ec) && !fs::is_directory(output, ec))
+    throw UsageError("-o '" + output.string() + "': is a file, expected a folder");
+  const fs::path parent = output.has_parent_path() ? output.parent_path() : ".";
+  if (!fs::is_directory(parent, ec))
+    throw UsageError("-o '" + output.string() + "': the folder '" + parent.string() +
+                     "' does not exist");
+  fs::create_directories(output / "work", ec);
+  if (ec) throw_input(output.string(), "", "cannot create the report folder: " + ec.message());
+}
+
+// Through a hidden temporary in the same folder, renamed into place as images are
+// (core/image/image_io.cpp): a failed write leaves neither a partial file nor the temporary.
+void write_text(const fs::path& file, const std::string& text) {
+  std::string name = ".";
+  name += file.stem().string();
+  name += ".filmback-" + std::to_string(getpid()) + file.extension().string();
+  const fs::path temporary = file.parent_path() / name;
+  std::ofstream out(temporary, std::ios::binary);
+  out << text;
+  out.close();
+  std::error_code ec;
+  if (out) fs::rename(temporary, file, ec);
+  if (!out || ec) {
+    fs::remove(temporary, ec);
+    throw_input(file.string(), "", "cannot write the report file");
+  }
+}
+
+// Runs plot.py; each scene's plot file name, or none (with one warning) when it drew none.
+std::vector<std::string> draw_plots(const fs::path& output,
+                                    const std::vector<SceneReport>& scenes) {
+  const fs::path log = output / "work" / "plot.log";
+  const ProgramRun run =
+      run_program({"python3", bench_script("plot.py").string(), output.string()}, log);
+  std::vector<std::string> plots(scenes.size());
+  if (run.started && run.exit_status == 0)
+    for (size_t i = 0; i < scenes.size(); ++i)
+      plots[i] = scenes[i].name + ".png";
+  else if (run.exit_status == 3)
+    std::cerr << "filmback: warning: python3-matplotlib is not installed: no plots (the CSV "
+                 "files and summary.md are written)\n";
+  else
+    std::cerr << "filmback: warning: " << describe_failure(run, "python3 (plots)", log)
+              << ": no plots (the CSV files and summary.md are written)\n";
+  return plots;
+}
+
+}  // namespace
+
+int run_bench(BenchCommand& c) {
+  const BenchSettings settings = settings_from(c);
+  check_scenes(c, settings);
+  make_output_folder(c.output);
+  // Blender prepares every shot before anything renders: a missing Blender or a broken shot
+  // stops the run before its first render.
+  std::vector<std::optional<BlenderShot>> shots(c.scenes.size());
+  for (size_t i = 0; i < c.scenes.size(); ++i) {
+    if (!is_blender_shot(c.scenes[i])) continue;
+    const fs::path work = fs::absolute(c.output / "work" / c.scenes[i].stem());
+    fs::create_directories(work);
+    std::cout << "bench: " << c.scenes[i].stem().string() << ": Blender prepares the shot"
+              << std::endl;
+    shots[i] = prepare_blender_shot(fs::absolute(c.scenes[i]), work, settings.resolution,
+                                    settings.threads);
+  }
+
+  BenchContext context;
+  context.command_line = c.command_line;
+  context.processor = processor_description();
+  context.started = utc_now();
+  context.load_before = load_average();
+  context.threads = c.threads;
+  context.target_error = c.target_error;
+
+  std::optional<tbb::global_control> threads;
+  if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
+  const PluginLoader loader(PluginLoader::default_search_dirs());
+  std::vector<SceneReport> reports;
+  for (size_t i = 0; i < c.scenes.size(); ++i) {
+    const fs::path& scene = c.scenes[i];
+    const std::string name = scene.stem().string();
+    const fs::path work = c.output / "work" / name;
+    fs::create_directories(work);
+    const std::optional<fs::path> reference =
+        c.references.empty() ? std::nullopt : std::optional(c.references[i]);
+    if (const std::optional<BlenderShot>& shot = shots[i]) {
+      FilmbackBench bench = bench_filmback(name, shot->gltf, reference, settings, loader, work);
+      bench.report.prepare_s = shot->prepare_s;
+      if (settings.against_cycles) bench_cycles(name, *shot, settings, bench);
+      reports.push_back(std::move(bench.report));
+    } else {
+      reports.push_back(bench_filmback(name, scene, reference, settings, loader, work).report);
+    }
+    reports.back().name = name;
+    reports.back().file = scene;
+  }
+  context.finished = utc_now();
+  context.load_after = load_average();
+
+  write_text(c.output / "renders.csv", renders_csv(reports));
+  write_text(c.output / "fits.csv", fits_csv(reports));
+  write_text(c.output / "scenes.csv", scenes_csv(reports, context));
+  const std::vector<std::string> plots = draw_plots(c.output, reports);
+  write_text(c.output / "summary.md", summary_markdown(reports, context, plots));
+  std::cout << "bench: wrote " << (c.output / "summary.md").string() << std::endl;
+  return 0;
+}
+
+}  // namespace fb

@@ -1,0 +1,145 @@
+#include "core/cmd/bench_cycles.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "core/cmd/bench_metrics.h"
+#include "core/cmd/bench_process.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw_input(file.string(), "", "Blender did not write it");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  while (!s.empty() && (s.back() == '\n' || s.back() == '\r'))
+    s.pop_back();
+  return s;
+}
+
+// Runs Blender (-b --factory-startup ARGS); InputError naming its log when it fails.
+double run_blender(std::vector<std::string> args, const fs::path& log, const std::string& what) {
+  args.insert(args.begin(), {"blender", "-b", "--factory-startup"});
+  const ProgramRun run = run_program(args, log);
+  if (!run.started || run.exit_status != 0)
+    throw InputError(describe_failure(run, "blender (Debian package blender), " + what, log));
+  return run.wall_s;
+}
+
+struct CyclesRender {
+  Image image;           // R, G, B
+  double process_s = 0;  // Blender's whole process, wall time
+  double render_s = 0;   // bpy.ops.render.render() within it: sync, BVH, sampling
+};
+
+// One Blender process rendering shot.blend at `spp` with Cycles' seed `seed` into work/NAME.exr.
+CyclesRender render_cycles(const BlenderShot& shot, uint32_t spp, uint64_t seed,
+                           const std::string& name) {
+  CyclesRender r;
+  const fs::path exr = shot.work / (name + ".exr");
+  r.process_s =
+      run_blender({shot.blend.string(), "--python-exit-code", "1", "--python",
+                   bench_script("cycles_render.py").string(), "--", exr.string(),
+                   std::to_string(spp), std::to_string(seed)},
+                  shot.work / (name + ".log"), "Cycles at " + std::to_string(spp) + " spp");
+  const fs::path seconds_file = exr.string() + ".render_s";
+  const std::string seconds = read_text(seconds_file);
+  const auto [end, ec] =
+      std::from_chars(seconds.data(), seconds.data() + seconds.size(), r.render_s);
+  if (ec != std::errc() || end != seconds.data() + seconds.size())
+    throw_input(seconds_file.string(), "", "expected a number of seconds, found '" + seconds + "'");
+  r.image = colour_channels(read_image(exr), exr.string());
+  return r;
+}
+
+}  // namespace
+
+bool is_blender_shot(const fs::path& scene) {
+  const std::string ext = scene.extension().string();
+  return ext == ".blend" || ext == ".py";
+}
+
+BlenderShot prepare_blender_shot(const fs::path& source, const fs::path& work,
+                                 const std::optional<std::pair<uint32_t, uint32_t>>& resolution,
+                                 unsigned threads) {
+  BlenderShot shot{work / "shot.blend", work / "shot.gltf", work, 0, {}};
+  std::vector<std::string> args;
+  if (source.extension() == ".blend") args.push_back(source.string());
+  const std::string size =
+      resolution ? std::to_string(resolution->first) + "x" + std::to_string(resolution->second)
+                 : "shot";
+  args.insert(args.end(),
+              {"--python-exit-code", "1", "--python", bench_script("blender_prepare.py").string(),
+               "--", source.string(), work.string(), size, std::to_string(threads)});
+  shot.prepare_s = run_blender(args, work / "prepare.log", "preparing " + source.string());
+  shot.cycles_settings = read_text(work / "cycles_settings.txt");
+  return shot;
+}
+
+void bench_cycles(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
+                  FilmbackBench& filmback) {
+  SceneReport& report = filmback.report;
+  CyclesNote note{shot.cycles_settings, std::nullopt, 0, 0, ""};
+  const uint32_t half = settings.reference_spp / 2;
+  Image halves[2];
+  for (int h = 0; h < 2; ++h) {
+    std::cout << "bench: " << name << ": Cycles reference, half " << h + 1 << " of 2 at " << half
+              << " spp" << std::endl;
+    halves[h] = render_cycles(shot, half, settings.seed + 1 + h,
+                              "cycles_reference_" + std::to_string(h + 1))
+                    .image;
+  }
+  const AveragedReference reference = average_halves(halves[0], halves[1]);
+  report.references.push_back({"cycles", "the shot's",
+                               "Cycles, 2 x " + std::to_string(half) + " spp (seeds " +
+                                   std::to_string(settings.seed + 1) + " and " +
+                                   std::to_string(settings.seed + 2) + ")",
+                               reference.noise});
+  if (filmback.shot_filter) {
+    const Image& ours = filmback.references[*filmback.shot_filter];
+    const ReferenceNote& our_note = report.references[*filmback.shot_filter];
+    if (ours.width == reference.image.width && ours.height == reference.image.height) {
+      note.bias = image_error(ours, reference.image);
+      note.bias_filter = our_note.filter;
+      const double ours_noise = our_note.noise ? our_note.noise->rmse : 0;
+      note.bias_noise_rmse = std::hypot(ours_noise, reference.noise.rmse);
+      double sum_ours = 0, sum_cycles = 0;
+      for (size_t i = 0; i < ours.pixels.size(); ++i)
+        sum_ours += ours.pixels[i], sum_cycles += reference.image.pixels[i];
+      note.mean_ratio = sum_ours / sum_cycles;
+    }
+  }
+  for (uint32_t spp : settings.spp) {
+    const CyclesRender r =
+        render_cycles(shot, spp, settings.seed, "cycles_" + std::to_string(spp) + "spp");
+    RenderRow row;
+    row.renderer = row.configuration = "cycles";
+    row.sampler = row.filter = "the shot's";
+    row.spp = spp;
+    row.render_s = r.render_s;
+    row.total_s = r.process_s;
+    row.samples_per_s = double(r.image.width) * r.image.height * spp / r.render_s;
+    row.error = image_error(r.image, reference.image);
+    row.reference_noise = reference.noise.rmse;
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "bench: %s: cycles at %u spp: %.3f s render, %.3f s process, RMSE %.4g",
+                  name.c_str(), spp, row.render_s, row.total_s, row.error.rmse);
+    std::cout << line << std::endl;
+    report.rows.push_back(std::move(row));
+  }
+  report.cycles = std::move(note);
+}
+
+}  // namespace fb

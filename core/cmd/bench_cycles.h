@@ -1,0 +1,42 @@
+// The Blender side of `filmback bench` (docs/cli.md, "bench"): a shot given as a .blend file or a
+// bpy script that builds one is prepared once by Blender, which saves it and exports it as glTF
+// through filmback's add-on (the file filmback renders); Cycles then renders the saved .blend, one
+// Blender process per image, so its time is the whole process's: Blender's start, loading the
+// file, Cycles' scene sync and BVH, the render, the EXR written.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "core/cmd/bench_filmback.h"
+#include "core/cmd/bench_types.h"
+
+namespace fb {
+
+// Whether `scene` is a Blender shot (.blend, or .py: a bpy script that builds the shot).
+bool is_blender_shot(const std::filesystem::path& scene);
+
+struct BlenderShot {
+  std::filesystem::path blend, gltf, work;
+  double prepare_s = 0;         // the preparing Blender process, wall time
+  std::string cycles_settings;  // one line: what Cycles is set to render with
+};
+
+// Builds or opens `source` in Blender, sets the resolution (when given: else the shot's), Cycles
+// on the CPU with `threads` (0: all), adaptive sampling and denoising off, and writes
+// work/shot.blend and work/shot.gltf.
+BlenderShot prepare_blender_shot(const std::filesystem::path& source,
+                                 const std::filesystem::path& work,
+                                 const std::optional<std::pair<uint32_t, uint32_t>>& resolution,
+                                 unsigned threads);
+
+// Cycles at every sample count of `settings` (seed settings.seed) and its own reference (the mean
+// of two renders of half settings.reference_spp, seeds + 1 and + 2): rows added to
+// `filmback.report`, whose CyclesNote gets the bias between the two renderers' references.
+void bench_cycles(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
+                  FilmbackBench& filmback);
+
+}  // namespace fb

@@ -1,0 +1,86 @@
+#include "core/cmd/bench_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace fb {
+
+Image colour_channels(const Image& image, const std::string& file) {
+  const char* names[3] = {"R", "G", "B"};
+  size_t index[3];
+  for (int c = 0; c < 3; ++c) {
+    const auto it = std::find(image.channels.begin(), image.channels.end(), names[c]);
+    if (it == image.channels.end())
+      throw_input(file, "", std::string("the image has no channel ") + names[c]);
+    index[c] = size_t(it - image.channels.begin());
+  }
+  Image rgb{image.width, image.height, {"R", "G", "B"}, {}};
+  rgb.pixels.resize(size_t(image.width) * image.height * 3);
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
+    for (int c = 0; c < 3; ++c)
+      rgb.pixels[i * 3 + c] = image.pixels[i * image.channels.size() + index[c]];
+  return rgb;
+}
+
+ImageError image_error(const Image& image, const Image& reference) {
+  ImageError e;
+  double squares = 0, relative = 0;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const double r = reference.pixels[i];
+    const double d = double(image.pixels[i]) - r;
+    squares += d * d;
+    relative += d * d / (r * r + kRelMseEpsilon);
+    e.max_abs = std::max(e.max_abs, std::abs(d));
+  }
+  const double n = double(image.pixels.size());
+  e.rmse = std::sqrt(squares / n);
+  e.relmse = relative / n;
+  return e;
+}
+
+AveragedReference average_halves(const Image& a, const Image& b) {
+  AveragedReference out{a, {}};
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    out.image.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
+  const ImageError between = image_error(a, b);
+  out.noise.rmse = between.rmse / 2;
+  out.noise.max_abs = between.max_abs / 2;
+  // relMSE's denominator is the reference's: the mean, as for every image measured against it.
+  double relative = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    const double d = double(a.pixels[i]) - b.pixels[i];
+    const double r = out.image.pixels[i];
+    relative += d * d / 4 / (r * r + kRelMseEpsilon);
+  }
+  out.noise.relmse = relative / double(a.pixels.size());
+  return out;
+}
+
+std::optional<double> LogLogFit::x_at(double error) const {
+  if (!(slope < 0) || !(error > 0)) return std::nullopt;
+  return std::exp((std::log(error) - intercept) / slope);
+}
+
+std::optional<LogLogFit> fit_log_log(const std::vector<double>& x,
+                                     const std::vector<double>& error) {
+  LogLogFit fit;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    if (!(x[i] > 0) || !(error[i] > 0)) continue;
+    const double lx = std::log(x[i]), ly = std::log(error[i]);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+    fit.x_min = fit.points ? std::min(fit.x_min, x[i]) : x[i];
+    fit.x_max = fit.points ? std::max(fit.x_max, x[i]) : x[i];
+    ++fit.points;
+  }
+  const double n = double(fit.points);
+  const double spread = sxx - sx * sx / n;
+  if (fit.points < 2 || !(fit.x_max > fit.x_min) || !(spread > 0)) return std::nullopt;
+  fit.slope = (sxy - sx * sy / n) / spread;
+  fit.intercept = (sy - fit.slope * sx) / n;
+  return fit;
+}
+
+}  // namespace fb

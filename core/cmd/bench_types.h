@@ -1,0 +1,93 @@
+// What `filmback bench` measures, scene by scene, and the settings it measures with (docs/cli.md,
+// "bench"). Filled by bench_filmback.cpp and bench_cycles_runs.cpp, written by bench_report.cpp.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/cmd/bench_metrics.h"
+#include "core/cmd/bench_system.h"
+#include "core/render/sampler.h"
+#include "importers/import_scene.h"
+
+namespace fb {
+
+struct BenchConfiguration {
+  SamplerKind sampler;
+  std::optional<std::string> filter;  // none: the scene's (the shot's, else the default)
+  size_t filter_index;                // into BenchSettings::filters
+};
+
+struct BenchSettings {
+  std::vector<uint32_t> spp;  // ascending, distinct
+  std::vector<std::optional<std::string>> filters;
+  std::vector<BenchConfiguration> configurations;  // samplers x filters
+  std::optional<std::pair<uint32_t, uint32_t>> resolution;
+  uint32_t reference_spp = 0;  // both halves together
+  uint64_t seed = 0;           // measured renders; the reference's halves take seed + 1 and + 2
+  unsigned threads = 0;        // 0: all cores
+  bool against_cycles = false;
+  ImportOptions import;
+};
+
+// Renders whose error stays within this factor of their reference's own noise are not fitted:
+// there the reference's noise is a tenth or more of the measured MSE.
+constexpr double kFitAboveReferenceNoise = 3;
+
+struct RenderRow {
+  std::string renderer;       // "filmback" or "cycles"
+  std::string configuration;  // "sobol, gaussian", "cycles"
+  std::string sampler, filter;
+  uint32_t spp = 0;
+  uint32_t runs = 1;    // timed runs (filmback repeats short renders); render_s is their median
+  double render_s = 0;  // filmback: RenderJob::run(); Cycles: bpy.ops.render.render()
+  double total_s = 0;   // filmback: import + RenderJob construction + run; Cycles: the process
+  double samples_per_s = 0;
+  std::optional<double> rays_per_s;       // filmback only
+  ImageError error;                       // against the configuration's reference
+  std::optional<uint64_t> dropped;        // non-finite samples; filmback only
+  std::optional<double> reference_noise;  // RMSE of that reference, when measured
+};
+
+struct ReferenceNote {
+  std::string renderer, filter;
+  std::string source;  // "filmback, 2 x 2048 spp, seeds 1 and 2", or the file given
+  std::optional<ImageError> noise;
+};
+
+struct MemoryNote {
+  std::optional<ResidentSet> before, after;  // around the scene's import and filmback renders
+  bool peak_is_the_scene_s = false;          // false: the peak is the whole process's so far
+  size_t geometry_bytes = 0;                 // RenderGeometry::live_bytes() while a job exists
+  size_t film_bytes = 0;
+};
+
+struct CyclesNote {
+  std::string settings;  // blender_prepare.py's line
+  // filmback's reference against Cycles' (the same pixel filter), and what their own noise
+  // alone would give: sqrt(noise_f² + noise_c²).
+  std::optional<ImageError> bias;
+  double bias_noise_rmse = 0;
+  double mean_ratio = 0;  // sum of filmback's reference / sum of Cycles', over R, G, B
+  std::string bias_filter;
+};
+
+struct SceneReport {
+  std::string name;
+  std::filesystem::path file;  // as given
+  uint32_t width = 0, height = 0;
+  std::string plan;                 // filmback's plan line for the first configuration
+  std::optional<double> prepare_s;  // a Blender shot: Blender building, saving, exporting it
+  double import_s = 0;
+  double build_s = 0;  // RenderJob construction, median over the scene's jobs
+  std::vector<ReferenceNote> references;
+  MemoryNote memory;
+  std::optional<CyclesNote> cycles;
+  std::vector<RenderRow> rows;
+};
+
+}  // namespace fb
