@@ -136,6 +136,28 @@ SubdivView subdiv_view(const fb_camera_setup& setup, const SceneCamera& camera) 
           setup.projection == FB_PROJECTION_ORTHOGRAPHIC};
 }
 
+// A lens cannot focus closer than its focal length: the thin lens's image distance
+// D_img = f D / (D - f) (1/f = 1/D + 1/D_img) is infinite at D = f and negative inside it
+// (docs/camera-model.md). The error names where the values came from: the typed option, else the
+// scene's camera.
+void check_focus_beyond_focal_length(const SceneCamera& camera, const CameraOverrides& typed,
+                                     const std::filesystem::path& file) {
+  const PhysicalCamera& c = camera.physical;
+  const double focal_m = c.focal_length_mm * 1e-3;
+  if (c.projection != FB_PROJECTION_PERSPECTIVE || !c.has_aperture() ||
+      c.focus_distance_m > focal_m)
+    return;
+  const std::string what =
+      "focus distance " + number_text(c.focus_distance_m) + " m is not beyond the focal length " +
+      number_text(c.focal_length_mm) +
+      " mm: a lens cannot focus closer than its focal length (its image distance f D / (D - f) "
+      "is infinite or negative); expected a focus distance over " +
+      number_text(focal_m) + " m";
+  if (typed.focus_distance_m) throw UsageError("--focus-distance: " + what);
+  if (typed.focal_length_mm) throw UsageError("--focal-length: " + what);
+  throw_input(file.string(), camera.source, what);
+}
+
 std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
   if (!(needs & FB_CAMERA_NEEDS_LENS))
     return camera.projection == FB_PROJECTION_ORTHOGRAPHIC
@@ -177,6 +199,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   camera_ = choose_camera(scene, options.camera, frame_s);
   if (camera_.focus_track) camera_.physical.focus_distance_m = camera_.focus_track->at(frame_);
   options.camera_overrides.apply(camera_.physical);
+  check_focus_beyond_focal_length(camera_, options.camera_overrides, scene.file);
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
   const ShotSettings& shot = scene.settings;

@@ -8,6 +8,7 @@
 #include "core/render/render_job.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
+#include "support/defocus.h"
 #include "support/gltf_builder.h"
 #include "support/plugins.h"
 
@@ -70,12 +71,8 @@ struct CocShot {
   uint32_t width_px = 160, blades = 0;
   double sensor_mm = 14.4;
   double pixel_mm() const { return sensor_mm / width_px; }
-  // Thin lens with image distance f: f' = f D_f / (D_f + f) (thinlens.cpp), aperture A = f / N,
-  // c = A |D - D_f| / D * f' / (D_f - f') on the sensor.
   double coc_px(double depth_m) const {
-    const double f = focal_mm * 1e-3, lens = f * focus_m / (focus_m + f), aperture = f / fstop;
-    return aperture * std::abs(depth_m - focus_m) / depth_m * lens / (focus_m - lens) * 1e3 /
-           pixel_mm();
+    return test::circle_of_confusion_mm(focal_mm, fstop, focus_m, depth_m) / pixel_mm();
   }
 };
 
