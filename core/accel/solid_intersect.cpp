@@ -426,4 +426,16 @@ std::optional<SolidHit> RenderSolid::first_hit(Vec3d origin, Vec3d direction, do
   return result;
 }
 
+bool RenderSolid::contains(Vec3d point) const {
+  // The spans of a line through the point, unbounded both ways: the point is in the set when one
+  // of them holds t = 0. The direction is irrational to the axes, so the line does not run along
+  // a box's face or a plane.
+  const Ray r{point, {0.5477225575051661, 0.7745966692414834, 0.3162277660168379}};
+  thread_local Spans spans;
+  node_spans(root_.front(), r, -kInf, kInf, spans);
+  for (const Span& s : spans)
+    if (s.in.t <= 0 && s.out.t >= 0) return true;
+  return false;
+}
+
 }  // namespace fb

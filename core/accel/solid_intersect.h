@@ -37,6 +37,10 @@ class RenderSolid {
   // same ray gives the same answer (the renderer intersects again to fill a hit record).
   std::optional<SolidHit> first_hit(Vec3d origin, Vec3d direction, double t_min) const;
 
+  // Whether a render-space point lies in the solid's set (on its boundary: either answer). What
+  // tessellates CSG asks it of each primitive (core/scene/csg_probe.h).
+  bool contains(Vec3d point) const;
+
   const Bounds3d& bounds() const { return bounds_; }
   // Whether the set is bounded without `reach` (it then counts in the scene's bounds).
   bool bounded() const { return bounded_; }

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <utility>
 
+#include "core/scene/tessellate_csg.h"
+
 namespace fb {
 
 namespace {
@@ -120,6 +122,19 @@ void plane_square(const Solid& primitive, const TessellationOptions& options, Tr
 
 }  // namespace
 
+double tessellation_tolerance_m(const Solid& primitive, const TessellationOptions& options) {
+  const double stretch = largest_stretch(primitive.world_from_object);
+  const Bounds3d box = object_bounds(primitive);
+  const double object_radius =
+      box.finite() ? length(max(abs(box.lo), abs(box.hi))) : 1.0;  // a disc's unit radius
+  double tolerance = HUGE_VAL;
+  if (options.tolerance_m > 0) tolerance = options.tolerance_m;
+  if (options.relative_tolerance > 0)
+    tolerance = std::min(tolerance, options.relative_tolerance * stretch * object_radius);
+  if (!std::isfinite(tolerance)) tolerance = 1e-3 * stretch * object_radius;
+  return tolerance;
+}
+
 TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& options) {
   TriangleMesh mesh;
   mesh.name = primitive.name;
@@ -135,15 +150,7 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   // The tolerance in object units. Half of it goes to the angular segments, a quarter to the
   // profile's: a flat triangle strays from the surface by about the sum of the two sagittas.
   const double stretch = largest_stretch(primitive.world_from_object);
-  const Bounds3d box = object_bounds(primitive);
-  const double object_radius =
-      box.finite() ? length(max(abs(box.lo), abs(box.hi))) : 1.0;  // a disc's unit radius
-  double tolerance = HUGE_VAL;
-  if (options.tolerance_m > 0) tolerance = options.tolerance_m;
-  if (options.relative_tolerance > 0)
-    tolerance = std::min(tolerance, options.relative_tolerance * stretch * object_radius);
-  if (!std::isfinite(tolerance)) tolerance = 1e-3 * stretch * object_radius;
-  const double error = tolerance / stretch;
+  const double error = tessellation_tolerance_m(primitive, options) / stretch;
   const uint32_t most = std::max(options.max_segments, 3u);
   const double r0 = std::abs(primitive.radius0), r1 = std::abs(primitive.radius1);
   std::vector<Piece> pieces;
@@ -178,30 +185,6 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   return mesh;
 }
 
-namespace {
-
-// Whether the solid's surface is its primitives' surfaces, so that tessellating each one is exact.
-bool tessellable(const Solid& s) {
-  if (s.inverse || s.bounds_only) return false;
-  if (s.is_primitive()) return true;
-  return s.kind == SolidKind::kUnion &&
-         std::all_of(s.children.begin(), s.children.end(), tessellable);
-}
-
-void add_meshes(const Solid& s, const TessellationOptions& options, Scene& scene) {
-  if (!s.is_primitive()) {
-    for (const Solid& child : s.children)
-      add_meshes(child, options, scene);
-    return;
-  }
-  TriangleMesh mesh = tessellate(s, options);
-  if (mesh.indices.empty()) return;
-  scene.instances.push_back({uint32_t(scene.meshes.size()), s.world_from_object, s.name});
-  scene.meshes.push_back(std::move(mesh));
-}
-
-}  // namespace
-
 void tessellate_solids(Scene& scene, TessellationOptions options, Diagnostics& diagnostics) {
   const Bounds3d bounds = scene.world_bounds(0);  // solids are static
   options.plane_centre = scene.cameras.empty()
@@ -212,12 +195,19 @@ void tessellate_solids(Scene& scene, TessellationOptions options, Diagnostics& d
                                          10 * length(max(abs(bounds.lo - options.plane_centre),
                                                          abs(bounds.hi - options.plane_centre))));
   for (const Solid& s : scene.solids) {
-    if (tessellable(s))
-      add_meshes(s, options, scene);
-    else
-      diagnostics.warn(s.name +
-                       ": CSG (intersection, difference, inverse or clipped_by) has no "
-                       "triangle form here: left out of the mesh");
+    if (s.is_primitive() && !s.inverse) {  // its own surface, whole: exact in its object space
+      TriangleMesh mesh = tessellate(s, options);
+      if (mesh.indices.empty()) continue;
+      scene.instances.push_back({uint32_t(scene.meshes.size()), s.world_from_object, s.name});
+      scene.meshes.push_back(std::move(mesh));
+      continue;
+    }
+    SolidTessellation t = tessellate_csg(s, options);
+    if (t.meshes.empty()) diagnostics.warn(s.name + ": the solid has no surface: nothing to write");
+    for (TriangleMesh& mesh : t.meshes) {
+      scene.instances.push_back({uint32_t(scene.meshes.size()), t.world_from_mesh, s.name});
+      scene.meshes.push_back(std::move(mesh));
+    }
   }
   scene.solids.clear();
 }

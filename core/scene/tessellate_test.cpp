@@ -109,28 +109,39 @@ TEST(Tessellate, HalfSpaceIsASquareAboutTheNearestPoint) {
   EXPECT_NEAR(world.hi.z, 0, 1e-9);
 }
 
-TEST(Tessellate, SceneSolidsBecomeMeshesExceptTrueCsg) {
+TEST(Tessellate, SceneSolidsBecomeMeshes) {
   Scene scene;
   Solid pair;
   pair.kind = SolidKind::kUnion;
   pair.children = {shape(SolidKind::kSphere, 1), shape(SolidKind::kBox, 1)};
+  pair.children[1].material = 1;
+  pair.children[1].world_from_object =  // half in the sphere: what is inside is no surface
+      Transform::translate({1, 0, 0}) * pair.children[1].world_from_object;
   Solid ground = shape(SolidKind::kHalfSpace, 1);
   Solid cut;
   cut.kind = SolidKind::kIntersection;
-  cut.name = "cut";
   cut.children = {shape(SolidKind::kSphere, 1), shape(SolidKind::kBox, 0.5)};
   cut.children[1].inverse = true;
-  scene.solids = {pair, ground, cut};
+  Solid nothing;  // two spheres 10 m apart have no common point
+  nothing.kind = SolidKind::kIntersection;
+  nothing.name = "nothing";
+  nothing.children = {shape(SolidKind::kSphere, 1), shape(SolidKind::kSphere, 1)};
+  nothing.children[1].world_from_object =
+      Transform::translate({10, 0, 0}) * nothing.children[1].world_from_object;
+  scene.solids = {pair, ground, cut, nothing};
   SceneCamera camera;
   camera.world_from_camera = Transform::translate({0, 0, 50});
   scene.cameras.push_back(camera);
   Diagnostics diagnostics;
   tessellate_solids(scene, TessellationOptions(), diagnostics);
   EXPECT_TRUE(scene.solids.empty());
-  ASSERT_EQ(scene.meshes.size(), 3u);  // sphere, box, ground
-  ASSERT_EQ(scene.instances.size(), 3u);
-  EXPECT_EQ(diagnostics.count(), 1u);
-  EXPECT_NE(diagnostics.messages()[0].find("cut"), std::string::npos);
+  // The union's two materials, the ground, the cut sphere; the empty set is reported.
+  ASSERT_EQ(scene.meshes.size(), 4u);
+  ASSERT_EQ(scene.instances.size(), 4u);
+  EXPECT_EQ(scene.meshes[0].material, 0u);
+  EXPECT_EQ(scene.meshes[1].material, 1u);
+  ASSERT_EQ(diagnostics.count(), 1u);
+  EXPECT_NE(diagnostics.messages()[0].find("nothing"), std::string::npos);
   // The ground reaches at least the default half-size around the camera's foot on the plane.
   Bounds3d ground_bounds;
   for (const Vec3f& p : scene.meshes[2].positions)

@@ -1,0 +1,113 @@
+#include "core/scene/csg_probe.h"
+
+#include <cmath>
+
+namespace fb {
+
+namespace {
+
+// What probing a primitive's set needs: the set alone, all of its boundary surface. A disc's set
+// is its half-space (core/scene/solid.h), whose whole plane a point may lie on.
+Solid bare_set(const Solid& primitive) {
+  Solid s;
+  s.kind = primitive.kind == SolidKind::kDisc ? SolidKind::kHalfSpace : primitive.kind;
+  s.name = primitive.name;
+  s.world_from_object = primitive.world_from_object;
+  s.radius0 = primitive.radius0, s.radius1 = primitive.radius1;
+  return s;
+}
+
+// Lines probing a primitive start within the scene; half-spaces need a finite box to be
+// intersected in (RenderSolid's `reach`), far beyond any scene.
+constexpr double kReach = 1e12;
+
+}  // namespace
+
+CsgProbe::CsgProbe(const Solid& solid) {
+  add(solid, true);
+}
+
+size_t CsgProbe::add(const Solid& solid, bool surface) {
+  surface = surface && !solid.bounds_only;
+  const size_t index = nodes_.size();
+  nodes_.push_back({solid.kind, solid.inverse, kNone, {}});
+  if (solid.is_primitive()) {
+    nodes_[index].leaf = leaves_.size();
+    leaves_.push_back({&solid,
+                       RenderSolid(bare_set(solid), Transform(),
+                                   {{-kReach, -kReach, -kReach}, {kReach, kReach, kReach}}),
+                       surface});
+    return index;
+  }
+  for (const Solid& child : solid.children) {
+    const size_t c = add(child, surface);
+    nodes_[index].children.push_back(c);
+  }
+  return index;
+}
+
+bool CsgProbe::contains(size_t node, Vec3d p, size_t forced, bool forced_in,
+                        std::vector<int8_t>& memo) const {
+  const Node& n = nodes_[node];
+  bool in;
+  if (n.leaf != kNone) {
+    if (n.leaf == forced) {
+      in = forced_in;
+    } else {
+      if (memo[n.leaf] < 0) memo[n.leaf] = leaves_[n.leaf].set.contains(p) ? 1 : 0;
+      in = memo[n.leaf] == 1;
+    }
+  } else if (n.kind == SolidKind::kUnion) {
+    in = false;
+    for (size_t c : n.children)
+      if (contains(c, p, forced, forced_in, memo)) {
+        in = true;
+        break;
+      }
+  } else {  // kIntersection
+    in = true;
+    for (size_t c : n.children)
+      if (!contains(c, p, forced, forced_in, memo)) {
+        in = false;
+        break;
+      }
+  }
+  return in != n.inverse;
+}
+
+int CsgProbe::label(Vec3d point, size_t leaf) const {
+  std::vector<int8_t> memo(leaves_.size(), -1);
+  const bool with = contains(0, point, leaf, true, memo);
+  const bool without = contains(0, point, leaf, false, memo);
+  return with == without ? 0 : with ? 1 : -1;
+}
+
+size_t CsgProbe::boundary_between(Vec3d a, Vec3d b, size_t leaf) const {
+  for (size_t i = 0; i < leaves_.size(); ++i)
+    if (i != leaf && leaves_[i].set.contains(a) != leaves_[i].set.contains(b)) return i;
+  return kNone;
+}
+
+std::optional<CsgProbe::SurfacePoint> CsgProbe::lift(size_t leaf, Vec3d point, Vec3d direction,
+                                                     double reach) const {
+  const double len = length(direction);
+  if (!(len > 0) || !(reach > 0)) return std::nullopt;
+  const Vec3d d = direction / len;
+  // The first crossing after each end of the segment, coming inwards: one of them is the crossing
+  // nearest the point unless the boundary crosses the segment more than once.
+  std::optional<SurfacePoint> best;
+  double best_distance = reach;
+  for (const double side : {-1.0, 1.0}) {
+    const Vec3d origin = point + d * (side * reach);
+    const std::optional<SolidHit> hit = leaves_[leaf].set.first_hit(origin, d * -side, 0);
+    if (!hit) continue;
+    const double distance = std::abs(hit->t - reach);
+    if (distance <= best_distance) {
+      best_distance = distance;
+      best = SurfacePoint{hit->position, hit->normal};
+    }
+  }
+  return best;
+}
+
+}  // namespace fb

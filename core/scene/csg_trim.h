@@ -1,0 +1,51 @@
+// One primitive's share of a CSG solid's surface, as triangles (docs/architecture.md "Solids"):
+// the primitive's tessellation, refined where other primitives' boundaries cross it and cut
+// along those crossings, keeping what the render would show of it.
+//
+// Each vertex of the primitive's mesh lies on its surface and gets a label from the solid's set
+// (CsgProbe::label): kept with the primitive's normal, kept reversed (a difference's cut), or
+// dropped. Triangles are refined (red-green refinement, Bank et al. 1983: split in four, their
+// neighbours closed by halving so that the mesh stays conforming; every new vertex is moved onto
+// the exact surface) while one of these holds and the triangle is longer than the tolerance:
+// - its corners are kept and dropped alike but another primitive's tessellation passes through
+//   it farther than the tolerance from its edges (a hole or a cut inside one triangle);
+// - another primitive's boundary crosses it, and the straight cut between the two edge crossings
+//   strays from the true crossing curve by more than the tolerance (measured at the cut's middle
+//   by bisection along the line from the lone corner);
+// - two primitives' boundaries, or three labels, meet in it.
+// Then each triangle whose labels differ is cut at the points where its edges cross the other
+// boundary, found by bisection on the edge lifted onto the exact surface, so each cut vertex lies
+// on both primitives' boundaries to 1e-7 of the tolerance, and shared by the triangles on both
+// sides of the edge. So every point of the result is within the tolerance of the set's surface.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <filmback/vec.h>
+
+#include "core/scene/csg_probe.h"
+#include "core/scene/scene.h"
+#include "core/scene/triangle_bvh.h"
+
+namespace fb {
+
+struct TrimmedSurface {
+  static constexpr uint32_t kNoPartner = UINT32_MAX;
+  struct Triangle {
+    std::array<uint32_t, 3> v;
+    std::array<Vec3d, 3> n;  // unit, out of the solid's set
+  };
+  std::vector<Vec3d> positions;     // world; some may be unused
+  std::vector<uint32_t> partner;    // per position: on a cut, the primitive whose boundary it is on
+  std::vector<Triangle> triangles;  // counter-clockwise seen from outside the set
+};
+
+// `mesh` is primitive `leaf`'s tessellation in its object space; `boundaries` holds every
+// primitive's closed tessellation in world space, tagged with its leaf index; `tolerance_m` is
+// the largest distance allowed between the cut and the true crossing.
+TrimmedSurface trim_surface(const CsgProbe& probe, size_t leaf, const TriangleMesh& mesh,
+                            const TriangleBvh& boundaries, double tolerance_m);
+
+}  // namespace fb
