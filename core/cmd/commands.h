@@ -26,6 +26,12 @@ struct RenderCommand {
   std::string shutter, frame, fps, sensor_model, iso;
   unsigned threads = 0;  // 0: all cores
   bool quiet = false;
+  // Interrupts and checkpoints (docs/cli.md): a duration ("5m"), the checkpoint file (default
+  // next to the first output), whether to continue from it; and the --stats-json file.
+  std::string checkpoint_every;
+  std::filesystem::path checkpoint;
+  bool resume = false;
+  std::filesystem::path stats_json;
   RenderOptions options;
   ImportOptions import;  // its resolution is filled from --res by run_render
 };

@@ -84,6 +84,14 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--sampler", render.sampler,
                          "independent, stratified, sobol (default) or zsobol (docs/sampling.md)");
   render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
+  render_cmd->add_option("--checkpoint-every", render.checkpoint_every,
+                         "save a resumable checkpoint this often, e.g. 30s, 5m, 2h");
+  render_cmd->add_option("--checkpoint", render.checkpoint,
+                         "checkpoint file (default: the first output's name, .checkpoint.exr)");
+  render_cmd->add_flag("--resume", render.resume,
+                       "continue from the checkpoint: the same image as an uninterrupted render");
+  render_cmd->add_option("--stats-json", render.stats_json,
+                         "write timings, counts, warnings and the chosen models as JSON");
   add_import_options(render_cmd, render.import);
 
   std::filesystem::path info_scene;

@@ -1,13 +1,19 @@
 #include <tbb/global_control.h>
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <optional>
 
 #include "core/cmd/commands.h"
+#include "core/cmd/interrupts.h"
+#include "core/cmd/render_report.h"
+#include "core/film/checkpoint.h"
 #include "core/image/image_io.h"
+#include "core/math/random.h"
 #include "core/plugin/loader.h"
 #include "core/plugin/params.h"
 #include "core/util/error.h"
@@ -127,14 +133,53 @@ std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text) {
   return {width, height};
 }
 
-int run_render(RenderCommand& c) {
-  for (size_t i = 0; i < c.outputs.size(); ++i) {
-    const std::filesystem::path& out = c.outputs[i];
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// "90", "90s", "5m", "1.5h": a positive duration.
+Clock::duration parse_duration(const std::string& text, const char* option) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  const std::string_view unit(end, text.data() + text.size() - end);
+  const double scale = unit.empty() || unit == "s" ? 1 : unit == "m" ? 60 : unit == "h" ? 3600 : 0;
+  if (ec != std::errc() || scale == 0 || !(value > 0) || !(value * scale < 1e9))
+    throw UsageError(std::string(option) + " '" + text +
+                     "': expected a duration such as 30s, 5m or 2h");
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(value * scale));
+}
+
+// Next to the first output: shot.exr -> shot.checkpoint.exr.
+std::filesystem::path default_checkpoint(const std::filesystem::path& output) {
+  std::filesystem::path file = output;
+  return file.replace_extension(".checkpoint.exr");
+}
+
+// A hash of the scene file's bytes, so a checkpoint is never resumed on an edited scene.
+std::string content_hash(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  uint64_t h = 0, word = 0;
+  while (in.read(reinterpret_cast<char*>(&word), sizeof word) || in.gcount() > 0) {
+    h = pcg_hash(h, word, uint64_t(in.gcount()));
+    word = 0;
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+void check_outputs(const std::vector<std::filesystem::path>& outputs) {
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const std::filesystem::path& out = outputs[i];
     image_format_for(out);
     for (size_t j = 0; j < i; ++j)
-      if (std::filesystem::weakly_canonical(c.outputs[j]) == std::filesystem::weakly_canonical(out))
+      if (std::filesystem::weakly_canonical(outputs[j]) == std::filesystem::weakly_canonical(out))
         throw UsageError("output '" + out.string() + "': the same file as output '" +
-                         c.outputs[j].string() + "'");
+                         outputs[j].string() + "'");
     const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
     if (!std::filesystem::is_directory(folder))
       throw UsageError("output '" + out.string() + "': the folder '" + folder.string() +
@@ -143,6 +188,10 @@ int run_render(RenderCommand& c) {
     if (std::filesystem::is_directory(out))
       throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");
   }
+}
+
+int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
+  check_outputs(c.outputs);
   if (!c.resolution.empty()) {
     const auto [width, height] = parse_resolution(c.resolution);
     c.options.width = width, c.options.height = height;
@@ -153,34 +202,128 @@ int run_render(RenderCommand& c) {
   if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
   if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");
   c.options.show_progress = !c.quiet;
+  const bool checkpoints = !c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty();
+  if (checkpoints && c.options.reconstruction == Reconstruction::kSplat)
+    throw UsageError(
+        "--checkpoint-every/--resume: not with --reconstruction splat (its tiles' sums are not "
+        "saved)");
+  const Clock::duration every = c.checkpoint_every.empty()
+                                    ? Clock::duration::zero()
+                                    : parse_duration(c.checkpoint_every, "--checkpoint-every");
+  if (checkpoints)
+    report.checkpoint = c.checkpoint.empty() ? default_checkpoint(c.outputs.front()) : c.checkpoint;
 
   Diagnostics diagnostics;
   c.import.resolution.reset();
   if (c.options.width) c.import.resolution = {*c.options.width, *c.options.height};
   if (c.options.frame) c.import.frame = *c.options.frame;
+  auto stage = Clock::now();
   const Scene scene = import_scene(c.scene, c.import, diagnostics);
+  report.import_s = seconds_since(stage);
+  report.warnings = diagnostics.messages();
   diagnostics.print(std::cerr);
 
   std::optional<tbb::global_control> threads;
   if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
   const PluginLoader loader(PluginLoader::default_search_dirs());
+  stage = Clock::now();
   const RenderJob job(scene, c.options, loader);
+  report.setup_s = seconds_since(stage);
+  report.choices = job.choices();
+  report.width = job.width(), report.height = job.height();
+  report.samples_per_pixel = job.samples_per_pixel();
+  report.seed = c.options.seed;
   if (!c.quiet) std::cout << job.plan() << std::endl;
 
-  const RenderResult result = job.run();
-  const ImageMetadata metadata = job.metadata(result.stats);
-  write_images(result.image, c.outputs, metadata);
+  // Everything that decides the samples: a checkpoint of another render is refused.
+  const std::string key = checkpoints ? job.plan() + "; seed " + std::to_string(c.options.seed) +
+                                            "; scene content " + content_hash(c.scene)
+                                      : std::string();
+  Film film = job.make_film();
+  if (c.resume) {
+    if (!std::filesystem::exists(report.checkpoint))
+      throw InputError("--resume: no checkpoint '" + report.checkpoint.string() +
+                       "' (--checkpoint-every writes one)");
+    read_checkpoint(report.checkpoint, key, job.samples_per_pixel(), kTileSize, film);
+    report.resumed = true;
+  }
+  const InterruptGuard interrupts;
+  RenderControl control;
+  control.cancel = &interrupts.requested();
+  if (every != Clock::duration::zero()) {
+    control.checkpoint_every = every;
+    control.checkpoint = [&](const Film& f) {
+      write_checkpoint(f, key, report.checkpoint);
+      ++report.checkpoints_written;
+    };
+  }
+  stage = Clock::now();
+  const RenderResult result = job.run(film, control);
+  report.render_s = seconds_since(stage);
+  if (result.stats.interrupted) {
+    report.signal = interrupts.signal_number();
+    report.stop_latency_s = interrupts.seconds_since_signal();
+  }
+  report.stats = result.stats;
+  report.fewest_samples = result.fewest_samples, report.most_samples = result.most_samples;
 
   const RenderStats& s = result.stats;
-  char line[256];
+  if (s.interrupted && result.most_samples == 0) {
+    std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
+  } else {
+    stage = Clock::now();
+    write_images(result.image, c.outputs, job.metadata(result));
+    if (s.interrupted && checkpoints) {
+      write_checkpoint(film, key, report.checkpoint);
+      ++report.checkpoints_written;
+    }
+    if (!s.interrupted && checkpoints) std::filesystem::remove(report.checkpoint);
+    report.write_s = seconds_since(stage);
+  }
+  char line[320];
   std::snprintf(line, sizeof line,
                 "filmback: rendered %ux%u at %u spp in %.2f s: %.2f M samples/s, %.2f M rays/s, "
                 "%llu non-finite samples dropped",
                 job.width(), job.height(), job.samples_per_pixel(), s.seconds,
                 s.samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
                 static_cast<unsigned long long>(s.dropped_samples));
+  if (s.interrupted)
+    std::snprintf(line, sizeof line,
+                  "filmback: interrupted (signal %d) after %.2f s: pixels hold %u to %u of %u "
+                  "samples%s",
+                  interrupts.signal_number(), s.seconds, result.fewest_samples, result.most_samples,
+                  job.samples_per_pixel(),
+                  checkpoints ? "; --resume continues from the checkpoint" : "");
   std::cout << line << std::endl;
-  return 0;
+  report.total_s = seconds_since(start);
+  report.status = s.interrupted ? "interrupted" : "complete";
+  return s.interrupted ? 128 + interrupts.signal_number() : 0;
+}
+
+}  // namespace
+
+int run_render(RenderCommand& c) {
+  const auto start = Clock::now();
+  RenderReport report;
+  report.scene = c.scene;
+  report.outputs = c.outputs;
+  const auto write_report = [&] {
+    if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
+  };
+  try {
+    report.exit_status = render(c, report, start);
+  } catch (const std::exception& e) {
+    report.exit_status = dynamic_cast<const UsageError*>(&e) ? 2 : 1;
+    report.error = e.what();
+    report.total_s = seconds_since(start);
+    try {
+      write_report();
+    } catch (const std::exception&) {  // the render's own error is the one to report
+    }
+    throw;
+  }
+  write_report();
+  return report.exit_status;
 }
 
 }  // namespace fb

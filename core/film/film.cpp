@@ -13,13 +13,15 @@ Film::Film(uint32_t width, uint32_t height, std::vector<std::string> channels)
       height_(height),
       channels_(std::move(channels)),
       sums_(new double[size_t(width) * height * channels_.size()]),
-      weights_(new double[size_t(width) * height]) {
+      weights_(new double[size_t(width) * height]),
+      counts_(new uint32_t[size_t(width) * height]) {
   const size_t n = channels_.size();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, height_),
                     [&](const tbb::blocked_range<size_t>& rows) {
                       const size_t first = rows.begin() * width_, last = rows.end() * width_;
                       std::fill(&sums_[first * n], &sums_[last * n], 0.0);
                       std::fill(&weights_[first], &weights_[last], 0.0);
+                      std::fill(&counts_[first], &counts_[last], 0u);
                     });
 }
 
@@ -42,6 +44,11 @@ void Film::add_sums(uint32_t x, uint32_t y, const double* sums, double weight) {
   for (size_t c = 0; c < n; ++c)
     sums_[pixel * n + c] += sums[c];
   weights_[pixel] += weight;
+}
+
+void Film::set_sample_count(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t count) {
+  for (uint32_t y = y0; y < y1; ++y)
+    std::fill_n(&counts_[size_t(y) * width_ + x0], x1 - x0, count);
 }
 
 Image Film::resolve() const {

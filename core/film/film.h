@@ -32,11 +32,25 @@ class Film {
   bool add(uint32_t x, uint32_t y, const float* values, float weight);
   // Adds sums formed elsewhere (a splat tile's sum w v per channel, and sum w) to pixel (x, y).
   void add_sums(uint32_t x, uint32_t y, const double* sums, double weight);
+  // Records that the pixels [x0, x1) x [y0, y1) have taken `count` samples (kept or dropped):
+  // what an interrupted render reports per pixel and a resumed one starts from.
+  void set_sample_count(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t count);
+  uint32_t sample_count(uint32_t x, uint32_t y) const { return counts_[size_t(y) * width_ + x]; }
   Image resolve() const;
 
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   const std::vector<std::string>& channels() const { return channels_; }
+  size_t pixel_count() const { return size_t(width_) * height_; }
+
+  // The raw state, for checkpoints (core/film/checkpoint.h): pixel_count() * channels().size()
+  // sums, pixel_count() weights and sample counts, rows top first.
+  double* sums() { return sums_.get(); }
+  double* weights() { return weights_.get(); }
+  uint32_t* sample_counts() { return counts_.get(); }
+  const double* sums() const { return sums_.get(); }
+  const double* weights() const { return weights_.get(); }
+  const uint32_t* sample_counts() const { return counts_.get(); }
 
  private:
   uint32_t width_, height_;
@@ -46,6 +60,7 @@ class Film {
   // cost as much as tracing the image.
   std::unique_ptr<double[]> sums_;
   std::unique_ptr<double[]> weights_;
+  std::unique_ptr<uint32_t[]> counts_;
 };
 
 }  // namespace fb

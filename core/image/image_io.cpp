@@ -1,12 +1,13 @@
 #include "core/image/image_io.h"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/util/error.h"
+#include "core/util/temporary_file.h"
 
 namespace fb {
 namespace {
@@ -58,15 +59,6 @@ std::vector<float> png_pixels(const Image& image) {
   return rgb;
 }
 
-fs::path temporary_for(const fs::path& file) {
-  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  // Hidden, in the same folder (so rename() is atomic), with the extension OIIO dispatches on.
-  std::string name = ".";
-  name += file.stem().string();
-  name += ".filmback-" + std::to_string(getpid()) + file.extension().string();
-  return folder / name;
-}
-
 // Writes `file`'s content to `temporary`; returns what went wrong, or an empty string.
 std::string write_temporary(const Image& image, const fs::path& file, const fs::path& temporary,
                             const ImageMetadata& metadata) {
@@ -96,51 +88,43 @@ ImageFormat image_format_for(const fs::path& file) {
 
 void write_images(const Image& image, const std::vector<fs::path>& files,
                   const ImageMetadata& metadata) {
-  std::vector<fs::path> temporaries;
-  auto remove_all = [](const std::vector<fs::path>& paths, size_t from) {
-    std::error_code ignored;
-    for (size_t i = from; i < paths.size(); ++i)
-      fs::remove(paths[i], ignored);
-  };
   auto fail = [](const fs::path& file, const std::string& why) {
     return InputError(located(file.string(), "", "cannot write the image: " + why));
   };
+  std::vector<std::unique_ptr<TemporaryFile>> temporaries;  // removed unless committed
   for (const fs::path& file : files) {
     std::error_code ec;
-    if (fs::is_directory(file, ec)) {
-      remove_all(temporaries, 0);
-      throw fail(file, "it is a folder");
-    }
-    temporaries.push_back(temporary_for(file));
-    if (std::string why = write_temporary(image, file, temporaries.back(), metadata);
-        !why.empty()) {
-      remove_all(temporaries, 0);
+    if (fs::is_directory(file, ec)) throw fail(file, "it is a folder");
+    temporaries.push_back(std::make_unique<TemporaryFile>(file));
+    if (std::string why = write_temporary(image, file, temporaries.back()->path(), metadata);
+        !why.empty())
       throw fail(file, why);
-    }
   }
   // Move each old file aside, then the new one in; if any step fails, undo in reverse, so the
   // folder ends as it began: all new images, or all old ones.
   std::vector<fs::path> previous(files.size());  // empty where no file was there before
-  std::error_code ec;
+  std::string why;
   size_t installed = 0;
   for (; installed < files.size(); ++installed) {
     const fs::path& file = files[installed];
+    std::error_code ec;
     if (fs::exists(file, ec)) {
-      fs::path aside = temporaries[installed];
+      fs::path aside = temporaries[installed]->path();
       aside += ".previous";
       fs::rename(file, aside, ec);
-      if (ec) break;
+      if (ec) {
+        why = ec.message();
+        break;
+      }
       previous[installed] = aside;
     }
-    fs::rename(temporaries[installed], file, ec);
-    if (ec) {
+    if (!temporaries[installed]->commit(why)) {
       std::error_code ignored;
       if (!previous[installed].empty()) fs::rename(previous[installed], file, ignored);
       break;
     }
   }
   if (installed < files.size()) {
-    const std::string why = ec.message();
     for (size_t i = installed; i-- > 0;) {
       std::error_code ignored;
       if (previous[i].empty())
@@ -148,10 +132,12 @@ void write_images(const Image& image, const std::vector<fs::path>& files,
       else
         fs::rename(previous[i], files[i], ignored);
     }
-    remove_all(temporaries, installed);
     throw fail(files[installed], why);
   }
-  remove_all(previous, 0);
+  for (const fs::path& aside : previous) {
+    std::error_code ignored;
+    if (!aside.empty()) fs::remove(aside, ignored);
+  }
 }
 
 Image read_image(const fs::path& file, size_t max_pixels) {

@@ -14,7 +14,7 @@ namespace fb {
 
 class Progress {
  public:
-  // `total` units of work (tiles); `out` is normally std::cerr.
+  // `total` units of work (pixel samples); `out` is normally std::cerr.
   Progress(uint64_t total, std::ostream& out, bool terminal);
   ~Progress();  // stops the reporter and clears the bar
   void advance(uint64_t units = 1) { done_.fetch_add(units, std::memory_order_relaxed); }

@@ -309,23 +309,46 @@ void RenderJob::choose_time_samples(const Scene& scene) {
   time_reason_ = out.str();
 }
 
+RenderChoices RenderJob::choices() const {
+  const Plugins& p = *plugins_;
+  return {camera_.name,
+          camera_.source,
+          p.camera->name(),
+          camera_reason_,
+          p.filter_text,
+          reconstruction_name(options_.reconstruction),
+          p.integrator_text,
+          sampler_name(options_.sampler),
+          time_reason_,
+          p.subdiv_summary,
+          p.geometry->triangle_count(),
+          p.lights->punctual_light_count(),
+          p.lights->emissive_triangle_count()};
+}
+
 std::string RenderJob::plan() const {
+  const RenderChoices c = choices();
   std::ostringstream out;
-  out << "filmback: camera '" << camera_.name << "' (" << camera_.source << ") through "
-      << plugins_->camera->name() << " (" << camera_reason_ << "), " << width_ << "x" << height_
-      << ", " << spp_ << " spp (" << sampler_name(options_.sampler) << "), filter "
-      << plugins_->filter_text << " (" << reconstruction_name(options_.reconstruction)
-      << "), integrator " << plugins_->integrator_text << "; " << time_reason_ << "; "
-      << plugins_->geometry->triangle_count() << " triangles, "
-      << plugins_->lights->punctual_light_count() << " punctual lights, "
-      << plugins_->lights->emissive_triangle_count() << " emissive triangles";
-  if (!plugins_->subdiv_summary.empty()) out << "; " << plugins_->subdiv_summary;
+  out << "filmback: camera '" << c.camera << "' (" << c.camera_source << ") through "
+      << c.camera_model << " (" << c.lens << "), " << width_ << "x" << height_ << ", " << spp_
+      << " spp (" << c.sampler << "), filter " << c.filter << " (" << c.reconstruction
+      << "), integrator " << c.integrator << "; " << c.time << "; " << c.triangles << " triangles, "
+      << c.punctual_lights << " punctual lights, " << c.emissive_triangles << " emissive triangles";
+  if (!c.subdivision.empty()) out << "; " << c.subdivision;
   return out.str();
 }
 
+Film RenderJob::make_film() const {
+  return Film(width_, height_, plugins_->integrator->channels());
+}
+
 RenderResult RenderJob::run() const {
+  Film film = make_film();
+  return run(film);
+}
+
+RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
   const Plugins& p = *plugins_;
-  Film film(width_, height_, p.integrator->channels());
   RenderInputs inputs{*p.camera,
                       *p.filter,
                       *p.integrator,
@@ -341,19 +364,35 @@ RenderResult RenderJob::run() const {
   inputs.camera_path = p.camera_path.get();
   std::optional<Progress> progress;
   if (options_.show_progress)
-    progress.emplace(tile_count(inputs, width_, height_), std::cerr, stderr_is_terminal());
-  RenderStats stats = render_image(inputs, film, progress ? &*progress : nullptr);
+    progress.emplace(sample_count(inputs, width_, height_), std::cerr, stderr_is_terminal());
+  RenderResult result;
+  result.stats = render_image(inputs, film, control, progress ? &*progress : nullptr);
   progress.reset();
-  Image image = film.resolve();
+  result.image = film.resolve();
+  Image& image = result.image;
   // Cycles' Film > Exposure: a gain on the rendered radiance, colour channels only.
   if (const double gain = scene_.settings.film_exposure; gain != 1.0)
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
       for (size_t c = 0; c < 3; ++c)
         image.pixels[i * image.channels.size() + c] *= float(gain);
-  return {std::move(image), stats};
+  const uint32_t* counts = film.sample_counts();
+  const auto [fewest, most] = std::minmax_element(counts, counts + film.pixel_count());
+  result.fewest_samples = *fewest, result.most_samples = *most;
+  if (result.stats.interrupted) {  // say per pixel how far it got
+    const size_t n = image.channels.size();
+    std::vector<float> pixels(film.pixel_count() * (n + 1));
+    for (size_t i = 0; i < film.pixel_count(); ++i) {
+      std::copy_n(&image.pixels[i * n], n, &pixels[i * (n + 1)]);
+      pixels[i * (n + 1) + n] = float(counts[i]);
+    }
+    image.pixels = std::move(pixels);
+    image.channels.push_back("samples");
+  }
+  return result;
 }
 
-ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
+ImageMetadata RenderJob::metadata(const RenderResult& result) const {
+  const RenderStats& stats = result.stats;
   const fb_camera_setup setup =
       make_camera_setup(camera_.physical, width_, height_, pixel_aspect_, sensor_);
   const Transform camera_from_world = camera_.world_from_camera.inverse();
@@ -383,6 +422,10 @@ ImageMetadata RenderJob::metadata(const RenderStats& stats) const {
   m.ints = {
       {"filmback/samples_per_pixel", int(spp_)},
       {"filmback/dropped_samples", int(std::min<uint64_t>(stats.dropped_samples, INT32_MAX))}};
+  if (stats.interrupted)
+    m.ints.insert(m.ints.end(), {{"filmback/interrupted", 1},
+                                 {"filmback/fewest_samples", int(result.fewest_samples)},
+                                 {"filmback/most_samples", int(result.most_samples)}});
   m.strings = {{"Software", "filmback"},
                {"filmback/scene", scene_.file.filename().string()},
                {"filmback/camera", camera_.name},

@@ -62,9 +62,20 @@ constexpr double kDefaultFps = 24;  // Blender's; matters only when the frame is
 // intended aspect (16:9 when the scene does not say).
 std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera);
 
+// What a RenderJob chose and why, as its plan line says it (docs/cli.md, "--stats-json").
+struct RenderChoices {
+  std::string camera, camera_source;  // the scene camera and where it came from
+  std::string camera_model, lens;     // the camera plugin, and the lens it models
+  std::string filter, reconstruction, integrator, sampler;
+  std::string time;         // whether and why time is sampled
+  std::string subdivision;  // how subdivision surfaces were refined; empty: none
+  uint64_t triangles = 0, punctual_lights = 0, emissive_triangles = 0;
+};
+
 struct RenderResult {
-  Image image;
+  Image image;  // an interrupted render adds a channel "samples": each pixel's sample count
   RenderStats stats;
+  uint32_t fewest_samples = 0, most_samples = 0;  // over the pixels
 };
 
 class RenderJob {
@@ -72,9 +83,15 @@ class RenderJob {
   RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader);
   ~RenderJob();
 
+  RenderChoices choices() const;
   std::string plan() const;  // one line: what was chosen and why
+  // An empty film of this render's size and channels (or one to load a checkpoint into).
+  Film make_film() const;
+  // Renders into `film`, continuing from the samples it already holds (docs/cli.md, "Interrupts
+  // and checkpoints"), and resolves it.
+  RenderResult run(Film& film, const RenderControl& control = {}) const;
   RenderResult run() const;
-  ImageMetadata metadata(const RenderStats& stats) const;
+  ImageMetadata metadata(const RenderResult& result) const;
 
   const SceneCamera& camera() const { return camera_; }
   uint32_t width() const { return width_; }

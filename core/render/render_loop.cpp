@@ -7,6 +7,7 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <optional>
@@ -74,8 +75,11 @@ class TileRenderer {
         channels_(in.integrator.channels().size()),
         needs_(in.camera.needs()) {}
 
-  void render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, TileWork& w,
-                   RenderStats& stats) const {
+  // Samples [first, last) of every pixel of the tile, in sample order; after each sample index,
+  // stops when `stop()` says so (so a started tile always moves on). Returns the index reached.
+  template <typename Stop>
+  uint32_t render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t first,
+                       uint32_t last, const Stop& stop, TileWork& w, RenderStats& stats) const {
     const size_t n = size_t(x1 - x0) * (y1 - y0);
     w.reset(n, channels_);
     // 4x4 blocks, so that consecutive camera rays (Embree's packets of up to 16) cover a square.
@@ -98,7 +102,8 @@ class TileRenderer {
     context.rays_traced = 0;
     SplatTiles::Tile* splat_tile = splats_ ? &splats_->tile(x0, y0) : nullptr;
 
-    for (uint32_t s = 0; s < in_.samples_per_pixel; ++s) {
+    uint32_t s = first;
+    while (s < last) {
       for (size_t i = 0; i < n; ++i) {
         const Vec2f u = sampler_.get_2d(w.filter_seed[i], s);
         w.filter_u[2 * i] = u.x;
@@ -157,8 +162,10 @@ class TileRenderer {
         if (!kept) ++stats.dropped_samples;
       }
       stats.samples += n;
+      if (++s < last && stop()) break;
     }
     stats.rays += context.rays_traced;
+    return s;
   }
 
  private:
@@ -181,48 +188,128 @@ Vec2<uint32_t> sample_domain(const RenderInputs& inputs, uint32_t width, uint32_
   return {width + 2 * SplatTiles::reach(radius[0]), height + 2 * SplatTiles::reach(radius[1])};
 }
 
-}  // namespace
-
 uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height) {
   const Vec2<uint32_t> domain = sample_domain(inputs, width, height);
   return uint64_t((domain.x + kTileSize - 1) / kTileSize) *
          ((domain.y + kTileSize - 1) / kTileSize);
 }
 
-RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progress) {
+// The sample counts at which passes end: doubling, so that an interrupted render has every pixel
+// sampled about equally often, and each pass over a tile stays short.
+std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel) {
+  std::vector<uint32_t> ends;
+  for (uint32_t end = 1; end < samples_per_pixel; end *= 2)
+    ends.push_back(end);
+  ends.push_back(samples_per_pixel);
+  return ends;
+}
+
+}  // namespace
+
+uint64_t sample_count(const RenderInputs& inputs, uint32_t width, uint32_t height) {
+  const Vec2<uint32_t> domain = sample_domain(inputs, width, height);
+  return uint64_t(domain.x) * domain.y * inputs.samples_per_pixel;
+}
+
+RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
+                         Progress* progress) {
+  using Clock = std::chrono::steady_clock;
   std::optional<SplatTiles> splats;
   if (inputs.reconstruction == Reconstruction::kSplat)
     splats.emplace(film.width(), film.height(), kTileSize, inputs.integrator.channels().size(),
                    inputs.filter);
   const Vec2<uint32_t> domain = sample_domain(inputs, film.width(), film.height());
+  const uint32_t margin_x = (domain.x - film.width()) / 2,
+                 margin_y = (domain.y - film.height()) / 2;
   const uint32_t tiles_x = (domain.x + kTileSize - 1) / kTileSize;
   const uint64_t tiles = tile_count(inputs, film.width(), film.height());
+  const auto tile_box = [&](uint64_t tile) {
+    const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize,
+                   y0 = uint32_t(tile / tiles_x) * kTileSize;
+    return std::array<uint32_t, 4>{x0, y0, std::min(x0 + kTileSize, domain.x),
+                                   std::min(y0 + kTileSize, domain.y)};
+  };
+  // The film pixels a tile of the sample domain covers (all of them when importance sampling).
+  const auto record_count = [&](uint64_t tile, uint32_t count) {
+    const auto [x0, y0, x1, y1] = tile_box(tile);
+    const uint32_t fx0 = std::max(x0, margin_x) - margin_x, fy0 = std::max(y0, margin_y) - margin_y;
+    const uint32_t fx1 = std::min(x1 - margin_x, film.width()),
+                   fy1 = std::min(y1 - margin_y, film.height());
+    if (x1 > margin_x && y1 > margin_y && fx0 < fx1 && fy0 < fy1)
+      film.set_sample_count(fx0, fy0, fx1, fy1, count);
+  };
+  // A resumed film tells how far each tile got; a fresh one is all zeros.
+  std::vector<uint32_t> done(tiles, 0);
+  if (!splats)
+    for (uint64_t tile = 0; tile < tiles; ++tile) {
+      const auto box = tile_box(tile);
+      done[tile] = std::min(film.sample_count(box[0], box[1]), inputs.samples_per_pixel);
+    }
   const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr, domain);
   tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
-  const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(
-      tbb::blocked_range<uint64_t>(0, tiles, 1),
-      [&](const tbb::blocked_range<uint64_t>& range) {
-        // Embree wants denormals flushed in every thread that traces.
-        _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-        _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-        for (uint64_t tile = range.begin(); tile != range.end(); ++tile) {
-          const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize;
-          const uint32_t y0 = uint32_t(tile / tiles_x) * kTileSize;
-          RenderStats local;
-          renderer.render_tile(x0, y0, std::min(x0 + kTileSize, domain.x),
-                               std::min(y0 + kTileSize, domain.y), work.local(), local);
-          samples += local.samples;
-          rays += local.rays;
-          dropped += local.dropped_samples;
-          if (progress) progress->advance();
-        }
-      },
-      tbb::simple_partitioner());
-  if (splats) splats->add_to(film);
+  std::atomic<bool> pause{false};  // a checkpoint is due: tiles stop, the film is saved, go on
+  const auto start = Clock::now();
+  auto last_checkpoint = start;
+  const auto cancelled = [&] {
+    return control.cancel && control.cancel->load(std::memory_order_relaxed);
+  };
+  // Between two sample indices of a tile: a signal, or a checkpoint that has come due.
+  const auto stop = [&] {
+    if (pause.load(std::memory_order_relaxed) || cancelled()) return true;
+    if (control.checkpoint && Clock::now() - last_checkpoint >= control.checkpoint_every) {
+      pause = true;
+      return true;
+    }
+    return false;
+  };
+  if (progress)
+    for (uint64_t tile = 0; tile < tiles; ++tile) {
+      const auto [x0, y0, x1, y1] = tile_box(tile);
+      progress->advance(uint64_t(done[tile]) * (x1 - x0) * (y1 - y0));
+    }
   RenderStats stats;
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const uint32_t end : pass_ends(inputs.samples_per_pixel)) {
+    for (;;) {  // until every tile has reached `end`, saving the film whenever a checkpoint is due
+      pause = false;
+      tbb::parallel_for(
+          tbb::blocked_range<uint64_t>(0, tiles, 1),
+          [&](const tbb::blocked_range<uint64_t>& range) {
+            // Embree wants denormals flushed in every thread that traces.
+            _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+            _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+            for (uint64_t tile = range.begin(); tile != range.end(); ++tile) {
+              if (done[tile] >= end || pause.load(std::memory_order_relaxed) || cancelled())
+                continue;
+              const auto [x0, y0, x1, y1] = tile_box(tile);
+              RenderStats local;
+              const uint32_t reached =
+                  renderer.render_tile(x0, y0, x1, y1, done[tile], end, stop, work.local(), local);
+              if (progress)
+                progress->advance(uint64_t(reached - done[tile]) * (x1 - x0) * (y1 - y0));
+              done[tile] = reached;
+              record_count(tile, reached);
+              samples += local.samples;
+              rays += local.rays;
+              dropped += local.dropped_samples;
+            }
+          },
+          tbb::simple_partitioner());
+      if (cancelled()) {
+        stats.interrupted = true;
+        break;
+      }
+      if (pause) {
+        control.checkpoint(film);
+        last_checkpoint = Clock::now();
+        continue;
+      }
+      break;
+    }
+    if (stats.interrupted) break;
+  }
+  if (splats) splats->add_to(film);
+  stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats.samples = samples;
   stats.rays = rays;
   stats.dropped_samples = dropped;

@@ -4,7 +4,10 @@
 // the radiance L along it, and hands the filter-weighted value to the film.
 #pragma once
 
+#include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <functional>
 
 #include <filmback/plugin_abi.h>
 
@@ -42,14 +45,31 @@ struct RenderStats {
   uint64_t samples = 0;
   uint64_t rays = 0;
   uint64_t dropped_samples = 0;  // non-finite values kept out of the film
+  bool interrupted = false;      // RenderControl::cancel stopped it: pixels may lack samples
+};
+
+// What may stop or pause a render from outside (docs/cli.md, "Interrupts and checkpoints").
+struct RenderControl {
+  // When it becomes true (a signal handler sets it), every tile stops before its next sample
+  // index: the render returns within about one sample of a tile.
+  const std::atomic<bool>* cancel = nullptr;
+  // Called with the film at a consistent state (every pixel's sums cover exactly its recorded
+  // sample count) at least `checkpoint_every` after the start or the last call.
+  std::function<void(const Film&)> checkpoint;
+  std::chrono::steady_clock::duration checkpoint_every{};
 };
 
 constexpr uint32_t kTileSize = 16;
 
-// Renders into `film` on the calling thread's TBB arena; `progress` counts tiles.
-RenderStats render_image(const RenderInputs& inputs, Film& film, Progress* progress);
+// Renders into `film` on the calling thread's TBB arena, in passes of doubling sample counts over
+// all tiles. A film that already holds samples (a resumed checkpoint: Film::sample_count per
+// tile) is continued from there; each pixel's samples are still summed in sample order, so the
+// image is bit-identical to an uninterrupted render. `progress` counts pixel samples.
+RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
+                         Progress* progress);
 
-// Tiles of the sample domain: the film, and around it the filter's reach when splatting.
-uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height);
+// Pixel samples of a render: the sample domain's pixels (the film, and around it the filter's reach
+// when splatting) times the samples per pixel.
+uint64_t sample_count(const RenderInputs& inputs, uint32_t width, uint32_t height);
 
 }  // namespace fb

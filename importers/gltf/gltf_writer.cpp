@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/util/error.h"
+#include "core/util/temporary_file.h"
 
 namespace fb {
 namespace {
@@ -225,28 +226,6 @@ Value::Object scene_settings(const Scene& scene, uint32_t width_px, uint32_t hei
   return out;
 }
 
-void write_atomically(const fs::path& file, const std::string& text) {
-  const fs::path temporary = file.parent_path() / ("." + file.filename().string() + ".tmp");
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(text.data(), std::streamsize(text.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw InputError("'" + file.string() + "': could not be written (" + std::strerror(errno) +
-                       ")");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temporary, file, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw InputError("'" + file.string() + "': could not be written (" + ec.message() + ")");
-  }
-}
-
 }  // namespace
 
 void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnostics) {
@@ -310,7 +289,12 @@ void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnosti
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&model, text, true, false))
     throw InputError("'" + file.string() + "': the glTF writer failed");
-  write_atomically(file, text.str());
+  write_atomically(file, [&](const fs::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text.str();
+    out.close();
+    return out ? std::string() : std::string(std::strerror(errno));
+  });
 }
 
 }  // namespace fb

@@ -47,7 +47,7 @@ TEST(ImageOutput, ExrCarriesTheCameraAsOpenExrStandardAttributes) {
   const RenderJob job(scene, options, test::loader());
   const RenderResult result = job.run();
   const fs::path file = test::scratch_dir() / "shot.exr";
-  write_images(result.image, {file}, job.metadata(result.stats));
+  write_images(result.image, {file}, job.metadata(result));
 
   auto in = OIIO::ImageInput::open(file.string());
   ASSERT_TRUE(in);

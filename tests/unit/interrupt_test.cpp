@@ -1,0 +1,145 @@
+// Interrupted, checkpointed and resumed renders (docs/cli.md, "Interrupts and checkpoints"):
+// whatever stops a render and wherever it is resumed from, the finished image is bit-identical
+// to one rendered without a stop, because each pixel's samples are summed in sample order.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <numbers>
+
+#include "core/film/checkpoint.h"
+#include "core/image/image_io.h"
+#include "core/render/render_job.h"
+#include "core/util/error.h"
+#include "importers/gltf/gltf_importer.h"
+#include "support/gltf_builder.h"
+#include "support/plugins.h"
+
+namespace fb {
+namespace {
+
+using test::GltfBuilder;
+
+// A lit floor under an emissive square and a point light, seen by the default camera: every
+// pixel's value depends on its own samples through light and BSDF sampling.
+Scene lit_floor() {
+  GltfBuilder gltf;
+  const std::vector<uint32_t> square_indices = {0, 1, 2, 0, 2, 3};
+  const auto square = [](float half) {
+    return std::vector<Vec3f>{
+        {-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}};
+  };
+  GltfBuilder::Node floor, lamp, light;
+  const double s = std::sin(std::numbers::pi / 4), c = std::cos(std::numbers::pi / 4);
+  floor.mesh = gltf.mesh(square(3), square_indices, gltf.material({0.7f, 0.6f, 0.5f}));
+  floor.rotation = {-s, 0, 0, c};
+  lamp.mesh = gltf.mesh(square(0.5f), square_indices, gltf.material({0, 0, 0}, {4, 4, 4}));
+  lamp.translation = {0, 2, 0};
+  lamp.rotation = {s, 0, 0, c};
+  light.light = gltf.point_light({1, 0.8f, 0.6f}, 683.0);
+  light.translation = {1, 1, 1};
+  gltf.node(floor), gltf.node(lamp), gltf.node(light);
+  Diagnostics diagnostics;
+  return import_gltf(gltf.write(test::scratch_dir() / "interrupt.gltf"), diagnostics);
+}
+
+RenderOptions options(uint32_t spp) {
+  RenderOptions o;
+  o.width = 70, o.height = 40, o.samples_per_pixel = spp, o.seed = 3;  // tiles cut at the edges
+  o.show_progress = false;
+  return o;
+}
+
+// Stops the render at the n-th time the render loop offers a checkpoint, keeping the film.
+struct StopAtCheckpoint {
+  int remaining;
+  std::atomic<bool> cancel{false};
+  RenderControl control() {
+    RenderControl c;
+    c.cancel = &cancel;
+    c.checkpoint_every = std::chrono::steady_clock::duration::zero();  // at every chance
+    c.checkpoint = [this](const Film&) {
+      if (--remaining == 0) cancel = true;
+    };
+    return c;
+  }
+};
+
+TEST(Interrupt, ACancelledRenderReportsEachPixelsSamplesAndResumesBitIdentically) {
+  const Scene scene = lit_floor();
+  const RenderJob job(scene, options(24), test::loader());
+  const RenderResult whole = job.run();
+  EXPECT_EQ(whole.fewest_samples, 24u);
+  EXPECT_EQ(whole.most_samples, 24u);
+  EXPECT_EQ(whole.image.channels.size(), 3u);  // a finished render has no "samples" channel
+
+  Film film = job.make_film();
+  StopAtCheckpoint stop{5};
+  const RenderResult part = job.run(film, stop.control());
+  ASSERT_TRUE(part.stats.interrupted);
+  EXPECT_LT(part.fewest_samples, 24u);
+  EXPECT_GT(part.most_samples, 0u);
+  ASSERT_EQ(part.image.channels.back(), "samples");
+  uint64_t counted = 0;
+  for (uint32_t y = 0; y < 40; ++y)
+    for (uint32_t x = 0; x < 70; ++x) {
+      const float samples = part.image.at(x, y, 3);
+      EXPECT_EQ(samples, float(film.sample_count(x, y)));
+      counted += uint64_t(samples);
+    }
+  EXPECT_EQ(counted, part.stats.samples);  // the AOV counts exactly the samples taken
+
+  // Through a checkpoint file, as the command line resumes.
+  const auto file = test::scratch_dir() / "interrupt.checkpoint.exr";
+  write_checkpoint(film, "key", file);
+  Film resumed = job.make_film();
+  read_checkpoint(file, "key", 24, kTileSize, resumed);
+  const RenderResult rest = job.run(resumed, {});
+  EXPECT_FALSE(rest.stats.interrupted);
+  EXPECT_EQ(rest.stats.samples + part.stats.samples, whole.stats.samples);
+  EXPECT_EQ(rest.image.pixels, whole.image.pixels);
+}
+
+TEST(Interrupt, CheckpointsTakenOnTheWayChangeNothing) {
+  const Scene scene = lit_floor();
+  const RenderJob job(scene, options(9), test::loader());  // 9: the last pass is not a doubling
+  const RenderResult whole = job.run();
+  Film film = job.make_film();
+  int checkpoints = 0;
+  RenderControl control;
+  control.checkpoint = [&](const Film&) { ++checkpoints; };  // every chance: between all tiles
+  const RenderResult again = job.run(film, control);
+  EXPECT_GT(checkpoints, 4);
+  EXPECT_EQ(again.image.pixels, whole.image.pixels);
+}
+
+TEST(Interrupt, CheckpointsOfAnotherRenderOrAnImpossibleStateAreRefused) {
+  const Scene scene = lit_floor();
+  const RenderJob job(scene, options(8), test::loader());
+  Film film = job.make_film();
+  StopAtCheckpoint stop{3};
+  job.run(film, stop.control());
+  const auto file = test::scratch_dir() / "refused.checkpoint.exr";
+  write_checkpoint(film, "this render", file);
+  const auto refusal = [&](const std::string& key, uint32_t spp) -> std::string {
+    Film target = job.make_film();
+    try {
+      read_checkpoint(file, key, spp, kTileSize, target);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(refusal("this render", 8), "accepted");
+  EXPECT_NE(refusal("another render", 8).find("written for another render"), std::string::npos);
+  EXPECT_NE(refusal("this render", 1).find("cannot have left"), std::string::npos);
+  // Sample counts that differ within one tile: a state no render leaves.
+  film.sample_counts()[1] += 1;
+  write_checkpoint(film, "this render", file);
+  EXPECT_NE(refusal("this render", 8).find("pixel 1,0 has"), std::string::npos);
+  // An image is no checkpoint.
+  write_images(job.run().image, {file}, {});
+  EXPECT_NE(refusal("this render", 8).find("not a filmback checkpoint"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fb
