@@ -135,6 +135,13 @@ double tessellation_tolerance_m(const Solid& primitive, const TessellationOption
   return tolerance;
 }
 
+void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics) {
+  diagnostics.warn(primitive.name + (primitive.kind == SolidKind::kPolynomial
+                                         ? ": polynomial surfaces (quadric, cubic, quartic, poly) "
+                                           "have no triangle form yet: left out of the mesh"
+                                         : ": the surface has no triangles: left out"));
+}
+
 TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& options) {
   TriangleMesh mesh;
   mesh.name = primitive.name;
@@ -197,12 +204,15 @@ void tessellate_solids(Scene& scene, TessellationOptions options, Diagnostics& d
   for (const Solid& s : scene.solids) {
     if (s.is_primitive() && !s.inverse) {  // its own surface, whole: exact in its object space
       TriangleMesh mesh = tessellate(s, options);
-      if (mesh.indices.empty()) continue;
+      if (mesh.indices.empty()) {
+        warn_untessellated(s, diagnostics);
+        continue;
+      }
       scene.instances.push_back({uint32_t(scene.meshes.size()), s.world_from_object, s.name});
       scene.meshes.push_back(std::move(mesh));
       continue;
     }
-    SolidTessellation t = tessellate_csg(s, options);
+    SolidTessellation t = tessellate_csg(s, options, diagnostics);
     if (t.meshes.empty()) diagnostics.warn(s.name + ": the solid has no surface: nothing to write");
     for (TriangleMesh& mesh : t.meshes) {
       scene.instances.push_back({uint32_t(scene.meshes.size()), t.world_from_mesh, s.name});

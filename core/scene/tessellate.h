@@ -27,6 +27,9 @@ struct TessellationOptions {
 // The largest distance allowed between the primitive's surface and its mesh, world metres.
 double tessellation_tolerance_m(const Solid& primitive, const TessellationOptions& options);
 
+// Reports a primitive whose tessellation came out empty (a polynomial has none yet).
+void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics);
+
 // The primitive as a mesh in its object space (instance it with world_from_object), with outward
 // counter-clockwise faces and the surface's own normals at the vertices, and sharp edges
 // (box, caps) split. Every point of the mesh lies within the tolerance of the surface

@@ -67,7 +67,8 @@ std::vector<TriangleMesh> meshes_by_material(const JoinedSurface& surface, Vec3d
 
 }  // namespace
 
-SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& options) {
+SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& options,
+                                 Diagnostics& diagnostics) {
   const CsgProbe probe(solid);
   const size_t leaves = probe.leaf_count();
   // Seams are as fine as the finest bounded primitive asks (half-spaces have no size of their
@@ -88,12 +89,17 @@ SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& 
   const TriangleBvh bvh(std::move(boundaries));
 
   std::vector<SurfacePart> parts(leaves);
+  std::vector<char> untessellated(leaves, 0);
   tbb::parallel_for(size_t(0), leaves, [&](size_t i) {
     if (!probe.is_surface(i)) return;
-    parts[i].surface = trim_surface(probe, i, tessellate(probe.leaf(i), options), bvh, tolerance);
+    const TriangleMesh mesh = tessellate(probe.leaf(i), options);
+    untessellated[i] = mesh.indices.empty();
+    parts[i].surface = trim_surface(probe, i, mesh, bvh, tolerance);
     parts[i].leaf = uint32_t(i);
     parts[i].material = probe.leaf(i).material;
   });
+  for (size_t i = 0; i < leaves; ++i)
+    if (untessellated[i]) warn_untessellated(probe.leaf(i), diagnostics);
   const JoinedSurface joined = join_surfaces(parts, tolerance);
 
   Bounds3d used;

@@ -8,6 +8,7 @@
 
 #include "core/scene/scene.h"
 #include "core/scene/tessellate.h"
+#include "core/util/diagnostics.h"
 
 namespace fb {
 
@@ -19,8 +20,10 @@ struct SolidTessellation {
 };
 
 // Surfaces lie within their primitive's tolerance (tessellation_tolerance_m), and cuts within the
-// smallest tolerance of the solid's bounded primitives of the true crossing curves. Throws
-// InputError when a primitive's placement cannot be inverted.
-SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& options);
+// smallest tolerance of the solid's bounded primitives of the true crossing curves. A primitive
+// with no tessellation yet (a polynomial) is reported: its surface is left out. Throws InputError
+// when a primitive's placement cannot be inverted.
+SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& options,
+                                 Diagnostics& diagnostics);
 
 }  // namespace fb

@@ -277,7 +277,9 @@ std::array<Coverage, 3> coverage(const Image& image) {
 
 TEST(TessellateCsg, HardCasesStayWithinTheToleranceOfTheExactSurface) {
   for (const Case& c : hard_cases()) {
-    const SolidTessellation t = tessellate_csg(c.solid, options());
+    Diagnostics diagnostics;
+    const SolidTessellation t = tessellate_csg(c.solid, options(), diagnostics);
+    EXPECT_EQ(diagnostics.count(), 0u);
     const Mesh m = world_mesh(t);
     ASSERT_FALSE(m.triangles.empty()) << c.solid.name;
     const double worst = largest_distance(c.solid, m);

@@ -67,6 +67,7 @@ class Importer {
         "KHR_materials_transmission",
         "KHR_texture_transform",
         "FILMBACK_blender",
+        "FILMBACK_povray",
     };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))

@@ -93,6 +93,20 @@ Fields Fields::object(const char* key) const {
   return Fields(v, path_ + "." + key, file_);
 }
 
+std::vector<Fields> Fields::objects(const char* key, size_t max_count) const {
+  std::vector<Fields> out;
+  if (!has(key)) return out;
+  const tinygltf::Value& v = object_.Get(key);
+  if (!v.IsArray() || v.ArrayLen() > max_count)
+    fail(key, "expected an array of at most " + std::to_string(max_count) + " objects");
+  for (size_t i = 0; i < v.ArrayLen(); ++i) {
+    const std::string at = path_ + "." + key + "[" + std::to_string(i) + "]";
+    if (!v.Get(int(i)).IsObject()) throw_input(file_, at, "expected an object");
+    out.emplace_back(v.Get(int(i)), at, file_);
+  }
+  return out;
+}
+
 void Fields::fail(const char* key, const std::string& what) const {
   throw_input(file_, path_ + "." + key, what);
 }

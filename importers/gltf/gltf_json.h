@@ -42,6 +42,8 @@ class Fields {
                                              double hi) const;
   // A member object (absent: one without members), for nested fields.
   Fields object(const char* key) const;
+  // A member array of at most `max_count` objects, each with its JSON path (absent: none).
+  std::vector<Fields> objects(const char* key, size_t max_count) const;
 
   [[noreturn]] void fail(const char* key, const std::string& what) const;
 

@@ -11,6 +11,7 @@
 #include "importers/gltf/gltf_file.h"
 #include "importers/gltf/gltf_importer.h"
 #include "importers/gltf/gltf_json.h"
+#include "importers/gltf/gltf_povray_light.h"
 
 namespace fb::gltf {
 namespace {
@@ -206,6 +207,18 @@ EnvironmentMap read_environment(const std::string& file, const std::string& wher
 void read_node_light(const tinygltf::Model& model, const tinygltf::Node& node,
                      const std::string& path, const Transform& world, uint32_t scene_node,
                      const std::string& file, Scene& scene, Diagnostics& diagnostics) {
+  // POV-Ray's light model (docs/pov.md "Conversion") over the others, which approximate it.
+  if (auto pov = node.extensions.find("FILMBACK_povray"); pov != node.extensions.end()) {
+    const Fields ours(pov->second, path + ".extensions.FILMBACK_povray", file);
+    if (ours.has("light")) {
+      Light light = read_povray_light(ours.object("light"));
+      light.name = light_name("", node, path);
+      light.world_from_light = world.without_scale();
+      light.node_index = scene_node;
+      scene.lights.push_back(light);
+      return;
+    }
+  }
   if (auto ours = node.extensions.find("FILMBACK_blender"); ours != node.extensions.end())
     if (ours->second.IsObject() && ours->second.Has("light")) {
       read_blender_light(ours->second.Get("light"), node, path, world, scene_node, file, scene,

@@ -7,9 +7,14 @@
 
 #include "core/util/error.h"
 #include "importers/gltf/gltf_json.h"
+#include "importers/gltf/gltf_povray_pattern.h"
 
 namespace fb::gltf {
 namespace {
+
+// A base colour factor beyond glTF's [0, 1] (a POV-Ray pigment brighter than white, or
+// diffuse above 1): single precision keeps it finite.
+constexpr double kLargestFactor = 1e6;
 
 class MaterialReader {
  public:
@@ -81,8 +86,16 @@ class MaterialReader {
       throw_input(file_, path + ".alphaMode",
                   "'" + g.alphaMode + "' is not an alpha mode (expected OPAQUE, MASK or BLEND)");
     }
+    // A POV-Ray pigment and the exact base colour factor (docs/pov.md "Conversion").
+    const Fields pov = extension_fields(g.extensions, "FILMBACK_povray", path);
+    if (pov.has("pigment")) m.base_color_pattern = read_pattern(pov.object("pigment"));
+    if (const auto factor = pov.numbers("base_color_factor", 3, 0, kLargestFactor)) {
+      if (factor->size() != 3) pov.fail("base_color_factor", "expected [r, g, b]");
+      m.base_color = Rgb(float((*factor)[0]), float((*factor)[1]), float((*factor)[2]));
+    }
     // Fully covered everywhere: no need to test each hit.
-    if (m.alpha_mode == AlphaMode::kBlend && m.alpha >= 1 && !m.textures.base_color.present())
+    if (m.alpha_mode == AlphaMode::kBlend && m.alpha >= 1 && !m.textures.base_color.present() &&
+        !m.base_color_pattern)
       m.alpha_mode = AlphaMode::kOpaque;
     return m;
   }

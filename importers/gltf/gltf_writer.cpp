@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -10,6 +11,8 @@
 
 #include "core/util/error.h"
 #include "core/util/temporary_file.h"
+#include "importers/gltf/gltf_povray_light.h"
+#include "importers/gltf/gltf_povray_pattern.h"
 
 namespace fb {
 namespace {
@@ -114,6 +117,17 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   if (m.specular != 1.f)
     out.extensions["KHR_materials_specular"] =
         Value(Value::Object{{"specularFactor", number(m.specular)}});
+  // FILMBACK_povray: a POV-Ray pigment, and a base colour beyond glTF's [0, 1]; other viewers get
+  // the factor times the pigment's mean colour, clamped.
+  Rgb viewed = m.base_color;
+  if (m.base_color_pattern) viewed = viewed * gltf::mean_colour(*m.base_color_pattern).rgb;
+  if (m.base_color_pattern || max_component(m.base_color) > 1) {
+    Value::Object ours{{"base_color_factor", rgb(m.base_color)}};
+    if (m.base_color_pattern) ours["pigment"] = gltf::pattern_json(*m.base_color_pattern);
+    out.extensions["FILMBACK_povray"] = Value(std::move(ours));
+    out.pbrMetallicRoughness.baseColorFactor = {std::min(viewed.x, 1.f), std::min(viewed.y, 1.f),
+                                                std::min(viewed.z, 1.f), m.alpha};
+  }
   if (m.textures.any())
     diagnostics.warn("material '" + m.name + "': its textures are not written by convert");
   if (m.is_light)
@@ -148,8 +162,10 @@ void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light)
       ours["type"] = Value(std::string(light.type == LightType::kPoint ? "POINT" : "SPOT"));
       ours["energy_w"] = number(peak * 4 * kPi);
       ours["radius_m"] = number(light.radius_m);
-      out.spot.innerConeAngle = light.spot_inner_angle_rad;
-      out.spot.outerConeAngle = light.spot_outer_angle_rad;
+      // KHR_lights_punctual: 0 <= inner < outer <= pi / 2 (POV-Ray's falloff may reach pi).
+      out.spot.outerConeAngle = std::min(light.spot_outer_angle_rad, kPi / 2);
+      out.spot.innerConeAngle =
+          std::min(light.spot_inner_angle_rad, 0.999 * out.spot.outerConeAngle);
       if (light.type == LightType::kSpot) {
         ours["spot_size_rad"] = number(2 * light.spot_outer_angle_rad);
         ours["spot_blend"] = number(light.spot_blend);
@@ -165,8 +181,12 @@ void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light)
   model.lights.push_back(out);
   node.extensions["KHR_lights_punctual"] =
       Value(Value::Object{{"light", Value(int(model.lights.size() - 1))}});
-  // A spot with glTF's own falloff is exact in KHR_lights_punctual alone.
-  if (light.type != LightType::kSpot || light.spot_falloff == SpotFalloff::kCycles)
+  // POV-Ray's light model in its own extension; a spot with glTF's own falloff is exact in
+  // KHR_lights_punctual alone.
+  if (gltf::is_povray_light(light))
+    node.extensions["FILMBACK_povray"] =
+        Value(Value::Object{{"light", gltf::povray_light_json(light)}});
+  else if (light.type != LightType::kSpot || light.spot_falloff == SpotFalloff::kCycles)
     node.extensions["FILMBACK_blender"] = Value(Value::Object{{"light", Value(std::move(ours))}});
 }
 
@@ -277,6 +297,14 @@ void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnosti
   model.defaultScene = 0;
   if (!model.lights.empty()) model.extensionsUsed.push_back("KHR_lights_punctual");
   model.extensionsUsed.push_back("FILMBACK_blender");
+  const auto povray = [](const tinygltf::ExtensionMap& e) {
+    return e.count("FILMBACK_povray") > 0;
+  };
+  if (std::any_of(model.nodes.begin(), model.nodes.end(),
+                  [&](const tinygltf::Node& n) { return povray(n.extensions); }) ||
+      std::any_of(model.materials.begin(), model.materials.end(),
+                  [&](const tinygltf::Material& m) { return povray(m.extensions); }))
+    model.extensionsUsed.push_back("FILMBACK_povray");
   for (const char* ext : {"KHR_materials_emissive_strength", "KHR_materials_transmission",
                           "KHR_materials_ior", "KHR_materials_specular"})
     for (const tinygltf::Material& m : model.materials)
@@ -285,6 +313,8 @@ void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnosti
         break;
       }
 
+  // A scene without meshes has no binary data: glTF allows no empty buffer.
+  if (model.buffers[0].data.empty()) model.buffers.clear();
   std::ostringstream text;
   tinygltf::TinyGLTF writer;
   if (!writer.WriteGltfSceneToStream(&model, text, true, false))
