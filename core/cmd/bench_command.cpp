@@ -1,7 +1,6 @@
 // `filmback bench` (docs/cli.md, "bench"): checks what was typed, runs every scene through
 // filmback (and Cycles), and writes the report folder.
 #include <tbb/global_control.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
@@ -14,6 +13,7 @@
 #include "core/cmd/bench_report.h"
 #include "core/cmd/commands.h"
 #include "core/util/error.h"
+#include "core/util/temporary_file.h"
 
 namespace fb {
 namespace {
@@ -94,22 +94,13 @@ void make_output_folder(const fs::path& output) {
   if (ec) throw_input(output.string(), "", "cannot create the report folder: " + ec.message());
 }
 
-// Through a hidden temporary in the same folder, renamed into place as images are
-// (core/image/image_io.cpp): a failed write leaves neither a partial file nor the temporary.
 void write_text(const fs::path& file, const std::string& text) {
-  std::string name = ".";
-  name += file.stem().string();
-  name += ".filmback-" + std::to_string(getpid()) + file.extension().string();
-  const fs::path temporary = file.parent_path() / name;
-  std::ofstream out(temporary, std::ios::binary);
-  out << text;
-  out.close();
-  std::error_code ec;
-  if (out) fs::rename(temporary, file, ec);
-  if (!out || ec) {
-    fs::remove(temporary, ec);
-    throw_input(file.string(), "", "cannot write the report file");
-  }
+  write_atomically(file, [&](const fs::path& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    out.close();
+    return out ? std::string() : std::string("write failed");
+  });
 }
 
 // Runs plot.py; each scene's plot file name, or none (with one warning) when it drew none.
@@ -179,13 +170,14 @@ int run_bench(BenchCommand& c) {
     }
     reports.back().name = name;
     reports.back().file = scene;
+    // After every scene, so that a long run that fails later keeps what it measured.
+    write_text(c.output / "renders.csv", renders_csv(reports));
+    write_text(c.output / "fits.csv", fits_csv(reports));
+    write_text(c.output / "scenes.csv", scenes_csv(reports, context));
   }
   context.finished = utc_now();
   context.load_after = load_average();
 
-  write_text(c.output / "renders.csv", renders_csv(reports));
-  write_text(c.output / "fits.csv", fits_csv(reports));
-  write_text(c.output / "scenes.csv", scenes_csv(reports, context));
   const std::vector<std::string> plots = draw_plots(c.output, reports);
   write_text(c.output / "summary.md", summary_markdown(reports, context, plots));
   std::cout << "bench: wrote " << (c.output / "summary.md").string() << std::endl;

@@ -107,10 +107,10 @@ void check_size(const Image& reference, const fs::path& file, const RenderJob& j
 }
 
 // Film memory of one render (core/film/film.h): per pixel, each channel's weighted sum and the
-// weight in double; then the resolved image, a float per channel.
+// weight in double and the sample count; then the resolved image, a float per channel.
 size_t film_bytes(const Image& image) {
   const size_t pixels = size_t(image.width) * image.height, channels = image.channels.size();
-  return pixels * ((channels + 1) * sizeof(double) + channels * sizeof(float));
+  return pixels * ((channels + 1) * sizeof(double) + sizeof(uint32_t) + channels * sizeof(float));
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #include "core/cmd/bench_report.h"
 
-#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -95,14 +94,14 @@ void write_memory(std::ostringstream& md, const SceneReport& scene) {
   md << "\nMemory: geometry and BVH " << mib(m.geometry_bytes)
      << " (RenderGeometry::live_bytes(): render-space arrays and Embree's memory monitor), film "
      << mib(m.film_bytes)
-     << " (sums and weights in double, the resolved image in float): " << mib(accounted)
-     << " accounted.";
+     << " (sums and weights in double, sample counts, the resolved image in float): "
+     << mib(accounted) << " accounted.";
   if (m.before && m.after) {
     const size_t grown = m.after->peak > m.before->current ? m.after->peak - m.before->current : 0;
     md << " Peak resident set " << mib(m.after->peak)
-       << (m.peak_is_the_scene_s ? " during this scene"
-                                 : " of the process so far (the kernel "
-                                   "refused to restart the peak)")
+       << (m.peak_is_the_scene_s
+               ? " during this scene"
+               : " of the process so far (the kernel refused to restart the peak)")
        << ", " << mib(m.before->current) << " before its import: " << mib(grown)
        << " for the scene (its import, the references, every render), "
        << format("%.2f", accounted ? double(grown) / double(accounted) : 0.0)
