@@ -46,6 +46,11 @@ class Converter {
   void warn(const Object& o, const std::string& what) {
     diagnostics_.warn(o.where.text() + ": " + o.keyword + " " + what);
   }
+  // Geometry that is drawn otherwise than POV-Ray draws it, or not at all: reported as an
+  // unsupported object, which is what the sample-scene sweep counts as incomplete geometry.
+  void incomplete(const Object& o, const std::string& what, const std::string& outcome) {
+    diagnostics_.warn(o.where.text() + ": unsupported object '" + what + "': " + outcome);
+  }
   static std::string name(const Object& o) { return o.keyword + " at " + o.where.text(); }
   std::optional<Solid> primitive(const Object& o);
   std::optional<Solid> solid(const Object& o);
@@ -152,7 +157,7 @@ std::optional<Solid> Converter::solid(const Object& o) {
   std::optional<Solid> s;
   switch (o.shape) {
     case Shape::kMesh:
-      warn(o, "inside CSG is left out (its triangles have no inside here)");
+      incomplete(o, o.keyword + " inside CSG", "left out (its triangles have no inside here)");
       return std::nullopt;
     case Shape::kUnion:
     case Shape::kMerge:
@@ -247,20 +252,24 @@ void Converter::mesh(const Object& o) {
 
 void Converter::emit(const Object& o) {
   if (o.no_image) {
-    warn(o, "has no_image: left out (POV-Ray would still let it cast shadows)");
+    incomplete(o, o.keyword + " with no_image",
+               "left out (POV-Ray would still let it cast shadows)");
     return;
   }
   if (o.no_shadow) warn(o, "has no_shadow, which is not rendered: it casts shadows");
   const bool plain = !o.inverse && o.clipped_by.empty();
   // A union's members keep all their surfaces in POV-Ray: each is an object of its own.
   if (plain && (o.shape == Shape::kUnion || (o.shape == Shape::kMerge && contains_mesh(o)))) {
-    if (o.shape == Shape::kMerge) warn(o, "holds triangles: rendered as a union");
+    if (o.shape == Shape::kMerge)
+      incomplete(o, "merge of triangles", "rendered as a union (inner surfaces stay)");
     for (const Object& child : o.children)
       emit(child);
     return;
   }
   if (o.shape == Shape::kMesh) {
-    if (!plain) warn(o, "is clipped or inverted, which triangles are not here: drawn whole");
+    if (!plain)
+      incomplete(o, o.keyword + " clipped or inverted",
+                 "drawn whole (triangles have no inside here)");
     mesh(o);
     return;
   }

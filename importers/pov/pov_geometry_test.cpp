@@ -203,6 +203,11 @@ TEST(PovGeometry, WhatCannotBeConvertedIsReported) {
   EXPECT_TRUE(c->scene.meshes.empty());
   for (const std::string& message : c->diagnostics.messages())
     EXPECT_EQ(message.rfind("scene.pov:3:1: ", 0), 0u) << message;
+  // What leaves the geometry incomplete is an unsupported object, as the sample sweep counts it.
+  EXPECT_NE(c->diagnostics.messages()[0].find("unsupported object 'shape with no_image'"),
+            std::string::npos);
+  EXPECT_NE(c->diagnostics.messages()[2].find("unsupported object 'shape inside CSG'"),
+            std::string::npos);
 }
 
 }  // namespace
