@@ -462,6 +462,30 @@ Rgb RenderGeometry::emission_at(const EmissiveTriangle& emitter, float u, float 
                            surface_point(meshes_[emitter.mesh], emitter.primitive, u, v));
 }
 
+namespace {
+
+// Where shadow rays leave a triangle with vertex normals (Hanika 2021, "Hacking the Shadow
+// Terminator", Ray Tracing Gems II ch. 4): the point moved onto each corner's tangent plane (of its
+// vertex normal) where it lies below that plane, weighted by the barycentrics,
+// P' = P - sum_i b_i min(0, (P - p_i).n_i) n_i. A convex triangle rises towards the smooth surface
+// its normals describe; a flat or concave one stays. In double, so that the lift, far smaller than
+// P, adds no rounding of P's magnitude: P' is rounded once, to float.
+Vec3f lifted_onto_smooth_surface(Vec3f position, const Vec3f p[3], const Vec3f n[3],
+                                 const float b[3]) {
+  const Vec3d from(position);
+  Vec3d lifted = from;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3d normal(n[i]);
+    const double len = length(normal);
+    if (!(len > 0)) continue;
+    const Vec3d unit = normal * (1 / len);
+    lifted = lifted - unit * (double(b[i]) * std::min(0.0, dot(from - Vec3d(p[i]), unit)));
+  }
+  return Vec3f(lifted);
+}
+
+}  // namespace
+
 void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
                               float time, fb_hit& hit) const {
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
@@ -490,9 +514,13 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   // bounded by gamma(7) times the magnitudes summed (pbrt 4e §6.8.4); between motion steps, our
   // corners and Embree's each round a lerp too: gamma(7) more.
   const Vec3f position = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
+  const Vec3f shadow =
+      mesh.normals.empty() ? position : lifted_onto_smooth_surface(position, p, n, b);
+  // The lifted point carries the position's error and one rounding more: one bound for both.
   const Vec3f error = (magnitude[0] * std::abs(b[0]) + magnitude[1] * std::abs(b[1]) +
                        magnitude[2] * std::abs(b[2])) *
-                      gamma(moving ? 14 : 7);
+                          gamma(moving ? 14 : 7) +
+                      abs(shadow) * gamma(1);
   const Vec3f ng = normalize(cross(p[1] - p[0], p[2] - p[0]));
   Vec3f ns = ng;
   if (!mesh.normals.empty()) {
@@ -503,6 +531,7 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   }
   hit.t = t;
   position.store(hit.position);
+  shadow.store(hit.shadow_position);
   error.store(hit.position_error);
   ng.store(hit.geometric_normal);
   ns.store(hit.shading_normal);
@@ -517,6 +546,7 @@ bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit)
   if (!found) return false;  // cannot happen: Embree's hit came from the same computation
   hit.t = float(found->t);
   Vec3f(found->position).store(hit.position);
+  Vec3f(found->position).store(hit.shadow_position);  // exact surfaces need no lift
   Vec3f(found->position_error).store(hit.position_error);
   Vec3f(found->normal).store(hit.geometric_normal);
   Vec3f(found->normal).store(hit.shading_normal);

@@ -201,6 +201,11 @@ typedef struct fb_hit {
   /* unit; the interpolated vertex normal before the normal map (shading_normal without it), for
    * the shadowing term of bumped diffuse surfaces (filmback/bsdf.h) */
   float smooth_normal[3];
+  /* Where rays towards lights leave: position lifted onto the smooth surface the triangle's vertex
+   * normals describe (Hanika 2021, "Hacking the Shadow Terminator"), so that the flat facets of a
+   * coarse mesh with smooth normals do not shadow it along the terminator. Equal to position where
+   * the surface is flat, concave or has no vertex normals; position_error bounds it too. */
+  float shadow_position[3];
 } fb_hit;
 
 /* A material's constant factors. The layout is frozen: what a material has beyond these reaches

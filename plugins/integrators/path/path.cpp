@@ -102,6 +102,13 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
       return (fb::dot(ng, wi_world) > 0.f) == (wi.z > 0.f);
     };
 
+    // Light arriving above the shading normal but below the flat facet (the terminator of a
+    // coarse mesh with smooth normals) is not refused: its shadow ray leaves from the hit lifted
+    // onto the smooth surface (fb_hit.shadow_position, Hanika 2021), on the side being shaded, and
+    // the object itself decides whether it is in shadow.
+    Vec3f lifted(hit.shadow_position);
+    if (dot(lifted - p, ng) < 0.f) lifted = p;  // lifted towards the other side: not ours
+
     float u[3];
     api.next_samples(ctx, path, u, 3);
     fb_light_sample ls;
@@ -109,16 +116,22 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
       const Vec3f wi_world(ls.direction);
       const Vec3f wi = scatter.frame.to_local(wi_world);
       const Rgb f = scatter.bsdf.eval(wo, wi);
-      if (consistent(wi_world, wi) && fb::max_component(f) > 0.f) {
+      const bool above = wi.z > 0.f, reachable = consistent(wi_world, wi);
+      if ((reachable || above) && fb::max_component(f) > 0.f) {
         fb_ray shadow{};
-        fb::offset_ray_origin(p, p_error, ng, wi_world).store(shadow.origin);
+        (above ? fb::offset_ray_origin(lifted, p_error, ng, ng)
+               : fb::offset_ray_origin(p, p_error, ng, wi_world))
+            .store(shadow.origin);
         wi_world.store(shadow.direction);
         shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
         shadow.time_s = time_s;
         // distance 0: a light that casts no shadows (fb_light_sample in plugin_abi.h).
         if (ls.distance == 0.f || !api.occluded(ctx, &shadow)) {
-          const float weight =
-              ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, scatter.bsdf.pdf(wo, wi));
+          // BSDF sampling never continues across the facet (below), so there light sampling is
+          // the only strategy and takes the whole weight.
+          const float weight = ls.is_delta || !reachable
+                                   ? 1.f
+                                   : fb::power_heuristic(ls.pdf, scatter.bsdf.pdf(wo, wi));
           L += beta * f * Rgb(ls.radiance) * (std::abs(wi.z) * weight / ls.pdf);
         }
       }
