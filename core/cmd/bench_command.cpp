@@ -160,14 +160,19 @@ int run_bench(BenchCommand& c) {
     fs::create_directories(work);
     const std::optional<fs::path> reference =
         c.references.empty() ? std::nullopt : std::optional(c.references[i]);
-    if (const std::optional<BlenderShot>& shot = shots[i]) {
-      FilmbackBench bench = bench_filmback(name, shot->gltf, reference, settings, loader, work);
-      bench.report.prepare_s = shot->prepare_s;
-      if (settings.against_cycles) bench_cycles(name, *shot, settings, bench);
-      reports.push_back(std::move(bench.report));
-    } else {
-      reports.push_back(bench_filmback(name, scene, reference, settings, loader, work).report);
+    const std::optional<BlenderShot>& shot = shots[i];
+    FilmbackBench filmback(name, shot ? shot->gltf : scene, reference, settings, loader, work);
+    std::optional<CyclesBench> cycles;
+    if (shot && settings.against_cycles) cycles.emplace(name, *shot, settings, filmback);
+    // Cycles' render at each sample count right after filmback's, so that a change in the
+    // machine's load falls on both alike.
+    for (uint32_t spp : settings.spp) {
+      filmback.render(spp);
+      if (cycles) cycles->render(spp);
     }
+    reports.push_back(filmback.finish());
+    if (shot) reports.back().prepare_s = shot->prepare_s;
+    if (cycles) cycles->add_to(reports.back());
     reports.back().name = name;
     reports.back().file = scene;
     // After every scene, so that a long run that fails later keeps what it measured.

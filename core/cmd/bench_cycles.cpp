@@ -87,10 +87,10 @@ BlenderShot prepare_blender_shot(const fs::path& source, const fs::path& work,
   return shot;
 }
 
-void bench_cycles(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
-                  FilmbackBench& filmback) {
-  SceneReport& report = filmback.report;
-  CyclesNote note{shot.cycles_settings, std::nullopt, 0, 0, ""};
+CyclesBench::CyclesBench(const std::string& name, const BlenderShot& shot,
+                         const BenchSettings& settings, const FilmbackBench& filmback)
+    : name_(name), shot_(shot), settings_(settings) {
+  note_.settings = shot.cycles_settings;
   const uint32_t half = settings.reference_spp / 2;
   Image halves[2];
   for (int h = 0; h < 2; ++h) {
@@ -100,46 +100,52 @@ void bench_cycles(const std::string& name, const BlenderShot& shot, const BenchS
                               "cycles_reference_" + std::to_string(h + 1))
                     .image;
   }
-  const AveragedReference reference = average_halves(halves[0], halves[1]);
-  report.references.push_back({"cycles", "the shot's",
-                               "Cycles, 2 x " + std::to_string(half) + " spp (seeds " +
-                                   std::to_string(settings.seed + 1) + " and " +
-                                   std::to_string(settings.seed + 2) + ")",
-                               reference.noise});
-  if (filmback.shot_filter) {
-    const Image& ours = filmback.references[*filmback.shot_filter];
-    const ReferenceNote& our_note = report.references[*filmback.shot_filter];
-    if (ours.width == reference.image.width && ours.height == reference.image.height) {
-      note.bias = image_error(ours, reference.image);
-      note.bias_filter = our_note.filter;
-      const double ours_noise = our_note.noise ? our_note.noise->rmse : 0;
-      note.bias_noise_rmse = std::hypot(ours_noise, reference.noise.rmse);
-      double sum_ours = 0, sum_cycles = 0;
-      for (size_t i = 0; i < ours.pixels.size(); ++i)
-        sum_ours += ours.pixels[i], sum_cycles += reference.image.pixels[i];
-      note.mean_ratio = sum_ours / sum_cycles;
-    }
-  }
-  for (uint32_t spp : settings.spp) {
-    const CyclesRender r =
-        render_cycles(shot, spp, settings.seed, "cycles_" + std::to_string(spp) + "spp");
-    RenderRow row;
-    row.renderer = row.configuration = "cycles";
-    row.sampler = row.filter = "the shot's";
-    row.spp = spp;
-    row.render_s = r.render_s;
-    row.total_s = r.process_s;
-    row.samples_per_s = double(r.image.width) * r.image.height * spp / r.render_s;
-    row.error = image_error(r.image, reference.image);
-    row.reference_noise = reference.noise.rmse;
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "bench: %s: cycles at %u spp: %.3f s render, %.3f s process, RMSE %.4g",
-                  name.c_str(), spp, row.render_s, row.total_s, row.error.rmse);
-    std::cout << line << std::endl;
-    report.rows.push_back(std::move(row));
-  }
-  report.cycles = std::move(note);
+  AveragedReference averaged = average_halves(halves[0], halves[1]);
+  reference_ = std::move(averaged.image);
+  reference_note_ = {"cycles", "the shot's",
+                     "Cycles, 2 x " + std::to_string(half) + " spp (seeds " +
+                         std::to_string(settings.seed + 1) + " and " +
+                         std::to_string(settings.seed + 2) + ")",
+                     averaged.noise};
+  const std::optional<size_t> shot_filter = filmback.shot_filter();
+  if (!shot_filter) return;
+  const Image& ours = filmback.reference(*shot_filter);
+  const ReferenceNote& our_note = filmback.reference_note(*shot_filter);
+  if (ours.width != reference_.width || ours.height != reference_.height) return;
+  note_.bias = image_error(ours, reference_);
+  note_.bias_filter = our_note.filter;
+  note_.bias_noise_rmse =
+      std::hypot(our_note.noise ? our_note.noise->rmse : 0, averaged.noise.rmse);
+  double sum_ours = 0, sum_cycles = 0;
+  for (size_t i = 0; i < ours.pixels.size(); ++i)
+    sum_ours += ours.pixels[i], sum_cycles += reference_.pixels[i];
+  note_.mean_ratio = sum_ours / sum_cycles;
+}
+
+void CyclesBench::render(uint32_t spp) {
+  const CyclesRender r =
+      render_cycles(shot_, spp, settings_.seed, "cycles_" + std::to_string(spp) + "spp");
+  RenderRow row;
+  row.renderer = row.configuration = "cycles";
+  row.sampler = row.filter = "the shot's";
+  row.spp = spp;
+  row.render_s = r.render_s;
+  row.total_s = r.process_s;
+  row.samples_per_s = double(r.image.width) * r.image.height * spp / r.render_s;
+  row.error = image_error(r.image, reference_);
+  row.reference_noise = reference_note_.noise->rmse;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "bench: %s: cycles at %u spp: %.3f s render, %.3f s process, RMSE %.4g",
+                name_.c_str(), spp, row.render_s, row.total_s, row.error.rmse);
+  std::cout << line << std::endl;
+  rows_.push_back(std::move(row));
+}
+
+void CyclesBench::add_to(SceneReport& report) {
+  report.rows.insert(report.rows.end(), rows_.begin(), rows_.end());
+  report.references.push_back(reference_note_);
+  report.cycles = note_;
 }
 
 }  // namespace fb

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/cmd/bench_filmback.h"
 #include "core/cmd/bench_types.h"
@@ -33,10 +34,28 @@ BlenderShot prepare_blender_shot(const std::filesystem::path& source,
                                  const std::optional<std::pair<uint32_t, uint32_t>>& resolution,
                                  unsigned threads);
 
-// Cycles at every sample count of `settings` (seed settings.seed) and its own reference (the mean
-// of two renders of half settings.reference_spp, seeds + 1 and + 2): rows added to
-// `filmback.report`, whose CyclesNote gets the bias between the two renderers' references.
-void bench_cycles(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
-                  FilmbackBench& filmback);
+class CyclesBench {
+ public:
+  // Cycles' reference: the mean of two renders of half settings.reference_spp with seeds
+  // settings.seed + 1 and + 2, like filmback's; and the bias between it and filmback's reference
+  // for the shot's pixel filter, when a configuration uses that filter.
+  CyclesBench(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
+              const FilmbackBench& filmback);
+
+  // Cycles at `spp` with seed settings.seed: one row.
+  void render(uint32_t spp);
+
+  // Cycles' rows, its reference and the comparison, into `report`.
+  void add_to(SceneReport& report);
+
+ private:
+  std::string name_;
+  const BlenderShot& shot_;
+  const BenchSettings& settings_;
+  Image reference_;
+  ReferenceNote reference_note_;
+  CyclesNote note_;
+  std::vector<RenderRow> rows_;
+};
 
 }  // namespace fb

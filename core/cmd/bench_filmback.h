@@ -1,7 +1,8 @@
 // filmback's side of `filmback bench`: one scene imported once, its references, and every
-// configuration at every sample count, each render through its own RenderJob.
+// configuration at each sample count, each render through its own RenderJob.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -10,22 +11,53 @@
 #include "core/cmd/bench_types.h"
 #include "core/image/image.h"
 #include "core/plugin/loader.h"
+#include "core/render/render_job.h"
+#include "core/scene/scene.h"
 
 namespace fb {
 
-struct FilmbackBench {
-  SceneReport report;
-  std::vector<Image> references;  // R, G, B per BenchSettings::filters entry
+class FilmbackBench {
+ public:
+  // Imports `scene_file` (what filmback reads: a Blender shot's export) and makes the references,
+  // or reads `reference_file` instead; work files (the references as EXR) go to `work`.
+  FilmbackBench(const std::string& name, const std::filesystem::path& scene_file,
+                const std::optional<std::filesystem::path>& reference_file,
+                const BenchSettings& settings, const PluginLoader& loader,
+                const std::filesystem::path& work);
+
+  // Every configuration at `spp`, a row each in report().
+  void render(uint32_t spp);
+
+  // The report, with the memory the scene took and the median construction time; call once,
+  // after the last render.
+  SceneReport finish();
+
+  // R, G, B, per BenchSettings::filters entry.
+  const Image& reference(size_t filter) const { return references_[filter]; }
+  const ReferenceNote& reference_note(size_t filter) const { return report_.references[filter]; }
   // The first filter that is the scene's own pixel filter (the one Cycles renders a Blender shot
   // with), if any.
-  std::optional<size_t> shot_filter;
-};
+  std::optional<size_t> shot_filter() const { return shot_filter_; }
 
-// `scene_file` is what filmback reads (a Blender shot's export); `reference_file`, when given,
-// replaces filmback's own reference; work files (the references as EXR) go to `work`.
-FilmbackBench bench_filmback(const std::string& name, const std::filesystem::path& scene_file,
-                             const std::optional<std::filesystem::path>& reference_file,
-                             const BenchSettings& settings, const PluginLoader& loader,
-                             const std::filesystem::path& work);
+ private:
+  struct Timed;
+  RenderOptions options(uint32_t spp, SamplerKind sampler, const std::optional<std::string>& filter,
+                        uint64_t seed) const;
+  // The filter a job with `filter` renders with, as RenderJob chooses it (render_job.h).
+  std::string filter_text(const std::optional<std::string>& filter) const;
+  // A measured render is timed again while short, and its job's plan line kept for the report.
+  Timed run(const RenderOptions& options, bool measured);
+  void make_references(const std::optional<std::filesystem::path>& reference_file,
+                       const std::filesystem::path& work);
+
+  std::string name_;
+  const BenchSettings& settings_;
+  const PluginLoader& loader_;
+  SceneReport report_;
+  Scene scene_;
+  std::vector<Image> references_;
+  std::optional<size_t> shot_filter_;
+  std::vector<double> build_times_;
+};
 
 }  // namespace fb

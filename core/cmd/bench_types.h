@@ -1,5 +1,5 @@
 // What `filmback bench` measures, scene by scene, and the settings it measures with (docs/cli.md,
-// "bench"). Filled by bench_filmback.cpp and bench_cycles_runs.cpp, written by bench_report.cpp.
+// "bench"). Filled by bench_filmback.cpp and bench_cycles.cpp, written by bench_report.cpp.
 #pragma once
 
 #include <cstdint>
