@@ -13,10 +13,12 @@ packages=(g++ cmake ninja-build pkg-config
           libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
           libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libosd-dev)
 # Peers the tests render with (Blender's Cycles and glTF exporter; POV-Ray with its include files
-# and sample scenes), the test drivers' Python, matplotlib for `filmback bench`'s plots, and a second
-# compiler that builds an out-of-tree plugin against the installed SDK.
+# and sample scenes), the test drivers' Python, matplotlib for `filmback bench`'s plots, and clang:
+# a second compiler for an out-of-tree plugin against the installed SDK, and with its sanitizer and
+# libFuzzer runtimes (libclang-rt-14-dev) the compiler of the sanitized build and the fuzz harnesses;
+# strace, which shows that a render makes no network system call.
 [ "$mode" = test ] && packages+=(blender povray povray-includes povray-examples
-                                 python3 python3-numpy python3-matplotlib clang)
+                                 python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev strace)
 # npm only when the machine has none: a Node.js from another Debian source (nodesource's `nodejs`,
 # which ships its own npm) conflicts with Debian's `npm` package.
 [ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(npm)
@@ -41,7 +43,17 @@ if [ "$mode" = test ]; then
   validator=gltf-validator@2.0.0-dev.3.10
   [ -d build/npm/node_modules/gltf-validator ] ||
     npm install --silent --no-audit --no-fund --prefix build/npm "$validator"
-  ctest --test-dir build --output-on-failure -j 2
+  # docs/testing.md, "Sanitizers": the suites against peers (Blender, POV-Ray), the render-heavy
+  # ones, the SDK's and the hostile files run in the Release build; every other suite runs in
+  # build-sanitize/ (clang, AddressSanitizer with LeakSanitizer, UndefinedBehaviorSanitizer, -O1),
+  # which also holds the fuzz harnesses, run for a minute each (docs/reliability.md).
+  [ -f build-sanitize/CMakeCache.txt ] ||
+    CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DFILMBACK_FUZZ=ON
+  cmake --build build-sanitize
+  tests/fuzz/run_fuzzers.sh build-sanitize 60
+  ctest --test-dir build --output-on-failure -j 2 -L 'blender|pov|bench|filters|hard|sdk|hostile'
+  ctest --test-dir build-sanitize --output-on-failure -j 2 -LE sdk
 else
   mkdir -p out
   build/bin/filmback render scenes/default/default.gltf -o out/default.exr -o out/default.png

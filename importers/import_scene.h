@@ -9,6 +9,7 @@
 
 #include "core/scene/scene.h"
 #include "core/util/diagnostics.h"
+#include "importers/pov/sdl/evaluate.h"
 
 namespace fb {
 
@@ -22,6 +23,8 @@ struct ImportOptions {
   // Folders searched for #include after the scene's own; none given: POV-Ray's standard include
   // folder when povray-includes is installed (docs/pov.md "The language").
   std::vector<std::filesystem::path> library_paths;
+  // How far a POV-Ray scene's program may run (docs/pov.md "The language": the defaults).
+  pov::EvaluateLimits pov_limits;
 };
 
 // Throws UsageError for an unknown extension, InputError for a file that cannot be read.

@@ -2,8 +2,6 @@
 
 #include <embree3/rtcore.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -91,22 +89,6 @@ bool traceable(const fb_ray& ray) {
         !(std::abs(ray.direction[i]) <= kLargestCoordinate))
       return false;
   return !std::isnan(ray.t_min) && !std::isnan(ray.t_max);
-}
-
-// Flattening copies every instance's triangles; refuse before allocating when that would take
-// more than half of this machine's memory (vertices, indices, normals and Embree's BVH: about
-// 120 bytes per triangle measured on Embree 3.13 MEDIUM builds, notes/deps.md).
-void check_memory_budget(const Scene& scene) {
-  constexpr double kBytesPerTriangle = 120;
-  const double triangles = double(scene.triangle_count());
-  const double budget = 0.5 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (triangles * kBytesPerTriangle > budget)
-    throw InputError(scene.file.string() + ": the scene flattens to " + number_text(triangles) +
-                     " triangles (every instance copied), about " +
-                     number_text(triangles * kBytesPerTriangle / 1e9) +
-                     " GB, more than half of this "
-                     "machine's " +
-                     number_text(2 * budget / 1e9) + " GB");
 }
 
 RTCRay to_embree(const fb_ray& ray, float time) {
@@ -251,7 +233,6 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   // into closed rooms), and single rays and packets agree on every hit.
   rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
 
-  check_memory_budget(scene);
   meshes_.reserve(scene.instances.size());  // alpha filters keep pointers to their mesh
   if (times.shutter_open()) {
     open_s_ = float(times.open_s - times.frame_s);

@@ -24,6 +24,7 @@ struct RenderCommand {
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
   std::string shutter, frame, fps, sensor_model, iso;
+  std::string memory_limit;  // "8G"; empty: half of the machine's memory
   unsigned threads = 0;  // 0: all cores
   bool quiet = false;
   // Interrupts and checkpoints (docs/cli.md): a duration ("5m"), the checkpoint file (default

@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
                    "subdivision surfaces: render (Blender's render level, default) or adaptive "
                    "(cage edges cut to about one pixel through the camera)")
       ->check(CLI::IsMember({"render", "adaptive"}));
+  render_cmd->add_option("--memory-limit", render.memory_limit,
+                         "refuse a render estimated to need more memory: 8G, 512M, ... (default: "
+                         "half of this machine's memory)");
   render_cmd->add_option("--threads", render.threads, "worker threads (default 0: all cores)")
       ->check(CLI::Range(0u, 4096u));
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");

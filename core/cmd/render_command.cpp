@@ -16,6 +16,7 @@
 #include "core/math/random.h"
 #include "core/plugin/loader.h"
 #include "core/plugin/params.h"
+#include "core/render/memory_estimate.h"
 #include "core/util/error.h"
 #include "importers/import_scene.h"
 
@@ -198,6 +199,7 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
   }
   parse_physical(c, c.options);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
+  if (!c.memory_limit.empty()) c.options.memory_limit_bytes = parse_memory_size(c.memory_limit);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
   if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
   if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");

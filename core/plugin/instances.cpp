@@ -35,6 +35,8 @@ IntegratorInstance::IntegratorInstance(std::shared_ptr<const PluginLibrary> libr
                        return library->api<fb_integrator_api>().create(params.data(), out, error);
                      }),
       api_(library->api<fb_integrator_api>()) {
+  // The names are the plugin's memory too: read under the guard.
+  const PluginCrashGuard guard(library->file(), "channels()");
   const char* names[FB_MAX_CHANNELS] = {};
   const uint32_t count = api_.channels(instance(), names, FB_MAX_CHANNELS);
   // The film and the value buffers hold count channels per ray: more than declared would overflow.

@@ -9,6 +9,7 @@
 
 #include <filmback/plugin_abi.h>
 
+#include "core/plugin/crash_guard.h"
 #include "core/plugin/loader.h"
 #include "core/plugin/params.h"
 
@@ -27,7 +28,12 @@ class PluginInstance {
       : library_(std::move(library)), instance_(nullptr, destroy) {
     char error[512] = "";
     void* instance = nullptr;
-    if (create(&instance, fb_error_buffer{error, sizeof error}) != 0 || !instance) fail(error);
+    int status;
+    {
+      const PluginCrashGuard guard(library_->file(), "create()");
+      status = create(&instance, fb_error_buffer{error, sizeof error});
+    }
+    if (status != 0 || !instance) fail(error);
     instance_.reset(instance);
   }
   void* instance() const { return instance_.get(); }

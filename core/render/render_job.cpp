@@ -8,9 +8,11 @@
 #include <filmback/camera_projection.h>
 
 #include "core/accel/render_geometry.h"
+#include "core/film/splat_tiles.h"
 #include "core/plugin/instances.h"
 #include "core/plugin/params.h"
 #include "core/render/light_sampler.h"
+#include "core/render/memory_estimate.h"
 #include "core/render/motion.h"
 #include "core/render/shutter.h"
 #include "core/render/trace_context.h"
@@ -248,6 +250,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
     p.subdiv_summary = std::move(report.summary);
     geometry_scene = p.refined.get();
   }
+  check_memory_budget(*geometry_scene);
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
@@ -272,6 +275,22 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 }
 
 RenderJob::~RenderJob() = default;
+
+// The film, splat tiles and flattened geometry, against the limit, before any of them exists.
+void RenderJob::check_memory_budget(const Scene& geometry_scene) const {
+  const Plugins& p = *plugins_;
+  float radius[2];
+  p.filter->radius(radius);
+  const MemoryEstimate estimate = estimate_memory(
+      width_, height_, p.integrator->channels().size(), options_.reconstruction,
+      SplatTiles::reach(std::max(radius[0], radius[1])), double(geometry_scene.triangle_count()));
+  if (options_.memory_limit_bytes)
+    check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
+  else
+    check_memory(estimate, default_memory_limit_bytes(),
+                 "half of this machine's memory; --memory-limit sets another",
+                 scene_.file.string());
+}
 
 // Time samples only when something moves while the shutter is open (docs/camera-model.md), and a
 // camera path only when the camera moves; time_reason_ says which for the plan line.

@@ -49,6 +49,9 @@ struct RenderOptions {
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
   bool show_progress = true;
+  // What the render may hold at its peak (core/render/memory_estimate.h); none: half of the
+  // machine's memory.
+  std::optional<uint64_t> memory_limit_bytes;
 };
 
 // Documented defaults (docs/cli.md).
@@ -101,6 +104,7 @@ class RenderJob {
  private:
   struct Plugins;
   void choose_time_samples(const Scene& scene);  // sets time_reason_ and the time plugins_ need
+  void check_memory_budget(const Scene& geometry_scene) const;
   const Scene& scene_;
   RenderOptions options_;
   SceneCamera camera_;

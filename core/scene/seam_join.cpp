@@ -209,7 +209,10 @@ JoinedSurface join_surfaces(const std::vector<SurfacePart>& parts, double tolera
       double t;
     };
     std::unordered_map<uint32_t, Best> best;
-    for (const auto& [i, k] : s.edges) {
+    for (const std::pair<size_t, int>& edge : s.edges) {
+      // Named copies, not a structured binding: clang 14 cannot capture one in the lambda below.
+      const size_t i = edge.first;
+      const int k = edge.second;
       const uint32_t a = out.triangles[i].v[size_t(k)], b = out.triangles[i].v[size_t((k + 1) % 3)];
       const Vec3d pa = out.positions[a], pb = out.positions[b], ab = pb - pa;
       near.near(pa, pb, reach, [&](uint32_t w) {

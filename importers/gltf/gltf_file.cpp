@@ -2,7 +2,10 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -98,6 +101,72 @@ void check_json_depth(const unsigned char* text, size_t size, size_t offset,
   throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + what);
 }
 
+// A URI as tinygltf turns it into a path: percent-escapes decoded (RFC 3986 §2.1).
+std::string percent_decoded(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// What is wrong with a buffer's or image's `uri`, or "": only data: URIs and paths relative to the
+// scene's folder are read. A scheme (file:, http:, https: ...; RFC 3986 §3.1: a relative path
+// whose first segment holds a ':' must be written "./a:b") is refused, so nothing is ever fetched
+// and no other folder is named; absolute paths and '..' escapes are refused here by name, and
+// confined_read catches what only the file system shows (symbolic links out of the folder).
+std::string uri_problem(const std::string& uri) {
+  if (uri.starts_with("data:")) {
+    // base64 holds 3 bytes in 4 characters; the cap is the external files' own.
+    if (uri.size() / 4 * 3 > kMaxExternalFileBytes)
+      return "a data: URI of more than " + std::to_string(kMaxExternalFileBytes) +
+             " bytes is refused";
+    return {};
+  }
+  const std::string path = percent_decoded(uri);
+  const size_t colon = path.find(':');
+  if (colon != std::string::npos && colon > 0 &&
+      std::isalpha(static_cast<unsigned char>(path[0])) &&
+      path.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789+.-") ==
+          colon)
+    return "'" + uri + "' is a '" + path.substr(0, colon + 1) +
+           "' URI: filmback reads only files inside the scene's folder and data: URIs, and never "
+           "opens a network connection";
+  if (path.empty()) return "an empty URI, expected a path relative to the scene's folder";
+  if (fs::path(path).is_absolute())
+    return "'" + uri + "' is an absolute path: expected a path relative to the scene's folder";
+  const fs::path normal = fs::path(path).lexically_normal();
+  if (!normal.empty() && *normal.begin() == "..")
+    return "'" + uri + "' refers outside the scene's folder";
+  return {};
+}
+
+// Every buffers[i].uri and images[i].uri, checked before tinygltf opens or decodes anything, so
+// the message names the element. JSON tinygltf cannot parse is left for it to report.
+void check_uris(const unsigned char* json, size_t size, const std::string& file) {
+  const nlohmann::json doc = nlohmann::json::parse(json, json + size, nullptr, false);
+  if (!doc.is_object()) return;
+  for (const char* array : {"buffers", "images"}) {
+    const auto elements = doc.find(array);
+    if (elements == doc.end() || !elements->is_array()) continue;
+    for (size_t i = 0; i < elements->size(); ++i) {
+      const nlohmann::json& element = (*elements)[i];
+      if (!element.is_object()) continue;
+      const auto uri = element.find("uri");
+      if (uri == element.end() || !uri->is_string()) continue;
+      if (const std::string problem = uri_problem(uri->get<std::string>()); !problem.empty())
+        throw_input(file, std::string(array) + "[" + std::to_string(i) + "].uri", problem);
+    }
+  }
+}
+
 std::vector<unsigned char> read_scene_file(const fs::path& file, const std::string& name) {
   std::error_code ec;
   if (fs::is_directory(file, ec)) throw_input(name, "", "is a folder, expected a glTF file");
@@ -177,9 +246,10 @@ fs::path confined_external_file(const fs::path& scene_file, const std::string& u
                                 const std::string& where) {
   std::error_code ec;
   Confinement confinement{fs::weakly_canonical(fs::absolute(scene_file, ec).parent_path(), ec)};
-  const fs::path path = confinement.folder / fs::path(uri);
-  if (uri.empty() || fs::path(uri).is_absolute())
-    throw_input(scene_file.string(), where, "expected a path relative to the scene's folder");
+  if (const std::string problem = uri_problem(uri); !problem.empty() || uri.starts_with("data:"))
+    throw_input(scene_file.string(), where,
+                problem.empty() ? "expected a path relative to the scene's folder" : problem);
+  const fs::path path = confinement.folder / fs::path(percent_decoded(uri));
   const std::string problem = confined_problem(path.string(), &confinement);
   if (!problem.empty()) throw_input(scene_file.string(), where, "'" + uri + "' " + problem);
   return fs::weakly_canonical(path, ec);
@@ -194,8 +264,10 @@ void load_model(const fs::path& file, tinygltf::Model& model) {
     uint32_t json_length;
     std::memcpy(&json_length, &bytes[12], 4);  // checked by check_glb_container
     check_json_depth(bytes.data() + 20, json_length, 20, name, true);
+    check_uris(bytes.data() + 20, json_length, name);
   } else {
     check_json_depth(bytes.data(), bytes.size(), 0, name, false);
+    check_uris(bytes.data(), bytes.size(), name);
   }
 
   std::error_code ec;

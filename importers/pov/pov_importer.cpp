@@ -68,6 +68,7 @@ Scene import_pov(const std::filesystem::path& file, const ImportOptions& options
   evaluate.image_height = height;
   evaluate.clock = options.clock;
   evaluate.frame_number = options.frame;
+  evaluate.limits = options.pov_limits;
   const pov::Scene pov = pov::evaluate_pov(evaluate);
   report_unsupported(pov, diagnostics);
 

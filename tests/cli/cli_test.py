@@ -217,12 +217,27 @@ class CliTest(unittest.TestCase):
         g = triangle_scene()
         self.raw(bytes(g.bin), "outside.bin")
         (self.dir / "shots").mkdir()
-        for uri in ("../outside.bin", "./../outside.bin"):
+        # '..' escapes, also percent-encoded (tinygltf decodes URIs before it opens them)
+        for uri in ("../outside.bin", "./../outside.bin", "%2e%2e/outside.bin", "sub/%2E%2E/%2e%2e/outside.bin"):
             scene = self.raw(g.json_text(buffer_uri=uri), "shots/escape.gltf")
-            self.assert_input_error(scene, None, "refers outside the scene's folder")
-        # An absolute URI is taken relative to the scene's folder (as tinygltf joins them): not found.
-        scene = self.raw(g.json_text(buffer_uri=str(self.dir / "outside.bin")), "shots/absolute.gltf")
-        self.assert_input_error(scene, None, "not found")
+            self.assert_input_error(scene, "buffers[0].uri", "'%s' refers outside the scene's folder" % uri)
+        for uri in (str(self.dir / "outside.bin"), "%2F" + str(self.dir / "outside.bin")[1:]):
+            scene = self.raw(g.json_text(buffer_uri=uri), "shots/absolute.gltf")
+            self.assert_input_error(scene, "buffers[0].uri", "'%s' is an absolute path" % uri)
+
+    def test_uri_with_a_scheme_is_refused(self):
+        g = triangle_scene()
+        self.raw(bytes(g.bin), "outside.bin")
+        for uri, scheme in (("file://" + str(self.dir / "outside.bin"), "file:"),
+                            ("http://127.0.0.1:9/triangle.bin", "http:"),
+                            ("https://example.org/triangle.bin", "https:"),
+                            ("HTTP%3A//127.0.0.1/triangle.bin", "HTTP:")):
+            scene = self.raw(g.json_text(buffer_uri=uri), "scheme.gltf")
+            self.assert_input_error(scene, "buffers[0].uri", "'%s' is a '%s' URI" % (uri, scheme),
+                                    "never opens a network connection")
+        g.doc["images"] = [{"uri": "ftp://127.0.0.1/texture.png"}]
+        scene = self.raw(g.json_text(), "image_scheme.gltf")
+        self.assert_input_error(scene, "images[0].uri", "is a 'ftp:' URI")
 
     def test_buffer_symlink_out_of_the_folder_is_refused(self):
         g = triangle_scene()

@@ -4,6 +4,7 @@
  * wrong. Without a DEFECT_* macro it is a valid box filter of radius 0.5 px called PLUGIN_NAME. */
 #include <filmback/plugin_abi.h>
 
+#include <stdint.h>
 #include <stdio.h>
 
 #ifndef PLUGIN_NAME
@@ -66,6 +67,13 @@ extern int fb_test_absent_function(void);
 static int instance; /* a box of fixed radius has no state; create() hands out this address */
 
 static int create(const fb_value* values, void** out, fb_error_buffer error) {
+#ifdef DEFECT_CREATE_CRASHES
+  /* DEFECT_CREATE_CRASHES: create() writes through a stray pointer (SIGSEGV). Not a null pointer,
+   * which UndefinedBehaviorSanitizer would stop at first in a sanitized build; read from a
+   * volatile, so that no compiler sees the constant address. */
+  volatile uintptr_t stray = 16;
+  *(volatile int*)stray = 1;
+#endif
 #ifdef DEFECT_CREATE_FAILS
   /* DEFECT_CREATE_FAILS: the library is well formed, but create() refuses with a reason. */
   snprintf(error.text, error.capacity, "this test filter always refuses (radius %.1f px)",
@@ -119,8 +127,16 @@ static const fb_param_desc params[] = {
 static const function_table table = {.filter = {sizeof(function_table), create, destroy, radius,
                                                 evaluate, integral, SAMPLE_FUNCTION}};
 
+/* DEFECT_DESCRIPTOR_CRASHES: the name points at unmapped memory, so the loader's first look at it
+ * faults (SIGSEGV). */
+#ifdef DEFECT_DESCRIPTOR_CRASHES
+#define DESCRIPTOR_NAME ((const char*)16)
+#else
+#define DESCRIPTOR_NAME PLUGIN_NAME
+#endif
+
 static const descriptor desc = {.plugin = {ABI_VERSION, sizeof(descriptor), FB_KIND_FILTER,
-                                           PLUGIN_NAME, "1.0.0",
+                                           DESCRIPTOR_NAME, "1.0.0",
                                            "Test filter for the loader's error messages", params,
                                            sizeof params / sizeof params[0], &table}};
 

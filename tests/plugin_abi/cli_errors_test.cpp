@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 
 const fs::path kTestPlugins = FB_TEST_PLUGIN_DIR;
 const fs::path kDuplicates = FB_TEST_DUPLICATE_DIR;
+const fs::path kCrashPlugins = FB_TEST_CRASH_DIR;
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file);
@@ -140,6 +141,33 @@ TEST_P(RenderWithPluginTest, FailsNamingTheFileAndWritesNothing) {
     EXPECT_NE(errors[0].find(file.string()), std::string::npos) << errors[0];
   EXPECT_NE(errors[0].find(c.reason), std::string::npos) << errors[0];
   EXPECT_FALSE(fs::exists(image));
+}
+
+// A plugin that faults in create() or while its descriptor is read takes the process down with
+// it; filmback reports it naming the file and what was running, exits with status 1 and writes
+// nothing (core/plugin/crash_guard.h). The signal's name ends the message.
+TEST(RenderWithPlugin, CrashingPluginIsReportedNamingTheFile) {
+  const struct {
+    const char* option;
+    fs::path file;
+    const char* doing;
+  } cases[] = {
+      {"--filter crashcreate", kCrashPlugins / "libfilmback_filter_crashcreate.so", "create()"},
+      {"--filter crashdescriptor", kCrashPlugins / "libfilmback_filter_crashdescriptor.so",
+       "filmback_plugin_v1() or the descriptor it returned"}};
+  for (const auto& c : cases) {
+    const fs::path scratch = scratch_dir();
+    const fs::path image = scratch / "out.exr";
+    const Outcome run =
+        run_filmback(kRender + image.string() + " " + c.option, kCrashPlugins.string(), scratch);
+    EXPECT_EQ(run.status, 1) << run.err;
+    std::vector<std::string> errors = lines_of(run.err);
+    std::erase_if(errors, [](const std::string& line) { return line.starts_with("warning: "); });
+    ASSERT_EQ(errors.size(), 1u) << run.err;
+    EXPECT_EQ(errors[0], "filmback: error: " + c.file.string() + ": the plugin crashed in " +
+                             c.doing + " (SIGSEGV); no render was started");
+    EXPECT_FALSE(fs::exists(image));
+  }
 }
 
 const fs::path kCtent = "libfilmback_filter_ctent.so";

@@ -210,12 +210,16 @@ void Parser::run_include() {
     fail("includes nested deeper than " + std::to_string(options_.limits.include_depth) +
          " (limit)");
   }
+  if (std::filesystem::path(name.text).is_absolute())
+    fail("cannot include \"" + name.text +
+         "\": an absolute path is refused (files are read only from the scene's folder and the "
+         "library paths)");
   std::filesystem::path folder;
   auto path = resolve_include(name.text, &folder, false);
   if (!path) {
     fail("cannot include \"" + name.text +
-         "\": not found in the scene's folder or a library path (absolute paths and paths "
-         "leaving those folders are refused)");
+         "\": not found in the scene's folder or a library path (paths leaving those folders, "
+         "through '..' or a symbolic link, are refused)");
   }
   std::string display = path->lexically_relative(scene_folder_.lexically_normal()).string();
   if (display.empty() || display.rfind("..", 0) == 0) display = path->string();

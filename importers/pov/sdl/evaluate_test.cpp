@@ -213,12 +213,29 @@ TEST_F(Sdl, IncludesNeverEscapeTheAllowedFolders) {
   std::string error = error_of("#include \"../outside.inc\"");
   EXPECT_NE(error.find("cannot include \"../outside.inc\""), std::string::npos) << error;
   error = error_of("#include \"" + (root_ / "outside.inc").string() + "\"");
-  EXPECT_NE(error.find("cannot include"), std::string::npos) << error;
+  EXPECT_NE(error.find("an absolute path is refused"), std::string::npos) << error;
+  error = error_of("#include \"/etc/passwd\"");
+  EXPECT_NE(
+      error.find("scene.pov:1:10: cannot include \"/etc/passwd\": an absolute path is refused"),
+      std::string::npos)
+      << error;
   error = error_of("#include \"sub/../../outside.inc\"");
   EXPECT_NE(error.find("cannot include"), std::string::npos) << error;
   error = error_of("#fopen F \"../outside.inc\" read");
   EXPECT_NE(error.find("cannot #fopen"), std::string::npos) << error;
   sdl_true("!file_exists(\"../outside.inc\")");
+  // a symbolic link in the scene's folder to a file outside every allowed folder
+  fs::create_symlink(root_ / "outside.inc", root_ / "scene" / "link.inc");
+  error = error_of("#include \"link.inc\"");
+  EXPECT_NE(error.find("cannot include \"link.inc\": not found"), std::string::npos) << error;
+  error = error_of("#include \"link\"");  // POV-Ray's implied .inc
+  EXPECT_NE(error.find("cannot include \"link\": not found"), std::string::npos) << error;
+  error = error_of("#fopen F \"link.inc\" read");
+  EXPECT_NE(error.find("cannot #fopen \"link.inc\""), std::string::npos) << error;
+  // a link that stays inside is followed
+  write("scene/real.inc", "#declare Inside = 2;");
+  fs::create_symlink(root_ / "scene" / "real.inc", root_ / "scene" / "alias.inc");
+  EXPECT_EQ(run("#include \"alias.inc\"\nsphere { 0, Inside }").objects.at(0).r0, 2);
 }
 
 TEST_F(Sdl, ErrorsCarryLocationAndIncludeChain) {

@@ -81,10 +81,17 @@ std::optional<std::filesystem::path> Parser::resolve_include(const std::string& 
     if (!inside) continue;  // escapes every allowed folder
     std::error_code ec;
     for (const fs::path& attempt : {candidate, fs::path(candidate.string() + ".inc")}) {
-      if (fs::is_regular_file(attempt, ec)) {
-        if (folder) *folder = attempt.parent_path();
-        return attempt;
-      }
+      if (!fs::is_regular_file(attempt, ec)) continue;
+      // A symbolic link is followed only to a file inside an allowed folder.
+      const fs::path real = fs::weakly_canonical(attempt, ec);
+      const bool real_inside =
+          !ec && std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
+            const fs::path rel = real.lexically_relative(fs::weakly_canonical(root, ec));
+            return !rel.empty() && *rel.begin() != "..";
+          });
+      if (!real_inside) continue;
+      if (folder) *folder = attempt.parent_path();
+      return attempt;
     }
   }
   return std::nullopt;

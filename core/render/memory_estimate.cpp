@@ -1,0 +1,87 @@
+#include "core/render/memory_estimate.h"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+// Render-space vertices, indices, normals and Embree's BVH per flattened triangle, measured on
+// Embree 3.13 MEDIUM builds (notes/deps.md).
+constexpr double kBytesPerTriangle = 120;
+constexpr uint32_t kTileSize = 16;  // core/render/render_loop.cpp
+
+std::string gigabytes(double bytes) {
+  return number_text(bytes / 1e9) + " GB";
+}
+
+}  // namespace
+
+uint64_t default_memory_limit_bytes() {
+  return uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE)) / 2;
+}
+
+MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
+                               Reconstruction reconstruction, uint32_t splat_margin_px,
+                               double triangles) {
+  const double pixels = double(width) * height, c = double(channels);
+  MemoryEstimate e;
+  // core/film/film.h: a double sum per channel, a double weight and a 32-bit count per pixel; the
+  // resolved float image, and its copy with a samples channel when a render is interrupted.
+  e.film_bytes =
+      pixels * ((c + 1) * sizeof(double) + sizeof(uint32_t) + (2 * c + 1) * sizeof(float));
+  if (reconstruction == Reconstruction::kSplat) {
+    // core/film/splat_tiles.h: each tile's sums cover the tile and its margin on every side.
+    const double grown = 1.0 + 2.0 * splat_margin_px / kTileSize;
+    e.splat_bytes = pixels * grown * grown * (c + 1) * sizeof(double);
+  }
+  e.geometry_bytes = triangles * kBytesPerTriangle;
+  return e;
+}
+
+void check_memory(const MemoryEstimate& e, uint64_t limit_bytes, const std::string& source,
+                  const std::string& scene) {
+  if (e.total() <= double(limit_bytes)) return;
+  std::string parts = "film " + gigabytes(e.film_bytes);
+  if (e.splat_bytes > 0) parts += ", splat tiles " + gigabytes(e.splat_bytes);
+  parts += ", geometry and BVH " + gigabytes(e.geometry_bytes);
+  throw InputError(scene + ": the render needs about " + gigabytes(e.total()) + " (" + parts +
+                   "), more than the memory limit of " + gigabytes(double(limit_bytes)) + " (" +
+                   source + ")");
+}
+
+uint64_t parse_memory_size(const std::string& text) {
+  double value = 0;
+  const char* end = text.data() + text.size();
+  const auto [rest, ec] = std::from_chars(text.data(), end, value);
+  double scale = 1;
+  if (rest + 1 == end) {
+    switch (*rest) {
+      case 'K':
+        scale = 0x1p10;
+        break;
+      case 'M':
+        scale = 0x1p20;
+        break;
+      case 'G':
+        scale = 0x1p30;
+        break;
+      case 'T':
+        scale = 0x1p40;
+        break;
+      default:
+        scale = 0;
+    }
+  }
+  const double bytes = value * scale;
+  if (ec != std::errc() || (rest != end && rest + 1 != end) || !(bytes >= 1) || bytes > 0x1p63)
+    throw UsageError("--memory-limit '" + text +
+                     "': expected a size in bytes, or with K, M, G or T (powers of 1024), e.g. 8G");
+  return uint64_t(bytes);
+}
+
+}  // namespace fb

@@ -1,0 +1,39 @@
+// What a render will hold at its peak, estimated before anything large is allocated, against a
+// limit (docs/reliability.md, "Limits"): a scene or an image size that would not fit fails with an
+// error naming the estimate and the limit instead of swapping or being killed by the kernel.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/film/film.h"
+
+namespace fb {
+
+// Half of this machine's physical memory: the default --memory-limit.
+uint64_t default_memory_limit_bytes();
+
+struct MemoryEstimate {
+  double film_bytes = 0;      // sums, weights and counts; the resolved image and one copy of it
+  double splat_bytes = 0;     // --reconstruction splat: the tiles' own sums
+  double geometry_bytes = 0;  // render-space triangles and Embree's BVH
+  double total() const { return film_bytes + splat_bytes + geometry_bytes; }
+};
+
+// For a film of width x height pixels with `channels` channels, `triangles` flattened triangles
+// and, when splatting, a filter reaching `splat_margin_px` pixels beyond each tile of 16 x 16.
+MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
+                               Reconstruction reconstruction, uint32_t splat_margin_px,
+                               double triangles);
+
+// Throws InputError "SCENE: the render needs about ... GB (film ..., geometry ...), more than the
+// memory limit of ... GB (SOURCE)" when the estimate exceeds `limit_bytes`; `source` says where
+// the limit came from.
+void check_memory(const MemoryEstimate& estimate, uint64_t limit_bytes, const std::string& source,
+                  const std::string& scene);
+
+// "8G", "512M", "1.5T", "100000000" (bytes; K, M, G, T are powers of 1024). Throws UsageError
+// naming --memory-limit.
+uint64_t parse_memory_size(const std::string& text);
+
+}  // namespace fb

@@ -1,0 +1,48 @@
+#include "core/render/memory_estimate.h"
+
+#include <gtest/gtest.h>
+
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+TEST(MemoryEstimate, ParsesSizesInPowersOf1024) {
+  EXPECT_EQ(parse_memory_size("8G"), 8ull << 30);
+  EXPECT_EQ(parse_memory_size("512M"), 512ull << 20);
+  EXPECT_EQ(parse_memory_size("1.5K"), 1536ull);
+  EXPECT_EQ(parse_memory_size("2T"), 2ull << 40);
+  EXPECT_EQ(parse_memory_size("100000"), 100000ull);
+  for (const char* bad : {"", "G", "8GB", "8g", "-1G", "0", "0.5", "nan", "1e30T", "8 G"})
+    EXPECT_THROW(parse_memory_size(bad), UsageError) << bad;
+}
+
+// Each term counted as core/film/film.h and splat_tiles.h allocate it.
+TEST(MemoryEstimate, CountsFilmSplatTilesAndGeometry) {
+  const MemoryEstimate importance =
+      estimate_memory(100, 50, 3, Reconstruction::kImportance, 2, 1000);
+  // per pixel: 4 double sums and weight, a 32-bit count, 3 + 4 floats of resolved images
+  EXPECT_EQ(importance.film_bytes, 5000.0 * (4 * 8 + 4 + 7 * 4));
+  EXPECT_EQ(importance.splat_bytes, 0);
+  EXPECT_EQ(importance.geometry_bytes, 1000.0 * 120);
+  const MemoryEstimate splat = estimate_memory(100, 50, 3, Reconstruction::kSplat, 2, 0);
+  EXPECT_EQ(splat.splat_bytes, 5000.0 * 1.25 * 1.25 * 4 * 8);  // 16 px tiles grown by 2 px a side
+  EXPECT_EQ(splat.total(), splat.film_bytes + splat.splat_bytes);
+}
+
+TEST(MemoryEstimate, RefusesOverTheLimitNamingBothNumbers) {
+  const MemoryEstimate e = estimate_memory(4096, 4096, 3, Reconstruction::kImportance, 0, 1e6);
+  EXPECT_NO_THROW(check_memory(e, uint64_t(e.total()) + 1, "--memory-limit", "s.gltf"));
+  try {
+    check_memory(e, 1ull << 30, "--memory-limit", "s.gltf");
+    FAIL() << "expected a refusal";
+  } catch (const InputError& error) {
+    EXPECT_STREQ(error.what(),
+                 "s.gltf: the render needs about 1.19374 GB (film 1.07374 GB, geometry and BVH "
+                 "0.12 GB), more than the memory limit of 1.07374 GB (--memory-limit)");
+  }
+  EXPECT_GT(default_memory_limit_bytes(), 0u);
+}
+
+}  // namespace
+}  // namespace fb

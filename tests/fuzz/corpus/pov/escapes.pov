@@ -1,0 +1,3 @@
+#include "../outside.inc"
+#include "link.inc"
+#include "/etc/passwd"

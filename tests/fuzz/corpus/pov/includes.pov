@@ -1,0 +1,4 @@
+#include "local.inc"
+#include "sub/near.inc"
+#include "lib.inc"
+object { Local } object { Lib(FromSub) pigment { LibColor } }

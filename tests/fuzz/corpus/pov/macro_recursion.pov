@@ -1,0 +1,2 @@
+#macro R() R() #end
+R()
