@@ -245,7 +245,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     Mesh mesh = build_mesh(
         scene, instance,
         moving ? motion_steps(scene, instance, render_from_world, times, tolerance)
-               : std::vector{render_from_world * scene.world_from_object(instance, times.frame_s)});
+               : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())});
     moving_instances_ += moving;
     most_motion_steps_ = std::max(most_motion_steps_, mesh.step_count);
 

@@ -41,18 +41,18 @@ struct RenderJob::Plugins {
 
 namespace {
 
-// The named camera (else the first, else one framing the scene), placed where it is at frame_s.
+// The named camera (else the first, else one framing the scene), placed where it is at time_s.
 SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name,
-                          double frame_s) {
+                          double time_s) {
   const auto posed = [&](SceneCamera camera) {
-    camera.world_from_camera = scene.world_from_camera(camera, frame_s);
+    camera.world_from_camera = scene.world_from_camera(camera, time_s);
     if (!camera.world_from_camera.is_finite())  // an animated scale of 0, say
       throw InputError(scene.file.string() + ": camera '" + camera.name +
-                       "' at t = " + number_text(frame_s) + " s: its transform is degenerate");
+                       "' at t = " + number_text(time_s) + " s: its transform is degenerate");
     return camera;
   };
   if (!name)
-    return scene.cameras.empty() ? frame_bounds(scene.world_bounds(frame_s))
+    return scene.cameras.empty() ? frame_bounds(scene.world_bounds(time_s))
                                  : posed(scene.cameras.front());
   return posed(find_camera(scene, *name));
 }
@@ -160,6 +160,22 @@ void check_focus_beyond_focal_length(const SceneCamera& camera, const CameraOver
   throw_input(file.string(), camera.source, what);
 }
 
+// Splatting places each sample anywhere in its pixel and spreads it to the pixels within the
+// filter's radius (docs/filters.md): a filter reaching less than half a pixel leaves pixels that
+// no sample reaches, black in any scene.
+void check_splat_reach(const FilterInstance& filter, const std::string& text,
+                       Reconstruction reconstruction) {
+  if (reconstruction != Reconstruction::kSplat) return;
+  float radius[2];
+  filter.radius(radius);
+  if (radius[0] >= 0.5f && radius[1] >= 0.5f) return;
+  throw UsageError("--reconstruction splat: the filter '" + text + "' reaches " +
+                   number_text(std::min(radius[0], radius[1])) +
+                   " px, expected at least 0.5 px (a splatted sample lies anywhere in its pixel, "
+                   "and a narrower filter leaves pixels that no sample reaches); use "
+                   "--reconstruction importance");
+}
+
 std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
   if (!(needs & FB_CAMERA_NEEDS_LENS))
     return camera.projection == FB_PROJECTION_ORTHOGRAPHIC
@@ -198,23 +214,26 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   frame_ = options.frame.value_or(scene.settings.frame.value_or(0.0));
   fps_ = options.fps.value_or(scene.settings.fps.value_or(kDefaultFps));
   const double frame_s = frame_ / fps_;
-  camera_ = choose_camera(scene, options.camera, frame_s);
-  if (camera_.focus_track) camera_.physical.focus_distance_m = camera_.focus_track->at(frame_);
+  const ShotSettings& shot = scene.settings;
+  shutter_s_ = options.shutter_s.value_or(
+      shot.shutter_open_s ? Vec2d{*shot.shutter_open_s, *shot.shutter_close_s} : Vec2d{0, 0});
+  times_ = {frame_s, frame_s + shutter_s_.x, frame_s + shutter_s_.y};
+  // The camera, its focus and the lights where they stand while the shutter is open.
+  const double still_s = times_.still_s();
+  camera_ = choose_camera(scene, options.camera, still_s);
+  if (camera_.focus_track)
+    camera_.physical.focus_distance_m = camera_.focus_track->at(still_s * fps_);
   options.camera_overrides.apply(camera_.physical);
   check_focus_beyond_focal_length(camera_, options.camera_overrides, scene.file);
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
-  const ShotSettings& shot = scene.settings;
   std::tie(width_, height_) = options.width   ? std::pair{*options.width, *options.height}
                               : shot.width_px ? std::pair{*shot.width_px, *shot.height_px}
                                               : default_resolution(camera_);
   spp_ = options.samples_per_pixel.value_or(kDefaultSamplesPerPixel);
-  shutter_s_ = options.shutter_s.value_or(
-      shot.shutter_open_s ? Vec2d{*shot.shutter_open_s, *shot.shutter_close_s} : Vec2d{0, 0});
   // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
   const double open_s = shutter_s_.y - shutter_s_.x;
   sensor_ = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
-  times_ = {frame_s, frame_s + shutter_s_.x, frame_s + shutter_s_.y};
 
   Plugins& p = *plugins_;
   if (options.shutter_curve)
@@ -233,6 +252,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
       options.camera_model.value_or(camera_model_for(camera_.physical, sensor_)), "--camera-model",
       setup);
   p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
+  check_splat_reach(*p.filter, p.filter_text, options.reconstruction);
   p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text,
                                                  "--integrator");
 
@@ -254,7 +274,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
-                                            frame_s, options.background);
+                                            still_s, options.background);
   choose_time_samples(scene);
   for (const Material& m : scene.materials) {
     fb_material fm{};
@@ -300,7 +320,11 @@ void RenderJob::choose_time_samples(const Scene& scene) {
   out << "frame " << number_text(frame_) << " at " << number_text(fps_)
       << " fps (t = " << number_text(times_.frame_s) << " s), ";
   if (!times_.shutter_open()) {
-    out << "shutter closed: no time samples";
+    if (shutter_s_.x != 0)
+      out << "zero-length shutter at t = " << number_text(times_.open_s) << " s";
+    else
+      out << "shutter closed";
+    out << ": no time samples";
     time_reason_ = out.str();
     return;
   }

@@ -5,6 +5,7 @@
 // A static scene has no curves, and every query answers from the rest pose.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -58,13 +59,16 @@ struct SceneNode {
   bool animated = false;  // this node or an ancestor has a curve (set by finish())
 };
 
-// A render's moments on the scene's timeline, in absolute seconds: the frame's time, where
-// everything that does not move within the shutter is placed (and every light), and the
+// A render's moments on the scene's timeline, in absolute seconds: the frame's time and the
 // shutter's open interval [open_s, close_s].
 struct ShotTimes {
   double frame_s = 0;
   double open_s = 0, close_s = 0;
   bool shutter_open() const { return close_s > open_s; }
+  // Where everything that does not move within the shutter is placed (and every light): the
+  // frame's time, or the shutter's end nearest to it when the shutter leaves it out, where what
+  // is still during the shutter already stands. A zero-length shutter is the instant it names.
+  double still_s() const { return std::clamp(frame_s, open_s, close_s); }
 };
 
 struct NodeHierarchy {

@@ -347,13 +347,18 @@ def coincident_surfaces():
 
 def emissive_wall(width_px, height_px, covered_to_px=None):
     """A wall of radiance (0.25, 1.5, 3) 5 m in front of a 50 mm camera, filling the view, or
-    (covered_to_px) covering the image left of that raster column exactly."""
+    (covered_to_px) covering the image left of that raster column exactly. It reaches 2 m beyond
+    the widest filter's reach (16 px around the image), no further: float vertices resolve a
+    triangle's edge to about 1e-7 of their size, so a kilometre-wide wall would blur its edge by a
+    quarter pixel in the 16384 px frame."""
     s = Scene("emissive_wall(%dx%d)" % (width_px, height_px))
     tan_half_x = 36.0 / (2 * 50.0)
-    right = 1e3 if covered_to_px is None else (
+    half_x = tan_half_x * 5.0 * (1 + 32 / width_px) + 2.0
+    half_y = tan_half_x * 5.0 * height_px / width_px * (1 + 32 / height_px) + 2.0
+    right = half_x if covered_to_px is None else (
         (covered_to_px / width_px * 2 - 1) * tan_half_x * 5.0)
-    wall = s.triangles("wall", [(-1e3, -1e3, 0.0), (right, -1e3, 0.0), (right, 1e3, 0.0),
-                                (-1e3, 1e3, 0.0)], [0, 1, 2, 0, 2, 3],
+    wall = s.triangles("wall", [(-half_x, -half_y, 0.0), (right, -half_y, 0.0),
+                                (right, half_y, 0.0), (-half_x, half_y, 0.0)], [0, 1, 2, 0, 2, 3],
                        s.emitter("glow", (0.25, 1.5, 3.0)))
     s.node(name="wall", mesh=wall, translation=[0.0, 0.0, -5.0])
     s.camera("shot", width_px, height_px, 50.0)
