@@ -139,6 +139,13 @@ class Scene(Gltf):
             "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}}})
         return len(self.doc["materials"]) - 1
 
+    def metal(self, name, colour, roughness):
+        self.doc["materials"].append({
+            "name": name, "pbrMetallicRoughness": {"baseColorFactor": list(colour) + [1.0],
+                                                   "metallicFactor": 1.0,
+                                                   "roughnessFactor": roughness}})
+        return len(self.doc["materials"]) - 1
+
     def emitter(self, name, radiance):
         """Black, emitting `radiance` (W sr^-1 m^-2) from both faces."""
         scale = max(radiance)
@@ -383,8 +390,10 @@ def moving_emitter():
 
 
 def bright_emitter():
-    """A Lambertian floor under a 1 x 1 m panel of radiance 1 and, beside it, a 1 x 1 cm tile of
-    radiance 1e6, both facing down from 1 m up; the camera looks down at the floor."""
+    """A Lambertian floor under a 1 x 1 m panel of radiance 1 and, beside it, a 2 x 2 cm tile of
+    radiance 1e6, both facing down from 1 m up; the camera looks down at the floor. A small
+    upright mirror-like metal plate at x = 2 m reflects the tile onto the floor around x = 1 m:
+    a caustic, which light sampling cannot find and BSDF sampling rarely does (fireflies)."""
     s = Scene("bright_emitter")
     floor = s.triangles("floor", *grid(3.0, 1, lambda i, j: 0.0), s.lambertian("floor", (0.5,) * 3))
     s.node(name="floor", mesh=floor)
@@ -395,9 +404,13 @@ def bright_emitter():
                            s.emitter(name, (radiance,) * 3))
         s.node(name=name, mesh=mesh, translation=at)
     panel("panel", 0.5, 1.0, [-0.6, 1.0, 0.0])
-    panel("tile", 0.005, 1e6, [0.6, 1.0, 0.0])
-    eye = [0.0, 0.9, 2.5]
-    s.camera("shot", 64, 48, 35.0, rotation=look_at(eye, [0.0, 0.0, 0.0]), translation=eye)
+    panel("tile", 0.01, 1e6, [0.6, 1.0, 0.0])
+    plate = s.triangles("plate", [(0.0, -0.2, -0.3), (0.0, -0.2, 0.3), (0.0, 0.2, 0.3),
+                                  (0.0, 0.2, -0.3)], [0, 1, 2, 0, 2, 3],
+                        s.metal("mirror", (0.9, 0.9, 0.9), 0.05))
+    s.node(name="plate", mesh=plate, translation=[2.0, 0.3, 0.0])
+    eye = [0.0, 0.5, 2.5]
+    s.camera("shot", 64, 48, 35.0, rotation=look_at(eye, [0.0, 0.25, 0.0]), translation=eye)
     return s
 
 

@@ -4,7 +4,9 @@
 // the host evaluated at the hit; light comes from punctual lights, emissive triangles and the
 // world (uniform, or an environment image that light sampling also picks). Emission found by BSDF
 // sampling and by light sampling is combined with the power heuristic; delta lights are reached by
-// light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased.
+// light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased. `clamp`, off by
+// default, scales each sample's radiance down so that its largest component is at most the clamp
+// (pbrt 4e's RGBFilm maxComponentValue): fireflies are bounded at the price of a bias.
 #include <filmback/bsdf.h>
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
@@ -24,19 +26,28 @@ class PathTracer {
  public:
   static constexpr const char* kChannels[] = {"R", "G", "B"};
   explicit PathTracer(const fb_value* params)
-      : max_depth_(int(params[0].number[0])), rr_depth_(int(params[1].number[0])) {}
+      : max_depth_(int(params[0].number[0])),
+        rr_depth_(int(params[1].number[0])),
+        clamp_(float(params[2].number[0])) {}
   void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
                 float* values) const {
     const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
     for (size_t i = 0; i < count; ++i)
-      trace(scene, ctx, i, rays[i], hits[i]).store(values + 3 * i);
+      clamped(trace(scene, ctx, i, rays[i], hits[i])).store(values + 3 * i);
   }
 
  private:
   Rgb trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
             fb_hit hit) const;
+  // The sample's radiance scaled by clamp / max(L) where that is below 1. A non-finite sample is
+  // left for the film to drop and count.
+  Rgb clamped(Rgb L) const {
+    const float largest = fb::max_component(L);
+    return clamp_ > 0.f && largest > clamp_ && std::isfinite(largest) ? L * (clamp_ / largest) : L;
+  }
   int max_depth_;  // bounces; 0 shows emitters only
   int rr_depth_;
+  float clamp_;  // W sr^-1 m^-2; 0: off
 };
 
 // Emission leaving the hit towards -direction: front faces only, unless the material is two-sided.
@@ -168,6 +179,8 @@ const fb_param_desc kParams[] = {
      "most bounces a path takes (0: emitters only, 1: direct light)"},
     {"rr_depth", FB_PARAM_INT, "3", "", nullptr, 1, 1024,
      "bounces before Russian roulette may end a path"},
+    {"clamp", FB_PARAM_FLOAT, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL,
+     "largest component a sample's radiance may have (scaled down to it: biased); 0 is off"},
 };
 
 constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
