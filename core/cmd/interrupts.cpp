@@ -10,6 +10,7 @@
 namespace fb {
 namespace {
 
+std::atomic<bool> armed{false};
 std::atomic<bool> stop_requested{false};
 std::atomic<int> first_signal{0};
 timespec signalled_at{};  // written by the handler before it publishes stop_requested
@@ -21,7 +22,7 @@ struct sigaction previous_int, previous_term;
 // Only async-signal-safe work: atomics, unlink (through remove_temporaries_now) and _exit.
 void on_signal(int signal) {
   int none = 0;
-  if (first_signal.compare_exchange_strong(none, signal)) {
+  if (armed.load() && first_signal.compare_exchange_strong(none, signal)) {
     clock_gettime(CLOCK_MONOTONIC, &signalled_at);  // async-signal-safe (POSIX.1-2008)
     stop_requested.store(true);
     return;
@@ -33,6 +34,7 @@ void on_signal(int signal) {
 }  // namespace
 
 InterruptGuard::InterruptGuard() {
+  armed = false;
   stop_requested = false;
   first_signal = 0;
   struct sigaction action {};
@@ -40,6 +42,10 @@ InterruptGuard::InterruptGuard() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, &previous_int);
   sigaction(SIGTERM, &action, &previous_term);
+}
+
+void InterruptGuard::arm() {
+  armed = true;
 }
 
 InterruptGuard::~InterruptGuard() {

@@ -1,6 +1,7 @@
-// SIGINT and SIGTERM during a render (docs/cli.md, "Interrupts and checkpoints"): the first asks
-// the render to stop, so the image it has can be written; the second ends the process at once,
-// removing any temporary file first.
+// SIGINT and SIGTERM (docs/cli.md, "Interrupts and checkpoints"). Once the render loop is about
+// to run (arm()), the first asks the render to stop, so that the image it has can be written; a
+// second one, or any before that point (nothing to save yet), ends the process at once with
+// 128 + the signal, removing any temporary file first.
 #pragma once
 
 #include <atomic>
@@ -15,7 +16,9 @@ class InterruptGuard {
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;
 
-  // Becomes true at the first signal; what RenderControl::cancel watches.
+  // From now on the first signal only asks to stop (a render is running, or writing its result).
+  void arm();
+  // Becomes true at the first signal after arm(); what RenderControl::cancel watches.
   const std::atomic<bool>& requested() const;
   // The first signal's number (SIGINT or SIGTERM), 0 before any.
   int signal_number() const;

@@ -192,6 +192,7 @@ void check_outputs(const std::vector<std::filesystem::path>& outputs) {
 }
 
 int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
+  InterruptGuard interrupts;  // until the render runs, a signal ends the process at once
   check_outputs(c.outputs);
   if (!c.resolution.empty()) {
     const auto [width, height] = parse_resolution(c.resolution);
@@ -249,7 +250,7 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
     read_checkpoint(report.checkpoint, key, job.samples_per_pixel(), kTileSize, film);
     report.resumed = true;
   }
-  const InterruptGuard interrupts;
+  interrupts.arm();
   RenderControl control;
   control.cancel = &interrupts.requested();
   if (every != Clock::duration::zero()) {

@@ -1,11 +1,12 @@
 """Never losing a render (docs/cli.md, "Interrupts and checkpoints"), end to end through the
-built `filmback`: SIGINT or SIGTERM stops a render within a second and writes the image it has,
+built `filmback`: a full disk or a read-only folder gives a clear error and leaves no temporary
+file; SIGINT or SIGTERM stops a render within a second and writes the image it has,
 with each pixel's sample count in its metadata and a `samples` channel, and exits with 128 + the
 signal; a second signal exits at once and leaves no temporary file; a checkpointed render that is
 interrupted and resumed ends bit-identical to one that was never stopped; --stats-json tells what
 happened, also when the render fails.
 
-Run: interrupt_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case
+Run: never_lose_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case
 names (CMake registers one CTest test per case from it).
 """
 
@@ -13,6 +14,7 @@ import argparse
 import json
 import os
 import re
+import resource
 import shutil
 import signal
 import subprocess
@@ -26,7 +28,8 @@ FILMBACK = None  # set by main()
 SCRATCH = None
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
 # Long enough to be interrupted (tens of seconds at full speed), small enough to write at once.
-LONG = ["--res", "320x180", "--spp", "4096", "-q"]
+# Not quiet: the plan line tells the test that the render is about to run.
+LONG = ["--res", "320x180", "--spp", "4096"]
 
 
 def exr_info(path):
@@ -53,12 +56,15 @@ class InterruptTest(unittest.TestCase):
         self.addCleanup(shutil.rmtree, self.dir, True)
 
     def start(self, *args):
-        """A render in the background, its plan line read: the render loop is about to run."""
+        """A render in the background; unless quiet, its plan line is read first: the render loop
+        is about to run (before that, a signal ends filmback at once, with nothing to save)."""
         env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
         process = subprocess.Popen([FILMBACK, "render", str(SCENE), *map(str, args)],
-                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                   stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
                                    env=env, cwd=self.dir)
         self.addCleanup(lambda: process.poll() is None and process.kill())
+        if "-q" not in args:
+            self.assertTrue(process.stdout.readline().startswith("filmback: camera"))
         return process
 
     def run_cli(self, *args):
@@ -79,12 +85,12 @@ class InterruptTest(unittest.TestCase):
     def interrupt_once(self, signal_number):
         stats = self.dir / "stats.json"
         process = self.start("-o", "out.exr", "-o", "out.png", "--stats-json", stats, *LONG)
-        time.sleep(1.0)  # rendering by now: the scene imports and builds in well under a second
+        time.sleep(0.5)
         process.send_signal(signal_number)
         sent = time.monotonic()
-        _, stderr = process.communicate(timeout=60)
+        stdout, _ = process.communicate(timeout=60)
         waited = time.monotonic() - sent
-        self.assertEqual(process.returncode, 128 + signal_number, stderr)
+        self.assertEqual(process.returncode, 128 + signal_number, stdout)
         report = json.loads(stats.read_text())
         self.assertEqual(report["status"], "interrupted")
         self.assertEqual(report["interrupt"]["signal"], signal_number)
@@ -113,8 +119,8 @@ class InterruptTest(unittest.TestCase):
 
     def test_second_signal_exits_at_once(self):
         # A large image, so that the first signal's write is still going when the second comes.
-        process = self.start("-o", "big.exr", "--res", "4096x4096", "--spp", "4096", "-q")
-        time.sleep(1.5)
+        process = self.start("-o", "big.exr", "--res", "4096x4096", "--spp", "4096")
+        time.sleep(0.5)
         process.send_signal(signal.SIGINT)
         time.sleep(0.05)
         process.send_signal(signal.SIGINT)
@@ -189,6 +195,34 @@ class InterruptTest(unittest.TestCase):
         process.send_signal(signal.SIGINT)
         process.communicate(timeout=60)
         return folder / "m.checkpoint.exr"
+
+    def test_full_disk_is_a_clear_error_and_leaves_nothing(self):
+        def small_disk():  # writes past 20 kB fail with EFBIG, as on a full disk
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (20000, 20000))
+        result = subprocess.run([FILMBACK, "render", str(SCENE), "-o", "full.exr", "-o",
+                                 "full.png", "--res", "320x180", "--spp", "1", "-q"],
+                                cwd=self.dir, capture_output=True, text=True, preexec_fn=small_disk)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertRegex(result.stderr, r"^filmback: error: full\.exr: cannot write the image")
+        self.assertEqual(list(self.dir.iterdir()), [], "an output or temporary was left")
+
+    def test_read_only_folder_is_a_clear_error_and_leaves_nothing(self):
+        folder = self.dir / "read-only"
+        folder.mkdir()
+        folder.chmod(0o555)
+        self.dir.chmod(0o755)
+        command = [FILMBACK, "render", str(SCENE), "-o", folder / "x.exr", "--res", "32x18",
+                   "--spp", "1", "-q"]
+        if os.geteuid() == 0:  # root writes anywhere: run as nobody, for whom it is read-only
+            if shutil.which("setpriv") is None:
+                self.skipTest("running as root without setpriv (util-linux)")
+            command = ["setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups", *command]
+        result = subprocess.run(list(map(str, command)), capture_output=True, text=True)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("x.exr: cannot write the image", result.stderr)
+        self.assertIn("Permission denied", result.stderr)
+        self.assertEqual(list(folder.iterdir()), [])
 
     def test_stats_json_tells_success_and_failure(self):
         ok = self.run_cli("render", SCENE, "-o", "ok.exr", "--res", "32x18", "--spp", "2", "-q",
