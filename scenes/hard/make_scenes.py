@@ -372,6 +372,17 @@ def emissive_wall(width_px, height_px, covered_to_px=None):
     return s
 
 
+def emissive_wall_of(radiance):
+    """A wall of the given radiance in front of the camera: 1e39 is a finite JSON number
+    (emissiveFactor 1 x emissiveStrength 1e39) beyond float's range."""
+    s = Scene("emissive_wall_of(%g)" % max(radiance))
+    wall = s.triangles("wall", [(-1.0, -1.0, 0.0), (1.0, -1.0, 0.0), (1.0, 1.0, 0.0),
+                                (-1.0, 1.0, 0.0)], [0, 1, 2, 0, 2, 3], s.emitter("glow", radiance))
+    s.node(name="wall", mesh=wall, translation=[0.0, 0.0, -5.0])
+    s.camera("shot", 32, 32, 50.0)
+    return s
+
+
 def moving_emitter():
     """An emissive square crossing the view along +x at 1 m/s (x = t - 1 at t s), 5 m away."""
     s = Scene("moving_emitter")
@@ -457,6 +468,7 @@ CASES = {
     "nan_position.gltf": lambda: bad_vertex_data("POSITION", 2, math.nan),
     "inf_normal.gltf": lambda: bad_vertex_data("NORMAL", 1, math.inf),
     "huge_normal.gltf": lambda: bad_vertex_data("NORMAL", 1, 3e38),
+    "inf_emission.gltf": lambda: emissive_wall_of((1e39,) * 3),
 }
 
 
