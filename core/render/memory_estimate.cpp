@@ -43,6 +43,15 @@ MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
   return e;
 }
 
+double refined_triangles(const SubdivisionSurface& surface) {
+  const uint32_t level = surface.settings.levels_render;
+  double corners = 0;
+  for (uint32_t n : surface.cage_face_sizes)
+    corners += n;
+  if (level == 0) return corners - 2.0 * double(surface.cage_face_sizes.size());
+  return 2 * corners * std::pow(4.0, double(level) - 1);
+}
+
 void check_memory(const MemoryEstimate& e, uint64_t limit_bytes, const std::string& source,
                   const std::string& scene) {
   if (e.total() <= double(limit_bytes)) return;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/film/film.h"
+#include "core/scene/subdivision_surface.h"
 
 namespace fb {
 
@@ -25,6 +26,11 @@ struct MemoryEstimate {
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
                                double triangles);
+
+// Triangles that refining `surface` to its render level makes (--subdiv render), known from the
+// cage before any refinement: a level-0 surface is its cage triangulated (n - 2 per n-gon); each
+// Catmull-Clark or simple level makes n quads of an n-gon, then 4 of each quad.
+double refined_triangles(const SubdivisionSurface& surface);
 
 // Throws InputError "SCENE: the render needs about ... GB (film ..., geometry ...), more than the
 // memory limit of ... GB (SOURCE)" when the estimate exceeds `limit_bytes`; `source` says where

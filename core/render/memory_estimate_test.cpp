@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/util/error.h"
 
 namespace fb {
@@ -28,6 +30,25 @@ TEST(MemoryEstimate, CountsFilmSplatTilesAndGeometry) {
   const MemoryEstimate splat = estimate_memory(100, 50, 3, Reconstruction::kSplat, 2, 0);
   EXPECT_EQ(splat.splat_bytes, 5000.0 * 1.25 * 1.25 * 4 * 8);  // 16 px tiles grown by 2 px a side
   EXPECT_EQ(splat.total(), splat.film_bytes + splat.splat_bytes);
+}
+
+// Counted as refinement makes them: a cube's 6 quads give 12 triangles at level 0, 24 quads at
+// level 1 and 96 at level 2 (the 192 triangles of docs/cli.md's example plan line); a triangle
+// becomes 3 quads at level 1.
+TEST(MemoryEstimate, RefinedTrianglesFollowFromTheCage) {
+  SubdivisionSurface cube;
+  cube.cage_face_sizes.assign(6, 4);
+  const double expected[] = {12, 48, 192, 768};
+  for (uint32_t level = 0; level < 4; ++level) {
+    cube.settings.levels_render = level;
+    EXPECT_EQ(refined_triangles(cube), expected[level]) << level;
+  }
+  SubdivisionSurface triangle;
+  triangle.cage_face_sizes = {3};
+  triangle.settings.levels_render = 1;
+  EXPECT_EQ(refined_triangles(triangle), 6);
+  triangle.settings.levels_render = 11;  // Blender's highest
+  EXPECT_EQ(refined_triangles(triangle), 6 * std::pow(4.0, 10));
 }
 
 TEST(MemoryEstimate, RefusesOverTheLimitNamingBothNumbers) {

@@ -261,6 +261,13 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   // Subdivision surfaces become triangles here, where the camera that adaptive refinement needs
   // is known; a scene without any never loads the subdivision module.
   const Scene* geometry_scene = &scene;
+  if (options.subdiv == SubdivMode::kRender && !scene.subdivision_surfaces.empty()) {
+    // Refining is itself the allocation to bound: its count is known from the cages.
+    double triangles = double(scene.triangle_count());
+    for (const SubdivisionSurface& surface : scene.subdivision_surfaces)
+      triangles += refined_triangles(surface);
+    check_memory_budget(triangles);
+  }
   if (!scene.subdivision_surfaces.empty()) {
     p.refined = std::make_unique<Scene>(scene);
     SubdivReport report =
@@ -270,7 +277,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
     p.subdiv_summary = std::move(report.summary);
     geometry_scene = p.refined.get();
   }
-  check_memory_budget(*geometry_scene);
+  check_memory_budget(double(geometry_scene->triangle_count()));
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
@@ -297,13 +304,13 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 RenderJob::~RenderJob() = default;
 
 // The film, splat tiles and flattened geometry, against the limit, before any of them exists.
-void RenderJob::check_memory_budget(const Scene& geometry_scene) const {
+void RenderJob::check_memory_budget(double triangles) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
   const MemoryEstimate estimate = estimate_memory(
       width_, height_, p.integrator->channels().size(), options_.reconstruction,
-      SplatTiles::reach(std::max(radius[0], radius[1])), double(geometry_scene.triangle_count()));
+      SplatTiles::reach(std::max(radius[0], radius[1])), triangles);
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else

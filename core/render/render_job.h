@@ -104,7 +104,7 @@ class RenderJob {
  private:
   struct Plugins;
   void choose_time_samples(const Scene& scene);  // sets time_reason_ and the time plugins_ need
-  void check_memory_budget(const Scene& geometry_scene) const;
+  void check_memory_budget(double triangles) const;  // the film's and these triangles'
   const Scene& scene_;
   RenderOptions options_;
   SceneCamera camera_;

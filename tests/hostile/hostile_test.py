@@ -153,6 +153,22 @@ class HostileTest(unittest.TestCase):
                             "more than the memory limit of 0.0671089 GB (--memory-limit)",
                             options=("--res", "4096x4096", "--memory-limit", "64M"))
 
+    def test_subdivision_to_a_billion_triangles(self):
+        """Blender's highest render level on an 8 x 8 quad cage: 2^29 triangles (64 GB), refused
+        from the cage's size before refinement allocates any of them."""
+        g = triangle_scene()
+        g.doc["extensionsUsed"] = ["FILMBACK_blender"]
+        positions = [c for j in range(9) for i in range(9) for c in (i, j, 0)]
+        faces = [v for j in range(8) for i in range(8)
+                 for v in (9 * j + i, 9 * j + i + 1, 9 * j + i + 10, 9 * j + i + 9)]
+        g.doc["nodes"][0]["extensions"] = {"FILMBACK_blender": {"subdivision": {
+            "cage_positions": positions, "cage_face_sizes": [4] * 64, "cage_face_vertices": faces,
+            "levels_render": 11}}}
+        self.assert_refused(self.write("subdivision.gltf", g.json_text()), "the render needs about",
+                            "geometry and BVH 64.4245 GB",
+                            "more than the memory limit of 8.58993 GB (--memory-limit)",
+                            options=("--memory-limit", "8G"))
+
     # --- POV-Ray ---------------------------------------------------------------------------------
 
     def test_infinite_while(self):
