@@ -1,7 +1,9 @@
 """Writes the fuzz harnesses' seed corpora (tests/fuzz/corpus/<harness>/), committed as written:
 valid scenes of each kind, the hostile files of tests/hostile/, files reaching for the harness
 folders' real files (tests/fuzz/fuzz_gltf.cpp, fuzz_pov.cpp), the default scene as a .glb, and the
-heads of a few POV-Ray sample scenes (when povray-examples is installed).
+heads of a few POV-Ray sample scenes (when povray-examples is installed). Files named found_* are
+inputs the fuzzers found, kept as they were (each fix has its regression test); this script leaves
+them alone.
 
 Run: python3 tests/fuzz/make_corpus.py
 """

@@ -263,6 +263,10 @@ void Parser::run_macro_definition() {
 }
 
 void Parser::directive(const Token& token) {
+  // A directive met while another one reads its arguments runs inside it (`#case (1 #case (...`):
+  // that recursion counts towards the nesting limit like an expression's, or a hostile scene
+  // would overflow the stack (found by tests/fuzz/fuzz_pov.cpp).
+  Nesting guard(*this);
   // Peeking past the end of the directive's own file must not pop it: a file that includes itself
   // would pop and push one frame for ever instead of nesting to the include limit.
   struct Restore {

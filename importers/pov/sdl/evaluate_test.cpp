@@ -307,6 +307,17 @@ TEST_F(Sdl, RunawayScenesFailCleanlyAndQuickly) {
   EXPECT_NE(error.find("more than 1000 tokens read (limit)"), std::string::npos) << error;
 }
 
+// Found by tests/fuzz/fuzz_pov.cpp: a directive met while another one reads its arguments runs
+// inside it, so directives nested that way recursed until the stack overflowed.
+TEST_F(Sdl, DirectivesInsideDirectiveArgumentsCountAsNesting) {
+  std::string scene;
+  for (int i = 0; i < 20000; ++i)
+    scene += "#switch (0) #case (1 ";
+  const std::string error = error_of(scene);
+  EXPECT_NE(error.find("scene.pov:1:"), std::string::npos) << error;
+  EXPECT_NE(error.find("nesting deeper than 400 levels"), std::string::npos) << error;
+}
+
 TEST_F(Sdl, TransformsInPovRayOrder) {
   Scene scene = run("sphere { 0, 1 scale 2 rotate y * 90 translate x }");
   const Object& o = scene.objects.at(0);
