@@ -247,17 +247,35 @@ TEST(PovAppearance, SkySphereIsBakedIntoTheWorldOverTheBackground) {
   EXPECT_NEAR(down.z, 0.5, 1e-3);  // the background shows through
 }
 
-// 16-bit linear PNG from POV-Ray, as floats; empty if it could not be read.
-std::vector<float> read_png(const std::filesystem::path& file, int& width, int& height) {
-  auto in = OIIO::ImageInput::open(file.string());
-  if (!in) return {};
-  width = in->spec().width, height = in->spec().height;
-  std::vector<float> pixels(size_t(width) * height * in->spec().nchannels);
-  if (!in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data())) return {};
+// POV-Ray's render of `pov_file`, one ray through each pixel centre (-A), as linear RGB floats
+// (16-bit PNG, File_Gamma 1): width * height * 3 values, or empty (with a message in `why`) if
+// povray failed or its image could not be read.
+std::vector<float> povray_render(const std::filesystem::path& pov_file, int width, int height,
+                                 std::string& why) {
+  const std::filesystem::path png = std::filesystem::path(pov_file).replace_extension(".png");
+  const std::string command = "povray +W" + std::to_string(width) + " +H" +
+                              std::to_string(height) + " -D -A +FN16 File_Gamma=1.0 +I'" +
+                              pov_file.string() + "' +O'" + png.string() + "' > '" +
+                              pov_file.string() + ".log' 2>&1";
+  if (std::system(command.c_str()) != 0) {
+    why = "failed: " + command;
+    return {};
+  }
+  auto in = OIIO::ImageInput::open(png.string());
+  if (!in || in->spec().width != width || in->spec().height != height) {
+    why = "no " + std::to_string(width) + "x" + std::to_string(height) + " image from " + command;
+    return {};
+  }
+  const int channels = in->spec().nchannels;
+  std::vector<float> pixels(size_t(width) * height * channels);
+  if (!in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data())) {
+    why = "unreadable " + png.string();
+    return {};
+  }
   std::vector<float> rgb;
   for (size_t i = 0; i < size_t(width) * height; ++i)
     for (int c = 0; c < 3; ++c)
-      rgb.push_back(pixels[i * in->spec().nchannels + c]);
+      rgb.push_back(pixels[i * channels + c]);
   return rgb;
 }
 
@@ -293,21 +311,14 @@ TEST(PovAppearance, DiffusePlaneRendersAsPovRayDoes) {
   const std::filesystem::path dir = test::scratch_dir();
   for (const LightCase& c : cases) {
     const std::filesystem::path pov_file = dir / (std::string(c.name) + ".pov");
-    const std::filesystem::path png = dir / (std::string(c.name) + ".png");
     std::ofstream(pov_file)
         << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n"
            "camera { orthographic location <0,0,-10> look_at <0,0,0> right x*4 up y*4 }\n"
         << c.pov
         << "\nplane { -z, 0 pigment { rgb <0.8,0.5,0.3> } finish { ambient 0 diffuse 0.7 } }\n";
-    const std::string command = "povray +W" + std::to_string(kSize) + " +H" +
-                                std::to_string(kSize) + " -D -A +FN16 File_Gamma=1.0 +I'" +
-                                pov_file.string() + "' +O'" + png.string() + "' > '" +
-                                (dir / "povray.log").string() + "' 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    int w = 0, h = 0;
-    const std::vector<float> reference = read_png(png, w, h);
-    ASSERT_EQ(w, kSize);
-    ASSERT_EQ(h, kSize);
+    std::string why;
+    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    ASSERT_FALSE(reference.empty()) << why;
 
     // The same scene in filmback: a quad on z = 0 facing the camera at +z (POV-Ray's -z).
     test::GltfBuilder gltf;
@@ -448,7 +459,6 @@ TEST(PovAppearance, DeterministicPatternsMatchPovRaysRenders) {
   const std::filesystem::path dir = test::scratch_dir();
   for (size_t first = 0; first < cases.size(); first += 4) {
     const std::filesystem::path pov_file = dir / ("patterns" + std::to_string(first) + ".pov");
-    const std::filesystem::path png = dir / ("patterns" + std::to_string(first) + ".png");
     std::ofstream scene(pov_file);
     scene << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n"
              "camera { orthographic location <0,0,-10> look_at <0,0,0> right x*4 up y*4 }\n";
@@ -459,14 +469,9 @@ TEST(PovAppearance, DeterministicPatternsMatchPovRaysRenders) {
             << y0 << ",-10>, <" << x0 + 2 << "," << y0 + 2 << ",10> } } }\n";
     }
     scene.close();
-    const std::string command = "povray +W" + std::to_string(kSize) + " +H" +
-                                std::to_string(kSize) + " -D -A +FN16 File_Gamma=1.0 +I'" +
-                                pov_file.string() + "' +O'" + png.string() + "' > '" +
-                                (dir / "povray.log").string() + "' 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    int w = 0, h = 0;
-    const std::vector<float> reference = read_png(png, w, h);
-    ASSERT_EQ(w, kSize);
+    std::string why;
+    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    ASSERT_FALSE(reference.empty()) << why;
     for (size_t q = 0; q < 4 && first + q < cases.size(); ++q) {
       const PatternCase& c = cases[first + q];
       Texture texture = plain_texture({0, 0, 0}, 1);
@@ -508,7 +513,7 @@ TEST(PovAppearance, SdlSceneRendersAsPovRayDoes) {
   if (std::system("command -v povray > /dev/null 2>&1") != 0) GTEST_SKIP() << "no povray";
   constexpr int kWidth = 96, kHeight = 72;
   const std::filesystem::path dir = test::scratch_dir();
-  const std::filesystem::path pov_file = dir / "sphere.pov", png = dir / "sphere.png";
+  const std::filesystem::path pov_file = dir / "sphere.pov";
   std::ofstream(pov_file) << R"(#version 3.7;
 global_settings { assumed_gamma 1.0 }
 camera { location <0.3, 0.8, -4> look_at <0, 0, 0> angle 40 }
@@ -519,15 +524,9 @@ sphere { <0, 0, 0>, 1
   finish { ambient 0 diffuse 0.8 }
 }
 )";
-  const std::string command = "povray +W" + std::to_string(kWidth) + " +H" +
-                              std::to_string(kHeight) + " -D -A +FN16 File_Gamma=1.0 +I'" +
-                              pov_file.string() + "' +O'" + png.string() + "' > '" +
-                              (dir / "povray.log").string() + "' 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  int w = 0, h = 0;
-  const std::vector<float> reference = read_png(png, w, h);
-  ASSERT_EQ(w, kWidth);
-  ASSERT_EQ(h, kHeight);
+  std::string why;
+  const std::vector<float> reference = povray_render(pov_file, kWidth, kHeight, why);
+  ASSERT_FALSE(reference.empty()) << why;
 
   Diagnostics diagnostics;
   ImportOptions import;
