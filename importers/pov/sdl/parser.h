@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -277,6 +278,9 @@ class Parser {
   void check_string(const std::string& s);
   const EvaluateOptions& options() const { return options_; }
   int nesting = 0;  // expression/block recursion, bounded so that deep nesting cannot overflow
+  // The frame address where evaluation started: Nesting also bounds the stack the recursion has
+  // used, since a level's frames are several times larger in a sanitized build.
+  uintptr_t stack_start = reinterpret_cast<uintptr_t>(__builtin_frame_address(0));
 
  private:
   // expressions.cpp, by precedence
