@@ -41,7 +41,8 @@ struct RenderCommand {
 struct ConvertCommand {
   std::filesystem::path input, output;
   std::string resolution;     // "WxH": what a POV-Ray scene's image_width/image_height read
-  double tolerance_m = 1e-3;  // chord error of tessellated analytic shapes
+  // Chord error of tessellated analytic shapes, m; unset: a thousandth of each shape's size.
+  std::optional<double> tolerance_m;
   ImportOptions import;
 };
 

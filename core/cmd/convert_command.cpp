@@ -18,7 +18,9 @@ int run_convert(ConvertCommand& c) {
 
   Diagnostics diagnostics;
   Scene scene = import_scene(c.input, c.import, diagnostics);
-  tessellate_solids(scene, TessellationOptions(), diagnostics);  // glTF has only triangles
+  TessellationOptions tessellation;  // glTF has only triangles
+  if (c.tolerance_m) tessellation.tolerance_m = *c.tolerance_m, tessellation.relative_tolerance = 0;
+  tessellate_solids(scene, tessellation, diagnostics);
   write_gltf(scene, c.output, diagnostics);
   diagnostics.print(std::cerr);
   std::cout << "filmback: wrote " << c.output.string() << ": " << scene.meshes.size() << " meshes, "

@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
   convert_cmd
       ->add_option("--tolerance", convert.tolerance_m,
                    "largest distance between an analytic surface and its triangles, m "
-                   "(default 0.001)")
+                   "(default: a thousandth of each shape's size)")
       ->check(CLI::Range(1e-6, 1e3));
   add_import_options(convert_cmd, convert.import);
 

@@ -75,16 +75,30 @@ bool CsgProbe::contains(size_t node, Vec3d p, size_t forced, bool forced_in,
   return in != n.inverse;
 }
 
-int CsgProbe::label(Vec3d point, size_t leaf) const {
+std::array<Vec3d, 2> CsgProbe::sides(const SurfacePoint& p, double offset) {
+  // Irrational to the axes and to the diagonals of boxes' faces.
+  const Vec3d oblique{0.3090169943749474, 0.5590169943749474, 0.7694208842938134};
+  const Vec3d beside = p.position + oblique * (0.5 * offset);
+  return {beside - p.normal * offset, beside + p.normal * offset};
+}
+
+int CsgProbe::label(Vec3d point, Vec3d normal, size_t leaf, double offset) const {
+  const std::array<Vec3d, 2> at = sides({point, normal}, offset);
   std::vector<int8_t> memo(leaves_.size(), -1);
-  const bool with = contains(0, point, leaf, true, memo);
-  const bool without = contains(0, point, leaf, false, memo);
+  const bool with = contains(0, at[0], leaf, true, memo);
+  memo.assign(leaves_.size(), -1);
+  const bool without = contains(0, at[1], leaf, false, memo);
   return with == without ? 0 : with ? 1 : -1;
 }
 
-size_t CsgProbe::boundary_between(Vec3d a, Vec3d b, size_t leaf) const {
-  for (size_t i = 0; i < leaves_.size(); ++i)
-    if (i != leaf && leaves_[i].set.contains(a) != leaves_[i].set.contains(b)) return i;
+size_t CsgProbe::boundary_between(const SurfacePoint& a, const SurfacePoint& b, size_t leaf,
+                                  double offset) const {
+  const std::array<Vec3d, 2> at_a = sides(a, offset), at_b = sides(b, offset);
+  for (int side = 0; side < 2; ++side)
+    for (size_t i = 0; i < leaves_.size(); ++i)
+      if (i != leaf && leaves_[i].set.contains(at_a[size_t(side)]) !=
+                           leaves_[i].set.contains(at_b[size_t(side)]))
+        return i;
   return kNone;
 }
 

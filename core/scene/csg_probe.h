@@ -5,6 +5,7 @@
 // so any primitive the renderer intersects can be probed, and the mesh agrees with the render.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -30,19 +31,26 @@ class CsgProbe {
   // False for a primitive under `bounds_only` (a clip): it limits the set but is no surface.
   bool is_surface(size_t i) const { return leaves_[i].surface; }
 
-  // For a point on the boundary of primitive `leaf`: +1 when that boundary is surface of the set
-  // there with the set on the primitive's inner side (the normal is the primitive's), -1 when the
-  // set lies on its outer side (the normal is reversed: a difference's cut), 0 when it is no
-  // surface of the set. The set is evaluated with the primitive taken as inside, then as outside
-  // (the rest as they are at the point): surface is where the two differ.
-  int label(Vec3d point, size_t leaf) const;
-
-  // A primitive other than `leaf` that has a and b on different sides, or kNone.
-  size_t boundary_between(Vec3d a, Vec3d b, size_t leaf) const;
+  // For a point on the boundary of primitive `leaf`, with the primitive's outward normal there:
+  // +1 when that boundary is surface of the set there with the set on the primitive's inner side
+  // (the normal is the primitive's), -1 when the set lies on its outer side (the normal is
+  // reversed: a difference's cut), 0 when it is no surface of the set. The set is evaluated
+  // `offset` inside the surface with the primitive taken as inside, and as far outside with it
+  // taken as outside: surface is where the two differ. Both points also move by half the offset
+  // along one fixed direction oblique to every axis (a simulation of simplicity, Edelsbrunner and
+  // Muecke 1990): boundaries that coincide there (coplanar faces, a face ending on another, solids
+  // touching) are then all decided one way, as the set just beside them is.
+  int label(Vec3d point, Vec3d normal, size_t leaf, double offset) const;
 
   struct SurfacePoint {
     Vec3d position, normal;  // world; the primitive's outward unit normal
   };
+
+  // A primitive other than `leaf` whose side differs between the points label() looks at for a
+  // and for b (inside the surface, else outside it), or kNone: where a label changes, the
+  // primitive whose boundary passes there.
+  size_t boundary_between(const SurfacePoint& a, const SurfacePoint& b, size_t leaf,
+                          double offset) const;
   // The point of primitive `leaf`'s boundary on the line point + t direction (|t| <= reach) that
   // is nearest to `point`, or nothing when the line does not cross the boundary within reach.
   std::optional<SurfacePoint> lift(size_t leaf, Vec3d point, Vec3d direction, double reach) const;
@@ -60,6 +68,8 @@ class CsgProbe {
     std::vector<size_t> children;  // a set operation: indices into nodes_
   };
   size_t add(const Solid& solid, bool surface);
+  // The points label() looks at: inside the surface, then outside it.
+  static std::array<Vec3d, 2> sides(const SurfacePoint& p, double offset);
   // Membership of the set below `node` with `forced` decided as `forced_in`; memo caches the
   // other leaves' memberships (-1: not asked yet).
   bool contains(size_t node, Vec3d p, size_t forced, bool forced_in,

@@ -22,6 +22,8 @@ constexpr double kBisectionPrecision = 1e-7;
 // surfaces touch, their gap grows as the square of the distance from the contact, so within about
 // 1e-8 of their size double precision cannot tell which side a point is on.
 constexpr double kAtVertex = 1e-4;
+// Labels look at the set this far (a fraction of the tolerance) on either side of the surface.
+constexpr double kLabelOffset = 1e-4;
 // A new vertex takes the exact surface's normal unless it is this far from its corners' mean
 // (cos 45 degrees): then it lies on a sharp edge and keeps its face's normal.
 constexpr double kCreaseCosine = 0.7071;
@@ -49,8 +51,14 @@ struct TripleHash {
 
 class Trimmer {
  public:
-  Trimmer(const CsgProbe& probe, size_t leaf, const TriangleBvh& boundaries, double tolerance)
-      : probe_(probe), leaf_(leaf), boundaries_(boundaries), tolerance_(tolerance) {}
+  Trimmer(const CsgProbe& probe, size_t leaf, const TriangleBvh& boundaries,
+          const TrimTolerances& tolerances)
+      : probe_(probe),
+        leaf_(leaf),
+        boundaries_(boundaries),
+        tolerance_(tolerances.cut_m),
+        lift_reach_(2 * tolerances.mesh_m + tolerances.cut_m),
+        beside_(2 * tolerances.boundaries_m + tolerances.cut_m) {}
 
   void load(const TriangleMesh& mesh);
   void refine();
@@ -64,26 +72,29 @@ class Trimmer {
 
   uint32_t add_vertex(Vec3d position, Vec3d surface_normal, uint32_t partner) {
     positions_.push_back(position);
-    surface_normals_.push_back(surface_normal);
+    normals_.push_back(surface_normal);
     labels_.push_back(kUnknown);
     partners_.push_back(partner);
     return uint32_t(positions_.size() - 1);
   }
   int label(uint32_t v) {
-    if (labels_[v] == kUnknown) labels_[v] = int8_t(probe_.label(positions_[v], leaf_));
+    if (labels_[v] == kUnknown) labels_[v] = int8_t(label_at({positions_[v], normals_[v]}));
     return labels_[v];
   }
+  int label_at(const CsgProbe::SurfacePoint& p) const {
+    return probe_.label(p.position, p.normal, leaf_, kLabelOffset * tolerance_);
+  }
   // The exact surface at a point of a triangle, lifted along the interpolated normal; the point
-  // itself (and no normal) where the line misses the surface.
-  CsgProbe::SurfacePoint surface_at(Vec3d flat, Vec3d normal, double reach) const {
-    if (auto p = probe_.lift(leaf_, flat, normal, reach)) return *p;
-    return {flat, {0, 0, 0}};
+  // itself with that normal where the line misses the surface.
+  CsgProbe::SurfacePoint surface_at(Vec3d flat, Vec3d normal) const {
+    if (auto p = probe_.lift(leaf_, flat, normal, lift_reach_)) return *p;
+    return {flat, normal};
   }
   // The normal a triangle gives its corner at new vertex v, s of the way from a corner with
   // normal na to one with nb.
   Vec3d corner_normal(uint32_t v, Vec3d na, Vec3d nb, double s) const {
     const Vec3d mean = unit_or(na * (1 - s) + nb * s, na);
-    const Vec3d exact = surface_normals_[v];
+    const Vec3d exact = normals_[v];
     return dot(exact, mean) >= kCreaseCosine ? exact : mean;
   }
   uint32_t midpoint(uint32_t a, uint32_t b, Vec3d na, Vec3d nb);
@@ -95,9 +106,10 @@ class Trimmer {
     uint32_t partner;
   };
   Found bisect(Vec3d a, Vec3d b, Vec3d na, Vec3d nb, int from);
-  bool must_split(const Tri& t) const;
-  void red_split(const Tri& t, std::vector<Tri>& out);
-  std::vector<Tri> conforming(std::vector<uint32_t>* parent);
+  int longest_edge(const Tri& t) const;
+  bool is_split(uint32_t a, uint32_t b) const { return midpoints_.count(edge_key(a, b)) > 0; }
+  void subdivide(const Tri& t, std::vector<Tri>& out);
+  bool cuts(const std::array<Vec3d, 2>& segment, Vec3d face, double size);
   bool needs_refinement(const Tri& t);
   double cut_error(const Tri& t, int lone);
   void emit(uint32_t a, uint32_t b, uint32_t c, Vec3d na, Vec3d nb, Vec3d nc, int label,
@@ -107,13 +119,19 @@ class Trimmer {
   const size_t leaf_;
   const TriangleBvh& boundaries_;
   const double tolerance_;
-  std::vector<Vec3d> positions_, surface_normals_;
+  // Every point of the mesh lies within the primitive's own tolerance of its surface, so the
+  // surface is sought no farther away: a longer search could find the far side of a thin box.
+  const double lift_reach_;
+  // Another primitive's tessellation strays from its surface by up to its own tolerance: labels
+  // this far on either side of it are on either side of the surface itself.
+  const double beside_;
+  std::vector<Vec3d> positions_, normals_;
   std::vector<int8_t> labels_;
   std::vector<uint32_t> partners_;
   std::unordered_map<uint64_t, uint32_t> midpoints_;
   std::unordered_map<uint64_t, Crossing> crossings_;  // s from the edge's smaller vertex index
   std::unordered_map<std::array<uint32_t, 3>, bool, TripleHash> verdicts_;
-  std::vector<Tri> red_;  // the refined mesh before its green closure
+  std::vector<Tri> mesh_;  // conforming: every split edge is split in both its triangles
   std::vector<const TaggedTriangle*> candidates_;
 };
 
@@ -149,39 +167,42 @@ void Trimmer::load(const TriangleMesh& mesh) {
     const Vec3d face = unit_or(
         cross(positions_[t.v[1]] - positions_[t.v[0]], positions_[t.v[2]] - positions_[t.v[0]]),
         {0, 0, 1});
-    for (Vec3d& n : t.n)
-      n = unit_or(n, mirrored ? -face : face);
+    for (size_t k = 0; k < 3; ++k) {
+      t.n[k] = unit_or(t.n[k], mirrored ? -face : face);
+      normals_[t.v[k]] += t.n[k];
+    }
     if (mirrored) std::swap(t.v[1], t.v[2]), std::swap(t.n[1], t.n[2]);
-    red_.push_back(t);
+    mesh_.push_back(t);
   }
+  // A vertex's own normal (for its label) is its corners' mean: outward at sharp corners too.
+  for (Vec3d& n : normals_)
+    n = unit_or(n, {0, 0, 1});
 }
 
 uint32_t Trimmer::midpoint(uint32_t a, uint32_t b, Vec3d na, Vec3d nb) {
   const auto [it, added] = midpoints_.try_emplace(edge_key(a, b), 0);
   if (!added) return it->second;
   const Vec3d pa = positions_[a], pb = positions_[b];
-  const double reach = 0.5 * length(pb - pa) + tolerance_;
-  const CsgProbe::SurfacePoint p = surface_at((pa + pb) * 0.5, unit_or(na + nb, na), reach);
+  const CsgProbe::SurfacePoint p = surface_at((pa + pb) * 0.5, unit_or(na + nb, na));
   it->second = add_vertex(p.position, p.normal, TrimmedSurface::kNoPartner);
   return it->second;
 }
 
 Trimmer::Found Trimmer::bisect(Vec3d a, Vec3d b, Vec3d na, Vec3d nb, int from) {
-  const double len = length(b - a), reach = 0.5 * len + tolerance_;
+  const double len = length(b - a);
   double lo = 0, hi = 1;
-  Vec3d at_lo = a, at_hi = b;
-  CsgProbe::SurfacePoint mid{a, na};
+  CsgProbe::SurfacePoint at_lo{a, na}, at_hi{b, nb}, mid{a, na};
   for (int i = 0; i < 64 && (hi - lo) * len > kBisectionPrecision * tolerance_; ++i) {
     const double s = 0.5 * (lo + hi);
-    mid = surface_at(a + (b - a) * s, unit_or(na * (1 - s) + nb * s, na), reach);
-    if (probe_.label(mid.position, leaf_) == from)
-      lo = s, at_lo = mid.position;
+    mid = surface_at(a + (b - a) * s, unit_or(na * (1 - s) + nb * s, na));
+    if (label_at(mid) == from)
+      lo = s, at_lo = mid;
     else
-      hi = s, at_hi = mid.position;
+      hi = s, at_hi = mid;
   }
-  const uint32_t partner = uint32_t(probe_.boundary_between(at_lo, at_hi, leaf_));
+  const size_t partner = probe_.boundary_between(at_lo, at_hi, leaf_, kLabelOffset * tolerance_);
   return {mid, 0.5 * (lo + hi),
-          partner == uint32_t(CsgProbe::kNone) ? TrimmedSurface::kNoPartner : partner};
+          partner == CsgProbe::kNone ? TrimmedSurface::kNoPartner : uint32_t(partner)};
 }
 
 Trimmer::Crossing Trimmer::crossing(uint32_t a, uint32_t b, Vec3d na, Vec3d nb) {
@@ -203,58 +224,43 @@ Trimmer::Crossing Trimmer::crossing(uint32_t a, uint32_t b, Vec3d na, Vec3d nb) 
   return found;
 }
 
-// Red-green closure: a triangle whose neighbours split two of its edges, or split an edge twice,
-// is split itself; one split edge is closed by halving (conforming()).
-bool Trimmer::must_split(const Tri& t) const {
-  int split = 0;
+// The edge (k, k + 1) that longest-edge bisection splits: the longest, ties broken by the vertex
+// indices, so that both triangles of an edge agree on it.
+int Trimmer::longest_edge(const Tri& t) const {
+  int best = 0;
+  std::pair<double, uint64_t> longest{-1, 0};
   for (int k = 0; k < 3; ++k) {
     const uint32_t a = t.v[size_t(k)], b = t.v[size_t((k + 1) % 3)];
-    const auto it = midpoints_.find(edge_key(a, b));
-    if (it == midpoints_.end()) continue;
-    if (midpoints_.count(edge_key(a, it->second)) || midpoints_.count(edge_key(it->second, b)))
-      return true;
-    ++split;
+    const std::pair<double, uint64_t> key{length(positions_[b] - positions_[a]), edge_key(a, b)};
+    if (key > longest) longest = key, best = k;
   }
-  return split >= 2;
+  return best;
 }
 
-void Trimmer::red_split(const Tri& t, std::vector<Tri>& out) {
-  std::array<uint32_t, 3> m;
-  std::array<Vec3d, 3> mn;
-  for (size_t k = 0; k < 3; ++k) {
-    const size_t j = (k + 1) % 3;
-    m[k] = midpoint(t.v[k], t.v[j], t.n[k], t.n[j]);
-    mn[k] = corner_normal(m[k], t.n[k], t.n[j], 0.5);
+// Rivara's longest-edge bisection: a triangle with split edges (its longest among them) is
+// halved at its longest edge, and each half again at its other split edge, if any.
+void Trimmer::subdivide(const Tri& t, std::vector<Tri>& out) {
+  const size_t k = size_t(longest_edge(t)), j = (k + 1) % 3, i = (k + 2) % 3;
+  const auto it = midpoints_.find(edge_key(t.v[k], t.v[j]));
+  if (it == midpoints_.end()) {
+    out.push_back(t);
+    return;
   }
-  out.push_back({{t.v[0], m[0], m[2]}, {t.n[0], mn[0], mn[2]}});
-  out.push_back({{m[0], t.v[1], m[1]}, {mn[0], t.n[1], mn[1]}});
-  out.push_back({{m[2], m[1], t.v[2]}, {mn[2], mn[1], t.n[2]}});
-  out.push_back({{m[0], m[1], m[2]}, {mn[0], mn[1], mn[2]}});
-}
-
-std::vector<Tri> Trimmer::conforming(std::vector<uint32_t>* parent) {
-  std::vector<Tri> out;
-  out.reserve(red_.size() + red_.size() / 4);
-  for (uint32_t i = 0; i < red_.size(); ++i) {
-    const Tri& t = red_[i];
-    int split = -1;
-    uint32_t m = 0;
-    for (int k = 0; k < 3 && split < 0; ++k)
-      if (const auto it = midpoints_.find(edge_key(t.v[size_t(k)], t.v[size_t((k + 1) % 3)]));
-          it != midpoints_.end())
-        split = k, m = it->second;
-    if (split < 0) {
-      out.push_back(t);
-      if (parent) parent->push_back(i);
-      continue;
+  const uint32_t m = it->second;
+  const Vec3d nm = corner_normal(m, t.n[k], t.n[j], 0.5);
+  const auto halve = [&](const Tri& half, size_t split) {  // at edge (split, split + 1), if split
+    const size_t a = split, b = (split + 1) % 3, c = (split + 2) % 3;
+    const auto mid = midpoints_.find(edge_key(half.v[a], half.v[b]));
+    if (mid == midpoints_.end()) {
+      out.push_back(half);
+      return;
     }
-    const size_t a = size_t(split), b = (a + 1) % 3, c = (a + 2) % 3;
-    const Vec3d nm = corner_normal(m, t.n[a], t.n[b], 0.5);
-    out.push_back({{t.v[a], m, t.v[c]}, {t.n[a], nm, t.n[c]}});
-    out.push_back({{m, t.v[b], t.v[c]}, {nm, t.n[b], t.n[c]}});
-    if (parent) parent->insert(parent->end(), {i, i});
-  }
-  return out;
+    const Vec3d n = corner_normal(mid->second, half.n[a], half.n[b], 0.5);
+    out.push_back({{half.v[a], mid->second, half.v[c]}, {half.n[a], n, half.n[c]}});
+    out.push_back({{mid->second, half.v[b], half.v[c]}, {n, half.n[b], half.n[c]}});
+  };
+  halve({{t.v[i], t.v[k], m}, {t.n[i], t.n[k], nm}}, 0);  // its other edge: (i, k)
+  halve({{t.v[j], t.v[i], m}, {t.n[j], t.n[i], nm}}, 0);  // its other edge: (j, i)
 }
 
 // How far the straight cut across a triangle strays from the true crossing curve. `lone` is the
@@ -266,15 +272,34 @@ double Trimmer::cut_error(const Tri& t, int lone) {
   const Vec3d cut_middle = (positions_[ab.vertex] + positions_[ac.vertex]) * 0.5;
   // The line from the lone corner through the middle of the flat cut meets the opposite edge at
   // q, with weights s1 / (s1 + s2) and s2 / (s1 + s2) on b and c.
+  // Both crossings at the lone corner: the boundary passes through it, and there is nothing to cut.
+  if (!(ab.s + ac.s > 0)) return 0;
   const Vec3d pa = positions_[t.v[a]], pb = positions_[t.v[b]], pc = positions_[t.v[c]];
   const double wb = ab.s / (ab.s + ac.s), wc = 1 - wb;
   const Vec3d q = pb * wb + pc * wc, nq = unit_or(t.n[b] * wb + t.n[c] * wc, t.n[b]);
-  const double reach = 0.5 * length(q - pa) + tolerance_;
   const int other = label(t.v[b]);
   // The boundary must cross that line once: anything else is a curve the cut cannot follow.
-  if (probe_.label(surface_at(q, nq, reach).position, leaf_) != other) return HUGE_VAL;
+  if (label_at(surface_at(q, nq)) != other) return HUGE_VAL;
   const Found f = bisect(pa, q, t.n[a], nq, label(t.v[a]));
   return length(f.point.position - cut_middle);
+}
+
+// Whether the labels differ on the two sides of where another primitive's tessellation crosses
+// the surface, looking a little farther than that tessellation strays from its own surface, then
+// 4, 16 and 64 times as far within the triangle's size (where two surfaces meet at a shallow
+// angle, the tessellations cross far from where the surfaces do): a boundary the set does not
+// care about there (a plane far from what it cuts, a face ending on a face) cuts nothing.
+bool Trimmer::cuts(const std::array<Vec3d, 2>& segment, Vec3d face, double size) {
+  const Vec3d across = cross(face, segment[1] - segment[0]);
+  if (!(length(across) > 0)) return false;  // touching at a point
+  const Vec3d middle = (segment[0] + segment[1]) * 0.5, unit = normalize(across);
+  for (double step = beside_; step == beside_ || step <= size; step *= 4) {
+    if (step > 64 * beside_) break;
+    if (label_at(surface_at(middle + unit * step, face)) !=
+        label_at(surface_at(middle - unit * step, face)))
+      return true;
+  }
+  return false;
 }
 
 bool Trimmer::needs_refinement(const Tri& t) {
@@ -299,10 +324,11 @@ bool Trimmer::needs_refinement(const Tri& t) {
   // Where other boundaries cross the triangle: a crossing all within the tolerance of one point
   // hides nothing farther than that from the true crossing curve.
   Bounds3d crossings;
+  const Vec3d face = unit_or(cross(p[1] - p[0], p[2] - p[0]), t.n[0]);
   for (const TaggedTriangle* other : candidates_) {
     if (other->tag == leaf_) continue;
     const auto segment = crossing_segment(flat, other->p);
-    if (!segment) continue;
+    if (!segment || !cuts(*segment, face, longest)) continue;
     crossings.extend((*segment)[0]);
     crossings.extend((*segment)[1]);
     if (first_other == TrimmedSurface::kNoPartner) first_other = other->tag;
@@ -321,27 +347,32 @@ bool Trimmer::needs_refinement(const Tri& t) {
 
 void Trimmer::refine() {
   for (int level = 0; level < kMaxLevels; ++level) {
-    std::vector<uint32_t> parent;
-    const std::vector<Tri> mesh = conforming(&parent);
-    std::vector<char> split(red_.size(), 0);
     bool any = false;
-    for (size_t i = 0; i < mesh.size(); ++i)
-      if (!split[parent[i]] && needs_refinement(mesh[i])) split[parent[i]] = 1, any = true;
+    for (const Tri& t : mesh_)
+      if (needs_refinement(t)) {
+        const size_t k = size_t(longest_edge(t)), j = (k + 1) % 3;
+        midpoint(t.v[k], t.v[j], t.n[k], t.n[j]);
+        any = true;
+      }
     if (!any) return;
-    while (any) {  // split, then close: until no triangle must be split for its neighbours
-      std::vector<Tri> next;
-      next.reserve(red_.size() + 3 * red_.size() / 4);
-      for (size_t i = 0; i < red_.size(); ++i)
-        if (split[i])
-          red_split(red_[i], next);
-        else
-          next.push_back(red_[i]);
-      red_.swap(next);
-      split.assign(red_.size(), 0);
-      any = false;
-      for (size_t i = 0; i < red_.size(); ++i)
-        if (must_split(red_[i])) split[i] = 1, any = true;
+    // Closure: a triangle with a split edge has its longest split too, so that halving it at the
+    // longest keeps every split edge shared by both its triangles.
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const Tri& t : mesh_) {
+        const size_t k = size_t(longest_edge(t)), j = (k + 1) % 3;
+        if (is_split(t.v[k], t.v[j])) continue;
+        if (is_split(t.v[j], t.v[(j + 1) % 3]) || is_split(t.v[(j + 1) % 3], t.v[k])) {
+          midpoint(t.v[k], t.v[j], t.n[k], t.n[j]);
+          changed = true;
+        }
+      }
     }
+    std::vector<Tri> next;
+    next.reserve(2 * mesh_.size());
+    for (const Tri& t : mesh_)
+      subdivide(t, next);
+    mesh_.swap(next);
   }
 }
 
@@ -355,9 +386,8 @@ void Trimmer::emit(uint32_t a, uint32_t b, uint32_t c, Vec3d na, Vec3d nb, Vec3d
 }
 
 TrimmedSurface Trimmer::cut() {
-  const std::vector<Tri> mesh = conforming(nullptr);
   TrimmedSurface out;
-  for (const Tri& t : mesh) {
+  for (const Tri& t : mesh_) {
     const int l[3] = {label(t.v[0]), label(t.v[1]), label(t.v[2])};
     if (l[0] == l[1] && l[1] == l[2]) {
       emit(t.v[0], t.v[1], t.v[2], t.n[0], t.n[1], t.n[2], l[0], out);
@@ -376,7 +406,7 @@ TrimmedSurface Trimmer::cut() {
       const Vec3d mean = unit_or(t.n[0] + t.n[1] + t.n[2], t.n[0]);
       const Vec3d centroid =
           (positions_[t.v[0]] + positions_[t.v[1]] + positions_[t.v[2]]) * (1.0 / 3);
-      const CsgProbe::SurfacePoint s = surface_at(centroid, mean, tolerance_);
+      const CsgProbe::SurfacePoint s = surface_at(centroid, mean);
       const uint32_t m = add_vertex(s.position, s.normal, TrimmedSurface::kNoPartner);
       const Vec3d nm = corner_normal(m, mean, mean, 0);
       for (size_t k = 0; k < 3; ++k) {
@@ -404,8 +434,8 @@ TrimmedSurface Trimmer::cut() {
 }  // namespace
 
 TrimmedSurface trim_surface(const CsgProbe& probe, size_t leaf, const TriangleMesh& mesh,
-                            const TriangleBvh& boundaries, double tolerance_m) {
-  Trimmer trimmer(probe, leaf, boundaries, tolerance_m);
+                            const TriangleBvh& boundaries, const TrimTolerances& tolerances) {
+  Trimmer trimmer(probe, leaf, boundaries, tolerances);
   trimmer.load(mesh);
   trimmer.refine();
   return trimmer.cut();

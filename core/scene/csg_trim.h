@@ -4,11 +4,12 @@
 //
 // Each vertex of the primitive's mesh lies on its surface and gets a label from the solid's set
 // (CsgProbe::label): kept with the primitive's normal, kept reversed (a difference's cut), or
-// dropped. Triangles are refined (red-green refinement, Bank et al. 1983: split in four, their
-// neighbours closed by halving so that the mesh stays conforming; every new vertex is moved onto
-// the exact surface) while one of these holds and the triangle is longer than the tolerance:
-// - its corners are kept and dropped alike but another primitive's tessellation passes through
-//   it farther than the tolerance from its edges (a hole or a cut inside one triangle);
+// dropped. Triangles are refined by longest-edge bisection (Rivara 1984: a triangle is halved at
+// its longest edge, and its neighbours are halved too so that the mesh stays conforming; shapes do
+// not degenerate, and long thin triangles are cut across; every new vertex is moved onto the
+// exact surface) while one of these holds and the triangle is longer than the tolerance:
+// - its corners are kept and dropped alike but other primitives' tessellations cross it over
+//   more than twice the tolerance (a hole, or a band, inside one triangle);
 // - another primitive's boundary crosses it, and the straight cut between the two edge crossings
 //   strays from the true crossing curve by more than the tolerance (measured at the cut's middle
 //   by bisection along the line from the lone corner);
@@ -42,10 +43,15 @@ struct TrimmedSurface {
   std::vector<Triangle> triangles;  // counter-clockwise seen from outside the set
 };
 
+struct TrimTolerances {
+  double cut_m = 0;         // the largest distance allowed between a cut and the true crossing
+  double mesh_m = 0;        // how far the primitive's mesh may stray from its surface
+  double boundaries_m = 0;  // how far the other primitives' tessellations may stray from theirs
+};
+
 // `mesh` is primitive `leaf`'s tessellation in its object space; `boundaries` holds every
-// primitive's closed tessellation in world space, tagged with its leaf index; `tolerance_m` is
-// the largest distance allowed between the cut and the true crossing.
+// primitive's closed tessellation in world space, tagged with its leaf index.
 TrimmedSurface trim_surface(const CsgProbe& probe, size_t leaf, const TriangleMesh& mesh,
-                            const TriangleBvh& boundaries, double tolerance_m);
+                            const TriangleBvh& boundaries, const TrimTolerances& tolerances);
 
 }  // namespace fb

@@ -238,7 +238,6 @@ JoinedSurface join_surfaces(const std::vector<SurfacePart>& parts, double tolera
   for (auto& [edge, along] : insertions)
     std::sort(along.begin(), along.end(),
               [](const Insertion& x, const Insertion& y) { return x.t < y.t; });
-  if (insertions.empty()) return out;
 
   // Each triangle with new vertices on its edges, as a fan: from the opposite corner when they
   // are on one edge, else from its centroid.

@@ -79,6 +79,10 @@ SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& 
     t = std::min(t, tessellation_tolerance_m(probe.leaf(i), options));
   }
   const double tolerance = std::isfinite(bounded) ? bounded : unbounded;
+  double coarsest = tolerance;  // of the primitives' tessellations
+  for (size_t i = 0; i < leaves; ++i)
+    if (object_bounds(probe.leaf(i)).finite())
+      coarsest = std::max(coarsest, tessellation_tolerance_m(probe.leaf(i), options));
 
   std::vector<TaggedTriangle> boundaries;
   for (size_t i = 0; i < leaves; ++i) {
@@ -94,7 +98,9 @@ SolidTessellation tessellate_csg(const Solid& solid, const TessellationOptions& 
     if (!probe.is_surface(i)) return;
     const TriangleMesh mesh = tessellate(probe.leaf(i), options);
     untessellated[i] = mesh.indices.empty();
-    parts[i].surface = trim_surface(probe, i, mesh, bvh, tolerance);
+    const TrimTolerances tolerances{tolerance, tessellation_tolerance_m(probe.leaf(i), options),
+                                    coarsest};
+    parts[i].surface = trim_surface(probe, i, mesh, bvh, tolerances);
     parts[i].leaf = uint32_t(i);
     parts[i].material = probe.leaf(i).material;
   });

@@ -208,8 +208,10 @@ void add_camera(tinygltf::Model& model, tinygltf::Node& node, const SceneCamera&
     out.type = "perspective";
     out.perspective.yfov = q.vertical_fov_deg * std::numbers::pi / 180;
     out.perspective.aspectRatio = aspect;
-    out.perspective.znear = p.clip_near_m;
-    if (std::isfinite(p.clip_far_m)) out.perspective.zfar = p.clip_far_m;
+    // glTF needs 0 < znear < zfar, and tinygltf always writes zfar: a camera that clips nothing
+    // (POV-Ray's) gets 1 mm and 1e9 m here; FILMBACK_blender keeps the exact clip_near_m.
+    out.perspective.znear = p.clip_near_m > 0 ? p.clip_near_m : 1e-3;
+    out.perspective.zfar = std::isfinite(p.clip_far_m) ? p.clip_far_m : 1e9;
   }
   static const char* kFits[] = {"auto", "horizontal", "vertical"};
   Value::Object ours{{"focal_length_mm", number(p.focal_length_mm)},
