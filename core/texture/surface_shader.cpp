@@ -44,6 +44,10 @@ float srgb_to_linear(float v) {
 }
 
 struct SurfaceShader::Textures {
+  // The cache is made and destroyed here, not left to the TextureSystem: a private cache that
+  // OpenImageIO 2.4 made itself leaked when an image was refused before any file was added to it
+  // (LeakSanitizer in the sanitized build, SurfaceShader.UnreadableEmbeddedImageIsAnErrorNamingIt).
+  OIIO::ImageCache* cache = nullptr;
   OIIO::TextureSystem* system = nullptr;
   struct Image {
     OIIO::TextureSystem::TextureHandle* handle = nullptr;
@@ -53,6 +57,7 @@ struct SurfaceShader::Textures {
   std::vector<std::unique_ptr<OIIO::Filesystem::IOMemReader>> readers;  // outlive the cache
   ~Textures() {
     if (system) OIIO::TextureSystem::destroy(system);
+    if (cache) OIIO::ImageCache::destroy(cache);
   }
 };
 
@@ -68,7 +73,8 @@ SurfaceShader::SurfaceShader(const Scene& scene, const Transform& world_from_ren
   if (std::find(used.begin(), used.end(), true) == used.end()) return;
 
   Textures& tx = *textures_;
-  tx.system = OIIO::TextureSystem::create(/*shared=*/false);
+  tx.cache = OIIO::ImageCache::create(/*shared=*/false);
+  tx.system = OIIO::TextureSystem::create(/*shared=*/false, tx.cache);
   // Untiled images (PNG, JPEG) are tiled and mip-mapped in the cache as they are read.
   tx.system->attribute("autotile", 64);
   tx.system->attribute("automip", 1);
