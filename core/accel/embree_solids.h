@@ -2,15 +2,32 @@
 // RenderSolid::first_hit intersects them exactly.
 #pragma once
 
+#include <optional>
+
 #include "core/accel/solid_intersect.h"
+#include "core/texture/surface_shader.h"
 
 typedef struct RTCDeviceTy* RTCDevice;  // <embree3/rtcore.h>
 typedef struct RTCSceneTy* RTCScene;
 
 namespace fb {
 
-// Attaches `solid` (which must outlive the scene) as geometry `id`: one user primitive whose
-// bounds are solid.bounds(), widened to the floats around them.
-void attach_solid(RTCDevice device, RTCScene scene, const RenderSolid& solid, unsigned id);
+// A solid as Embree's callbacks see it: the solid, and the shader that says whether a hit on a
+// partly transparent material counts. Both must outlive the Embree scene.
+struct EmbreeSolid {
+  const RenderSolid* solid;
+  const SurfaceShader* shader;
+};
+
+// The first hit after t_min that the hit material covers (SurfaceShader::covers, with a hash of
+// the hit position and the ray's direction), skipping the surfaces a partly transparent material
+// lets the ray through as Embree's filter skips them on meshes. Deterministic: the renderer
+// intersects again to fill a hit record.
+std::optional<SolidHit> first_covered_hit(const EmbreeSolid& solid, Vec3d origin, Vec3d direction,
+                                          double t_min);
+
+// Attaches `solid` as geometry `id`: one user primitive whose bounds are the solid's bounds(),
+// widened to the floats around them.
+void attach_solid(RTCDevice device, RTCScene scene, const EmbreeSolid& solid, unsigned id);
 
 }  // namespace fb

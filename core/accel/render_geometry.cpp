@@ -244,8 +244,9 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
         times.shutter_open() && scene.moves(instance.node_index, times.open_s, times.close_s);
     Mesh mesh = build_mesh(
         scene, instance,
-        moving ? motion_steps(scene, instance, render_from_world, times, tolerance)
-               : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())});
+        moving
+            ? motion_steps(scene, instance, render_from_world, times, tolerance)
+            : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())});
     moving_instances_ += moving;
     most_motion_steps_ = std::max(most_motion_steps_, mesh.step_count);
 
@@ -302,11 +303,13 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   }
   const Bounds3d reach = solid_reach(bounded);
   solids_.reserve(scene.solids.size());  // Embree keeps pointers to them
+  embree_solids_.reserve(scene.solids.size());
   for (const Solid& solid : scene.solids) {
     const RenderSolid& added = solids_.emplace_back(solid, render_from_world, reach);
+    const EmbreeSolid& attached = embree_solids_.emplace_back(EmbreeSolid{&added, shader_.get()});
     if (added.bounds().empty()) continue;
     if (added.bounded()) bounds_.extend(added.bounds());
-    attach_solid(embree_->device, embree_->scene, added,
+    attach_solid(embree_->device, embree_->scene, attached,
                  unsigned(meshes_.size() + solids_.size() - 1));
   }
   rtcCommitScene(embree_->scene);
@@ -376,9 +379,11 @@ SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive,
   const float b[3] = {1.f - u - v, u, v};
   SurfacePoint point;
   // At the first motion step: solid textures on moving meshes are not supported (only POV-Ray
-  // scenes have them, and nothing moves there).
-  point.position =
-      mesh.positions[tri[0]] * b[0] + mesh.positions[tri[1]] * b[1] + mesh.positions[tri[2]] * b[2];
+  // scenes have them, and nothing moves there). From the first corner along the edges, so that a
+  // coordinate all three corners share comes out exact: a plane at y = -1 tessellated from a
+  // POV-Ray scene must give its checker y = -1, not -1 - 1 ulp (the barycentric sum rounds).
+  const Vec3f p0 = mesh.positions[tri[0]];
+  point.position = p0 + (mesh.positions[tri[1]] - p0) * u + (mesh.positions[tri[2]] - p0) * v;
   const VertexTextureData& data = mesh.texturing;
   for (uint32_t set = 0; set < VertexTextureData::kSets && !data.texcoords[set].empty(); ++set) {
     const std::vector<Vec2f>& uv = data.texcoords[set];
@@ -397,29 +402,21 @@ SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive,
   return point;
 }
 
-// Embree's filter for materials with alpha (glTF "Alpha Coverage"): MASK drops hits below the
-// cutoff; BLEND keeps a hit with probability alpha (stochastic transparency, Enderton et al.
-// 2010), decided by a hash of the ray and the hit point so that a render stays deterministic.
+// Embree's filter for materials with alpha: SurfaceShader::covers decides, from a hash of the
+// primitive, the hit's barycentrics and the ray's direction.
 void RenderGeometry::alpha_filter(const RTCFilterFunctionNArguments* args) {
   const Mesh& mesh = *static_cast<const Mesh*>(args->geometryUserPtr);
-  const Material& material = mesh.shader->material(mesh.material);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    const float alpha = mesh.shader->alpha(mesh.material, surface_point(mesh, primitive, u, v));
-    bool keep;
-    if (material.alpha_mode == AlphaMode::kMask) {
-      keep = alpha >= material.alpha_cutoff;
-    } else {
-      const auto bits = [](float f) { return uint64_t(std::bit_cast<uint32_t>(f)); };
-      const uint64_t h = pcg_hash(uint64_t(primitive) << 32 | bits(u),
-                                  bits(v) << 32 | bits(RTCRayN_dir_x(args->ray, args->N, i)),
-                                  bits(RTCRayN_dir_y(args->ray, args->N, i)) << 32 |
-                                      bits(RTCRayN_dir_z(args->ray, args->N, i)));
-      keep = float(h >> 40) * 0x1p-24f < alpha;
-    }
-    if (!keep) args->valid[i] = 0;
+    const auto bits = [](float f) { return uint64_t(std::bit_cast<uint32_t>(f)); };
+    const uint64_t hash = pcg_hash(uint64_t(primitive) << 32 | bits(u),
+                                   bits(v) << 32 | bits(RTCRayN_dir_x(args->ray, args->N, i)),
+                                   bits(RTCRayN_dir_y(args->ray, args->N, i)) << 32 |
+                                       bits(RTCRayN_dir_z(args->ray, args->N, i)));
+    if (!mesh.shader->covers(mesh.material, surface_point(mesh, primitive, u, v), hash))
+      args->valid[i] = 0;
   }
 }
 
@@ -522,8 +519,9 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
 }
 
 bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit) const {
-  const auto found = solids_[id - meshes_.size()].first_hit(Vec3d(Vec3f(ray.origin)),
-                                                            Vec3d(Vec3f(ray.direction)), ray.t_min);
+  const auto found =
+      first_covered_hit(embree_solids_[id - meshes_.size()], Vec3d(Vec3f(ray.origin)),
+                        Vec3d(Vec3f(ray.direction)), ray.t_min);
   if (!found) return false;  // cannot happen: Embree's hit came from the same computation
   hit.t = float(found->t);
   Vec3f(found->position).store(hit.position);

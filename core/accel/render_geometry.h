@@ -23,6 +23,7 @@ struct RTCFilterFunctionNArguments;  // <embree3/rtcore.h>
 namespace fb {
 
 class RenderSolid;
+struct EmbreeSolid;
 
 struct EmissiveTriangle {
   Vec3f p0, p1, p2;
@@ -86,9 +87,10 @@ class RenderGeometry {
   float embree_time(float time_s) const;
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
                   const std::vector<Transform>& render_from_object_steps);
-  std::unique_ptr<SurfaceShader> shader_;  // materials' textures, evaluated at each hit
-  std::vector<Mesh> meshes_;               // indexed by Embree geometry ID
-  std::vector<RenderSolid> solids_;        // Embree geometry IDs from meshes_.size() on
+  std::unique_ptr<SurfaceShader> shader_;   // materials' textures, evaluated at each hit
+  std::vector<Mesh> meshes_;                // indexed by Embree geometry ID
+  std::vector<RenderSolid> solids_;         // Embree geometry IDs from meshes_.size() on
+  std::vector<EmbreeSolid> embree_solids_;  // what Embree's callbacks see of each solid
   std::vector<EmissiveTriangle> emitters_;
   Bounds3d bounds_;  // of every vertex at every motion step
   Vec3f centre_;

@@ -16,13 +16,11 @@ namespace fb {
 struct SolidColour {
   Rgb rgb{0.f, 0.f, 0.f};
   float filter = 0.f, transmit = 0.f;
-  bool operator==(const SolidColour&) const = default;
 };
 
 struct SolidColourStop {
   float value = 0.f;  // in [0, 1], non-decreasing along the map
   SolidColour colour;
-  bool operator==(const SolidColourStop&) const = default;
 };
 
 enum class SolidPatternKind {

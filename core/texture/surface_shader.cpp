@@ -230,4 +230,12 @@ float SurfaceShader::alpha(uint32_t index, const SurfacePoint& point) const {
   return a;
 }
 
+bool SurfaceShader::covers(uint32_t index, const SurfacePoint& point, uint64_t hit_hash) const {
+  const Material& m = materials_[index];
+  if (m.alpha_mode == AlphaMode::kOpaque) return true;
+  const float a = alpha(index, point);
+  if (m.alpha_mode == AlphaMode::kMask) return a >= m.alpha_cutoff;
+  return float(hit_hash >> 40) * 0x1p-24f < a;  // the top 24 bits: a uniform float in [0, 1)
+}
+
 }  // namespace fb

@@ -45,7 +45,11 @@ class SurfaceShader {
   bool has_alpha(uint32_t material) const {
     return materials_[material].alpha_mode != AlphaMode::kOpaque;
   }
-  const Material& material(uint32_t index) const { return materials_[index]; }
+  // Whether a hit at `point` counts (glTF "Alpha Coverage"): MASK keeps it when alpha reaches the
+  // cutoff, BLEND with probability alpha (stochastic transparency, Enderton et al. 2010), decided
+  // by `hit_hash`, a hash of the ray and the hit, so that a render stays deterministic. Meshes
+  // ask it in Embree's filter, analytic solids for each surface they cross.
+  bool covers(uint32_t material, const SurfacePoint& point, uint64_t hit_hash) const;
 
  private:
   // RGBA of texture `ref` at the point; `srgb` decodes the colour channels.

@@ -77,9 +77,10 @@ Light read_povray_light(const Fields& f) {
   l.fade_power = f.number("fade_power", -kLargest, kLargest).value_or(0.0);
   if (l.type == LightType::kSpot) {
     l.spot_falloff = SpotFalloff::kPov;
-    // POV-Ray's defaults: radius 30 degrees, falloff 45, tightness 0.
-    l.spot_inner_angle_rad = f.number("spot_radius_rad", 0, kPi).value_or(kPi / 6);
-    l.spot_outer_angle_rad = f.number("spot_falloff_rad", 0, kPi).value_or(kPi / 4);
+    // POV-Ray's defaults: radius 30 degrees, falloff 45, tightness 0. It takes their cosines,
+    // so any angle is one (scenes write falloff 250).
+    l.spot_inner_angle_rad = f.number("spot_radius_rad", -kLargest, kLargest).value_or(kPi / 6);
+    l.spot_outer_angle_rad = f.number("spot_falloff_rad", -kLargest, kLargest).value_or(kPi / 4);
     l.spot_tightness = f.number("spot_tightness", -kLargest, kLargest).value_or(0.0);
   }
   l.casts_shadows = !f.flag("shadowless").value_or(false);

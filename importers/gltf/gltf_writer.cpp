@@ -162,10 +162,10 @@ void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light)
       ours["type"] = Value(std::string(light.type == LightType::kPoint ? "POINT" : "SPOT"));
       ours["energy_w"] = number(peak * 4 * kPi);
       ours["radius_m"] = number(light.radius_m);
-      // KHR_lights_punctual: 0 <= inner < outer <= pi / 2 (POV-Ray's falloff may reach pi).
-      out.spot.outerConeAngle = std::min(light.spot_outer_angle_rad, kPi / 2);
+      // KHR_lights_punctual: 0 <= inner < outer <= pi / 2 (POV-Ray's falloff may exceed it).
+      out.spot.outerConeAngle = std::clamp(light.spot_outer_angle_rad, 1e-6, kPi / 2);
       out.spot.innerConeAngle =
-          std::min(light.spot_inner_angle_rad, 0.999 * out.spot.outerConeAngle);
+          std::clamp(light.spot_inner_angle_rad, 0.0, 0.999 * out.spot.outerConeAngle);
       if (light.type == LightType::kSpot) {
         ours["spot_size_rad"] = number(2 * light.spot_outer_angle_rad);
         ours["spot_blend"] = number(light.spot_blend);
