@@ -18,7 +18,11 @@ CameraInstance::CameraInstance(std::shared_ptr<const PluginLibrary> library,
                        return library->api<fb_camera_api>().create(params.data(), &setup, out,
                                                                    error);
                      }),
-      api_(library->api<fb_camera_api>()) {}
+      api_(library->api<fb_camera_api>()) {
+  // Asked once, under the guard: the render plans its samples from it before the first pixel.
+  const PluginCrashGuard guard(library->file(), "needs()");
+  needs_ = api_.needs(instance());
+}
 
 FilterInstance::FilterInstance(std::shared_ptr<const PluginLibrary> library,
                                const BoundParams& params)
@@ -26,7 +30,11 @@ FilterInstance::FilterInstance(std::shared_ptr<const PluginLibrary> library,
                      [&](void** out, fb_error_buffer error) {
                        return library->api<fb_filter_api>().create(params.data(), out, error);
                      }),
-      api_(library->api<fb_filter_api>()) {}
+      api_(library->api<fb_filter_api>()) {
+  // Asked once, under the guard: the film and the tiles are sized from it before the first pixel.
+  const PluginCrashGuard guard(library->file(), "radius()");
+  api_.radius(instance(), radius_px_.data());
+}
 
 IntegratorInstance::IntegratorInstance(std::shared_ptr<const PluginLibrary> library,
                                        const BoundParams& params)

@@ -2,6 +2,7 @@
 // C ABI and destroys it on the way out. The render talks to plugins only through these.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <span>
 #include <string>
@@ -48,19 +49,22 @@ class CameraInstance : public PluginInstance {
  public:
   CameraInstance(std::shared_ptr<const PluginLibrary> library, const BoundParams& params,
                  const fb_camera_setup& setup);
-  uint32_t needs() const { return api_.needs(instance()); }
+  uint32_t needs() const { return needs_; }
   void generate_rays(std::span<const fb_camera_sample> samples, fb_camera_ray* rays) const {
     api_.generate_rays(instance(), samples.data(), samples.size(), rays);
   }
 
  private:
   const fb_camera_api& api_;
+  uint32_t needs_ = 0;
 };
 
 class FilterInstance : public PluginInstance {
  public:
   FilterInstance(std::shared_ptr<const PluginLibrary> library, const BoundParams& params);
-  void radius(float radius_px[2]) const { api_.radius(instance(), radius_px); }
+  void radius(float radius_px[2]) const {
+    radius_px[0] = radius_px_[0], radius_px[1] = radius_px_[1];
+  }
   float evaluate(float x, float y) const { return api_.evaluate(instance(), x, y); }
   double integral() const { return api_.integral(instance()); }
   void sample(std::span<const float> u, fb_filter_sample* samples) const {
@@ -69,6 +73,7 @@ class FilterInstance : public PluginInstance {
 
  private:
   const fb_filter_api& api_;
+  std::array<float, 2> radius_px_{};
 };
 
 class IntegratorInstance : public PluginInstance {

@@ -95,6 +95,11 @@ static void destroy(void* self) {
 
 static void radius(const void* self, float radius_px[2]) {
   (void)self;
+#ifdef DEFECT_RADIUS_CRASHES
+  /* DEFECT_RADIUS_CRASHES: create() succeeds, radius() faults, before any pixel is rendered. */
+  volatile uintptr_t stray = 16;
+  *(volatile int*)stray = 1;
+#endif
   radius_px[0] = radius_px[1] = 0.5f;
 }
 

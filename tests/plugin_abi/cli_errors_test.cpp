@@ -143,9 +143,10 @@ TEST_P(RenderWithPluginTest, FailsNamingTheFileAndWritesNothing) {
   EXPECT_FALSE(fs::exists(image));
 }
 
-// A plugin that faults in create() or while its descriptor is read takes the process down with
-// it; filmback reports it naming the file and what was running, exits with status 1 and writes
-// nothing (core/plugin/crash_guard.h). The signal's name ends the message.
+// A plugin that faults in create(), in radius() (asked once, before the render) or while its
+// descriptor is read takes the process down with it; filmback reports it naming the file and
+// what was running, exits with status 1 and writes nothing (core/plugin/crash_guard.h). The
+// signal's name ends the message.
 TEST(RenderWithPlugin, CrashingPluginIsReportedNamingTheFile) {
   const struct {
     const char* option;
@@ -153,6 +154,7 @@ TEST(RenderWithPlugin, CrashingPluginIsReportedNamingTheFile) {
     const char* doing;
   } cases[] = {
       {"--filter crashcreate", kCrashPlugins / "libfilmback_filter_crashcreate.so", "create()"},
+      {"--filter crashradius", kCrashPlugins / "libfilmback_filter_crashradius.so", "radius()"},
       {"--filter crashdescriptor", kCrashPlugins / "libfilmback_filter_crashdescriptor.so",
        "filmback_plugin_v1() or the descriptor it returned"}};
   for (const auto& c : cases) {
