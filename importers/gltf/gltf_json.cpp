@@ -17,6 +17,19 @@ std::string out_of_range(const char* what, long index, size_t count, const char*
          std::to_string(count) + " " + array + ")";
 }
 
+tinygltf::Value number_array(std::initializer_list<double> values) {
+  tinygltf::Value::Array array;
+  for (double v : values)
+    array.emplace_back(v);
+  return tinygltf::Value(std::move(array));
+}
+tinygltf::Value number_array(Vec3d v) {
+  return number_array({v.x, v.y, v.z});
+}
+tinygltf::Value number_array(Rgb c) {
+  return number_array({c.x, c.y, c.z});
+}
+
 namespace {
 const tinygltf::Value kNoMembers;
 

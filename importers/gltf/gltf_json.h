@@ -1,8 +1,10 @@
 // Reading glTF's JSON (tinygltf::Value) with errors that name the file, the JSON path of the value
 // and what was expected: the one reader every part of the importer uses for extensions and extras.
+// And writing its arrays of numbers, for the writer and the extensions' writers.
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +22,11 @@ std::string index_path(const char* array, size_t i);
 
 // "mesh index 5 is out of range (the file has 1 meshes)": what was found and what was expected.
 std::string out_of_range(const char* what, long index, size_t count, const char* array);
+
+// A JSON array of these numbers; of a vector's or a colour's three components.
+tinygltf::Value number_array(std::initializer_list<double> values);
+tinygltf::Value number_array(Vec3d v);
+tinygltf::Value number_array(Rgb c);
 
 // The members of one JSON object (anything else reads as an object without members). Each getter
 // returns nothing for an absent member and throws InputError at `path.key` for a present one of

@@ -14,10 +14,6 @@ using tinygltf::Value;
 constexpr double kMaxGrid = 4096;
 constexpr double kLargest = 1e12;
 
-Value vec3(Vec3d v) {
-  return Value(Value::Array{Value(v.x), Value(v.y), Value(v.z)});
-}
-
 Vec3d read_axis(const Fields& f, const char* key) {
   const auto v = f.numbers(key, 3, -kLargest, kLargest);
   if (!v || v->size() != 3)
@@ -33,10 +29,8 @@ bool is_povray_light(const Light& light) {
 
 tinygltf::Value povray_light_json(const Light& l) {
   static const char* kTypes[] = {"point", "spot", "parallel"};
-  Value::Object o{
-      {"type", Value(std::string(kTypes[int(l.type)]))},
-      {"intensity", Value(Value::Array{Value(double(l.intensity.x)), Value(double(l.intensity.y)),
-                                       Value(double(l.intensity.z))})}};
+  Value::Object o{{"type", Value(std::string(kTypes[int(l.type)]))},
+                  {"intensity", number_array(l.intensity)}};
   if (l.fade_power != 0) {
     o["fade_distance_m"] = Value(l.fade_distance_m);
     o["fade_power"] = Value(l.fade_power);
@@ -48,8 +42,8 @@ tinygltf::Value povray_light_json(const Light& l) {
   }
   if (!l.casts_shadows) o["shadowless"] = Value(true);
   if (l.area_size1 * l.area_size2 > 1)
-    o["area_light"] = Value(Value::Object{{"axis1", vec3(l.area_axis1)},
-                                          {"axis2", vec3(l.area_axis2)},
+    o["area_light"] = Value(Value::Object{{"axis1", number_array(l.area_axis1)},
+                                          {"axis2", number_array(l.area_axis2)},
                                           {"size1", Value(int(l.area_size1))},
                                           {"size2", Value(int(l.area_size2))},
                                           {"circular", Value(l.area_circular)},

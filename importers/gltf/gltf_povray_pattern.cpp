@@ -56,18 +56,8 @@ E value_of(const std::pair<E, const char*> (&table)[N], const Fields& f, const c
   f.fail(key, "'" + *word + "' is not one of " + names);
 }
 
-Value numbers(std::initializer_list<double> values) {
-  Value::Array array;
-  for (double v : values)
-    array.emplace_back(v);
-  return Value(std::move(array));
-}
-Value vec3(Vec3d v) {
-  return numbers({v.x, v.y, v.z});
-}
-
 Value::Object colour_json(const SolidColour& c) {
-  Value::Object o{{"colour", numbers({c.rgb.x, c.rgb.y, c.rgb.z})}};
+  Value::Object o{{"colour", number_array(c.rgb)}};
   if (c.filter != 0) o["filter"] = Value(double(c.filter));
   if (c.transmit != 0) o["transmit"] = Value(double(c.transmit));
   return o;
@@ -172,7 +162,7 @@ tinygltf::Value pattern_json(const SolidPattern& p) {
         m.emplace_back(p.pattern_from_world(r, c));
     o["pattern_from_world"] = Value(std::move(m));
   }
-  if (!same(p.turbulence, d.turbulence)) o["turbulence"] = vec3(p.turbulence);
+  if (!same(p.turbulence, d.turbulence)) o["turbulence"] = number_array(p.turbulence);
   if (p.octaves != d.octaves) o["octaves"] = Value(p.octaves);
   if (p.omega != d.omega) o["omega"] = Value(p.omega);
   if (p.lambda != d.lambda) o["lambda"] = Value(p.lambda);
@@ -180,8 +170,8 @@ tinygltf::Value pattern_json(const SolidPattern& p) {
   if (p.phase != d.phase) o["phase"] = Value(p.phase);
   if (p.wave != d.wave) o["wave"] = Value(std::string(name_of(kWaves, p.wave)));
   if (p.wave_exponent != d.wave_exponent) o["wave_exponent"] = Value(p.wave_exponent);
-  if (!same(p.gradient, d.gradient)) o["gradient"] = vec3(p.gradient);
-  if (!same(p.brick_size, d.brick_size)) o["brick_size"] = vec3(p.brick_size);
+  if (!same(p.gradient, d.gradient)) o["gradient"] = number_array(p.gradient);
+  if (!same(p.brick_size, d.brick_size)) o["brick_size"] = number_array(p.brick_size);
   if (p.mortar != d.mortar) o["mortar"] = Value(p.mortar);
   if (p.spiral_arms != d.spiral_arms) o["spiral_arms"] = Value(p.spiral_arms);
   if (p.agate_turbulence != d.agate_turbulence) o["agate_turbulence"] = Value(p.agate_turbulence);

@@ -26,15 +26,6 @@ constexpr double kLumensPerWatt = 683;
 Value number(double v) {
   return Value(v);
 }
-Value numbers(std::initializer_list<double> values) {
-  Value::Array array;
-  for (double v : values)
-    array.emplace_back(v);
-  return Value(std::move(array));
-}
-Value rgb(Rgb c) {
-  return numbers({c.x, c.y, c.z});
-}
 
 // Appends `bytes` to the one buffer, aligned to 4 bytes; returns its buffer view.
 int add_view(tinygltf::Model& model, const void* bytes, size_t size, int target) {
@@ -122,7 +113,7 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   Rgb viewed = m.base_color;
   if (m.base_color_pattern) viewed = viewed * gltf::mean_colour(*m.base_color_pattern).rgb;
   if (m.base_color_pattern || max_component(m.base_color) > 1) {
-    Value::Object ours{{"base_color_factor", rgb(m.base_color)}};
+    Value::Object ours{{"base_color_factor", gltf::number_array(m.base_color)}};
     if (m.base_color_pattern) ours["pigment"] = gltf::pattern_json(*m.base_color_pattern);
     out.extensions["FILMBACK_povray"] = Value(std::move(ours));
     out.pbrMetallicRoughness.baseColorFactor = {std::min(viewed.x, 1.f), std::min(viewed.y, 1.f),
@@ -154,7 +145,7 @@ void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light)
   const Rgb colour = peak > 0 ? light.intensity * float(1 / peak) : Rgb(1.f, 1.f, 1.f);
   out.color = {colour.x, colour.y, colour.z};
   out.intensity = peak * kLumensPerWatt;
-  Value::Object ours{{"color", rgb(colour)}};
+  Value::Object ours{{"color", gltf::number_array(colour)}};
   switch (light.type) {
     case LightType::kPoint:
     case LightType::kSpot:
@@ -241,7 +232,7 @@ Value::Object scene_settings(const Scene& scene, uint32_t width_px, uint32_t hei
                     {"pixel_aspect_x", number(s.pixel_aspect.value_or(1.0))},
                     {"pixel_aspect_y", number(1)},
                     {"film_exposure", number(s.film_exposure)},
-                    {"world_color", rgb(scene.background)},
+                    {"world_color", gltf::number_array(scene.background)},
                     {"world_strength", number(1)}};
   if (s.fps) out["fps"] = number(*s.fps);
   if (s.frame) out["frame"] = number(*s.frame);

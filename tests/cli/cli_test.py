@@ -7,7 +7,6 @@ Run: cli_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints
 (CMake registers one CTest test per case from it).
 """
 
-import argparse
 import math
 import json
 import os
@@ -19,9 +18,10 @@ import tempfile
 import unittest
 from pathlib import Path
 
+import case_main
 from gltf_files import FLOAT, TRIANGLE, UNSIGNED_BYTE, Gltf, png_1x1_uri, triangle_scene
 
-FILMBACK = None  # set by main()
+FILMBACK = None  # set by configure()
 SCRATCH = None
 TINY = ["--res", "16x16", "--spp", "1", "-q"]
 INPUT, USAGE = 1, 2
@@ -685,25 +685,10 @@ class CliTest(unittest.TestCase):
         self.assertEqual(png_size(self.out / "image.png"), (8, 8))
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--filmback", help="the filmback executable")
-    parser.add_argument("--scratch", help="folder for the test files (created)")
-    parser.add_argument("--list", action="store_true", help="print the case names and exit")
-    args, rest = parser.parse_known_args()
-    if args.list:
-        for name in unittest.defaultTestLoader.getTestCaseNames(CliTest):
-            print(name[len("test_"):])
-        return 0
-    if not args.filmback or not args.scratch:
-        parser.error("--filmback and --scratch are required")
+def configure(args):
     global FILMBACK, SCRATCH
     FILMBACK, SCRATCH = args.filmback, args.scratch
-    os.makedirs(SCRATCH, exist_ok=True)
-    names = ["CliTest.test_" + n if not n.startswith("CliTest.") else n for n in rest]
-    program = unittest.main(module=__name__, argv=[sys.argv[0], "-v", *names], exit=False)
-    return 0 if program.result.wasSuccessful() else 1
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(case_main.main(CliTest, __doc__, configure))

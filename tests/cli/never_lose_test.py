@@ -10,7 +10,6 @@ Run: never_lose_test.py --filmback BIN --scratch DIR [unittest names...]; --list
 names (CMake registers one CTest test per case from it).
 """
 
-import argparse
 import json
 import os
 import re
@@ -24,7 +23,9 @@ import time
 import unittest
 from pathlib import Path
 
-FILMBACK = None  # set by main()
+import case_main
+
+FILMBACK = None  # set by configure()
 SCRATCH = None
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
 # Long enough to be interrupted (tens of seconds at full speed), small enough to write at once.
@@ -246,25 +247,11 @@ class InterruptTest(unittest.TestCase):
         self.assertFalse((self.dir / "no.exr").exists())
 
 
-def main():
+def configure(args):
     global FILMBACK, SCRATCH
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--filmback")
-    parser.add_argument("--scratch")
-    parser.add_argument("--list", action="store_true")
-    args, rest = parser.parse_known_args()
-    cases = [name[len("test_"):] for name in dir(InterruptTest) if name.startswith("test_")]
-    if args.list:
-        print("\n".join(cases))
-        return 0
     FILMBACK = str(Path(args.filmback).resolve())
     SCRATCH = Path(args.scratch).resolve()
-    SCRATCH.mkdir(parents=True, exist_ok=True)
-    names = ["InterruptTest.test_" + c for c in rest] or None
-    suite = unittest.defaultTestLoader.loadTestsFromNames(names or ["InterruptTest"],
-                                                          sys.modules[__name__])
-    return 0 if unittest.TextTestRunner(verbosity=2).run(suite).wasSuccessful() else 1
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(case_main.main(InterruptTest, __doc__, configure))

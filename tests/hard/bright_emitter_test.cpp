@@ -25,45 +25,25 @@ std::vector<Vec3d> square(const Scene& scene, const std::string& node) {
   return corners;
 }
 
-struct FloorError {
-  double worst = 0, mean = 0;
-};
-
 // Pixels that see only the floor (y = 0, within x < 1.5 m, away from the plate) against
 // rho / pi (E_panel + E_tile), Lambert's polygon irradiance averaged over the pixel (box filter).
 // Light sampling picks the panel once in 401 (by power), so its share is the noisy one: at 256
 // samples a pixel is within about 1.5 %.
-FloorError floor_error(const Scene& scene, const Image& image) {
+test::PixelError floor_error(const Scene& scene, const Image& image) {
   const double rho = scene.materials.at(0).base_color.x;
   const std::vector<Vec3d> panel = square(scene, "panel"), tile = square(scene, "tile");
   const double panel_l = scene.materials.at(1).emission.x,
                tile_l = scene.materials.at(2).emission.x;
-  FloorError e;
-  size_t pixels = 0;
-  constexpr int n = 4;
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = 0; x < image.width; ++x) {
-      double expected = 0;
-      bool on_floor = true;
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          const test::WorldRay r = test::pixel_ray(scene.cameras.at(0), image.width, image.height,
-                                                   x + (i + 0.5) / n, y + (j + 0.5) / n);
-          const double t = -r.origin.y / r.direction.y;
-          const Vec3d p = r.origin + r.direction * t;
-          on_floor = on_floor && t > 0 && p.x > -3 && p.x < 1.5 && std::abs(p.z) < 3;
-          expected += test::polygon_irradiance(panel, panel_l, p, {0, 1, 0}) +
-                      test::polygon_irradiance(tile, tile_l, p, {0, 1, 0});
-        }
-      if (!on_floor) continue;
-      expected *= rho / kPi / (n * n);
-      const double relative = image.at(x, y, 0) / expected - 1;
-      e.worst = std::max(e.worst, std::abs(relative));
-      e.mean += relative;
-      ++pixels;
-    }
-  e.mean /= double(pixels);
-  return e;
+  const auto on_floor = [](const test::WorldRay& r) -> std::optional<Vec3d> {
+    const double t = -r.origin.y / r.direction.y;
+    const Vec3d p = r.origin + r.direction * t;
+    if (t > 0 && p.x > -3 && p.x < 1.5 && std::abs(p.z) < 3) return p;
+    return std::nullopt;
+  };
+  return test::footprint_error(scene, image, 0, 4, rho / kPi, on_floor, [&](Vec3d p) {
+    return test::polygon_irradiance(panel, panel_l, p, {0, 1, 0}) +
+           test::polygon_irradiance(tile, tile_l, p, {0, 1, 0});
+  });
 }
 
 bool all_finite(const Image& image) {
@@ -73,10 +53,7 @@ bool all_finite(const Image& image) {
 }
 
 RenderOptions options(const char* integrator, uint64_t seed, uint32_t spp = 64) {
-  RenderOptions o;
-  o.samples_per_pixel = spp;
-  o.filter = "box";
-  o.integrator = integrator;
+  RenderOptions o = test::box_filtered(spp, integrator);
   o.seed = seed;
   return o;
 }
@@ -85,7 +62,7 @@ TEST(BrightEmitter, NothingTurnsNonFiniteAndDirectLightIsUnbiased) {
   const Scene scene = test::load_hard_scene("bright_emitter.gltf");
   const test::TimedRender r = test::render_timed(scene, options("path:max_depth=1", 0, 256));
   EXPECT_TRUE(all_finite(r.result.image));
-  const FloorError e = floor_error(scene, r.result.image);
+  const test::PixelError e = floor_error(scene, r.result.image);
   const uint64_t non_finite = r.result.stats.dropped_samples;
   report_case("bright emitter, worst pixel", non_finite, e.worst, 0.03,
               "worst |floor pixel / rho/pi (E_panel + E_tile) - 1|", r.seconds);

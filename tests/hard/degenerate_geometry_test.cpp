@@ -39,53 +39,26 @@ double point_light_irradiance(const Scene& scene, Vec3d p) {
 }
 
 // Each pixel whose footprint lies on the 2 x 2 m square at z = -3 against rho / pi times the
-// irradiance `irradiance(p)` averaged over the footprint (box filter, 4 x 4 points): the worst
-// relative error of channel c, and the mean relative error (signed: a bias).
-struct SquareError {
-  double worst = 0, mean = 0;
-};
-
-template <typename Irradiance>
-SquareError error_on_the_square(const Scene& scene, const Image& image, size_t c, double rho,
-                                const Irradiance& irradiance) {
-  SquareError e;
-  size_t pixels = 0;
-  constexpr int n = 4;
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = 0; x < image.width; ++x) {
-      double expected = 0;
-      bool inside = true;
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          const test::WorldRay r = test::pixel_ray(scene.cameras.at(0), image.width, image.height,
-                                                   x + (i + 0.5) / n, y + (j + 0.5) / n);
-          const Vec3d p = r.origin + r.direction * ((-3 - r.origin.z) / r.direction.z);
-          inside = inside && std::abs(p.x) < 1 && std::abs(p.y) < 1;
-          expected += irradiance(p);
-        }
-      if (!inside) continue;
-      expected *= rho / kPi / (n * n);
-      const double relative = image.at(x, y, c) / expected - 1;
-      e.worst = std::max(e.worst, std::abs(relative));
-      e.mean += relative;
-      ++pixels;
-    }
-  e.mean /= double(pixels);
-  return e;
+// irradiance `irradiance(p)` averaged over the footprint (box filter, 4 x 4 points), in channel c.
+test::PixelError error_on_the_square(const Scene& scene, const Image& image, size_t c, double rho,
+                                     const std::function<double(Vec3d)>& irradiance) {
+  const auto on_square = [](const test::WorldRay& r) -> std::optional<Vec3d> {
+    const Vec3d p = r.origin + r.direction * ((-3 - r.origin.z) / r.direction.z);
+    if (std::abs(p.x) < 1 && std::abs(p.y) < 1) return p;
+    return std::nullopt;
+  };
+  return test::footprint_error(scene, image, c, 4, rho / kPi, on_square, irradiance);
 }
 
 TEST(DegenerateTriangles, LeaveNoTraceAndTheRestRendersItsAnalyticRadiance) {
   const Scene scene = test::load_hard_scene("degenerate_triangles.gltf");
-  RenderOptions options;
-  options.samples_per_pixel = 256;
-  options.filter = "box";
-  options.integrator = "path:max_depth=1";
-  const test::TimedRender r = test::render_timed(scene, options);
+  const test::TimedRender r =
+      test::render_timed(scene, test::box_filtered(256, "path:max_depth=1"));
   // The lamp: its one proper triangle (the others have no area) of radiance L, by Lambert's
   // formula; the bulb by the inverse-square law.
   const std::vector<Vec3d> lamp = corners(scene, "lamp", 1);
   const double radiance = scene.materials.at(1).emission.x;
-  const SquareError e = error_on_the_square(
+  const test::PixelError e = error_on_the_square(
       scene, r.result.image, 1, scene.materials.at(0).base_color.x, [&](Vec3d p) {
         return point_light_irradiance(scene, p) +
                test::polygon_irradiance(lamp, radiance, p, {0, 0, 1});
@@ -100,10 +73,7 @@ TEST(DegenerateTriangles, LeaveNoTraceAndTheRestRendersItsAnalyticRadiance) {
 
 TEST(CoincidentSurfaces, RenderDeterministicallyAndEitherReflectsItsAnalyticRadiance) {
   const Scene scene = test::load_hard_scene("coincident_surfaces.gltf");
-  RenderOptions options;
-  options.samples_per_pixel = 16;
-  options.filter = "box";
-  options.integrator = "path:max_depth=1";
+  const RenderOptions options = test::box_filtered(16, "path:max_depth=1");
   test::TimedRender runs[2];
   for (int threads : {1, 2}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));

@@ -32,11 +32,7 @@ void check_markers(const char* file, double expected_fov_deg) {
   const double tan_half_x = camera.physical.sensor_width_mm / (2 * camera.physical.focal_length_mm);
   const double fov_deg = 2 * std::atan(tan_half_x) * 180 / std::numbers::pi;
   EXPECT_NEAR(fov_deg, expected_fov_deg, 0.01) << file;
-  RenderOptions options;
-  options.samples_per_pixel = 64;
-  options.filter = "box";
-  options.integrator = "path:max_depth=0";
-  const test::TimedRender r = test::render_timed(scene, options);
+  const test::TimedRender r = test::render_timed(scene, test::box_filtered(64, "path:max_depth=0"));
   const std::vector<test::Blob> blobs = test::find_blobs(r.result.image, 1e-3);
   const Transform camera_from_world = camera.world_from_camera.inverse();
   double worst = 0;

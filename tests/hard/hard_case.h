@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <string>
 
 #include <filmback/vec.h>
@@ -23,6 +25,10 @@ struct TimedRender {
   double seconds = 0;
 };
 TimedRender render_timed(const Scene& scene, RenderOptions options);
+
+// Options for comparing pixels with an analytic radiance averaged over their footprint: a box
+// filter (each pixel the plain mean of its samples), `samples_per_pixel`, `integrator`.
+RenderOptions box_filtered(uint32_t samples_per_pixel, const std::string& integrator);
 
 // Prints `[ hard ] CASE: non-finite N, error E (limit L, what), T s`, records the three numbers as
 // test properties, and fails the test unless N == 0 and E <= L.
@@ -46,6 +52,18 @@ struct WorldRay {
   Vec3d origin, direction;
 };
 WorldRay pixel_ray(const SceneCamera& camera, uint32_t width, uint32_t height, double x, double y);
+
+// How far the pixels that see a diffuse plane are from its analytic radiance. Each pixel is traced
+// at n x n points of its footprint (box filter) through the scene's first camera; where
+// `on_plane(ray)` gives the point each ray meets the plane (nothing: the pixel is left out), its
+// channel c is compared with `scale` times the mean of `radiance(point)` over them. The worst
+// |pixel / expected - 1| and the mean of pixel / expected - 1 (signed: a bias).
+struct PixelError {
+  double worst = 0, mean = 0;
+};
+PixelError footprint_error(const Scene& scene, const Image& image, size_t c, int n, double scale,
+                           const std::function<std::optional<Vec3d>(const WorldRay&)>& on_plane,
+                           const std::function<double(Vec3d)>& radiance);
 
 // Where a world point projects on that camera's raster (the pinhole formula).
 Vec2d project(const SceneCamera& camera, uint32_t width, uint32_t height, Vec3d world);

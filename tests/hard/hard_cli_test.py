@@ -7,15 +7,14 @@ Run: hard_cli_test.py --filmback BIN --scratch DIR [case names...]; --list print
 (CMake registers one CTest test per case, label `hard`).
 """
 
-import argparse
 import os
 import subprocess
 import sys
 import time
-import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "cli"))
+import case_main  # noqa: E402
 import cli_test  # noqa: E402
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes" / "hard"
@@ -96,25 +95,9 @@ class HardCliTest(cli_test.CliTest):
             self.assertLessEqual(peak - base, bound)
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--filmback", help="the filmback executable")
-    parser.add_argument("--scratch", help="folder for the test files (created)")
-    parser.add_argument("--list", action="store_true", help="print the case names and exit")
-    args, rest = parser.parse_known_args()
-    own = sorted(n for n in vars(HardCliTest) if n.startswith("test_"))
-    if args.list:
-        print("\n".join(n[len("test_"):] for n in own))
-        return 0
-    if not args.filmback or not args.scratch:
-        parser.error("--filmback and --scratch are required")
+def configure(args):
     cli_test.FILMBACK, cli_test.SCRATCH = args.filmback, args.scratch
-    os.makedirs(args.scratch, exist_ok=True)
-    names = ["test_" + n for n in rest] or own
-    suite = unittest.TestSuite(HardCliTest(name) for name in names)
-    result = unittest.TextTestRunner(verbosity=2).run(suite)
-    return 0 if result.wasSuccessful() else 1
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(case_main.main(HardCliTest, __doc__, configure))

@@ -160,43 +160,29 @@ TEST(SelfIntersection, WithoutErrorBoundsTheSameRaysShowAcne) {
 
 // Rendered: the floor's radiance is L = rho / pi * I cos(theta) / d^2 (direct light, one
 // bounce); acne would show as dark speckle. Each pixel is compared with that radiance averaged
-// over its footprint (box filter), at 1 mm, 1 m and 10 km.
+// over its footprint (box filter, 8 x 8 points), at 1 mm, 1 m and 10 km.
 TEST(SelfIntersection, GrazingLitFloorRendersItsAnalyticRadianceAtEveryScale) {
   const Scene scene = test::load_hard_scene("self_intersection.gltf");
   const float rho = scene.materials.at(0).base_color.x;
   for (double scale : {1e-3, 1.0, 1e4}) {
     const Scene s = scaled(scene, scale);
-    RenderOptions options;
-    options.samples_per_pixel = 64;
-    options.filter = "box";
-    options.integrator = "path:max_depth=1";
-    const test::TimedRender r = test::render_timed(s, options);
-    const Image& image = r.result.image;
-    const SceneCamera& camera = s.cameras.at(0);
+    const test::TimedRender r = test::render_timed(s, test::box_filtered(64, "path:max_depth=1"));
     const Vec3d light = s.lights.at(0).world_from_light.translation();
     const double intensity = s.lights.at(0).intensity.x;
-    double worst = 0;
-    constexpr int n = 8;  // n x n points per pixel
-    for (uint32_t y = 0; y < image.height; ++y)
-      for (uint32_t x = 0; x < image.width; ++x) {
-        double expected = 0;
-        bool on_floor = true;
-        for (int j = 0; j < n && on_floor; ++j)
-          for (int i = 0; i < n && on_floor; ++i) {
-            const test::WorldRay ray = test::pixel_ray(camera, image.width, image.height,
-                                                       x + (i + 0.5) / n, y + (j + 0.5) / n);
-            const double t = -ray.origin.y / ray.direction.y;  // the plane y = 0
-            const Vec3d p = ray.origin + ray.direction * t;
-            // Inside the floor, away from its edge by more than its 1 um relief.
-            on_floor = t > 0 && std::abs(p.x) < 1.99 * scale && std::abs(p.z) < 1.99 * scale;
-            const Vec3d to_light = light - p;
-            const double d2 = dot(to_light, to_light);
-            expected += rho / kPi * intensity * (to_light.y / std::sqrt(d2)) / d2;
-          }
-        if (!on_floor) continue;
-        expected /= n * n;
-        worst = std::max(worst, std::abs(image.at(x, y, 1) / expected - 1));
-      }
+    // Inside the floor (the plane y = 0), away from its edge by more than its 1 um relief.
+    const auto on_floor = [&](const test::WorldRay& ray) -> std::optional<Vec3d> {
+      const double t = -ray.origin.y / ray.direction.y;
+      const Vec3d p = ray.origin + ray.direction * t;
+      if (t > 0 && std::abs(p.x) < 1.99 * scale && std::abs(p.z) < 1.99 * scale) return p;
+      return std::nullopt;
+    };
+    const auto radiance = [&](Vec3d p) {
+      const Vec3d to_light = light - p;
+      const double d2 = dot(to_light, to_light);
+      return rho / kPi * intensity * (to_light.y / std::sqrt(d2)) / d2;
+    };
+    const double worst =
+        test::footprint_error(s, r.result.image, 1, 8, 1, on_floor, radiance).worst;
     report_case("grazing floor at " + number_text(scale) + " m", r.result.stats.dropped_samples,
                 worst, 0.01, "worst |pixel / analytic radiance - 1| on the floor", r.seconds);
   }

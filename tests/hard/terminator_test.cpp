@@ -21,11 +21,7 @@ constexpr double kPi = std::numbers::pi;
 
 TEST(Terminator, LowPolySphereShadesAsItsSmoothNormalsUpToTheTerminator) {
   const Scene scene = test::load_hard_scene("terminator.gltf");
-  RenderOptions options;
-  options.samples_per_pixel = 64;
-  options.filter = "box";
-  options.integrator = "path:max_depth=1";
-  const test::TimedRender r = test::render_timed(scene, options);
+  const test::TimedRender r = test::render_timed(scene, test::box_filtered(64, "path:max_depth=1"));
   const Image& image = r.result.image;
 
   _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);

@@ -11,7 +11,6 @@ that sleeps instead of computing is caught by the wall-clock timeout of 60 s.
 Run: hostile_test.py --filmback BIN --scratch DIR [--cpu-seconds S] [case...]; --list prints the cases.
 """
 
-import argparse
 import os
 import resource
 import shutil
@@ -23,6 +22,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "cli"))
+import case_main  # noqa: E402
 from gltf_files import triangle_scene  # noqa: E402
 
 FILMBACK = None
@@ -197,27 +197,15 @@ class HostileTest(unittest.TestCase):
                             'cannot #fopen "passwd.inc" for reading inside the scene\'s folder')
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--filmback", help="the filmback executable")
-    parser.add_argument("--scratch", help="folder for the test files (created)")
-    parser.add_argument("--cpu-seconds", type=float, default=1.0,
-                        help="processor time each refusal may take (default 1)")
-    parser.add_argument("--list", action="store_true", help="print the case names and exit")
-    args, rest = parser.parse_known_args()
-    if args.list:
-        for name in unittest.defaultTestLoader.getTestCaseNames(HostileTest):
-            print(name[len("test_"):])
-        return 0
-    if not args.filmback or not args.scratch:
-        parser.error("--filmback and --scratch are required")
+def configure(args):
     global FILMBACK, SCRATCH, CPU_SECONDS
     FILMBACK, SCRATCH, CPU_SECONDS = args.filmback, args.scratch, args.cpu_seconds
-    os.makedirs(SCRATCH, exist_ok=True)
-    names = ["HostileTest.test_" + n for n in rest]
-    program = unittest.main(module=__name__, argv=[sys.argv[0], "-v", *names], exit=False)
-    return 0 if program.result.wasSuccessful() else 1
+
+
+def cpu_seconds_option(parser):
+    parser.add_argument("--cpu-seconds", type=float, default=1.0,
+                        help="processor time each refusal may take (default 1)")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(case_main.main(HostileTest, __doc__, configure, cpu_seconds_option))
