@@ -45,6 +45,7 @@ struct MotionTolerance {
 
 class RenderGeometry {
  public:
+  // `scene` must outlive the geometry: the surface shader reads its materials at every hit.
   RenderGeometry(const Scene& scene, const Transform& render_from_world, const ShotTimes& times,
                  const MotionTolerance& tolerance);
   ~RenderGeometry();

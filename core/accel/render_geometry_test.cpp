@@ -67,8 +67,8 @@ fb_ray ray_through(int i, int n) {
 // and is occluded with 1 - (1 - alpha)^2; intersect and occluded agree ray by ray.
 TEST(RenderGeometry, TransparentSolidsLetRaysThroughAsTheirCoverageSays) {
   const float alpha = 0.3f;
-  const RenderGeometry geometry(transparent_sphere(AlphaMode::kBlend, alpha), Transform(),
-                                ShotTimes{}, MotionTolerance{});
+  const Scene scene = transparent_sphere(AlphaMode::kBlend, alpha);  // outlives the geometry
+  const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
   const int n = 100, rays = n * n;
   int front = 0, back = 0, occluded = 0;
   for (int i = 0; i < rays; ++i) {
@@ -87,8 +87,8 @@ TEST(RenderGeometry, TransparentSolidsLetRaysThroughAsTheirCoverageSays) {
 
 TEST(RenderGeometry, MaskedSolidsBelowTheCutoffAreNotThere) {
   for (const float alpha : {0.4f, 0.6f}) {
-    const RenderGeometry geometry(transparent_sphere(AlphaMode::kMask, alpha), Transform(),
-                                  ShotTimes{}, MotionTolerance{});
+    const Scene scene = transparent_sphere(AlphaMode::kMask, alpha);
+    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
     fb_hit hit{};
     EXPECT_EQ(geometry.intersect(ray_through(0, 1), hit), alpha >= 0.5f) << alpha;
     EXPECT_EQ(geometry.occluded(ray_through(0, 1)), alpha >= 0.5f) << alpha;
