@@ -342,19 +342,21 @@ float RenderGeometry::embree_time(float time_s) const {
   return t >= 0.f ? std::min(t, 1.f) : 0.f;  // NaN too: Embree wants a time in [0, 1]
 }
 
-bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit) const {
+bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const {
   if (!traceable(ray)) return false;
   RayContext context = ray_context(RayKind::kScatter);
   const float time = embree_time(ray.time_s);
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, ray, hit);
-  fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, hit);
+  if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, ray, hit, arena);
+  fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, ray, hit,
+           arena);
   return true;
 }
 
-void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits) const {
+void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits,
+                                        SurfaceArena* arena) const {
   thread_local std::vector<RTCRayHit> stream;
   stream.resize(count);
   for (size_t i = 0; i < count; ++i)
@@ -367,10 +369,10 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       hits[i].t = HUGE_VALF;
     else if (rh.hit.geomID >= meshes_.size()) {
-      if (!fill_solid_hit(rh.hit.geomID, rays[i], hits[i])) hits[i].t = HUGE_VALF;
+      if (!fill_solid_hit(rh.hit.geomID, rays[i], hits[i], arena)) hits[i].t = HUGE_VALF;
     } else
       fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, rh.ray.time,
-               hits[i]);
+               rays[i], hits[i], arena);
   }
 }
 
@@ -465,7 +467,8 @@ Vec3f lifted_onto_smooth_surface(Vec3f position, const Vec3f p[3], const Vec3f n
 }  // namespace
 
 void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
-                              float time, fb_hit& hit) const {
+                              float time, const fb_ray& ray, fb_hit& hit,
+                              SurfaceArena* arena) const {
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
   const float b[3] = {1.f - u - v, u, v};
   // The corners where Embree met them: at a motion step, or interpolated between two as Embree
@@ -515,10 +518,11 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
   hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
-  shader_->shade(mesh.material, surface_point(mesh, primitive, u, v), hit);
+  shade(mesh.material, surface_point(mesh, primitive, u, v), ray, hit, arena);
 }
 
-bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit) const {
+bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit,
+                                    SurfaceArena* arena) const {
   const auto found =
       first_covered_hit(embree_solids_[id - meshes_.size()], Vec3d(Vec3f(ray.origin)),
                         Vec3d(Vec3f(ray.direction)), ray.t_min);
@@ -533,8 +537,20 @@ bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit)
   hit.emitter = FB_NONE;
   SurfacePoint point;
   point.position = Vec3f(found->position);  // for solid textures (SurfacePoint::position)
-  shader_->shade(found->material, point, hit);
+  shade(found->material, point, ray, hit, arena);
   return true;
+}
+
+void RenderGeometry::shade(uint32_t material, const SurfacePoint& point, const fb_ray& ray,
+                           fb_hit& hit, SurfaceArena* arena) const {
+  if (!arena) {
+    shader_->shade(material, point, hit);
+    hit.surface = nullptr;
+    return;
+  }
+  Surface& surface = arena->next();
+  shader_->shade(material, point, Vec3f(ray.direction), hit, surface);
+  hit.surface = reinterpret_cast<const fb_surface*>(&surface);
 }
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {

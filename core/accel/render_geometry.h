@@ -16,6 +16,7 @@
 
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
+#include "core/shading/surface_arena.h"
 #include "core/texture/surface_shader.h"
 
 struct RTCFilterFunctionNArguments;  // <embree3/rtcore.h>
@@ -52,9 +53,11 @@ class RenderGeometry {
   RenderGeometry(const RenderGeometry&) = delete;
   RenderGeometry& operator=(const RenderGeometry&) = delete;
 
-  bool intersect(const fb_ray& ray, fb_hit& hit) const;
+  // With an arena, each hit gets its surface (fb_hit.surface) from it; without, none (nullptr).
+  bool intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena = nullptr) const;
   // Embree's ray stream with the coherent flag; a miss gets hit.t = +infinity.
-  void intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits) const;
+  void intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits,
+                          SurfaceArena* arena = nullptr) const;
   bool occluded(const fb_ray& ray) const;
 
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_; }
@@ -75,13 +78,17 @@ class RenderGeometry {
 
  private:
   struct Mesh;
-  // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`, at
-  // Embree's normalised time.
+  // The hit record of `ray` for barycentrics (u, v) at distance t on triangle `primitive` of
+  // `mesh`, at Embree's normalised time.
   void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
-                fb_hit& hit) const;
+                const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const;
   static SurfacePoint surface_point(const Mesh& mesh, uint32_t primitive, float u, float v);
   // The hit record of a ray Embree found ending on solid geometry `id`; false if it does not.
-  bool fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit) const;
+  bool fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const;
+  // The material's textures at `point` into the hit's surface fields, and its surface from the
+  // arena when there is one.
+  void shade(uint32_t material, const SurfacePoint& point, const fb_ray& ray, fb_hit& hit,
+             SurfaceArena* arena) const;
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   static void light_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.

@@ -330,4 +330,8 @@ Rgb LightSampler::background(Vec3f w, float& pdf) const {
   return environment_->radiance(w);
 }
 
+uint32_t LightSampler::crossed(const fb_ray&, float, fb_light_crossing*, uint32_t) const {
+  return 0;  // every light with a size is reached by light sampling alone today
+}
+
 }  // namespace fb

@@ -34,6 +34,9 @@ class LightSampler {
   // solid-angle pdf with which sample() would have chosen w (0 for a uniform world, which only
   // BSDF sampling finds).
   Rgb background(Vec3f w, float& pdf) const;
+  // fb_scene_api::lights_crossed: the lights with a size that `ray` passes through before t_end.
+  uint32_t crossed(const fb_ray& ray, float t_end, fb_light_crossing* crossings,
+                   uint32_t capacity) const;
   size_t punctual_light_count() const { return punctual_.size(); }
   size_t emissive_triangle_count() const { return emitters_.size(); }
 

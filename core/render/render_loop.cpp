@@ -146,6 +146,7 @@ class TileRenderer {
         r.t_max = c.weight > 0.f ? c.t_max : -1.f;  // an empty interval: the integrator sees a miss
         r.time_s = w.camera_samples[i].time_s;
       }
+      context.surfaces.reset();  // the previous call's hits are done with
       in_.integrator.radiance(in_.scene, &context, w.rays, w.values.data());
       for (size_t i = 0; i < n; ++i) {
         float* v = &w.values[i * channels_];

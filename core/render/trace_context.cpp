@@ -5,12 +5,12 @@ namespace {
 
 int intersect(fb_trace_context* c, const fb_ray* ray, fb_hit* hit) {
   ++c->rays_traced;
-  return c->geometry->intersect(*ray, *hit) ? 1 : 0;
+  return c->geometry->intersect(*ray, *hit, &c->surfaces) ? 1 : 0;
 }
 
 void intersect_batch(fb_trace_context* c, const fb_ray* rays, size_t count, fb_hit* hits) {
   c->rays_traced += count;
-  c->geometry->intersect_coherent(rays, count, hits);
+  c->geometry->intersect_coherent(rays, count, hits, &c->surfaces);
 }
 
 int occluded(fb_trace_context* c, const fb_ray* ray) {
@@ -35,11 +35,41 @@ void background(fb_trace_context* c, const float direction[3], float radiance[3]
   c->lights->background(Vec3f(direction), *pdf).store(radiance);
 }
 
+const Surface* surface_of(const fb_hit* hit) {
+  return reinterpret_cast<const Surface*>(hit->surface);
+}
+
+void bsdf_eval(fb_trace_context*, const fb_hit* hit, const float wi[3], float f_cos[3],
+               float* pdf) {
+  const Surface* surface = surface_of(hit);
+  *pdf = 0.f;
+  (surface ? surface->eval(Vec3f(wi), *pdf) : Rgb{}).store(f_cos);
+}
+
+int bsdf_sample(fb_trace_context*, const fb_hit* hit, const float u[3], fb_bsdf_sample* out) {
+  const Surface* surface = surface_of(hit);
+  SurfaceSample s;
+  if (!surface || !surface->sample(u, s)) return 0;
+  s.wi.store(out->wi);
+  s.weight.store(out->weight);
+  out->pdf = s.pdf;
+  out->flags = (s.delta ? uint32_t(FB_BSDF_DELTA) : 0u) |
+               (s.transmission ? uint32_t(FB_BSDF_TRANSMISSION) : 0u);
+  return 1;
+}
+
+uint32_t lights_crossed(fb_trace_context* c, const fb_ray* ray, float t_end,
+                        fb_light_crossing* crossings, uint32_t capacity) {
+  return c->lights->crossed(*ray, t_end, crossings, capacity);
+}
+
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
-  static const fb_scene_api api{sizeof(fb_scene_api), intersect, intersect_batch, occluded,
-                                sample_light,         light_pdf, next_samples,    background};
+  static const fb_scene_api api{sizeof(fb_scene_api), intersect,    intersect_batch,
+                                occluded,             sample_light, light_pdf,
+                                next_samples,         background,   bsdf_eval,
+                                bsdf_sample,          lights_crossed};
   return api;
 }
 

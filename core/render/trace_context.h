@@ -10,12 +10,14 @@
 #include "core/accel/render_geometry.h"
 #include "core/render/light_sampler.h"
 #include "core/render/sampler.h"
+#include "core/shading/surface_arena.h"
 
 struct fb_trace_context {
   const fb::RenderGeometry* geometry = nullptr;
   const fb::LightSampler* lights = nullptr;
   const fb::Sampler* sampler = nullptr;
   std::vector<fb::SampleKey> paths;  // one per ray of the current batch
+  fb::SurfaceArena surfaces;         // of the hits the current batch traces (fb_hit.surface)
   uint64_t rays_traced = 0;
 };
 

@@ -38,7 +38,7 @@ struct MeshInstance {
   uint32_t node_index = kNoNode;  // in Scene::hierarchy, whose animation may move it
 };
 
-// glTF metallic-roughness (core/sdk/filmback/bsdf.h has the BSDF); factors multiply textures.
+// glTF metallic-roughness (core/shading/gltf_bsdf.h has the BSDF); factors multiply textures.
 struct Material {
   std::string name;
   Rgb base_color{1.f, 1.f, 1.f};  // linear (glTF's default base colour)

@@ -212,6 +212,18 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   emission(index, point).store(hit.emission);
 }
 
+void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, Vec3f ray_direction,
+                          fb_hit& hit, Surface& surface) const {
+  shade(index, point, hit);
+  const Vec3f I = normalize(-ray_direction);
+  const Vec3f ng(hit.geometric_normal);
+  const bool backfacing = dot(ng, I) < 0.f;
+  const float side = backfacing ? -1.f : 1.f;
+  surface.begin({I, ng * side, Vec3f(hit.smooth_normal) * side, backfacing});
+  surface.add_gltf({Rgb(hit.base_color), hit.metallic, hit.roughness, hit.transmission, hit.ior,
+                    hit.specular, Vec3f(hit.shading_normal)});
+}
+
 Rgb SurfaceShader::emission(uint32_t index, const SurfacePoint& point) const {
   const Material& m = materials_[index];
   Rgb emission = m.emission;

@@ -10,6 +10,7 @@
 #include <filmback/vec.h>
 
 #include "core/scene/scene.h"
+#include "core/shading/surface.h"
 
 namespace fb {
 
@@ -37,6 +38,10 @@ class SurfaceShader {
   // Fills hit.base_color ... hit.emission for `material` and applies its normal map to
   // hit.shading_normal (which must hold the interpolated normal).
   void shade(uint32_t material, const SurfacePoint& point, fb_hit& hit) const;
+  // The same, and the closures for a ray arriving along `ray_direction` into `surface`
+  // (hit.geometric_normal must be set too).
+  void shade(uint32_t material, const SurfacePoint& point, Vec3f ray_direction, fb_hit& hit,
+             Surface& surface) const;
   // Radiance leaving the point: the emissive factor (with its strength) times the texture.
   Rgb emission(uint32_t material, const SurfacePoint& point) const;
   // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage"),

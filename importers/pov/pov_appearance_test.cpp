@@ -1,7 +1,7 @@
 #include "importers/pov/pov_appearance.h"
 
 #include <OpenImageIO/imageio.h>
-#include <filmback/bsdf.h>
+#include "core/shading/gltf_bsdf.h"
 #include <gtest/gtest.h>
 
 #include <cmath>

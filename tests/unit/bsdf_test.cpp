@@ -1,7 +1,7 @@
-// The glTF metallic-roughness BSDF (core/sdk/filmback/bsdf.h) against the laws it must obey:
+// The glTF metallic-roughness BSDF (core/shading/gltf_bsdf.h) against the laws it must obey:
 // energy conservation (white furnace), reciprocity, a density that integrates to one, and samples
 // distributed as that density says (chi-square over a sphere histogram).
-#include <filmback/bsdf.h>
+#include "core/shading/gltf_bsdf.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // at cos(theta) = mu in a world of radiance L returns L times the BSDF's directional albedo at mu,
 // which quadrature of filmback/bsdf.h gives independently of the integrator, the host's hit records
 // and the shading frame that this test exercises.
-#include <filmback/bsdf.h>
+#include "core/shading/gltf_bsdf.h"
 
 #include <gtest/gtest.h>
 

@@ -206,6 +206,11 @@ typedef struct fb_hit {
    * coarse mesh with smooth normals do not shadow it along the terminator. Equal to position where
    * the surface is flat, concave or has no vertex normals; position_error bounds it too. */
   float shadow_position[3];
+  /* How the surface scatters light at this hit, prepared by the host for the ray that found it
+   * (its material's closures, textures evaluated, normals turned to the ray's side): pass the hit
+   * to fb_scene_api's bsdf_eval() and bsdf_sample(). Opaque; valid until the radiance() call that
+   * traced the hit returns. */
+  const struct fb_surface* surface;
 } fb_hit;
 
 /* A material's constant factors. The layout is frozen: what a material has beyond these reaches
@@ -225,6 +230,29 @@ typedef struct fb_light_sample {
   float pdf;          /* solid-angle pdf with the light choice; for delta lights the choice only */
   uint32_t is_delta;
 } fb_light_sample;
+
+/* What bsdf_sample() draws. */
+enum {
+  FB_BSDF_DELTA = 1u,       /* a perfectly specular lobe: pdf is its choice probability, and light
+                               sampling (bsdf_eval) can never reach it: weight it fully */
+  FB_BSDF_TRANSMISSION = 2u /* wi leaves through the surface, to the other side */
+};
+
+typedef struct fb_bsdf_sample {
+  float wi[3];     /* render space, unit, away from the surface */
+  float weight[3]; /* f |cos| / pdf */
+  float pdf;       /* solid angle (of the whole surface's sampling, for MIS) */
+  uint32_t flags;  /* FB_BSDF_* */
+} fb_bsdf_sample;
+
+/* A light a ray passes through on its way (lights are not surfaces: they neither stop nor shadow
+ * rays, as in Cycles), with the pdf sample_light() would have chosen that point with, from the
+ * ray's origin, for multiple importance sampling. */
+typedef struct fb_light_crossing {
+  float radiance[3]; /* arriving along the ray, W sr^-1 m^-2 */
+  float pdf;         /* solid angle, with the light choice */
+  float t;           /* distance along the ray; HUGE_VAL for a distant light (a sun's disk) */
+} fb_light_crossing;
 
 typedef struct fb_trace_context fb_trace_context; /* per-thread host state: opaque */
 
@@ -257,6 +285,22 @@ typedef struct fb_scene_api {
    * chosen that direction: 0 when light sampling never picks the world (weight it fully). */
   void (*background)(fb_trace_context* context, const float direction[3], float radiance[3],
                      float* pdf);
+  /* The surface at `hit` (fb_hit.surface): f(wo, wi) |cos(n, wi)| summed over its closures, wo
+   * being the direction back along the hit's ray, and in *pdf the solid-angle pdf with which
+   * bsdf_sample() would draw wi (0 where it never does: weight light sampling fully there).
+   * Directions in render space, unit, away from the surface. */
+  void (*bsdf_eval)(fb_trace_context* context, const fb_hit* hit, const float wi[3],
+                    float f_cos[3], float* pdf);
+  /* Draws a direction from the surface at `hit` with three sample values (a closure choice and a
+   * 2-D point, as next_samples() hands them out). Returns 0 when the sample carries no light. */
+  int (*bsdf_sample)(fb_trace_context* context, const fb_hit* hit, const float u[3],
+                     fb_bsdf_sample* sample);
+  /* The lights `ray` passes through before distance `t_end` (its hit, or HUGE_VAL when it
+   * escapes: then the distant lights whose disk it points into count too), nearest first, at most
+   * `capacity` of them. Lights with a size (a point or spot light's radius, area lights, a sun's
+   * angle) are found so; delta lights never are. Returns how many it wrote. */
+  uint32_t (*lights_crossed)(fb_trace_context* context, const fb_ray* ray, float t_end,
+                             fb_light_crossing* crossings, uint32_t capacity);
 } fb_scene_api;
 
 typedef struct fb_scene {

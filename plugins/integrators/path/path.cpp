@@ -1,13 +1,12 @@
 // Integrator `path`: unidirectional path tracing with next-event estimation (Kajiya 1986;
-// Veach 1997 ch. 9). Surfaces scatter by glTF's metallic-roughness BSDF (filmback/bsdf.h: a
-// Lambertian base under GGX specular, metals, rough dielectric transmission) with the parameters
-// the host evaluated at the hit; light comes from punctual lights, emissive triangles and the
-// world (uniform, or an environment image that light sampling also picks). Emission found by BSDF
-// sampling and by light sampling is combined with the power heuristic; delta lights are reached by
-// light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased. `clamp`, off by
+// Veach 1997 ch. 9). Surfaces scatter as the host prepared them at each hit (fb_scene_api's
+// bsdf_eval and bsdf_sample: glTF's metallic-roughness model, or Blender's materials as Cycles
+// renders them); light comes from punctual lights, lights with a size (which rays pass through),
+// emissive triangles and the world (uniform, or an environment image that light sampling also
+// picks). Emission found by BSDF sampling and by light sampling is combined with the power
+// heuristic; delta lights are reached by light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased. `clamp`, off by
 // default, scales each sample's radiance down so that its largest component is at most the clamp
 // (pbrt 4e's RGBFilm maxComponentValue): fireflies are bounded at the price of a bias.
-#include <filmback/bsdf.h>
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
 #include <filmback/sampling.h>
@@ -56,33 +55,38 @@ Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
   return Rgb(hit.emission);
 }
 
-// The BSDF at a hit, in the shading frame turned towards wo. Transmission makes the side matter:
-// a ray arriving at a back face leaves the material, so the index ratio inverts. `smooth` is the
-// normal before normal mapping, on the same side as ns.
-struct Scatter {
-  fb::Frame frame;
-  fb::Bsdf bsdf;
-  Scatter(const fb_hit& hit, Vec3f ns, Vec3f smooth, bool front)
-      : frame(ns),
-        bsdf({Rgb(hit.base_color), hit.metallic, hit.roughness, hit.transmission,
-              hit.transmission > 0.f && !front ? 1.f / hit.ior : hit.ior, hit.specular,
-              frame.to_local(smooth)}) {}
-};
+// Light from the lights with a size that the ray from the previous vertex passed through before
+// `t_end` (fb_scene_api::lights_crossed), weighted against light sampling's choice of them.
+Rgb lights_on_the_way(const fb_scene_api& api, fb_trace_context* ctx, const fb_ray& ray,
+                      float t_end, float bsdf_pdf, bool delta) {
+  fb_light_crossing crossings[8];
+  const uint32_t n = api.lights_crossed(ctx, &ray, t_end, crossings, 8);
+  Rgb L{};
+  for (uint32_t i = 0; i < n; ++i)
+    L += Rgb(crossings[i].radiance) *
+         (delta ? 1.f : fb::power_heuristic(bsdf_pdf, crossings[i].pdf));
+  return L;
+}
 
 Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
                       fb_hit hit) const {
   const fb_scene_api& api = *scene.api;
   Rgb L{}, beta{1.f, 1.f, 1.f};
   float bsdf_pdf = 0.f;           // of the direction that produced `ray`
+  bool delta = false;             // that direction came from a perfectly specular lobe
   float previous[3] = {0, 0, 0};  // where that direction was sampled
   const float time_s = ray.time_s;
   for (int depth = 0;; ++depth) {
     const bool found = depth == 0 ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
+    // Cycles' lights are not seen by the camera; BSDF-sampled rays find those with a size.
+    if (depth > 0) L += beta * lights_on_the_way(api, ctx, ray, found ? hit.t : HUGE_VALF,
+                                                 bsdf_pdf, delta);
     if (!found) {
       float le[3], world_pdf = 0.f;
       api.background(ctx, ray.direction, le, &world_pdf);
-      const float weight =
-          depth == 0 || world_pdf == 0.f ? 1.f : fb::power_heuristic(bsdf_pdf, world_pdf);
+      const float weight = depth == 0 || delta || world_pdf == 0.f
+                               ? 1.f
+                               : fb::power_heuristic(bsdf_pdf, world_pdf);
       L += beta * Rgb(le) * weight;
       break;
     }
@@ -92,26 +96,17 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
       const Rgb Le = emitted(m, hit, Vec3f(ray.direction));
       // Emission that light sampling does not know (hit.emitter == FB_NONE: the host registers
       // every emissive triangle today, but the ABI allows it) counts with full weight.
-      const float weight = depth == 0 || hit.emitter == FB_NONE
+      const float weight = depth == 0 || delta || hit.emitter == FB_NONE
                                ? 1.f
                                : fb::power_heuristic(bsdf_pdf, api.light_pdf(ctx, previous, &hit));
       L += beta * Le * weight;
     }
     if (depth >= max_depth_) break;
 
-    // Shade on the side the ray arrived from; the geometric normal decides which side that is.
-    Vec3f ng(hit.geometric_normal), ns(hit.shading_normal), smooth(hit.smooth_normal);
-    const bool front = fb::dot(ng, wo_world) >= 0.f;
-    if (!front) ng = -ng, ns = -ns, smooth = -smooth;
-    ns = fb::ensure_valid_reflection(ng, wo_world, ns);
+    // The side the ray arrived from; the geometric normal decides which side that is.
+    Vec3f ng(hit.geometric_normal), ns(hit.shading_normal);
+    if (fb::dot(ng, wo_world) < 0.f) ng = -ng, ns = -ns;
     const Vec3f p(hit.position), p_error(hit.position_error);
-    const Scatter scatter(hit, ns, smooth, front);
-    const Vec3f wo = scatter.frame.to_local(wo_world);
-    if (!(wo.z > 0.f)) break;  // the shading normal turned away from the viewer: no light path
-    // A direction is valid when the shading and geometric normals agree on its side.
-    const auto consistent = [&](Vec3f wi_world, Vec3f wi) {
-      return (fb::dot(ng, wi_world) > 0.f) == (wi.z > 0.f);
-    };
 
     // Light arriving above the shading normal but below the flat facet (the terminator of a
     // coarse mesh with smooth normals) is not refused: its shadow ray leaves from the hit lifted
@@ -124,38 +119,35 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     api.next_samples(ctx, path, u, 3);
     fb_light_sample ls;
     if (api.sample_light(ctx, hit.position, u, &ls) && ls.pdf > 0.f) {
-      const Vec3f wi_world(ls.direction);
-      const Vec3f wi = scatter.frame.to_local(wi_world);
-      const Rgb f = scatter.bsdf.eval(wo, wi);
-      const bool above = wi.z > 0.f, reachable = consistent(wi_world, wi);
-      if ((reachable || above) && fb::max_component(f) > 0.f) {
+      const Vec3f wi(ls.direction);
+      float f[3], pdf = 0.f;
+      api.bsdf_eval(ctx, &hit, ls.direction, f, &pdf);
+      if (fb::max_component(Rgb(f)) > 0.f) {
+        const bool above = fb::dot(ns, wi) > 0.f;
         fb_ray shadow{};
         (above ? fb::offset_ray_origin(lifted, p_error, ng, ng)
-               : fb::offset_ray_origin(p, p_error, ng, wi_world))
+               : fb::offset_ray_origin(p, p_error, ng, wi))
             .store(shadow.origin);
-        wi_world.store(shadow.direction);
+        wi.store(shadow.direction);
         shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
         shadow.time_s = time_s;
         // distance 0: a light that casts no shadows (fb_light_sample in plugin_abi.h).
         if (ls.distance == 0.f || !api.occluded(ctx, &shadow)) {
-          // BSDF sampling never continues across the facet (below), so there light sampling is
-          // the only strategy and takes the whole weight.
-          const float weight = ls.is_delta || !reachable
-                                   ? 1.f
-                                   : fb::power_heuristic(ls.pdf, scatter.bsdf.pdf(wo, wi));
-          L += beta * f * Rgb(ls.radiance) * (std::abs(wi.z) * weight / ls.pdf);
+          // Where BSDF sampling never goes (pdf 0), light sampling takes the whole weight.
+          const float weight = ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, pdf);
+          L += beta * Rgb(f) * Rgb(ls.radiance) * (weight / ls.pdf);
         }
       }
     }
 
     float v[3];
     api.next_samples(ctx, path, v, 3);
-    fb::Bsdf::Sample s;
-    if (!scatter.bsdf.sample(wo, v[0], {v[1], v[2]}, s)) break;
-    const Vec3f wi = scatter.frame.to_world(s.wi);
-    if (!consistent(wi, s.wi)) break;  // across the true surface from where the BSDF meant it
-    beta *= s.weight;
+    fb_bsdf_sample s;
+    if (!api.bsdf_sample(ctx, &hit, v, &s)) break;
+    const Vec3f wi(s.wi);
+    beta *= Rgb(s.weight);
     bsdf_pdf = s.pdf;
+    delta = (s.flags & FB_BSDF_DELTA) != 0;
     p.store(previous);
 
     if (depth + 1 >= rr_depth_) {
@@ -186,8 +178,8 @@ const fb_param_desc kParams[] = {
 constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
 constexpr fb_plugin kPlugin =
     fb::describe("path", "1.0.0",
-                 "Path tracing with next-event estimation and MIS; glTF metallic-roughness "
-                 "surfaces (GGX, transmission), emission, punctual lights, world",
+                 "Path tracing with next-event estimation and MIS over the host's surfaces, "
+                 "emission, lights and world",
                  kParams, kApi);
 
 }  // namespace
