@@ -23,7 +23,9 @@ struct TextureImage {
 
 constexpr uint32_t kNoImage = 0xffffffffu;
 
-enum class TextureWrap { kRepeat, kClamp, kMirror };
+// kBlack: transparent black outside [0, 1] (Blender's CLIP extension).
+enum class TextureWrap { kRepeat, kClamp, kMirror, kBlack };
+enum class TextureInterpolation : uint8_t { kLinear, kClosest, kCubic };
 
 struct TextureRef {
   uint32_t image = kNoImage;  // index into Scene::images

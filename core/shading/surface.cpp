@@ -1,5 +1,6 @@
 #include "core/shading/surface.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fb {
@@ -19,6 +20,27 @@ void Surface::add_gltf(const GltfSurfaceParams& p) {
                      Bsdf({p.base_color, p.metallic, p.roughness, p.transmission, eta, p.specular,
                            local.to_local(frame_.N)}),
                      local.to_local(frame_.I)});
+}
+
+// Until Cycles' closures land, Blender's nodes render through the glTF model's lobes: the first
+// node reached, at full weight (a placeholder for the pipeline, not Cycles' model).
+void Surface::add_principled(const PrincipledInputs& in, Rgb weight) {
+  if (gltf_) return;
+  add_gltf({in.base_color * weight, in.metallic, in.roughness, in.transmission, in.ior,
+            std::clamp(2.f * in.specular, 0.f, 1.f), in.normal});
+}
+
+void Surface::add_diffuse(Rgb color, float, Vec3f normal, Rgb weight) {
+  if (!gltf_) add_gltf({color * weight, 0.f, 1.f, 0.f, 1.5f, 0.f, normal});
+}
+
+void Surface::add_glossy(Distribution, Rgb color, float roughness, Vec3f normal, Rgb weight) {
+  if (!gltf_) add_gltf({color * weight, 1.f, roughness, 0.f, 1.5f, 1.f, normal});
+}
+
+void Surface::add_glass(Distribution, Rgb color, float roughness, float ior, Vec3f normal,
+                        Rgb weight) {
+  if (!gltf_) add_gltf({color * weight, 0.f, roughness, 1.f, ior, 1.f, normal});
 }
 
 Rgb Surface::eval(Vec3f wi_world, float& pdf) const {

@@ -1,8 +1,8 @@
 // How a surface scatters light at one hit: the closures its material made there, each with its
-// weight, as Cycles' ShaderData holds them (intern/cycles/kernel/closure/, and svm_closure.h for how
-// a shader node turns into closures). The host builds one per hit (core/texture/surface_shader.cpp)
-// for the direction the ray arrived from; integrators reach it through fb_scene_api's bsdf_eval()
-// and bsdf_sample() (core/render/trace_context.cpp).
+// weight, as Cycles' ShaderData holds them (intern/cycles/kernel/closure/, and svm_closure.h for
+// how a shader node turns into closures). The host builds one per hit
+// (core/texture/surface_shader.cpp) for the direction the ray arrived from; integrators reach it
+// through fb_scene_api's bsdf_eval() and bsdf_sample() (core/render/trace_context.cpp).
 //
 // Evaluation sums the closures; sampling picks one closure in proportion to its sample weight,
 // samples it, and evaluates all of them in the direction drawn (one-sample MIS over the closures,
@@ -14,6 +14,7 @@
 #include <filmback/geometry.h>
 #include <filmback/vec.h>
 
+#include "core/scene/shader_graph.h"
 #include "core/shading/gltf_bsdf.h"
 
 namespace fb {
@@ -36,6 +37,23 @@ struct GltfSurfaceParams {
   Vec3f normal;  // unit, the mapped shading normal on the front side (fb_hit's orientation)
 };
 
+// A Principled BSDF's inputs (Blender 3.4's sockets) evaluated at the hit. Normals on the front
+// side (fb_hit's orientation); the tangent unit or zero.
+struct PrincipledInputs {
+  Rgb base_color{0.8f, 0.8f, 0.8f};
+  float subsurface = 0.f;
+  Rgb subsurface_radius{1.f, 0.2f, 0.1f};
+  Rgb subsurface_color{0.8f, 0.8f, 0.8f};
+  float subsurface_ior = 1.4f, subsurface_anisotropy = 0.f;
+  float metallic = 0.f, specular = 0.5f, specular_tint = 0.f, roughness = 0.5f;
+  float anisotropic = 0.f, anisotropic_rotation = 0.f;
+  float sheen = 0.f, sheen_tint = 0.5f;
+  float clearcoat = 0.f, clearcoat_roughness = 0.03f;
+  float ior = 1.45f, transmission = 0.f, transmission_roughness = 0.f;
+  Vec3f normal, clearcoat_normal, tangent;
+  Distribution distribution = Distribution::kGgx;
+};
+
 struct SurfaceSample {
   Vec3f wi;    // unit, away from the surface
   Rgb weight;  // f |cos| / pdf
@@ -48,6 +66,12 @@ class Surface {
  public:
   void begin(const ShadingFrame& frame);
   void add_gltf(const GltfSurfaceParams& params);
+  // Blender's shader nodes, each adding its closures times `weight` (the mix weights above it).
+  void add_principled(const PrincipledInputs& inputs, Rgb weight);
+  void add_diffuse(Rgb color, float roughness, Vec3f normal, Rgb weight);
+  void add_glossy(Distribution distribution, Rgb color, float roughness, Vec3f normal, Rgb weight);
+  void add_glass(Distribution distribution, Rgb color, float roughness, float ior, Vec3f normal,
+                 Rgb weight);
 
   // f(I, wi) |N.wi| summed over the closures, and the solid-angle pdf sample() draws wi with: 0
   // where it never draws it (across the geometric surface from where the lobe meant it).

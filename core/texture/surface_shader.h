@@ -1,9 +1,11 @@
-// The host's half of materials: evaluates a material's textures at a surface point (through
-// OpenImageIO's TextureSystem: tiled, cached, mip-mapped on demand) and writes the result into
-// the hit record integrators read (fb_hit's surface fields, docs/plugins.md "Surfaces").
+// The host's half of materials: evaluates a material at a surface point, its textures through
+// OpenImageIO (core/texture/texture_images.h), into the hit record integrators read (fb_hit's
+// surface fields) and the hit's Surface, the closures they scatter with (docs/plugins.md
+// "Surfaces"). glTF's metallic-roughness materials make one closure (core/shading/gltf_bsdf.h);
+// Blender's shader graphs the closures Cycles makes of them (core/texture/graph_shader.h).
 #pragma once
 
-#include <memory>
+#include <optional>
 #include <vector>
 
 #include <filmback/plugin_abi.h>
@@ -11,27 +13,17 @@
 
 #include "core/scene/scene.h"
 #include "core/shading/surface.h"
+#include "core/texture/graph_shader.h"
+#include "core/texture/surface_point.h"
+#include "core/texture/texture_images.h"
 
 namespace fb {
-
-// Where on a surface a hit lies, interpolated from its vertices (render space).
-struct SurfacePoint {
-  // The hit's position in render space, for solid textures (Material::base_color_pattern), which
-  // SurfaceShader evaluates in world space. Filled by render_geometry for meshes and analytic
-  // solids alike.
-  Vec3f position{};
-  std::array<Vec2f, VertexTextureData::kSets> uv{};
-  uint32_t uv_sets = 0;  // how many of `uv` the mesh has
-  Vec3f tangent{};       // unit, or zero when the mesh has none
-  float bitangent_sign = 1.f;
-};
 
 class SurfaceShader {
  public:
   // Opens every image a material uses; an image that cannot be read or is too large is an
   // InputError naming it. `world_from_render` places SurfacePoint::position in the world.
   explicit SurfaceShader(const Scene& scene, const Transform& world_from_render = Transform());
-  ~SurfaceShader();
   SurfaceShader(const SurfaceShader&) = delete;
   SurfaceShader& operator=(const SurfaceShader&) = delete;
 
@@ -42,10 +34,11 @@ class SurfaceShader {
   // (hit.geometric_normal must be set too).
   void shade(uint32_t material, const SurfacePoint& point, Vec3f ray_direction, fb_hit& hit,
              Surface& surface) const;
-  // Radiance leaving the point: the emissive factor (with its strength) times the texture.
+  // Radiance leaving the point: the emissive factor (with its strength) times the texture, or
+  // the shader graph's emission.
   Rgb emission(uint32_t material, const SurfacePoint& point) const;
   // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage"),
-  // times 1 - transmit of a solid texture.
+  // times 1 - transmit of a solid texture; a shader graph's 1 - transparency.
   float alpha(uint32_t material, const SurfacePoint& point) const;
   bool has_alpha(uint32_t material) const {
     return materials_[material].alpha_mode != AlphaMode::kOpaque;
@@ -62,11 +55,8 @@ class SurfaceShader {
   SolidColour solid_colour(const SolidPattern& pattern, const SurfacePoint& point) const;
   const std::vector<Material>& materials_;
   Transform world_from_render_;
-  struct Textures;
-  std::unique_ptr<Textures> textures_;
+  TextureImages images_;
+  std::vector<std::optional<GraphShader>> graphs_;  // per material: its shader graph's
 };
-
-// sRGB transfer function, decoding (IEC 61966-2-1).
-float srgb_to_linear(float v);
 
 }  // namespace fb

@@ -59,15 +59,9 @@ class Importer {
   void check_extensions() {
     // One extension a line: each is read by its own part of the importer.
     static const std::set<std::string> kSupported = {
-        "EXT_camera_physical",
-        "KHR_lights_punctual",
-        "KHR_materials_emissive_strength",
-        "KHR_materials_ior",
-        "KHR_materials_specular",
-        "KHR_materials_transmission",
-        "KHR_texture_transform",
-        "FILMBACK_blender",
-        "FILMBACK_povray",
+        "EXT_camera_physical",   "KHR_lights_punctual",    "KHR_materials_emissive_strength",
+        "KHR_materials_ior",     "KHR_materials_specular", "KHR_materials_transmission",
+        "KHR_texture_transform", "FILMBACK_blender",       "FILMBACK_povray",
     };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
@@ -278,7 +272,14 @@ class Importer {
     } else {
       out.material = default_material();
     }
-    gltf::read_texturing(ctx, prim, path, scene_.materials[out.material], out);
+    static const tinygltf::Value kNone;
+    const auto ours = mesh.extensions.find("FILMBACK_blender");
+    const gltf::Fields mesh_extension(
+        ours == mesh.extensions.end() ? kNone : ours->second,
+        index_path("meshes", size_t(&mesh - model_.meshes.data())) + ".extensions.FILMBACK_blender",
+        name_);
+    gltf::read_texturing(ctx, prim, path, scene_.materials[out.material], mesh_extension, out,
+                         diagnostics_);
     return out;
   }
 

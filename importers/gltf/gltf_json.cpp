@@ -45,6 +45,16 @@ bool Fields::has(const char* key) const {
   return object_.IsObject() && object_.Has(key);
 }
 
+Fields::Type Fields::type(const char* key) const {
+  if (!has(key)) return Type::kAbsent;
+  const tinygltf::Value& v = object_.Get(key);
+  if (v.IsNumber()) return Type::kNumber;
+  if (v.IsArray()) return Type::kArray;
+  if (v.IsObject()) return Type::kObject;
+  if (v.IsString()) return Type::kString;
+  return Type::kOther;
+}
+
 std::optional<double> Fields::number(const char* key, double lo, double hi) const {
   if (!has(key)) return std::nullopt;
   const double x = as_number(object_.Get(key));
@@ -95,6 +105,37 @@ std::optional<std::vector<double>> Fields::numbers(const char* key, size_t max_c
     if (!(out[i] >= lo && out[i] <= hi))
       throw_input(file_, path_ + "." + key + "[" + std::to_string(i) + "]",
                   "expected a number in [" + number_text(lo) + ", " + number_text(hi) + "]");
+  }
+  return out;
+}
+
+std::optional<std::vector<std::string>> Fields::words(const char* key, size_t max_count) const {
+  if (!has(key)) return std::nullopt;
+  const tinygltf::Value& v = object_.Get(key);
+  if (!v.IsArray() || v.ArrayLen() > max_count)
+    fail(key, "expected an array of at most " + std::to_string(max_count) + " strings");
+  std::vector<std::string> out(v.ArrayLen());
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!v.Get(int(i)).IsString())
+      throw_input(file_, path_ + "." + key + "[" + std::to_string(i) + "]", "expected a string");
+    out[i] = v.Get(int(i)).Get<std::string>();
+  }
+  return out;
+}
+
+std::optional<std::vector<long>> Fields::indices(const char* key, size_t max_count,
+                                                 size_t count) const {
+  if (!has(key)) return std::nullopt;
+  const tinygltf::Value& v = object_.Get(key);
+  if (!v.IsArray() || v.ArrayLen() > max_count)
+    fail(key, "expected an array of at most " + std::to_string(max_count) + " indices");
+  std::vector<long> out(v.ArrayLen(), -1);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const double x = as_number(v.Get(int(i)));
+    if (!(x >= -1 && x < double(count)) || x != std::floor(x))
+      throw_input(file_, path_ + "." + key + "[" + std::to_string(i) + "]",
+                  "expected -1 (none) or an index below " + std::to_string(count));
+    out[i] = long(x);
   }
   return out;
 }

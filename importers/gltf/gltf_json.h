@@ -36,6 +36,9 @@ class Fields {
   Fields(const tinygltf::Value& object, std::string path, const std::string& file);
 
   bool has(const char* key) const;
+  // What a member holds, for members that may be one of several things.
+  enum class Type { kAbsent, kNumber, kArray, kObject, kString, kOther };
+  Type type(const char* key) const;
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
 
@@ -47,6 +50,10 @@ class Fields {
   // An array of at most `max_count` numbers, each in [lo, hi].
   std::optional<std::vector<double>> numbers(const char* key, size_t max_count, double lo,
                                              double hi) const;
+  // An array of at most `max_count` strings.
+  std::optional<std::vector<std::string>> words(const char* key, size_t max_count) const;
+  // An array of at most `max_count` indices below `count`, or -1 (no index).
+  std::optional<std::vector<long>> indices(const char* key, size_t max_count, size_t count) const;
   // A member object (absent: one without members), for nested fields.
   Fields object(const char* key) const;
   // A member array of at most `max_count` objects, each with its JSON path (absent: none).

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/texture/graph_shader.h"
 #include "core/util/error.h"
+#include "importers/gltf/gltf_blender_material.h"
 #include "importers/gltf/gltf_json.h"
 #include "importers/gltf/gltf_povray_pattern.h"
 
@@ -263,26 +265,81 @@ void read_materials(tinygltf::Model& model, const std::string& file, Scene& scen
     image.bytes = std::move(g.image);
     scene.images.push_back(std::move(image));
   }
+  // After the file's images, whose indices the glTF textures use.
+  for (size_t i = 0; i < model.materials.size(); ++i) {
+    const auto ext = model.materials[i].extensions.find("FILMBACK_blender");
+    if (ext == model.materials[i].extensions.end()) continue;
+    const Fields fields(ext->second, index_path("materials", i) + ".extensions.FILMBACK_blender",
+                        file);
+    Material& m = scene.materials[i];
+    m.shader_graph = read_shader_graph(fields, scene, diagnostics);
+    m.emission = GraphShader::emission_bound(*m.shader_graph);
+    m.double_sided = true;
+    m.alpha_mode =
+        GraphShader::can_be_transparent(*m.shader_graph) ? AlphaMode::kBlend : AlphaMode::kOpaque;
+  }
 }
 
+namespace {
+
+// TEXCOORD_n of a primitive, or nothing when it has none.
+std::vector<Vec2f> read_texcoords(const AccessorContext& ctx, const tinygltf::Primitive& prim,
+                                  const std::string& path, uint32_t n, size_t vertex_count) {
+  const std::string name = "TEXCOORD_" + std::to_string(n);
+  const auto it = prim.attributes.find(name);
+  if (it == prim.attributes.end()) return {};
+  const std::string where = path + ".attributes." + name;
+  const std::vector<double> values =
+      read_animation_values(ctx, it->second, where, TINYGLTF_TYPE_VEC2, true);
+  if (values.size() != 2 * vertex_count)
+    throw_input(ctx.file, where,
+                std::to_string(values.size() / 2) + " texture coordinates for " +
+                    std::to_string(vertex_count) + " positions");
+  std::vector<Vec2f> uv(vertex_count);
+  for (size_t v = 0; v < vertex_count; ++v)
+    uv[v] = {float(values[2 * v]), float(values[2 * v + 1])};
+  return uv;
+}
+
+// A shader graph's UV maps, TEXCOORD_n found by the map's name, in the graph's slots.
+void read_graph_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
+                          const std::string& path, const ShaderGraph& graph,
+                          const Fields& mesh_extension, TriangleMesh& mesh,
+                          Diagnostics& diagnostics) {
+  const MeshUvMaps maps = read_mesh_uv_maps(mesh_extension);
+  for (size_t slot = 0; slot < graph.uv_maps.size(); ++slot) {
+    const std::string& name = graph.uv_maps[slot];
+    std::optional<uint32_t> n = maps.texcoord(name);
+    if (!n) {
+      diagnostics.warn(located(ctx.file, path,
+                               "the mesh has no UV map '" + name + "' that material '" + mesh.name +
+                                   "' reads; TEXCOORD_0 is used"));
+      n = 0;
+    }
+    mesh.texturing.texcoords[slot] = read_texcoords(ctx, prim, path, *n, mesh.positions.size());
+    if (mesh.texturing.texcoords[slot].empty())
+      diagnostics.warn(located(ctx.file, path + ".attributes",
+                               "no TEXCOORD_" + std::to_string(*n) + " for UV map '" + name +
+                                   "': its textures read the point (0, 0)"));
+  }
+  const auto& normal_uv = mesh.texturing.texcoords[graph.normal_map_uv_slot];
+  if (graph.has_normal_map && !normal_uv.empty())
+    mesh.texturing.tangents = computed_tangents(mesh, normal_uv);
+}
+
+}  // namespace
+
 void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
-                    const std::string& path, const Material& material, TriangleMesh& mesh) {
+                    const std::string& path, const Material& material, const Fields& mesh_extension,
+                    TriangleMesh& mesh, Diagnostics& diagnostics) {
+  if (material.shader_graph)
+    return read_graph_texturing(ctx, prim, path, *material.shader_graph, mesh_extension, mesh,
+                                diagnostics);
   if (!material.textures.any() && material.alpha_mode == AlphaMode::kOpaque) return;
   VertexTextureData& out = mesh.texturing;
   for (uint32_t set = 0; set < VertexTextureData::kSets; ++set) {
-    const std::string name = "TEXCOORD_" + std::to_string(set);
-    const auto it = prim.attributes.find(name);
-    if (it == prim.attributes.end()) break;
-    const std::string where = path + ".attributes." + name;
-    const std::vector<double> values =
-        read_animation_values(ctx, it->second, where, TINYGLTF_TYPE_VEC2, true);
-    if (values.size() != 2 * mesh.positions.size())
-      throw_input(ctx.file, where,
-                  std::to_string(values.size() / 2) + " texture coordinates for " +
-                      std::to_string(mesh.positions.size()) + " positions");
-    out.texcoords[set].resize(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v)
-      out.texcoords[set][v] = {float(values[2 * v]), float(values[2 * v + 1])};
+    out.texcoords[set] = read_texcoords(ctx, prim, path, set, mesh.positions.size());
+    if (out.texcoords[set].empty()) break;
   }
   const MaterialTextures& t = material.textures;
   for (const TextureRef* ref : {&t.base_color, &t.metallic_roughness, &t.normal, &t.emissive})

@@ -8,6 +8,7 @@
 #include "core/scene/scene.h"
 #include "core/util/diagnostics.h"
 #include "importers/gltf/gltf_accessors.h"
+#include "importers/gltf/gltf_json.h"
 
 namespace tinygltf {
 class Model;
@@ -17,15 +18,18 @@ struct Primitive;
 namespace fb::gltf {
 
 // model.materials into scene.materials, index for index, and model.images into scene.images
-// (their encoded bytes are moved out of the model). Bad values throw an InputError naming the
-// JSON path; what is not carried is a warning.
+// (their encoded bytes are moved out of the model), then the images Blender materials' shader
+// graphs name (FILMBACK_blender, gltf_blender_material.h). Bad values throw an InputError naming
+// the JSON path; what is not carried is a warning.
 void read_materials(tinygltf::Model& model, const std::string& file, Scene& scene,
                     Diagnostics& diagnostics);
 
 // The texture coordinates and tangents `material` reads, into mesh.texturing. `path` is the
 // primitive's JSON path. Tangents come from TANGENT, or are computed per vertex from the
 // triangles' texture-coordinate gradients when the material has a normal map and the file none.
+// A shader graph's UV maps are found by name in `mesh_extension` (the mesh's FILMBACK_blender).
 void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
-                    const std::string& path, const Material& material, TriangleMesh& mesh);
+                    const std::string& path, const Material& material, const Fields& mesh_extension,
+                    TriangleMesh& mesh, Diagnostics& diagnostics);
 
 }  // namespace fb::gltf

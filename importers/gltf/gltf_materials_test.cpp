@@ -21,6 +21,7 @@
 namespace fb {
 namespace {
 
+using test::base64;
 using test::png;
 
 // The message of the InputError that reading `model`'s materials throws, or "" if none.
@@ -305,21 +306,6 @@ TEST(AlphaCoverage, BlendKeepsAShareOfHitsEqualToAlpha) {
 
 namespace fb {
 namespace {
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = uint32_t(bytes[i]) << 16 |
-                       (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                       (i + 2 < bytes.size() ? uint32_t(bytes[i + 2]) : 0);
-    out += kDigits[n >> 18 & 63];
-    out += kDigits[n >> 12 & 63];
-    out += i + 1 < bytes.size() ? kDigits[n >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? kDigits[n & 63] : '=';
-  }
-  return out;
-}
 
 // A textured quad written by hand: positions, TEXCOORD_0 and indices in a data-URI buffer, the
 // image `image_uri`, the base colour texture reading TEXCOORD_n for n = `texcoord`.

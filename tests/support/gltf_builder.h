@@ -15,6 +15,9 @@ namespace fb::test {
 // A fresh, empty folder under the system temp dir, named after the running test.
 std::filesystem::path scratch_dir();
 
+// RFC 4648 base64, for data: URIs in hand-written glTF files.
+std::string base64(const std::vector<unsigned char>& bytes);
+
 class GltfBuilder {
  public:
   GltfBuilder();

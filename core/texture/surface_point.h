@@ -1,0 +1,25 @@
+// Where on a surface a hit lies: what textures are looked up with.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <filmback/vec.h>
+
+#include "core/scene/material_textures.h"
+
+namespace fb {
+
+// Where on a surface a hit lies, interpolated from its vertices (render space).
+struct SurfacePoint {
+  // The hit's position in render space, for solid textures (Material::base_color_pattern), which
+  // SurfaceShader evaluates in world space. Filled by render_geometry for meshes and analytic
+  // solids alike.
+  Vec3f position{};
+  std::array<Vec2f, VertexTextureData::kSets> uv{};
+  uint32_t uv_sets = 0;  // how many of `uv` the mesh has
+  Vec3f tangent{};       // unit, or zero when the mesh has none
+  float bitangent_sign = 1.f;
+};
+
+}  // namespace fb

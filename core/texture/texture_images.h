@@ -1,0 +1,43 @@
+// The images a scene's materials read, opened through OpenImageIO's TextureSystem (tiled, cached,
+// mip-mapped on demand), and one lookup: RGBA at a texture position. Shared by glTF's materials
+// (core/texture/surface_shader.cpp) and Blender's shader graphs (core/texture/graph_shader.cpp).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/scene/scene.h"
+
+namespace fb {
+
+struct TextureLookup {
+  uint32_t image = kNoImage;
+  float s = 0.f,
+        t = 0.f;  // texture position: (0, 0) the image's top-left corner, (1, 1) bottom-right
+  TextureWrap wrap_s = TextureWrap::kRepeat, wrap_t = TextureWrap::kRepeat;
+  TextureInterpolation interpolation = TextureInterpolation::kLinear;
+  bool srgb = false;  // decode the colour channels from sRGB
+};
+
+class TextureImages {
+ public:
+  // Opens every image of `scene` that `used` marks; an image that cannot be read or is too large
+  // is an InputError naming it.
+  TextureImages(const Scene& scene, const std::vector<bool>& used);
+  ~TextureImages();
+  TextureImages(const TextureImages&) = delete;
+  TextureImages& operator=(const TextureImages&) = delete;
+
+  // Straight (unassociated) RGBA; grey images are spread to RGB, a missing alpha is 1.
+  std::array<float, 4> rgba(const TextureLookup& lookup) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// sRGB transfer function, decoding (IEC 61966-2-1).
+float srgb_to_linear(float v);
+
+}  // namespace fb
