@@ -80,6 +80,14 @@ def file_colorspace(image):
     return image.colorspace_settings.name
 
 
+def file_alpha_mode(image):
+    """How the written file holds alpha: the image's setting, except that float pixels saved to
+    OpenEXR are Blender's premultiplied float buffer (OpenEXR's own convention too)."""
+    if _saved_from_pixels(image) and image.is_float:
+        return "PREMUL"
+    return image.alpha_mode
+
+
 class ImageFiles:
     def __init__(self):
         self._entries = {}  # image pointer -> [image, [(dict, key), ...]]

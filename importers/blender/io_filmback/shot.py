@@ -38,7 +38,7 @@ def scene_extension(scene, frame, image_files):
             "glossy_bounces": cycles.glossy_bounces,
             "transmission_bounces": cycles.transmission_bounces,
         })
-    out.update(world(scene, image_files))
+    out.update(world(scene, image_files, out))
     return out
 
 
@@ -75,9 +75,10 @@ def shutter(scene):
             "shutter_curve": [mapping.evaluate(curve, i / (n - 1)) for i in range(n)]}
 
 
-def world(scene, image_files):
+def world(scene, image_files, holder):
     """The world's Background colour and strength; an Environment Texture's image is written
-    next to the exported file and named by a relative URI (images.py)."""
+    next to the exported file and named by a relative URI, holder["world_hdr_uri"], once the
+    export ends (images.py)."""
     w = scene.world
     if w is None:
         return {"world_color": [0.0, 0.0, 0.0], "world_strength": 0.0}
@@ -96,7 +97,7 @@ def world(scene, image_files):
         image = colour_links[0].from_node.image
         reason = images.problem(image) if image is not None else None
         if image is not None and reason is None:
-            image_files.refer(image, out, "world_hdr_uri")
+            image_files.refer(image, holder, "world_hdr_uri")
             out["world_color"] = [1.0, 1.0, 1.0]
         elif image is not None:
             out["world_unsupported"] = True

@@ -30,7 +30,8 @@ def texture(node, path, context):
     uv_map, (a, offset) = uv_source(node, path, context)
     out = {"uv_map": uv_map, "uv_transform": gltf_uv_transform(a, offset),
            "extension": node.extension, "interpolation": node.interpolation,
-           "colorspace": images.file_colorspace(image), "alpha_mode": image.alpha_mode}
+           "colorspace": images.file_colorspace(image),
+           "alpha_mode": images.file_alpha_mode(image)}
     context.images.refer(image, out, "uri")
     return out, None
 
