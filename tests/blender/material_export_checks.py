@@ -33,6 +33,7 @@ class Checker:
             self.gltf = json.load(f)
         self.failures = []
         self.compared = 0
+        self.copies = {}  # name -> how many glTF objects of that name the file has
 
     def expect(self, where, got, want):
         self.compared += 1
@@ -50,6 +51,7 @@ class Checker:
             return {}
         for other in items[1:]:
             self.expect(f"{kind} '{name}' (another copy)", other["extensions"][EXTENSION], data)
+        self.copies[name] = len(items)
         return data
 
     # Values
@@ -359,6 +361,13 @@ def check_object_coordinates(c, material, images):
     c.warning(data, "ObjectCoordinates", f"'{coordinates.name}'", "TEX_COORD", "Object")
 
 
+def check_default_uv(c, material, images):
+    data = c.extension("materials", material.name)
+    entry = surface(c, data, "PRINCIPLED")
+    c.texture("DefaultUV.base_color", entry.get("inputs", {}).get("base_color"),
+              by_type(material.node_tree, "ShaderNodeTexImage")[0], images["a"])
+
+
 def check_no_nodes(c, material):
     data = c.extension("materials", material.name)
     entry = surface(c, data, "DIFFUSE")
@@ -470,9 +479,12 @@ def check(gltf_path, scene, materials, images):
     check_toon(c, m["Toon"])
     check_shared(c, m["Shared"])
     check_object_coordinates(c, m["ObjectCoordinates"], images)
+    check_default_uv(c, m["DefaultUV"], images)
     check_no_nodes(c, m["NoNodes"])
     check_unlinked(c, m["Unlinked"])
     check_meshes(c)
+    c.expect("glTF materials made of DefaultUV, on meshes of two active render UV maps",
+             c.copies.get("DefaultUV"), 2)
     check_light_and_view(c, scene)
     check_world(c, images)
     print(f"compared {c.compared} values of {len(materials)} materials, the meshes, a light and "

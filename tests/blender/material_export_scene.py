@@ -195,9 +195,13 @@ def mix_glossy_diffuse(images):
     diffuse = tree.add("ShaderNodeBsdfDiffuse")
     set_inputs(diffuse, {"Color": (0.2, 0.52, 0.31, 1.0), "Roughness": 0.41})
     mix = tree.combine("ShaderNodeMixShader", glossy, diffuse)
+    # The factor reaches the image through a reroute and a muted Invert (Cycles passes a muted
+    # node's internal link: Color to Color).
     reroute = tree.add("NodeReroute")
+    muted = tree.add("ShaderNodeInvert", mute=True)
     tree.link(tree.image(images["a"]).outputs["Color"], reroute.inputs[0])
-    tree.link(reroute.outputs[0], mix.inputs["Fac"])
+    tree.link(reroute.outputs[0], muted.inputs["Color"])
+    tree.link(muted.outputs["Color"], mix.inputs["Fac"])
     return tree.material
 
 
@@ -281,6 +285,16 @@ def object_coordinates(images):
     return tree.material
 
 
+def default_uv(images):
+    """A base colour texture on the active render UV map: Blender's exporter makes one glTF
+    material per active render UV index of the meshes using it."""
+    tree = Tree("DefaultUV")
+    principled = tree.add("ShaderNodeBsdfPrincipled")
+    tree.link(tree.image(images["a"]).outputs["Color"], principled.inputs["Base Color"])
+    tree.surface(principled)
+    return tree.material
+
+
 def no_nodes():
     material = bpy.data.materials.new("NoNodes")
     material.use_nodes = False
@@ -337,11 +351,15 @@ def main():
     images = build_images(os.path.join(out_dir, "src"))
     materials = [all_inputs(), textured(images), mix_glossy_diffuse(images), add_shader(),
                  glass(), transparent_mix(), grouped(images), toon(), shared(),
-                 object_coordinates(images), no_nodes(), unlinked()]
+                 object_coordinates(images), default_uv(images), no_nodes(), unlinked()]
     for i, material in enumerate(materials):
         plane_with_two_uv_maps(material.name, material, 3.0 * i)
     # UV layers without any texture using them: which does the exporter write?
     plane_with_two_uv_maps("Untextured", None, -3.0)
+    # A material on meshes whose active render UV maps differ: each glTF material the exporter
+    # makes of it must carry the extension.
+    other = plane_with_two_uv_maps("OtherActiveUV", bpy.data.materials["DefaultUV"], -6.0)
+    other.data.uv_layers["UVMap"].active_render = True
     light_and_view(scene)
     world(scene, images)
     export_dir = os.path.join(out_dir, "export")
