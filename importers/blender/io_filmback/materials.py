@@ -1,5 +1,5 @@
 """A Blender material's node tree as the FILMBACK_blender material extension (docs/blender.md,
-"Materials"; the contract is docs/material-schema.md's).
+"What is carried" > "Materials").
 
 The tree is walked from the Surface input of the output node Cycles uses
 (`get_output_node('CYCLES')`) as Cycles 3.4 builds its shader graph (node_links.py): shader nodes
