@@ -329,7 +329,13 @@ def check_grouped(c, material, images):
     inputs = entry.get("inputs", {})
     c.expect("Grouped.base_color (the group node's Tint)", inputs.get("base_color"),
              list(group_node.inputs["Tint"].default_value)[:3])
-    c.node_constants("Grouped", entry, inner, skip=("Base Color", "Roughness"))
+    c.node_constants("Grouped", entry, inner, skip=("Base Color", "Roughness", "Metallic"))
+    rgb = list(by_type(tree, "ShaderNodeRGB")[0].outputs[0].default_value)
+    luminance = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]
+    c.compared += 1
+    if abs(inputs.get("metallic", -1.0) - luminance) > 2.0**-24:
+        c.failures.append(f"Grouped.metallic {inputs.get('metallic')}: not the luminance "
+                          f"{luminance} of the RGB node's {rgb}")
     c.texture("Grouped.roughness", inputs.get("roughness"), by_type(tree, "ShaderNodeTexImage")[0],
               images["b"], channel="R")
     c.expect("Grouped.warnings", data.get("warnings"), None)
@@ -359,6 +365,38 @@ def check_object_coordinates(c, material, images):
               by_type(tree, "ShaderNodeTexImage")[0], images["a"])
     coordinates = by_type(tree, "ShaderNodeTexCoord")[0]
     c.warning(data, "ObjectCoordinates", f"'{coordinates.name}'", "TEX_COORD", "Object")
+
+
+def check_fallbacks(c, material, images):
+    data = c.extension("materials", material.name)
+    nodes = data.get("nodes", [])
+    tree = material.node_tree
+    mix, emission = shaders(c, data, surface(c, data, "ADD_SHADER"), ["MIX_SHADER", "EMISSION"])
+    image_node = next(n for n in by_type(tree, "ShaderNodeTexImage") if n.image == images["a"])
+    c.texture("Fallbacks: an image's colour into a shader socket",
+              emission.get("inputs", {}).get("color"), image_node, images["a"])
+    c.expect("Fallbacks: its strength", emission.get("inputs", {}).get("strength"), 1)
+    glass_index, volume_index = (mix.get("shaders", []) + [None, None])[:2]
+    c.expect("Fallbacks: Principled Volume on a surface (nothing)", volume_index, None)
+    glass = nodes[glass_index] if glass_index is not None else {}
+    refraction = by_type(tree, "ShaderNodeBsdfRefraction")[0]
+    c.expect("Fallbacks: Refraction replaced by", glass.get("type"), "GLASS")
+    c.expect("Fallbacks.glass.distribution", glass.get("distribution"), refraction.distribution)
+    inputs = glass.get("inputs", {})
+    c.expect("Fallbacks.glass.color (an RGB node)", inputs.get("color"),
+             list(by_type(tree, "ShaderNodeRGB")[0].outputs[0].default_value)[:3])
+    c.constant("Fallbacks.glass.roughness (Separate HSV: the input's value)",
+               inputs.get("roughness"), refraction.inputs["Roughness"])
+    c.constant("Fallbacks.glass.ior", inputs.get("ior"), refraction.inputs["IOR"])
+    written = inputs.get("normal", {}).get("normal_map", {})
+    c.expect("Fallbacks.glass.normal.space", written.get("space"), "OBJECT")
+    c.expect("Fallbacks.glass.normal.strength (a Value node)", written.get("strength"),
+             by_type(tree, "ShaderNodeValue")[0].outputs[0].default_value)
+    c.warning(data, "Fallbacks", "'Refraction BSDF'", "BSDF_REFRACTION", "GLASS")
+    c.warning(data, "Fallbacks", "'Principled Volume'", "PRINCIPLED_VOLUME", "nothing")
+    c.warning(data, "Fallbacks", "'Separate Color'", "HSV", "Roughness")
+    c.warning(data, "Fallbacks", "'Normal Map'", "OBJECT", "TANGENT")
+    c.expect("Fallbacks: warnings", len(data.get("warnings", [])), 4)
 
 
 def check_default_uv(c, material, images):
@@ -479,6 +517,7 @@ def check(gltf_path, scene, materials, images):
     check_toon(c, m["Toon"])
     check_shared(c, m["Shared"])
     check_object_coordinates(c, m["ObjectCoordinates"], images)
+    check_fallbacks(c, m["Fallbacks"], images)
     check_default_uv(c, m["DefaultUV"], images)
     check_no_nodes(c, m["NoNodes"])
     check_unlinked(c, m["Unlinked"])

@@ -243,6 +243,7 @@ def grouped(images):
     group = bpy.data.node_groups.new("Layer", "ShaderNodeTree")
     group.inputs.new("NodeSocketColor", "Tint")
     group.inputs.new("NodeSocketFloat", "Rough")
+    group.inputs.new("NodeSocketFloat", "Metal")
     group.outputs.new("NodeSocketShader", "BSDF")
     inside_in = group.nodes.new("NodeGroupInput")
     inside_out = group.nodes.new("NodeGroupOutput")
@@ -251,6 +252,7 @@ def grouped(images):
     group.links.new(inside_in.outputs["Tint"], principled.inputs["Base Color"])
     group.links.new(inside_in.outputs["Rough"], reroute.inputs[0])
     group.links.new(reroute.outputs[0], principled.inputs["Roughness"])
+    group.links.new(inside_in.outputs["Metal"], principled.inputs["Metallic"])
     group.links.new(principled.outputs[0], inside_out.inputs["BSDF"])
     tree = Tree("Grouped")
     node = tree.add("ShaderNodeGroup", node_tree=group)
@@ -258,6 +260,10 @@ def grouped(images):
     separate = tree.add("ShaderNodeSeparateRGB")
     tree.link(tree.image(images["b"]).outputs["Color"], separate.inputs[0])
     tree.link(separate.outputs["R"], node.inputs["Rough"])
+    # A colour into the group's float input: Cycles converts it to its luminance.
+    rgb = tree.add("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.9, 0.3, 0.1, 1.0)
+    tree.link(rgb.outputs[0], node.inputs["Metal"])
     tree.surface(node)
     return tree.material
 
@@ -282,6 +288,37 @@ def object_coordinates(images):
     tree.link(tree.image(images["a"], coordinates.outputs["Object"]).outputs["Color"],
               diffuse.inputs["Color"])
     tree.surface(diffuse)
+    return tree.material
+
+
+def fallbacks(images):
+    """What is replaced or dropped: Add(Mix(Refraction, Principled Volume), an image's colour
+    straight into a shader socket); the Refraction's colour from an RGB node, its roughness from a
+    Separate Color in HSV mode, its normal from an OBJECT-space Normal Map whose strength is a
+    Value node."""
+    tree = Tree("Fallbacks")
+    refraction = tree.add("ShaderNodeBsdfRefraction", distribution="GGX")
+    set_inputs(refraction, {"Roughness": 0.27, "IOR": 1.71})
+    rgb = tree.add("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.61, 0.83, 0.47, 1.0)
+    tree.link(rgb.outputs[0], refraction.inputs["Color"])
+    hsv = tree.add("ShaderNodeSeparateColor", mode="HSV")
+    tree.link(tree.image(images["b"]).outputs["Color"], hsv.inputs[0])
+    tree.link(hsv.outputs[1], refraction.inputs["Roughness"])
+    normal_map = tree.add("ShaderNodeNormalMap", space="OBJECT")
+    strength = tree.add("ShaderNodeValue")
+    strength.outputs[0].default_value = 0.43
+    tree.link(strength.outputs[0], normal_map.inputs["Strength"])
+    tree.link(tree.image(images["normal"]).outputs["Color"], normal_map.inputs["Color"])
+    tree.link(normal_map.outputs[0], refraction.inputs["Normal"])
+    volume = tree.add("ShaderNodeVolumePrincipled")
+    mix = tree.add("ShaderNodeMixShader")
+    tree.link(refraction.outputs[0], mix.inputs[1])
+    tree.link(volume.outputs[0], mix.inputs[2])
+    add = tree.add("ShaderNodeAddShader")
+    tree.link(mix.outputs[0], add.inputs[0])
+    tree.link(tree.image(images["a"]).outputs["Color"], add.inputs[1])
+    tree.surface(add)
     return tree.material
 
 
@@ -351,7 +388,7 @@ def main():
     images = build_images(os.path.join(out_dir, "src"))
     materials = [all_inputs(), textured(images), mix_glossy_diffuse(images), add_shader(),
                  glass(), transparent_mix(), grouped(images), toon(), shared(),
-                 object_coordinates(images), default_uv(images), no_nodes(), unlinked()]
+                 object_coordinates(images), fallbacks(images), default_uv(images), no_nodes(), unlinked()]
     for i, material in enumerate(materials):
         plane_with_two_uv_maps(material.name, material, 3.0 * i)
     # UV layers without any texture using them: which does the exporter write?

@@ -109,8 +109,9 @@ class _Walk:
         key = (tuple(n.as_pointer() for n in src.path), src.node.as_pointer(),
                src.socket.identifier)
         if key not in self._index:
-            # The index is taken before the node's inputs are walked: the surface is node 0 and
-            # a node reached again (shared sub-tree) finds its index.
+            # An entry is added before its inputs are walked (the surface is node 0); a node
+            # reached again (a shared sub-tree) finds its index. None marks a node being walked,
+            # so that a cycle (Blender marks its links invalid anyway) ends.
             self._index[key] = None
             self._index[key] = self._shader_entry(src)
         return self._index[key]

@@ -74,6 +74,9 @@ def convert(value, from_type, to_type):
 
 
 def zero(socket_type):
+    """What an unfed socket of this type holds in Cycles: 0, black, or no closure (None)."""
+    if socket_type == "SHADER":
+        return None
     return 0.0 if socket_type == "VALUE" else [0.0, 0.0, 0.0]
 
 
