@@ -402,8 +402,9 @@ def main():
     export_dir = os.path.join(out_dir, "export")
     os.makedirs(export_dir, exist_ok=True)
     gltf = os.path.join(export_dir, "shot.gltf")
-    # Tangents: Blender's own normalTexture (from the normal map) without them draws the
-    # validator's MESH_PRIMITIVE_GENERATED_TANGENT_SPACE warning, add-on or not.
+    # Tangents: without them Blender's own normalTexture (from the normal map) draws the
+    # validator's MESH_PRIMITIVE_GENERATED_TANGENT_SPACE warning (the validator does not read
+    # FILMBACK_blender).
     export_shot.export(gltf, export_tangents=True)
     failures = material_export_checks.check(gltf, scene, materials, images)
     if failures:
