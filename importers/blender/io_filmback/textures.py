@@ -63,10 +63,11 @@ def uv_source(node, path, context):
             total = _compose(total, mapping_affine(source_node, path, context))
             owner, socket = source_node, source_node.inputs["Vector"]
             continue
+        what = "of type NORMAL (not affine)" if source_node.type == "MAPPING" else \
+            f"(output {src.socket.name})"
         context.warn(source_node, path,
-                     f"(output {src.socket.name}) on '{owner.name}'.Vector "
-                     f"is not carried: the texture of '{node.name}' uses the active render UV "
-                     f"map, untransformed")
+                     f"{what} on '{owner.name}'.Vector is not carried: the texture of "
+                     f"'{node.name}' uses the active render UV map, untransformed")
         return "", IDENTITY
     raise ValueError(f"texture coordinates of '{node.name}' pass more than "
                      f"{node_links.MAX_HOPS} Mapping nodes")
