@@ -399,6 +399,16 @@ def check_fallbacks(c, material, images):
     c.expect("Fallbacks: warnings", len(data.get("warnings", [])), 4)
 
 
+def check_in_export_folder(c, material, images):
+    data = c.extension("materials", material.name)
+    inputs = surface(c, data, "PRINCIPLED").get("inputs", {})
+    image_node = by_type(material.node_tree, "ShaderNodeTexImage")[0]
+    c.texture("InExportFolder.roughness", inputs.get("roughness"), image_node,
+              images["in_export"], channel="G")
+    c.texture("InExportFolder.metallic", inputs.get("metallic"), image_node, images["in_export"],
+              channel="B")
+
+
 def check_default_uv(c, material, images):
     data = c.extension("materials", material.name)
     entry = surface(c, data, "PRINCIPLED")
@@ -518,6 +528,7 @@ def check(gltf_path, scene, materials, images):
     check_shared(c, m["Shared"])
     check_object_coordinates(c, m["ObjectCoordinates"], images)
     check_fallbacks(c, m["Fallbacks"], images)
+    check_in_export_folder(c, m["InExportFolder"], images)
     check_default_uv(c, m["DefaultUV"], images)
     check_no_nodes(c, m["NoNodes"])
     check_unlinked(c, m["Unlinked"])

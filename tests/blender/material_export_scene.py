@@ -52,8 +52,11 @@ def file_image(folder, name, seed, colorspace):
     return loaded
 
 
-def build_images(src):
+def build_images(src, export_dir):
     images = {
+        # In the folder the export goes to, where Blender's exporter writes its combined
+        # metallic-roughness image under the same name.
+        "in_export": file_image(export_dir, "mr.png", 7, "Non-Color"),
         "a": file_image(os.path.join(src, "a"), "tex.png", 1, "sRGB"),
         # Same file name, other pixels: the export must write both, under different names.
         "b": file_image(os.path.join(src, "b"), "tex.png", 2, "Non-Color"),
@@ -322,6 +325,19 @@ def fallbacks(images):
     return tree.material
 
 
+def in_export_folder(images):
+    """Metallic and roughness from channels of one image lying where the export goes: Blender's
+    exporter writes its combined metallic-roughness texture over it, under its name."""
+    tree = Tree("InExportFolder")
+    principled = tree.add("ShaderNodeBsdfPrincipled")
+    separate = tree.add("ShaderNodeSeparateRGB")
+    tree.link(tree.image(images["in_export"]).outputs["Color"], separate.inputs[0])
+    tree.link(separate.outputs["G"], principled.inputs["Roughness"])
+    tree.link(separate.outputs["B"], principled.inputs["Metallic"])
+    tree.surface(principled)
+    return tree.material
+
+
 def default_uv(images):
     """A base colour texture on the active render UV map: Blender's exporter makes one glTF
     material per active render UV index of the meshes using it."""
@@ -385,10 +401,14 @@ def main():
     out_dir = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    images = build_images(os.path.join(out_dir, "src"))
+    export_dir = os.path.join(out_dir, "export")
+    images = build_images(os.path.join(out_dir, "src"), export_dir)
+    for image in images.values():
+        image.pixels[0]  # loaded now: a file Blender's exporter overwrites keeps its pixels here
     materials = [all_inputs(), textured(images), mix_glossy_diffuse(images), add_shader(),
                  glass(), transparent_mix(), grouped(images), toon(), shared(),
-                 object_coordinates(images), fallbacks(images), default_uv(images), no_nodes(), unlinked()]
+                 object_coordinates(images), fallbacks(images), in_export_folder(images),
+                 default_uv(images), no_nodes(), unlinked()]
     for i, material in enumerate(materials):
         plane_with_two_uv_maps(material.name, material, 3.0 * i)
     # UV layers without any texture using them: which does the exporter write?
@@ -399,8 +419,6 @@ def main():
     other.data.uv_layers["UVMap"].active_render = True
     light_and_view(scene)
     world(scene, images)
-    export_dir = os.path.join(out_dir, "export")
-    os.makedirs(export_dir, exist_ok=True)
     gltf = os.path.join(export_dir, "shot.gltf")
     # Tangents: without them Blender's own normalTexture (from the normal map) draws the
     # validator's MESH_PRIMITIVE_GENERATED_TANGENT_SPACE warning (the validator does not read

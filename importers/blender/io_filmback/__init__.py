@@ -41,10 +41,9 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         # animation: the frame the user is on is the shot's frame.
         import bpy
         from io_scene_gltf2.io.com.gltf2_io_extensions import Extension
-        from .images import ImageFiles
         self.Extension = Extension
         self.frame = bpy.context.scene.frame_current
-        self.images = ImageFiles()
+        self._images = None  # images.ImageFiles, made by the first hook that refers an image
         self.materials = {}  # Blender material pointer -> its extension object
 
     def _add(self, gltf_object, name, data):
@@ -55,13 +54,14 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
     def gather_scene_hook(self, gltf2_scene, blender_scene, export_settings):
         from . import shot
         self._add(gltf2_scene, EXTENSION,
-                  shot.scene_extension(blender_scene, self.frame, self.images))
+                  shot.scene_extension(blender_scene, self.frame, self.images(export_settings)))
 
     def gather_material_hook(self, gltf2_material, blender_material, export_settings):
         from . import materials
         key = blender_material.as_pointer()
         if key not in self.materials:
-            self.materials[key] = materials.material_extension(blender_material, self.images)
+            self.materials[key] = materials.material_extension(blender_material,
+                                                               self.images(export_settings))
         self._add(gltf2_material, EXTENSION, self.materials[key])
 
     def gather_mesh_hook(self, gltf2_mesh, blender_mesh, blender_object, vertex_groups,
@@ -71,13 +71,20 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         if data is not None:
             self._add(gltf2_mesh, EXTENSION, data)
 
+    def images(self, export_settings):
+        if self._images is None:
+            from .images import ImageFiles
+            self._images = ImageFiles([export_settings["gltf_filedirectory"],
+                                       export_settings["gltf_texturedirectory"]])
+        return self._images
+
     def gather_gltf_extensions_hook(self, gltf, export_settings):
         import os
         import urllib.parse
         folder = export_settings["gltf_filedirectory"]
         blender_files = [os.path.join(folder, urllib.parse.unquote(image.uri))
                          for image in (gltf.images or []) if isinstance(image.uri, str)]
-        self.images.write(folder, blender_files)
+        self.images(export_settings).write(folder, blender_files)
 
     def gather_node_hook(self, gltf2_node, blender_object, export_settings):
         if blender_object is None:

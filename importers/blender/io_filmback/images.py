@@ -10,7 +10,8 @@ files and fills the URIs in.
 How an image reaches the file, as Cycles 3.4 reads it (intern/cycles/blender/shader.cpp: packed
 and generated images are read from Blender's memory, others from their file):
 * a file on disk is copied byte for byte (or named where it lies when it already is beside the
-  exported file);
+  exported file and Blender's exporter wrote nothing there); a file lying where Blender's exporter
+  writes is read when it is referred to, before the exporter can write its own texture over it;
 * a packed image is written as its packed bytes (the original file), unless it has unsaved edits;
 * a generated image, or a packed one with unsaved edits, is saved from its pixels: PNG, or
   OpenEXR (32-bit float) when the image is float.
@@ -89,14 +90,26 @@ def file_alpha_mode(image):
 
 
 class ImageFiles:
-    def __init__(self):
+    def __init__(self, output_folders):
+        """`output_folders`: where Blender's exporter writes files (the exported file's folder
+        and its texture folder)."""
+        self._output_folders = {os.path.abspath(f) for f in output_folders}
         self._entries = {}  # image pointer -> [image, [(dict, key), ...]]
+        self._snapshots = {}  # image pointer -> the bytes of its file, read before Blender writes
 
     def refer(self, image, holder, key):
         """`holder[key]` will be the URI (relative to the exported file) of `image`, one that
         `problem` accepts, once the export ends."""
-        entry = self._entries.setdefault(image.as_pointer(), [image, []])
+        pointer = image.as_pointer()
+        entry = self._entries.setdefault(pointer, [image, []])
         entry[1].append((holder, key))
+        if pointer not in self._snapshots and not _saved_from_pixels(image) and \
+                image.packed_file is None and \
+                os.path.dirname(source_path(image)) in self._output_folders:
+            # Blender's exporter may write its own texture over a file lying where it writes
+            # (same name, other content: a combined metallic-roughness image): keep the original.
+            with open(source_path(image), "rb") as f:
+                self._snapshots[pointer] = f.read()
 
     def write(self, folder, taken_paths):
         """Writes every referred image into `folder` (the exported file's) under a name that is
@@ -120,7 +133,12 @@ class ImageFiles:
         for pointer, (image, holders) in self._entries.items():
             name = names[pointer]
             destination = os.path.join(folder, name)
-            _write_image(image, destination)
+            snapshot = self._snapshots.get(pointer)
+            if snapshot is not None and source_path(image) != destination:
+                with open(destination, "wb") as f:
+                    f.write(snapshot)
+            elif snapshot is None:
+                _write_image(image, destination)
             for holder, key in holders:
                 holder[key] = urllib.parse.quote(name)
         return sorted(names.values())
