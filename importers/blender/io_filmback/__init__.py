@@ -24,11 +24,12 @@ exporter (io/exp/gltf2_io_user_extensions.py), so a failure shows as a missing e
 bl_info = {
     "name": "filmback glTF extensions",
     "author": "filmback",
-    "version": (1, 0, 0),
+    "version": (1, 1, 0),
     "blender": (3, 4, 0),
     "location": "File > Export > glTF 2.0",
-    "description": "Adds Blender's physical camera, lights, world, render settings and "
-                   "subdivision surfaces to glTF exports, for filmback",
+    "description": "Adds Blender's physical camera, lights, world, render and colour "
+                   "settings, material node trees and subdivision surfaces to glTF exports, "
+                   "for filmback",
     "category": "Import-Export",
 }
 
