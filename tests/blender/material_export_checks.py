@@ -196,8 +196,8 @@ def shaders(c, data, entry, kinds):
     nodes = data.get("nodes", [])
     out = []
     for i, kind in zip(entry.get("shaders", []), kinds):
-        c.expect("shader input's type", nodes[i]["type"] if i is not None else None, kind)
-        out.append(nodes[i] if i is not None else {})
+        c.expect("shader input's type", nodes[i]["type"] if i >= 0 else None, kind)
+        out.append(nodes[i] if i >= 0 else {})
     c.expect("number of shader inputs", len(entry.get("shaders", [])), len(kinds))
     return out
 
@@ -376,9 +376,9 @@ def check_fallbacks(c, material, images):
     c.texture("Fallbacks: an image's colour into a shader socket",
               emission.get("inputs", {}).get("color"), image_node, images["a"])
     c.expect("Fallbacks: its strength", emission.get("inputs", {}).get("strength"), 1)
-    glass_index, volume_index = (mix.get("shaders", []) + [None, None])[:2]
-    c.expect("Fallbacks: Principled Volume on a surface (nothing)", volume_index, None)
-    glass = nodes[glass_index] if glass_index is not None else {}
+    glass_index, volume_index = (mix.get("shaders", []) + [-1, -1])[:2]
+    c.expect("Fallbacks: Principled Volume on a surface (nothing)", volume_index, -1)
+    glass = nodes[glass_index] if glass_index >= 0 else {}
     refraction = by_type(tree, "ShaderNodeBsdfRefraction")[0]
     c.expect("Fallbacks: Refraction replaced by", glass.get("type"), "GLASS")
     c.expect("Fallbacks.glass.distribution", glass.get("distribution"), refraction.distribution)

@@ -116,6 +116,10 @@ class _Walk:
             self._index[key] = self._shader_entry(src)
         return self._index[key]
 
+    @staticmethod
+    def _linked(index):
+        return -1 if index is None else index
+
     def _shader_entry(self, src):
         node, path = src.node, src.path
         name = " > ".join(n.name for n in path + (node,))
@@ -162,7 +166,9 @@ class _Walk:
             entry["inputs"] = self._inputs(node, path, values)
         shaders = [s for s in node.inputs if s.type == "SHADER"]
         if shaders:
-            entry["shaders"] = [self.shader(s, path) for s in shaders]
+            # -1: an unlinked socket (JSON null would not survive: glTF readers such as
+            # tinygltf drop nulls from arrays, which moves the next index into its place).
+            entry["shaders"] = [self._linked(self.shader(s, path)) for s in shaders]
         return index
 
     # Inputs
