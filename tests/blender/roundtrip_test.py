@@ -92,20 +92,28 @@ def case_roundtrip(a):
         sys.exit("\n".join(failures))
 
 
-def case_validator(a):
-    modules = a.node_modules
+def require_validator(modules):
+    """Exits with CTest's skip unless the npm package gltf-validator is under `modules`."""
     if not modules or not os.path.isdir(os.path.join(modules, "gltf-validator")) or \
             shutil.which("node") is None:
         print(f"skipped: npm package gltf-validator not installed under {modules!r} "
               "(./setup.sh test installs it)")
         sys.exit(SKIP)
-    folder = build_scene(a.scratch)
-    r = subprocess.run(["node", os.path.join(HERE, "validate_gltf.js"), modules,
-                        os.path.join(folder, "shot.gltf")], capture_output=True, text=True,
-                       timeout=120)
+
+
+def validate(modules, gltf):
+    """Exits with a message unless the Khronos glTF validator passes `gltf` with no errors and
+    no warnings."""
+    r = subprocess.run(["node", os.path.join(HERE, "validate_gltf.js"), modules, gltf],
+                       capture_output=True, text=True, timeout=120)
     print(r.stdout, r.stderr)
     if r.returncode != 0 or " 0 errors, 0 warnings" not in r.stdout:
         sys.exit("the glTF validator reports errors or warnings")
+
+
+def case_validator(a):
+    require_validator(a.node_modules)
+    validate(a.node_modules, os.path.join(build_scene(a.scratch), "shot.gltf"))
 
 
 def case_addon_install(a):

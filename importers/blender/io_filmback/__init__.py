@@ -3,17 +3,33 @@
 Hooks Blender's own glTF exporter (io_scene_gltf2's user extensions: an enabled add-on whose
 module defines `glTF2ExportUserExtension` is called back while the file is gathered) and adds the
 `FILMBACK_blender` extension (docs/blender.md, "What is carried") to cameras, lights, subdivided
-meshes and the scene, and `EXT_camera_physical` (KhronosGroup/glTF pull request 2608) to cameras.
+meshes, materials, meshes' UV maps and the scene, and `EXT_camera_physical` (KhronosGroup/glTF pull
+request 2608) to cameras.
+
+Blender 3.4.1's exporter calls the hooks with these arguments (io_scene_gltf2/blender/exp/, the
+trailing `export_settings` always last); a hook's exception is printed and swallowed by the
+exporter (io/exp/gltf2_io_user_extensions.py), so a failure shows as a missing extension.
+- gather_scene_hook(scene, blender_scene): once per scene.
+- gather_node_hook(node, blender_object): once per object.
+- gather_mesh_hook(mesh, blender_mesh, blender_object, vertex_groups, modifiers, skip_filter,
+  materials): once per glTF mesh (cached by mesh data, modifiers and materials).
+- gather_material_hook(material, blender_material): once per glTF material, and the exporter
+  makes one per Blender material *and* active render UV index of the meshes using it (its cache
+  key), sometimes calling the hook twice on the same one: the extension is built once per Blender
+  material and shared.
+- gather_gltf_extensions_hook(gltf): after Blender's own image files are written, before the
+  JSON is: the extension's images are written then (images.py).
 """
 
 bl_info = {
     "name": "filmback glTF extensions",
     "author": "filmback",
-    "version": (1, 0, 0),
+    "version": (1, 1, 0),
     "blender": (3, 4, 0),
     "location": "File > Export > glTF 2.0",
-    "description": "Adds Blender's physical camera, lights, world, render settings and "
-                   "subdivision surfaces to glTF exports, for filmback",
+    "description": "Adds Blender's physical camera, lights, world, render and colour "
+                   "settings, material node trees and subdivision surfaces to glTF exports, "
+                   "for filmback",
     "category": "Import-Export",
 }
 
@@ -28,6 +44,8 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         from io_scene_gltf2.io.com.gltf2_io_extensions import Extension
         self.Extension = Extension
         self.frame = bpy.context.scene.frame_current
+        self._images = None  # images.ImageFiles, made by the first hook that refers an image
+        self.materials = {}  # Blender material pointer -> its extension object
 
     def _add(self, gltf_object, name, data):
         if gltf_object.extensions is None:
@@ -37,7 +55,37 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
     def gather_scene_hook(self, gltf2_scene, blender_scene, export_settings):
         from . import shot
         self._add(gltf2_scene, EXTENSION,
-                  shot.scene_extension(blender_scene, self.frame, export_settings))
+                  shot.scene_extension(blender_scene, self.frame, self.images(export_settings)))
+
+    def gather_material_hook(self, gltf2_material, blender_material, export_settings):
+        from . import materials
+        key = blender_material.as_pointer()
+        if key not in self.materials:
+            self.materials[key] = materials.material_extension(blender_material,
+                                                               self.images(export_settings))
+        self._add(gltf2_material, EXTENSION, self.materials[key])
+
+    def gather_mesh_hook(self, gltf2_mesh, blender_mesh, blender_object, vertex_groups,
+                         modifiers, skip_filter, materials, export_settings):
+        from . import meshes
+        data = meshes.mesh_extension(gltf2_mesh, blender_mesh)
+        if data is not None:
+            self._add(gltf2_mesh, EXTENSION, data)
+
+    def images(self, export_settings):
+        if self._images is None:
+            from .images import ImageFiles
+            self._images = ImageFiles([export_settings["gltf_filedirectory"],
+                                       export_settings["gltf_texturedirectory"]])
+        return self._images
+
+    def gather_gltf_extensions_hook(self, gltf, export_settings):
+        import os
+        import urllib.parse
+        folder = export_settings["gltf_filedirectory"]
+        blender_files = [os.path.join(folder, urllib.parse.unquote(image.uri))
+                         for image in (gltf.images or []) if isinstance(image.uri, str)]
+        self.images(export_settings).write(folder, blender_files)
 
     def gather_node_hook(self, gltf2_node, blender_object, export_settings):
         if blender_object is None:

@@ -1,4 +1,9 @@
-"""A Blender light as the node's FILMBACK_blender light, in Blender's own units."""
+"""A Blender light as the node's FILMBACK_blender light, in Blender's own units.
+
+The properties are bpy 3.4's (checked against Blender 3.4.1): `shadow_soft_size` is the Radius of
+point and spot lights, `spot_size` the full cone angle, `angle` the sun's angular diameter,
+`shape`/`size`/`size_y` the area light's (`size_y` counts for RECTANGLE and ELLIPSE only), and
+`spread` the area light's Spread (radians, 180 degrees by default)."""
 
 
 def light_extension(light):
@@ -15,4 +20,5 @@ def light_extension(light):
         out["shape"] = light.shape
         out["size_m"] = light.size
         out["size_y_m"] = light.size_y
+        out["spread_rad"] = light.spread
     return out

@@ -1,13 +1,15 @@
 """Blender's render settings and world as the scene's FILMBACK_blender extension."""
 
 import os
-import shutil
+
+from . import images
 
 # Samples of the shutter curve written, uniformly spaced over the open shutter.
 SHUTTER_CURVE_SAMPLES = 65
 
 
-def scene_extension(scene, frame, export_settings):
+def scene_extension(scene, frame, image_files):
+    """The scene's object; the world's image is referred to `image_files` (images.ImageFiles)."""
     r = scene.render
     out = {
         "resolution_x_px": r.resolution_x * r.resolution_percentage // 100,
@@ -20,9 +22,8 @@ def scene_extension(scene, frame, export_settings):
         "frame": frame,
         "frame_start": scene.frame_start,
         "frame_end": scene.frame_end,
-        "exposure_stops": scene.view_settings.exposure,
-        "view_transform": scene.view_settings.view_transform,
     }
+    out.update(view_settings(scene))
     if r.use_motion_blur:
         out.update(shutter(scene))
     cycles = getattr(scene, "cycles", None)
@@ -37,7 +38,23 @@ def scene_extension(scene, frame, export_settings):
             "glossy_bounces": cycles.glossy_bounces,
             "transmission_bounces": cycles.transmission_bounces,
         })
-    out.update(world(scene, export_settings))
+    out.update(world(scene, image_files, out))
+    return out
+
+
+def view_settings(scene):
+    """Colour Management as Blender applies it to what it shows and to 8-bit files: view
+    transform, look (the OCIO look's name, "None" for none), exposure in stops, gamma, display,
+    and the dither noise it adds when quantising. The OCIO config is Blender's own unless $OCIO
+    names another, as Blender reads it at start-up (colormanagement.c)."""
+    view = scene.view_settings
+    out = {"view_transform": view.view_transform, "look": view.look,
+           "exposure_stops": view.exposure, "gamma": view.gamma,
+           "display_device": scene.display_settings.display_device,
+           "dither_intensity": scene.render.dither_intensity}
+    config = os.environ.get("OCIO")
+    if config:
+        out["color_management_config"] = config
     return out
 
 
@@ -58,9 +75,10 @@ def shutter(scene):
             "shutter_curve": [mapping.evaluate(curve, i / (n - 1)) for i in range(n)]}
 
 
-def world(scene, export_settings):
-    """The world's Background colour and strength; an Environment Texture's image is copied
-    next to the exported file and named by a relative URI."""
+def world(scene, image_files, holder):
+    """The world's Background colour and strength; an Environment Texture's image is written
+    next to the exported file and named by a relative URI, holder["world_hdr_uri"], once the
+    export ends (images.py)."""
     w = scene.world
     if w is None:
         return {"world_color": [0.0, 0.0, 0.0], "world_strength": 0.0}
@@ -77,19 +95,14 @@ def world(scene, export_settings):
     colour_links = background.inputs["Color"].links
     if colour_links and colour_links[0].from_node.type == "TEX_ENVIRONMENT":
         image = colour_links[0].from_node.image
-        if image is not None and image.filepath:
-            source = os.path.abspath(bpy_path(image.filepath))
-            name = os.path.basename(source)
-            folder = export_settings["gltf_filedirectory"]
-            if os.path.abspath(os.path.join(folder, name)) != source:
-                shutil.copyfile(source, os.path.join(folder, name))
-            out["world_hdr_uri"] = name
+        reason = images.problem(image) if image is not None else None
+        if image is not None and reason is None:
+            image_files.refer(image, holder, "world_hdr_uri")
             out["world_color"] = [1.0, 1.0, 1.0]
+        elif image is not None:
+            out["world_unsupported"] = True
+            print(f"filmback: world '{w.name}': image '{image.name}' {reason}")
     elif colour_links:
         out["world_unsupported"] = True
     return out
 
-
-def bpy_path(path):
-    import bpy
-    return bpy.path.abspath(path)
