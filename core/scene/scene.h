@@ -10,13 +10,14 @@
 
 #include <filmback/vec.h>
 
+#include "core/image/view_settings.h"
 #include "core/math/bounds.h"
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
 #include "core/scene/material_textures.h"
-#include "core/scene/solid_texture.h"
 #include "core/scene/solid.h"
+#include "core/scene/solid_texture.h"
 #include "core/scene/subdivision_surface.h"
 
 namespace fb {
@@ -44,18 +45,18 @@ struct Material {
   Rgb base_color{1.f, 1.f, 1.f};  // linear (glTF's default base colour)
   Rgb emission{0.f, 0.f, 0.f};    // radiance, W sr^-1 m^-2
   bool double_sided = false;
-  float metallic = 0.f;      // the importer sets glTF's default of 1 for materials it reads
-  float roughness = 1.f;     // perceptual: GGX alpha = roughness^2
-  float transmission = 0.f;  // KHR_materials_transmission
-  float ior = 1.5f;          // KHR_materials_ior
-  float specular = 1.f;      // KHR_materials_specular specularFactor: 0 makes it Lambertian
+  float metallic = 0.f;       // the importer sets glTF's default of 1 for materials it reads
+  float roughness = 1.f;      // perceptual: GGX alpha = roughness^2
+  float transmission = 0.f;   // KHR_materials_transmission
+  float ior = 1.5f;           // KHR_materials_ior
+  float specular = 1.f;       // KHR_materials_specular specularFactor: 0 makes it Lambertian
   MaterialTextures textures;  // none by default
   // A POV-Ray pigment (importers/pov): the base colour is base_color times this solid texture's
   // colour at the hit's world position, its transmit scales the coverage (alpha) and its filter
   // the transmission (docs/pov.md, "Appearance").
   std::optional<SolidPattern> base_color_pattern;
   AlphaMode alpha_mode = AlphaMode::kOpaque;
-  float alpha = 1.f;         // baseColorFactor's fourth component
+  float alpha = 1.f;          // baseColorFactor's fourth component
   float alpha_cutoff = 0.5f;  // kMask
   // An area light's emitter (gltf_lights.cpp): like Cycles' lights, seen neither by camera nor by
   // shadow rays, and by other rays only from the side it shines to.
@@ -85,7 +86,7 @@ struct Light {
   Transform world_from_light;  // rest pose; lights shine down their -Z axis
   uint32_t node_index = kNoNode;
   SpotFalloff spot_falloff = SpotFalloff::kGltf;
-  double spot_inner_angle_rad = 0.0;  // kGltf: full intensity inside this half-angle
+  double spot_inner_angle_rad = 0.0;                 // kGltf: full intensity inside this half-angle
   double spot_outer_angle_rad = 0.7853981633974483;  // half-angle of the cone
   double spot_blend = 0.0;  // kCycles: fraction of the cone's (1 - cos) that fades
   // Point and spot: Cycles' soft light, a disk of this radius facing the shading point with
@@ -111,7 +112,8 @@ struct Light {
 // u = 0.5 - atan2(y, x) / (2 pi), row v = acos(z) / pi from the top, in Blender's Z-up world
 // axes; texels are radiance (image times the world's strength), top row first. A world (glTF,
 // Y-up) direction (x, y, z) is Blender's (x, -z, y): the image's centre column (u = 0.5) looks down
-// world +X, its top row up world +Y, and u = 0.25 looks down world -Z (core/render/environment.cpp).
+// world +X, its top row up world +Y, and u = 0.25 looks down world -Z
+// (core/render/environment.cpp).
 struct EnvironmentMap {
   std::string name;  // the image file, for messages
   uint32_t width = 0, height = 0;
@@ -124,10 +126,14 @@ struct ShotSettings {
   std::optional<double> fps;
   std::optional<double> frame;
   std::optional<double> shutter_open_s, shutter_close_s;  // relative to the frame's time
-  std::vector<double> shutter_curve;  // weights evenly spaced over the open shutter; empty: box
+  std::vector<double> shutter_curve;   // weights evenly spaced over the open shutter; empty: box
   std::optional<double> pixel_aspect;  // pixel width / height
   std::optional<std::string> filter;   // the shot's pixel filter as a filter plugin, "NAME:k=v,..."
   double film_exposure = 1.0;          // linear gain on the image (Cycles' Film > Exposure)
+  // Blender's Color Management and Dither, for 8-bit outputs only (docs/blender.md); a file that
+  // names no view transform gets the plain sRGB curve.
+  ViewSettings view;
+  std::string view_json_path;  // the object that names them, for warnings about unknown names
 };
 
 struct Scene;
@@ -146,8 +152,8 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<TextureImage> images;  // what materials' textures read
   std::vector<Light> lights;
-  std::vector<SceneCamera> cameras;  // in the order the scene's nodes were met
-  Rgb background{0.f, 0.f, 0.f};     // uniform radiance seen by rays that escape
+  std::vector<SceneCamera> cameras;           // in the order the scene's nodes were met
+  Rgb background{0.f, 0.f, 0.f};              // uniform radiance seen by rays that escape
   std::optional<EnvironmentMap> environment;  // replaces `background` when present
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes

@@ -59,15 +59,9 @@ class Importer {
   void check_extensions() {
     // One extension a line: each is read by its own part of the importer.
     static const std::set<std::string> kSupported = {
-        "EXT_camera_physical",
-        "KHR_lights_punctual",
-        "KHR_materials_emissive_strength",
-        "KHR_materials_ior",
-        "KHR_materials_specular",
-        "KHR_materials_transmission",
-        "KHR_texture_transform",
-        "FILMBACK_blender",
-        "FILMBACK_povray",
+        "EXT_camera_physical",   "KHR_lights_punctual",    "KHR_materials_emissive_strength",
+        "KHR_materials_ior",     "KHR_materials_specular", "KHR_materials_transmission",
+        "KHR_texture_transform", "FILMBACK_blender",       "FILMBACK_povray",
     };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
@@ -83,9 +77,8 @@ class Importer {
   ShotSettings read_shot_settings(const tinygltf::Scene& scene, const std::string& path) {
     if (const auto ours = scene.extensions.find("FILMBACK_blender"); ours != scene.extensions.end())
       return gltf::read_shot_settings(
-          gltf::Fields(ours->second, path + ".extensions.FILMBACK_blender", name_), diagnostics_);
-    return gltf::read_shot_settings(gltf::Fields(scene.extras, path + ".extras", name_),
-                                    diagnostics_);
+          gltf::Fields(ours->second, path + ".extensions.FILMBACK_blender", name_));
+    return gltf::read_shot_settings(gltf::Fields(scene.extras, path + ".extras", name_));
   }
 
   uint32_t default_material() {
