@@ -55,6 +55,9 @@ std::optional<fs::path> blender_on_path() {
 
 std::vector<fs::path> blender_config_candidates() {
   std::vector<fs::path> out;
+  // Blender's own variable for where its datafiles are; when set, the only place looked in.
+  if (const char* datafiles = std::getenv("BLENDER_SYSTEM_DATAFILES"); datafiles && *datafiles)
+    return {fs::path(datafiles) / "colormanagement" / "config.ocio"};
   add_candidates("/usr/share/blender", out);
   add_candidates("/usr/local/share/blender", out);
   if (const auto blender = blender_on_path(); blender && !blender->empty())

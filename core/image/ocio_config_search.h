@@ -19,7 +19,8 @@ struct OcioConfigChoice {
 };
 
 // Blender's colormanagement/config.ocio in each place a Blender installs its datafiles, in the
-// order they are tried: Debian's /usr/share/blender/datafiles, versioned folders
+// order they are tried: only $BLENDER_SYSTEM_DATAFILES/colormanagement when that is set (Blender's
+// own variable for its datafiles folder); else Debian's /usr/share/blender/datafiles, versioned folders
 // (/usr/share/blender/3.4/datafiles, highest version first), the same under /usr/local/share, and
 // next to the `blender` found on PATH (Blender's own archives: blender-3.4.1-linux-x64/3.4/).
 std::vector<std::filesystem::path> blender_config_candidates();
