@@ -11,6 +11,13 @@
 //
 // The plain sRGB curve (filmback's fallback when no config is found) is measured against
 // Blender's Standard view too: the Standard view is a 1-D LUT of that curve.
+//
+// Then a whole shot (look_shot.py): radiometry_shot.py's diffuse-only sun_world shot with Filmic,
+// the Medium High Contrast look, exposure 0.5 and Blender's default dither, exported with the
+// add-on and rendered by Cycles and by filmback at 256 samples. The PNGs are compared where the
+// linear images agree: every channel within kAgreement of Cycles' (measured against kDarkFraction
+// of the image's mean where Cycles' is darker), which leaves out pixels where the two renders'
+// noise differs by more; there Filmic's steepest slope turns 2 % into about 0.6 levels.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,6 +30,7 @@
 
 #include "core/image/display_transform.h"
 #include "core/image/image_io.h"
+#include "tests/blender/blender_shot.h"
 #include "tests/support/commands.h"
 
 namespace fb::test {
@@ -123,6 +131,64 @@ INSTANTIATE_TEST_SUITE_P(
                     Case{"standard_no_dither", "Standard", "None", 0.0, 1.0, 0.0},
                     Case{"standard_high_contrast", "Standard", "High Contrast", 1.5, 1.0, 2.0}),
     [](const testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+constexpr double kAgreement = 0.02;
+constexpr double kDarkFraction = 0.02;
+constexpr double kMinAgreeingFraction = 0.1;  // of the pixels: else the comparison says little
+
+TEST(BlenderLookShot, FilmbacksPngIsBlendersWhereTheLinearImagesAgree) {
+  const std::optional<fs::path> blender = find_blender();
+  if (!blender)
+    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
+                    "`blender` (apt-get install blender) to run the tests against Blender.";
+  const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "look_shot";
+  const ShotRenders r =
+      render_shot(*blender, "sun_world", work, FILMBACK_LOOK_SHOT_PY, {"filmback.png"});
+  EXPECT_EQ(r.filmback_log.find("warning"), std::string::npos) << r.filmback_log;
+  const Image cycles_png = read_image(work / "cycles.png");
+  const Image filmback_png = read_image(work / "filmback.png");
+  ASSERT_EQ(filmback_png.width, cycles_png.width);
+  ASSERT_EQ(filmback_png.height, cycles_png.height);
+  ASSERT_EQ(r.cycles.width, cycles_png.width);
+  ASSERT_EQ(r.filmback.width, cycles_png.width);
+  double mean_linear = 0;
+  for (size_t i = 0; i < size_t(r.cycles.width) * r.cycles.height; ++i)
+    for (size_t c = 0; c < 3; ++c)
+      mean_linear += r.cycles.pixels[i * r.cycles.channels.size() + c];
+  const double dark = kDarkFraction * mean_linear / (3.0 * r.cycles.width * r.cycles.height);
+  const auto png_level = [](const Image& png, size_t i, size_t c) {
+    return int(std::lround(png.pixels[i * png.channels.size() + c] * 255.f));
+  };
+  double agreeing_sum = 0, all_sum = 0;
+  int agreeing_max = 0;
+  size_t agreeing = 0;
+  const size_t pixels = size_t(cycles_png.width) * cycles_png.height;
+  for (size_t i = 0; i < pixels; ++i) {
+    bool agree = true;
+    int difference = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      const double f = r.filmback.pixels[i * r.filmback.channels.size() + c];
+      const double b = r.cycles.pixels[i * r.cycles.channels.size() + c];
+      agree &= std::abs(f - b) <= kAgreement * std::max(b, dark);
+      difference += std::abs(png_level(filmback_png, i, c) - png_level(cycles_png, i, c));
+    }
+    all_sum += difference;
+    if (agree) {
+      agreeing_sum += difference, ++agreeing;
+      for (size_t c = 0; c < 3; ++c)
+        agreeing_max = std::max(
+            agreeing_max, std::abs(png_level(filmback_png, i, c) - png_level(cycles_png, i, c)));
+    }
+  }
+  const double agreeing_mean = agreeing ? agreeing_sum / (3.0 * agreeing) : 0;
+  std::printf(
+      "look shot: %zu of %zu pixels agree within %.0f %% (linear); there the PNGs differ by %.3f "
+      "levels on average, %d at most; over all pixels by %.3f; Blender %.1f s, filmback %.1f s\n",
+      agreeing, pixels, 100 * kAgreement, agreeing_mean, agreeing_max, all_sum / (3.0 * pixels),
+      r.blender_s, r.filmback_s);
+  ASSERT_GE(double(agreeing), kMinAgreeingFraction * double(pixels));
+  EXPECT_LE(agreeing_mean, kMaxMeanLevels);
+}
 
 }  // namespace
 }  // namespace fb::test

@@ -514,7 +514,7 @@ class CliTest(unittest.TestCase):
 
     def test_unknown_option(self):
         scene = self.scene(triangle_scene())
-        self.assert_usage_error(scene, TINY + ["--exposure", "2"], "", "--exposure")
+        self.assert_usage_error(scene, TINY + ["--brightness", "2"], "", "--brightness")
 
     def test_unknown_scene_extension(self):
         scene = self.raw("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "scene.obj")

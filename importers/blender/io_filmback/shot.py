@@ -20,8 +20,13 @@ def scene_extension(scene, frame, export_settings):
         "frame": frame,
         "frame_start": scene.frame_start,
         "frame_end": scene.frame_end,
-        "exposure_stops": scene.view_settings.exposure,
+        # Color Management and Post Processing > Dither: what Blender applies to 8-bit outputs.
+        "display_device": scene.display_settings.display_device,
         "view_transform": scene.view_settings.view_transform,
+        "look": scene.view_settings.look,
+        "exposure_stops": scene.view_settings.exposure,
+        "gamma": scene.view_settings.gamma,
+        "dither_intensity": r.dither_intensity,
     }
     if r.use_motion_blur:
         out.update(shutter(scene))
