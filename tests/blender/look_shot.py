@@ -16,10 +16,9 @@ import dataclasses
 import os
 import sys
 
-import bpy
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import radiometry_shot  # noqa: E402  (Blender runs this file as __main__, so import by path)
+import look_transform  # noqa: E402  (Blender runs this file as __main__, so import by path)
+import radiometry_shot  # noqa: E402
 
 VIEW = {"view_transform": "Filmic", "look": "Medium High Contrast", "exposure": 0.5, "gamma": 1.0}
 DITHER = 1.0  # Blender's default
@@ -41,13 +40,8 @@ def main():
     out_dir, name = os.path.abspath(args[0]), args[1]
     shot = dataclasses.replace(radiometry_shot.SHOTS[name], samples=SAMPLES)
     scene = radiometry_shot.build(out_dir, name, shot, before_export=set_view)
-    output = scene.render.image_settings
-    output.file_format, output.color_mode, output.color_depth = "PNG", "RGB", "8"
-    scene.render.filepath = os.path.join(out_dir, "cycles.png")
-    bpy.ops.render.render(write_still=True)
-    output.file_format, output.color_mode, output.color_depth = "OPEN_EXR", "RGB", "32"
-    output.exr_codec = "ZIP"
-    bpy.data.images["Render Result"].save_render(os.path.join(out_dir, "cycles.exr"), scene=scene)
+    look_transform.render_png_and_exr(scene, os.path.join(out_dir, "cycles.png"),
+                                      os.path.join(out_dir, "cycles.exr"))
 
 
 if __name__ == "__main__":

@@ -38,6 +38,18 @@ def source_pixels():
     return pixels
 
 
+def render_png_and_exr(scene, png, exr):
+    """Renders `scene` once: the 8-bit RGB PNG as Blender saves every render
+    (`render.render(write_still=True)`: Color Management's display buffer, dither included), and
+    the same render result as a scene-linear float EXR."""
+    output = scene.render.image_settings
+    output.file_format, output.color_mode, output.color_depth = "PNG", "RGB", "8"
+    scene.render.filepath = png
+    bpy.ops.render.render(write_still=True)
+    output.file_format, output.color_depth, output.exr_codec = "OPEN_EXR", "32", "ZIP"
+    bpy.data.images["Render Result"].save_render(exr, scene=scene)
+
+
 def main():
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     if len(args) != 6:
@@ -66,14 +78,8 @@ def main():
     settings.exposure, settings.gamma = float(exposure), float(gamma)
     scene.render.dither_intensity = float(dither)
 
-    output = scene.render.image_settings
-    output.file_format, output.color_mode, output.color_depth = "PNG", "RGB", "8"
-    scene.render.filepath = os.path.join(out_dir, "blender.png")
-    bpy.ops.render.render(write_still=True)
-    output.file_format, output.color_mode, output.color_depth = "OPEN_EXR", "RGBA", "32"
-    output.exr_codec = "ZIP"
-    bpy.data.images["Render Result"].save_render(os.path.join(out_dir, "linear.exr"),
-                                                 scene=scene)
+    render_png_and_exr(scene, os.path.join(out_dir, "blender.png"),
+                       os.path.join(out_dir, "linear.exr"))
 
 
 if __name__ == "__main__":
