@@ -170,7 +170,7 @@ DisplayTransform DisplayTransform::create(const ViewSettings& settings,
                      settings.view_transform + "' and look '" + settings.look +
                      "' (exposure, gamma and dither still apply)");
     t.description_ += "; in place of view transform '" + settings.view_transform + "', look '" +
-                      settings.look + "' (no OpenColorIO config)";
+                      settings.look + "': " + why;
     return t;
   };
   std::vector<fs::path> searched;

@@ -130,7 +130,10 @@ TEST(DisplayTransformConfig, WithoutAConfigAViewFallsBackToTheCurveWithAWarning)
   EXPECT_NE(d.messages()[0].find("'Filmic'"), std::string::npos);
   const Image grey{1, 1, {"R", "G", "B"}, {0.18f, 0.18f, 0.18f}};
   EXPECT_EQ(t.encode(grey)[0], level(srgb(0.36)));  // the exposure still applies
-  EXPECT_NE(t.description().find("in place of view transform 'Filmic'"), std::string::npos);
+  EXPECT_NE(
+      t.description().find("in place of view transform 'Filmic', look 'None': no OpenColorIO"),
+      std::string::npos)
+      << t.description();
 }
 
 TEST(DisplayTransformConfig, AConfigTheUserNamesMustLoad) {
