@@ -164,7 +164,13 @@ DisplayTransform DisplayTransform::create(const ViewSettings& settings,
   DisplayTransform t;
   t.settings_ = settings;
   t.description_ = curve_description(settings);
-  if (!settings.names_view()) return t;
+  if (!settings.names_view()) {
+    if (settings.look != "None")
+      diagnostics.warn("look '" + settings.look +
+                       "' without a view transform: not applied (8-bit outputs use the plain sRGB "
+                       "curve)");
+    return t;
+  }
   const auto fall_back = [&](const std::string& why) {
     diagnostics.warn(why + ": 8-bit outputs use the plain sRGB curve, without view transform '" +
                      settings.view_transform + "' and look '" + settings.look +

@@ -807,6 +807,10 @@ class CliTest(unittest.TestCase):
                          level(srgb(0.18)))
         self.assertEqual(self.grey_level(scene, "--ocio-config", config, "--look", "None",
                                          "--exposure", "0", "--gamma", "2")[0], level(0.18 ** 0.5))
+        # An empty view: the plain sRGB curve, with the file's exposure; its look cannot apply.
+        value, result = self.grey_level(scene, "--ocio-config", config, "--view-transform", "")
+        self.assertEqual(value, level(srgb(0.18 * 4)))
+        self.assertIn("look 'Twice' without a view transform: not applied", result.stderr)
         # $OCIO is used when no --ocio-config is given.
         self.assertEqual(self.grey_level(scene, "--look", "None",
                                          env_changes={"OCIO": str(config)})[0], level(0.18 * 4))
