@@ -24,8 +24,13 @@ struct RenderCommand {
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
   std::string shutter, frame, fps, sensor_model, iso;
+  // The view settings of 8-bit outputs (docs/cli.md, "Colour"): each replaces the shot's. Names
+  // as typed; numbers as typed, parsed by run_render.
+  std::optional<std::string> view_transform, look, display;
+  std::string exposure, gamma, dither;
+  std::filesystem::path ocio_config;
   std::string memory_limit;  // "8G"; empty: half of the machine's memory
-  unsigned threads = 0;  // 0: all cores
+  unsigned threads = 0;      // 0: all cores
   bool quiet = false;
   // Interrupts and checkpoints (docs/cli.md): a duration ("5m"), the checkpoint file (default
   // next to the first output), whether to continue from it; and the --stats-json file.
@@ -40,7 +45,7 @@ struct RenderCommand {
 // A filmback-made scene file from any scene filmback reads (docs/cli.md "convert").
 struct ConvertCommand {
   std::filesystem::path input, output;
-  std::string resolution;     // "WxH": what a POV-Ray scene's image_width/image_height read
+  std::string resolution;  // "WxH": what a POV-Ray scene's image_width/image_height read
   // Chord error of tessellated analytic shapes, m; unset: a thousandth of each shape's size.
   std::optional<double> tolerance_m;
   ImportOptions import;

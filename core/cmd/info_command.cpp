@@ -98,6 +98,16 @@ void print_shot(const ShotSettings& s) {
   if (s.filter) std::cout << ", filter " << *s.filter;
   if (s.film_exposure != 1.0) std::cout << format(", film exposure x%.6g", s.film_exposure);
   std::cout << '\n';
+  const ViewSettings& v = s.view;
+  if (v.names_view())
+    std::cout << "  view (8-bit outputs): display '" << v.display_device << "', view '"
+              << v.view_transform << "', look '" << v.look << "'"
+              << format(", exposure %.6g stops, gamma %.6g, dither %.6g\n", v.exposure_stops,
+                        v.gamma, v.dither_intensity);
+  else
+    std::cout << "  view (8-bit outputs): the plain sRGB curve"
+              << format(", exposure %.6g stops, gamma %.6g, dither %.6g\n", v.exposure_stops,
+                        v.gamma, v.dither_intensity);
 }
 
 const char* light_type(LightType t) {

@@ -24,9 +24,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   fb::RenderCommand render;
-  CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR and/or PNG");
+  CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR, PNG and/or JPEG");
   render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb, .pov)")->required();
-  render_cmd->add_option("-o,--output", render.outputs, "output image, .exr or .png (repeatable)")
+  render_cmd
+      ->add_option("-o,--output", render.outputs, "output image, .exr, .png or .jpg (repeatable)")
       ->required();
   render_cmd
       ->add_option("--spp", render.options.samples_per_pixel, "samples per pixel (default 64)")
@@ -73,6 +74,20 @@ int main(int argc, char** argv) {
   camera_group->add_option("--sensor-model", render.sensor_model,
                            "simple (pixel = radiance, as Cycles; default) or physical (exposure)");
   camera_group->add_option("--iso", render.iso, "physical sensor: ISO speed (default 100)");
+  CLI::Option_group* colour_group = render_cmd->add_option_group(
+      "colour", "8-bit outputs (PNG, JPEG) as Blender saves a render; each replaces the shot's");
+  colour_group->add_option("--view-transform", render.view_transform,
+                           "OpenColorIO view: Standard, Filmic, ... (default: the shot's; none: "
+                           "the plain sRGB curve)");
+  colour_group->add_option("--look", render.look, "OpenColorIO look, or None");
+  colour_group->add_option("--exposure", render.exposure,
+                           "stops: scene-linear values times 2^stops before the view");
+  colour_group->add_option("--gamma", render.gamma, "display values v become v^(1/gamma)");
+  colour_group->add_option("--display", render.display, "OpenColorIO display (default sRGB)");
+  colour_group->add_option("--dither", render.dither,
+                           "Blender's dither intensity, 0 to 2 (default: the shot's, else 0)");
+  colour_group->add_option("--ocio-config", render.ocio_config,
+                           "OpenColorIO config (default: $OCIO, else the installed Blender's)");
   render_cmd
       ->add_option("--subdiv", render.subdiv,
                    "subdivision surfaces: render (Blender's render level, default) or adaptive "

@@ -1,5 +1,6 @@
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -120,6 +121,50 @@ void parse_physical(const RenderCommand& c, RenderOptions& o) {
   if (!c.iso.empty()) o.iso = parse_number(c.iso, "--iso", 1, 1e7);
 }
 
+// The command line's numbers for 8-bit outputs, checked before the scene is read.
+struct ViewOverrides {
+  std::optional<double> exposure_stops, gamma, dither_intensity;
+};
+
+// Blender's ranges (its RNA): exposure -32..32 stops, gamma 0..5, dither 0..2.
+ViewOverrides parse_view_overrides(const RenderCommand& c) {
+  ViewOverrides o;
+  if (!c.exposure.empty()) o.exposure_stops = parse_number(c.exposure, "--exposure", -32, 32);
+  if (!c.gamma.empty()) o.gamma = parse_number(c.gamma, "--gamma", 0, 5);
+  if (!c.dither.empty()) o.dither_intensity = parse_number(c.dither, "--dither", 0, 2);
+  return o;
+}
+
+// The shot's view settings with what the command line replaces, and where each name came from.
+std::pair<ViewSettings, ViewSettingsOrigin> view_settings(const RenderCommand& c,
+                                                          const ViewOverrides& o,
+                                                          const Scene& scene) {
+  ViewSettings v = scene.settings.view;
+  ViewSettingsOrigin origin{scene.file.string(), scene.settings.view_json_path};
+  if (c.view_transform) v.view_transform = *c.view_transform, origin.view_typed = true;
+  if (c.look) v.look = *c.look, origin.look_typed = true;
+  if (c.display) v.display_device = *c.display, origin.display_typed = true;
+  v.exposure_stops = o.exposure_stops.value_or(v.exposure_stops);
+  v.gamma = o.gamma.value_or(v.gamma);
+  v.dither_intensity = o.dither_intensity.value_or(v.dither_intensity);
+  return {v, origin};
+}
+
+// What an 8-bit output of this render applies (Blender's would), in the EXR's metadata too
+// (docs/conventions.md, "Images"); nothing for a shot that names no view and changes nothing.
+void add_view_metadata(const ViewSettings& v, ImageMetadata& m) {
+  const ViewSettings defaults;
+  if (!v.names_view() && v.exposure_stops == 0 && v.gamma == 1 && v.dither_intensity == 0 &&
+      v.look == defaults.look && v.display_device == defaults.display_device)
+    return;
+  m.strings.insert(m.strings.end(), {{"filmback/display_device", v.display_device},
+                                     {"filmback/view_transform", v.view_transform},
+                                     {"filmback/look", v.look}});
+  m.floats.insert(m.floats.end(), {{"filmback/exposure_stops", float(v.exposure_stops)},
+                                   {"filmback/gamma", float(v.gamma)},
+                                   {"filmback/dither_intensity", float(v.dither_intensity)}});
+}
+
 }  // namespace
 
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text) {
@@ -199,6 +244,7 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
     c.options.width = width, c.options.height = height;
   }
   parse_physical(c, c.options);
+  const ViewOverrides view_overrides = parse_view_overrides(c);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (!c.memory_limit.empty()) c.options.memory_limit_bytes = parse_memory_size(c.memory_limit);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
@@ -223,6 +269,13 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
   auto stage = Clock::now();
   const Scene scene = import_scene(c.scene, c.import, diagnostics);
   report.import_s = seconds_since(stage);
+  const auto [view, view_origin] = view_settings(c, view_overrides, scene);
+  // Made before the render, so that a bad config or name fails at once: only 8-bit outputs need it.
+  DisplayTransform display;
+  const bool eight_bit = std::any_of(c.outputs.begin(), c.outputs.end(), [](const auto& out) {
+    return is_8_bit(image_format_for(out));
+  });
+  if (eight_bit) display = DisplayTransform::create(view, view_origin, c.ocio_config, diagnostics);
   report.warnings = diagnostics.messages();
   diagnostics.print(std::cerr);
 
@@ -275,7 +328,9 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
     std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
   } else {
     stage = Clock::now();
-    write_images(result.image, c.outputs, job.metadata(result));
+    ImageMetadata metadata = job.metadata(result);
+    add_view_metadata(eight_bit ? display.settings() : view, metadata);
+    write_images(result.image, c.outputs, metadata, display);
     if (s.interrupted && checkpoints) {
       write_checkpoint(film, key, report.checkpoint);
       ++report.checkpoints_written;

@@ -14,24 +14,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// IEC 61966-2-1 sRGB transfer function.
-float srgb_encode(float linear) {
-  const float v = std::clamp(linear, 0.f, 1.f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.f / 2.4f) - 0.055f;
-}
-
-OIIO::ImageSpec spec_for(const Image& image, ImageFormat format, const ImageMetadata& metadata) {
-  const int channels = format == ImageFormat::kPng ? 3 : int(image.channels.size());
-  OIIO::ImageSpec spec(int(image.width), int(image.height), channels,
-                       format == ImageFormat::kPng ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+OIIO::ImageSpec spec_for(const Image& image, ImageFormat format, const ImageMetadata& metadata,
+                         const DisplayTransform& display) {
+  const bool bytes = is_8_bit(format);
+  OIIO::ImageSpec spec(int(image.width), int(image.height), bytes ? 3 : int(image.channels.size()),
+                       bytes ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
   if (format == ImageFormat::kExr) {
     spec.channelnames = image.channels;
     spec.attribute("compression", "zip");
   } else {
     spec.channelnames = {"R", "G", "B"};
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    spec.attribute("filmback/transfer",
-                   "sRGB transfer function, values clamped to [0,1], no exposure");
+    if (display.srgb_encoded()) spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("filmback/transfer", display.description());
+    if (format == ImageFormat::kJpeg)
+      spec.attribute("Compression", "jpeg:90");  // Blender's default
   }
   for (const auto& [name, m] : metadata.matrices) {
     // Imath's M44f multiplies row vectors (p' = p M): store the transpose.
@@ -50,24 +46,16 @@ OIIO::ImageSpec spec_for(const Image& image, ImageFormat format, const ImageMeta
   return spec;
 }
 
-std::vector<float> png_pixels(const Image& image) {
-  std::vector<float> rgb(size_t(image.width) * image.height * 3);
-  const size_t n = image.channels.size();
-  for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
-    for (size_t c = 0; c < 3; ++c)
-      rgb[i * 3 + c] = srgb_encode(image.pixels[i * n + c]);
-  return rgb;
-}
-
 // Writes `file`'s content to `temporary`; returns what went wrong, or an empty string.
 std::string write_temporary(const Image& image, const fs::path& file, const fs::path& temporary,
-                            const ImageMetadata& metadata) {
+                            const ImageMetadata& metadata, const DisplayTransform& display) {
   const ImageFormat format = image_format_for(file);
   auto out = OIIO::ImageOutput::create(file.string());
   if (!out) return OIIO::geterror();
-  if (!out->open(temporary.string(), spec_for(image, format, metadata))) return out->geterror();
-  const bool written = format == ImageFormat::kPng
-                           ? out->write_image(OIIO::TypeDesc::FLOAT, png_pixels(image).data())
+  if (!out->open(temporary.string(), spec_for(image, format, metadata, display)))
+    return out->geterror();
+  const bool written = is_8_bit(format)
+                           ? out->write_image(OIIO::TypeDesc::UINT8, display.encode(image).data())
                            : out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
   std::string why = written ? "" : out->geterror();
   if (!out->close() && why.empty()) why = out->geterror();
@@ -82,12 +70,13 @@ ImageFormat image_format_for(const fs::path& file) {
                  [](unsigned char c) { return std::tolower(c); });
   if (ext == ".exr") return ImageFormat::kExr;
   if (ext == ".png") return ImageFormat::kPng;
+  if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::kJpeg;
   throw UsageError("output '" + file.string() + "': unknown image type '" + ext +
-                   "' (expected .exr or .png)");
+                   "' (expected .exr, .png, .jpg or .jpeg)");
 }
 
 void write_images(const Image& image, const std::vector<fs::path>& files,
-                  const ImageMetadata& metadata) {
+                  const ImageMetadata& metadata, const DisplayTransform& display) {
   auto fail = [](const fs::path& file, const std::string& why) {
     return InputError(located(file.string(), "", "cannot write the image: " + why));
   };
@@ -96,7 +85,8 @@ void write_images(const Image& image, const std::vector<fs::path>& files,
     std::error_code ec;
     if (fs::is_directory(file, ec)) throw fail(file, "it is a folder");
     temporaries.push_back(std::make_unique<TemporaryFile>(file));
-    if (std::string why = write_temporary(image, file, temporaries.back()->path(), metadata);
+    if (std::string why =
+            write_temporary(image, file, temporaries.back()->path(), metadata, display);
         !why.empty())
       throw fail(file, why);
   }

@@ -1,7 +1,7 @@
 // Image files through OpenImageIO. EXR is the master (float, scene-linear Rec.709, camera metadata
-// under OpenEXR's standard names); PNG is a preview (sRGB transfer, clamped, 8 bit). Files are
-// written to a temporary name in the target folder and renamed, so a failure never leaves a
-// broken image behind.
+// under OpenEXR's standard names); PNG and JPEG are 8-bit display images, made by a
+// DisplayTransform (the shot's view transform, or the plain sRGB curve). Files are written to a
+// temporary name in the target folder and renamed, so a failure never leaves a broken image behind.
 #pragma once
 
 #include <array>
@@ -11,11 +11,16 @@
 #include <utility>
 #include <vector>
 
+#include "core/image/display_transform.h"
 #include "core/image/image.h"
 
 namespace fb {
 
-enum class ImageFormat { kExr, kPng };
+enum class ImageFormat { kExr, kPng, kJpeg };
+
+inline bool is_8_bit(ImageFormat f) {
+  return f != ImageFormat::kExr;
+}
 
 struct ImageMetadata {
   using Matrix = std::array<float, 16>;  // row-major, column vectors: p' = M p
@@ -25,14 +30,15 @@ struct ImageMetadata {
   std::vector<std::pair<std::string, std::string>> strings;
 };
 
-// Throws UsageError for an extension other than .exr or .png.
+// Throws UsageError for an extension other than .exr, .png, .jpg or .jpeg (any case).
 ImageFormat image_format_for(const std::filesystem::path& file);
 
 // Writes every file, or none: all are written to temporaries first and renamed into place only
 // when every one succeeded; if a rename fails, the files that were there before are put back.
-// Throws InputError naming the file that failed; no temporary is left behind.
+// Throws InputError naming the file that failed; no temporary is left behind. 8-bit files get
+// `display`'s values.
 void write_images(const Image& image, const std::vector<std::filesystem::path>& files,
-                  const ImageMetadata& metadata);
+                  const ImageMetadata& metadata, const DisplayTransform& display = {});
 
 // Throws InputError naming the file, also when it holds more than `max_pixels` pixels.
 Image read_image(const std::filesystem::path& file, size_t max_pixels = SIZE_MAX);

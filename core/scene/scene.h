@@ -10,6 +10,7 @@
 
 #include <filmback/vec.h>
 
+#include "core/image/view_settings.h"
 #include "core/math/bounds.h"
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
@@ -136,6 +137,10 @@ struct ShotSettings {
   std::optional<double> pixel_aspect;  // pixel width / height
   std::optional<std::string> filter;   // the shot's pixel filter as a filter plugin, "NAME:k=v,..."
   double film_exposure = 1.0;          // linear gain on the image (Cycles' Film > Exposure)
+  // Blender's Color Management and Dither, for 8-bit outputs only (docs/blender.md); a file that
+  // names no view transform gets the plain sRGB curve.
+  ViewSettings view;
+  std::string view_json_path;  // the object that names them, for warnings about unknown names
 };
 
 struct Scene;

@@ -163,11 +163,37 @@ TEST(GltfShot, CyclesFiltersMapToFilterPlugins) {
   EXPECT_EQ(filter_of("BOX"), "box:radius=0.75");
 }
 
-TEST(GltfShot, DisplayOnlyViewSettingsAreWarned) {
+TEST(GltfShot, ViewSettingsAreRead) {
   Diagnostics d;
-  import(write_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Filmic"}})"), d);
-  ASSERT_EQ(d.count(), 1u);
-  EXPECT_NE(d.messages().at(0).find("Filmic"), std::string::npos);
+  const ViewSettings v =
+      import(write_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Filmic",
+      "look": "Medium High Contrast", "display_device": "sRGB", "exposure_stops": 0.7,
+      "gamma": 1.2, "dither_intensity": 0.5}})"),
+             d)
+          .settings.view;
+  EXPECT_EQ(v.view_transform, "Filmic");
+  EXPECT_EQ(v.look, "Medium High Contrast");
+  EXPECT_EQ(v.display_device, "sRGB");
+  EXPECT_EQ(v.exposure_stops, 0.7);
+  EXPECT_EQ(v.gamma, 1.2);
+  EXPECT_EQ(v.dither_intensity, 0.5);
+  EXPECT_EQ(d.count(), 0u);
+  // A file from Blender that does not say: Blender's defaults (dither 1); one that names no view:
+  // the plain sRGB curve, no dither.
+  const ViewSettings blender =
+      import(
+          write_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Standard"}})"),
+          d)
+          .settings.view;
+  EXPECT_EQ(blender.look, "None");
+  EXPECT_EQ(blender.gamma, 1.0);
+  EXPECT_EQ(blender.dither_intensity, 1.0);
+  const ViewSettings other = import(write_gltf("", ""), d).settings.view;
+  EXPECT_FALSE(other.names_view());
+  EXPECT_EQ(other.dither_intensity, 0.0);
+  EXPECT_NE(error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"gamma": 7}})"))
+                .find("scenes[0].extensions.FILMBACK_blender.gamma: expected a number"),
+            std::string::npos);
 }
 
 TEST(GltfCamera, BadValuesAreErrorsNamingTheFileAndJsonPath) {

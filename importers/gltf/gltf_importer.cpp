@@ -77,9 +77,8 @@ class Importer {
   ShotSettings read_shot_settings(const tinygltf::Scene& scene, const std::string& path) {
     if (const auto ours = scene.extensions.find("FILMBACK_blender"); ours != scene.extensions.end())
       return gltf::read_shot_settings(
-          gltf::Fields(ours->second, path + ".extensions.FILMBACK_blender", name_), diagnostics_);
-    return gltf::read_shot_settings(gltf::Fields(scene.extras, path + ".extras", name_),
-                                    diagnostics_);
+          gltf::Fields(ours->second, path + ".extensions.FILMBACK_blender", name_));
+    return gltf::read_shot_settings(gltf::Fields(scene.extras, path + ".extras", name_));
   }
 
   uint32_t default_material() {

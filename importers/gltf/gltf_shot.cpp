@@ -37,6 +37,22 @@ std::string cycles_filter(const Fields& f) {
   f.fail("filter_type", "'" + type + "', expected BLACKMAN_HARRIS, GAUSSIAN or BOX");
 }
 
+// Blender's Color Management and Post Processing > Dither (its RNA ranges): display-referred, so
+// only 8-bit outputs apply them; the EXR is scene-linear, as Blender's own EXR.
+void read_view_settings(const Fields& f, ShotSettings& s) {
+  ViewSettings& v = s.view;
+  if (const auto view = f.word("view_transform")) {
+    v.view_transform = *view;
+    v.dither_intensity = 1.0;  // Blender's default, when a file from Blender does not say
+  }
+  if (const auto look = f.word("look")) v.look = *look;
+  if (const auto display = f.word("display_device")) v.display_device = *display;
+  v.exposure_stops = f.number("exposure_stops", -32, 32).value_or(0.0);
+  v.gamma = f.number("gamma", 0, 5).value_or(1.0);
+  if (const auto dither = f.number("dither_intensity", 0, 2)) v.dither_intensity = *dither;
+  s.view_json_path = f.path();
+}
+
 }  // namespace
 
 bool apply_camera_fields(const Fields& f, PhysicalCamera& camera) {
@@ -97,7 +113,7 @@ std::optional<FocusTrack> read_focus_track(const Fields& camera) {
   return FocusTrack{*first, std::move(*values)};
 }
 
-ShotSettings read_shot_settings(const Fields& f, Diagnostics& diagnostics) {
+ShotSettings read_shot_settings(const Fields& f) {
   ShotSettings s;
   if (const auto w = f.whole("resolution_x_px", 1, 32768)) s.width_px = uint32_t(*w);
   if (const auto h = f.whole("resolution_y_px", 1, 32768)) s.height_px = uint32_t(*h);
@@ -123,15 +139,7 @@ ShotSettings read_shot_settings(const Fields& f, Diagnostics& diagnostics) {
   }
   if (f.has("filter_type") || f.has("filter_width_px")) s.filter = cycles_filter(f);
   s.film_exposure = f.number("film_exposure", 0, 1e6).value_or(1.0);
-  // Display-referred settings: Blender applies them to what it shows and to 8-bit files, never to
-  // the scene-linear EXR, which is what filmback's EXR matches.
-  const double stops = f.number("exposure_stops", -100, 100).value_or(0.0);
-  const std::string view = f.word("view_transform").value_or("Standard");
-  if (stops != 0 || !(same_word(view, "standard") || same_word(view, "raw")))
-    diagnostics.warn(located(f.file(), f.path(),
-                             "view transform '" + view + "' and exposure " + number_text(stops) +
-                                 " stops are display settings: the EXR is scene-linear as "
-                                 "Blender's, the PNG preview uses the plain sRGB curve"));
+  read_view_settings(f, s);
   return s;
 }
 

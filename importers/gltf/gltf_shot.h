@@ -22,7 +22,7 @@ bool apply_ext_camera_physical(const Fields& fields, PhysicalCamera& camera);
 // focus_distance_per_frame_m: {"first_frame": F, "values": [m, ...]}.
 std::optional<FocusTrack> read_focus_track(const Fields& fields);
 
-// The scene's render settings; warns about those filmback does not reproduce.
-ShotSettings read_shot_settings(const Fields& fields, Diagnostics& diagnostics);
+// The scene's render settings, Blender's view settings among them.
+ShotSettings read_shot_settings(const Fields& fields);
 
 }  // namespace fb::gltf

@@ -64,7 +64,7 @@ std::optional<fs::path> find_blender() {
 }
 
 ShotRenders render_shot(const fs::path& blender, const std::string& shot, const fs::path& work,
-                        const fs::path& script) {
+                        const fs::path& script, const std::vector<std::string>& extra_outputs) {
   fs::remove_all(work);
   fs::create_directories(work);
   ShotRenders r;
@@ -84,10 +84,12 @@ ShotRenders render_shot(const fs::path& blender, const std::string& shot, const 
   }
   // No --res and no --filter: the shot's resolution and pixel filter (Cycles' 1 px box) come
   // from the file's FILMBACK_blender extension.
-  r.filmback_s =
-      run_logged(quoted(FILMBACK_EXE) + " render " + quoted(work / "shot.gltf") + " -o " +
-                     quoted(work / "filmback.exr") + " --spp " + r.shot.text("samples"),
-                 work / "filmback.log");
+  std::string outputs = " -o " + quoted(work / "filmback.exr");
+  for (const std::string& name : extra_outputs)
+    outputs += " -o " + quoted(work / name);
+  r.filmback_s = run_logged(quoted(FILMBACK_EXE) + " render " + quoted(work / "shot.gltf") +
+                                outputs + " --spp " + r.shot.text("samples"),
+                            work / "filmback.log");
   r.filmback_log = read_text(work / "filmback.log");
   r.cycles = read_image(work / "cycles.exr");
   r.filmback = read_image(work / "filmback.exr");

@@ -1,7 +1,8 @@
 // Running one shot of make_shot.py through both renderers: Debian's Blender builds the shot,
 // exports it through filmback's add-on and renders it with Cycles; the built `filmback` renders
 // the export at the shot's own resolution and pixel filter (Cycles' 1 px box, both from the
-// file's FILMBACK_blender extension) and the same sample count. Shared by the tests against Blender.
+// file's FILMBACK_blender extension) and the same sample count. Shared by the tests against
+// Blender.
 #pragma once
 
 #include <filesystem>
@@ -37,10 +38,12 @@ std::optional<std::filesystem::path> find_blender();
 
 // Renders `shot` of the bpy script `script` (default: make_shot.py) into `work_dir` (emptied
 // first) with both renderers. The script runs as `blender -b --factory-startup --python SCRIPT
-// -- WORK_DIR SHOT` and writes shot.gltf, cycles.exr and manifest.txt there. Throws
-// std::runtime_error with the tail of the failing program's log when a step fails.
+// -- WORK_DIR SHOT` and writes shot.gltf, cycles.exr and manifest.txt there. filmback writes
+// filmback.exr, and each of `extra_outputs` (file names in `work_dir`) from the same render.
+// Throws std::runtime_error with the tail of the failing program's log when a step fails.
 ShotRenders render_shot(const std::filesystem::path& blender, const std::string& shot,
                         const std::filesystem::path& work_dir,
-                        const std::filesystem::path& script = {});
+                        const std::filesystem::path& script = {},
+                        const std::vector<std::string>& extra_outputs = {});
 
 }  // namespace fb::test

@@ -205,15 +205,12 @@ def make_lambertian(path):
         json.dump(gltf, f, indent=1)
 
 
-def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in SHOTS:
-        raise SystemExit("usage: blender -b --factory-startup --python radiometry_shot.py -- "
-                         "OUTDIR SHOT\nshots: " + " ".join(SHOTS))
-    out_dir, name = os.path.abspath(args[0]), args[1]
-    shot = SHOTS[name]
+def build(out_dir, name, shot, before_export=None):
+    """Builds `shot` in a new scene, exports it to OUT_DIR/shot.gltf with the manifest, and turns its
+    materials into Diffuse BSDFs for Cycles; returns the scene, ready to render. `before_export`,
+    when given, is called with the scene just before the export (look_shot.py sets Blender's
+    Color Management there)."""
     os.makedirs(out_dir, exist_ok=True)
-
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     background = make_shot.new_world(scene, shot.world_colour, shot.world_strength)
@@ -238,6 +235,8 @@ def main():
     for spec in shot.lights:
         add_light(scene, spec)
     bpy.context.view_layer.update()
+    if before_export:
+        before_export(scene)
 
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record("shot", name=name, samples=shot.samples,
@@ -248,6 +247,16 @@ def main():
 
     for material in materials:
         make_diffuse(material)
+    return scene
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(args) != 2 or args[1] not in SHOTS:
+        raise SystemExit("usage: blender -b --factory-startup --python radiometry_shot.py -- "
+                         "OUTDIR SHOT\nshots: " + " ".join(SHOTS))
+    out_dir, name = os.path.abspath(args[0]), args[1]
+    scene = build(out_dir, name, SHOTS[name])
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
 

@@ -16,6 +16,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import zlib
 from pathlib import Path
 
 import case_main
@@ -50,6 +51,97 @@ def png_size(path):
     return struct.unpack(">II", data[16:24])
 
 
+def png_pixels(path):
+    """8-bit RGB pixels, top row first, of a non-interlaced PNG (PNG spec §6.3, §9: the IDAT
+    stream is zlib data of scanlines, each led by its filter type)."""
+    data = path.read_bytes()
+    width, height, depth, colour = struct.unpack(">IIBB", data[16:26])
+    assert (depth, colour, data[28]) == (8, 2, 0), "%s: expected 8-bit RGB, not interlaced" % path
+    stream, at = b"", 8
+    while at < len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        if kind == b"IDAT":
+            stream += data[at + 8:at + 8 + length]
+        at += 12 + length
+    raw, stride, rows, previous = zlib.decompress(stream), 3 * width, [], bytearray(3 * width)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = previous[i], previous[i - 3] if i >= 3 else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:  # Paeth
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([tuple(line[3 * x:3 * x + 3]) for x in range(width)])
+        previous = line
+    return rows
+
+
+def exr_attributes(path):
+    """The header attributes of a single-part OpenEXR file, name -> (type, raw value bytes)
+    (OpenEXR file layout: magic, version, then name\0 type\0 int32 size value, until an empty
+    name)."""
+    data = path.read_bytes()
+    assert struct.unpack("<I", data[:4])[0] == 20000630, "%s is not an OpenEXR file" % path
+    attributes, at = {}, 8
+    while data[at] != 0:
+        name_end = data.index(b"\0", at)
+        type_end = data.index(b"\0", name_end + 1)
+        size = struct.unpack("<i", data[type_end + 1:type_end + 5])[0]
+        attributes[data[at:name_end].decode()] = (data[name_end + 1:type_end].decode(),
+                                                  data[type_end + 5:type_end + 5 + size])
+        at = type_end + 5 + size
+    return attributes
+
+
+# A small OpenColorIO config (v2) whose transforms are exact closed forms: the Raw view passes
+# scene-linear values through; the Standard view is the sRGB curve; the look doubles.
+TINY_OCIO = """ocio_profile_version: 2
+roles: {default: linear, scene_linear: linear}
+displays:
+  sRGB:
+    - !<View> {name: Standard, colorspace: srgb}
+    - !<View> {name: Raw, colorspace: linear}
+looks:
+  - !<Look>
+    name: Twice
+    process_space: linear
+    transform: !<MatrixTransform> {matrix: [2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1]}
+colorspaces:
+  - !<ColorSpace> {name: linear, isdata: false}
+  - !<ColorSpace>
+    name: srgb
+    isdata: false
+    from_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}
+"""
+
+
+def view_scene(**view):
+    """triangle_scene() whose FILMBACK_blender scene extension carries `view` (Blender's view
+    settings, under the add-on's names)."""
+    g = triangle_scene()
+    g.doc["extensionsUsed"] = ["FILMBACK_blender"]
+    g.doc["scenes"][0]["extensions"] = {"FILMBACK_blender": view}
+    return g
+
+
+def level(value):
+    """An 8-bit level as Blender rounds a display value (its unit_float_to_uchar_clamp)."""
+    return int(min(max(value, 0.0), 1.0) * 255 + 0.5)
+
+
+def srgb(v):
+    """IEC 61966-2-1."""
+    return 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
+
+
 def exr_size(path):
     """Width and height from the dataWindow header attribute (OpenEXR file layout: magic, version,
     then name\\0 type\\0 int32 size value, until an empty name)."""
@@ -75,8 +167,10 @@ class CliTest(unittest.TestCase):
         self.out = self.dir / "out"
         self.out.mkdir()
 
-    def run_cli(self, *args):
+    def run_cli(self, *args, env_changes=None):
         env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}  # only built plugins
+        for name, value in (env_changes or {}).items():
+            env.pop(name, None) if value is None else env.__setitem__(name, value)
         result = subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True, env=env,
                                 stdin=subprocess.DEVNULL, timeout=120)
         # Echoed so that CTest's log shows each message as printed (ctest -V, --output-on-failure).
@@ -84,9 +178,9 @@ class CliTest(unittest.TestCase):
               end="", flush=True)
         return result
 
-    def render(self, scene, *options, outputs=("image.exr",)):
+    def render(self, scene, *options, outputs=("image.exr",), env_changes=None):
         return self.run_cli("render", scene, *[a for o in outputs for a in ("-o", self.out / o)],
-                            *options)
+                            *options, env_changes=env_changes)
 
     def scene(self, gltf, name="scene.gltf"):
         return gltf.write(self.dir / name)
@@ -420,7 +514,7 @@ class CliTest(unittest.TestCase):
 
     def test_unknown_option(self):
         scene = self.scene(triangle_scene())
-        self.assert_usage_error(scene, TINY + ["--exposure", "2"], "", "--exposure")
+        self.assert_usage_error(scene, TINY + ["--brightness", "2"], "", "--brightness")
 
     def test_unknown_scene_extension(self):
         scene = self.raw("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "scene.obj")
@@ -468,8 +562,8 @@ class CliTest(unittest.TestCase):
 
     def test_unknown_output_extension(self):
         scene = self.scene(triangle_scene())
-        self.assert_usage_error(scene, TINY, "output '%s': " % (self.out / "image.jpg"), "'.jpg'",
-                                "expected .exr or .png", outputs=("image.exr", "image.jpg"))
+        self.assert_usage_error(scene, TINY, "output '%s': " % (self.out / "image.tif"), "'.tif'",
+                                "expected .exr, .png, .jpg or .jpeg", outputs=("image.exr", "image.tif"))
 
     def test_output_folder_missing(self):
         scene = self.scene(triangle_scene())
@@ -683,6 +777,122 @@ class CliTest(unittest.TestCase):
         self.assert_rendered(self.render(scene, "--res", "8x8", "--spp", "1", "-q", outputs=("image.png",)),
                              "image.png")
         self.assertEqual(png_size(self.out / "image.png"), (8, 8))
+
+    # --- 8-bit outputs: the view transform (docs/cli.md, "Colour") -----------------------------
+    # The scene is the triangle in a uniform background of 0.18 W/sr/m^2: the top-left pixel sees
+    # only the background, so its 8-bit value is the transform of 0.18 exactly.
+
+    def grey_level(self, scene, *options, env_changes=None, name="image.png"):
+        result = self.render(scene, "--background", "0.18", *TINY, *options, outputs=(name,),
+                             env_changes=env_changes)
+        self.assert_rendered(result, name)
+        return png_pixels(self.out / name)[0][0][0], result
+
+    def tiny_ocio(self):
+        return self.raw(TINY_OCIO, "tiny.ocio")
+
+    def test_view_options_replace_the_files(self):
+        scene = self.scene(view_scene(view_transform="Raw", look="Twice", exposure_stops=2.0,
+                                      dither_intensity=0))
+        config = self.tiny_ocio()
+        # The file's: 0.18 x 2^2 x 2 (the look), through the Raw view.
+        self.assertEqual(self.grey_level(scene, "--ocio-config", config)[0], level(0.18 * 4 * 2))
+        # Each option replaces one of them.
+        self.assertEqual(self.grey_level(scene, "--ocio-config", config, "--look", "None")[0],
+                         level(0.18 * 4))
+        self.assertEqual(self.grey_level(scene, "--ocio-config", config, "--exposure", "-1")[0],
+                         level(0.18 / 2 * 2))
+        self.assertEqual(self.grey_level(scene, "--ocio-config", config, "--view-transform",
+                                         "Standard", "--exposure", "0", "--look", "None")[0],
+                         level(srgb(0.18)))
+        self.assertEqual(self.grey_level(scene, "--ocio-config", config, "--look", "None",
+                                         "--exposure", "0", "--gamma", "2")[0], level(0.18 ** 0.5))
+        # An empty view: the plain sRGB curve, with the file's exposure; its look cannot apply.
+        value, result = self.grey_level(scene, "--ocio-config", config, "--view-transform", "")
+        self.assertEqual(value, level(srgb(0.18 * 4)))
+        self.assertIn("look 'Twice' without a view transform: not applied", result.stderr)
+        # $OCIO is used when no --ocio-config is given.
+        self.assertEqual(self.grey_level(scene, "--look", "None",
+                                         env_changes={"OCIO": str(config)})[0], level(0.18 * 4))
+
+    def test_dither_is_blenders_noise_of_about_a_level(self):
+        scene = self.scene(view_scene(view_transform="Raw", dither_intensity=1.0))
+        result = self.render(scene, "--background", "0.18", "--res", "64x64", "--spp", "1", "-q",
+                             "--ocio-config", self.tiny_ocio(), outputs=("image.png",))
+        self.assert_rendered(result, "image.png")
+        values = {p[0] for row in png_pixels(self.out / "image.png")[:3] for p in row}  # background
+        # 0.18 is 45.9 levels; Blender adds 0.0033 x [-0.5, 1.5) (-0.4 to 1.3 levels) before
+        # rounding, so 45 to 47.
+        self.assertTrue(values <= {45, 46, 47} and len(values) >= 2, values)
+
+    def test_missing_config_renders_the_srgb_curve_with_a_warning(self):
+        scene = self.scene(view_scene(view_transform="Filmic", look="Medium High Contrast",
+                                      dither_intensity=0))
+        value, result = self.grey_level(scene, env_changes={"OCIO": None,
+                                                            "BLENDER_SYSTEM_DATAFILES": "/nonexistent"})
+        self.assertEqual(value, level(srgb(0.18)))
+        self.assertIn("warning: no OpenColorIO config", result.stderr)
+        self.assertIn("/nonexistent/colormanagement/config.ocio", result.stderr)
+        self.assertIn("without view transform 'Filmic' and look 'Medium High Contrast'", result.stderr)
+
+    def test_config_that_cannot_be_loaded_is_an_error_naming_it(self):
+        scene = self.scene(view_scene(view_transform="Filmic"))
+        bad = self.raw("ocio_profile_version: 2\ndisplays: [not, a, map\n", "bad.ocio")
+        self.assert_error(self.render(scene, *TINY, "--ocio-config", bad, outputs=("image.png",)),
+                          INPUT, "%s: the OpenColorIO config (--ocio-config) cannot be loaded" % bad)
+        self.assert_error(self.render(scene, *TINY, outputs=("image.png",),
+                                      env_changes={"OCIO": str(self.dir / "missing.ocio")}),
+                          INPUT, "%s: the OpenColorIO config ($OCIO) cannot be loaded" %
+                          (self.dir / "missing.ocio"))
+
+    def test_unknown_names_typed_are_usage_errors_listing_the_configs(self):
+        scene = self.scene(view_scene(view_transform="Raw"))
+        config = self.tiny_ocio()
+        self.assert_usage_error(scene, [*TINY, "--ocio-config", config, "--view-transform", "Filmic"],
+                                "--view-transform 'Filmic': expected a view of display 'sRGB': "
+                                "'Standard', 'Raw'", outputs=("image.png",))
+        self.assert_usage_error(scene, [*TINY, "--ocio-config", config, "--look", "Punchy"],
+                                "--look 'Punchy': expected a look: 'None', 'Twice'",
+                                outputs=("image.png",))
+        self.assert_usage_error(scene, [*TINY, "--exposure", "40"], "--exposure '40': expected a number",
+                                outputs=("image.png",))
+
+    def test_unknown_names_in_the_file_fall_back_as_blender_does(self):
+        scene = self.scene(view_scene(view_transform="AgX", look="Punchy", dither_intensity=0))
+        value, result = self.grey_level(scene, "--ocio-config", self.tiny_ocio())
+        self.assertEqual(value, level(srgb(0.18)))  # the display's default view, no look
+        self.assertIn("scenes[0].extensions.FILMBACK_blender.view_transform: 'AgX': expected a view",
+                      result.stderr)
+        self.assertIn("using 'Standard' as Blender does", result.stderr)
+        self.assertIn("FILMBACK_blender.look: 'Punchy': expected a look", result.stderr)
+
+    def test_exr_records_the_view_settings(self):
+        scene = self.scene(view_scene(view_transform="Filmic", look="Medium High Contrast",
+                                      exposure_stops=0.7, gamma=1.2))
+        self.assert_rendered(self.render(scene, *TINY, outputs=("image.exr",)), "image.exr")
+        attributes = exr_attributes(self.out / "image.exr")
+        strings = {name: value.decode() for name, (kind, value) in attributes.items()
+                   if kind == "string"}
+        floats = {name: struct.unpack("<f", value)[0] for name, (kind, value) in attributes.items()
+                  if kind == "float"}
+        self.assertEqual(strings.get("filmback/view_transform"), "Filmic")
+        self.assertEqual(strings.get("filmback/look"), "Medium High Contrast")
+        self.assertEqual(strings.get("filmback/display_device"), "sRGB")
+        self.assertAlmostEqual(floats["filmback/exposure_stops"], 0.7, places=6)
+        self.assertAlmostEqual(floats["filmback/gamma"], 1.2, places=6)
+        self.assertEqual(floats["filmback/dither_intensity"], 1.0)  # Blender's default
+
+    def test_info_prints_the_view_settings(self):
+        scene = self.scene(view_scene(view_transform="Filmic", look="High Contrast", exposure_stops=0.5))
+        result = self.run_cli("info", scene)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("view (8-bit outputs): display 'sRGB', view 'Filmic', look 'High Contrast', "
+                      "exposure 0.5 stops, gamma 1, dither 1", result.stdout)
+
+    def test_writes_jpeg(self):
+        scene = self.scene(triangle_scene())
+        self.assert_rendered(self.render(scene, *TINY, outputs=("image.jpg",)), "image.jpg")
+        self.assertEqual((self.out / "image.jpg").read_bytes()[:3], b"\xff\xd8\xff")
 
 
 def configure(args):
