@@ -74,7 +74,8 @@ float Surface::bump_factor(const Closure& c, Vec3f wi) const {
   return c.is_diffuse() && bent ? bump_shadowing_term(frame_.N, c.N, wi) : 1.f;
 }
 
-Rgb Surface::accumulate(Vec3f wi, const Closure* skip, float& weighted_pdf) const {
+Rgb Surface::accumulate(Vec3f wi, const Closure* skip, const Picking& picking,
+                        float& weighted_pdf) const {
   Rgb f{};
   for (int i = 0; i < count_; ++i) {
     const Closure& c = closures_[i];
@@ -83,25 +84,32 @@ Rgb Surface::accumulate(Vec3f wi, const Closure* skip, float& weighted_pdf) cons
     const Rgb e = closure_eval(c, context(), wi, pdf) * bump_factor(c, wi);
     if (pdf == 0.f) continue;
     f += e * c.weight;
-    if (reachable(c, wi)) weighted_pdf += pdf * c.sample_weight;
+    if (reachable(c, wi)) weighted_pdf += pdf * picking.weight(c);
   }
   return f;
 }
 
-float Surface::sample_weight_sum() const {
+Surface::Picking Surface::picking() const {
   float sum = 0.f;
   for (int i = 0; i < count_; ++i)
     sum += closures_[i].sample_weight;
-  return sum;
+  Picking p{0.f, sum};
+  if (frame_.camera_ray && count_ > 1) {
+    p.floor = 0.125f * sum;
+    p.sum = 0.f;
+    for (int i = 0; i < count_; ++i)
+      p.sum += p.weight(closures_[i]);
+  }
+  return p;
 }
 
 Rgb Surface::eval(Vec3f wi_world, float& pdf) const {
   pdf = 0.f;
   if (count_ > 0) {
-    const float sum = sample_weight_sum();
+    const Picking picking = this->picking();
     float weighted_pdf = 0.f;
-    const Rgb f = accumulate(wi_world, nullptr, weighted_pdf);
-    pdf = sum > 0.f ? weighted_pdf / sum : 0.f;
+    const Rgb f = accumulate(wi_world, nullptr, picking, weighted_pdf);
+    pdf = picking.sum > 0.f ? weighted_pdf / picking.sum : 0.f;
     return f;
   }
   if (!gltf_ || !(gltf_->wo.z > 0.f)) return {};
@@ -120,17 +128,18 @@ bool Surface::sample(const float u[3], SurfaceSample& s) const {
   if (count_ > 0) {
     // surface_shader_bsdf_bssrdf_pick: u[0] picks by sample weight; (u[1], u[2]) draw the
     // direction (Cycles reuses the rescaled u[0] instead of a third number).
-    const float sum = sample_weight_sum();
+    const Picking picking = this->picking();
+    const float sum = picking.sum;
     if (!(sum > 0.f)) return false;
     const float r = u[0] * sum;
     float partial = 0.f;
     int picked = count_ - 1;
     for (int i = 0; i < count_; ++i) {
-      if (r < partial + closures_[i].sample_weight) {
+      if (r < partial + picking.weight(closures_[i])) {
         picked = i;
         break;
       }
-      partial += closures_[i].sample_weight;
+      partial += picking.weight(closures_[i]);
     }
     const Closure& c = closures_[picked];
     ClosureSample cs;
@@ -141,11 +150,11 @@ bool Surface::sample(const float u[3], SurfaceSample& s) const {
     Rgb f = cs.eval * c.weight * bump_factor(c, s.wi);
     if (cs.singular) {
       // A delta lobe outweighs every other closure in its direction (Cycles' 1e6 pdf).
-      s.pdf = c.sample_weight / sum;
+      s.pdf = picking.weight(c) / sum;
       s.weight = f / s.pdf;
     } else {
-      float weighted_pdf = cs.pdf * c.sample_weight;
-      f += accumulate(s.wi, &c, weighted_pdf);
+      float weighted_pdf = cs.pdf * picking.weight(c);
+      f += accumulate(s.wi, &c, picking, weighted_pdf);
       s.pdf = weighted_pdf / sum;
       s.weight = f / s.pdf;
     }

@@ -17,6 +17,7 @@
 // geometric normal): light sampling then takes the whole weight, where Cycles' MIS loses it.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 
 #include <filmback/geometry.h>
@@ -35,6 +36,12 @@ struct ShadingFrame {
   Vec3f Ng;  // geometric normal, on I's side
   Vec3f N;   // interpolated shading normal before any normal map, on I's side (Cycles' sd->N)
   bool backfacing = false;  // the ray arrived at the back face (for a closed mesh: from inside)
+  // The ray came from the camera (Cycles: bounce and transparent bounce 0). Cycles then samples
+  // every closure with at least 1/8 of the summed sample weight ("defensive sampling",
+  // surface_shader_prepare_closures). Only the variance depends on it, except for the
+  // clearcoat, whose pdf is not its sampling density: its albedo then depends on how often it
+  // is picked (2-3 % at clearcoat 1 over a rough dielectric, docs/blender.md).
+  bool camera_ray = false;
 };
 
 // glTF metallic-roughness (gltf_bsdf.h) with its shading normal, normal map applied.
@@ -97,9 +104,15 @@ class Surface {
   // Whether closure c's sampling can return wi: reflection closures refuse directions below the
   // geometric normal.
   bool reachable(const Closure& c, Vec3f wi) const;
-  // The sums over the closures other than `skip` of f |cos| and pdf x sample weight.
-  Rgb accumulate(Vec3f wi, const Closure* skip, float& weighted_pdf) const;
-  float sample_weight_sum() const;
+  // How sample() picks closures: by sample weight, raised to `floor` (defensive sampling).
+  struct Picking {
+    float floor, sum;
+    float weight(const Closure& c) const { return std::max(c.sample_weight, floor); }
+  };
+  Picking picking() const;
+  // The sums over the closures other than `skip` of f |cos| and pdf x picking weight.
+  Rgb accumulate(Vec3f wi, const Closure* skip, const Picking& picking,
+                 float& weighted_pdf) const;
 
   // A direction counts when the lobe's normal and the geometric normal put it on the same side:
   // elsewhere the closures' maths and the surface disagree about where it goes.
