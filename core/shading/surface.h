@@ -111,8 +111,7 @@ class Surface {
   };
   Picking picking() const;
   // The sums over the closures other than `skip` of f |cos| and pdf x picking weight.
-  Rgb accumulate(Vec3f wi, const Closure* skip, const Picking& picking,
-                 float& weighted_pdf) const;
+  Rgb accumulate(Vec3f wi, const Closure* skip, const Picking& picking, float& weighted_pdf) const;
 
   // A direction counts when the lobe's normal and the geometric normal put it on the same side:
   // elsewhere the closures' maths and the surface disagree about where it goes.

@@ -29,10 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kBins = 8;           // of cos(theta)
-constexpr int kTable = 256;        // cos(theta) entries of filmback's albedo table
+constexpr int kBins = 8;     // of cos(theta)
+constexpr int kTable = 256;  // cos(theta) entries of filmback's albedo table
 constexpr int kTableSamples = 4096;
-constexpr int kSubPixels = 4;      // per pixel side, for the box filter
+constexpr int kSubPixels = 4;  // per pixel side, for the box filter
 
 Rgb rgb(const Record& r, const std::string& key) {
   std::istringstream in(r.text(key));
@@ -65,7 +65,7 @@ void make_surface(const Record& r, Vec3f n, Surface& s) {
     s.add_diffuse(rgb(r, "color"), float(r.number("roughness")), {}, white);
   } else if (node == "glossy") {
     const std::string& d = r.text("distribution");
-    const NodeDistribution distribution = d == "MULTI_GGX" ? NodeDistribution::kMultiGgx
+    const NodeDistribution distribution = d == "MULTI_GGX"  ? NodeDistribution::kMultiGgx
                                           : d == "BECKMANN" ? NodeDistribution::kBeckmann
                                                             : NodeDistribution::kGgx;
     s.add_glossy(distribution, rgb(r, "color"), float(r.number("roughness")), {}, white);
@@ -156,12 +156,11 @@ TEST(BlenderAlbedo, DirectionalAlbedoMatchesCycles) {
         diff[ch] = bin.filmback[ch] / bin.cycles[ch] - 1;
         // The standard error of the Cycles mean, relative.
         noise = std::max(noise, std::sqrt(bin.residual2[ch] / bin.pixels) /
-                                    std::sqrt(double(bin.pixels)) /
-                                    (bin.cycles[ch] / bin.pixels));
+                                    std::sqrt(double(bin.pixels)) / (bin.cycles[ch] / bin.pixels));
       }
       std::printf("%-30s %.3f-%.3f %+7.2f%% %+7.2f%% %+7.2f%%  +-%.2f%% (%d px)\n",
-                  r.text("name").c_str(), double(i) / kBins, double(i + 1) / kBins,
-                  100 * diff[0], 100 * diff[1], 100 * diff[2], 100 * noise, bin.pixels);
+                  r.text("name").c_str(), double(i) / kBins, double(i + 1) / kBins, 100 * diff[0],
+                  100 * diff[1], 100 * diff[2], 100 * noise, bin.pixels);
       const double worst = std::max({std::abs(diff[0]), std::abs(diff[1]), std::abs(diff[2])});
       EXPECT_LT(worst, 0.01) << r.text("name") << " cos " << double(i) / kBins;
     }
