@@ -11,6 +11,8 @@ no clamping, Filter Glossy 0, a 1 px box filter, no denoising.
 
     blender -b --factory-startup --python albedo_shot.py -- OUTDIR
 
+(ALBEDO_SAMPLES in the environment overrides the 512 samples, for a quicker look while working.)
+
 writes OUTDIR/cycles.exr and OUTDIR/manifest.txt: a `shot` record (samples, width_px,
 height_px) and one `sphere` record per material: its name, the pixel centre and radius of its
 disk, the node (principled, diffuse, glossy) and the node's inputs.
