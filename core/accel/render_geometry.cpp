@@ -349,9 +349,10 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* are
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, ray, hit, arena);
-  fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, ray, hit,
-           arena);
+  const HitRequest request{ray, arena, false};
+  if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, request, hit);
+  fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, request,
+           hit);
   return true;
 }
 
@@ -366,13 +367,14 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
   for (size_t i = 0; i < count; ++i) {
     const RTCRayHit& rh = stream[i];
+    const HitRequest request{rays[i], arena, true};
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       hits[i].t = HUGE_VALF;
     else if (rh.hit.geomID >= meshes_.size()) {
-      if (!fill_solid_hit(rh.hit.geomID, rays[i], hits[i], arena)) hits[i].t = HUGE_VALF;
+      if (!fill_solid_hit(rh.hit.geomID, request, hits[i])) hits[i].t = HUGE_VALF;
     } else
       fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, rh.ray.time,
-               rays[i], hits[i], arena);
+               request, hits[i]);
   }
 }
 
@@ -467,8 +469,7 @@ Vec3f lifted_onto_smooth_surface(Vec3f position, const Vec3f p[3], const Vec3f n
 }  // namespace
 
 void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
-                              float time, const fb_ray& ray, fb_hit& hit,
-                              SurfaceArena* arena) const {
+                              float time, const HitRequest& request, fb_hit& hit) const {
   const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
   const float b[3] = {1.f - u - v, u, v};
   // The corners where Embree met them: at a motion step, or interpolated between two as Embree
@@ -518,11 +519,11 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
   hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
-  shade(mesh.material, surface_point(mesh, primitive, u, v), ray, hit, arena);
+  shade(mesh.material, surface_point(mesh, primitive, u, v), request, hit);
 }
 
-bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit,
-                                    SurfaceArena* arena) const {
+bool RenderGeometry::fill_solid_hit(unsigned id, const HitRequest& request, fb_hit& hit) const {
+  const fb_ray& ray = request.ray;
   const auto found =
       first_covered_hit(embree_solids_[id - meshes_.size()], Vec3d(Vec3f(ray.origin)),
                         Vec3d(Vec3f(ray.direction)), ray.t_min);
@@ -537,19 +538,19 @@ bool RenderGeometry::fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit,
   hit.emitter = FB_NONE;
   SurfacePoint point;
   point.position = Vec3f(found->position);  // for solid textures (SurfacePoint::position)
-  shade(found->material, point, ray, hit, arena);
+  shade(found->material, point, request, hit);
   return true;
 }
 
-void RenderGeometry::shade(uint32_t material, const SurfacePoint& point, const fb_ray& ray,
-                           fb_hit& hit, SurfaceArena* arena) const {
-  if (!arena) {
+void RenderGeometry::shade(uint32_t material, const SurfacePoint& point, const HitRequest& request,
+                           fb_hit& hit) const {
+  if (!request.arena) {
     shader_->shade(material, point, hit);
     hit.surface = nullptr;
     return;
   }
-  Surface& surface = arena->next();
-  shader_->shade(material, point, Vec3f(ray.direction), hit, surface);
+  Surface& surface = request.arena->next();
+  shader_->shade(material, point, Vec3f(request.ray.direction), request.camera, hit, surface);
   hit.surface = reinterpret_cast<const fb_surface*>(&surface);
 }
 

@@ -78,17 +78,24 @@ class RenderGeometry {
 
  private:
   struct Mesh;
-  // The hit record of `ray` for barycentrics (u, v) at distance t on triangle `primitive` of
-  // `mesh`, at Embree's normalised time.
+  // What a hit record is filled for: the ray, where its surface goes (none: no surface), and
+  // whether it is a camera ray (Cycles samples closures defensively there, ShadingFrame).
+  struct HitRequest {
+    const fb_ray& ray;
+    SurfaceArena* arena;
+    bool camera;
+  };
+  // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`, at
+  // Embree's normalised time.
   void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
-                const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const;
+                const HitRequest& request, fb_hit& hit) const;
   static SurfacePoint surface_point(const Mesh& mesh, uint32_t primitive, float u, float v);
   // The hit record of a ray Embree found ending on solid geometry `id`; false if it does not.
-  bool fill_solid_hit(unsigned id, const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const;
+  bool fill_solid_hit(unsigned id, const HitRequest& request, fb_hit& hit) const;
   // The material's textures at `point` into the hit's surface fields, and its surface from the
-  // arena when there is one.
-  void shade(uint32_t material, const SurfacePoint& point, const fb_ray& ray, fb_hit& hit,
-             SurfaceArena* arena) const;
+  // request's arena when there is one.
+  void shade(uint32_t material, const SurfacePoint& point, const HitRequest& request,
+             fb_hit& hit) const;
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   static void light_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.

@@ -27,8 +27,11 @@ enum class ShaderNodeType : uint8_t {
   kAdd,
 };
 
-// The Glossy, Glass and Principled nodes' distribution menus.
+// The Glossy, Glass and Principled nodes' distribution menus (the Principled BSDF has GGX and
+// Multiscatter GGX, the Glass node no Ashikhmin-Shirley).
 enum class Distribution : uint8_t { kSharp, kBeckmann, kGgx, kAshikhminShirley, kMultiGgx };
+// The Principled BSDF's Subsurface Method.
+enum class SubsurfaceMethod : uint8_t { kBurley, kRandomWalk, kRandomWalkFixedRadius };
 
 // Every input socket the nodes above have, one namespace for all of them (the Principled BSDF's
 // 3.4 sockets first).
@@ -91,7 +94,7 @@ struct ShaderNode {
   ShaderNodeType type = ShaderNodeType::kDiffuse;
   std::string name;  // Blender's node name, for messages
   Distribution distribution = Distribution::kGgx;
-  bool random_walk_subsurface = true;  // Principled's subsurface method (rendered as diffuse)
+  SubsurfaceMethod subsurface_method = SubsurfaceMethod::kRandomWalk;  // rendered as diffuse
   static constexpr uint32_t kNone = 0xffffffffu;
   std::array<uint32_t, 2> shaders{kNone, kNone};  // kMix, kAdd: node indices
   std::array<ShaderInput, kSocketCount> inputs{};

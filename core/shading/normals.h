@@ -11,15 +11,23 @@
 namespace fb {
 
 // Chiang, Li and Burley 2019, "Taming the Shadow Terminator": light from `wi` reaching a diffuse
-// surface whose shading normal (+z, local frame) was bent away from the interpolated `smooth`
-// normal is shadowed by g = (smooth.wi) / ((n.wi)(smooth.n)), smoothed as -g^3 + g^2 + g; Cycles
-// (bump_shadowing_term, kernel/closure/bsdf.h) applies it to every diffuse closure whose normal
-// is not the smooth one.
-inline float bump_shadowing(Vec3f smooth, Vec3f wi) {
-  const float g = dot(smooth, wi) / (wi.z * smooth.z);
-  if (!(g < 1.f)) return 1.f;
-  if (!(g > 0.f)) return 0.f;
+// surface whose shading normal `n` was bent away from the interpolated `smooth` normal is
+// shadowed by g = (smooth.wi) / ((n.wi)(smooth.n)), smoothed as -g^3 + g^2 + g, with `smooth`
+// turned to wi's side of n (Cycles' bump_shadowing_term, kernel/closure/bsdf.h, which Cycles
+// applies to every diffuse closure whose normal is not the smooth one).
+inline float bump_shadowing_term(Vec3f smooth, Vec3f n, Vec3f wi) {
+  const float cos_ni = dot(n, wi);
+  if (cos_ni < 0.f) smooth = -smooth;
+  const float denominator = cos_ni * dot(smooth, n);
+  const float g = denominator != 0.f ? dot(smooth, wi) / denominator : 0.f;  // safe_divide
+  if (g >= 1.f) return 1.f;
+  if (!(g >= 0.f)) return 0.f;
   return g + g * g - g * g * g;
+}
+
+// The same in a local frame whose shading normal is +z.
+inline float bump_shadowing(Vec3f smooth, Vec3f wi) {
+  return bump_shadowing_term(smooth, {0.f, 0.f, 1.f}, wi);
 }
 
 // A shading normal that a ray seen from `wo` (unit, towards the viewer, on ng's side) can reflect

@@ -1,16 +1,19 @@
 #include "core/shading/surface.h"
 
-#include <algorithm>
 #include <cmath>
+
+#include "core/shading/fresnel.h"
 
 namespace fb {
 
 void Surface::begin(const ShadingFrame& frame) {
   frame_ = frame;
   gltf_.reset();
+  count_ = 0;
 }
 
 void Surface::add_gltf(const GltfSurfaceParams& p) {
+  count_ = 0;
   const Vec3f n = frame_.backfacing ? -p.normal : p.normal;
   const Frame local(ensure_valid_reflection(frame_.Ng, frame_.I, n));
   // Transmission makes the side matter: from the back face the ray leaves the material, so the
@@ -22,29 +25,93 @@ void Surface::add_gltf(const GltfSurfaceParams& p) {
                      local.to_local(frame_.I)});
 }
 
-// Until Cycles' closures land, Blender's nodes render through the glTF model's lobes: the first
-// node reached, at full weight (a placeholder for the pipeline, not Cycles' model).
-void Surface::add_principled(const PrincipledInputs& in, Rgb weight) {
-  if (gltf_) return;
-  add_gltf({in.base_color * weight, in.metallic, in.roughness, in.transmission, in.ior,
-            std::clamp(2.f * in.specular, 0.f, 1.f), in.normal});
+Closure* Surface::allocate(ClosureType type, Rgb weight, Vec3f N) {
+  weight = max(weight, Rgb{});
+  const float sample_weight = std::abs(average(weight));
+  // Written so that a non-finite average makes no closure, as bsdf_alloc is.
+  if (!(sample_weight >= kClosureWeightCutoff) || !std::isfinite(sample_weight)) return nullptr;
+  gltf_.reset();
+  int slot = count_;
+  if (count_ == kMaxClosures) {
+    // Full: replace the lightest closure if the new one outweighs it. The caller may still
+    // scale the sample weight down (Fresnel, sheen); the choice is made on the weight alone.
+    slot = 0;
+    for (int i = 1; i < count_; ++i)
+      if (closures_[i].sample_weight < closures_[slot].sample_weight) slot = i;
+    if (!(sample_weight > closures_[slot].sample_weight)) return nullptr;
+  } else {
+    ++count_;
+  }
+  Closure& c = closures_[slot];
+  c.type = type;
+  c.weight = weight;
+  c.sample_weight = sample_weight;
+  c.N = N;
+  return &c;
 }
 
-void Surface::add_diffuse(Rgb color, float, Vec3f normal, Rgb weight) {
-  if (!gltf_) add_gltf({color * weight, 0.f, 1.f, 0.f, 1.5f, 0.f, normal});
+Vec3f Surface::node_normal(Vec3f normal) const {
+  Vec3f n = frame_.N;
+  if (dot(normal, normal) > 0.f) n = frame_.backfacing ? -normal : normal;
+  return ensure_valid_reflection(frame_.Ng, frame_.I, n);
 }
 
-void Surface::add_glossy(Distribution, Rgb color, float roughness, Vec3f normal, Rgb weight) {
-  if (!gltf_) add_gltf({color * weight, 1.f, roughness, 0.f, 1.5f, 1.f, normal});
+bool Surface::reachable(const Closure& c, Vec3f wi) const {
+  switch (c.type) {
+    case ClosureType::kSharpRefraction:
+    case ClosureType::kMicrofacetRefract:
+    case ClosureType::kMultiGgxGlass:
+      return true;  // Cycles' refraction sampling does not test the geometric normal
+    default:
+      return dot(frame_.Ng, wi) > 0.f;
+  }
 }
 
-void Surface::add_glass(Distribution, Rgb color, float roughness, float ior, Vec3f normal,
-                        Rgb weight) {
-  if (!gltf_) add_gltf({color * weight, 0.f, roughness, 1.f, ior, 1.f, normal});
+float Surface::bump_factor(const Closure& c, Vec3f wi) const {
+  // bsdf.h bsdf_eval and bsdf_sample: the terminator term for diffuse closures whose normal was
+  // bent away from the interpolated one.
+  const bool bent = c.N.x != frame_.N.x || c.N.y != frame_.N.y || c.N.z != frame_.N.z;
+  return c.is_diffuse() && bent ? bump_shadowing_term(frame_.N, c.N, wi) : 1.f;
+}
+
+Rgb Surface::accumulate(Vec3f wi, const Closure* skip, const Picking& picking,
+                        float& weighted_pdf) const {
+  Rgb f{};
+  for (int i = 0; i < count_; ++i) {
+    const Closure& c = closures_[i];
+    if (&c == skip) continue;
+    float pdf = 0.f;
+    const Rgb e = closure_eval(c, context(), wi, pdf) * bump_factor(c, wi);
+    if (pdf == 0.f) continue;
+    f += e * c.weight;
+    if (reachable(c, wi)) weighted_pdf += pdf * picking.weight(c);
+  }
+  return f;
+}
+
+Surface::Picking Surface::picking() const {
+  float sum = 0.f;
+  for (int i = 0; i < count_; ++i)
+    sum += closures_[i].sample_weight;
+  Picking p{0.f, sum};
+  if (frame_.camera_ray && count_ > 1) {
+    p.floor = 0.125f * sum;
+    p.sum = 0.f;
+    for (int i = 0; i < count_; ++i)
+      p.sum += p.weight(closures_[i]);
+  }
+  return p;
 }
 
 Rgb Surface::eval(Vec3f wi_world, float& pdf) const {
   pdf = 0.f;
+  if (count_ > 0) {
+    const Picking picking = this->picking();
+    float weighted_pdf = 0.f;
+    const Rgb f = accumulate(wi_world, nullptr, picking, weighted_pdf);
+    pdf = picking.sum > 0.f ? weighted_pdf / picking.sum : 0.f;
+    return f;
+  }
   if (!gltf_ || !(gltf_->wo.z > 0.f)) return {};
   const Vec3f wi = gltf_->frame.to_local(wi_world);
   // Light above the shading normal but below the flat facet (the terminator of a coarse mesh with
@@ -58,6 +125,41 @@ Rgb Surface::eval(Vec3f wi_world, float& pdf) const {
 }
 
 bool Surface::sample(const float u[3], SurfaceSample& s) const {
+  if (count_ > 0) {
+    // surface_shader_bsdf_bssrdf_pick: u[0] picks by sample weight; (u[1], u[2]) draw the
+    // direction (Cycles reuses the rescaled u[0] instead of a third number).
+    const Picking picking = this->picking();
+    const float sum = picking.sum;
+    if (!(sum > 0.f)) return false;
+    const float r = u[0] * sum;
+    float partial = 0.f;
+    int picked = count_ - 1;
+    for (int i = 0; i < count_; ++i) {
+      if (r < partial + picking.weight(closures_[i])) {
+        picked = i;
+        break;
+      }
+      partial += picking.weight(closures_[i]);
+    }
+    const Closure& c = closures_[picked];
+    ClosureSample cs;
+    if (!closure_sample(c, context(), {u[1], u[2]}, cs) || !(cs.pdf > 0.f)) return false;
+    s.wi = cs.omega_in;
+    s.transmission = dot(frame_.Ng, s.wi) < 0.f;
+    s.delta = cs.singular;
+    Rgb f = cs.eval * c.weight * bump_factor(c, s.wi);
+    if (cs.singular) {
+      // A delta lobe outweighs every other closure in its direction (Cycles' 1e6 pdf).
+      s.pdf = picking.weight(c) / sum;
+      s.weight = f / s.pdf;
+    } else {
+      float weighted_pdf = cs.pdf * picking.weight(c);
+      f += accumulate(s.wi, &c, picking, weighted_pdf);
+      s.pdf = weighted_pdf / sum;
+      s.weight = f / s.pdf;
+    }
+    return is_finite(s.weight) && s.pdf > 0.f;
+  }
   if (!gltf_ || !(gltf_->wo.z > 0.f)) return false;
   Bsdf::Sample b;
   if (!gltf_->bsdf.sample(gltf_->wo, u[0], {u[1], u[2]}, b)) return false;

@@ -218,6 +218,7 @@ void GraphShader::build(const SurfacePoint& point, const ShadingFrame& frame,
         p.clearcoat_normal = in_normal(Socket::kClearcoatNormal);
         p.tangent = point.tangent;
         p.distribution = node.distribution;
+        p.subsurface_method = node.subsurface_method;
         const float alpha = principled_alpha(in_number(Socket::kAlpha));
         surface.add_principled(p, weight * alpha);
         break;

@@ -105,13 +105,13 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
 }
 
 void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, Vec3f ray_direction,
-                          fb_hit& hit, Surface& surface) const {
+                          bool camera_ray, fb_hit& hit, Surface& surface) const {
   shade(index, point, hit);
   const Vec3f I = normalize(-ray_direction);
   const Vec3f ng(hit.geometric_normal);
   const bool backfacing = dot(ng, I) < 0.f;
   const float side = backfacing ? -1.f : 1.f;
-  const ShadingFrame frame{I, ng * side, Vec3f(hit.smooth_normal) * side, backfacing};
+  const ShadingFrame frame{I, ng * side, Vec3f(hit.smooth_normal) * side, backfacing, camera_ray};
   surface.begin(frame);
   if (graphs_[index]) return graphs_[index]->build(point, frame, surface);
   surface.add_gltf({Rgb(hit.base_color), hit.metallic, hit.roughness, hit.transmission, hit.ior,

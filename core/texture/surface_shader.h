@@ -30,10 +30,10 @@ class SurfaceShader {
   // Fills hit.base_color ... hit.emission for `material` and applies its normal map to
   // hit.shading_normal (which must hold the interpolated normal).
   void shade(uint32_t material, const SurfacePoint& point, fb_hit& hit) const;
-  // The same, and the closures for a ray arriving along `ray_direction` into `surface`
-  // (hit.geometric_normal must be set too).
-  void shade(uint32_t material, const SurfacePoint& point, Vec3f ray_direction, fb_hit& hit,
-             Surface& surface) const;
+  // The same, and the closures for a ray arriving along `ray_direction` (from the camera when
+  // `camera_ray`) into `surface` (hit.geometric_normal must be set too).
+  void shade(uint32_t material, const SurfacePoint& point, Vec3f ray_direction, bool camera_ray,
+             fb_hit& hit, Surface& surface) const;
   // Radiance leaving the point: the emissive factor (with its strength) times the texture, or
   // the shader graph's emission.
   Rgb emission(uint32_t material, const SurfacePoint& point) const;

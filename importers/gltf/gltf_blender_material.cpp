@@ -161,8 +161,7 @@ class GraphReader {
     if (node.type == ShaderNodeType::kPrincipled || node.type == ShaderNodeType::kGlossy ||
         node.type == ShaderNodeType::kGlass)
       node.distribution = distribution(f, node.type);
-    if (node.type == ShaderNodeType::kPrincipled)
-      node.random_walk_subsurface = f.word("subsurface_method").value_or("RANDOM_WALK") != "BURLEY";
+    if (node.type == ShaderNodeType::kPrincipled) node.subsurface_method = subsurface_method(f);
     if (node.type == ShaderNodeType::kMix || node.type == ShaderNodeType::kAdd) {
       const auto shaders = f.indices("shaders", 2, graph_.nodes.size());
       if (!shaders || shaders->size() != 2)
@@ -202,6 +201,14 @@ class GraphReader {
                          " or MULTI_GGX") +
               ")");
     return it->second;
+  }
+
+  static SubsurfaceMethod subsurface_method(const Fields& f) {
+    const std::string name = f.word("subsurface_method").value_or("RANDOM_WALK");
+    if (name == "BURLEY") return SubsurfaceMethod::kBurley;
+    if (name == "RANDOM_WALK") return SubsurfaceMethod::kRandomWalk;
+    if (name == "RANDOM_WALK_FIXED_RADIUS") return SubsurfaceMethod::kRandomWalkFixedRadius;
+    f.fail("subsurface_method", "expected BURLEY, RANDOM_WALK or RANDOM_WALK_FIXED_RADIUS");
   }
 
   ShaderInput input(const Fields& inputs, const char* key, ValueKind kind) {

@@ -13,25 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<Record> read_manifest(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error("make_shot.py wrote no " + file.string());
-  std::vector<Record> records;
-  for (std::string line; std::getline(in, line);) {
-    std::istringstream words(line);
-    Record r;
-    if (!(words >> r.kind)) continue;
-    for (std::string word; words >> word;) {
-      const size_t eq = word.find('=');
-      if (eq == std::string::npos)
-        throw std::runtime_error(file.string() + ": '" + word + "' is not key=value");
-      r.fields[word.substr(0, eq)] = word.substr(eq + 1);
-    }
-    records.push_back(std::move(r));
-  }
-  return records;
-}
-
 // Cycles ends its log with " Time: MM:SS.ss (Saving: ...)"; 0 if absent.
 double cycles_render_s(const std::string& log) {
   const size_t at = log.rfind("\n Time: ");
@@ -57,6 +38,25 @@ const std::string& Record::text(const std::string& key) const {
 
 double Record::number(const std::string& key) const {
   return std::stod(text(key));
+}
+
+std::vector<Record> read_manifest(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("make_shot.py wrote no " + file.string());
+  std::vector<Record> records;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    Record r;
+    if (!(words >> r.kind)) continue;
+    for (std::string word; words >> word;) {
+      const size_t eq = word.find('=');
+      if (eq == std::string::npos)
+        throw std::runtime_error(file.string() + ": '" + word + "' is not key=value");
+      r.fields[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+    records.push_back(std::move(r));
+  }
+  return records;
 }
 
 std::optional<fs::path> find_blender() {

@@ -33,6 +33,10 @@ struct ShotRenders {
   std::string filmback_log;              // its plan line says which camera model it chose
 };
 
+// The records of a manifest.txt; throws std::runtime_error naming the file when it is missing or
+// a word is not key=value.
+std::vector<Record> read_manifest(const std::filesystem::path& file);
+
 // The `blender` executable on PATH, if any.
 std::optional<std::filesystem::path> find_blender();
 

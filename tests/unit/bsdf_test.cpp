@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/chi_square.h"
+
 namespace fb {
 namespace {
 
@@ -184,21 +186,9 @@ TEST(Bsdf, SamplesFollowThePdf) {
           }
         expected[i * kPhi + j] = sum / (kSub * kSub) * (2.0 / kTheta) * (2 * kPi / kPhi) * kSamples;
       }
-    double chi2 = 0, pooled_o = 0, pooled_e = 0;
-    int dof = -1;
-    for (size_t c = 0; c < observed.size(); ++c) {
-      if (expected[c] < 5) {
-        pooled_o += observed[c], pooled_e += expected[c];
-        continue;
-      }
-      chi2 += (observed[c] - expected[c]) * (observed[c] - expected[c]) / expected[c];
-      ++dof;
-    }
-    if (pooled_e >= 5) chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++dof;
-    // Upper tail at p = 1e-3: dof + 3.09 sqrt(2 dof) + 4 (Wilson-Hilferty, rounded up).
-    const double limit = dof + 3.1 * std::sqrt(2.0 * dof) + 4;
-    EXPECT_LT(chi2, limit) << k.name << " roughness " << k.params.roughness << ", " << dof
-                           << " degrees of freedom";
+    const test::ChiSquare chi2 = test::chi_square(observed, expected);
+    EXPECT_LT(chi2.statistic, chi2.limit()) << k.name << " roughness " << k.params.roughness << ", "
+                                            << chi2.dof << " degrees of freedom";
   }
 }
 
