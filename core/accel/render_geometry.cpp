@@ -549,7 +549,7 @@ void RenderGeometry::shade(uint32_t material, const SurfacePoint& point, const H
     hit.surface = nullptr;
     return;
   }
-  Surface& surface = request.arena->next();
+  Surface& surface = request.camera ? request.arena->batch_next() : request.arena->ring_next();
   shader_->shade(material, point, Vec3f(request.ray.direction), request.camera, hit, surface);
   hit.surface = reinterpret_cast<const fb_surface*>(&surface);
 }

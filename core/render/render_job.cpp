@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <filmback/camera_projection.h>
@@ -308,9 +309,9 @@ void RenderJob::check_memory_budget(double triangles) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
-  const MemoryEstimate estimate = estimate_memory(
-      width_, height_, p.integrator->channels().size(), options_.reconstruction,
-      SplatTiles::reach(std::max(radius[0], radius[1])), triangles);
+  const MemoryEstimate estimate =
+      estimate_memory(width_, height_, p.integrator->channels().size(), options_.reconstruction,
+                      SplatTiles::reach(std::max(radius[0], radius[1])), triangles);
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else
@@ -359,6 +360,41 @@ void RenderJob::choose_time_samples(const Scene& scene) {
   time_reason_ = out.str();
 }
 
+namespace {
+
+// "materials: 2 Blender 3.4.1 shader graphs (Cycles 3.4's closures), 1 glTF metallic-roughness":
+// the models of the materials that geometry uses.
+std::string material_models(const Scene& scene) {
+  std::vector<bool> used(scene.materials.size(), false);
+  for (const MeshInstance& i : scene.instances)
+    used.at(scene.meshes[i.mesh].material) = true;
+  for (const SubdivisionSurface& s : scene.subdivision_surfaces)
+    used.at(s.material) = true;
+  const auto mark_solid = [&](const Solid& s, const auto& self) -> void {
+    if (s.is_primitive()) used.at(s.material) = true;
+    for (const Solid& child : s.children)
+      self(child, self);
+  };
+  for (const Solid& s : scene.solids)
+    mark_solid(s, mark_solid);
+  std::map<std::string, size_t> counts;
+  for (size_t m = 0; m < used.size(); ++m) {
+    if (!used[m]) continue;
+    const std::optional<ShaderGraph>& graph = scene.materials[m].shader_graph;
+    ++counts[!graph ? "glTF metallic-roughness"
+                    : "Blender " +
+                          (graph->blender_version.empty() ? std::string()
+                                                          : graph->blender_version + " ") +
+                          "shader graph" + " (Cycles 3.4's closures)"];
+  }
+  std::string out = "materials:";
+  for (const auto& [model, n] : counts)
+    out += (out.back() == ':' ? " " : ", ") + std::to_string(n) + " " + model;
+  return counts.empty() ? "no materials" : out;
+}
+
+}  // namespace
+
 RenderChoices RenderJob::choices() const {
   const Plugins& p = *plugins_;
   return {camera_.name,
@@ -371,6 +407,7 @@ RenderChoices RenderJob::choices() const {
           sampler_name(options_.sampler),
           time_reason_,
           p.subdiv_summary,
+          material_models(scene_),
           p.geometry->triangle_count(),
           p.lights->punctual_light_count(),
           p.lights->emissive_triangle_count()};
@@ -385,6 +422,7 @@ std::string RenderJob::plan() const {
       << "), integrator " << c.integrator << "; " << c.time << "; " << c.triangles << " triangles, "
       << c.punctual_lights << " punctual lights, " << c.emissive_triangles << " emissive triangles";
   if (!c.subdivision.empty()) out << "; " << c.subdivision;
+  out << "; " << c.materials;
   return out.str();
 }
 

@@ -72,6 +72,7 @@ struct RenderChoices {
   std::string filter, reconstruction, integrator, sampler;
   std::string time;         // whether and why time is sampled
   std::string subdivision;  // how subdivision surfaces were refined; empty: none
+  std::string materials;    // the material models the geometry uses
   uint64_t triangles = 0, punctual_lights = 0, emissive_triangles = 0;
 };
 
@@ -103,7 +104,7 @@ class RenderJob {
 
  private:
   struct Plugins;
-  void choose_time_samples(const Scene& scene);  // sets time_reason_ and the time plugins_ need
+  void choose_time_samples(const Scene& scene);      // sets time_reason_ and the time plugins_ need
   void check_memory_budget(double triangles) const;  // the film's and these triangles'
   const Scene& scene_;
   RenderOptions options_;

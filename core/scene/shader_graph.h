@@ -103,7 +103,8 @@ struct ShaderNode {
 };
 
 struct ShaderGraph {
-  std::vector<ShaderNode> nodes;         // acyclic (checked on import)
+  std::string blender_version;    // of the Blender that exported it, "3.4.1"; empty when unknown
+  std::vector<ShaderNode> nodes;  // acyclic (checked on import)
   uint32_t surface = ShaderNode::kNone;  // what the Material Output's Surface receives
   std::vector<ImageTextureNode> textures;
   // The UV maps the textures read, by name ("" is the mesh's active render map); the importer

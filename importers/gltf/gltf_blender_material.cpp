@@ -134,6 +134,7 @@ class GraphReader {
     for (const std::string& w :
          ext_.words("warnings", kMaxWarnings).value_or(std::vector<std::string>{}))
       diagnostics_.warn(located(ext_.file(), ext_.path(), "from Blender: " + w));
+    read_version();
     const std::vector<Fields> nodes = ext_.objects("nodes", kMaxNodes);
     graph_.nodes.resize(nodes.size());
     for (size_t i = 0; i < nodes.size(); ++i)
@@ -145,6 +146,19 @@ class GraphReader {
   }
 
  private:
+  // Blender 4.0 replaced the Principled BSDF (v2: another layering, new sockets); filmback
+  // renders Cycles 3.4's nodes.
+  void read_version() {
+    const auto v = ext_.numbers("blender_version", 3, 0, 1e6);
+    if (!v || v->size() != 3) return;
+    for (size_t i = 0; i < 3; ++i)
+      graph_.blender_version += (i ? "." : "") + std::to_string(long((*v)[i]));
+    if ((*v)[0] >= 4)
+      warn(ext_.path() + ".blender_version",
+           "exported by Blender " + graph_.blender_version +
+               ", whose shader nodes changed in 4.0; rendered as Cycles 3.4 renders its nodes");
+  }
+
   void read_node(const Fields& f, ShaderNode& node) {
     const std::string type = f.word("type").value_or("");
     const auto kind = std::find_if(node_kinds().begin(), node_kinds().end(),

@@ -208,8 +208,9 @@ typedef struct fb_hit {
   float shadow_position[3];
   /* How the surface scatters light at this hit, prepared by the host for the ray that found it
    * (its material's closures, textures evaluated, normals turned to the ray's side): pass the hit
-   * to fb_scene_api's bsdf_eval() and bsdf_sample(). Opaque; valid until the radiance() call that
-   * traced the hit returns. */
+   * to fb_scene_api's bsdf_eval() and bsdf_sample(). Opaque. A hit of intersect_batch keeps it
+   * until the radiance() call that traced it returns; a hit of intersect() until 63 more rays have
+   * been traced with intersect() on the same context. */
   const struct fb_surface* surface;
 } fb_hit;
 
@@ -227,7 +228,7 @@ typedef struct fb_light_sample {
   /* to the light point; HUGE_VAL for a directional light; 0 for a light nothing shadows (POV-Ray's
    * `shadowless`): trace no shadow ray (a shadow ray of length 0 is never occluded either) */
   float distance;
-  float pdf;          /* solid-angle pdf with the light choice; for delta lights the choice only */
+  float pdf; /* solid-angle pdf with the light choice; for delta lights the choice only */
   uint32_t is_delta;
 } fb_light_sample;
 
@@ -289,8 +290,8 @@ typedef struct fb_scene_api {
    * being the direction back along the hit's ray, and in *pdf the solid-angle pdf with which
    * bsdf_sample() would draw wi (0 where it never does: weight light sampling fully there).
    * Directions in render space, unit, away from the surface. */
-  void (*bsdf_eval)(fb_trace_context* context, const fb_hit* hit, const float wi[3],
-                    float f_cos[3], float* pdf);
+  void (*bsdf_eval)(fb_trace_context* context, const fb_hit* hit, const float wi[3], float f_cos[3],
+                    float* pdf);
   /* Draws a direction from the surface at `hit` with three sample values (a closure choice and a
    * 2-D point, as next_samples() hands them out). Returns 0 when the sample carries no light. */
   int (*bsdf_sample)(fb_trace_context* context, const fb_hit* hit, const float u[3],
