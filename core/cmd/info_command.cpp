@@ -118,6 +118,8 @@ const char* light_type(LightType t) {
       return "spot";
     case LightType::kDirectional:
       return "directional";
+    case LightType::kArea:
+      return "area";
   }
   return "?";
 }
@@ -146,10 +148,14 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
 
   std::cout << "lights (" << scene.lights.size() << ")\n";
   for (const Light& light : scene.lights) {
-    const bool sun = light.type == LightType::kDirectional;
+    const bool sun = light.type == LightType::kDirectional, area = light.type == LightType::kArea;
     std::cout << "  " << light.name << "  " << light_type(light.type) << ", "
-              << (sun ? "irradiance " : "intensity ") << rgb(light.intensity)
-              << (sun ? " W/m^2" : " W/sr");
+              << (sun ? "irradiance " : area ? "radiance " : "intensity ") << rgb(light.intensity)
+              << (sun ? " W/m^2" : area ? " W/sr/m^2" : " W/sr");
+    if (area)
+      std::cout << format(", %s %.4g x %.4g m, spread %.4g deg",
+                          light.area_shape == AreaShape::kEllipse ? "ellipse" : "rectangle",
+                          light.size_x_m, light.size_y_m, light.spread_rad * 180 / M_PI);
     if (light.type == LightType::kSpot)
       std::cout << format(", cone %.2f..%.2f deg", light.spot_inner_angle_rad * 180 / M_PI,
                           light.spot_outer_angle_rad * 180 / M_PI);

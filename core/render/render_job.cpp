@@ -372,7 +372,7 @@ RenderChoices RenderJob::choices() const {
           time_reason_,
           p.subdiv_summary,
           p.geometry->triangle_count(),
-          p.lights->punctual_light_count(),
+          p.lights->lamp_count(),
           p.lights->emissive_triangle_count()};
 }
 
@@ -383,7 +383,7 @@ std::string RenderJob::plan() const {
       << c.camera_model << " (" << c.lens << "), " << width_ << "x" << height_ << ", " << spp_
       << " spp (" << c.sampler << "), filter " << c.filter << " (" << c.reconstruction
       << "), integrator " << c.integrator << "; " << c.time << "; " << c.triangles << " triangles, "
-      << c.punctual_lights << " punctual lights, " << c.emissive_triangles << " emissive triangles";
+      << c.lights << " lights, " << c.emissive_triangles << " emissive triangles";
   if (!c.subdivision.empty()) out << "; " << c.subdivision;
   return out.str();
 }

@@ -72,7 +72,7 @@ struct RenderChoices {
   std::string filter, reconstruction, integrator, sampler;
   std::string time;         // whether and why time is sampled
   std::string subdivision;  // how subdivision surfaces were refined; empty: none
-  uint64_t triangles = 0, punctual_lights = 0, emissive_triangles = 0;
+  uint64_t triangles = 0, lights = 0, emissive_triangles = 0;
 };
 
 struct RenderResult {
