@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -17,6 +18,13 @@ namespace fb::gltf {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+
+// Blender stores angles in single precision: its 180 degrees is pi rounded up to a float, a little
+// above pi. Angles up to it are read, then limited to pi.
+constexpr double kBlenderPi = double(std::numbers::pi_v<float>);
+double angle(const Fields& f, const char* key, double lowest, double fallback) {
+  return std::min(f.number(key, lowest, kBlenderPi).value_or(fallback), kPi);
+}
 
 std::string light_name(const std::string& own, const tinygltf::Node& node,
                        const std::string& path) {
@@ -45,7 +53,7 @@ void read_area_light(const Fields& f, const Transform& world, Rgb color, double 
   light.area_shape = round ? AreaShape::kEllipse : AreaShape::kRectangle;
   light.size_x_m = length(world.vector({size, 0, 0}));
   light.size_y_m = length(world.vector({0, size_y, 0}));
-  light.spread_rad = f.number("spread_rad", 0, kPi).value_or(kPi);  // Blender's default, 180 deg
+  light.spread_rad = angle(f, "spread_rad", 0, kPi);  // Blender's default, 180 degrees
   const double area = light.size_x_m * light.size_y_m * (round ? kPi / 4 : 1.0);
   if (!(area > 0) || !std::isfinite(area))
     throw_input(f.file(), f.path(), "the node's transform collapses the area light to zero area");
@@ -81,7 +89,7 @@ void read_blender_light(const tinygltf::Value& value, const tinygltf::Node& node
     light.radius_m = f.number("radius_m", 0, 1e6).value_or(0.0);
     if (light.type == LightType::kSpot) {
       light.spot_falloff = SpotFalloff::kCycles;
-      light.spot_outer_angle_rad = f.number("spot_size_rad", 1e-6, kPi).value_or(kPi / 4) / 2;
+      light.spot_outer_angle_rad = angle(f, "spot_size_rad", 1e-6, kPi / 4) / 2;
       light.spot_blend = f.number("spot_blend", 0, 1).value_or(0.15);
       // What KHR_lights_punctual would say: for light selection's power estimate.
       light.spot_inner_angle_rad = light.spot_outer_angle_rad * (1 - light.spot_blend);
@@ -89,7 +97,7 @@ void read_blender_light(const tinygltf::Value& value, const tinygltf::Node& node
   } else if (*type == "SUN") {
     light.type = LightType::kDirectional;
     light.intensity = color * float(*energy);  // irradiance S W/m^2
-    light.angle_rad = f.number("angle_rad", 0, kPi).value_or(0.0);
+    light.angle_rad = angle(f, "angle_rad", 0, 0.0);
   } else if (*type == "AREA") {
     read_area_light(f, world, color, *energy, light);
   } else {

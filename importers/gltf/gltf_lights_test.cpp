@@ -125,7 +125,9 @@ TEST(GltfLights, AreaLightsHaveRadiancePowerOverFourAreaAndTheNodesScale) {
              0.5, 0.25, kPi},
         Case{R"("shape": "RECTANGLE", "size_m": 0.5, "size_y_m": 2, "spread_rad": 0.5)",
              AreaShape::kRectangle, 0.5, 2, 1.0, 0.5},
-        Case{R"("shape": "DISK", "size_m": 1)", AreaShape::kEllipse, 1, 1, kPi / 4, kPi},
+        // Blender's 180 degrees, pi rounded up to single precision, is read as pi.
+        Case{R"("shape": "DISK", "size_m": 1, "spread_rad": 3.1415927410125732)",
+             AreaShape::kEllipse, 1, 1, kPi / 4, kPi},
         Case{R"("shape": "ELLIPSE", "size_m": 1, "size_y_m": 0.5, "spread_rad": 1)",
              AreaShape::kEllipse, 1, 0.5, kPi / 8, 1.0}}) {
     const Scene scene = import(write_gltf(

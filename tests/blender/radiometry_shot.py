@@ -1,7 +1,8 @@
 """The Blender side of the radiometry tests (tests/blender/blender_radiometry_test.cpp).
 
-Builds one diffuse-only shot of SHOTS (a ground plane with a box and a sphere, lit by Blender
-lights and a uniform world), exports it with Blender's own glTF exporter and renders it with Cycles:
+Builds one shot of SHOTS (a ground plane with a box and a sphere, lit by Blender lights and a
+uniform world; diffuse everywhere, or with a glossy metal ground in which the lights' shapes are
+seen), exports it with Blender's own glTF exporter and renders it with Cycles:
 
     blender -b --factory-startup --python radiometry_shot.py -- OUTDIR SHOT
 
@@ -10,18 +11,20 @@ record: name, samples, width_px, height_px), as make_shot.py does, whose Cycles 
 export it borrows.
 
 Two things differ between what is exported and what Cycles renders, on purpose:
-  * Materials are exported as Principled BSDFs with Specular 0 (filmback: a Lambertian base), but
-    Cycles renders a Diffuse BSDF of the same colour: Blender's Principled diffuse is not
-    Lambertian (its Disney retro-reflection brightens grazing views).
+  * Diffuse materials are exported as Principled BSDFs with Specular 0 (filmback: a Lambertian
+    base), but Cycles renders a Diffuse BSDF of the same colour: Blender's Principled diffuse is
+    not Lambertian (its Disney retro-reflection brightens grazing views). A glossy ground stays a
+    Principled BSDF in both: metallic 1, GGX (not Multiscatter), where glTF's metallic-roughness
+    model and Cycles' agree closely.
   * Blender's Specular 0 is exported as KHR_materials_specular specularColorFactor [0, 0, 0]
     (F0 = 0), whose Schlick Fresnel still reflects at grazing angles; the script rewrites it as
     specularFactor 0, the Lambertian base alone, which is what Cycles' Diffuse BSDF renders.
 The export goes through filmback's add-on (importers/blender/export_shot.py), which writes the
 lights (area lights included) and the world, image and all, in the FILMBACK_blender extension.
 
-Cycles renders with max_bounces = diffuse_bounces = 7, which is filmback's default path depth of 8
-(max_depth counts the direct-light bounce, Cycles' bounces do not), no clamping and no light
-threshold, so both estimate the same integral.
+Cycles renders with max_bounces = diffuse_bounces = glossy_bounces = 7, which is filmback's default
+path depth of 8 (max_depth counts the direct-light bounce, Cycles' bounces do not), no clamping,
+no light threshold and no Filter Glossy, so both estimate the same integral.
 """
 
 import json
@@ -52,6 +55,7 @@ class LightSpec:
     shape: str = "SQUARE"
     size: float = 1.0
     size_y: float = 1.0
+    spread_deg: float = 180.0
 
 
 @dataclass(frozen=True)
@@ -60,6 +64,12 @@ class Shot:
     world_colour: tuple = (0.0, 0.0, 0.0)
     world_strength: float = 0.0
     sky: bool = False  # an equirectangular image (make_sky) through an Environment Texture
+    glossy_ground: float = 0.0  # > 0: the ground is a grey metal of this roughness
+    objects: bool = True  # the box and the sphere on the ground
+    # A second Cycles render with another seed (cycles_seed2.exr), whose difference from the first
+    # is the shot's noise floor: for shots whose noise at an affordable sample count is above the
+    # test's bar (blender_radiometry_test.cpp).
+    noise_floor: bool = False
     width_px: int = 128
     height_px: int = 96
     samples: int = 1024
@@ -87,6 +97,40 @@ SHOTS = {
     # No lights: an environment image with a bright patch (a low sun) and a sky gradient, which
     # tests its orientation (the shadows' direction) and importance sampling.
     "hdr_world": Shot((), world_strength=1.5, sky=True, samples=2048),
+    # Cycles 3.4's lights with a size seen in a glossy metal ground (roughness 0.15), each placed
+    # where the ground mirrors it towards the camera (about 1.5 m in front of the origin), so that
+    # BSDF-sampled rays find most of its highlight. The point light's shot has no objects: in a
+    # metal ground they would be lit by caustics, whose noise (in both renderers) would hide the
+    # highlight's radiometry at this sample count.
+    "point_glossy": Shot((LightSpec("Point", "POINT", (-0.19, 1.31, 2.0), (0, 0, 0), 300.0,
+                                    colour=(1.0, 0.92, 0.8), radius=0.3),),
+                         glossy_ground=0.15, objects=False),
+    "sun_glossy": Shot((LightSpec("Sun", "SUN", (0, 0, 5), (0.3, -4.5, 1.8), 3.0,
+                                  colour=(1.0, 0.95, 0.85), angle_deg=10.0),),
+                       world_colour=(0.25, 0.32, 0.45), world_strength=0.3, glossy_ground=0.15),
+    # The lights below light much of the frame only indirectly, whose noise a dim grey world
+    # (irradiance 0.47 W/m^2, a tenth of the lights') keeps from dominating the comparison.
+    # A spot of radius 0.4 m, its soft edge (blend 0.3) across the sphere.
+    "spot_radius": Shot((LightSpec("Spot", "SPOT", (1.5, -1.5, 3.5), (0.2, 0.3, 0.0), 1200.0,
+                                   colour=(0.9, 0.95, 1.0), radius=0.4, spot_size_deg=50.0,
+                                   spot_blend=0.3),),
+                        world_colour=(1.0, 1.0, 1.0), world_strength=0.15),
+    # A disk and an ellipse area light, each sampled uniformly over its area as Cycles does.
+    "disk_ellipse": Shot((LightSpec("Disk", "AREA", (-1.6, -0.8, 2.8), (-0.4, 0.3, 0.0), 300.0,
+                                    colour=(1.0, 0.9, 0.75), shape="DISK", size=0.9),
+                          LightSpec("Ellipse", "AREA", (1.6, 0.8, 2.5), (0.5, 0.2, 0.0), 300.0,
+                                    colour=(0.75, 0.85, 1.0), shape="ELLIPSE", size=1.6,
+                                    size_y=0.5)),
+                         world_colour=(1.0, 1.0, 1.0), world_strength=0.15),
+    # A 2.5 x 1.5 m rectangle of spread 30 degrees 2.5 m over the objects: a lit patch of about
+    # 3.8 x 2.8 m with a soft rim, the light sampled over the part of it the spread lets reach
+    # each point.
+    # Cycles samples its radiance, peaked towards the normal (44 times P / (4 A) there), uniformly
+    # over that part, so each pixel's noise is about 5 % at 1024 spp in Cycles as in filmback:
+    # the shot measures its noise floor.
+    "spread": Shot((LightSpec("Softbox", "AREA", (0.0, 0.3, 2.5), (0.0, 0.3, 0.0), 600.0,
+                              shape="RECTANGLE", size=2.5, size_y=1.5, spread_deg=30.0),),
+                   world_colour=(1.0, 1.0, 1.0), world_strength=0.15, noise_floor=True),
 }
 
 CAMERA_LOCATION = (0.3, -6.0, 3.2)
@@ -151,12 +195,30 @@ def make_diffuse(material):
     links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
 
 
-def build_geometry(scene):
+def glossy_metal(name, colour, roughness):
+    """A Principled metal with GGX (Blender 3.4's other choice, Multiscatter GGX, is not glTF's)."""
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    bsdf.distribution = "GGX"
+    bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
+    bsdf.inputs["Metallic"].default_value = 1.0
+    bsdf.inputs["Roughness"].default_value = roughness
+    return material
+
+
+def build_geometry(scene, shot):
+    """Returns the diffuse materials (which Cycles renders as Diffuse BSDFs)."""
     materials = []
     bpy.ops.mesh.primitive_plane_add(size=12.0, location=(0, 0, 0))
     ground = bpy.context.object
-    materials.append(principled("Ground", (0.55, 0.55, 0.5)))
-    ground.data.materials.append(materials[-1])
+    if shot.glossy_ground > 0:
+        ground.data.materials.append(glossy_metal("Ground", (0.8, 0.8, 0.8), shot.glossy_ground))
+    else:
+        materials.append(principled("Ground", (0.55, 0.55, 0.5)))
+        ground.data.materials.append(materials[-1])
+    if not shot.objects:
+        return materials
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.9, 0.5, 0.5), rotation=(0, 0, 0.5))
     cube = bpy.context.object
     materials.append(principled("Box", (0.8, 0.35, 0.2)))
@@ -184,6 +246,7 @@ def add_light(scene, spec):
     if spec.type == "AREA":
         data.shape = spec.shape
         data.size, data.size_y = spec.size, spec.size_y
+        data.spread = math.radians(spec.spread_deg)
     obj = bpy.data.objects.new(spec.name, data)
     scene.collection.objects.link(obj)
     look_at(obj, spec.location, spec.target)
@@ -222,7 +285,9 @@ def build(out_dir, name, shot, before_export=None):
 
     make_shot.configure_cycles(scene, shot)
     cycles = scene.cycles
-    cycles.max_bounces = cycles.diffuse_bounces = 7
+    cycles.max_bounces = cycles.diffuse_bounces = cycles.glossy_bounces = 7
+    cycles.caustics_reflective = True
+    cycles.blur_glossy = 0.0  # Filter Glossy widens glossy lobes after a bounce; filmback does not
     cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0
     cycles.light_sampling_threshold = 0.0
     camera_data = bpy.data.cameras.new("Camera")
@@ -231,7 +296,7 @@ def build(out_dir, name, shot, before_export=None):
     scene.collection.objects.link(camera)
     look_at(camera, CAMERA_LOCATION, CAMERA_TARGET)
     scene.camera = camera
-    materials = build_geometry(scene)
+    materials = build_geometry(scene, shot)
     for spec in shot.lights:
         add_light(scene, spec)
     bpy.context.view_layer.update()
@@ -239,8 +304,10 @@ def build(out_dir, name, shot, before_export=None):
         before_export(scene)
 
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        fields = {"second_cycles": "cycles_seed2.exr"} if shot.noise_floor else {}
         manifest.write(make_shot.record("shot", name=name, samples=shot.samples,
-                                        width_px=shot.width_px, height_px=shot.height_px))
+                                        width_px=shot.width_px, height_px=shot.height_px,
+                                        **fields))
     gltf_path = os.path.join(out_dir, "shot.gltf")
     make_shot.export_shot.export(gltf_path)  # filmback's add-on: lights and world included
     make_lambertian(gltf_path)
@@ -259,6 +326,10 @@ def main():
     scene = build(out_dir, name, SHOTS[name])
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
+    if shot.noise_floor:
+        cycles.seed = 2
+        scene.render.filepath = os.path.join(out_dir, "cycles_seed2.exr")
+        bpy.ops.render.render(write_still=True)
 
 
 if __name__ == "__main__":
