@@ -270,7 +270,7 @@ def make_lambertian(path):
 
 def build(out_dir, name, shot, before_export=None):
     """Builds `shot` in a new scene, exports it to OUT_DIR/shot.gltf with the manifest, and turns its
-    materials into Diffuse BSDFs for Cycles; returns the scene, ready to render. `before_export`,
+    diffuse materials into Diffuse BSDFs for Cycles; returns the scene, ready to render. `before_export`,
     when given, is called with the scene just before the export (look_shot.py sets Blender's
     Color Management there)."""
     os.makedirs(out_dir, exist_ok=True)
@@ -323,11 +323,12 @@ def main():
         raise SystemExit("usage: blender -b --factory-startup --python radiometry_shot.py -- "
                          "OUTDIR SHOT\nshots: " + " ".join(SHOTS))
     out_dir, name = os.path.abspath(args[0]), args[1]
-    scene = build(out_dir, name, SHOTS[name])
+    shot = SHOTS[name]
+    scene = build(out_dir, name, shot)
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
     if shot.noise_floor:
-        cycles.seed = 2
+        scene.cycles.seed = 2
         scene.render.filepath = os.path.join(out_dir, "cycles_seed2.exr")
         bpy.ops.render.render(write_still=True)
 
