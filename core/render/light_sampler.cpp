@@ -95,7 +95,7 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
               {}};
     const double lum = luminance(light.intensity);
     const bool soft = light.decay == LightDecay::kInverseSquare &&
-                            lamp.area_size1 * lamp.area_size2 == 1 && light.radius_m > 0;
+                      lamp.area_size1 * lamp.area_size2 == 1 && light.radius_m > 0;
     switch (light.type) {
       case LightType::kPoint:
         power.push_back(4 * kPi * lum);
@@ -111,8 +111,7 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
         if (light.angle_rad > 0) lamp.size = SunDisk(lamp.axis, float(light.angle_rad));
         break;
       case LightType::kArea: {
-        const AreaLight area(lamp.position,
-                             Vec3f(normalize(render_from_light.vector({1, 0, 0}))),
+        const AreaLight area(lamp.position, Vec3f(normalize(render_from_light.vector({1, 0, 0}))),
                              Vec3f(normalize(render_from_light.vector({0, 1, 0}))), lamp.axis,
                              float(light.size_x_m), float(light.size_y_m),
                              light.area_shape == AreaShape::kEllipse, light.spread_rad);
@@ -283,8 +282,8 @@ bool LightSampler::sample_delta(const Lamp& lamp, Vec3f position, const float u[
     out.distance = lamp.casts_shadows ? HUGE_VALF : 0.f;
     return max_component(lamp.intensity) > 0.f;
   }
-  const Vec3f q = lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u)
-                                                         : lamp.position;
+  const Vec3f q =
+      lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u) : lamp.position;
   const Vec3f d = q - position;
   const float distance2 = dot(d, d);
   if (!(distance2 > 0.f)) return false;

@@ -25,8 +25,9 @@ namespace fb {
 
 class LightSampler {
  public:
-  // Lamps are placed at `frame_s` on the scene's timeline (they do not move within the shutter); emissive triangles that move are left to BSDF sampling (EmissiveTriangle::moving).
-  // The world is the scene's environment image, sampled as a light, or its uniform background;
+  // Lamps are placed at `frame_s` on the scene's timeline (they do not move within the shutter);
+  // emissive triangles that move are left to BSDF sampling (EmissiveTriangle::moving). The world is
+  // the scene's environment image, sampled as a light, or its uniform background;
   // `background_override` (the command line's) replaces both.
   LightSampler(const Scene& scene, const Transform& render_from_world,
                const RenderGeometry& geometry, double frame_s,
@@ -67,13 +68,11 @@ class LightSampler {
   };
   // The point of a POV-Ray area light's grid that u picks, seen from `position`.
   static Vec3f area_point(const Lamp& lamp, Vec3f position, const float u[2]);
-  bool sample_delta(const Lamp& lamp, Vec3f position, const float u[2],
-                    fb_light_sample& out) const;
+  bool sample_delta(const Lamp& lamp, Vec3f position, const float u[2], fb_light_sample& out) const;
   // A point on a light with a size, from `position` (sampled) or along a ray (crossed).
   static bool sample_sized(const Lamp& lamp, Vec3f position, const float u[2],
                            SizedLightPoint& point);
-  static bool cross_sized(const Lamp& lamp, const fb_ray& ray, float t_end,
-                          SizedLightPoint& point);
+  static bool cross_sized(const Lamp& lamp, const fb_ray& ray, float t_end, SizedLightPoint& point);
   static Rgb radiance(const Lamp& lamp, const SizedLightPoint& point);
   bool sample_triangle(uint32_t index, Vec3f position, const float u[2],
                        fb_light_sample& out) const;

@@ -244,7 +244,6 @@ TEST(LightSampler, AreaLightSamplesItsGridPointsEvenly) {
   }
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // Lights with a size (sized_lights.h): light sampling alone, BSDF-style sampling finding them
 // through crossed() alone, and the two combined by the power heuristic estimate the same
@@ -289,8 +288,8 @@ Estimates estimate(const Scene& scene, Vec3f p, Vec3f n) {
   double bsdf = 0, mis = 0;
   for (int i = 0; i < kDirections; ++i)
     for (int j = 0; j < kDirections; ++j) {
-      const Vec3f local = sample_cosine_hemisphere({(i + 0.5f) / kDirections,
-                                                    (j + 0.5f) / kDirections});
+      const Vec3f local =
+          sample_cosine_hemisphere({(i + 0.5f) / kDirections, (j + 0.5f) / kDirections});
       if (!(local.z > 0.f)) continue;
       const float pdf = local.z / float(kPiD);
       fb_ray ray{};
@@ -323,7 +322,9 @@ void expect_agree(const Estimates& e, double expected, const std::string& what) 
 // A light that takes half of light selection but lights nothing above the tested surface (it lies
 // below it), so that the light under test is chosen with a probability below 1 and the pdfs must
 // carry that choice.
-Light distractor() { return point_light(5, {0, -3, 0}); }
+Light distractor() {
+  return point_light(5, {0, -3, 0});
+}
 
 Scene scene_of(const Light& light) {
   Scene scene;
@@ -353,7 +354,8 @@ std::vector<Vec3d> outline(const Light& light) {
   const Vec3d c = light.world_from_light.point({0, 0, 0});
   const Vec3d u = light.world_from_light.vector({light.size_x_m / 2, 0, 0});
   const Vec3d v = light.world_from_light.vector({0, light.size_y_m / 2, 0});
-  if (light.area_shape == AreaShape::kRectangle) return {c - u - v, c + u - v, c + u + v, c - u + v};
+  if (light.area_shape == AreaShape::kRectangle)
+    return {c - u - v, c + u - v, c + u + v, c - u + v};
   std::vector<Vec3d> corners;
   for (int i = 0; i < 4096; ++i) {
     const double a = 2 * kPiD * i / 4096;
@@ -406,7 +408,8 @@ double area_light_quadrature(const Light& light, Vec3d p, Vec3d n) {
 }
 
 TEST(LightSampler, RectangleLightAgreesWithLambertsFormulaThreeWays) {
-  const Light light = area_light({0.3, 1.0, 0.2}, {0.1, 0, 0.3}, AreaShape::kRectangle, 1.2, 0.6, 4);
+  const Light light =
+      area_light({0.3, 1.0, 0.2}, {0.1, 0, 0.3}, AreaShape::kRectangle, 1.2, 0.6, 4);
   const double expected =
       test::polygon_irradiance(outline(light), 4, Vec3d(kShadingPoint), Vec3d(kTilted));
   expect_agree(estimate(scene_of(light), kShadingPoint, kTilted), expected, "rectangle");
@@ -453,7 +456,8 @@ TEST(LightSampler, SpreadAttenuationKeepsTheLightsPower) {
                   std::sin(theta) * 2 * kPiD * (kPiD / 2 / kSteps);
     }
     EXPECT_NEAR(integral, kPiD, 2e-3 * kPiD) << spread_deg << " degrees";
-    EXPECT_NEAR(light.spread_attenuation(1.f), cycles_spread_attenuation(1, spread_deg * kPiD / 180),
+    EXPECT_NEAR(light.spread_attenuation(1.f),
+                cycles_spread_attenuation(1, spread_deg * kPiD / 180),
                 1e-4 * light.spread_attenuation(1.f))
         << spread_deg << " degrees";
   }
@@ -558,7 +562,8 @@ TEST(LightSampler, CrossingsReportTheDensityTheirPointIsSampledWith) {
         ASSERT_EQ(s.is_delta, 0u) << "light " << l;
         fb_ray ray{};
         kShadingPoint.store(ray.origin);
-        for (int k = 0; k < 3; ++k) ray.direction[k] = s.direction[k];
+        for (int k = 0; k < 3; ++k)
+          ray.direction[k] = s.direction[k];
         ray.t_max = HUGE_VALF;
         fb_light_crossing c[8];
         ASSERT_EQ(sampler.crossed(ray, HUGE_VALF, c, 8), 1u) << "light " << l;

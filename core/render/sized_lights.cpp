@@ -14,6 +14,17 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
+// The direction and distance from p to a light point q, and the cosine at q between the light's
+// normal there and q -> p (0 where q turns away from p).
+float towards(Vec3f p, Vec3f q, Vec3f normal, SizedLightPoint& out) {
+  const Vec3f d = q - p;
+  const float distance2 = dot(d, d);
+  if (!(distance2 > 0.f)) return 0.f;
+  out.distance = std::sqrt(distance2);
+  out.direction = d / out.distance;
+  return std::max(0.f, -dot(normal, out.direction));
+}
+
 }  // namespace
 
 FacingDisk::FacingDisk(Vec3f centre, float radius)
@@ -22,14 +33,9 @@ FacingDisk::FacingDisk(Vec3f centre, float radius)
 // q on the disk facing p (unit `facing`, from the centre towards p): the area pdf 1 / (pi r^2) in
 // solid angle, d^2 / (cos pi r^2), with cos the angle between the disk's normal and q -> p.
 bool FacingDisk::seen(Vec3f p, Vec3f facing, Vec3f q, SizedLightPoint& out) const {
-  const Vec3f d = q - p;
-  const float distance2 = dot(d, d);
-  if (!(distance2 > 0.f)) return false;
-  out.distance = std::sqrt(distance2);
-  out.direction = d / out.distance;
-  const float cosine = -dot(facing, out.direction);
+  const float cosine = towards(p, q, facing, out);
   if (!(cosine > 0.f)) return false;
-  out.pdf = distance2 * inverse_area_ / cosine;
+  out.pdf = out.distance * out.distance * inverse_area_ / cosine;
   out.scale = inverse_area_;
   return std::isfinite(out.pdf);
 }
@@ -69,7 +75,8 @@ SunDisk::SunDisk(Vec3f towards_sun, float angle_rad)
       inverse_area_(1.f / (kPi * tan_half_ * tan_half_)) {}
 
 // A point at distance 1 / cos theta on the plane one unit away sees an area element dA as the
-// solid angle dA cos^3 theta, so the disk's uniform area pdf is 1 / (pi tan^2 cos^3) in solid angle.
+// solid angle dA cos^3 theta, so the disk's uniform area pdf is 1 / (pi tan^2 cos^3) in solid
+// angle.
 bool SunDisk::seen(Vec3f direction, SizedLightPoint& out) const {
   const float cosine = dot(towards_, direction);
   if (!(cosine > 0.f)) return false;
@@ -111,7 +118,8 @@ AreaLight::AreaLight(Vec3f centre, Vec3f axis_u, Vec3f axis_v, Vec3f normal, flo
 float AreaLight::spread_attenuation(float cos_theta) const {
   if (!spread_limited_) return 1.f;
   if (!(cos_theta > 0.f)) return 0.f;
-  const double tan_theta = std::sqrt(std::max(0.0, 1.0 - double(cos_theta) * cos_theta)) / cos_theta;
+  const double tan_theta =
+      std::sqrt(std::max(0.0, 1.0 - double(cos_theta) * cos_theta)) / cos_theta;
   return float(std::max(0.0, (tan_half_spread_ - tan_theta) * spread_normalization_));
 }
 
@@ -150,15 +158,10 @@ bool AreaLight::sample(Vec3f p, Vec2f u, SizedLightPoint& out) const {
     if (!(solid_angle > 0.f)) return false;
     q = Vec3f(rectangle.sample(u.x, u.y));
   }
-  const Vec3f d = q - p;
-  const float distance2 = dot(d, d);
-  if (!(distance2 > 0.f)) return false;
-  out.distance = std::sqrt(distance2);
-  out.direction = d / out.distance;
-  const float cosine = -dot(normal_, out.direction);
+  const float cosine = towards(p, q, normal_, out);
   if (!(cosine > 0.f)) return false;
   // An ellipse's area pdf 1 / A in solid angle; a rectangle's 1 / (the solid angle sampled).
-  out.pdf = ellipse_ ? distance2 / (cosine * area_) : 1.f / solid_angle;
+  out.pdf = ellipse_ ? out.distance * out.distance / (cosine * area_) : 1.f / solid_angle;
   out.scale = spread_attenuation(cosine);
   return out.scale > 0.f && std::isfinite(out.pdf);
 }

@@ -32,9 +32,9 @@ class FacingDisk {
   FacingDisk(Vec3f centre, float radius);
   // A point uniform over the disk facing `p`, at pdf d^2 / (cos pi r^2).
   bool sample(Vec3f p, Vec2f u, SizedLightPoint& out) const;
-  // Where the ray (origin, unit direction) crosses the disk facing its origin within (t_min, t_max).
-  bool crossed(Vec3f origin, Vec3f direction, float t_min, float t_max,
-               SizedLightPoint& out) const;
+  // Where the ray (origin, unit direction) crosses the disk facing its origin within (t_min,
+  // t_max).
+  bool crossed(Vec3f origin, Vec3f direction, float t_min, float t_max, SizedLightPoint& out) const;
 
  private:
   bool seen(Vec3f p, Vec3f facing, Vec3f q, SizedLightPoint& out) const;
@@ -71,8 +71,7 @@ class AreaLight {
             bool ellipse, double spread_rad);
   float area() const { return area_; }
   bool sample(Vec3f p, Vec2f u, SizedLightPoint& out) const;
-  bool crossed(Vec3f origin, Vec3f direction, float t_min, float t_max,
-               SizedLightPoint& out) const;
+  bool crossed(Vec3f origin, Vec3f direction, float t_min, float t_max, SizedLightPoint& out) const;
   // Cycles 3.4's area_light_spread_attenuation: a soft-box grid whose slats hide the light beyond
   // half the spread h from the normal, (tan h - tan theta) / (tan h - h) at angle theta, which
   // keeps the light's power (its cosine-weighted integral over the hemisphere is pi).

@@ -40,8 +40,7 @@ Vec3d SphericalRectangle::sample(double u, double v) const {
   double cu = std::copysign(1.0, fu) / std::sqrt(fu * fu + b0_ * b0_);
   if (!std::isfinite(cu)) cu = 0;  // sin(au) = 0: the edge itself
   cu = std::clamp(cu, -1.0, 1.0);
-  const double xu =
-      std::clamp(-cu * z0_ / std::max(std::sqrt(1 - cu * cu), 1e-12), x0_, x1_);
+  const double xu = std::clamp(-cu * z0_ / std::max(std::sqrt(1 - cu * cu), 1e-12), x0_, x1_);
   // Along that line, the height over the sphere's projection is linear in the solid angle.
   const double d = std::sqrt(xu * xu + z0_ * z0_);
   const double h0 = y0_ / std::sqrt(d * d + y0_ * y0_), h1 = y1_ / std::sqrt(d * d + y1_ * y1_);

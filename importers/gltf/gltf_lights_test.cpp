@@ -121,8 +121,8 @@ TEST(GltfLights, AreaLightsHaveRadiancePowerOverFourAreaAndTheNodesScale) {
     double spread_rad;
   };
   for (const Case& c :
-       {Case{R"("shape": "SQUARE", "size_m": 0.5, "size_y_m": 3)", AreaShape::kRectangle, 0.5,
-             0.5, 0.25, kPi},
+       {Case{R"("shape": "SQUARE", "size_m": 0.5, "size_y_m": 3)", AreaShape::kRectangle, 0.5, 0.5,
+             0.25, kPi},
         Case{R"("shape": "RECTANGLE", "size_m": 0.5, "size_y_m": 2, "spread_rad": 0.5)",
              AreaShape::kRectangle, 0.5, 2, 1.0, 0.5},
         // Blender's 180 degrees, pi rounded up to single precision, is read as pi.
@@ -225,10 +225,10 @@ TEST(GltfLights, AreaLightsAreFoundByRaysOnlyFromTheirLitSide) {
 // `filmback convert` writes an area light into our extension (KHR_lights_punctual has none), and
 // reading it back gives the same light.
 TEST(GltfLights, AreaLightsSurviveConvert) {
-  const Scene scene = import(write_gltf(
-      blender_light(R"("type": "AREA", "energy_w": 100, "color": [1, 0.5, 0.25],
+  const Scene scene =
+      import(write_gltf(blender_light(R"("type": "AREA", "energy_w": 100, "color": [1, 0.5, 0.25],
                        "shape": "ELLIPSE", "size_m": 1.5, "size_y_m": 0.5, "spread_rad": 0.7)"),
-      "", "", 2.0));
+                        "", "", 2.0));
   const std::filesystem::path written = test::scratch_dir() / "converted.gltf";
   Diagnostics diagnostics;
   fb::write_gltf(scene, written, diagnostics);
@@ -241,7 +241,8 @@ TEST(GltfLights, AreaLightsSurviveConvert) {
   EXPECT_NEAR(b.size_x_m, a.size_x_m, 1e-6);
   EXPECT_NEAR(b.size_y_m, a.size_y_m, 1e-6);
   EXPECT_NEAR(b.spread_rad, a.spread_rad, 1e-6);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.intensity[c], a.intensity[c], 1e-5 * a.intensity.x);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(b.intensity[c], a.intensity[c], 1e-5 * a.intensity.x);
   EXPECT_NEAR(b.world_from_light.point({0, 0, 0}).z, 3, 1e-9);
 }
 
