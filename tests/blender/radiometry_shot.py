@@ -10,24 +10,16 @@ writes OUTDIR/shot.gltf (+ shot.bin), OUTDIR/cycles.exr and OUTDIR/manifest.txt 
 record: name, samples, width_px, height_px), as make_shot.py does, whose Cycles settings and
 export it borrows.
 
-Two things differ between what is exported and what Cycles renders, on purpose:
-  * Diffuse materials are exported as Principled BSDFs with Specular 0 (filmback: a Lambertian
-    base), but Cycles renders a Diffuse BSDF of the same colour: Blender's Principled diffuse is
-    not Lambertian (its Disney retro-reflection brightens grazing views). A glossy ground stays a
-    Principled BSDF in both: metallic 1, GGX (not Multiscatter), where glTF's metallic-roughness
-    model and Cycles' agree closely.
-  * Blender's Specular 0 is exported as KHR_materials_specular specularColorFactor [0, 0, 0]
-    (F0 = 0), whose Schlick Fresnel still reflects at grazing angles; the script rewrites it as
-    specularFactor 0, the Lambertian base alone, which is what Cycles' Diffuse BSDF renders.
-The export goes through filmback's add-on (importers/blender/export_shot.py), which writes the
-lights (area lights included) and the world, image and all, in the FILMBACK_blender extension.
+The materials are Diffuse BSDFs (roughness 0: Lambertian), and a glossy ground a Principled metal
+(metallic 1, GGX); the export goes through filmback's add-on (importers/blender/export_shot.py),
+which writes their node trees, the lights (area lights included) and the world, image and all, in
+the FILMBACK_blender extension, so that filmback renders the same closures as Cycles.
 
 Cycles renders with max_bounces = diffuse_bounces = glossy_bounces = 7, which is filmback's default
 path depth of 8 (max_depth counts the direct-light bounce, Cycles' bounces do not), no clamping,
 no light threshold and no Filter Glossy, so both estimate the same integral.
 """
 
-import json
 import math
 import os
 import sys
@@ -171,27 +163,18 @@ def look_at(obj, location, target):
     obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
 
 
-def principled(name, colour):
+def diffuse(name, colour):
+    """A material of one Diffuse BSDF (roughness 0: Lambertian)."""
     material = bpy.data.materials.new(name)
     material.use_nodes = True
-    bsdf = material.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Base Color"].default_value = (*colour, 1.0)
-    bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Specular"].default_value = 0.0
-    bsdf.inputs["Metallic"].default_value = 0.0
-    return material
-
-
-def make_diffuse(material):
-    """Replaces the Principled BSDF by a Lambertian Diffuse BSDF (roughness 0) of its colour."""
     nodes, links = material.node_tree.nodes, material.node_tree.links
-    colour = tuple(nodes["Principled BSDF"].inputs["Base Color"].default_value)
     nodes.clear()
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = colour
-    diffuse.inputs["Roughness"].default_value = 0.0
+    bsdf = nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = (*colour, 1.0)
+    bsdf.inputs["Roughness"].default_value = 0.0
     output = nodes.new("ShaderNodeOutputMaterial")
-    links.new(diffuse.outputs["BSDF"], output.inputs["Surface"])
+    links.new(bsdf.outputs["BSDF"], output.inputs["Surface"])
+    return material
 
 
 def glossy_metal(name, colour, roughness):
@@ -207,28 +190,22 @@ def glossy_metal(name, colour, roughness):
 
 
 def build_geometry(scene, shot):
-    """Returns the diffuse materials (which Cycles renders as Diffuse BSDFs)."""
-    materials = []
     bpy.ops.mesh.primitive_plane_add(size=12.0, location=(0, 0, 0))
     ground = bpy.context.object
     if shot.glossy_ground > 0:
         ground.data.materials.append(glossy_metal("Ground", (0.8, 0.8, 0.8), shot.glossy_ground))
     else:
-        materials.append(principled("Ground", (0.55, 0.55, 0.5)))
-        ground.data.materials.append(materials[-1])
+        ground.data.materials.append(diffuse("Ground", (0.55, 0.55, 0.5)))
     if not shot.objects:
-        return materials
+        return
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.9, 0.5, 0.5), rotation=(0, 0, 0.5))
     cube = bpy.context.object
-    materials.append(principled("Box", (0.8, 0.35, 0.2)))
-    cube.data.materials.append(materials[-1])
+    cube.data.materials.append(diffuse("Box", (0.8, 0.35, 0.2)))
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=0.6,
                                          location=(-0.9, 0.1, 0.6))
     sphere = bpy.context.object
     bpy.ops.object.shade_smooth()
-    materials.append(principled("Sphere", (0.25, 0.6, 0.35)))
-    sphere.data.materials.append(materials[-1])
-    return materials
+    sphere.data.materials.append(diffuse("Sphere", (0.25, 0.6, 0.35)))
 
 
 def add_light(scene, spec):
@@ -252,26 +229,10 @@ def add_light(scene, spec):
     return obj
 
 
-def make_lambertian(path):
-    """Blender writes Specular 0 as KHR_materials_specular specularColorFactor [0, 0, 0]: F0 = 0,
-    but Schlick's Fresnel still reflects at grazing angles. specularFactor 0 leaves filmback's
-    Lambertian base alone, which is what Cycles' Diffuse BSDF renders."""
-    with open(path) as f:
-        gltf = json.load(f)
-    for material in gltf.get("materials", []):
-        specular = material.get("extensions", {}).get("KHR_materials_specular")
-        if specular is not None and specular.get("specularColorFactor") == [0, 0, 0]:
-            specular["specularFactor"] = 0.0
-            del specular["specularColorFactor"]
-    with open(path, "w") as f:
-        json.dump(gltf, f, indent=1)
-
-
 def build(out_dir, name, shot, before_export=None):
-    """Builds `shot` in a new scene, exports it to OUT_DIR/shot.gltf with the manifest, and turns its
-    diffuse materials into Diffuse BSDFs for Cycles; returns the scene, ready to render. `before_export`,
-    when given, is called with the scene just before the export (look_shot.py sets Blender's
-    Color Management there)."""
+    """Builds `shot` in a new scene and exports it to OUT_DIR/shot.gltf with the manifest; returns
+    the scene, ready to render. `before_export`, when given, is called with the scene just before
+    the export (look_shot.py sets Blender's Color Management there)."""
     os.makedirs(out_dir, exist_ok=True)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -295,7 +256,7 @@ def build(out_dir, name, shot, before_export=None):
     scene.collection.objects.link(camera)
     look_at(camera, CAMERA_LOCATION, CAMERA_TARGET)
     scene.camera = camera
-    materials = build_geometry(scene, shot)
+    build_geometry(scene, shot)
     for spec in shot.lights:
         add_light(scene, spec)
     bpy.context.view_layer.update()
@@ -308,11 +269,7 @@ def build(out_dir, name, shot, before_export=None):
                                         width_px=shot.width_px, height_px=shot.height_px,
                                         **fields))
     gltf_path = os.path.join(out_dir, "shot.gltf")
-    make_shot.export_shot.export(gltf_path)  # filmback's add-on: lights and world included
-    make_lambertian(gltf_path)
-
-    for material in materials:
-        make_diffuse(material)
+    make_shot.export_shot.export(gltf_path)  # filmback's add-on: materials, lights and world
     return scene
 
 
