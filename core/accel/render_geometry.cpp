@@ -29,20 +29,6 @@ struct RenderGeometry::Mesh {
   size_t vertex_count = 0;  // per step
 };
 
-// Which call traced a ray, for light_filter: intersect_coherent takes camera rays (fb_scene_api's
-// intersect_batch), occluded shadow rays, intersect the rest.
-enum class RayKind { kCamera, kScatter, kShadow };
-struct RayContext : RTCIntersectContext {
-  RayKind kind;
-};
-
-RayContext ray_context(RayKind kind) {
-  RayContext context;
-  rtcInitIntersectContext(&context);
-  context.kind = kind;
-  return context;
-}
-
 struct RenderGeometry::Embree {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
@@ -279,10 +265,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh.indices.data(), 0, 3 * sizeof(uint32_t),
                                mesh.indices.size() / 3);
-    if (scene.materials[mesh.material].is_light) {
-      rtcSetGeometryIntersectFilterFunction(geometry, light_filter);
-      rtcSetGeometryOccludedFilterFunction(geometry, light_filter);
-    } else if (shader_->has_alpha(mesh.material)) {
+    if (shader_->has_alpha(mesh.material)) {
       mesh.shader = shader_.get();
       // The slot the mesh is moved into below; meshes_ never reallocates (reserved).
       rtcSetGeometryUserData(geometry, meshes_.data() + meshes_.size());
@@ -344,7 +327,8 @@ float RenderGeometry::embree_time(float time_s) const {
 
 bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const {
   if (!traceable(ray)) return false;
-  RayContext context = ray_context(RayKind::kScatter);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
   const float time = embree_time(ray.time_s);
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
@@ -362,7 +346,8 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   stream.resize(count);
   for (size_t i = 0; i < count; ++i)
     stream[i] = to_embree_hit(rays[i], embree_time(rays[i].time_s));
-  RayContext context = ray_context(RayKind::kCamera);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // Embree packs the stream into packets
   rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
   for (size_t i = 0; i < count; ++i) {
@@ -421,21 +406,6 @@ void RenderGeometry::alpha_filter(const RTCFilterFunctionNArguments* args) {
                                        bits(RTCRayN_dir_z(args->ray, args->N, i)));
     if (!mesh.shader->covers(mesh.material, surface_point(mesh, primitive, u, v), hash))
       args->valid[i] = 0;
-  }
-}
-
-// Cycles' lights are not surfaces: camera and shadow rays pass through them, and other rays meet
-// an area light only from the side it shines to (front faces: Embree's Ng is (v1 - v0) x (v2 -
-// v0)).
-void RenderGeometry::light_filter(const RTCFilterFunctionNArguments* args) {
-  const RayKind kind = static_cast<const RayContext*>(args->context)->kind;
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (args->valid[i] != -1) continue;
-    const float facing =
-        RTCHitN_Ng_x(args->hit, args->N, i) * RTCRayN_dir_x(args->ray, args->N, i) +
-        RTCHitN_Ng_y(args->hit, args->N, i) * RTCRayN_dir_y(args->ray, args->N, i) +
-        RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
-    if (kind != RayKind::kScatter || !(facing < 0.f)) args->valid[i] = 0;
   }
 }
 
@@ -556,7 +526,8 @@ void RenderGeometry::shade(uint32_t material, const SurfacePoint& point, const H
 
 bool RenderGeometry::occluded(const fb_ray& ray) const {
   if (!traceable(ray)) return false;
-  RayContext context = ray_context(RayKind::kShadow);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
   RTCRay r = to_embree(ray, embree_time(ray.time_s));
   rtcOccluded1(embree_->scene, &context, &r);
   return r.tfar < 0.f;  // Embree sets tfar to -inf on a hit

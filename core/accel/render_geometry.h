@@ -97,7 +97,6 @@ class RenderGeometry {
   void shade(uint32_t material, const SurfacePoint& point, const HitRequest& request,
              fb_hit& hit) const;
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
-  static void light_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
   float embree_time(float time_s) const;
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,

@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <utility>
 
 #include "core/cmd/commands.h"
 #include "core/scene/camera.h"
@@ -118,8 +119,22 @@ const char* light_type(LightType t) {
       return "spot";
     case LightType::kDirectional:
       return "directional";
+    case LightType::kArea:
+      return "area";
   }
   return "?";
+}
+
+// What Light::intensity is for a light of type t, and its unit.
+std::pair<const char*, const char*> light_quantity(LightType t) {
+  switch (t) {
+    case LightType::kDirectional:
+      return {"irradiance", "W/m^2"};
+    case LightType::kArea:
+      return {"radiance", "W/sr/m^2"};
+    default:
+      return {"intensity", "W/sr"};
+  }
 }
 
 }  // namespace
@@ -146,10 +161,14 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
 
   std::cout << "lights (" << scene.lights.size() << ")\n";
   for (const Light& light : scene.lights) {
-    const bool sun = light.type == LightType::kDirectional;
-    std::cout << "  " << light.name << "  " << light_type(light.type) << ", "
-              << (sun ? "irradiance " : "intensity ") << rgb(light.intensity)
-              << (sun ? " W/m^2" : " W/sr");
+    const bool area = light.type == LightType::kArea;
+    const auto [quantity, unit] = light_quantity(light.type);
+    std::cout << "  " << light.name << "  " << light_type(light.type) << ", " << quantity << " "
+              << rgb(light.intensity) << " " << unit;
+    if (area)
+      std::cout << format(", %s %.4g x %.4g m, spread %.4g deg",
+                          light.area_shape == AreaShape::kEllipse ? "ellipse" : "rectangle",
+                          light.size_x_m, light.size_y_m, light.spread_rad * 180 / M_PI);
     if (light.type == LightType::kSpot)
       std::cout << format(", cone %.2f..%.2f deg", light.spot_inner_angle_rad * 180 / M_PI,
                           light.spot_outer_angle_rad * 180 / M_PI);

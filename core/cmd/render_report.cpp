@@ -38,7 +38,7 @@ void write_render_report(const RenderReport& r, const std::filesystem::path& fil
                      {"time", c.time},
                      {"subdivision", c.subdivision}};
     out["scene_counts"] = {{"triangles", c.triangles},
-                           {"punctual_lights", c.punctual_lights},
+                           {"lights", c.lights},
                            {"emissive_triangles", c.emissive_triangles}};
   }
   if (r.stats)

@@ -73,52 +73,68 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
   for (const Light& light : scene.lights) {
     const Transform render_from_light = render_from_world * scene.world_from_light(light, frame_s);
     const float cos_outer = float(std::cos(light.spot_outer_angle_rad));
-    Punctual p{light.type,
-               Vec3f(render_from_light.point({0, 0, 0})),
-               Vec3f(normalize(render_from_light.vector({0, 0, -1}))),
-               light.intensity,
-               light.spot_falloff,
-               float(std::cos(light.spot_inner_angle_rad)),
-               cos_outer,
-               float((1 - cos_outer) * light.spot_blend),  // Cycles' spot_smooth
-               float(light.radius_m),
-               float(std::tan(light.angle_rad / 2)),
-               light.decay,
-               float(light.fade_distance_m),
-               float(light.fade_power),
-               float(light.spot_tightness),
-               light.casts_shadows,
-               Vec3f(render_from_light.vector(light.area_axis1)),
-               Vec3f(render_from_light.vector(light.area_axis2)),
-               std::max(light.area_size1, 1u),
-               std::max(light.area_size2, 1u),
-               light.area_circular,
-               light.area_orient};
+    Lamp lamp{light.type,
+              Vec3f(render_from_light.point({0, 0, 0})),
+              Vec3f(normalize(render_from_light.vector({0, 0, -1}))),
+              light.intensity,
+              light.spot_falloff,
+              float(std::cos(light.spot_inner_angle_rad)),
+              cos_outer,
+              float((1 - cos_outer) * light.spot_blend),  // Cycles' spot_smooth
+              light.decay,
+              float(light.fade_distance_m),
+              float(light.fade_power),
+              float(light.spot_tightness),
+              light.casts_shadows,
+              Vec3f(render_from_light.vector(light.area_axis1)),
+              Vec3f(render_from_light.vector(light.area_axis2)),
+              std::max(light.area_size1, 1u),
+              std::max(light.area_size2, 1u),
+              light.area_circular,
+              light.area_orient,
+              {}};
     const double lum = luminance(light.intensity);
+    const bool soft = light.decay == LightDecay::kInverseSquare &&
+                      lamp.area_size1 * lamp.area_size2 == 1 && light.radius_m > 0;
     switch (light.type) {
       case LightType::kPoint:
         power.push_back(4 * kPi * lum);
+        if (soft) lamp.size = FacingDisk(lamp.position, float(light.radius_m));
         break;
       case LightType::kSpot:
-        power.push_back(2 * kPi * (1 - 0.5 * (p.cos_inner + p.cos_outer)) * lum);
+        power.push_back(2 * kPi * (1 - 0.5 * (lamp.cos_inner + lamp.cos_outer)) * lum);
+        if (soft) lamp.size = FacingDisk(lamp.position, float(light.radius_m));
         break;
       case LightType::kDirectional:
-        p.axis = -p.axis;
+        lamp.axis = -lamp.axis;  // towards the light
         power.push_back(kPi * scene_radius * scene_radius * lum);
+        if (light.angle_rad > 0) lamp.size = SunDisk(lamp.axis, float(light.angle_rad));
         break;
+      case LightType::kArea: {
+        const AreaLight area(lamp.position, Vec3f(normalize(render_from_light.vector({1, 0, 0}))),
+                             Vec3f(normalize(render_from_light.vector({0, 1, 0}))), lamp.axis,
+                             float(light.size_x_m), float(light.size_y_m),
+                             light.area_shape == AreaShape::kEllipse, light.spread_rad);
+        // The spread redistributes the light's power, pi A L, without changing it.
+        power.push_back(kPi * area.area() * lum);
+        lamp.size = area;
+        break;
+      }
     }
-    punctual_.push_back(p);
+    if (!std::holds_alternative<std::monostate>(lamp.size))
+      sized_.push_back(uint32_t(lamps_.size()));
+    lamps_.push_back(lamp);
   }
   // Power ignores distance and aim: a spot lighting the frame beside a stronger point light would
-  // be chosen rarely and each choice weigh much. Half of the punctual lights' share is therefore
-  // spread evenly over those that emit (defensive mixture, Hesterberg 1995); their total share
-  // against emissive triangles is unchanged.
-  double punctual_power = 0;
+  // be chosen rarely and each choice weigh much. Half of the lamps' share is therefore spread
+  // evenly over those that emit (defensive mixture, Hesterberg 1995); their total share against
+  // emissive triangles is unchanged.
+  double lamp_power = 0;
   size_t emitting = 0;
   for (double w : power)
-    if (w > 0) punctual_power += w, ++emitting;
+    if (w > 0) lamp_power += w, ++emitting;
   for (double& w : power)
-    if (w > 0) w = 0.5 * w + 0.5 * punctual_power / double(emitting);
+    if (w > 0) w = 0.5 * w + 0.5 * lamp_power / double(emitting);
   for (const EmissiveTriangle& e : emitters_) {
     const Material& m = materials_[e.material];
     // Zero power: never chosen, so its light_pdf is 0 and BSDF sampling alone (MIS weight 1)
@@ -184,10 +200,22 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
       size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
       1;
   bool ok;
-  if (index < punctual_.size()) {
-    ok = sample_punctual(punctual_[index], position, u + 1, out);
-  } else if (index < punctual_.size() + emitters_.size()) {
-    ok = sample_triangle(uint32_t(index - punctual_.size()), position, u + 1, out);
+  if (index < lamps_.size()) {
+    const Lamp& lamp = lamps_[index];
+    SizedLightPoint point;
+    if (std::holds_alternative<std::monostate>(lamp.size)) {
+      ok = sample_delta(lamp, position, u + 1, out);
+    } else if ((ok = sample_sized(lamp, position, u + 1, point))) {
+      const Rgb L = radiance(lamp, point);
+      point.direction.store(out.direction);
+      L.store(out.radiance);
+      out.distance = lamp.casts_shadows ? point.distance : 0.f;
+      out.pdf = point.pdf;
+      out.is_delta = 0;
+      ok = max_component(L) > 0.f;
+    }
+  } else if (index < lamps_.size() + emitters_.size()) {
+    ok = sample_triangle(uint32_t(index - lamps_.size()), position, u + 1, out);
   } else {
     Vec3f w;
     ok = environment_->sample({u[1], u[2]}, w, out.pdf);
@@ -202,67 +230,76 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
   return ok;
 }
 
-bool LightSampler::sample_punctual(const Punctual& light, Vec3f position, const float u[2],
-                                   fb_light_sample& out) const {
-  out.is_delta = 1;
-  out.pdf = 1.f;
-  const Vec2f disk = sample_concentric_disk({u[0], u[1]});
-  if (light.type == LightType::kDirectional) {
-    // Cycles' distant light: directions through a disk of radius tan(angle/2) one unit away, each
-    // carrying the full irradiance (its eval_fac equals its pdf), so E = S times the mean cosine.
-    Vec3f wi = light.axis;
-    if (light.tan_half_angle > 0.f)
-      wi = normalize(light.axis +
-                     Frame(light.axis).to_world({disk.x, disk.y, 0.f}) * light.tan_half_angle);
-    wi.store(out.direction);
-    light.intensity.store(out.radiance);  // irradiance E, W/m^2
-    out.distance = light.casts_shadows ? HUGE_VALF : 0.f;
-    return max_component(light.intensity) > 0.f;
-  }
-  // A soft light is Cycles' disk of radius r facing the shading point with radiance I / (pi r^2):
-  // a uniform point on it has solid-angle pdf d^2 / (cos_light pi r^2), so each sample brings
-  // I cos_light / d^2 over pdf 1.
-  const Vec3f centre_to_point = position - light.position;
-  Vec3f q = light.position;
-  if (light.area_size1 * light.area_size2 > 1) q = area_point(light, position, u);
-  float cos_light = 1.f;
-  if (light.radius > 0.f) {
-    const float centre_distance = length(centre_to_point);
-    if (!(centre_distance > 0.f)) return false;
-    const Vec3f facing = centre_to_point / centre_distance;
-    q += Frame(facing).to_world({disk.x, disk.y, 0.f}) * light.radius;
-    cos_light = std::max(0.f, dot(facing, normalize(position - q)));
-  }
-  const Vec3f d = q - position;
-  const float distance2 = dot(d, d);
-  if (!(distance2 > 0.f)) return false;
-  out.distance = std::sqrt(distance2);
-  const Vec3f wi = d / out.distance;
-  wi.store(out.direction);
-  float scale = light.decay == LightDecay::kPovRay
-                    ? cos_light * pov_fade(out.distance, light.fade_distance, light.fade_power)
-                    : cos_light / distance2;  // I / d^2 for a true point
-  if (light.type == LightType::kSpot) {
-    const float cos_angle = dot(light.axis, -wi);
-    switch (light.falloff) {
+bool LightSampler::sample_sized(const Lamp& lamp, Vec3f position, const float u[2],
+                                SizedLightPoint& point) {
+  const Vec2f uv{u[0], u[1]};
+  if (const auto* disk = std::get_if<FacingDisk>(&lamp.size))
+    return disk->sample(position, uv, point);
+  if (const auto* sun = std::get_if<SunDisk>(&lamp.size)) return sun->sample(uv, point);
+  return std::get<AreaLight>(lamp.size).sample(position, uv, point);
+}
+
+bool LightSampler::cross_sized(const Lamp& lamp, const fb_ray& ray, float t_end,
+                               SizedLightPoint& point) {
+  const Vec3f origin(ray.origin), direction(ray.direction);
+  const float t_min = std::max(ray.t_min, 0.f);
+  if (const auto* disk = std::get_if<FacingDisk>(&lamp.size))
+    return disk->crossed(origin, direction, t_min, t_end, point);
+  if (const auto* sun = std::get_if<SunDisk>(&lamp.size))
+    return std::isinf(t_end) && sun->crossed(direction, point);
+  return std::get<AreaLight>(lamp.size).crossed(origin, direction, t_min, t_end, point);
+}
+
+// The lamp's radiance towards the shading point: its intensity times the shape's scale, and a
+// spot's falloff in the direction from the light's centre the point is lit along (Cycles 3.4
+// evaluates spot_light_attenuation with the sampled point's direction, -D).
+Rgb LightSampler::radiance(const Lamp& lamp, const SizedLightPoint& point) {
+  float scale = point.scale;
+  if (lamp.type == LightType::kSpot) {
+    const float cos_angle = dot(lamp.axis, -point.direction);
+    switch (lamp.falloff) {
       case SpotFalloff::kGltf:
-        scale *= gltf_spot_falloff(cos_angle, light.cos_inner, light.cos_outer);
+        scale *= gltf_spot_falloff(cos_angle, lamp.cos_inner, lamp.cos_outer);
         break;
       case SpotFalloff::kCycles:
-        scale *= cycles_spot_falloff(cos_angle, light.cos_outer, light.spot_smooth);
+        scale *= cycles_spot_falloff(cos_angle, lamp.cos_outer, lamp.spot_smooth);
         break;
       case SpotFalloff::kPov:
-        scale *=
-            pov_spot_falloff(cos_angle, light.cos_inner, light.cos_outer, light.spot_tightness);
+        scale *= pov_spot_falloff(cos_angle, lamp.cos_inner, lamp.cos_outer, lamp.spot_tightness);
         break;
     }
   }
-  (light.intensity * scale).store(out.radiance);
-  if (!light.casts_shadows) out.distance = 0.f;  // fb_light_sample: no shadow ray
-  return scale > 0.f;
+  return lamp.intensity * scale;
 }
 
-Vec3f LightSampler::area_point(const Punctual& light, Vec3f position, const float u[2]) {
+bool LightSampler::sample_delta(const Lamp& lamp, Vec3f position, const float u[2],
+                                fb_light_sample& out) const {
+  out.is_delta = 1;
+  out.pdf = 1.f;
+  if (lamp.type == LightType::kDirectional) {
+    lamp.axis.store(out.direction);
+    lamp.intensity.store(out.radiance);  // irradiance E, W/m^2
+    out.distance = lamp.casts_shadows ? HUGE_VALF : 0.f;
+    return max_component(lamp.intensity) > 0.f;
+  }
+  const Vec3f q =
+      lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u) : lamp.position;
+  const Vec3f d = q - position;
+  const float distance2 = dot(d, d);
+  if (!(distance2 > 0.f)) return false;
+  SizedLightPoint point{d / std::sqrt(distance2), std::sqrt(distance2), 1.f,
+                        lamp.decay == LightDecay::kPovRay
+                            ? pov_fade(std::sqrt(distance2), lamp.fade_distance, lamp.fade_power)
+                            : 1.f / distance2};  // I / d^2
+  const Rgb arriving = radiance(lamp, point);
+  point.direction.store(out.direction);
+  arriving.store(out.radiance);
+  // distance 0: no shadow ray (fb_light_sample)
+  out.distance = lamp.casts_shadows ? point.distance : 0.f;
+  return max_component(arriving) > 0.f;
+}
+
+Vec3f LightSampler::area_point(const Lamp& light, Vec3f position, const float u[2]) {
   // Grid point (i, j) at (i / (n1 - 1) - 1/2) axis1 + (j / (n2 - 1) - 1/2) axis2, as POV-Ray lays
   // out its area_light (without jitter or adaptive subdivision).
   const auto coordinate = [](float v, uint32_t n) {
@@ -318,7 +355,7 @@ float LightSampler::pdf(Vec3f position, const fb_hit& hit) const {
   float cos_light = -dot(e.normal, d) / std::sqrt(distance2);
   if (materials_[e.material].double_sided) cos_light = std::abs(cos_light);
   if (!(cos_light > 0.f) || !(e.area > 0.f)) return 0.f;
-  return pmf_[punctual_.size() + hit.emitter] * distance2 / (cos_light * e.area);
+  return pmf_[lamps_.size() + hit.emitter] * distance2 / (cos_light * e.area);
 }
 
 Rgb LightSampler::background(Vec3f w, float& pdf) const {
@@ -330,8 +367,29 @@ Rgb LightSampler::background(Vec3f w, float& pdf) const {
   return environment_->radiance(w);
 }
 
-uint32_t LightSampler::crossed(const fb_ray&, float, fb_light_crossing*, uint32_t) const {
-  return 0;  // every light with a size is reached by light sampling alone today
+uint32_t LightSampler::crossed(const fb_ray& ray, float t_end, fb_light_crossing* crossings,
+                               uint32_t capacity) const {
+  uint32_t count = 0;
+  for (uint32_t index : sized_) {
+    const Lamp& lamp = lamps_[index];
+    SizedLightPoint point;
+    if (!cross_sized(lamp, ray, t_end, point)) continue;
+    const Rgb L = radiance(lamp, point);
+    if (!(max_component(L) > 0.f)) continue;
+    // Insertion by distance, keeping the `capacity` nearest.
+    uint32_t at = count;
+    while (at > 0 && crossings[at - 1].t > point.distance)
+      --at;
+    if (at >= capacity) continue;
+    for (uint32_t k = std::min(count, capacity - 1); k > at; --k)
+      crossings[k] = crossings[k - 1];
+    fb_light_crossing& c = crossings[at];
+    L.store(c.radiance);
+    c.pdf = point.pdf * (pmf_.empty() ? 0.f : pmf_[index]);
+    c.t = point.distance;
+    count = std::min(count + 1, capacity);
+  }
+  return count;
 }
 
 }  // namespace fb

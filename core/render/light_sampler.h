@@ -1,12 +1,15 @@
 // Next-event estimation's half of the lights: picks a light in proportion to its estimated power
-// (punctual lights and emissive triangles alike) and a point on it (pbrt 4e §12.6, power sampling).
-// Point, spot and sun lights are reached by light sampling only and are returned with is_delta set,
-// also when they have a size (a soft point light's disk, a sun's angle): each sample then carries
-// its own contribution over pdf 1, as Cycles' lamps are sampled (docs/blender.md, "Lights and
-// world"), and BSDF-sampled rays never see them, so no weight is shared.
+// (lamps, emissive triangles and the world alike) and a point on it (pbrt 4e §12.6, power
+// sampling). Lamps are the scene's Lights: delta lights (a point or spot without a radius, a sun
+// without an angle, POV-Ray's lights) are reached by light sampling only; lights with a size
+// (core/render/sized_lights.h: a point or spot light's disk, a sun's cone, an area light) are
+// sampled by solid angle as Cycles 3.4 samples them and are also found by BSDF-sampled rays through
+// crossed(), with the same density, for multiple importance sampling (docs/blender.md, "Lights and
+// world").
 #pragma once
 
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include <filmback/plugin_abi.h>
@@ -15,15 +18,16 @@
 #include "core/accel/render_geometry.h"
 #include "core/math/transform.h"
 #include "core/render/environment.h"
+#include "core/render/sized_lights.h"
 #include "core/scene/scene.h"
 
 namespace fb {
 
 class LightSampler {
  public:
-  // Punctual lights are placed at `frame_s` on the scene's timeline (they do not move within the
-  // shutter); emissive triangles that move are left to BSDF sampling (EmissiveTriangle::moving).
-  // The world is the scene's environment image, sampled as a light, or its uniform background;
+  // Lamps are placed at `frame_s` on the scene's timeline (they do not move within the shutter);
+  // emissive triangles that move are left to BSDF sampling (EmissiveTriangle::moving). The world is
+  // the scene's environment image, sampled as a light, or its uniform background;
   // `background_override` (the command line's) replaces both.
   LightSampler(const Scene& scene, const Transform& render_from_world,
                const RenderGeometry& geometry, double frame_s,
@@ -34,23 +38,23 @@ class LightSampler {
   // solid-angle pdf with which sample() would have chosen w (0 for a uniform world, which only
   // BSDF sampling finds).
   Rgb background(Vec3f w, float& pdf) const;
-  // fb_scene_api::lights_crossed: the lights with a size that `ray` passes through before t_end.
+  // fb_scene_api::lights_crossed: the lights with a size that `ray` passes through before t_end
+  // (suns only when t_end is infinite), nearest first, each with the pdf sample() would have chosen
+  // that point with from the ray's origin, the choice of the light included.
   uint32_t crossed(const fb_ray& ray, float t_end, fb_light_crossing* crossings,
                    uint32_t capacity) const;
-  size_t punctual_light_count() const { return punctual_.size(); }
+  size_t lamp_count() const { return lamps_.size(); }
   size_t emissive_triangle_count() const { return emitters_.size(); }
 
  private:
-  struct Punctual {
+  struct Lamp {
     LightType type;
     Vec3f position;  // point, spot
     Vec3f axis;      // spot: where it shines; directional: towards the light
     Rgb intensity;
     SpotFalloff falloff;
     float cos_inner, cos_outer;
-    float spot_smooth;     // SpotFalloff::kCycles: the width in cos(angle) of the fade
-    float radius;          // point, spot
-    float tan_half_angle;  // directional
+    float spot_smooth;  // SpotFalloff::kCycles: the width in cos(angle) of the fade
     // POV-Ray's semantics (Light's opt-in fields, docs/pov.md "Appearance").
     LightDecay decay;
     float fade_distance, fade_power;
@@ -59,16 +63,23 @@ class LightSampler {
     Vec3f area_axis1, area_axis2;  // render space
     uint32_t area_size1, area_size2;
     bool area_circular, area_orient;
+    // A light with a size; monostate for a delta light.
+    std::variant<std::monostate, FacingDisk, SunDisk, AreaLight> size;
   };
-  // The point of an area light's grid that u picks, seen from `position`.
-  static Vec3f area_point(const Punctual& light, Vec3f position, const float u[2]);
-  bool sample_punctual(const Punctual& light, Vec3f position, const float u[2],
-                       fb_light_sample& out) const;
+  // The point of a POV-Ray area light's grid that u picks, seen from `position`.
+  static Vec3f area_point(const Lamp& lamp, Vec3f position, const float u[2]);
+  bool sample_delta(const Lamp& lamp, Vec3f position, const float u[2], fb_light_sample& out) const;
+  // A point on a light with a size, from `position` (sampled) or along a ray (crossed).
+  static bool sample_sized(const Lamp& lamp, Vec3f position, const float u[2],
+                           SizedLightPoint& point);
+  static bool cross_sized(const Lamp& lamp, const fb_ray& ray, float t_end, SizedLightPoint& point);
+  static Rgb radiance(const Lamp& lamp, const SizedLightPoint& point);
   bool sample_triangle(uint32_t index, Vec3f position, const float u[2],
                        fb_light_sample& out) const;
 
-  std::vector<Punctual> punctual_;
-  const std::vector<EmissiveTriangle>& emitters_;  // light index punctual_.size() + i
+  std::vector<Lamp> lamps_;
+  std::vector<uint32_t> sized_;                    // the lamps with a size
+  const std::vector<EmissiveTriangle>& emitters_;  // light index lamps_.size() + i
   const RenderGeometry& geometry_;                 // evaluates textured emission
   std::optional<EnvironmentLight> environment_;    // the last light index, when present
   Rgb background_;                                 // uniform world, when no environment

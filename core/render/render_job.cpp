@@ -409,7 +409,7 @@ RenderChoices RenderJob::choices() const {
           p.subdiv_summary,
           material_models(scene_),
           p.geometry->triangle_count(),
-          p.lights->punctual_light_count(),
+          p.lights->lamp_count(),
           p.lights->emissive_triangle_count()};
 }
 
@@ -420,7 +420,7 @@ std::string RenderJob::plan() const {
       << c.camera_model << " (" << c.lens << "), " << width_ << "x" << height_ << ", " << spp_
       << " spp (" << c.sampler << "), filter " << c.filter << " (" << c.reconstruction
       << "), integrator " << c.integrator << "; " << c.time << "; " << c.triangles << " triangles, "
-      << c.punctual_lights << " punctual lights, " << c.emissive_triangles << " emissive triangles";
+      << c.lights << " lights, " << c.emissive_triangles << " emissive triangles";
   if (!c.subdivision.empty()) out << "; " << c.subdivision;
   out << "; " << c.materials;
   return out.str();

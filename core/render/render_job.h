@@ -73,7 +73,7 @@ struct RenderChoices {
   std::string time;         // whether and why time is sampled
   std::string subdivision;  // how subdivision surfaces were refined; empty: none
   std::string materials;    // the material models the geometry uses
-  uint64_t triangles = 0, punctual_lights = 0, emissive_triangles = 0;
+  uint64_t triangles = 0, lights = 0, emissive_triangles = 0;
 };
 
 struct RenderResult {

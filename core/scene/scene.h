@@ -65,12 +65,13 @@ struct Material {
   // `emission` to a bound of what it emits (for light selection), double_sided (Cycles' emission
   // leaves both faces) and alpha_mode kBlend when a node can be transparent.
   std::optional<ShaderGraph> shader_graph;
-  // An area light's emitter (gltf_lights.cpp): like Cycles' lights, seen neither by camera nor by
-  // shadow rays, and by other rays only from the side it shines to.
-  bool is_light = false;
 };
 
-enum class LightType { kPoint, kSpot, kDirectional };
+enum class LightType { kPoint, kSpot, kDirectional, kArea };
+
+// The outline of an area light (Blender's SQUARE and RECTANGLE are rectangles, DISK and ELLIPSE
+// ellipses).
+enum class AreaShape { kRectangle, kEllipse };
 
 // How a spot fades between its cones: glTF's KHR_lights_punctual ramp, or Cycles' (Blender's
 // spot_size and spot_blend: cos(angle) times a smoothstep, docs/blender.md "Lights and world").
@@ -83,12 +84,14 @@ enum class SpotFalloff { kGltf, kCycles, kPov };
 // (d^-fade_power for a zero fade_distance) (POV-Ray's Attenuate_Light, docs/pov.md "Appearance").
 enum class LightDecay { kInverseSquare, kPovRay };
 
-// Point, spot and sun lights. Area lights are emissive meshes (importers make them), so that light
-// sampling and BSDF-sampled rays both see them.
+// Point, spot, sun and area lights. Like Cycles' lights they are not surfaces: camera and shadow
+// rays pass through them, and those with a size (a radius, an angle, an area) are found by light
+// sampling and by BSDF-sampled rays alike (core/render/light_sampler.h).
 struct Light {
   std::string name;
   LightType type = LightType::kPoint;
-  // Radiant intensity in W/sr (point, spot) or irradiance in W/m^2 (directional), per channel.
+  // Per channel: radiant intensity in W/sr (point, spot), irradiance in W/m^2 (directional), or
+  // radiance in W sr^-1 m^-2 (area: Cycles' P / (4 A) before the spread's redistribution).
   Rgb intensity{1.f, 1.f, 1.f};
   Transform world_from_light;  // rest pose; lights shine down their -Z axis
   uint32_t node_index = kNoNode;
@@ -96,12 +99,19 @@ struct Light {
   double spot_inner_angle_rad = 0.0;                 // kGltf: full intensity inside this half-angle
   double spot_outer_angle_rad = 0.7853981633974483;  // half-angle of the cone
   double spot_blend = 0.0;  // kCycles: fraction of the cone's (1 - cos) that fades
-  // Point and spot: Cycles' soft light, a disk of this radius facing the shading point with
-  // radiance I / (pi r^2); 0 is a true point.
+  // Point and spot with LightDecay::kInverseSquare: Cycles 3.4's soft light, a disk of this radius
+  // facing the shading point with radiance I / (pi r^2); 0 is a true point.
   double radius_m = 0.0;
   // Directional: the sun's angular diameter, its directions spread over a disk of radius
   // tan(angle/2) one unit away (Cycles' distant light); 0 is a single direction.
   double angle_rad = 0.0;
+  // Area: a one-sided rectangle or ellipse centred on the light in its XY plane, shining down its
+  // -Z, of these full extents along X and Y in world metres (the node's scale applied).
+  AreaShape area_shape = AreaShape::kRectangle;
+  double size_x_m = 1.0, size_y_m = 1.0;
+  // Area: Blender's Spread, the full angle about the normal that the light fills (Cycles 3.4's
+  // soft-box grid, area_light_spread_attenuation); pi leaves it unrestricted.
+  double spread_rad = 3.141592653589793;
   LightDecay decay = LightDecay::kInverseSquare;
   double fade_distance_m = 0.0, fade_power = 0.0;  // LightDecay::kPovRay
   double spot_tightness = 0.0;                     // SpotFalloff::kPov

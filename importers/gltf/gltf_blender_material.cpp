@@ -151,8 +151,8 @@ class GraphReader {
   void read_version() {
     const auto v = ext_.numbers("blender_version", 3, 0, 1e6);
     if (!v || v->size() != 3) return;
-    for (size_t i = 0; i < 3; ++i)
-      graph_.blender_version += (i ? "." : "") + std::to_string(long((*v)[i]));
+    graph_.blender_version = std::to_string(long((*v)[0])) + "." + std::to_string(long((*v)[1])) +
+                             "." + std::to_string(long((*v)[2]));
     if ((*v)[0] >= 4)
       warn(ext_.path() + ".blender_version",
            "exported by Blender " + graph_.blender_version +

@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -18,22 +19,25 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Segments of a disk or ellipse light's polygon; its radii are widened so that the polygon has the
-// ellipse's area, and so its power.
-constexpr int kDiskSegments = 64;
+// Blender stores angles in single precision: its 180 degrees is pi rounded up to a float, a little
+// above pi. Angles up to it are read, then limited to pi.
+constexpr double kBlenderPi = double(std::numbers::pi_v<float>);
+double angle(const Fields& f, const char* key, double lowest, double fallback) {
+  return std::min(f.number(key, lowest, kBlenderPi).value_or(fallback), kPi);
+}
 
 std::string light_name(const std::string& own, const tinygltf::Node& node,
                        const std::string& path) {
   return !own.empty() ? own : !node.name.empty() ? node.name : path;
 }
 
-// Blender's area light as a one-sided emissive mesh in the light's frame, facing -Z. Cycles 3.4
-// gives it radiance P / (4 A) (eval_fac = 0.25 * invarea in kernel/light/area.h; measured: a
-// 1 m square of 100 W, 2 m above a white diffuse plane, renders 1.8316 where P / (4 A) predicts
-// 1.8369 over the patch's cos^3 spread), with A the world-space area: node scale applies.
-void add_area_light(const Fields& f, const tinygltf::Node& node, const std::string& node_path,
-                    const Transform& world, uint32_t scene_node, Rgb color, double power_w,
-                    Scene& scene) {
+// Blender's area light: a one-sided rectangle or ellipse facing the node's -Z. Cycles 3.4 gives it
+// radiance P / (4 A) (eval_fac = 0.25 * invarea in kernel/light/light.h; measured: a 1 m square of
+// 100 W, 2 m above a white diffuse plane, renders 1.8316 where P / (4 A) predicts 1.8369 over the
+// patch's cos^3 spread), with A the world-space area: the node's scale stretches the light, as
+// Cycles takes its axes from the object's matrix.
+void read_area_light(const Fields& f, const Transform& world, Rgb color, double power_w,
+                     Light& light) {
   const std::string shape = f.word("shape").value_or("SQUARE");
   const bool round = shape == "DISK" || shape == "ELLIPSE";
   if (!round && shape != "SQUARE" && shape != "RECTANGLE")
@@ -41,48 +45,23 @@ void add_area_light(const Fields& f, const tinygltf::Node& node, const std::stri
                         "' is not an area light shape (expected SQUARE, RECTANGLE, DISK " +
                         "or ELLIPSE)");
   const double size = f.number("size_m", 1e-6, 1e6).value_or(0.25);  // Blender's default
+  // size_y counts for RECTANGLE and ELLIPSE only, as in Blender.
   const double size_y = shape == "RECTANGLE" || shape == "ELLIPSE"
                             ? f.number("size_y_m", 1e-6, 1e6).value_or(size)
                             : size;
-  TriangleMesh mesh;
-  mesh.name = light_name("", node, node_path) + " (area light)";
-  if (round) {
-    // Radii widened so that the polygon's area is the ellipse's: n/2 sin(2 pi/n) k^2 = pi.
-    const double k = std::sqrt(2 * kPi / (kDiskSegments * std::sin(2 * kPi / kDiskSegments)));
-    mesh.positions.push_back({0, 0, 0});
-    for (int i = 0; i < kDiskSegments; ++i) {
-      const double a = 2 * kPi * i / kDiskSegments;
-      mesh.positions.push_back(
-          {float(k * size / 2 * std::cos(a)), float(k * size_y / 2 * std::sin(a)), 0.f});
-      // Clockwise seen from +Z, so the front face looks down -Z.
-      mesh.indices.insert(mesh.indices.end(),
-                          {0u, uint32_t(1 + (i + 1) % kDiskSegments), uint32_t(1 + i)});
-    }
-  } else {
-    const float x = float(size / 2), y = float(size_y / 2);
-    mesh.positions = {{-x, -y, 0}, {x, -y, 0}, {x, y, 0}, {-x, y, 0}};
-    mesh.indices = {0, 2, 1, 0, 3, 2};
-  }
-  // World-space area: the node's scale stretches the light as in Blender.
-  const Vec3d u = world.vector({size, 0, 0}), v = world.vector({0, size_y, 0});
-  const double area = length(cross(u, v)) * (round ? kPi / 4 : 1.0);
+  light.type = LightType::kArea;
+  light.area_shape = round ? AreaShape::kEllipse : AreaShape::kRectangle;
+  light.size_x_m = length(world.vector({size, 0, 0}));
+  light.size_y_m = length(world.vector({0, size_y, 0}));
+  light.spread_rad = angle(f, "spread_rad", 0, kPi);  // Blender's default, 180 degrees
+  const double area = light.size_x_m * light.size_y_m * (round ? kPi / 4 : 1.0);
   if (!(area > 0) || !std::isfinite(area))
     throw_input(f.file(), f.path(), "the node's transform collapses the area light to zero area");
-  Material m;
-  m.name = mesh.name;
-  m.is_light = true;
-  m.base_color = {0.f, 0.f, 0.f};  // an emitter, not a reflector
-  m.specular = 0.f;
-  m.metallic = 0.f;
-  m.emission = color * float(power_w / (4 * area));
-  if (!is_finite(m.emission))
+  light.intensity = color * float(power_w / (4 * area));
+  if (!is_finite(light.intensity))
     throw_input(
         f.file(), f.path(),
         "colour times power over area (" + number_text(area) + " m^2) overflows single precision");
-  mesh.material = uint32_t(scene.materials.size());
-  scene.materials.push_back(m);
-  scene.instances.push_back({uint32_t(scene.meshes.size()), world, node_path, scene_node});
-  scene.meshes.push_back(std::move(mesh));
 }
 
 void read_blender_light(const tinygltf::Value& value, const tinygltf::Node& node,
@@ -100,10 +79,6 @@ void read_blender_light(const tinygltf::Value& value, const tinygltf::Node& node
     diagnostics.warn(
         located(file, lpath + ".use_nodes",
                 "the light's node tree is not carried; rendering its colour and power"));
-  if (*type == "AREA") {
-    add_area_light(f, node, path, world, scene_node, color, *energy, scene);
-    return;
-  }
   Light light;
   light.name = light_name("", node, path);
   light.world_from_light = world.without_scale();
@@ -114,7 +89,7 @@ void read_blender_light(const tinygltf::Value& value, const tinygltf::Node& node
     light.radius_m = f.number("radius_m", 0, 1e6).value_or(0.0);
     if (light.type == LightType::kSpot) {
       light.spot_falloff = SpotFalloff::kCycles;
-      light.spot_outer_angle_rad = f.number("spot_size_rad", 1e-6, kPi).value_or(kPi / 4) / 2;
+      light.spot_outer_angle_rad = angle(f, "spot_size_rad", 1e-6, kPi / 4) / 2;
       light.spot_blend = f.number("spot_blend", 0, 1).value_or(0.15);
       // What KHR_lights_punctual would say: for light selection's power estimate.
       light.spot_inner_angle_rad = light.spot_outer_angle_rad * (1 - light.spot_blend);
@@ -122,7 +97,9 @@ void read_blender_light(const tinygltf::Value& value, const tinygltf::Node& node
   } else if (*type == "SUN") {
     light.type = LightType::kDirectional;
     light.intensity = color * float(*energy);  // irradiance S W/m^2
-    light.angle_rad = f.number("angle_rad", 0, kPi).value_or(0.0);
+    light.angle_rad = angle(f, "angle_rad", 0, 0.0);
+  } else if (*type == "AREA") {
+    read_area_light(f, world, color, *energy, light);
   } else {
     f.fail("type", "'" + *type + "' is not a light type (expected POINT, SPOT, SUN or AREA)");
   }

@@ -1,6 +1,6 @@
 // Lights and world in Blender's units (docs/blender.md, "Lights and world"): FILMBACK_blender.light
-// over KHR_lights_punctual, photometric values converted back, area lights as emissive meshes,
-// the uniform world, and errors naming the file and JSON path.
+// over KHR_lights_punctual, photometric values converted back, area lights, the uniform world, and
+// errors naming the file and JSON path.
 #include "importers/gltf/gltf_lights.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +14,7 @@
 #include "core/render/light_sampler.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
+#include "importers/gltf/gltf_writer.h"
 #include "support/gltf_builder.h"
 
 namespace fb {
@@ -111,55 +112,43 @@ TEST(GltfLights, SpotAndSunKeepBlendersShape) {
   EXPECT_DOUBLE_EQ(sun.lights[0].angle_rad, 0.1);
 }
 
-double mesh_area(const TriangleMesh& mesh, const Transform& world) {
-  double area = 0;
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Vec3d a = world.point(Vec3d(mesh.positions[mesh.indices[3 * t]]));
-    const Vec3d b = world.point(Vec3d(mesh.positions[mesh.indices[3 * t + 1]]));
-    const Vec3d c = world.point(Vec3d(mesh.positions[mesh.indices[3 * t + 2]]));
-    area += length(cross(b - a, c - a)) / 2;
-  }
-  return area;
-}
-
-// Each triangle's front face (counter-clockwise) looks down the node's -Z.
-void expect_faces_down(const TriangleMesh& mesh) {
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Vec3f a = mesh.positions[mesh.indices[3 * t]],
-                b = mesh.positions[mesh.indices[3 * t + 1]],
-                c = mesh.positions[mesh.indices[3 * t + 2]];
-    EXPECT_LT(cross(b - a, c - a).z, 0.f) << "triangle " << t;
-  }
-}
-
-TEST(GltfLights, AreaLightsAreOneSidedEmittersOfRadiancePowerOverFourArea) {
+TEST(GltfLights, AreaLightsHaveRadiancePowerOverFourAreaAndTheNodesScale) {
   struct Case {
     const char* fields;
-    double area_m2;  // in the light's own units, before the node's scale of 2
+    AreaShape shape;
+    double size_x, size_y;  // before the node's scale of 2
+    double area_m2;         // in the light's own units
+    double spread_rad;
   };
-  for (const Case& c : {Case{R"("shape": "SQUARE", "size_m": 0.5)", 0.25},
-                        Case{R"("shape": "RECTANGLE", "size_m": 0.5, "size_y_m": 2)", 1.0},
-                        Case{R"("shape": "DISK", "size_m": 1)", kPi / 4},
-                        Case{R"("shape": "ELLIPSE", "size_m": 1, "size_y_m": 0.5)", kPi / 8}}) {
+  for (const Case& c :
+       {Case{R"("shape": "SQUARE", "size_m": 0.5, "size_y_m": 3)", AreaShape::kRectangle, 0.5, 0.5,
+             0.25, kPi},
+        Case{R"("shape": "RECTANGLE", "size_m": 0.5, "size_y_m": 2, "spread_rad": 0.5)",
+             AreaShape::kRectangle, 0.5, 2, 1.0, 0.5},
+        // Blender's 180 degrees, pi rounded up to single precision, is read as pi.
+        Case{R"("shape": "DISK", "size_m": 1, "spread_rad": 3.1415927410125732)",
+             AreaShape::kEllipse, 1, 1, kPi / 4, kPi},
+        Case{R"("shape": "ELLIPSE", "size_m": 1, "size_y_m": 0.5, "spread_rad": 1)",
+             AreaShape::kEllipse, 1, 0.5, kPi / 8, 1.0}}) {
     const Scene scene = import(write_gltf(
         blender_light(std::string(R"("type": "AREA", "color": [1, 0.5, 0], "energy_w": 300, )") +
                       c.fields),
         "", "", 2.0));
-    EXPECT_TRUE(scene.lights.empty());
-    ASSERT_EQ(scene.meshes.size(), 1u) << c.fields;
-    ASSERT_EQ(scene.instances.size(), 1u);
+    EXPECT_TRUE(scene.meshes.empty()) << "an area light is not a surface";
+    ASSERT_EQ(scene.lights.size(), 1u) << c.fields;
+    const Light& light = scene.lights[0];
+    EXPECT_EQ(light.type, LightType::kArea);
+    EXPECT_EQ(light.area_shape, c.shape) << c.fields;
+    EXPECT_DOUBLE_EQ(light.size_x_m, 2 * c.size_x) << c.fields;
+    EXPECT_DOUBLE_EQ(light.size_y_m, 2 * c.size_y) << c.fields;
+    EXPECT_DOUBLE_EQ(light.spread_rad, c.spread_rad) << c.fields;
     const double world_area = 4 * c.area_m2;
-    // The disk's polygon is widened to the ellipse's area, so its power is the ellipse's.
-    EXPECT_NEAR(mesh_area(scene.meshes[0], scene.instances[0].world_from_object), world_area,
-                1e-5 * world_area)
-        << c.fields;
-    expect_faces_down(scene.meshes[0]);
-    const Material& m = scene.materials[scene.meshes[0].material];
-    EXPECT_FALSE(m.double_sided);
-    EXPECT_EQ(max_component(m.base_color), 0.f);
-    EXPECT_NEAR(m.emission.x, 300 / (4 * world_area), 1e-4 * m.emission.x) << c.fields;
-    EXPECT_NEAR(m.emission.y, 150 / (4 * world_area), 1e-4 * m.emission.y);
-    EXPECT_EQ(m.emission.z, 0.f);
+    EXPECT_NEAR(light.intensity.x, 300 / (4 * world_area), 1e-5 * light.intensity.x) << c.fields;
+    EXPECT_NEAR(light.intensity.y, 150 / (4 * world_area), 1e-5 * light.intensity.y);
+    EXPECT_EQ(light.intensity.z, 0.f);
+    // It shines down the node's -Z, placed without the scale.
+    EXPECT_NEAR(light.world_from_light.vector({0, 0, -1}).z, -1, 1e-12);
+    EXPECT_NEAR(length(light.world_from_light.vector({1, 0, 0})), 1, 1e-12);
   }
 }
 
@@ -207,12 +196,13 @@ TEST(GltfLights, AreaLightIrradianceMatchesTheFormFactor) {
   EXPECT_EQ(irradiance(rect, Vec3f(1, 2, 4), -up), 0.0);
 }
 
-// As Cycles' lights, an area light is not a surface: camera rays (the coherent batch) and shadow
-// rays pass through it, and other rays meet only the side it shines to.
-TEST(GltfLights, AreaLightsAreSeenOnlyByScatteredRaysFromTheirLitSide) {
+// As Cycles' lights, an area light is not a surface: no ray hits it or is shadowed by it, and BSDF
+// rays find it (LightSampler::crossed) only from the side it shines to.
+TEST(GltfLights, AreaLightsAreFoundByRaysOnlyFromTheirLitSide) {
   const Scene scene = import(write_gltf(
       blender_light(R"("type": "AREA", "energy_w": 100, "shape": "SQUARE", "size_m": 1)")));
   const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+  const LightSampler sampler(scene, Transform(), geometry, 0.0);
   const auto ray = [](float from_z, float dz) {
     fb_ray r{};
     r.origin[0] = 1, r.origin[1] = 2, r.origin[2] = from_z;
@@ -222,14 +212,38 @@ TEST(GltfLights, AreaLightsAreSeenOnlyByScatteredRaysFromTheirLitSide) {
   };
   const fb_ray from_below = ray(1, 1), from_above = ray(5, -1);
   fb_hit hit;
-  ASSERT_TRUE(geometry.intersect(from_below, hit));
-  EXPECT_NEAR(hit.t, 2.f, 1e-5f);
-  EXPECT_NE(hit.emitter, FB_NONE);
-  EXPECT_FALSE(geometry.intersect(from_above, hit));
+  EXPECT_FALSE(geometry.intersect(from_below, hit));
   EXPECT_FALSE(geometry.occluded(from_below));
-  EXPECT_FALSE(geometry.occluded(from_above));
-  geometry.intersect_coherent(&from_below, 1, &hit);
-  EXPECT_TRUE(std::isinf(hit.t));
+  fb_light_crossing crossings[4];
+  ASSERT_EQ(sampler.crossed(from_below, HUGE_VALF, crossings, 4), 1u);
+  EXPECT_NEAR(crossings[0].t, 2.f, 1e-5f);
+  EXPECT_NEAR(crossings[0].radiance[0], 100 / 4.f, 1e-4f);
+  EXPECT_EQ(sampler.crossed(from_below, 1.5f, crossings, 4), 0u);  // a surface before it
+  EXPECT_EQ(sampler.crossed(from_above, HUGE_VALF, crossings, 4), 0u);
+}
+
+// `filmback convert` writes an area light into our extension (KHR_lights_punctual has none), and
+// reading it back gives the same light.
+TEST(GltfLights, AreaLightsSurviveConvert) {
+  const Scene scene =
+      import(write_gltf(blender_light(R"("type": "AREA", "energy_w": 100, "color": [1, 0.5, 0.25],
+                       "shape": "ELLIPSE", "size_m": 1.5, "size_y_m": 0.5, "spread_rad": 0.7)"),
+                        "", "", 2.0));
+  const std::filesystem::path written = test::scratch_dir() / "converted.gltf";
+  Diagnostics diagnostics;
+  fb::write_gltf(scene, written, diagnostics);
+  EXPECT_EQ(diagnostics.count(), 0u);
+  const Scene back = import(written);
+  ASSERT_EQ(back.lights.size(), 1u);
+  const Light &a = scene.lights[0], &b = back.lights[0];
+  EXPECT_EQ(b.type, LightType::kArea);
+  EXPECT_EQ(b.area_shape, AreaShape::kEllipse);
+  EXPECT_NEAR(b.size_x_m, a.size_x_m, 1e-6);
+  EXPECT_NEAR(b.size_y_m, a.size_y_m, 1e-6);
+  EXPECT_NEAR(b.spread_rad, a.spread_rad, 1e-6);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(b.intensity[c], a.intensity[c], 1e-5 * a.intensity.x);
+  EXPECT_NEAR(b.world_from_light.point({0, 0, 0}).z, 3, 1e-9);
 }
 
 TEST(GltfLights, WorldColourTimesStrengthIsTheBackground) {
@@ -296,6 +310,10 @@ TEST(GltfLights, BadValuesAreErrorsNamingTheFileAndJsonPath) {
       {R"("type": "SUN", "energy_w": 1, "angle_rad": -1)", ".angle_rad", "number in"},
       {R"("type": "AREA", "energy_w": 1, "shape": "STAR")", ".shape", "not an area light shape"},
       {R"("type": "AREA", "energy_w": 1, "size_m": 0)", ".size_m", "number in"},
+      {R"("type": "AREA", "energy_w": 1, "shape": "RECTANGLE", "size_y_m": -2)", ".size_y_m",
+       "number in"},
+      {R"("type": "AREA", "energy_w": 1, "spread_rad": 4)", ".spread_rad", "number in"},
+      {R"("type": "AREA", "energy_w": 1, "spread_rad": "wide")", ".spread_rad", "a number"},
       {R"("type": "AREA", "energy_w": 1e30, "size_m": 1e-6)", "", "overflows"},
       {R"("type": "POINT", "energy_w": 1, "use_nodes": 1)", ".use_nodes", "true or false"},
   };

@@ -121,9 +121,6 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   }
   if (m.textures.any())
     diagnostics.warn("material '" + m.name + "': its textures are not written by convert");
-  if (m.is_light)
-    diagnostics.warn("material '" + m.name +
-                     "': an area light's emitter is written as a visible emissive surface");
   return out;
 }
 
@@ -168,6 +165,19 @@ void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light)
       ours["energy_w"] = number(peak);
       ours["angle_rad"] = number(light.angle_rad);
       break;
+    case LightType::kArea: {
+      // KHR_lights_punctual has no area lights: our extension alone, its size in world metres
+      // (the node's matrix has no scale), power back from Cycles' radiance P / (4 A).
+      const bool round = light.area_shape == AreaShape::kEllipse;
+      ours["type"] = Value(std::string("AREA"));
+      ours["shape"] = Value(std::string(round ? "ELLIPSE" : "RECTANGLE"));
+      ours["size_m"] = number(light.size_x_m);
+      ours["size_y_m"] = number(light.size_y_m);
+      ours["spread_rad"] = number(light.spread_rad);
+      ours["energy_w"] = number(peak * 4 * light.size_x_m * light.size_y_m * (round ? kPi / 4 : 1));
+      node.extensions["FILMBACK_blender"] = Value(Value::Object{{"light", Value(std::move(ours))}});
+      return;
+    }
   }
   model.lights.push_back(out);
   node.extensions["KHR_lights_punctual"] =
