@@ -1,0 +1,241 @@
+"""The Blender side of the Principled shots (tests/blender/blender_principled_test.cpp).
+
+One stage seen by a low camera: a ground 120 m wide reaching the horizon, so that the lower half of
+the frame sees it at grazing angles (cos of the view angle 0.44 at the bottom row, 0 at the
+horizon), and three spheres standing on it 5 m away. SHOTS says their materials and the lights:
+Principled BSDFs at roughness 0.2, 0.5 and 0.9 (ground included), metal, sheen, clearcoat,
+specular tint, glass, Multiscatter GGX and a Mix Shader of a Glossy and a Diffuse BSDF by a
+texture, under a sun and a dim world; Blender's default material under a sun, a point light and
+the default world's grey; and the same stage lit by a point light with a radius (a sphere light)
+or by a disk area light alone. Every material is a node tree built before the export and exported
+as it is by filmback's add-on (importers/blender/export_shot.py), so that both renderers render
+the same trees; Cycles renders with material_shot.py's settings (filmback's path depth, no
+clamping, no light threshold, Filter Glossy off) and a 1 px box filter.
+
+    blender -b --factory-startup --python principled_shot.py -- OUTDIR SHOT
+
+writes OUTDIR/shot.gltf (+ .bin, the stripes' image), OUTDIR/cycles.exr and OUTDIR/manifest.txt with one
+"shot" record: name, samples, width_px, height_px.
+"""
+
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+
+import bpy
+from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_shot  # noqa: E402  (camera, Cycles settings, manifest records)
+import material_shot  # noqa: E402  (Principled materials, spheres, Cycles settings, the add-on)
+
+CAMERA_LOCATION = (0.0, -5.0, 0.9)
+CAMERA_TARGET = (0.0, 0.0, 0.45)
+GROUND_SIZE_M = 120.0
+SPHERE_RADIUS_M = 0.5
+SPHERE_X_M = (-1.4, 0.0, 1.4)
+GROUND_COLOUR = (0.5, 0.45, 0.35)
+STRIPES_PX = 64
+
+
+@dataclass(frozen=True)
+class Light:
+    type: str  # SUN, POINT, AREA (a disk)
+    energy: float  # W/m^2 for a sun, W otherwise
+    location: tuple = (0.0, 0.0, 10.0)
+    target: tuple = (0.0, 0.0, 0.0)  # where its -Z axis points
+    radius_m: float = 0.0  # a point light's
+    size_m: float = 1.0  # a disk's diameter
+    # None: Blender's default angle for a new sun (0.526 degrees).
+    angle_deg: float | None = None
+
+
+# A sun from the front left, 35 degrees high: the spheres' shadows fall towards the camera and the
+# ground's glossy lobe brightens towards the bottom of the frame.
+SUN = Light("SUN", 3.0, location=(-6.0, 6.0, 5.9), target=(0.0, 0.0, 0.0))
+DIM_WORLD = ((0.05, 0.06, 0.08), 1.0)
+# Blender 3.4's default scene: its light (point, 1000 W, radius 0.1 m, at (4.08, 1.0, 5.9)) and
+# its world (grey 0.050876).
+DEFAULT_POINT = Light("POINT", 1000.0, location=(4.08, 1.0, 5.9), radius_m=0.1)
+DEFAULT_WORLD = ((0.050876, 0.050876, 0.050876), 1.0)
+
+
+def ground_at(roughness):
+    return lambda: material_shot.principled("ground", GROUND_COLOUR, 0.0, roughness)[0]
+
+
+def spheres_at(roughness):
+    """A blue dielectric, a white one and a gold metal."""
+    return (lambda: material_shot.principled("blue", (0.1, 0.25, 0.6), 0.0, roughness)[0],
+            lambda: material_shot.principled("white", (0.8, 0.8, 0.8), 0.0, roughness)[0],
+            lambda: material_shot.principled("gold", (1.0, 0.77, 0.34), 1.0, roughness)[0])
+
+
+def default_material():
+    """What Blender gives a new material: a Principled BSDF with base colour 0.8, Roughness 0.5,
+    Specular 0.5."""
+    material = bpy.data.materials.new("Material")
+    material.use_nodes = True
+    return material
+
+
+def sheen():
+    return material_shot.principled("sheen", (0.3, 0.05, 0.1), 0.0, 0.8, Sheen=1.0,
+                                    Sheen_Tint=0.5)[0]
+
+
+def clearcoat():
+    return material_shot.principled("clearcoat", (0.6, 0.1, 0.05), 0.0, 0.6, Clearcoat=1.0,
+                                    Clearcoat_Roughness=0.05)[0]
+
+
+def specular_tint():
+    return material_shot.principled("specular tint", (0.1, 0.3, 0.8), 0.0, 0.3, Specular=1.0,
+                                    Specular_Tint=1.0)[0]
+
+
+def glass():
+    return material_shot.principled("glass", (0.95, 0.95, 1.0), 0.0, 0.1, Transmission=1.0,
+                                    IOR=1.45)[0]
+
+
+def multiscatter():
+    return material_shot.principled("multiscatter", (0.9, 0.6, 0.2), 0.5, 0.6,
+                                    distribution="MULTI_GGX")[0]
+
+
+def stripes_image():
+    """Four vertical stripes, 0 and 1 (Non-Color: the values as they are), along the sphere's
+    longitude (its U); a generated image, which the add-on saves beside the export."""
+    image = bpy.data.images.new("stripes", STRIPES_PX, STRIPES_PX, alpha=False)
+    image.colorspace_settings.name = "Non-Color"
+    pixels = []
+    for _ in range(STRIPES_PX):
+        for col in range(STRIPES_PX):
+            v = float((col * 8 // STRIPES_PX) % 2)
+            pixels.extend((v, v, v, 1.0))
+    image.pixels = pixels
+    return image
+
+
+def glossy_diffuse_mix():
+    """A Mix Shader of a Diffuse BSDF (factor 0) and a GGX Glossy BSDF (factor 1) by the stripes'
+    colour (a grey, whose luminance Cycles takes for the float factor)."""
+    material = bpy.data.materials.new("glossy diffuse mix")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.remove(nodes["Principled BSDF"])
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.7, 0.25, 0.1, 1.0)
+    diffuse.inputs["Roughness"].default_value = 0.0
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "GGX"
+    glossy.inputs["Color"].default_value = (0.9, 0.9, 0.9, 1.0)
+    glossy.inputs["Roughness"].default_value = 0.25
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = stripes_image()
+    texture.interpolation = "Linear"
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(texture.outputs["Color"], mix.inputs["Fac"])
+    links.new(diffuse.outputs["BSDF"], mix.inputs[1])
+    links.new(glossy.outputs["BSDF"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
+    return material
+
+
+@dataclass(frozen=True)
+class Shot:
+    ground: object  # () -> material
+    spheres: tuple  # three () -> material, left to right
+    lights: tuple
+    world: tuple = DIM_WORLD  # (colour, strength)
+    samples: int = 256
+    width_px: int = 160
+    height_px: int = 120
+    lens_mm: float = 35.0
+    sensor_mm: tuple = field(default=(36.0, 24.0))
+
+
+SHOTS = {
+    "roughness_0.2": Shot(ground_at(0.2), spheres_at(0.2), (SUN,)),
+    "roughness_0.5": Shot(ground_at(0.5), spheres_at(0.5), (SUN,)),
+    "roughness_0.9": Shot(ground_at(0.9), spheres_at(0.9), (SUN,)),
+    "layers": Shot(ground_at(0.5), (sheen, clearcoat, specular_tint), (SUN,)),
+    "glass_mix": Shot(ground_at(0.5), (glass, glossy_diffuse_mix, multiscatter), (SUN,)),
+    # The issue's ordinary shot: every object in Blender's default material, the default scene's
+    # point light and world, and a sun.
+    "default": Shot(default_material, (default_material,) * 3, (SUN, DEFAULT_POINT),
+                    world=DEFAULT_WORLD),
+    # A point light of radius 0.4 m above the front right, alone with the dim world.
+    "sphere_light": Shot(ground_at(0.5), spheres_at(0.3),
+                         (Light("POINT", 600.0, location=(1.8, -1.2, 2.4), radius_m=0.4),)),
+    # A disk area light 1.2 m across above the front left, facing the spheres.
+    "disk_light": Shot(ground_at(0.5), spheres_at(0.3),
+                       (Light("AREA", 400.0, location=(-1.6, -1.0, 2.6), target=(0.0, 0.0, 0.3),
+                              size_m=1.2),)),
+}
+
+def look_at(obj, location, target):
+    obj.location = location
+    direction = Vector(target) - Vector(location)
+    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
+
+
+def add_light(scene, index, spec):
+    data = bpy.data.lights.new(f"{spec.type.title()} {index}", spec.type)
+    data.energy = spec.energy
+    if spec.type == "POINT":
+        data.shadow_soft_size = spec.radius_m
+    if spec.type == "SUN" and spec.angle_deg is not None:
+        data.angle = math.radians(spec.angle_deg)
+    if spec.type == "AREA":
+        data.shape = "DISK"
+        data.size = spec.size_m
+    light = bpy.data.objects.new(data.name, data)
+    scene.collection.objects.link(light)
+    look_at(light, spec.location, spec.target)
+
+
+def build(shot):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    make_shot.new_world(scene, *shot.world)
+    camera_shot = make_shot.Shot(shot.width_px, shot.height_px, shot.lens_mm, (),
+                                 sensor_mm=shot.sensor_mm, samples=shot.samples)
+    material_shot.configure_cycles(scene, camera_shot)
+    camera = make_shot.build_camera(scene, camera_shot)
+    look_at(camera, CAMERA_LOCATION, CAMERA_TARGET)
+
+    bpy.ops.mesh.primitive_plane_add(size=GROUND_SIZE_M, location=(0.0, 0.0, 0.0))
+    ground = bpy.context.active_object
+    ground.name = "ground"
+    ground.data.materials.append(shot.ground())
+    for i, (x, make_material) in enumerate(zip(SPHERE_X_M, shot.spheres)):
+        material_shot.add_sphere(f"sphere {i}", (x, 0.0, SPHERE_RADIUS_M), SPHERE_RADIUS_M,
+                                 make_material())
+    for i, spec in enumerate(shot.lights):
+        add_light(scene, i, spec)
+    bpy.context.view_layer.update()
+    return scene
+
+
+def main():
+    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(args) != 2 or args[1] not in SHOTS:
+        raise SystemExit("usage: blender -b --factory-startup --python principled_shot.py -- "
+                         "OUTDIR SHOT\nshots: " + " ".join(SHOTS))
+    out_dir, name = os.path.abspath(args[0]), args[1]
+    os.makedirs(out_dir, exist_ok=True)
+    shot = SHOTS[name]
+    scene = build(shot)
+    with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        manifest.write(make_shot.record("shot", name=name, samples=shot.samples,
+                                        width_px=shot.width_px, height_px=shot.height_px))
+    material_shot.export_shot.export(os.path.join(out_dir, "shot.gltf"))
+    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
+    bpy.ops.render.render(write_still=True)
+
+
+if __name__ == "__main__":
+    main()
