@@ -54,6 +54,10 @@ class Light:
 # A sun from the front left, 35 degrees high: the spheres' shadows fall towards the camera and the
 # ground's glossy lobe brightens towards the bottom of the frame.
 SUN = Light("SUN", 3.0, location=(-6.0, 6.0, 5.9), target=(0.0, 0.0, 0.0))
+# A sun from behind the camera on the right, 35 degrees high: the ground scatters it back towards
+# the camera at grazing angles (Principled diffuse's retro-reflection), and shadows and the glass
+# sphere's caustic fall behind the spheres.
+SUN_BEHIND = Light("SUN", 3.0, location=(4.0, -7.0, 5.7), target=(0.0, 0.0, 0.0))
 DIM_WORLD = ((0.05, 0.06, 0.08), 1.0)
 # Blender 3.4's default scene: its light (point, 1000 W, radius 0.1 m, at (4.08, 1.0, 5.9)) and
 # its world (grey 0.050876).
@@ -96,7 +100,7 @@ def specular_tint():
 
 
 def glass():
-    return material_shot.principled("glass", (0.95, 0.95, 1.0), 0.0, 0.1, Transmission=1.0,
+    return material_shot.principled("glass", (0.95, 0.95, 1.0), 0.0, 0.4, Transmission=1.0,
                                     IOR=1.45)[0]
 
 
@@ -161,8 +165,9 @@ SHOTS = {
     "roughness_0.2": Shot(ground_at(0.2), spheres_at(0.2), (SUN,)),
     "roughness_0.5": Shot(ground_at(0.5), spheres_at(0.5), (SUN,)),
     "roughness_0.9": Shot(ground_at(0.9), spheres_at(0.9), (SUN,)),
-    "layers": Shot(ground_at(0.5), (sheen, clearcoat, specular_tint), (SUN,)),
-    "glass_mix": Shot(ground_at(0.5), (glass, glossy_diffuse_mix, multiscatter), (SUN,)),
+    "layers": Shot(ground_at(0.5), (sheen, clearcoat, specular_tint), (SUN_BEHIND,)),
+    "glass_mix": Shot(ground_at(0.5), (glass, glossy_diffuse_mix, multiscatter),
+                      (Light("SUN", 3.0, location=(3.0, -4.0, 8.7)),)),
     # The issue's ordinary shot: every object in Blender's default material, the default scene's
     # point light and world, and a sun.
     "default": Shot(default_material, (default_material,) * 3, (SUN, DEFAULT_POINT),
