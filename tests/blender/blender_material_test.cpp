@@ -5,10 +5,10 @@
 //  - texture placement: classified by chromaticity (G/R: the red squares ~0.02, white ones and
 //    everything grey or gold above 0.6), no pixel is red in one image and white in the other
 //    beyond noise; a flipped or shifted texture would turn half of the ground;
-//  - radiometry (shot_comparison.h): the mean relative difference and the worst 16x16 block no
-//    further above their noise floors (filmback against itself with another seed) than the bounds
-//    measured for each shot allow (docs/blender.md, "Against Cycles: material_shot.py"); the
-//    test prints the numbers each run.
+//  - radiometry (shot_comparison.h): the mean relative difference at most 0.5 % and the worst 16x16
+//    block at most 1 % above their noise floors (filmback against itself with another seed), the
+//    agreement measured at 256 spp with margin (docs/blender.md, "Against Cycles:
+//    material_shot.py"); the glass's blocks 5 %, issue 14's bar. Each run prints the numbers.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -69,33 +69,42 @@ void compare_with_cycles(const std::string& shot, const Bounds& bounds) {
   EXPECT_LE(cmp.worst_block, cmp.worst_noise_block + bounds.block_above_noise);
 }
 
+// Measured (256 spp): no misplaced pixel; mean relative difference 1.16 % against a noise floor
+// of 1.20 %, worst block 1.07 % against 1.09 %; filmback/Cycles mean 1.0001.
 TEST(BlenderMaterials, TexturedGroundAndGlossySpheresMatchCycles) {
-  compare_with_cycles("materials", {0.003, 0.02, 0.05});
+  compare_with_cycles("materials", {0.003, 0.005, 0.01});
 }
 
 // A rough glass sphere over the checker: the refracted checker lands where Cycles puts it.
+// Measured: 0.79 % against 0.92 %; the worst block, where the sphere focuses the sun, 5.34 %
+// against filmback's 2.45 %: Cycles' render is the noisier there (at 1024 spp 2.21 % against
+// 1.45 %, falling as noise does), hence issue 14's 5 % above the floor for blocks.
 TEST(BlenderMaterials, RoughGlassSphereMatchesCycles) {
-  compare_with_cycles("glass", {0.003, 0.02, 0.05});
+  compare_with_cycles("glass", {0.003, 0.005, 0.05});
 }
 
 // A normal-mapped ground (ridges along the image's x and y): a tangent or bitangent the wrong
-// way round lights the other flank of each ridge.
+// way round lights the other flank of each ridge. Measured: 0.40 % against 0.49 %, worst block
+// 0.13 % against 0.12 %; with the normal map's green channel inverted (the bitangent flipped)
+// 7.4 % and 28 %.
 TEST(BlenderMaterials, NormalMappedGroundMatchesCycles) {
-  compare_with_cycles("normal_map", {0.003, 0.02, 0.05});
+  compare_with_cycles("normal_map", {0.003, 0.005, 0.01});
 }
 
 // A card cut out by its texture's alpha (the Principled BSDF's Alpha: a mix with a Transparent
 // BSDF in both renderers): its holes and its shadow's holes where Cycles has them (the checker
-// seen through a hole that filmback filled would count as misplaced).
+// seen through a hole that filmback filled would count as misplaced). Measured: 0.39 % against
+// 0.45 %, worst block 0.09 % against 0.16 %.
 TEST(BlenderMaterials, AlphaCutoutMatchesCycles) {
-  compare_with_cycles("alpha", {0.003, 0.02, 0.05});
+  compare_with_cycles("alpha", {0.003, 0.005, 0.01});
 }
 
 // The ground lit only by a card emitting the checker texture (the Principled BSDF's Emission at
 // strength 4): the texture's own pixels and the light it casts, light sampling evaluating the
-// texture where it samples the card.
+// texture where it samples the card. Measured: 0.68 % against 0.75 %, worst block 1.28 % against
+// 0.91 %.
 TEST(BlenderMaterials, EmissiveTextureMatchesCycles) {
-  compare_with_cycles("emission", {0.003, 0.02, 0.05});
+  compare_with_cycles("emission", {0.003, 0.005, 0.01});
 }
 
 }  // namespace

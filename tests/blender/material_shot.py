@@ -229,12 +229,7 @@ def configure_cycles(scene, shot):
 
 
 def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in SHOTS:
-        raise SystemExit("usage: blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT\n"
-                         "shots: " + " ".join(SHOTS))
-    out_dir, name = os.path.abspath(args[0]), args[1]
-    os.makedirs(out_dir, exist_ok=True)
+    out_dir, name = make_shot.shot_arguments("material_shot.py", SHOTS)
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene

@@ -42,9 +42,8 @@ Image render_second_seed(const ShotRenders& renders, const fs::path& work_dir) {
 }
 
 ShotComparison compare_shot(const Image& c, const Image& f, const Image& f1) {
-  if (c.width != f.width || c.height != f.height || f1.width != f.width ||
-      f1.height != f.height || c.channels.size() < 3 || f.channels.size() < 3 ||
-      f1.channels.size() < 3)
+  if (c.width != f.width || c.height != f.height || f1.width != f.width || f1.height != f.height ||
+      c.channels.size() < 3 || f.channels.size() < 3 || f1.channels.size() < 3)
     throw std::runtime_error("compare_shot: the renders differ in size or have no RGB");
   ShotComparison s;
   double sum_abs = 0, sum_noise = 0, sum_c = 0, sum_f = 0;
