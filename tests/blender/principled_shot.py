@@ -14,11 +14,10 @@ clamping, no light threshold, Filter Glossy off) and a 1 px box filter.
 
     blender -b --factory-startup --python principled_shot.py -- OUTDIR SHOT
 
-writes OUTDIR/shot.gltf (+ .bin, the stripes' image), OUTDIR/cycles.exr and OUTDIR/manifest.txt with one
-"shot" record: name, samples, width_px, height_px.
+writes OUTDIR/shot.gltf (+ .bin, the stripes' image), OUTDIR/cycles.exr and OUTDIR/manifest.txt
+with one "shot" record: name, samples, width_px, height_px.
 """
 
-import math
 import os
 import sys
 from dataclasses import dataclass
@@ -30,6 +29,8 @@ import make_shot  # noqa: E402  (camera, Cycles settings, manifest records)
 import material_shot  # noqa: E402  (Principled materials, spheres, Cycles settings, the add-on)
 from radiometry_shot import look_at  # noqa: E402
 
+# 160x120 at 256 spp, 35 mm on a 36 mm wide sensor.
+CAMERA = make_shot.Shot(160, 120, 35.0, (), samples=256)
 CAMERA_LOCATION = (0.0, -5.0, 0.9)
 CAMERA_TARGET = (0.0, 0.0, 0.45)
 GROUND_SIZE_M = 120.0
@@ -41,14 +42,13 @@ STRIPES_PX = 64
 
 @dataclass(frozen=True)
 class Light:
+    """A Blender light; a sun keeps Blender's default angle for a new sun, 0.526 degrees."""
     type: str  # SUN, POINT, AREA (a disk)
     energy: float  # W/m^2 for a sun, W otherwise
     location: tuple = (0.0, 0.0, 10.0)
     target: tuple = (0.0, 0.0, 0.0)  # where its -Z axis points
     radius_m: float = 0.0  # a point light's
     size_m: float = 1.0  # a disk's diameter
-    # None: Blender's default angle for a new sun (0.526 degrees).
-    angle_deg: float | None = None
 
 
 # A sun from the front left, 35 degrees high: the spheres' shadows fall towards the camera and the
@@ -105,8 +105,8 @@ MULTISCATTER = principled("multiscatter", (0.9, 0.6, 0.2), 0.5, 0.6, distributio
 
 
 def stripes_image():
-    """Four vertical stripes, 0 and 1 (Non-Color: the values as they are), along the sphere's
-    longitude (its U); a generated image, which the add-on saves beside the export."""
+    """Eight vertical bands, alternately 0 and 1 (Non-Color: the values as they are), along the
+    sphere's longitude (its U); a generated image, which the add-on saves beside the export."""
     image = bpy.data.images.new("stripes", STRIPES_PX, STRIPES_PX, alpha=False)
     image.colorspace_settings.name = "Non-Color"
     pixels = []
@@ -149,11 +149,6 @@ class Shot:
     spheres: tuple  # three () -> material, left to right
     lights: tuple
     world: tuple = DIM_WORLD  # (colour, strength)
-    samples: int = 256
-    width_px: int = 160
-    height_px: int = 120
-    lens_mm: float = 35.0
-    sensor_mm: tuple = (36.0, 24.0)
 
 
 SHOTS = {
@@ -176,13 +171,12 @@ SHOTS = {
                               size_m=1.2),)),
 }
 
+
 def add_light(scene, index, spec):
     data = bpy.data.lights.new(f"{spec.type.title()} {index}", spec.type)
     data.energy = spec.energy
     if spec.type == "POINT":
         data.shadow_soft_size = spec.radius_m
-    if spec.type == "SUN" and spec.angle_deg is not None:
-        data.angle = math.radians(spec.angle_deg)
     if spec.type == "AREA":
         data.shape = "DISK"
         data.size = spec.size_m
@@ -195,10 +189,8 @@ def build(shot):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     make_shot.new_world(scene, *shot.world)
-    camera_shot = make_shot.Shot(shot.width_px, shot.height_px, shot.lens_mm, (),
-                                 sensor_mm=shot.sensor_mm, samples=shot.samples)
-    material_shot.configure_cycles(scene, camera_shot)
-    camera = make_shot.build_camera(scene, camera_shot)
+    material_shot.configure_cycles(scene, CAMERA)
+    camera = make_shot.build_camera(scene, CAMERA)
     look_at(camera, CAMERA_LOCATION, CAMERA_TARGET)
 
     bpy.ops.mesh.primitive_plane_add(size=GROUND_SIZE_M, location=(0.0, 0.0, 0.0))
@@ -219,8 +211,8 @@ def main():
     shot = SHOTS[name]
     scene = build(shot)
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
-        manifest.write(make_shot.record("shot", name=name, samples=shot.samples,
-                                        width_px=shot.width_px, height_px=shot.height_px))
+        manifest.write(make_shot.record("shot", name=name, samples=CAMERA.samples,
+                                        width_px=CAMERA.width_px, height_px=CAMERA.height_px))
     material_shot.export_shot.export(os.path.join(out_dir, "shot.gltf"))
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
