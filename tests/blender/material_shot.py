@@ -194,10 +194,7 @@ def add_sphere(name, location, radius, material):
 def glass():
     """Principled with Transmission 1: a rough glass tinted by its base colour, its reflection
     and refraction equally rough (Transmission Roughness 0)."""
-    material, bsdf = principled("glass", (0.9, 0.95, 1.0), 0.0, 0.15)
-    bsdf.inputs["Transmission"].default_value = 1.0
-    bsdf.inputs["IOR"].default_value = 1.5
-    return material
+    return principled("glass", (0.9, 0.95, 1.0), 0.0, 0.15, Transmission=1.0, IOR=1.5)[0]
 
 
 SHOTS = {
