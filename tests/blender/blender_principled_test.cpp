@@ -1,6 +1,7 @@
 // Principled shots against Cycles (principled_shot.py): Blender's own materials (Principled BSDFs
 // at roughness 0.2, 0.5 and 0.9 on a ground seen at grazing angles, metal, sheen, clearcoat,
-// specular tint, glass, Multiscatter GGX, a Mix Shader of Glossy and Diffuse by a texture, and
+// specular tint, glass, Multiscatter GGX, a Mix Shader of Glossy and Diffuse by a texture, a
+// normal-mapped sphere, Emission added to Glossy mixed with Transparent, Principled's Alpha, and
 // Blender's default material) under a sun, a point light, a sphere light or a disk light,
 // exported with their node trees and rendered by Cycles and by filmback at the same settings.
 // The bar is issue 14's: the mean relative difference at most 2 % and every 16x16 block at most
@@ -45,7 +46,7 @@ TEST_P(BlenderPrincipled, MatchesCycles) {
 
 INSTANTIATE_TEST_SUITE_P(Shots, BlenderPrincipled,
                          testing::Values("roughness_0.2", "roughness_0.5", "roughness_0.9",
-                                         "layers", "glass_mix", "default", "sphere_light",
+                                         "layers", "glass_mix", "nodes", "default", "sphere_light",
                                          "disk_light"),
                          [](const testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;

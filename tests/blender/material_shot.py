@@ -82,11 +82,12 @@ def principled(name, base_colour, metallic, roughness, distribution="GGX", **inp
     return material, bsdf
 
 
-def ridges_image(path):
+def ridges_image(path=None):
     """A tangent-space normal map (OpenGL convention, as glTF and Blender: +X right, +Y up the
     image) of the height field h = A sin(2 pi 4 x) + A sin(2 pi 3 y), x right and y up the image
     in [0, 1]: slopes up to 0.5 along x and 0.38 along y, so that a flipped tangent or bitangent
-    lights the other flank of the ridges."""
+    lights the other flank of the ridges. Saved as a PNG at `path`, or left a generated image
+    (which the add-on saves beside the export)."""
     image = bpy.data.images.new("ridges", CHECKER_PX, CHECKER_PX, alpha=False)
     image.colorspace_settings.name = "Non-Color"
     a = 0.5 / (2 * math.pi * 4)
@@ -100,10 +101,23 @@ def ridges_image(path):
             length = math.sqrt(sum(c * c for c in n))
             pixels.extend((*(0.5 + 0.5 * c / length for c in n), 1.0))
     image.pixels = pixels
-    image.filepath_raw = path
-    image.file_format = "PNG"
-    image.save()
+    if path:
+        image.filepath_raw = path
+        image.file_format = "PNG"
+        image.save()
     return image
+
+
+def link_normal_map(material, bsdf, image):
+    """The image through a Normal Map node (tangent space, strength 1: glTF's scale 1) into the
+    node's Normal."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    normals = nodes.new("ShaderNodeTexImage")
+    normals.image = image
+    normals.interpolation = "Linear"
+    mapping = nodes.new("ShaderNodeNormalMap")
+    links.new(normals.outputs["Color"], mapping.inputs["Color"])
+    links.new(mapping.outputs["Normal"], bsdf.inputs["Normal"])
 
 
 def add_ground(image, normal_map=None):
@@ -117,12 +131,7 @@ def add_ground(image, normal_map=None):
     texture.interpolation = "Linear"
     links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
     if normal_map is not None:
-        normals = nodes.new("ShaderNodeTexImage")
-        normals.image = normal_map
-        normals.interpolation = "Linear"
-        mapping = nodes.new("ShaderNodeNormalMap")  # tangent space, strength 1: glTF scale 1
-        links.new(normals.outputs["Color"], mapping.inputs["Color"])
-        links.new(mapping.outputs["Normal"], bsdf.inputs["Normal"])
+        link_normal_map(material, bsdf, normal_map)
     ground.data.materials.append(material)
 
 

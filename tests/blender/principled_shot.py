@@ -4,8 +4,9 @@ One stage seen by a low camera: a ground 120 m wide reaching the horizon, so tha
 the frame sees it at grazing angles (cos of the view angle 0.44 at the bottom row, 0 at the
 horizon), and three spheres standing on it 5 m away. SHOTS says their materials and the lights:
 Principled BSDFs at roughness 0.2, 0.5 and 0.9 (ground included), metal, sheen, clearcoat,
-specular tint, glass, Multiscatter GGX and a Mix Shader of a Glossy and a Diffuse BSDF by a
-texture, under a sun and a dim world; Blender's default material under a sun, a point light and
+specular tint, glass, Multiscatter GGX, a Mix Shader of a Glossy and a Diffuse BSDF by a
+texture, a normal map on a sphere, an Emission added to a Glossy BSDF mixed with a Transparent
+one and Principled's Alpha, under a sun and a dim world; Blender's default material under a sun, a point light and
 the default world's grey; and the same stage lit by a point light with a radius (a sphere light)
 or by a disk area light alone. Every material is a node tree built before the export and exported
 as it is by filmback's add-on (importers/blender/export_shot.py), so that both renderers render
@@ -104,6 +105,43 @@ GLASS = principled("glass", (0.95, 0.95, 1.0), 0.0, 0.4, Transmission=1.0, IOR=1
 MULTISCATTER = principled("multiscatter", (0.9, 0.6, 0.2), 0.5, 0.6, distribution="MULTI_GGX")
 
 
+def normal_mapped():
+    """A Principled BSDF normal-mapped by material_shot.py's ridges, on a sphere: the tangent frame
+    follows the sphere's UV map."""
+    material, bsdf = material_shot.principled("normal mapped", (0.6, 0.5, 0.3), 0.0, 0.35)
+    material_shot.link_normal_map(material, bsdf, material_shot.ridges_image())
+    return material
+
+
+def emission_add_transparent():
+    """Mix(0.7, Transparent, Add(Emission, Glossy)): an orange Emission of strength 0.3 added to a
+    GGX Glossy BSDF of roughness 0.3, 30 % transparent."""
+    material = bpy.data.materials.new("emission add transparent")
+    material.use_nodes = True
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    nodes.remove(nodes["Principled BSDF"])
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = (1.0, 0.4, 0.1, 1.0)
+    emission.inputs["Strength"].default_value = 0.3
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "GGX"
+    glossy.inputs["Roughness"].default_value = 0.3
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(emission.outputs["Emission"], add.inputs[0])
+    links.new(glossy.outputs["BSDF"], add.inputs[1])
+    transparent = nodes.new("ShaderNodeBsdfTransparent")
+    mix = nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.7
+    links.new(transparent.outputs["BSDF"], mix.inputs[1])
+    links.new(add.outputs["Shader"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
+    return material
+
+
+# Principled's Alpha 0.5 over a half clearcoat.
+HALF_ALPHA = principled("half alpha", (0.2, 0.7, 0.3), 0.0, 0.3, Alpha=0.5, Clearcoat=0.5)
+
+
 def stripes_image():
     """Eight vertical bands, alternately 0 and 1 (Non-Color: the values as they are), along the
     sphere's longitude (its U); a generated image, which the add-on saves beside the export."""
@@ -158,6 +196,8 @@ SHOTS = {
     "layers": Shot(ground_at(0.5), (SHEEN, CLEARCOAT, SPECULAR_TINT), (SUN_BEHIND,)),
     "glass_mix": Shot(ground_at(0.5), (GLASS, glossy_diffuse_mix, MULTISCATTER),
                       (SUN_HIGH,)),
+    "nodes": Shot(ground_at(0.5), (normal_mapped, emission_add_transparent, HALF_ALPHA),
+                  (SUN_BEHIND,)),
     # The issue's ordinary shot: every object in Blender's default material, the default scene's
     # point light and world, and a sun.
     "default": Shot(default_material, (default_material,) * 3, (SUN, DEFAULT_POINT),
