@@ -361,14 +361,21 @@ def record(kind, **fields):
     return kind + "".join(f" {key}={text(value)}" for key, value in fields.items()) + "\n"
 
 
-def main():
+def shot_arguments(script, shots):
+    """OUTDIR (absolute, created) and SHOT from `blender ... --python SCRIPT -- OUTDIR SHOT`; exits
+    with the usage and the names in `shots` when they are not that."""
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in SHOTS:
-        raise SystemExit("usage: blender -b --factory-startup --python make_shot.py -- OUTDIR SHOT\n"
-                         "shots: " + " ".join(SHOTS))
-    out_dir, name = os.path.abspath(args[0]), args[1]
-    shot = SHOTS[name]
+    if len(args) != 2 or args[1] not in shots:
+        raise SystemExit(f"usage: blender -b --factory-startup --python {script} -- OUTDIR SHOT\n"
+                         "shots: " + " ".join(shots))
+    out_dir = os.path.abspath(args[0])
     os.makedirs(out_dir, exist_ok=True)
+    return out_dir, args[1]
+
+
+def main():
+    out_dir, name = shot_arguments("make_shot.py", SHOTS)
+    shot = SHOTS[name]
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene

@@ -1,15 +1,14 @@
 """The Blender side of the materials shot (tests/blender/blender_material_test.cpp).
 
 A ground plane textured with an 8x8 red/white checker (a PNG this script writes) in a Principled
-BSDF and spheres over it (SPHERES: "materials", a glossy gold metal and a glossy red dielectric;
-"glass", a rough glass; each also with a ground that is Lambertian in both renderers,
-make_lambertian; "normal_map_lambertian_ground", the ground alone with a normal map; and
-"alpha_lambertian_ground", the ground behind a card cut out by its texture's alpha; and
-"emission_lambertian_ground", the ground lit only by a card emitting the checker), lit by a sun (angle 0: a
-delta light) and a uniform grey world; exported through filmback's add-on
-(importers/blender/export_shot.py: the camera, the sun in Blender's units and the world travel in
-FILMBACK_blender) and rendered with Cycles at
-160x120 with a 1 px box filter.
+BSDF and what SHOTS puts over it: "materials", a glossy gold metal and a glossy red dielectric
+sphere; "glass", a rough glass sphere; "normal_map", nothing, the ground normal-mapped (ridges);
+"alpha", a card cut out by its texture's alpha (the Principled BSDF's Alpha); "emission", a card
+emitting the checker (the Principled BSDF's Emission), the only light. The others are lit by a sun
+(angle 0: a delta light) and a uniform grey world. Every material is built before the export and
+exported as it is, through filmback's add-on (importers/blender/export_shot.py: the node trees,
+the camera, the sun in Blender's units and the world travel in FILMBACK_blender), so that filmback
+renders the node trees Cycles renders; Cycles renders at 160x120 with a 1 px box filter.
 
     blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT
 
@@ -18,7 +17,6 @@ one record: shot name, samples, width_px, height_px, and checker_red/checker_whi
 base colours, linear).
 """
 
-import json
 import math
 import os
 import sys
@@ -40,7 +38,9 @@ CHECKER_SQUARES = 8
 CHECKER_PX = 256
 RED_SRGB = (0.8, 0.1, 0.1)
 WHITE_SRGB = (0.9, 0.9, 0.9)
-BOUNCES = 8  # filmback's path integrator's default max_depth
+# Cycles' bounces after the camera's hit: filmback's path integrator's default max_depth of 8
+# counts that hit's light too.
+BOUNCES = 7
 EMISSION_STRENGTH = 4.0  # W sr^-1 m^-2 per unit of the emissive texture
 
 
@@ -66,23 +66,28 @@ def checker_image(path):
     return image
 
 
-def principled(name, base_colour, metallic, roughness):
+def principled(name, base_colour, metallic, roughness, distribution="GGX", **inputs):
+    """A Principled BSDF material with Specular 0.5 (F0 = 0.08 * 0.5 = 0.04) and `inputs` set by
+    their names with _ for spaces (Sheen_Tint=0.5); returns it and its node."""
     material = bpy.data.materials.new(name)
     material.use_nodes = True
     bsdf = material.node_tree.nodes["Principled BSDF"]
-    bsdf.distribution = "GGX"
+    bsdf.distribution = distribution
     bsdf.inputs["Base Color"].default_value = (*base_colour, 1.0)
     bsdf.inputs["Metallic"].default_value = metallic
     bsdf.inputs["Roughness"].default_value = roughness
-    bsdf.inputs["Specular"].default_value = 0.5  # F0 = 0.08 * 0.5 = 0.04, glTF's ior 1.5
+    bsdf.inputs["Specular"].default_value = 0.5
+    for key, value in inputs.items():
+        bsdf.inputs[key.replace("_", " ")].default_value = value
     return material, bsdf
 
 
-def ridges_image(path):
+def ridges_image(path=None):
     """A tangent-space normal map (OpenGL convention, as glTF and Blender: +X right, +Y up the
     image) of the height field h = A sin(2 pi 4 x) + A sin(2 pi 3 y), x right and y up the image
     in [0, 1]: slopes up to 0.5 along x and 0.38 along y, so that a flipped tangent or bitangent
-    lights the other flank of the ridges."""
+    lights the other flank of the ridges. Saved as a PNG at `path`, or left a generated image
+    (which the add-on saves beside the export)."""
     image = bpy.data.images.new("ridges", CHECKER_PX, CHECKER_PX, alpha=False)
     image.colorspace_settings.name = "Non-Color"
     a = 0.5 / (2 * math.pi * 4)
@@ -96,10 +101,23 @@ def ridges_image(path):
             length = math.sqrt(sum(c * c for c in n))
             pixels.extend((*(0.5 + 0.5 * c / length for c in n), 1.0))
     image.pixels = pixels
-    image.filepath_raw = path
-    image.file_format = "PNG"
-    image.save()
+    if path:
+        image.filepath_raw = path
+        image.file_format = "PNG"
+        image.save()
     return image
+
+
+def link_normal_map(material, bsdf, image):
+    """The image through a Normal Map node (tangent space, strength 1: glTF's scale 1) into the
+    node's Normal."""
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    normals = nodes.new("ShaderNodeTexImage")
+    normals.image = image
+    normals.interpolation = "Linear"
+    mapping = nodes.new("ShaderNodeNormalMap")
+    links.new(normals.outputs["Color"], mapping.inputs["Color"])
+    links.new(mapping.outputs["Normal"], bsdf.inputs["Normal"])
 
 
 def add_ground(image, normal_map=None):
@@ -113,38 +131,8 @@ def add_ground(image, normal_map=None):
     texture.interpolation = "Linear"
     links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
     if normal_map is not None:
-        normals = nodes.new("ShaderNodeTexImage")
-        normals.image = normal_map
-        normals.interpolation = "Linear"
-        mapping = nodes.new("ShaderNodeNormalMap")  # tangent space, strength 1: glTF scale 1
-        links.new(normals.outputs["Color"], mapping.inputs["Color"])
-        links.new(mapping.outputs["Normal"], bsdf.inputs["Normal"])
+        link_normal_map(material, bsdf, normal_map)
     ground.data.materials.append(material)
-    return material
-
-
-def make_lambertian(path, material):
-    """The ground as a Lambertian surface in both renderers, so that a shot measures its spheres
-    rather than the diffuse models (Principled's Burley against glTF's Fresnel-weighted Lambert):
-    the export gets KHR_materials_specular with specularFactor 0 (filmback: no specular layer),
-    and Cycles renders a Diffuse BSDF (roughness 0: Lambert) fed by the same image."""
-    with open(path) as f:
-        gltf = json.load(f)
-    for m in gltf["materials"]:
-        if m["name"] == material.name:
-            m.setdefault("extensions", {})["KHR_materials_specular"] = {"specularFactor": 0.0}
-    used = gltf.setdefault("extensionsUsed", [])
-    if "KHR_materials_specular" not in used:
-        used.append("KHR_materials_specular")
-    with open(path, "w") as f:
-        json.dump(gltf, f, indent=1)
-    nodes, links = material.node_tree.nodes, material.node_tree.links
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Roughness"].default_value = 0.0
-    links.new(nodes["Image Texture"].outputs["Color"], diffuse.inputs["Color"])
-    if "Normal Map" in nodes:
-        links.new(nodes["Normal Map"].outputs["Normal"], diffuse.inputs["Normal"])
-    links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
 
 
 def cutout_image(path):
@@ -168,8 +156,9 @@ def cutout_image(path):
 
 def add_cutout(image):
     """A 2 m card standing on the ground in front of the spheres' place, facing the camera, its
-    alpha from the image: exported as alphaMode MASK (blend method CLIP), rendered by Cycles as
-    the Principled BSDF's Alpha (a mix with a Transparent BSDF)."""
+    alpha from the image through the Principled BSDF's Alpha, which both renderers render as a
+    mix with a Transparent BSDF (blend method CLIP, exported as glTF's alphaMode MASK for other
+    viewers, is an Eevee setting Cycles ignores)."""
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.0, -0.5, 1.0), rotation=(math.radians(90.0), 0.0, 0.0))
     card = bpy.context.active_object
     card.name = "card"
@@ -183,14 +172,12 @@ def add_cutout(image):
     links.new(texture.outputs["Color"], bsdf.inputs["Base Color"])
     links.new(texture.outputs["Alpha"], bsdf.inputs["Alpha"])
     card.data.materials.append(material)
-    return material
 
 
 def add_emissive_card(image):
     """A 2 m card standing behind the spheres' place, facing the camera, emitting the checker
-    image at strength EMISSION_STRENGTH (exported as emissiveTexture, emissiveFactor 1 and
-    KHR_materials_emissive_strength) and reflecting nothing (base colour black), so that it lights
-    the ground by its texture alone."""
+    image through the Principled BSDF's Emission at strength EMISSION_STRENGTH and reflecting
+    nothing (base colour black, Specular 0), so that it lights the ground by its texture alone."""
     bpy.ops.mesh.primitive_plane_add(size=2.0, location=(0.0, 1.0, 1.0), rotation=(math.radians(90.0), 0.0, 0.0))
     card = bpy.context.active_object
     card.name = "emitter"
@@ -205,20 +192,6 @@ def add_emissive_card(image):
     card.data.materials.append(material)
 
 
-def make_lambertian_cutout(path, material):
-    """The card as a Lambertian surface in both renderers (as make_lambertian), its coverage a
-    mix with a Transparent BSDF in Cycles."""
-    make_lambertian(path, material)
-    nodes, links = material.node_tree.nodes, material.node_tree.links
-    diffuse = nodes["Diffuse BSDF"]
-    transparent = nodes.new("ShaderNodeBsdfTransparent")
-    mix = nodes.new("ShaderNodeMixShader")
-    links.new(nodes["Image Texture"].outputs["Alpha"], mix.inputs["Fac"])
-    links.new(transparent.outputs["BSDF"], mix.inputs[1])
-    links.new(diffuse.outputs["BSDF"], mix.inputs[2])
-    links.new(mix.outputs["Shader"], nodes["Material Output"].inputs["Surface"])
-
-
 def add_sphere(name, location, radius, material):
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=radius, location=location)
     sphere = bpy.context.active_object
@@ -228,66 +201,63 @@ def add_sphere(name, location, radius, material):
 
 
 def glass():
-    """Principled with Transmission 1 (exported as KHR_materials_transmission and _ior): a rough
-    glass tinted by its base colour, its reflection and refraction equally rough (Transmission
-    Roughness 0)."""
-    material, bsdf = principled("glass", (0.9, 0.95, 1.0), 0.0, 0.15)
-    bsdf.inputs["Transmission"].default_value = 1.0
-    bsdf.inputs["IOR"].default_value = 1.5
-    return material
+    """Principled with Transmission 1: a rough glass tinted by its base colour, its reflection
+    and refraction equally rough (Transmission Roughness 0)."""
+    return principled("glass", (0.9, 0.95, 1.0), 0.0, 0.15, Transmission=1.0, IOR=1.5)[0]
 
 
-SPHERES = {
+SHOTS = {
     # A glossy gold metal and a glossy red dielectric.
     "materials": (("metal", (-0.9, 0.2, 0.7), lambda: principled("gold metal", (1.0, 0.77, 0.34), 1.0, 0.3)[0]),
                   ("dielectric", (0.9, 0.4, 0.7), lambda: principled("red dielectric", (0.6, 0.05, 0.05), 0.0, 0.2)[0])),
     # One rough glass sphere over the checker, which it refracts.
     "glass": (("glass", (0.0, 0.3, 0.7), glass),),
+    # The ground alone with a normal map (ridges_image).
+    "normal_map": (),
+    # The ground and a card cut out by its texture's alpha (cutout_image).
+    "alpha": (),
+    # The ground lit by a card emitting the checker texture (add_emissive_card), no sun, no world.
+    "emission": (),
 }
-SPHERES["materials_lambertian_ground"] = SPHERES["materials"]
-SPHERES["glass_lambertian_ground"] = SPHERES["glass"]
-# The ground alone with a normal map (ridges_image), Lambertian in both renderers.
-SPHERES["normal_map_lambertian_ground"] = ()
-# The ground and a card cut out by its texture's alpha (cutout_image), Lambertian in both.
-SPHERES["alpha_lambertian_ground"] = ()
-# The ground lit by a card emitting the checker texture (add_emissive_card), no sun, no world.
-SPHERES["emission_lambertian_ground"] = ()
 
 
-def main():
-    args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in SPHERES:
-        raise SystemExit("usage: blender -b --factory-startup --python material_shot.py -- OUTDIR SHOT\n"
-                         "shots: " + " ".join(SPHERES))
-    out_dir, name = os.path.abspath(args[0]), args[1]
-    os.makedirs(out_dir, exist_ok=True)
-
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    make_shot.new_world(scene, WORLD_RGB, 0.0 if name.startswith("emission") else 1.0)
-
-    make_shot.configure_cycles(scene, SHOT)
+def configure_cycles(scene, shot):
+    """make_shot.py's settings, with filmback's path depth and nothing that biases Cycles' estimate
+    away from the integral filmback estimates."""
+    make_shot.configure_cycles(scene, shot)
     cycles = scene.cycles
     cycles.max_bounces = cycles.diffuse_bounces = cycles.glossy_bounces = BOUNCES
     cycles.transmission_bounces = cycles.transparent_max_bounces = BOUNCES
-    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0  # no clamping: unbiased
+    cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0.0  # no clamping
+    cycles.light_sampling_threshold = 0.0  # every light sample's shadow ray is traced
     cycles.caustics_reflective = cycles.caustics_refractive = True
     cycles.blur_glossy = 0.0  # Filter Glossy off: it widens glossy lobes after a bounce
+
+
+def main():
+    out_dir, name = make_shot.shot_arguments("material_shot.py", SHOTS)
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    make_shot.new_world(scene, WORLD_RGB, 0.0 if name == "emission" else 1.0)
+
+    configure_cycles(scene, SHOT)
 
     camera = make_shot.build_camera(scene, SHOT)
     camera.location = (0.0, -6.0, 3.2)
     camera.rotation_euler = Euler((math.radians(64.0), 0.0, 0.0), "XYZ")
 
-    normal_map = ridges_image(os.path.join(out_dir, "ridges.png")) if name.startswith("normal_map") else None
-    ground = add_ground(checker_image(os.path.join(out_dir, "checker.png")), normal_map)
-    for sphere_name, location, make_material in SPHERES[name]:
+    normal_map = ridges_image(os.path.join(out_dir, "ridges.png")) if name == "normal_map" else None
+    add_ground(checker_image(os.path.join(out_dir, "checker.png")), normal_map)
+    for sphere_name, location, make_material in SHOTS[name]:
         add_sphere(sphere_name, location, 0.7, make_material())
-    card = add_cutout(cutout_image(os.path.join(out_dir, "cutout.png"))) if name.startswith("alpha") else None
-    if name.startswith("emission"):
+    if name == "alpha":
+        add_cutout(cutout_image(os.path.join(out_dir, "cutout.png")))
+    if name == "emission":
         add_emissive_card(bpy.data.images["checker"])
 
     sun_data = bpy.data.lights.new("Sun", "SUN")
-    sun_data.energy = 0.0 if name.startswith("emission") else SUN_W_PER_M2
+    sun_data.energy = 0.0 if name == "emission" else SUN_W_PER_M2
     sun_data.angle = 0.0
     sun = bpy.data.objects.new("Sun", sun_data)
     sun.rotation_euler = Euler([math.radians(a) for a in SUN_ROTATION_DEG], "XYZ")
@@ -301,10 +271,6 @@ def main():
             height_px=SHOT.height_px, checker_red=linear(RED_SRGB), checker_white=linear(WHITE_SRGB)))
 
     export_shot.export(os.path.join(out_dir, "shot.gltf"))
-    if name.endswith("_lambertian_ground"):
-        make_lambertian(os.path.join(out_dir, "shot.gltf"), ground)
-    if card is not None:
-        make_lambertian_cutout(os.path.join(out_dir, "shot.gltf"), card)
 
     scene.render.filepath = os.path.join(out_dir, "cycles.exr")
     bpy.ops.render.render(write_still=True)
