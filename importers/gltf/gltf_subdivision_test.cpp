@@ -66,7 +66,7 @@ TEST(GltfSubdivision, ReadsTheCageAndSettingsAndDropsTheTriangulatedMesh) {
   ASSERT_EQ(scene.subdivision_surfaces.size(), 1u);
   const SubdivisionSurface& s = scene.subdivision_surfaces[0];
   EXPECT_EQ(s.name, "Cube");
-  EXPECT_EQ(s.material, 0u);
+  EXPECT_EQ(s.parts.at(0).material, 0u);
   EXPECT_EQ(s.cage_positions.size(), 4u);
   EXPECT_EQ(s.cage_positions[2].x, 1.f);
   EXPECT_EQ(s.cage_positions[2].y, 1.f);
