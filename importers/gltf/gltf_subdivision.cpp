@@ -131,7 +131,7 @@ void read_uv_maps(const tinygltf::Value& subdivision, const std::string& path,
     const std::optional<std::string> name = Fields(map, at, file).word("name");
     if (!name) r.fail("", "expected a string 'name'");
     uv_map.name = *name;
-    const auto& uvs = *r.array("uvs", 2, 2 * corners, true);
+    const auto& uvs = *r.array("uvs", 2, 2 * kMaxFaceVertices, true);
     if (uvs.size() != 2 * corners)
       r.fail("uvs", std::to_string(uvs.size()) + " elements, expected " +
                         std::to_string(2 * corners) + " (u, v for each of the cage's corners)");
@@ -219,7 +219,7 @@ SubdivisionSurface read_subdivision(const tinygltf::Value& subdivision, const st
           {r.index(*creases, "vertex_creases", i, 0, last_vertex, "a vertex index"),
            r.weight(*creases, "vertex_creases", i + 1)});
   read_uv_maps(subdivision, path, file, total, out);
-  if (const auto* faces = r.array("face_primitives", 1, sizes.size(), false)) {
+  if (const auto* faces = r.array("face_primitives", 1, kMaxFaceVertices, false)) {
     if (faces->size() != sizes.size())
       r.fail("face_primitives", std::to_string(faces->size()) + " elements, expected " +
                                     std::to_string(sizes.size()) + " (one per cage face)");
