@@ -34,7 +34,18 @@ struct Case {
   std::string name;
   SubdivisionSurface surface;
   std::vector<Vec3f> blender;  // Blender's evaluated vertices
+  // uvs.txt: the corners of Blender's evaluated mesh, their vertices and UVs (glTF's v down).
+  std::vector<std::pair<Vec3f, Vec2f>> blender_corners;
 };
+
+const std::pair<const char*, SubdivisionSettings::UvSmooth> kUvSmooth[] = {
+    {"NONE", SubdivisionSettings::UvSmooth::kNone},
+    {"PRESERVE_CORNERS", SubdivisionSettings::UvSmooth::kPreserveCorners},
+    {"PRESERVE_CORNERS_AND_JUNCTIONS", SubdivisionSettings::UvSmooth::kPreserveCornersAndJunctions},
+    {"PRESERVE_CORNERS_JUNCTIONS_AND_CONCAVE",
+     SubdivisionSettings::UvSmooth::kPreserveCornersJunctionsAndConcave},
+    {"PRESERVE_BOUNDARIES", SubdivisionSettings::UvSmooth::kPreserveBoundaries},
+    {"SMOOTH_ALL", SubdivisionSettings::UvSmooth::kSmoothAll}};
 
 std::vector<Case> read_cases(const fs::path& file) {
   std::ifstream in(file);
@@ -59,6 +70,13 @@ std::vector<Case> read_cases(const fs::path& file) {
                                : SubdivisionSettings::Boundary::kAll;
       st.use_creases = use_creases != 0;
       st.use_limit_surface = use_limit != 0;
+      if (std::string word; s >> key >> word)  // uvs.txt's cases: uv_smooth, and a UV map
+        for (const auto& [name, value] : kUvSmooth)
+          if (word == name) {
+            st.uv_smooth = value;
+            c.surface.uv_maps = {{"UVMap", {}}};
+            c.surface.parts[0].slot_uv_maps[0] = 0;
+          }
       c.surface.name = c.name;
       c.surface.node = c.name;
       cases.push_back(std::move(c));
@@ -78,6 +96,14 @@ std::vector<Case> read_cases(const fs::path& file) {
       EdgeCrease e;
       s >> e.v0 >> e.v1 >> e.weight;
       cases.back().surface.edge_creases.push_back(e);
+    } else if (kind == "t") {  // Blender's v runs up, glTF's (and the add-on's) down
+      float u, v;
+      s >> u >> v;
+      cases.back().surface.uv_maps.at(0).corner_uvs.push_back({u, 1 - v});
+    } else if (kind == "l") {
+      float x, y, z, u, v;
+      s >> x >> y >> z >> u >> v;
+      cases.back().blender_corners.push_back({{x, y, z}, {u, 1 - v}});
     } else if (kind == "c") {
       VertexCrease c;
       s >> c.vertex >> c.weight;
@@ -147,6 +173,122 @@ TEST(BlenderSubdiv, RefinementMatchesBlendersEvaluatedMesh) {
     if (c.name == "cube_creases") {
       EXPECT_GT(linear_error, 100 * kMaxVertexError);
     }
+  }
+}
+
+// The same comparison for texture coordinates (subdiv_shot.py's "uv" cases): each corner of
+// Blender's evaluated mesh must have one of filmback's vertices at its position (within
+// kMaxUvCasePositionError) with its UV (within kMaxUvError), and each of filmback's vertices one
+// of Blender's corners; and the vertices split along the seams as Blender's corners do (its
+// corners' UVs at one vertex, joined within kSameUv, are as many as filmback's vertices there).
+// Measured on Debian's Blender 3.4.1 (docs/blender.md, "Subdivision"): UVs within 1.8e-7 of
+// Blender's under Keep Boundaries and None, at levels 1 and 2, with and without the limit
+// surface; positions within 1.9e-7 m. kMaxUvError leaves a factor of 50 for other builds'
+// rounding and is 1/6000 of the smallest UV step here (1/16 of a 1/4-wide face), while the next
+// rule gives UVs 0.055 to 0.059 off (printed), so a wrong uv_smooth mapping fails.
+constexpr double kMaxUvError = 1e-5;
+constexpr double kMaxUvCasePositionError = 1e-5;
+constexpr double kSameUv = 1e-5;
+
+// Under Smooth All the UV islands' corners are smooth face-varying corners, where Blender's patch
+// table (isolated `quality` levels deep, Gregory end caps) approximates the limit that Bfr
+// evaluates, as it does for positions at smooth boundary corners: measured 9.2e-4 at quality 3
+// (Blender's default) and 1.45e-5 at quality 6, shrinking as 4^-quality, nowhere else. The bound
+// follows that law with a margin of 1.5.
+double max_smooth_all_uv_error(uint32_t quality) {
+  return 1.5e-3 * std::pow(4.0, 3.0 - quality);
+}
+
+struct UvMatch {
+  double uv = 0, position = 0;  // the worst distances
+};
+
+// For each corner of `from`, the one of `to` nearest in position (ties within 1e-5 m broken by
+// the nearest UV): the worst UV and position distances.
+UvMatch worst_match(const std::vector<std::pair<Vec3f, Vec2f>>& from,
+                    const std::vector<std::pair<Vec3f, Vec2f>>& to) {
+  UvMatch worst;
+  for (const auto& [p, uv] : from) {
+    double nearest = HUGE_VAL;
+    for (const auto& q : to)
+      nearest = std::min(nearest, double(length(p - q.first)));
+    double uv_error = HUGE_VAL;
+    for (const auto& q : to)
+      if (double(length(p - q.first)) <= nearest + 1e-5)
+        uv_error = std::min(uv_error, std::hypot(double(uv.x) - q.second.x,
+                                                 double(uv.y) - q.second.y));
+    worst.uv = std::max(worst.uv, uv_error);
+    worst.position = std::max(worst.position, nearest);
+  }
+  return worst;
+}
+
+// Blender's corners joined into vertices: at each position, the distinct UVs (within kSameUv).
+size_t split_vertices(const std::vector<std::pair<Vec3f, Vec2f>>& corners) {
+  std::vector<std::pair<Vec3f, Vec2f>> distinct;
+  for (const auto& c : corners) {
+    bool known = false;
+    for (const auto& d : distinct)
+      known = known || (length(c.first - d.first) < 1e-5f &&
+                        std::hypot(double(c.second.x) - d.second.x,
+                                   double(c.second.y) - d.second.y) < kSameUv);
+    if (!known) distinct.push_back(c);
+  }
+  return distinct.size();
+}
+
+TEST(BlenderSubdiv, UvsMatchBlendersEvaluatedCorners) {
+  const std::optional<fs::path> blender = find_blender();
+  if (!blender)
+    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
+                    "`blender` (apt-get install blender) to run the tests against Blender.";
+  const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv_uv";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  std::ostringstream command;
+  command << "'" << blender->string() << "' -b --factory-startup --python-exit-code 1 --python '"
+          << FILMBACK_MAKE_SHOT_PY << "' -- '" << work.string() << "' uv > '"
+          << (work / "blender.log").string() << "' 2>&1";
+  ASSERT_EQ(std::system(command.str().c_str()), 0) << "see " << (work / "blender.log");
+  const std::vector<Case> cases = read_cases(work / "uvs.txt");
+  ASSERT_EQ(cases.size(), 11u);
+  std::printf("%-34s %8s %8s %8s %12s %12s %14s\n", "case", "corners", "blender", "filmback",
+              "max |d uv|", "max |d| (m)", "other rule uv");
+  for (const Case& c : cases) {
+    ASSERT_FALSE(c.surface.uv_maps.empty()) << c.name;
+    const TriangleMesh ours = refine(c.surface);
+    const std::vector<Vec2f>& uv = ours.texturing.texcoords[0];
+    ASSERT_EQ(uv.size(), ours.positions.size()) << c.name;
+    std::vector<std::pair<Vec3f, Vec2f>> vertices;
+    for (size_t v = 0; v < uv.size(); ++v)
+      vertices.push_back({ours.positions[v], uv[v]});
+    const UvMatch to_ours = worst_match(c.blender_corners, vertices);
+    const UvMatch to_blender = worst_match(vertices, c.blender_corners);
+    const size_t blender_vertices = split_vertices(c.blender_corners);
+    // What the next rule in Blender's list would give: how far apart the rules are here.
+    SubdivisionSurface other = c.surface;
+    other.settings.uv_smooth =
+        other.settings.uv_smooth == SubdivisionSettings::UvSmooth::kSmoothAll
+            ? SubdivisionSettings::UvSmooth::kPreserveBoundaries
+            : SubdivisionSettings::UvSmooth::kSmoothAll;
+    const TriangleMesh theirs = refine(other);
+    std::vector<std::pair<Vec3f, Vec2f>> other_vertices;
+    for (size_t v = 0; v < theirs.positions.size(); ++v)
+      other_vertices.push_back({theirs.positions[v], theirs.texturing.texcoords[0][v]});
+    const double other_error = worst_match(c.blender_corners, other_vertices).uv;
+    std::printf("%-34s %8zu %8zu %8zu %12.3g %12.3g %14.3g\n", c.name.c_str(),
+                c.blender_corners.size(), blender_vertices, vertices.size(),
+                std::max(to_ours.uv, to_blender.uv),
+                std::max(to_ours.position, to_blender.position), other_error);
+    EXPECT_EQ(vertices.size(), blender_vertices) << c.name;
+    EXPECT_LT(std::max(to_ours.uv, to_blender.uv),
+              c.surface.settings.uv_smooth == SubdivisionSettings::UvSmooth::kSmoothAll
+                  ? max_smooth_all_uv_error(c.surface.settings.quality)
+                  : kMaxUvError)
+        << c.name;
+    EXPECT_GT(other_error, 100 * kMaxUvError) << c.name;
+    EXPECT_LT(std::max(to_ours.position, to_blender.position), kMaxUvCasePositionError)
+        << c.name;
   }
 }
 

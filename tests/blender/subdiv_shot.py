@@ -11,6 +11,15 @@ Subdivision Surface modifier evaluates to (object space, Blender's axes), one re
   r X Y Z              a vertex of Blender's evaluated mesh
   end
 
+    blender -b --factory-startup --python subdiv_shot.py -- OUTDIR uv
+writes OUTDIR/uvs.txt: cages with a UV map (a cube with Blender's default unwrap, whose seams
+cut it into a cross; a grid whose right half is shifted in u, a seam down its middle) under
+uv_smooth NONE, PRESERVE_BOUNDARIES and SMOOTH_ALL, and for each the corners of the mesh
+Blender's modifier evaluates, as above plus
+  case ... uv_smooth S  (the case line ends with the modifier's uv_smooth)
+  t U V                 a cage corner's UV (Blender's, v up), in the order of the f records
+  l X Y Z U V           a corner (loop) of Blender's evaluated mesh: its vertex and its UV
+
     blender -b --factory-startup --python subdiv_shot.py -- OUTDIR subdiv
 builds the subdivided-mesh shot: a cube with a Subdivision Surface modifier (render level 2,
 some creases) as an emissive object on a black world, and small emissive marker spheres, seen by
@@ -73,12 +82,13 @@ def add_subsurf(obj, level, scheme="CATMULL_CLARK", boundary="ALL", use_creases=
     return m
 
 
-def write_case(out, name, obj):
+def write_case(out, name, obj, uvs=False):
     m = obj.modifiers[-1]
     me = obj.data
     out.write(f"case {name} level {m.render_levels} scheme {m.subdivision_type} boundary "
               f"{m.boundary_smooth} use_creases {int(m.use_creases)} "
-              f"use_limit {int(m.use_limit_surface)} quality {m.quality}\n")
+              f"use_limit {int(m.use_limit_surface)} quality {m.quality}"
+              + (f" uv_smooth {m.uv_smooth}" if uvs else "") + "\n")
     for v in me.vertices:
         out.write("v %.9g %.9g %.9g\n" % tuple(v.co))
     for p in me.polygons:
@@ -88,10 +98,20 @@ def write_case(out, name, obj):
             out.write(f"e {e.vertices[0]} {e.vertices[1]} {e.crease:.9g}\n")
     for v, w in vertex_crease_values(me).items():
         out.write(f"c {v} {w:.9g}\n")
+    if uvs:
+        layer = me.uv_layers.active.data
+        for p in me.polygons:
+            for i in p.loop_indices:
+                out.write("t %.9g %.9g\n" % tuple(layer[i].uv))
     depsgraph = bpy.context.evaluated_depsgraph_get()
     evaluated = obj.evaluated_get(depsgraph).to_mesh()
     for v in evaluated.vertices:
         out.write("r %.9g %.9g %.9g\n" % tuple(v.co))
+    if uvs:
+        layer = evaluated.uv_layers.active.data
+        for loop in evaluated.loops:
+            out.write("l %.9g %.9g %.9g %.9g %.9g\n"
+                      % (*evaluated.vertices[loop.vertex_index].co, *layer[loop.index].uv))
     obj.evaluated_get(depsgraph).to_mesh_clear()
     out.write("end\n")
 
@@ -142,6 +162,47 @@ def mesh_cases(out_dir):
     with open(os.path.join(out_dir, "meshes.txt"), "w") as out:
         for name, o in cases:
             write_case(out, name, o)
+
+
+def seamed_grid():
+    """A 3 x 3 grid (2 m) whose UV map is Blender's planar one with the right half's faces moved
+    by 0.5 in u: a seam runs down the middle column of vertices."""
+    o = new_object(bpy.ops.mesh.primitive_grid_add, x_subdivisions=4, y_subdivisions=4, size=2)
+    me = o.data
+    layer = me.uv_layers.active.data
+    for p in me.polygons:
+        if p.center.x > 0:
+            for i in p.loop_indices:
+                layer[i].uv = (layer[i].uv[0] + 0.5, layer[i].uv[1])
+    return o
+
+
+def uv_cases(out_dir):
+    """Cages with UV seams under three uv_smooth rules; level 1 and 2, limit surface on (and once
+    off). The grid's boundary is PRESERVE_CORNERS so that the smooth-corner end caps (see
+    mesh_cases) stay out of the comparison of UVs."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    cases = []
+    for uv_smooth in ("PRESERVE_BOUNDARIES", "SMOOTH_ALL", "NONE"):
+        for level in (1, 2):
+            o = new_object(bpy.ops.mesh.primitive_cube_add, size=2)
+            add_subsurf(o, level).uv_smooth = uv_smooth
+            cases.append((f"cube_{uv_smooth.lower()}_level{level}", o))
+        o = seamed_grid()
+        add_subsurf(o, 2, boundary="PRESERVE_CORNERS").uv_smooth = uv_smooth
+        cases.append((f"grid_{uv_smooth.lower()}", o))
+    # Smooth All at quality 6: Blender's end caps at the islands' corners approach the limit.
+    o = new_object(bpy.ops.mesh.primitive_cube_add, size=2)
+    m = add_subsurf(o, 1)
+    m.uv_smooth, m.quality = "SMOOTH_ALL", 6
+    cases.append(("cube_smooth_all_quality6", o))
+    o = new_object(bpy.ops.mesh.primitive_cube_add, size=2)
+    add_subsurf(o, 2, use_limit=False)
+    cases.append(("cube_no_limit", o))
+    bpy.context.view_layer.update()
+    with open(os.path.join(out_dir, "uvs.txt"), "w") as out:
+        for name, o in cases:
+            write_case(out, name, o, uvs=True)
 
 
 SHOT = make_shot.Shot(320, 200, 35.0, markers=(), samples=512)
@@ -204,13 +265,15 @@ def build_shot(out_dir):
 
 def main():
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in ("mesh", "subdiv"):
+    if len(args) != 2 or args[1] not in ("mesh", "uv", "subdiv"):
         raise SystemExit("usage: blender -b --factory-startup --python subdiv_shot.py -- OUTDIR "
-                         "mesh|subdiv")
+                         "mesh|uv|subdiv")
     out_dir = os.path.abspath(args[0])
     os.makedirs(out_dir, exist_ok=True)
     if args[1] == "mesh":
         mesh_cases(out_dir)
+    elif args[1] == "uv":
+        uv_cases(out_dir)
     else:
         build_shot(out_dir)
 
