@@ -19,6 +19,7 @@
 
 #include "core/image/image_io.h"
 #include "tests/blender/blender_shot.h"
+#include "tests/blender/checker_pixels.h"
 
 namespace fb::test {
 namespace {
@@ -31,15 +32,6 @@ struct Bounds {
   double mean_relative_difference;
   double block_relative_difference;
 };
-
-enum class Square { kRed, kWhite, kEdge };
-
-Square classify(const Image& image, uint32_t x, uint32_t y) {
-  const double r = image.at(x, y, 0), g = image.at(x, y, 1);
-  if (!(r > 0)) return Square::kEdge;
-  const double ratio = g / r;
-  return ratio < 0.3 ? Square::kRed : ratio > 0.6 ? Square::kWhite : Square::kEdge;
-}
 
 void compare_with_cycles(const std::filesystem::path& blender, const std::string& shot,
                          const Bounds& bounds) {
@@ -57,15 +49,10 @@ void compare_with_cycles(const std::filesystem::path& blender, const std::string
   ASSERT_EQ(std::system(reseeded.c_str()), 0) << reseeded;
   const Image f1 = read_image(work / "filmback_seed1.exr");
 
-  size_t misplaced = 0, edge_moved = 0, red = 0;
+  const auto [misplaced, edge_moved, red] = compare_checkers(c, f);
   double sum_abs = 0, sum_c = 0, sum_f = 0, sum_noise = 0;
   for (uint32_t y = 0; y < c.height; ++y)
     for (uint32_t x = 0; x < c.width; ++x) {
-      const Square a = classify(c, x, y), b = classify(f, x, y);
-      misplaced +=
-          (a == Square::kRed && b == Square::kWhite) || (a == Square::kWhite && b == Square::kRed);
-      edge_moved += (a == Square::kEdge) != (b == Square::kEdge);
-      red += a == Square::kRed;
       for (size_t ch = 0; ch < 3; ++ch) {
         ASSERT_TRUE(std::isfinite(f.at(x, y, ch)));
         sum_abs += std::abs(f.at(x, y, ch) - c.at(x, y, ch));

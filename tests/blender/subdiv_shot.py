@@ -20,6 +20,13 @@ Blender's modifier evaluates, as above plus
   t U V                 a cage corner's UV (Blender's, v up), in the order of the f records
   l X Y Z U V           a corner (loop) of Blender's evaluated mesh: its vertex and its UV
 
+    blender -b --factory-startup --python subdiv_shot.py -- OUTDIR textured
+builds the textured subdivided shot: a cube with Blender's default unwrap (its faces a cross in
+UV space) and a Subdivision Surface modifier (render level 2, uv_smooth as Blender's default),
+emitting material_shot.py's 8x8 red and white checker through its UV map on black; exported
+with filmback's add-on and rendered with Cycles (shot.gltf, checker.png, cycles.exr,
+manifest.txt).
+
     blender -b --factory-startup --python subdiv_shot.py -- OUTDIR subdiv
 builds the subdivided-mesh shot: a cube with a Subdivision Surface modifier (render level 2,
 some creases) as an emissive object on a black world, and small emissive marker spheres, seen by
@@ -28,6 +35,7 @@ renders it with Cycles. Writes shot.gltf, cycles.exr and manifest.txt (tests/ble
 the markers' records; the subdivided object is compared between the two renders.
 """
 
+import math
 import os
 import sys
 
@@ -39,6 +47,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "importers", "blender"))
 import export_shot  # noqa: E402  (filmback's add-on, enabled for the session)
 import make_shot  # noqa: E402  (camera, materials, Cycles settings, shot properties, records)
+import material_shot  # noqa: E402  (the checker image)
 
 
 def set_creases(obj, edge_creases, vertex_creases):
@@ -263,17 +272,77 @@ def build_shot(out_dir):
     bpy.ops.render.render(write_still=True)
 
 
+TEXTURED_SHOT = make_shot.Shot(240, 150, 35.0, markers=(), samples=64)
+TEXTURED_DEPTH_M = 3.0
+
+
+def checker_material(out_dir):
+    """material_shot.py's checker, emitted at strength 1 (radiance = the texture's linear value)."""
+    material = make_shot.emission_material("checker", (1.0, 1.0, 1.0), 1.0)
+    nodes, links = material.node_tree.nodes, material.node_tree.links
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = material_shot.checker_image(os.path.join(out_dir, "checker.png"))
+    texture.interpolation = "Linear"
+    links.new(texture.outputs["Color"], nodes["Emission"].inputs["Color"])
+    return material
+
+
+def build_textured_shot(out_dir):
+    """Two subdivided objects wearing the checker, at TEXTURED_DEPTH_M on black: a cube with
+    Blender's default unwrap (its faces a cross in UV space, every vertex on the island's
+    boundary, so seams and boundary rules matter) and a torus with Blender's default UVs (a grid
+    with interior vertices, whose smoothing the rule decides). What each pixel shows is where the
+    refined UVs put the checker, with nothing else in the image."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    make_shot.new_world(scene)
+    make_shot.configure_cycles(scene, TEXTURED_SHOT)
+    camera = make_shot.build_camera(scene, TEXTURED_SHOT)
+    bpy.context.view_layer.update()
+    frame = make_shot.Frame(scene, camera)
+    material = checker_material(out_dir)
+    cube = new_object(bpy.ops.mesh.primitive_cube_add, size=OBJECT_SIZE_M,
+                      location=camera.matrix_world @ frame.point(0.3, 0.5, TEXTURED_DEPTH_M),
+                      rotation=(0.5, 0.6, 0.3))
+    torus = new_object(bpy.ops.mesh.primitive_torus_add, major_segments=12, minor_segments=6,
+                       major_radius=0.6, minor_radius=0.25,
+                       location=camera.matrix_world @ frame.point(0.75, 0.5, TEXTURED_DEPTH_M),
+                       rotation=(1.0, 0.3, 0.2))
+    # Its grid of UVs waved across v: refinement reproduces linear UVs under every rule, and it is
+    # where they are not linear that the rules differ.
+    layer = torus.data.uv_layers.active.data
+    for loop in layer:
+        u, v = loop.uv
+        loop.uv = (u, v + 0.06 * math.sin(2 * math.pi * 4 * u))
+    for obj in (cube, torus):
+        add_subsurf(obj, 2)
+        obj.data.materials.append(material)
+        bpy.context.view_layer.objects.active = obj
+        bpy.ops.object.shade_smooth()
+    bpy.context.view_layer.update()
+    with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
+        manifest.write(make_shot.record(
+            "shot", name="textured", samples=TEXTURED_SHOT.samples,
+            width_px=TEXTURED_SHOT.width_px, height_px=TEXTURED_SHOT.height_px,
+            camera_model="perspective"))
+    export_shot.export(os.path.join(out_dir, "shot.gltf"), export_lights=False)
+    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
+    bpy.ops.render.render(write_still=True)
+
+
 def main():
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(args) != 2 or args[1] not in ("mesh", "uv", "subdiv"):
+    if len(args) != 2 or args[1] not in ("mesh", "uv", "textured", "subdiv"):
         raise SystemExit("usage: blender -b --factory-startup --python subdiv_shot.py -- OUTDIR "
-                         "mesh|uv|subdiv")
+                         "mesh|uv|textured|subdiv")
     out_dir = os.path.abspath(args[0])
     os.makedirs(out_dir, exist_ok=True)
     if args[1] == "mesh":
         mesh_cases(out_dir)
     elif args[1] == "uv":
         uv_cases(out_dir)
+    elif args[1] == "textured":
+        build_textured_shot(out_dir)
     else:
         build_shot(out_dir)
 
