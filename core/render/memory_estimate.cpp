@@ -77,11 +77,11 @@ double refined_texturing_bytes(const SubdivisionSurface& surface) {
   double split = 1;
   const uint32_t vertices = uint32_t(surface.cage_positions.size());
   for (const SubdivisionUvMap& map : surface.uv_maps)
-    split = std::max(split, double(join_uv_corners(surface.cage_face_sizes,
-                                                   surface.cage_face_vertices, vertices,
-                                                   map.corner_uvs)
-                                       .value_count()) /
-                                std::max(vertices, 1u));
+    split =
+        std::max(split, double(join_uv_corners(surface.cage_face_sizes, surface.cage_face_vertices,
+                                               vertices, map.corner_uvs)
+                                   .value_count()) /
+                            std::max(vertices, 1u));
   const double vertices_made = refined_triangles(surface) / 2 * split;
   return 2 * per_vertex * vertices_made;  // the scene's mesh and the render's copy
 }

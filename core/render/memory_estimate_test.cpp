@@ -77,7 +77,8 @@ TEST(MemoryEstimate, RefinedTextureCoordinatesFollowFromTheCage) {
   for (int i = 0; i < 8; ++i)
     cube.cage_positions.push_back({float(i & 1), float((i >> 1) & 1), float(i >> 2)});
   cube.cage_face_sizes.assign(6, 4);
-  cube.cage_face_vertices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+  cube.cage_face_vertices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4,
+                             2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
   cube.settings.levels_render = 2;
   EXPECT_EQ(refined_texturing_bytes(cube), 0);  // no part reads a UV map
   // Each face its own island at u = 2 f: 24 values for 8 vertices, a split of 3.

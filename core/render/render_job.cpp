@@ -310,9 +310,9 @@ void RenderJob::check_memory_budget(double triangles, double texturing) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
-  const MemoryEstimate estimate = estimate_memory(
-      width_, height_, p.integrator->channels().size(), options_.reconstruction,
-      SplatTiles::reach(std::max(radius[0], radius[1])), triangles, texturing);
+  const MemoryEstimate estimate =
+      estimate_memory(width_, height_, p.integrator->channels().size(), options_.reconstruction,
+                      SplatTiles::reach(std::max(radius[0], radius[1])), triangles, texturing);
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else

@@ -78,7 +78,7 @@ struct SubdivisionSurface {
   SubdivisionSettings settings;
   std::vector<SubdivisionUvMap> uv_maps;  // those the parts read
   std::vector<SubdivisionPart> parts{1};  // at least one
-  std::vector<uint32_t> face_parts;       // per cage face, its index in `parts`; empty: all parts[0]
+  std::vector<uint32_t> face_parts;  // per cage face, its index in `parts`; empty: all parts[0]
   // Where it is placed, as a MeshInstance of the refined mesh will be.
   Transform world_from_object;
   std::string node;

@@ -15,8 +15,8 @@
 namespace fb {
 
 struct FaceVaryingChannel {
-  std::vector<float> values;             // u, v per value
-  std::vector<uint32_t> corner_values;   // per face corner, an index into values / 2
+  std::vector<float> values;            // u, v per value
+  std::vector<uint32_t> corner_values;  // per face corner, an index into values / 2
   uint32_t value_count() const { return uint32_t(values.size() / 2); }
 };
 

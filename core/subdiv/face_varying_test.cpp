@@ -15,13 +15,13 @@ const std::vector<uint32_t> kVertices{0, 1, 4, 3, 1, 2, 5, 4};
 // The corners' coordinates when each quad maps onto its own place in the plane; `shift` moves the
 // second quad's coordinates along u.
 std::vector<Vec2f> strip_uvs(float shift) {
-  return {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {1 + shift, 0}, {2 + shift, 0}, {2 + shift, 1},
-          {1 + shift, 1}};
+  return {{0, 0},         {1, 0},         {1, 1},         {0, 1},
+          {1 + shift, 0}, {2 + shift, 0}, {2 + shift, 1}, {1 + shift, 1}};
 }
 
 TEST(FaceVarying, CornersWithTheSameCoordinatesShareAValue) {
   const FaceVaryingChannel c = join_uv_corners(kSizes, kVertices, 6, strip_uvs(0));
-  EXPECT_EQ(c.value_count(), 6u);  // one per vertex: no seam
+  EXPECT_EQ(c.value_count(), 6u);                     // one per vertex: no seam
   EXPECT_EQ(c.corner_values[1], c.corner_values[4]);  // vertex 1 in both faces
   EXPECT_EQ(c.corner_values[2], c.corner_values[7]);  // vertex 4
   EXPECT_EQ(c.values[2 * c.corner_values[5]], 2.f);

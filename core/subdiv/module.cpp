@@ -65,5 +65,3 @@ extern "C" __attribute__((visibility("default"))) int filmback_subdiv_refine(
   filmback_subdiv_free(out);
   return 1;
 }
-
-

@@ -85,11 +85,11 @@ void fill_cage(const SubdivisionSurface& s, CageData& d) {
                    : FB_SUBDIV_BOUNDARY_EDGE_ONLY;
   // The UV maps as face-varying channels, their corners joined as Blender joins them.
   for (const SubdivisionUvMap& map : s.uv_maps)
-    d.uvs.push_back(join_uv_corners(s.cage_face_sizes, s.cage_face_vertices, c.vertex_count,
-                                    map.corner_uvs));
+    d.uvs.push_back(
+        join_uv_corners(s.cage_face_sizes, s.cage_face_vertices, c.vertex_count, map.corner_uvs));
   for (const FaceVaryingChannel& channel : d.uvs)
-    d.uv_channels.push_back({channel.values.data(), channel.value_count(),
-                             channel.corner_values.data()});
+    d.uv_channels.push_back(
+        {channel.values.data(), channel.value_count(), channel.corner_values.data()});
   c.uv_channels = d.uv_channels.data();
   c.uv_channel_count = uint32_t(d.uv_channels.size());
   c.fvar_linear = fvar_linear(settings.uv_smooth);
@@ -202,9 +202,9 @@ std::string where(const Scene& scene, const SubdivisionSurface& s) {
 // What the importer guarantees and the module relies on: arrays parallel to the cage's corners
 // and faces, parts in range.
 void check_face_data(const Scene& scene, const SubdivisionSurface& s) {
-  bool ok = !s.parts.empty() &&
-            (s.face_parts.empty() ? s.parts.size() == 1
-                                  : s.face_parts.size() == s.cage_face_sizes.size());
+  bool ok =
+      !s.parts.empty() && (s.face_parts.empty() ? s.parts.size() == 1
+                                                : s.face_parts.size() == s.cage_face_sizes.size());
   for (uint32_t p : s.face_parts)
     ok = ok && p < s.parts.size();
   for (const SubdivisionUvMap& map : s.uv_maps)

@@ -263,8 +263,7 @@ void expect_island_grid(const TriangleMesh& m) {
     EXPECT_NEAR(t.x * 4, std::round(t.x * 4), 1e-5) << t.x;
     EXPECT_NEAR(t.y * 4, std::round(t.y * 4), 1e-5) << t.y;
     const float island_u = t.x - 2 * std::floor(t.x / 2 + 0.25f);  // 0..1 within its island
-    EXPECT_TRUE(island_u >= -1e-5f && island_u <= 1 + 1e-5f && t.y >= -1e-6f &&
-                t.y <= 1 + 1e-6f)
+    EXPECT_TRUE(island_u >= -1e-5f && island_u <= 1 + 1e-5f && t.y >= -1e-6f && t.y <= 1 + 1e-6f)
         << t.x << " " << t.y;
   }
 }

@@ -152,8 +152,8 @@ Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
         // A seam: this face's own points along the edge, in its direction, at the same places.
         here.first = uint32_t(owners.uv_face.size()), here.reversed = false;
         for (uint32_t i = 0; i < inner; ++i)
-          owners.copies.push_back(
-              {owners.add(kNoFace, f), edge.from == a ? edge.first + i : edge.first + inner - 1 - i});
+          owners.copies.push_back({owners.add(kNoFace, f),
+                                   edge.from == a ? edge.first + i : edge.first + inner - 1 - i});
       }
       if (owners.uv_face.size() > INT32_MAX) throw std::runtime_error("more than 2^31 points");
     }
@@ -203,8 +203,7 @@ Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
     // Each channel's patch points, one block after another.
     std::vector<size_t> uv_patch_first(channels + 1, 0);
     for (uint32_t c = 0; c < channels; ++c)
-      uv_patch_first[c + 1] =
-          uv_patch_first[c] + 2 * size_t(s.uv_surfaces[c].GetNumPatchPoints());
+      uv_patch_first[c + 1] = uv_patch_first[c] + 2 * size_t(s.uv_surfaces[c].GetNumPatchPoints());
     s.uv_patch_points.resize(uv_patch_first[channels]);
     for (uint32_t c = 0; c < channels; ++c)
       s.uv_surfaces[c].PreparePatchPoints(cage.uv_channels[c].values, point2,

@@ -268,8 +268,8 @@ std::vector<Vec2f> read_texcoords(const AccessorContext& ctx, const tinygltf::Pr
 }  // namespace
 
 TexcoordPlan plan_texcoords(const Material& material, const MeshUvMaps& maps,
-                           const std::string& file, const std::string& path,
-                           Diagnostics& diagnostics) {
+                            const std::string& file, const std::string& path,
+                            Diagnostics& diagnostics) {
   TexcoordPlan plan;
   if (material.shader_graph) {
     // The graph's UV maps, found by name, in the graph's slots.

@@ -38,8 +38,8 @@ struct TexcoordPlan {
   std::optional<uint32_t> tangent_slot;
 };
 TexcoordPlan plan_texcoords(const Material& material, const MeshUvMaps& maps,
-                           const std::string& file, const std::string& path,
-                           Diagnostics& diagnostics);
+                            const std::string& file, const std::string& path,
+                            Diagnostics& diagnostics);
 
 // The texture coordinates and tangents `material` reads, into mesh.texturing. `path` is the
 // primitive's JSON path. Tangents come from TANGENT, or are computed per vertex from the

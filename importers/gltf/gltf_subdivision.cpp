@@ -109,8 +109,8 @@ void read_settings(const Reader& r, SubdivisionSettings& s) {
   if (auto v = r.flag("use_creases")) s.use_creases = *v;
   if (auto v = r.flag("use_limit_surface")) s.use_limit_surface = *v;
   if (auto v = r.choice("uv_smooth", {"NONE", "PRESERVE_CORNERS", "PRESERVE_CORNERS_AND_JUNCTIONS",
-                                       "PRESERVE_CORNERS_JUNCTIONS_AND_CONCAVE",
-                                       "PRESERVE_BOUNDARIES", "SMOOTH_ALL"}))
+                                      "PRESERVE_CORNERS_JUNCTIONS_AND_CONCAVE",
+                                      "PRESERVE_BOUNDARIES", "SMOOTH_ALL"}))
     s.uv_smooth = SubdivisionSettings::UvSmooth(*v);
 }
 
@@ -225,8 +225,8 @@ SubdivisionSurface read_subdivision(const tinygltf::Value& subdivision, const st
                                     std::to_string(sizes.size()) + " (one per cage face)");
     out.face_parts.resize(faces->size());
     for (size_t f = 0; f < faces->size(); ++f)
-      out.face_parts[f] = r.index(*faces, "face_primitives", f, 0,
-                                  double(primitive_count) - 1, "a primitive of the node's mesh");
+      out.face_parts[f] = r.index(*faces, "face_primitives", f, 0, double(primitive_count) - 1,
+                                  "a primitive of the node's mesh");
   }
   return out;
 }
@@ -245,8 +245,9 @@ std::vector<uint32_t> primitive_materials(const tinygltf::Model& model, int mesh
   for (size_t p = 0; p < mesh.primitives.size(); ++p) {
     const int m = mesh.primitives[p].material;
     if (m >= 0 && size_t(m) >= model.materials.size())
-      throw_input(file, index_path("meshes", size_t(mesh_index)) + "." +
-                            index_path("primitives", p) + ".material",
+      throw_input(file,
+                  index_path("meshes", size_t(mesh_index)) + "." + index_path("primitives", p) +
+                      ".material",
                   out_of_range("material", m, model.materials.size(), "materials"));
     out.push_back(m < 0 ? kNoSubdivisionMaterial : uint32_t(m));
   }
@@ -285,8 +286,8 @@ void plan_uv_maps(const std::vector<Material>& materials, const Fields& mesh_ext
   for (SubdivisionPart& part : s.parts) {
     if (part.material == kNoSubdivisionMaterial) continue;  // the default material reads none
     const Material& material = materials[part.material];
-    const TexcoordPlan plan = plan_texcoords(material, maps, mesh_extension.file(), path,
-                                             diagnostics);
+    const TexcoordPlan plan =
+        plan_texcoords(material, maps, mesh_extension.file(), path, diagnostics);
     for (uint32_t slot = 0; slot < VertexTextureData::kSets; ++slot) {
       if (!plan.slots[slot]) continue;
       const uint32_t n = *plan.slots[slot];
@@ -316,13 +317,10 @@ void plan_uv_maps(const std::vector<Material>& materials, const Fields& mesh_ext
 
 }  // namespace
 
-std::optional<SubdivisionSurface> read_node_subdivision(const tinygltf::Model& model,
-                                                        const tinygltf::Node& node,
-                                                        const std::string& path,
-                                                        const Transform& world, uint32_t scene_node,
-                                                        const std::vector<Material>& materials,
-                                                        const std::string& file,
-                                                        Diagnostics& diagnostics) {
+std::optional<SubdivisionSurface> read_node_subdivision(
+    const tinygltf::Model& model, const tinygltf::Node& node, const std::string& path,
+    const Transform& world, uint32_t scene_node, const std::vector<Material>& materials,
+    const std::string& file, Diagnostics& diagnostics) {
   const auto ext = node.extensions.find("FILMBACK_blender");
   if (ext == node.extensions.end() || !ext->second.IsObject() || !ext->second.Has("subdivision"))
     return std::nullopt;
@@ -339,10 +337,9 @@ std::optional<SubdivisionSurface> read_node_subdivision(const tinygltf::Model& m
   make_parts(primitive_materials(model, node.mesh, file), s);
   static const tinygltf::Value kNone;
   const auto ours = mesh.extensions.find("FILMBACK_blender");
-  const Fields mesh_extension(ours == mesh.extensions.end() ? kNone : ours->second,
-                              index_path("meshes", size_t(node.mesh)) +
-                                  ".extensions.FILMBACK_blender",
-                              file);
+  const Fields mesh_extension(
+      ours == mesh.extensions.end() ? kNone : ours->second,
+      index_path("meshes", size_t(node.mesh)) + ".extensions.FILMBACK_blender", file);
   plan_uv_maps(materials, mesh_extension, sub_path, diagnostics, s);
   return s;
 }

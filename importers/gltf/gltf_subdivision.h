@@ -33,12 +33,9 @@ SubdivisionSurface read_subdivision(const tinygltf::Value& subdivision, const st
 // material reads (found by name as for a triangle mesh; unread maps are dropped). The node's glTF
 // mesh is the triangulated cage, written for other viewers: the caller does not render it.
 constexpr uint32_t kNoSubdivisionMaterial = 0xffffffffu;
-std::optional<SubdivisionSurface> read_node_subdivision(const tinygltf::Model& model,
-                                                        const tinygltf::Node& node,
-                                                        const std::string& path,
-                                                        const Transform& world, uint32_t scene_node,
-                                                        const std::vector<Material>& materials,
-                                                        const std::string& file,
-                                                        Diagnostics& diagnostics);
+std::optional<SubdivisionSurface> read_node_subdivision(
+    const tinygltf::Model& model, const tinygltf::Node& node, const std::string& path,
+    const Transform& world, uint32_t scene_node, const std::vector<Material>& materials,
+    const std::string& file, Diagnostics& diagnostics);
 
 }  // namespace fb::gltf

@@ -34,8 +34,10 @@ std::filesystem::path write_gltf(const std::string& subdivision,
   "nodes": [{"name": "Cube", "mesh": 0, "translation": [0, 0, -5],
              "extensions": {"FILMBACK_blender": {"subdivision": {)"
                       << subdivision << R"(}}}}],
-  "materials": [)" << materials << R"(],
-  "meshes": [)" << mesh << "]" << extra << R"(,
+  "materials": [)" << materials
+                      << R"(],
+  "meshes": [)" << mesh
+                      << "]" << extra << R"(,
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
                  "min": [0, 0, 0], "max": [1, 1, 0]}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
@@ -182,8 +184,8 @@ const char* kStripCage = R"("cage_positions": [0,0,0, 1,0,0, 2,0,0, 0,1,0, 1,1,0
 // A Blender material whose base colour is an image read through UV map `uv_map` ("" for the
 // active render map), and a normal map through the same.
 std::string textured_material(const std::string& name, const std::string& uv_map) {
-  const std::string texture = R"({"uri": "tex.png", "colorspace": "sRGB", "uv_map": ")" + uv_map +
-                              R"("})";
+  const std::string texture =
+      R"({"uri": "tex.png", "colorspace": "sRGB", "uv_map": ")" + uv_map + R"("})";
   return R"({"name": ")" + name +
          R"(", "extensions": {"FILMBACK_blender": {"blender_version": [3, 4, 1], "surface": 0,
      "nodes": [{"type": "PRINCIPLED", "name": "Principled BSDF", "inputs": {
@@ -224,10 +226,9 @@ TEST(GltfSubdivision, UvMapsAreFoundByNameAndUnreadOnesDropped) {
 TEST(GltfSubdivision, TheActiveRenderMapIsTheMeshsAndAMissingMapIsAWarning) {
   Diagnostics diagnostics;
   const Scene scene = import_gltf(
-      with_texture(write_gltf(kStripCage,
-                              textured_material("Textured", "") + "," +
-                                  textured_material("Elsewhere", "C"),
-                              R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
+      with_texture(write_gltf(
+          kStripCage, textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
+          R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
                                     {"attributes": {"POSITION": 0}, "material": 1}],
                      "extensions": {"FILMBACK_blender": {"uv_maps": ["A", "B"],
                                                          "active_render_uv_map": "B"}}})")),
@@ -242,15 +243,15 @@ TEST(GltfSubdivision, TheActiveRenderMapIsTheMeshsAndAMissingMapIsAWarning) {
 
   // Faces on both primitives: "Elsewhere" reads "C", which the cage lacks: map 0 ("A") stands in,
   // as TEXCOORD_0 does for a triangle mesh, with a warning.
-  const Scene both = import_gltf(
-      with_texture(write_gltf(
-          std::string(kStripCage) + R"(, "face_primitives": [1, 0])",
-          textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
-          R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
+  const Scene both =
+      import_gltf(with_texture(write_gltf(
+                      std::string(kStripCage) + R"(, "face_primitives": [1, 0])",
+                      textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
+                      R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
                                     {"attributes": {"POSITION": 0}, "material": 1}],
                      "extensions": {"FILMBACK_blender": {"uv_maps": ["A", "B"],
                                                          "active_render_uv_map": "B"}}})")),
-      diagnostics);
+                  diagnostics);
   EXPECT_EQ(diagnostics.count(), 1u);
   const SubdivisionSurface& t = both.subdivision_surfaces.at(0);
   ASSERT_EQ(t.parts.size(), 2u);

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "core/subdiv/refine_scene.h"
 #include "core/image/image_io.h"
+#include "core/subdiv/refine_scene.h"
 #include "tests/blender/blender_shot.h"
 #include "tests/blender/checker_pixels.h"
 #include "tests/support/blobs.h"
@@ -116,6 +116,19 @@ std::vector<Case> read_cases(const fs::path& file) {
   return cases;
 }
 
+// The cases subdiv_shot.py writes to `file` in its `mode`, run by `blender` in work/subdiv_MODE.
+// Throws std::runtime_error with the end of Blender's log when it fails.
+std::vector<Case> blender_cases(const fs::path& blender, const std::string& mode,
+                                const std::string& file) {
+  const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / ("subdiv_" + mode);
+  fs::remove_all(work);
+  fs::create_directories(work);
+  run_logged(quoted(blender) + " -b --factory-startup --python-exit-code 1 --python " +
+                 quoted(FILMBACK_MAKE_SHOT_PY) + " -- " + quoted(work) + " " + mode,
+             work / "blender.log");
+  return read_cases(work / file);
+}
+
 TriangleMesh refine(const SubdivisionSurface& surface) {
   Scene scene;
   scene.file = "meshes.txt";
@@ -141,15 +154,7 @@ TEST(BlenderSubdiv, RefinementMatchesBlendersEvaluatedMesh) {
   if (!blender)
     GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
                     "`blender` (apt-get install blender) to run the tests against Blender.";
-  const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv_mesh";
-  fs::remove_all(work);
-  fs::create_directories(work);
-  std::ostringstream command;
-  command << "'" << blender->string() << "' -b --factory-startup --python-exit-code 1 --python '"
-          << FILMBACK_MAKE_SHOT_PY << "' -- '" << work.string() << "' mesh > '"
-          << (work / "blender.log").string() << "' 2>&1";
-  ASSERT_EQ(std::system(command.str().c_str()), 0) << "see " << (work / "blender.log");
-  const std::vector<Case> cases = read_cases(work / "meshes.txt");
+  const std::vector<Case> cases = blender_cases(*blender, "mesh", "meshes.txt");
   ASSERT_EQ(cases.size(), 10u);
   std::printf("%-22s %8s %8s %12s %12s\n", "case", "blender", "filmback", "max |d| (m)",
               "10c instead");
@@ -218,8 +223,8 @@ UvMatch worst_match(const std::vector<std::pair<Vec3f, Vec2f>>& from,
     double uv_error = HUGE_VAL;
     for (const auto& q : to)
       if (double(length(p - q.first)) <= nearest + 1e-5)
-        uv_error = std::min(uv_error, std::hypot(double(uv.x) - q.second.x,
-                                                 double(uv.y) - q.second.y));
+        uv_error =
+            std::min(uv_error, std::hypot(double(uv.x) - q.second.x, double(uv.y) - q.second.y));
     worst.uv = std::max(worst.uv, uv_error);
     worst.position = std::max(worst.position, nearest);
   }
@@ -245,15 +250,7 @@ TEST(BlenderSubdiv, UvsMatchBlendersEvaluatedCorners) {
   if (!blender)
     GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
                     "`blender` (apt-get install blender) to run the tests against Blender.";
-  const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv_uv";
-  fs::remove_all(work);
-  fs::create_directories(work);
-  std::ostringstream command;
-  command << "'" << blender->string() << "' -b --factory-startup --python-exit-code 1 --python '"
-          << FILMBACK_MAKE_SHOT_PY << "' -- '" << work.string() << "' uv > '"
-          << (work / "blender.log").string() << "' 2>&1";
-  ASSERT_EQ(std::system(command.str().c_str()), 0) << "see " << (work / "blender.log");
-  const std::vector<Case> cases = read_cases(work / "uvs.txt");
+  const std::vector<Case> cases = blender_cases(*blender, "uv", "uvs.txt");
   ASSERT_EQ(cases.size(), 11u);
   std::printf("%-34s %8s %8s %8s %12s %12s %14s\n", "case", "corners", "blender", "filmback",
               "max |d uv|", "max |d| (m)", "other rule uv");
@@ -270,10 +267,9 @@ TEST(BlenderSubdiv, UvsMatchBlendersEvaluatedCorners) {
     const size_t blender_vertices = split_vertices(c.blender_corners);
     // What the next rule in Blender's list would give: how far apart the rules are here.
     SubdivisionSurface other = c.surface;
-    other.settings.uv_smooth =
-        other.settings.uv_smooth == SubdivisionSettings::UvSmooth::kSmoothAll
-            ? SubdivisionSettings::UvSmooth::kPreserveBoundaries
-            : SubdivisionSettings::UvSmooth::kSmoothAll;
+    other.settings.uv_smooth = other.settings.uv_smooth == SubdivisionSettings::UvSmooth::kSmoothAll
+                                   ? SubdivisionSettings::UvSmooth::kPreserveBoundaries
+                                   : SubdivisionSettings::UvSmooth::kSmoothAll;
     const TriangleMesh theirs = refine(other);
     std::vector<std::pair<Vec3f, Vec2f>> other_vertices;
     for (size_t v = 0; v < theirs.positions.size(); ++v)
@@ -290,8 +286,7 @@ TEST(BlenderSubdiv, UvsMatchBlendersEvaluatedCorners) {
                   : kMaxUvError)
         << c.name;
     EXPECT_GT(other_error, 100 * kMaxUvError) << c.name;
-    EXPECT_LT(std::max(to_ours.position, to_blender.position), kMaxUvCasePositionError)
-        << c.name;
+    EXPECT_LT(std::max(to_ours.position, to_blender.position), kMaxUvCasePositionError) << c.name;
   }
 }
 
@@ -376,8 +371,8 @@ size_t misplaced_with_uv_smooth(const fs::path& work, const ShotRenders& r,
   const fs::path file = work / ("uv_smooth_" + uv_smooth + ".gltf");
   std::ofstream(file) << gltf;
   const fs::path image = work / ("uv_smooth_" + uv_smooth + ".exr");
-  run_logged(quoted(FILMBACK_EXE) + " render " + quoted(file) + " -o " + quoted(image) +
-                 " --spp " + r.shot.text("samples"),
+  run_logged(quoted(FILMBACK_EXE) + " render " + quoted(file) + " -o " + quoted(image) + " --spp " +
+                 r.shot.text("samples"),
              work / ("uv_smooth_" + uv_smooth + ".log"));
   return compare_checkers(r.cycles, read_image(image)).misplaced;
 }

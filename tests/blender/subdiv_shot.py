@@ -243,14 +243,19 @@ def build_object(camera, frame):
     return obj
 
 
-def build_shot(out_dir):
+def new_shot_scene(shot):
+    """An empty scene on a black world, Cycles set up for `shot`, and its camera and frame."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     make_shot.new_world(scene)
-    make_shot.configure_cycles(scene, SHOT)
-    camera = make_shot.build_camera(scene, SHOT)
+    make_shot.configure_cycles(scene, shot)
+    camera = make_shot.build_camera(scene, shot)
     bpy.context.view_layer.update()
-    frame = make_shot.Frame(scene, camera)
+    return scene, camera, make_shot.Frame(scene, camera)
+
+
+def build_shot(out_dir):
+    scene, camera, frame = new_shot_scene(SHOT)
     build_object(camera, frame)
     spheres = [(marker, *make_shot.add_sphere(camera, frame, marker, marker.depth_m))
                for marker in MARKERS]
@@ -293,13 +298,7 @@ def build_textured_shot(out_dir):
     boundary, so seams and boundary rules matter) and a torus with Blender's default UVs (a grid
     with interior vertices, whose smoothing the rule decides). What each pixel shows is where the
     refined UVs put the checker, with nothing else in the image."""
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    make_shot.new_world(scene)
-    make_shot.configure_cycles(scene, TEXTURED_SHOT)
-    camera = make_shot.build_camera(scene, TEXTURED_SHOT)
-    bpy.context.view_layer.update()
-    frame = make_shot.Frame(scene, camera)
+    scene, camera, frame = new_shot_scene(TEXTURED_SHOT)
     material = checker_material(out_dir)
     cube = new_object(bpy.ops.mesh.primitive_cube_add, size=OBJECT_SIZE_M,
                       location=camera.matrix_world @ frame.point(0.3, 0.5, TEXTURED_DEPTH_M),
