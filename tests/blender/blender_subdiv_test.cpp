@@ -348,32 +348,33 @@ TEST(BlenderSubdiv, SubdividedObjectMatchesCycles) {
   }
 }
 
-// The textured shot (subdiv_shot.py "textured"): a cube with Blender's default unwrap and a torus
+// The textured shot (subdiv_shot.py "textured"): a cube with Blender's default unwrap, half of
+// its faces in a second material that reads a second UV map shifted by one square, and a torus
 // with waved UVs, both subdivided (level 2, uv_smooth PRESERVE_BOUNDARIES) and emitting the
 // checker through their UV maps. Every pixel is the texture where the refined UVs put it, so red
-// in one render and white in the other is a misplaced UV. Measured (Debian's Blender 3.4.1, 64
-// spp): no misplaced pixel of 36 000, 17 900 of them on the checker; image means within 0.03 %.
-// The bound allows 36 pixels (0.1 %) of edge noise; the same export refined with uv_smooth None
-// misplaces 415 pixels and with Smooth All 512 (printed each run), so the rule is what is tested.
+// in one render and white in the other is a misplaced UV (or a face given the wrong material or
+// map). Measured (Debian's Blender 3.4.1, 64 spp): no misplaced pixel of 36 000, about 17 900 of
+// them on the checker; image means within 0.01 %. The bound allows 36 pixels (0.1 %) of edge
+// noise; the same export refined with uv_smooth None misplaces about 400 pixels, with Smooth All
+// about 500, and with every cube face in its first primitive's material (face_primitives
+// ignored) about 1100 (printed each run), so the rule and the parts are what is tested.
 constexpr double kMaxMisplacedFraction = 0.001;
 constexpr double kMaxTexturedMeanError = 0.01;
 
-// `shot.gltf` with the modifier's uv_smooth replaced, rendered as render_shot renders it; the
-// misplaced pixels against Cycles.
-size_t misplaced_with_uv_smooth(const fs::path& work, const ShotRenders& r,
-                                const std::string& uv_smooth) {
+// `shot.gltf` with each `from` replaced by `to`, rendered as render_shot renders it, as
+// `name`.gltf: its misplaced pixels against Cycles.
+size_t misplaced_when_edited(const fs::path& work, const ShotRenders& r, const std::string& name,
+                             const std::string& from, const std::string& to) {
   std::string gltf = read_text(work / "shot.gltf");
-  const std::string from = "\"PRESERVE_BOUNDARIES\"", to = "\"" + uv_smooth + "\"";
   size_t replaced = 0;
-  for (size_t at = gltf.find(from); at != std::string::npos; at = gltf.find(from, at))
+  for (size_t at = gltf.find(from); at != std::string::npos; at = gltf.find(from, at + to.size()))
     gltf.replace(at, from.size(), to), ++replaced;
-  if (replaced == 0) throw std::runtime_error("shot.gltf names no PRESERVE_BOUNDARIES");
-  const fs::path file = work / ("uv_smooth_" + uv_smooth + ".gltf");
+  if (replaced == 0) throw std::runtime_error("shot.gltf has no " + from);
+  const fs::path file = work / (name + ".gltf"), image = work / (name + ".exr");
   std::ofstream(file) << gltf;
-  const fs::path image = work / ("uv_smooth_" + uv_smooth + ".exr");
   run_logged(quoted(FILMBACK_EXE) + " render " + quoted(file) + " -o " + quoted(image) + " --spp " +
                  r.shot.text("samples"),
-             work / ("uv_smooth_" + uv_smooth + ".log"));
+             work / (name + ".log"));
   return compare_checkers(r.cycles, read_image(image)).misplaced;
 }
 
@@ -395,19 +396,24 @@ TEST(BlenderSubdiv, TexturedSubdividedObjectsMatchCycles) {
       for (size_t ch = 0; ch < 3; ++ch)
         sum_c += r.cycles.at(x, y, ch), sum_f += r.filmback.at(x, y, ch);
   const double pixels = double(r.cycles.width) * r.cycles.height;
-  const size_t none = misplaced_with_uv_smooth(work, r, "NONE");
-  const size_t smooth_all = misplaced_with_uv_smooth(work, r, "SMOOTH_ALL");
+  const std::string rule = "\"PRESERVE_BOUNDARIES\"";
+  const size_t none = misplaced_when_edited(work, r, "uv_smooth_none", rule, "\"NONE\"");
+  const size_t smooth_all = misplaced_when_edited(work, r, "uv_smooth_all", rule, "\"SMOOTH_ALL\"");
+  // An unknown member is ignored: every face then wears the first primitive's material.
+  const size_t one_part =
+      misplaced_when_edited(work, r, "one_part", "\"face_primitives\"", "\"ignored\"");
   std::printf(
       "textured subdivided shot: %zu red-square pixels in Cycles; red/white disagreements %zu "
-      "(%.3f %%), edge pixels moved %zu; filmback/Cycles mean %.5f; refined with uv_smooth NONE "
-      "%zu disagreements, SMOOTH_ALL %zu; Blender %.1f s, filmback %.1f s\n",
+      "(%.3f %%), edge pixels moved %zu; filmback/Cycles mean %.5f; disagreements with uv_smooth "
+      "NONE %zu, SMOOTH_ALL %zu, without face_primitives %zu; Blender %.1f s, filmback %.1f s\n",
       a.red, a.misplaced, 100 * double(a.misplaced) / pixels, a.edge_moved, sum_f / sum_c, none,
-      smooth_all, r.blender_s, r.filmback_s);
+      smooth_all, one_part, r.blender_s, r.filmback_s);
   EXPECT_GT(a.red, size_t(0.1 * pixels)) << "the checker is not in view";
   EXPECT_LE(double(a.misplaced), kMaxMisplacedFraction * pixels);
   EXPECT_LT(std::abs(sum_f / sum_c - 1), kMaxTexturedMeanError);
   EXPECT_GT(double(none), 5 * kMaxMisplacedFraction * pixels);
   EXPECT_GT(double(smooth_all), 5 * kMaxMisplacedFraction * pixels);
+  EXPECT_GT(double(one_part), 5 * kMaxMisplacedFraction * pixels);
 }
 
 }  // namespace

@@ -281,25 +281,46 @@ TEXTURED_SHOT = make_shot.Shot(240, 150, 35.0, markers=(), samples=64)
 TEXTURED_DEPTH_M = 3.0
 
 
-def checker_material(out_dir):
-    """material_shot.py's checker, emitted at strength 1 (radiance = the texture's linear value)."""
-    material = make_shot.emission_material("checker", (1.0, 1.0, 1.0), 1.0)
+def checker_material(name, image, uv_map=None):
+    """material_shot.py's checker `image`, emitted at strength 1 (radiance = the texture's linear
+    value), through the UV map named `uv_map` (a UV Map node) or the active render one."""
+    material = make_shot.emission_material(name, (1.0, 1.0, 1.0), 1.0)
     nodes, links = material.node_tree.nodes, material.node_tree.links
     texture = nodes.new("ShaderNodeTexImage")
-    texture.image = material_shot.checker_image(os.path.join(out_dir, "checker.png"))
+    texture.image = image
     texture.interpolation = "Linear"
     links.new(texture.outputs["Color"], nodes["Emission"].inputs["Color"])
+    if uv_map is not None:
+        source = nodes.new("ShaderNodeUVMap")
+        source.uv_map = uv_map
+        links.new(source.outputs["UV"], texture.inputs["Vector"])
     return material
+
+
+def add_shifted_half(cube, image):
+    """The cube's first three faces wear a second checker material that reads a second UV map,
+    "Shifted": the first moved by one checker square in u, so that a face given the wrong
+    material, or the wrong map, shows every square in the other colour."""
+    me = cube.data
+    first = me.uv_layers.active.data
+    shifted = me.uv_layers.new(name="Shifted").data
+    for i, loop in enumerate(first):
+        shifted[i].uv = (loop.uv[0] + 1.0 / material_shot.CHECKER_SQUARES, loop.uv[1])
+    cube.data.materials.append(checker_material("checker shifted", image, "Shifted"))
+    for p in me.polygons[:3]:
+        p.material_index = 1
 
 
 def build_textured_shot(out_dir):
     """Two subdivided objects wearing the checker, at TEXTURED_DEPTH_M on black: a cube with
     Blender's default unwrap (its faces a cross in UV space, every vertex on the island's
-    boundary, so seams and boundary rules matter) and a torus with Blender's default UVs (a grid
-    with interior vertices, whose smoothing the rule decides). What each pixel shows is where the
+    boundary, so seams and boundary rules matter), half of it in a second material through a
+    second UV map (add_shifted_half), and a torus with Blender's default UVs (a grid with
+    interior vertices, whose smoothing the rule decides). What each pixel shows is where the
     refined UVs put the checker, with nothing else in the image."""
     scene, camera, frame = new_shot_scene(TEXTURED_SHOT)
-    material = checker_material(out_dir)
+    image = material_shot.checker_image(os.path.join(out_dir, "checker.png"))
+    material = checker_material("checker", image)
     cube = new_object(bpy.ops.mesh.primitive_cube_add, size=OBJECT_SIZE_M,
                       location=camera.matrix_world @ frame.point(0.3, 0.5, TEXTURED_DEPTH_M),
                       rotation=(0.5, 0.6, 0.3))
@@ -318,6 +339,7 @@ def build_textured_shot(out_dir):
         obj.data.materials.append(material)
         bpy.context.view_layer.objects.active = obj
         bpy.ops.object.shade_smooth()
+    add_shifted_half(cube, image)
     bpy.context.view_layer.update()
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record(
