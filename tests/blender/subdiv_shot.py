@@ -188,7 +188,7 @@ def seamed_grid():
 
 def uv_cases(out_dir):
     """Cages with UV seams under three uv_smooth rules; level 1 and 2, limit surface on (and once
-    off). The grid's boundary is PRESERVE_CORNERS so that the smooth-corner end caps (see
+    off); n-gons and triangles. The grid's boundary is PRESERVE_CORNERS so that the smooth-corner end caps (see
     mesh_cases) stay out of the comparison of UVs."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     cases = []
@@ -208,6 +208,13 @@ def uv_cases(out_dir):
     o = new_object(bpy.ops.mesh.primitive_cube_add, size=2)
     add_subsurf(o, 2, use_limit=False)
     cases.append(("cube_no_limit", o))
+    # N-gons and triangles with their default UVs: a cylinder's 8-sided caps, a cone's sides.
+    o = new_object(bpy.ops.mesh.primitive_cylinder_add, vertices=8)
+    add_subsurf(o, 2)
+    cases.append(("cylinder_ngons", o))
+    o = new_object(bpy.ops.mesh.primitive_cone_add, vertices=6)
+    add_subsurf(o, 1)
+    cases.append(("cone_triangles", o))
     bpy.context.view_layer.update()
     with open(os.path.join(out_dir, "uvs.txt"), "w") as out:
         for name, o in cases:
