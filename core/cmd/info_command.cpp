@@ -190,14 +190,23 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
   if (!scene.subdivision_surfaces.empty())
     std::cout << "subdivision surfaces (" << scene.subdivision_surfaces.size()
               << ", refined when rendered: docs/blender.md)\n";
-  for (const SubdivisionSurface& s : scene.subdivision_surfaces)
+  for (const SubdivisionSurface& s : scene.subdivision_surfaces) {
     std::cout << "  " << s.name << "  cage of " << s.cage_face_sizes.size() << " faces, "
               << s.cage_positions.size() << " vertices, " << s.edge_creases.size()
               << " creased edges; "
               << (s.settings.scheme == SubdivisionSettings::Scheme::kSimple ? "simple"
                                                                             : "Catmull-Clark")
-              << " level " << s.settings.levels_render << ", material '"
-              << scene.materials[s.material].name << "'\n";
+              << " level " << s.settings.levels_render << ", material"
+              << (s.parts.size() > 1 ? "s" : "");
+    for (size_t p = 0; p < s.parts.size(); ++p)
+      std::cout << (p ? ", '" : " '") << scene.materials[s.parts[p].material].name << "'";
+    if (!s.uv_maps.empty()) {
+      std::cout << "; UV maps";
+      for (size_t m = 0; m < s.uv_maps.size(); ++m)
+        std::cout << (m ? ", '" : " '") << s.uv_maps[m].name << "'";
+    }
+    std::cout << '\n';
+  }
 
   std::cout << "materials (" << scene.materials.size() << ")\n";
   for (const Material& m : scene.materials)

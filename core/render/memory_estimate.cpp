@@ -2,9 +2,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
+#include "core/subdiv/face_varying.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -27,7 +29,7 @@ uint64_t default_memory_limit_bytes() {
 
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
-                               double triangles) {
+                               double triangles, double texturing_bytes) {
   const double pixels = double(width) * height, c = double(channels);
   MemoryEstimate e;
   // core/film/film.h: a double sum per channel, a double weight and a 32-bit count per pixel; the
@@ -39,8 +41,49 @@ MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
     const double grown = 1.0 + 2.0 * splat_margin_px / kTileSize;
     e.splat_bytes = pixels * grown * grown * (c + 1) * sizeof(double);
   }
-  e.geometry_bytes = triangles * kBytesPerTriangle;
+  e.geometry_bytes = triangles * kBytesPerTriangle + texturing_bytes;
   return e;
+}
+
+namespace {
+
+double bytes_of(const VertexTextureData& t) {
+  double bytes = double(t.tangents.size()) * sizeof(t.tangents[0]);
+  for (const auto& uv : t.texcoords)
+    bytes += double(uv.size()) * sizeof(Vec2f);
+  return bytes;
+}
+
+}  // namespace
+
+double texturing_bytes(const Scene& scene) {
+  double bytes = 0;
+  for (const TriangleMesh& mesh : scene.meshes)
+    bytes += bytes_of(mesh.texturing);
+  for (const MeshInstance& instance : scene.instances)
+    bytes += bytes_of(scene.meshes[instance.mesh].texturing);
+  return bytes;
+}
+
+double refined_texturing_bytes(const SubdivisionSurface& surface) {
+  double per_vertex = 0;
+  for (const SubdivisionPart& part : surface.parts) {
+    double bytes = part.tangent_slot < VertexTextureData::kSets ? sizeof(float[4]) : 0;
+    for (uint32_t map : part.slot_uv_maps)
+      bytes += map < surface.uv_maps.size() ? sizeof(Vec2f) : 0;
+    per_vertex = std::max(per_vertex, bytes);
+  }
+  if (per_vertex == 0) return 0;
+  double split = 1;
+  const uint32_t vertices = uint32_t(surface.cage_positions.size());
+  for (const SubdivisionUvMap& map : surface.uv_maps)
+    split =
+        std::max(split, double(join_uv_corners(surface.cage_face_sizes, surface.cage_face_vertices,
+                                               vertices, map.corner_uvs)
+                                   .value_count()) /
+                            std::max(vertices, 1u));
+  const double vertices_made = refined_triangles(surface) / 2 * split;
+  return 2 * per_vertex * vertices_made;  // the scene's mesh and the render's copy
 }
 
 double refined_triangles(const SubdivisionSurface& surface) {

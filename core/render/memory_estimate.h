@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/film/film.h"
+#include "core/scene/scene.h"
 #include "core/scene/subdivision_surface.h"
 
 namespace fb {
@@ -17,20 +18,32 @@ uint64_t default_memory_limit_bytes();
 struct MemoryEstimate {
   double film_bytes = 0;      // sums, weights and counts; the resolved image and one copy of it
   double splat_bytes = 0;     // --reconstruction splat: the tiles' own sums
-  double geometry_bytes = 0;  // render-space triangles and Embree's BVH
+  double geometry_bytes = 0;  // render-space triangles, their texture coordinates, Embree's BVH
   double total() const { return film_bytes + splat_bytes + geometry_bytes; }
 };
 
 // For a film of width x height pixels with `channels` channels, `triangles` flattened triangles
-// and, when splatting, a filter reaching `splat_margin_px` pixels beyond each tile of 16 x 16.
+// with `texturing_bytes` of texture coordinates and tangents and, when splatting, a filter
+// reaching `splat_margin_px` pixels beyond each tile of 16 x 16.
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
-                               double triangles);
+                               double triangles, double texturing_bytes = 0);
+
+// The texture coordinates and tangents of `scene`'s meshes: in the scene, and again in every
+// instance's render-space copy (core/accel/render_geometry.cpp).
+double texturing_bytes(const Scene& scene);
 
 // Triangles that refining `surface` to its render level makes (--subdiv render), known from the
 // cage before any refinement: a level-0 surface is its cage triangulated (n - 2 per n-gon); each
 // Catmull-Clark or simple level makes n quads of an n-gon, then 4 of each quad.
 double refined_triangles(const SubdivisionSurface& surface);
+
+// The texture coordinates and tangents that refinement gives those triangles (and the render's
+// copy of them), known from the cage: a closed mesh of quads has about one vertex per two
+// triangles, and seams split vertices; the cage's own ratio of joined UV values to vertices
+// bounds the split (a seam is a line, the surface grows as its area). Each slot a part fills is
+// a Vec2f per vertex, tangents a float[4].
+double refined_texturing_bytes(const SubdivisionSurface& surface);
 
 // Throws InputError "SCENE: the render needs about ... GB (film ..., geometry ...), more than the
 // memory limit of ... GB (SOURCE)" when the estimate exceeds `limit_bytes`; `source` says where

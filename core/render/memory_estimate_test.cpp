@@ -51,6 +51,50 @@ TEST(MemoryEstimate, RefinedTrianglesFollowFromTheCage) {
   EXPECT_EQ(refined_triangles(triangle), 6 * std::pow(4.0, 10));
 }
 
+// Texture coordinates and tangents, in the scene and in each instance's render copy.
+TEST(MemoryEstimate, CountsTextureCoordinatesAndTangents) {
+  Scene scene;
+  TriangleMesh quad;
+  quad.positions.resize(4);
+  quad.texturing.texcoords[0].resize(4);
+  quad.texturing.tangents.resize(4);
+  scene.meshes = {quad, TriangleMesh{}};
+  for (const uint32_t mesh : {0u, 0u, 1u}) {
+    MeshInstance instance;
+    instance.mesh = mesh;
+    scene.instances.push_back(instance);
+  }
+  EXPECT_EQ(texturing_bytes(scene), 3 * 4 * (8 + 16));
+  const MemoryEstimate e =
+      estimate_memory(10, 10, 3, Reconstruction::kImportance, 0, 2, texturing_bytes(scene));
+  EXPECT_EQ(e.geometry_bytes, 2 * 120 + 288);
+}
+
+// A refined surface's texture coordinates, before it is refined: about a vertex per two
+// triangles, times the cage's split along seams, for each slot a part reads, twice.
+TEST(MemoryEstimate, RefinedTextureCoordinatesFollowFromTheCage) {
+  SubdivisionSurface cube;
+  for (int i = 0; i < 8; ++i)
+    cube.cage_positions.push_back({float(i & 1), float((i >> 1) & 1), float(i >> 2)});
+  cube.cage_face_sizes.assign(6, 4);
+  cube.cage_face_vertices = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4,
+                             2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+  cube.settings.levels_render = 2;
+  EXPECT_EQ(refined_texturing_bytes(cube), 0);  // no part reads a UV map
+  // Each face its own island at u = 2 f: 24 values for 8 vertices, a split of 3.
+  SubdivisionUvMap map{"UVMap", {}};
+  for (int f = 0; f < 6; ++f)
+    for (const Vec2f corner : {Vec2f{0, 0}, Vec2f{1, 0}, Vec2f{1, 1}, Vec2f{0, 1}})
+      map.corner_uvs.push_back({corner.x + 2.f * float(f), corner.y});
+  cube.uv_maps = {map};
+  cube.parts[0].slot_uv_maps = {0, 0};
+  cube.parts[0].tangent_slot = 0;
+  // 192 triangles, 96 * 3 vertices, two slots and a tangent (32 bytes), twice.
+  EXPECT_EQ(refined_texturing_bytes(cube), 2 * 32 * 96 * 3);
+  // The refinement makes 150 vertices (core/subdiv/subdiv_test.cpp): an upper bound.
+  EXPECT_GT(refined_texturing_bytes(cube), 2 * 32 * 150);
+}
+
 TEST(MemoryEstimate, RefusesOverTheLimitNamingBothNumbers) {
   const MemoryEstimate e = estimate_memory(4096, 4096, 3, Reconstruction::kImportance, 0, 1e6);
   EXPECT_NO_THROW(check_memory(e, uint64_t(e.total()) + 1, "--memory-limit", "s.gltf"));

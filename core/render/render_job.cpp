@@ -264,10 +264,12 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   const Scene* geometry_scene = &scene;
   if (options.subdiv == SubdivMode::kRender && !scene.subdivision_surfaces.empty()) {
     // Refining is itself the allocation to bound: its count is known from the cages.
-    double triangles = double(scene.triangle_count());
-    for (const SubdivisionSurface& surface : scene.subdivision_surfaces)
+    double triangles = double(scene.triangle_count()), texturing = texturing_bytes(scene);
+    for (const SubdivisionSurface& surface : scene.subdivision_surfaces) {
       triangles += refined_triangles(surface);
-    check_memory_budget(triangles);
+      texturing += refined_texturing_bytes(surface);
+    }
+    check_memory_budget(triangles, texturing);
   }
   if (!scene.subdivision_surfaces.empty()) {
     p.refined = std::make_unique<Scene>(scene);
@@ -278,7 +280,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
     p.subdiv_summary = std::move(report.summary);
     geometry_scene = p.refined.get();
   }
-  check_memory_budget(double(geometry_scene->triangle_count()));
+  check_memory_budget(double(geometry_scene->triangle_count()), texturing_bytes(*geometry_scene));
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
@@ -305,13 +307,13 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 RenderJob::~RenderJob() = default;
 
 // The film, splat tiles and flattened geometry, against the limit, before any of them exists.
-void RenderJob::check_memory_budget(double triangles) const {
+void RenderJob::check_memory_budget(double triangles, double texturing) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
   const MemoryEstimate estimate =
       estimate_memory(width_, height_, p.integrator->channels().size(), options_.reconstruction,
-                      SplatTiles::reach(std::max(radius[0], radius[1])), triangles);
+                      SplatTiles::reach(std::max(radius[0], radius[1])), triangles, texturing);
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else
@@ -369,7 +371,8 @@ std::string material_models(const Scene& scene) {
   for (const MeshInstance& i : scene.instances)
     used.at(scene.meshes[i.mesh].material) = true;
   for (const SubdivisionSurface& s : scene.subdivision_surfaces)
-    used.at(s.material) = true;
+    for (const SubdivisionPart& part : s.parts)
+      used.at(part.material) = true;
   const auto mark_solid = [&](const Solid& s, const auto& self) -> void {
     if (s.is_primitive()) used.at(s.material) = true;
     for (const Solid& child : s.children)

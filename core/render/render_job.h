@@ -104,8 +104,9 @@ class RenderJob {
 
  private:
   struct Plugins;
-  void choose_time_samples(const Scene& scene);      // sets time_reason_ and the time plugins_ need
-  void check_memory_budget(double triangles) const;  // the film's and these triangles'
+  void choose_time_samples(const Scene& scene);  // sets time_reason_ and the time plugins_ need
+  // The film's, and these triangles' with their texture coordinates and tangents.
+  void check_memory_budget(double triangles, double texturing) const;
   const Scene& scene_;
   RenderOptions options_;
   SceneCamera camera_;

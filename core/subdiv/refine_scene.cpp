@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
+#include "core/scene/mesh_tangents.h"
+#include "core/subdiv/face_varying.h"
 #include "core/subdiv/subdiv_loader.h"
 #include "core/util/error.h"
 
@@ -17,8 +20,32 @@ struct CageData {
   std::vector<float> positions;
   std::vector<uint32_t> crease_edges, crease_vertices;
   std::vector<float> edge_sharpness, vertex_sharpness;
+  std::vector<FaceVaryingChannel> uvs;
+  std::vector<fb_subdiv_uv_channel> uv_channels;
   fb_subdiv_cage cage{};
 };
+
+// The modifier's uv_smooth as OpenSubdiv's face-varying rule, as Blender 3.4 maps it
+// (blenkernel/intern/subdiv.c, BKE_subdiv_fvar_interpolation_from_uv_smooth, then
+// subdiv_converter.c to OpenSubdiv's enum; Cycles' blender/mesh.cc maps it the same way).
+uint32_t fvar_linear(SubdivisionSettings::UvSmooth uv_smooth) {
+  using UvSmooth = SubdivisionSettings::UvSmooth;
+  switch (uv_smooth) {
+    case UvSmooth::kNone:
+      return FB_SUBDIV_FVAR_LINEAR_ALL;
+    case UvSmooth::kPreserveCorners:
+      return FB_SUBDIV_FVAR_LINEAR_CORNERS_ONLY;
+    case UvSmooth::kPreserveCornersAndJunctions:
+      return FB_SUBDIV_FVAR_LINEAR_CORNERS_PLUS1;
+    case UvSmooth::kPreserveCornersJunctionsAndConcave:
+      return FB_SUBDIV_FVAR_LINEAR_CORNERS_PLUS2;
+    case UvSmooth::kPreserveBoundaries:
+      return FB_SUBDIV_FVAR_LINEAR_BOUNDARIES;
+    case UvSmooth::kSmoothAll:
+      return FB_SUBDIV_FVAR_LINEAR_NONE;
+  }
+  return FB_SUBDIV_FVAR_LINEAR_BOUNDARIES;
+}
 
 void fill_cage(const SubdivisionSurface& s, CageData& d) {
   d.positions.reserve(3 * s.cage_positions.size());
@@ -56,6 +83,58 @@ void fill_cage(const SubdivisionSurface& s, CageData& d) {
   c.boundary = settings.boundary_smooth == SubdivisionSettings::Boundary::kPreserveCorners
                    ? FB_SUBDIV_BOUNDARY_EDGE_AND_CORNER
                    : FB_SUBDIV_BOUNDARY_EDGE_ONLY;
+  // The UV maps as face-varying channels, their corners joined as Blender joins them.
+  for (const SubdivisionUvMap& map : s.uv_maps)
+    d.uvs.push_back(
+        join_uv_corners(s.cage_face_sizes, s.cage_face_vertices, c.vertex_count, map.corner_uvs));
+  for (const FaceVaryingChannel& channel : d.uvs)
+    d.uv_channels.push_back(
+        {channel.values.data(), channel.value_count(), channel.corner_values.data()});
+  c.uv_channels = d.uv_channels.data();
+  c.uv_channel_count = uint32_t(d.uv_channels.size());
+  c.fvar_linear = fvar_linear(settings.uv_smooth);
+}
+
+// The triangles of one part of the module's mesh (all of them when the surface has one part),
+// their vertices renumbered, texture-coordinate slots filled from the channels the part reads and
+// tangents from the slot its normal maps use.
+TriangleMesh part_mesh(const SubdivisionSurface& s, const fb_subdiv_mesh& out, uint32_t part) {
+  const SubdivisionPart& p = s.parts[part];
+  TriangleMesh mesh;
+  mesh.name = s.name + " (subdivided" +
+              (s.parts.size() > 1 ? ", part " + std::to_string(part) : std::string()) + ")";
+  mesh.material = p.material;
+  constexpr uint32_t kUnused = 0xffffffffu;
+  std::vector<uint32_t> renumber(out.vertex_count, kUnused);
+  std::vector<uint32_t> from;  // the module's vertex of each of ours
+  for (uint64_t t = 0; t < out.triangle_count; ++t) {
+    if (s.parts.size() > 1 && s.face_parts[out.triangle_faces[t]] != part) continue;
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = out.indices[3 * t + k];
+      if (renumber[v] == kUnused) renumber[v] = uint32_t(from.size()), from.push_back(v);
+      mesh.indices.push_back(renumber[v]);
+    }
+  }
+  mesh.positions.resize(from.size());
+  mesh.normals.resize(from.size());
+  for (size_t i = 0; i < from.size(); ++i) {
+    const size_t v = from[i];
+    mesh.positions[i] = {out.positions[3 * v], out.positions[3 * v + 1], out.positions[3 * v + 2]};
+    mesh.normals[i] = {out.normals[3 * v], out.normals[3 * v + 1], out.normals[3 * v + 2]};
+  }
+  for (uint32_t slot = 0; slot < VertexTextureData::kSets; ++slot) {
+    const uint32_t channel = p.slot_uv_maps[slot];
+    if (channel >= s.uv_maps.size()) continue;
+    std::vector<Vec2f>& uv = mesh.texturing.texcoords[slot];
+    uv.resize(from.size());
+    const float* values = out.uvs + 2 * size_t(channel) * out.vertex_count;
+    for (size_t i = 0; i < from.size(); ++i)
+      uv[i] = {values[2 * size_t(from[i])], values[2 * size_t(from[i]) + 1]};
+  }
+  if (p.tangent_slot < VertexTextureData::kSets &&
+      !mesh.texturing.texcoords[p.tangent_slot].empty())
+    mesh.texturing.tangents = mesh_tangents(mesh, mesh.texturing.texcoords[p.tangent_slot]);
+  return mesh;
 }
 
 // The cage's vertices on the limit surface, in camera space: where the surface's edges run.
@@ -120,6 +199,21 @@ std::string where(const Scene& scene, const SubdivisionSurface& s) {
   return scene.file.string() + ": subdivision surface '" + s.name + "' (" + s.node + ")";
 }
 
+// What the importer guarantees and the module relies on: arrays parallel to the cage's corners
+// and faces, parts in range.
+void check_face_data(const Scene& scene, const SubdivisionSurface& s) {
+  bool ok =
+      !s.parts.empty() && (s.face_parts.empty() ? s.parts.size() == 1
+                                                : s.face_parts.size() == s.cage_face_sizes.size());
+  for (uint32_t p : s.face_parts)
+    ok = ok && p < s.parts.size();
+  for (const SubdivisionUvMap& map : s.uv_maps)
+    ok = ok && map.corner_uvs.size() == s.cage_face_vertices.size();
+  if (!ok)
+    throw InputError(where(scene, s) +
+                     ": its UV maps or face parts do not match its cage's corners and faces");
+}
+
 }  // namespace
 
 SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const SubdivView& view,
@@ -129,6 +223,7 @@ SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const Su
   const SubdivModule& module = subdiv_module();
   uint64_t made = 0;
   for (const SubdivisionSurface& s : scene.subdivision_surfaces) {
+    check_face_data(scene, s);
     CageData data;
     fill_cage(s, data);
     fb_subdiv_request request{};
@@ -162,30 +257,26 @@ SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const Su
     // Otherwise (use_limit_surface off, or level 0: Blender's modifier leaves the cage) uniform
     // refinement of the cage itself.
     request.edge_rates = rates.empty() ? nullptr : rates.data();
+    request.triangle_faces = s.parts.size() > 1;
     fb_subdiv_mesh out{};
     if (module.refine(&data.cage, &request, &out) != 0)
       throw InputError(where(scene, s) + ": " + out.error +
                        (mode == SubdivMode::kRender
                             ? " (lower the modifier's render level, or use --subdiv adaptive)"
                             : ""));
-    TriangleMesh mesh;
-    mesh.name = s.name + " (subdivided)";
-    mesh.material = s.material;
-    mesh.positions.resize(out.vertex_count);
-    mesh.normals.resize(out.vertex_count);
-    for (size_t v = 0; v < out.vertex_count; ++v) {
-      mesh.positions[v] = {out.positions[3 * v], out.positions[3 * v + 1],
-                           out.positions[3 * v + 2]};
-      mesh.normals[v] = {out.normals[3 * v], out.normals[3 * v + 1], out.normals[3 * v + 2]};
+    const std::unique_ptr<fb_subdiv_mesh, fb_subdiv_free_fn> owned(&out, module.free);
+    uint64_t triangles = 0;
+    for (uint32_t part = 0; part < s.parts.size(); ++part) {
+      TriangleMesh mesh = part_mesh(s, out, part);
+      if (mesh.indices.empty()) continue;
+      triangles += mesh.triangle_count();
+      scene.instances.push_back(
+          {uint32_t(scene.meshes.size()), s.world_from_object, s.node, s.node_index});
+      scene.meshes.push_back(std::move(mesh));
     }
-    mesh.indices.assign(out.indices, out.indices + 3 * out.triangle_count);
-    module.free(&out);
-    made += mesh.triangle_count();
+    made += triangles;
     report.summary += std::string(report.summary.empty() ? "" : ", ") + "'" + s.name + "' " + how +
-                      ": " + std::to_string(mesh.triangle_count()) + " triangles";
-    scene.instances.push_back(
-        {uint32_t(scene.meshes.size()), s.world_from_object, s.node, s.node_index});
-    scene.meshes.push_back(std::move(mesh));
+                      ": " + std::to_string(triangles) + " triangles";
   }
   scene.subdivision_surfaces.clear();
   report.summary = "subdivision (" + module.file.filename().string() + "): " + report.summary;

@@ -12,12 +12,31 @@
 extern "C" {
 #endif
 
-#define FB_SUBDIV_ABI_VERSION 1u
+#define FB_SUBDIV_ABI_VERSION 2u
 #define FB_SUBDIV_ENTRY_POINT "filmback_subdiv_refine"
 #define FB_SUBDIV_FREE_POINT "filmback_subdiv_free"
 
 enum { FB_SUBDIV_CATMULL_CLARK = 0, FB_SUBDIV_BILINEAR = 1 };
 enum { FB_SUBDIV_BOUNDARY_EDGE_ONLY = 0, FB_SUBDIV_BOUNDARY_EDGE_AND_CORNER = 1 };
+/* Where face-varying data is interpolated linearly: Sdc::Options::FVarLinearInterpolation, in its
+ * order (NONE: smooth everywhere; ALL: linear everywhere). */
+enum {
+  FB_SUBDIV_FVAR_LINEAR_NONE = 0,
+  FB_SUBDIV_FVAR_LINEAR_CORNERS_ONLY = 1,
+  FB_SUBDIV_FVAR_LINEAR_CORNERS_PLUS1 = 2,
+  FB_SUBDIV_FVAR_LINEAR_CORNERS_PLUS2 = 3,
+  FB_SUBDIV_FVAR_LINEAR_BOUNDARIES = 4,
+  FB_SUBDIV_FVAR_LINEAR_ALL = 5
+};
+
+/* A face-varying channel of texture coordinates: the values, and the value each face corner takes
+ * (one per entry of face_vertices). Faces whose corners at a vertex take different values meet
+ * at a seam there. */
+typedef struct fb_subdiv_uv_channel {
+  const float* values; /* u, v per value */
+  uint32_t value_count;
+  const uint32_t* corner_values;
+} fb_subdiv_uv_channel;
 
 /* A cage: vertices, faces (sizes and counter-clockwise vertex lists) and creases as OpenSubdiv
  * sharpness (Blender's crease already converted). */
@@ -37,6 +56,9 @@ typedef struct fb_subdiv_cage {
   uint32_t crease_vertex_count;
   uint32_t scheme;   /* FB_SUBDIV_CATMULL_CLARK or FB_SUBDIV_BILINEAR */
   uint32_t boundary; /* FB_SUBDIV_BOUNDARY_* */
+  const fb_subdiv_uv_channel* uv_channels;
+  uint32_t uv_channel_count;
+  uint32_t fvar_linear; /* FB_SUBDIV_FVAR_LINEAR_* */
 } fb_subdiv_cage;
 
 /* What to make of it. With edge_rates: each cage face tessellated on the limit surface with the
@@ -52,13 +74,19 @@ typedef struct fb_subdiv_request {
   uint32_t quality;       /* limit evaluation: patches isolated this many levels (Blender's) */
   uint32_t cage_limit;    /* non-zero: only the cage's vertices pushed to the limit, no triangles */
   uint64_t max_triangles; /* refuse (with an error) to make more */
+  uint32_t triangle_faces; /* non-zero: say which cage face each triangle comes from */
 } fb_subdiv_request;
 
-/* A triangle mesh with smooth normals (from the limit surface's tangents), owned by the module. */
+/* A triangle mesh with smooth normals (from the limit surface's tangents), owned by the module.
+ * With texture coordinates its vertices are split along the seams of every channel: each vertex
+ * has one value per channel, and the split vertices of one surface point have the same position
+ * and normal, bit for bit. */
 typedef struct fb_subdiv_mesh {
   float* positions;
   float* normals;
+  float* uvs;        /* uv_channel_count blocks of vertex_count (u, v) pairs, the cage's order */
   uint32_t* indices; /* three per triangle, counter-clockwise as the cage */
+  uint32_t* triangle_faces; /* when asked: the cage face of each triangle */
   uint64_t vertex_count;
   uint64_t triangle_count;
   char error[512]; /* set when the call returns non-zero */

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
+#include <set>
 
 #include "core/util/error.h"
 
@@ -215,6 +217,185 @@ TEST(Subdivision, AdaptiveCoarsensToTheCapWithAWarning) {
   EXPECT_NE(report.warnings[0].find("limit of 20000 triangles"), std::string::npos);
   EXPECT_LE(scene.meshes.at(0).triangle_count(), 20000u);
   EXPECT_GT(scene.meshes.at(0).triangle_count(), 5000u);
+}
+
+// The cube with each face on its own UV island, a unit square at u = 2 f, corners (2f, 0)
+// (2f + 1, 0) (2f + 1, 1) (2f, 1) in the face's order: every cage edge is a seam, so every face's
+// vertices split from its neighbours'.
+SubdivisionSurface cube_with_islands(uint32_t level) {
+  SubdivisionSurface s = cube(level);
+  SubdivisionUvMap map{"UVMap", {}};
+  for (int f = 0; f < 6; ++f) {
+    const float u = 2.f * float(f);
+    map.corner_uvs.insert(map.corner_uvs.end(), {{u, 0}, {u + 1, 0}, {u + 1, 1}, {u, 1}});
+  }
+  s.uv_maps = {map};
+  s.parts[0].slot_uv_maps[0] = 0;
+  return s;
+}
+
+// The mesh's triangles with each vertex replaced by the first vertex at the same position (bit
+// for bit): split vertices joined again.
+TriangleMesh welded(const TriangleMesh& m) {
+  std::map<std::array<uint32_t, 3>, uint32_t> first;
+  TriangleMesh out = m;
+  for (uint32_t& i : out.indices) {
+    std::array<uint32_t, 3> bits;
+    std::memcpy(bits.data(), &m.positions[i], sizeof bits);
+    i = first.try_emplace(bits, i).first->second;
+  }
+  return out;
+}
+
+size_t distinct_positions(const TriangleMesh& m) {
+  std::set<std::array<float, 3>> set;
+  for (const Vec3f& p : m.positions)
+    set.insert({p.x, p.y, p.z});
+  return set.size();
+}
+
+// Each island's coordinates are the face's own parameters: with Keep Boundaries (Blender's
+// default) a one-face island is bilinear, so level 2 puts them on the quarters.
+void expect_island_grid(const TriangleMesh& m) {
+  const std::vector<Vec2f>& uv = m.texturing.texcoords[0];
+  ASSERT_EQ(uv.size(), m.positions.size());
+  for (const Vec2f& t : uv) {
+    EXPECT_NEAR(t.x * 4, std::round(t.x * 4), 1e-5) << t.x;
+    EXPECT_NEAR(t.y * 4, std::round(t.y * 4), 1e-5) << t.y;
+    const float island_u = t.x - 2 * std::floor(t.x / 2 + 0.25f);  // 0..1 within its island
+    EXPECT_TRUE(island_u >= -1e-5f && island_u <= 1 + 1e-5f && t.y >= -1e-6f && t.y <= 1 + 1e-6f)
+        << t.x << " " << t.y;
+  }
+}
+
+TEST(Subdivision, UvSeamsSplitVerticesThatKeepOnePosition) {
+  const SubdivisionSurface s = cube_with_islands(2);
+  // Rate 4 on every edge, as level 2: 3.5 px between the limit corners (see above).
+  float corner = 0;
+  for (const Vec3f& p : refine(cube(2)).positions)
+    corner = std::max(corner, (p.x + p.y + p.z) / 3);
+  const double scale = 3.5 / (2 * corner);
+  for (const SubdivMode mode : {SubdivMode::kRender, SubdivMode::kAdaptive}) {
+    SCOPED_TRACE(mode == SubdivMode::kRender ? "render" : "adaptive");
+    const TriangleMesh m = refine(s, mode, {Transform(), scale, scale, true});
+    // 25 vertices per face of 16 quads; 98 surface points, as without UVs.
+    EXPECT_EQ(m.positions.size(), 150u);
+    EXPECT_EQ(m.triangle_count(), 192u);
+    EXPECT_EQ(distinct_positions(m), 98u);
+    expect_island_grid(m);
+    expect_watertight(welded(m));
+    expect_outward(m);
+  }
+}
+
+TEST(Subdivision, AdaptiveSeamsStayClosedAtUnequalRates) {
+  // A perspective eye near one corner gives the edges different rates; the seams' split points
+  // must still coincide with their partners'.
+  const SubdivisionSurface s = cube_with_islands(0);
+  const Vec3d eye{1.5, 1.5, 1.5};
+  const TriangleMesh m =
+      refine(s, SubdivMode::kAdaptive, {Transform::translate(-eye), 20.0, 20.0, false});
+  expect_watertight(welded(m));
+  EXPECT_GT(m.positions.size(), distinct_positions(m));
+  for (const Vec2f& t : m.texturing.texcoords[0])
+    EXPECT_TRUE(t.x >= -1e-6f && t.x <= 11 + 1e-5f && t.y >= -1e-6f && t.y <= 1 + 1e-6f);
+}
+
+// A flat 3 x 3 grid of unit quads in z = 0, its UV map the vertices' own (x, y): no seam.
+SubdivisionSurface planar_grid(SubdivisionSettings::UvSmooth uv_smooth) {
+  SubdivisionSurface s;
+  s.name = "Grid";
+  for (int y = 0; y <= 3; ++y)
+    for (int x = 0; x <= 3; ++x)
+      s.cage_positions.push_back({float(x), float(y), 0.f});
+  SubdivisionUvMap map{"UVMap", {}};
+  for (uint32_t y = 0; y < 3; ++y)
+    for (uint32_t x = 0; x < 3; ++x) {
+      const uint32_t a = 4 * y + x;
+      s.cage_face_sizes.push_back(4);
+      for (uint32_t v : {a, a + 1, a + 5, a + 4}) {
+        s.cage_face_vertices.push_back(v);
+        map.corner_uvs.push_back({s.cage_positions[v].x, s.cage_positions[v].y});
+      }
+    }
+  s.uv_maps = {map};
+  s.parts[0].slot_uv_maps[0] = 0;
+  s.parts[0].tangent_slot = 0;
+  s.settings.uv_smooth = uv_smooth;
+  return s;
+}
+
+// How far texture coordinates are from a point's (x, y).
+double uv_distance(Vec2f uv, Vec3f p) {
+  return std::hypot(double(uv.x) - p.x, double(uv.y) - p.y);
+}
+
+TEST(Subdivision, SmoothAllUvsFollowTheSurfaceAndNoneStaysBilinear) {
+  using UvSmooth = SubdivisionSettings::UvSmooth;
+  // Smooth All (OpenSubdiv's FVAR_LINEAR_NONE) refines the coordinates by the rules the positions
+  // follow (boundary All: VTX_BOUNDARY_EDGE_ONLY), so a UV map equal to (x, y) stays equal to the
+  // refined surface's (x, y), boundary included.
+  const TriangleMesh smooth = refine(planar_grid(UvSmooth::kSmoothAll));
+  EXPECT_EQ(smooth.positions.size(), 169u);  // 13 x 13: no split
+  double worst = 0;
+  for (size_t v = 0; v < smooth.positions.size(); ++v)
+    worst = std::max(worst, uv_distance(smooth.texturing.texcoords[0][v], smooth.positions[v]));
+  EXPECT_LT(worst, 1e-5);
+  // None (FVAR_LINEAR_ALL) interpolates the cage's coordinates bilinearly: quarters of the
+  // cage's unit squares, while the surface itself shrinks away from the boundary.
+  const TriangleMesh linear = refine(planar_grid(UvSmooth::kNone));
+  EXPECT_EQ(linear.positions.size(), 169u);
+  double apart = 0;
+  for (size_t v = 0; v < linear.positions.size(); ++v) {
+    const Vec2f t = linear.texturing.texcoords[0][v];
+    EXPECT_NEAR(t.x * 4, std::round(t.x * 4), 1e-5);
+    EXPECT_NEAR(t.y * 4, std::round(t.y * 4), 1e-5);
+    apart = std::max(apart, uv_distance(t, linear.positions[v]));
+  }
+  EXPECT_GT(apart, 0.1);
+  // Keep Boundaries (the default) pins the boundary to the cage's coordinates: a corner of the
+  // grid keeps (0, 0) while its surface point moves in.
+  const TriangleMesh kept = refine(planar_grid(UvSmooth::kPreserveBoundaries));
+  bool corner = false;
+  for (const Vec2f& t : kept.texturing.texcoords[0])
+    corner = corner || (t.x == 0.f && t.y == 0.f);
+  EXPECT_TRUE(corner);
+}
+
+TEST(Subdivision, NormalMapTangentsFollowTheUvs) {
+  // u runs along +x on the grid: the tangent is +x, and the bitangent (-v direction) is -y, which
+  // is w (n x t) with n = +z: w = -1.
+  const TriangleMesh m = refine(planar_grid(SubdivisionSettings::UvSmooth::kSmoothAll));
+  ASSERT_EQ(m.texturing.tangents.size(), m.positions.size());
+  for (const auto& t : m.texturing.tangents) {
+    EXPECT_NEAR(t[0], 1.f, 1e-4f);
+    EXPECT_EQ(t[3], -1.f);
+  }
+}
+
+TEST(Subdivision, EachPartBecomesAMeshWithItsMaterial) {
+  // The cube's top face (+z, the second cage face) wears material 7, the others material 3; the
+  // top reads the UV map, the others none.
+  SubdivisionSurface s = cube_with_islands(1);
+  s.parts = {{3}, {7}};
+  s.parts[1].slot_uv_maps[0] = 0;
+  s.face_parts = {0, 1, 0, 0, 0, 0};
+  Scene scene;
+  scene.file = "test.gltf";
+  scene.subdivision_surfaces = {s};
+  const SubdivReport report = refine_subdivision_surfaces(scene, SubdivMode::kRender, {});
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  ASSERT_EQ(scene.instances.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].material, 3u);
+  EXPECT_EQ(scene.meshes[1].material, 7u);
+  EXPECT_EQ(scene.meshes[0].triangle_count(), 40u);
+  EXPECT_EQ(scene.meshes[1].triangle_count(), 8u);
+  EXPECT_EQ(scene.meshes[1].positions.size(), 9u);  // its own vertices only
+  EXPECT_TRUE(scene.meshes[0].texturing.texcoords[0].empty());
+  ASSERT_EQ(scene.meshes[1].texturing.texcoords[0].size(), 9u);
+  for (const Vec3f& p : scene.meshes[1].positions)
+    EXPECT_GE(p.z, 0.5f);  // the top face's limit, edges included
+  EXPECT_NE(report.summary.find("48 triangles"), std::string::npos) << report.summary;
 }
 
 TEST(Subdivision, UnrefinedSurfacesAreInTheSceneBounds) {

@@ -41,10 +41,23 @@ std::unique_ptr<Far::TopologyRefiner> make_refiner(const fb_subdiv_cage& cage) {
   d.numCorners = int(cage.crease_vertex_count);
   d.cornerVertexIndices = corners.data();
   d.cornerWeights = cage.crease_vertex_sharpness;
+  // Each texture-coordinate channel as a face-varying channel: one value index per face corner.
+  std::vector<std::vector<int>> corner_values(cage.uv_channel_count);
+  std::vector<Far::TopologyDescriptor::FVarChannel> channels(cage.uv_channel_count);
+  for (uint32_t c = 0; c < cage.uv_channel_count; ++c) {
+    const fb_subdiv_uv_channel& channel = cage.uv_channels[c];
+    corner_values[c].assign(channel.corner_values, channel.corner_values + total);
+    channels[c].numValues = int(channel.value_count);
+    channels[c].valueIndices = corner_values[c].data();
+  }
+  d.numFVarChannels = int(cage.uv_channel_count);
+  d.fvarChannels = channels.data();
 
   // Blender's settings (intern/opensubdiv, BKE_subdiv_settings_init_from_modifier): the default
-  // (uniform) creasing and Catmark triangle rule; only the boundary rule is the modifier's.
+  // (uniform) creasing and Catmark triangle rule; the boundary rule and the face-varying one are
+  // the modifier's (the core maps uv_smooth as BKE_subdiv_fvar_interpolation_from_uv_smooth).
   Sdc::Options options;
+  options.SetFVarLinearInterpolation(Sdc::Options::FVarLinearInterpolation(cage.fvar_linear));
   options.SetVtxBoundaryInterpolation(cage.boundary == FB_SUBDIV_BOUNDARY_EDGE_AND_CORNER
                                           ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
                                           : Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);

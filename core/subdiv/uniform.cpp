@@ -8,15 +8,58 @@
 namespace fb::subdiv {
 namespace {
 
-// The vertex type Far::PrimvarRefiner interpolates: a point or a tangent.
-struct Point {
-  float p[3];
-  void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-  void AddWithWeight(const Point& src, float weight) {
-    for (int i = 0; i < 3; ++i)
+// The vertex types Far::PrimvarRefiner interpolates: a point or a tangent (3), texture
+// coordinates (2).
+template <int N>
+struct Values {
+  float p[N];
+  void Clear(void* = nullptr) {
+    for (int i = 0; i < N; ++i)
+      p[i] = 0;
+  }
+  void AddWithWeight(const Values& src, float weight) {
+    for (int i = 0; i < N; ++i)
       p[i] += weight * src.p[i];
   }
 };
+using Point = Values<3>;
+using Uv = Values<2>;
+
+// Each channel's values refined level by level to `level`: the last level's, per channel.
+std::vector<std::vector<Uv>> refined_uvs(const Far::TopologyRefiner& refiner,
+                                         const fb_subdiv_cage& cage, uint32_t level) {
+  const Far::PrimvarRefiner primvar(refiner);
+  std::vector<std::vector<Uv>> out(cage.uv_channel_count);
+  for (uint32_t c = 0; c < cage.uv_channel_count; ++c) {
+    const fb_subdiv_uv_channel& channel = cage.uv_channels[c];
+    std::vector<Uv> src(channel.value_count);
+    for (uint32_t i = 0; i < channel.value_count; ++i)
+      src[i] = {{channel.values[2 * i], channel.values[2 * i + 1]}};
+    for (int l = 1; l <= int(level); ++l) {
+      std::vector<Uv> dst(size_t(refiner.GetLevel(l).GetNumFVarValues(int(c))));
+      Uv* to = dst.data();
+      primvar.InterpolateFaceVarying(l, src.data(), to, int(c));
+      src = std::move(dst);
+    }
+    out[c] = std::move(src);
+  }
+  return out;
+}
+
+// The cage face each face of `level` comes from.
+std::vector<uint32_t> parent_faces(const Far::TopologyRefiner& refiner, uint32_t level) {
+  std::vector<uint32_t> faces(size_t(refiner.GetLevel(0).GetNumFaces()));
+  for (size_t f = 0; f < faces.size(); ++f)
+    faces[f] = uint32_t(f);
+  const Far::PrimvarRefiner primvar(refiner);
+  for (int l = 1; l <= int(level); ++l) {
+    std::vector<uint32_t> children(size_t(refiner.GetLevel(l).GetNumFaces()));
+    uint32_t* to = children.data();
+    primvar.InterpolateFaceUniform(l, faces.data(), to);
+    faces = std::move(children);
+  }
+  return faces;
+}
 
 // Triangles the refinement will make: a quad gives four per level; an n-gon gives n quads at the
 // first level.
@@ -47,7 +90,7 @@ Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
 }
 
 Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage, uint32_t level,
-                         uint64_t max_triangles) {
+                         uint64_t max_triangles, bool triangle_faces) {
   const uint64_t count = level > 24 ? UINT64_MAX : triangle_count(cage, level);
   if (count > max_triangles)
     throw std::runtime_error("level " + std::to_string(level) + " makes " + std::to_string(count) +
@@ -75,10 +118,30 @@ Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& ca
   std::vector<Point> limit(n), du(n), dv(n);
   primvar.Limit(src, limit, du, dv);
 
+  // The face corners of the last level, each a vertex and a value per channel: the output's
+  // vertices, split along the channels' seams.
+  const uint32_t channels = cage.uv_channel_count;
+  const std::vector<std::vector<Uv>> uvs = refined_uvs(refiner, cage, level);
+  CornerSplitter splitter(uint32_t(n), channels);
+  std::vector<uint32_t> corner_ids, values(channels);
+  corner_ids.reserve(size_t(last.GetNumFaceVertices()));
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const auto face = last.GetFaceVertices(f);
+    for (int k = 0; k < face.size(); ++k) {
+      for (uint32_t c = 0; c < channels; ++c)
+        values[c] = uint32_t(last.GetFaceFVarValues(f, int(c))[k]);
+      bool fresh;
+      corner_ids.push_back(splitter.add(uint32_t(face[k]), values.data(), fresh));
+    }
+  }
+
   Triangles out;
-  out.positions.resize(3 * n);
-  out.normals.resize(3 * n);
-  for (size_t v = 0; v < n; ++v) {
+  const size_t vertices = splitter.count();
+  out.positions.resize(3 * vertices);
+  out.normals.resize(3 * vertices);
+  out.uvs.resize(2 * channels * vertices);
+  for (uint32_t id = 0; id < vertices; ++id) {
+    const uint32_t v = splitter.vertex(id);
     const Point& p = src[v];
     const float* a = du[v].p;
     const float* b = dv[v].p;
@@ -86,18 +149,29 @@ Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& ca
                     a[0] * b[1] - a[1] * b[0]};
     const float len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
     for (int i = 0; i < 3; ++i) {
-      out.positions[3 * v + i] = p.p[i];
-      out.normals[3 * v + i] = len > 0 ? nrm[i] / len : 0;
+      out.positions[3 * size_t(id) + i] = p.p[i];
+      out.normals[3 * size_t(id) + i] = len > 0 ? nrm[i] / len : 0;
+    }
+    for (uint32_t c = 0; c < channels; ++c) {
+      const Uv& uv = uvs[c][splitter.value(id, c)];
+      out.uvs[2 * (c * vertices + id)] = uv.p[0];
+      out.uvs[2 * (c * vertices + id) + 1] = uv.p[1];
     }
   }
   // Quads split along their first diagonal, as Blender's tessellation of a quad (0-1-2, 0-2-3);
   // level 0 leaves the cage's n-gons, split into fans.
   out.indices.reserve(3 * count);
+  std::vector<uint32_t> faces;
+  if (triangle_faces) faces = parent_faces(refiner, level);
+  size_t corner = 0;
   for (int f = 0; f < last.GetNumFaces(); ++f) {
-    const auto face = last.GetFaceVertices(f);
-    for (int k = 2; k < face.size(); ++k)
-      out.indices.insert(out.indices.end(),
-                         {uint32_t(face[0]), uint32_t(face[k - 1]), uint32_t(face[k])});
+    const int size = last.GetFaceVertices(f).size();
+    const uint32_t* ids = &corner_ids[corner];
+    for (int k = 2; k < size; ++k) {
+      out.indices.insert(out.indices.end(), {ids[0], ids[k - 1], ids[k]});
+      if (triangle_faces) out.triangle_faces.push_back(faces[size_t(f)]);
+    }
+    corner += size_t(size);
   }
   return out;
 }

@@ -189,8 +189,10 @@ class Importer {
              uint32_t scene_node) {
     if (node.skin >= 0)
       warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
-    if (auto surface = gltf::read_node_subdivision(model_, node, path, world, scene_node, name_)) {
-      if (surface->material == gltf::kNoSubdivisionMaterial) surface->material = default_material();
+    if (auto surface = gltf::read_node_subdivision(model_, node, path, world, scene_node,
+                                                   scene_.materials, name_, diagnostics_)) {
+      for (SubdivisionPart& part : surface->parts)
+        if (part.material == gltf::kNoSubdivisionMaterial) part.material = default_material();
       scene_.subdivision_surfaces.push_back(std::move(*surface));
     } else if (node.mesh >= 0) {
       add_mesh(node, path, world, scene_node);

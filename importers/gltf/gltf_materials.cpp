@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/scene/mesh_tangents.h"
 #include "core/texture/graph_shader.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_blender_material.h"
@@ -199,43 +200,6 @@ class MaterialReader {
   Diagnostics& diagnostics_;
 };
 
-// Per-vertex tangents from the triangles' position and texture-coordinate gradients (Lengyel
-// 2001, as MikkTSpace does before its splitting rules): summed over the triangles at a vertex,
-// made orthogonal to the vertex normal, with the bitangent's handedness in w. The tangent follows
-// +u; the bitangent follows -v, because glTF's v runs down the image while a normal texture's
-// green points up it (glTF 2.0, normalTextureInfo: "+X is right and +Y is up", OpenGL's
-// convention and Blender's), so B = w (N x T) points where -dp/dv does.
-std::vector<std::array<float, 4>> computed_tangents(const TriangleMesh& mesh,
-                                                    const std::vector<Vec2f>& uv) {
-  const size_t n = mesh.positions.size();
-  std::vector<Vec3f> t_sum(n), b_sum(n), n_sum(n);
-  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-    const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
-    const Vec3f e1 = mesh.positions[b] - mesh.positions[a];
-    const Vec3f e2 = mesh.positions[c] - mesh.positions[a];
-    const Vec2f d1 = uv[b] - uv[a], d2 = uv[c] - uv[a];
-    const float det = d1.x * d2.y - d2.x * d1.y;
-    const Vec3f face = cross(e1, e2);
-    if (!(std::abs(det) > 0.f)) continue;
-    const Vec3f t = (e1 * d2.y - e2 * d1.y) / det;
-    const Vec3f bt = (e2 * d1.x - e1 * d2.x) / det;
-    for (uint32_t v : {a, b, c})
-      t_sum[v] += t, b_sum[v] += bt, n_sum[v] += face;
-  }
-  std::vector<std::array<float, 4>> out(n, {0.f, 0.f, 0.f, 1.f});
-  for (size_t v = 0; v < n; ++v) {
-    Vec3f normal = mesh.normals.empty() ? n_sum[v] : mesh.normals[v];
-    if (!(length(normal) > 0.f)) continue;
-    normal = normalize(normal);
-    const Vec3f t = t_sum[v] - normal * dot(normal, t_sum[v]);
-    if (!(length(t) > 0.f) || !is_finite(t)) continue;
-    const Vec3f u = normalize(t);
-    const float w = dot(cross(normal, u), b_sum[v]) > 0.f ? -1.f : 1.f;
-    out[v] = {u.x, u.y, u.z, w};
-  }
-  return out;
-}
-
 }  // namespace
 
 void read_materials(tinygltf::Model& model, const std::string& file, Scene& scene,
@@ -301,54 +265,61 @@ std::vector<Vec2f> read_texcoords(const AccessorContext& ctx, const tinygltf::Pr
   return uv;
 }
 
-// A shader graph's UV maps, TEXCOORD_n found by the map's name, in the graph's slots.
-void read_graph_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
-                          const std::string& path, const ShaderGraph& graph,
-                          const Fields& mesh_extension, TriangleMesh& mesh,
-                          Diagnostics& diagnostics) {
-  const MeshUvMaps maps = read_mesh_uv_maps(mesh_extension);
-  for (size_t slot = 0; slot < graph.uv_maps.size(); ++slot) {
-    const std::string& name = graph.uv_maps[slot];
-    std::optional<uint32_t> n = maps.texcoord(name);
-    if (!n) {
-      diagnostics.warn(located(ctx.file, path,
-                               "the mesh has no UV map '" + name + "' that material '" + mesh.name +
-                                   "' reads; TEXCOORD_0 is used"));
-      n = 0;
-    }
-    mesh.texturing.texcoords[slot] = read_texcoords(ctx, prim, path, *n, mesh.positions.size());
-    if (mesh.texturing.texcoords[slot].empty())
-      diagnostics.warn(located(ctx.file, path + ".attributes",
-                               "no TEXCOORD_" + std::to_string(*n) + " for UV map '" + name +
-                                   "': its textures read the point (0, 0)"));
-  }
-  const auto& normal_uv = mesh.texturing.texcoords[graph.normal_map_uv_slot];
-  if (graph.has_normal_map && !normal_uv.empty())
-    mesh.texturing.tangents = computed_tangents(mesh, normal_uv);
-}
-
 }  // namespace
+
+TexcoordPlan plan_texcoords(const Material& material, const MeshUvMaps& maps,
+                            const std::string& file, const std::string& path,
+                            Diagnostics& diagnostics) {
+  TexcoordPlan plan;
+  if (material.shader_graph) {
+    // The graph's UV maps, found by name, in the graph's slots.
+    const ShaderGraph& graph = *material.shader_graph;
+    for (size_t slot = 0; slot < graph.uv_maps.size(); ++slot) {
+      const std::string& name = graph.uv_maps[slot];
+      plan.slots[slot] = maps.texcoord(name);
+      if (!plan.slots[slot]) {
+        diagnostics.warn(located(file, path,
+                                 "the mesh has no UV map '" + name + "' that material '" +
+                                     material.name + "' reads; TEXCOORD_0 is used"));
+        plan.slots[slot] = 0;
+      }
+    }
+    if (graph.has_normal_map) plan.tangent_slot = graph.normal_map_uv_slot;
+    return plan;
+  }
+  if (!material.textures.any() && material.alpha_mode == AlphaMode::kOpaque) return plan;
+  for (uint32_t set = 0; set < VertexTextureData::kSets; ++set)
+    plan.slots[set] = set;
+  const MaterialTextures& t = material.textures;
+  for (const TextureRef* ref : {&t.base_color, &t.metallic_roughness, &t.normal, &t.emissive})
+    if (ref->present()) plan.required[ref->texcoord] = true;
+  if (t.normal.present()) plan.tangent_slot = t.normal.texcoord;
+  return plan;
+}
 
 void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
                     const std::string& path, const Material& material, const Fields& mesh_extension,
                     TriangleMesh& mesh, Diagnostics& diagnostics) {
-  if (material.shader_graph)
-    return read_graph_texturing(ctx, prim, path, *material.shader_graph, mesh_extension, mesh,
-                                diagnostics);
-  if (!material.textures.any() && material.alpha_mode == AlphaMode::kOpaque) return;
+  const TexcoordPlan plan =
+      plan_texcoords(material, read_mesh_uv_maps(mesh_extension), ctx.file, path, diagnostics);
   VertexTextureData& out = mesh.texturing;
-  for (uint32_t set = 0; set < VertexTextureData::kSets; ++set) {
-    out.texcoords[set] = read_texcoords(ctx, prim, path, set, mesh.positions.size());
-    if (out.texcoords[set].empty()) break;
-  }
-  const MaterialTextures& t = material.textures;
-  for (const TextureRef* ref : {&t.base_color, &t.metallic_roughness, &t.normal, &t.emissive})
-    if (ref->present() && out.texcoords[ref->texcoord].empty())
+  for (uint32_t slot = 0; slot < VertexTextureData::kSets; ++slot) {
+    if (!plan.slots[slot]) continue;
+    const uint32_t n = *plan.slots[slot];
+    out.texcoords[slot] = read_texcoords(ctx, prim, path, n, mesh.positions.size());
+    if (out.texcoords[slot].empty() && plan.required[slot])
       throw_input(ctx.file, path + ".attributes",
-                  "material '" + material.name + "' reads TEXCOORD_" +
-                      std::to_string(ref->texcoord) + ", which the primitive does not have");
-  if (!material.textures.normal.present()) return;
-  if (const auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
+                  "material '" + material.name + "' reads TEXCOORD_" + std::to_string(n) +
+                      ", which the primitive does not have");
+    if (out.texcoords[slot].empty() && material.shader_graph)
+      diagnostics.warn(located(ctx.file, path + ".attributes",
+                               "no TEXCOORD_" + std::to_string(n) + " for UV map '" +
+                                   material.shader_graph->uv_maps[slot] +
+                                   "': its textures read the point (0, 0)"));
+  }
+  if (!plan.tangent_slot) return;
+  if (const auto it = prim.attributes.find("TANGENT");
+      it != prim.attributes.end() && !material.shader_graph) {
     const std::string where = path + ".attributes.TANGENT";
     const std::vector<double> values =
         read_animation_values(ctx, it->second, where, TINYGLTF_TYPE_VEC4, false);
@@ -360,9 +331,8 @@ void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
     for (size_t v = 0; v < mesh.positions.size(); ++v)
       out.tangents[v] = {float(values[4 * v]), float(values[4 * v + 1]), float(values[4 * v + 2]),
                          values[4 * v + 3] < 0 ? -1.f : 1.f};
-  } else {
-    const uint32_t set = material.textures.normal.texcoord;
-    if (!out.texcoords[set].empty()) out.tangents = computed_tangents(mesh, out.texcoords[set]);
+  } else if (!out.texcoords[*plan.tangent_slot].empty()) {
+    out.tangents = mesh_tangents(mesh, out.texcoords[*plan.tangent_slot]);
   }
 }
 

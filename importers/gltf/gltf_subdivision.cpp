@@ -7,7 +7,9 @@
 #include <unordered_set>
 
 #include "core/util/error.h"
+#include "importers/gltf/gltf_blender_material.h"
 #include "importers/gltf/gltf_json.h"
+#include "importers/gltf/gltf_materials.h"
 
 namespace fb::gltf {
 namespace {
@@ -19,6 +21,7 @@ constexpr size_t kMaxCageVertices = size_t(1) << 24;
 constexpr size_t kMaxFaceVertices = size_t(1) << 26;
 constexpr double kMaxLevel = 11;  // Blender's hard maximum for levels_render
 constexpr double kMaxQuality = 10;
+constexpr size_t kMaxUvMaps = 8;  // Blender's MAX_MTFACE
 
 // The subdivision object's members: gltf::Fields for scalars, plus the cage's arrays.
 class Reader {
@@ -105,16 +108,48 @@ void read_settings(const Reader& r, SubdivisionSettings& s) {
     s.boundary_smooth = SubdivisionSettings::Boundary(*v);
   if (auto v = r.flag("use_creases")) s.use_creases = *v;
   if (auto v = r.flag("use_limit_surface")) s.use_limit_surface = *v;
-  // uv_smooth concerns texture coordinates, which the refinement does not carry yet.
-  r.choice("uv_smooth",
-           {"NONE", "PRESERVE_CORNERS", "PRESERVE_CORNERS_AND_JUNCTIONS",
-            "PRESERVE_CORNERS_JUNCTIONS_AND_CONCAVE", "PRESERVE_BOUNDARIES", "SMOOTH_ALL"});
+  if (auto v = r.choice("uv_smooth", {"NONE", "PRESERVE_CORNERS", "PRESERVE_CORNERS_AND_JUNCTIONS",
+                                      "PRESERVE_CORNERS_JUNCTIONS_AND_CONCAVE",
+                                      "PRESERVE_BOUNDARIES", "SMOOTH_ALL"}))
+    s.uv_smooth = SubdivisionSettings::UvSmooth(*v);
+}
+
+// uv_maps: [{"name": ..., "uvs": [u, v, ...]}, ...], a texture coordinate per face corner.
+void read_uv_maps(const tinygltf::Value& subdivision, const std::string& path,
+                  const std::string& file, size_t corners, SubdivisionSurface& out) {
+  if (!subdivision.Has("uv_maps")) return;
+  const tinygltf::Value& maps = subdivision.Get("uv_maps");
+  if (!maps.IsArray() || maps.ArrayLen() > kMaxUvMaps)
+    throw_input(file, path + ".uv_maps",
+                "expected an array of at most " + std::to_string(kMaxUvMaps) + " UV maps");
+  for (size_t m = 0; m < maps.ArrayLen(); ++m) {
+    const std::string at = path + "." + index_path("uv_maps", m);
+    const tinygltf::Value& map = maps.Get(int(m));
+    if (!map.IsObject()) throw_input(file, at, "expected an object");
+    const Reader r(map, at, file);
+    SubdivisionUvMap uv_map;
+    const std::optional<std::string> name = Fields(map, at, file).word("name");
+    if (!name) r.fail("", "expected a string 'name'");
+    uv_map.name = *name;
+    const auto& uvs = *r.array("uvs", 2, 2 * kMaxFaceVertices, true);
+    if (uvs.size() != 2 * corners)
+      r.fail("uvs", std::to_string(uvs.size()) + " elements, expected " +
+                        std::to_string(2 * corners) + " (u, v for each of the cage's corners)");
+    uv_map.corner_uvs.resize(corners);
+    for (size_t i = 0; i < uvs.size(); ++i) {
+      const double x = r.element(uvs, i);
+      if (!(std::abs(x) <= 3.4e38))  // finite as a float
+        r.fail("uvs[" + std::to_string(i) + "]", "expected a finite number");
+      (i % 2 ? uv_map.corner_uvs[i / 2].y : uv_map.corner_uvs[i / 2].x) = float(x);
+    }
+    out.uv_maps.push_back(std::move(uv_map));
+  }
 }
 
 }  // namespace
 
 SubdivisionSurface read_subdivision(const tinygltf::Value& subdivision, const std::string& path,
-                                    const std::string& file) {
+                                    const std::string& file, size_t primitive_count) {
   if (!subdivision.IsObject()) throw_input(file, path, "expected an object");
   const Reader r(subdivision, path, file);
   SubdivisionSurface out;
@@ -183,6 +218,16 @@ SubdivisionSurface read_subdivision(const tinygltf::Value& subdivision, const st
       out.vertex_creases.push_back(
           {r.index(*creases, "vertex_creases", i, 0, last_vertex, "a vertex index"),
            r.weight(*creases, "vertex_creases", i + 1)});
+  read_uv_maps(subdivision, path, file, total, out);
+  if (const auto* faces = r.array("face_primitives", 1, kMaxFaceVertices, false)) {
+    if (faces->size() != sizes.size())
+      r.fail("face_primitives", std::to_string(faces->size()) + " elements, expected " +
+                                    std::to_string(sizes.size()) + " (one per cage face)");
+    out.face_parts.resize(faces->size());
+    for (size_t f = 0; f < faces->size(); ++f)
+      out.face_parts[f] = r.index(*faces, "face_primitives", f, 0, double(primitive_count) - 1,
+                                  "a primitive of the node's mesh");
+  }
   return out;
 }
 
@@ -190,32 +235,112 @@ SubdivisionSurface read_subdivision(const tinygltf::Value& subdivision, const st
 
 namespace fb::gltf {
 
-std::optional<SubdivisionSurface> read_node_subdivision(const tinygltf::Model& model,
-                                                        const tinygltf::Node& node,
-                                                        const std::string& path,
-                                                        const Transform& world, uint32_t scene_node,
-                                                        const std::string& file) {
+namespace {
+
+// The glTF material index of each of the mesh's primitives (kNoSubdivisionMaterial for none).
+std::vector<uint32_t> primitive_materials(const tinygltf::Model& model, int mesh_index,
+                                          const std::string& file) {
+  const tinygltf::Mesh& mesh = model.meshes[size_t(mesh_index)];
+  std::vector<uint32_t> out;
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const int m = mesh.primitives[p].material;
+    if (m >= 0 && size_t(m) >= model.materials.size())
+      throw_input(file,
+                  index_path("meshes", size_t(mesh_index)) + "." + index_path("primitives", p) +
+                      ".material",
+                  out_of_range("material", m, model.materials.size(), "materials"));
+    out.push_back(m < 0 ? kNoSubdivisionMaterial : uint32_t(m));
+  }
+  return out;
+}
+
+// One part per material the faces wear (face_parts holds primitive indices until then).
+void make_parts(const std::vector<uint32_t>& materials, SubdivisionSurface& s) {
+  s.parts.clear();
+  std::vector<uint32_t> part_of_material;  // parallel to the parts' materials
+  const auto part = [&](uint32_t material) {
+    const auto it = std::find(part_of_material.begin(), part_of_material.end(), material);
+    if (it != part_of_material.end()) return uint32_t(it - part_of_material.begin());
+    part_of_material.push_back(material);
+    s.parts.push_back({material});
+    return uint32_t(s.parts.size() - 1);
+  };
+  for (uint32_t& p : s.face_parts)
+    p = part(materials[p]);
+  if (s.face_parts.empty()) part(materials.empty() ? kNoSubdivisionMaterial : materials[0]);
+  if (s.parts.size() == 1) s.face_parts.clear();
+}
+
+// Each part's texture-coordinate slots from the cage's UV maps, found as a triangle primitive's
+// TEXCOORD_n are (gltf_materials.h, plan_texcoords: map n stands for TEXCOORD_n); then only the
+// maps some part reads are kept.
+void plan_uv_maps(const std::vector<Material>& materials, const Fields& mesh_extension,
+                  const std::string& path, Diagnostics& diagnostics, SubdivisionSurface& s) {
+  MeshUvMaps maps = read_mesh_uv_maps(mesh_extension);
+  maps.names.clear();
+  for (const SubdivisionUvMap& map : s.uv_maps)
+    maps.names.push_back(map.name);
+  if (maps.active_render.empty() && !maps.names.empty()) maps.active_render = maps.names[0];
+  std::vector<uint32_t> kept(s.uv_maps.size(), kNoUvMap);
+  uint32_t kept_count = 0;
+  for (SubdivisionPart& part : s.parts) {
+    if (part.material == kNoSubdivisionMaterial) continue;  // the default material reads none
+    const Material& material = materials[part.material];
+    const TexcoordPlan plan =
+        plan_texcoords(material, maps, mesh_extension.file(), path, diagnostics);
+    for (uint32_t slot = 0; slot < VertexTextureData::kSets; ++slot) {
+      if (!plan.slots[slot]) continue;
+      const uint32_t n = *plan.slots[slot];
+      if (n >= s.uv_maps.size()) {
+        if (plan.required[slot])
+          throw_input(mesh_extension.file(), path + ".uv_maps",
+                      "material '" + material.name + "' reads TEXCOORD_" + std::to_string(n) +
+                          ", and the cage has " + std::to_string(s.uv_maps.size()) +
+                          " UV maps; expected UV map " + std::to_string(n));
+        if (material.shader_graph)
+          diagnostics.warn(located(mesh_extension.file(), path,
+                                   "no UV map " + std::to_string(n) + " for '" +
+                                       material.shader_graph->uv_maps[slot] +
+                                       "' in the cage: its textures read the point (0, 0)"));
+        continue;
+      }
+      if (kept[n] == kNoUvMap) kept[n] = kept_count++;
+      part.slot_uv_maps[slot] = kept[n];
+    }
+    if (plan.tangent_slot) part.tangent_slot = *plan.tangent_slot;
+  }
+  std::vector<SubdivisionUvMap> used(kept_count);
+  for (size_t n = 0; n < kept.size(); ++n)
+    if (kept[n] != kNoUvMap) used[kept[n]] = std::move(s.uv_maps[n]);
+  s.uv_maps = std::move(used);
+}
+
+}  // namespace
+
+std::optional<SubdivisionSurface> read_node_subdivision(
+    const tinygltf::Model& model, const tinygltf::Node& node, const std::string& path,
+    const Transform& world, uint32_t scene_node, const std::vector<Material>& materials,
+    const std::string& file, Diagnostics& diagnostics) {
   const auto ext = node.extensions.find("FILMBACK_blender");
   if (ext == node.extensions.end() || !ext->second.IsObject() || !ext->second.Has("subdivision"))
     return std::nullopt;
   const std::string sub_path = path + ".extensions.FILMBACK_blender.subdivision";
   if (node.mesh < 0 || size_t(node.mesh) >= model.meshes.size())
     throw_input(file, sub_path, "expected the node to have a mesh (the cage's triangulation)");
-  SubdivisionSurface s = read_subdivision(ext->second.Get("subdivision"), sub_path, file);
   const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+  SubdivisionSurface s =
+      read_subdivision(ext->second.Get("subdivision"), sub_path, file, mesh.primitives.size());
   s.name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : path;
   s.node = node.name.empty() ? path : node.name;
   s.node_index = scene_node;
   s.world_from_object = world;
-  s.material = kNoSubdivisionMaterial;
-  if (!mesh.primitives.empty() && mesh.primitives[0].material >= 0) {
-    const int m = mesh.primitives[0].material;
-    if (size_t(m) >= model.materials.size())
-      throw_input(file, "meshes[" + std::to_string(node.mesh) + "].primitives[0].material",
-                  "material index " + std::to_string(m) + " is out of range (the file has " +
-                      std::to_string(model.materials.size()) + " materials)");
-    s.material = uint32_t(m);
-  }
+  make_parts(primitive_materials(model, node.mesh, file), s);
+  static const tinygltf::Value kNone;
+  const auto ours = mesh.extensions.find("FILMBACK_blender");
+  const Fields mesh_extension(
+      ours == mesh.extensions.end() ? kNone : ours->second,
+      index_path("meshes", size_t(node.mesh)) + ".extensions.FILMBACK_blender", file);
+  plan_uv_maps(materials, mesh_extension, sub_path, diagnostics, s);
   return s;
 }
 

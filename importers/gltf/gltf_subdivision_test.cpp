@@ -9,6 +9,7 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/png.h"
 
 namespace fb {
 namespace {
@@ -18,16 +19,25 @@ namespace {
 const char* kQuadCage = R"("cage_positions": [0,0,0, 1,0,0, 1,1,0, 0,1,0],
   "cage_face_sizes": [4], "cage_face_vertices": [0,1,2,3])";
 
-std::filesystem::path write_gltf(const std::string& subdivision) {
+const char* kGlow = R"({"name": "Glow", "emissiveFactor": [1, 1, 1],
+                 "pbrMetallicRoughness": {"metallicFactor": 0}})";
+const char* kOnePrimitive = R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]})";
+
+// The file with `subdivision` on its node, whose mesh is `mesh`, and `materials`.
+std::filesystem::path write_gltf(const std::string& subdivision,
+                                 const std::string& materials = kGlow,
+                                 const std::string& mesh = kOnePrimitive,
+                                 const std::string& extra = "") {
   const std::filesystem::path file = test::scratch_dir() / "cage.gltf";
   std::ofstream(file) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["FILMBACK_blender"],
   "scene": 0, "scenes": [{"nodes": [0]}],
   "nodes": [{"name": "Cube", "mesh": 0, "translation": [0, 0, -5],
              "extensions": {"FILMBACK_blender": {"subdivision": {)"
                       << subdivision << R"(}}}}],
-  "materials": [{"name": "Glow", "emissiveFactor": [1, 1, 1],
-                 "pbrMetallicRoughness": {"metallicFactor": 0}}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+  "materials": [)" << materials
+                      << R"(],
+  "meshes": [)" << mesh
+                      << "]" << extra << R"(,
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
                  "min": [0, 0, 0], "max": [1, 1, 0]}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
@@ -66,7 +76,7 @@ TEST(GltfSubdivision, ReadsTheCageAndSettingsAndDropsTheTriangulatedMesh) {
   ASSERT_EQ(scene.subdivision_surfaces.size(), 1u);
   const SubdivisionSurface& s = scene.subdivision_surfaces[0];
   EXPECT_EQ(s.name, "Cube");
-  EXPECT_EQ(s.material, 0u);
+  EXPECT_EQ(s.parts.at(0).material, 0u);
   EXPECT_EQ(s.cage_positions.size(), 4u);
   EXPECT_EQ(s.cage_positions[2].x, 1.f);
   EXPECT_EQ(s.cage_positions[2].y, 1.f);
@@ -93,6 +103,14 @@ TEST(GltfSubdivision, DefaultsAreBlenders) {
   EXPECT_EQ(s.boundary_smooth, SubdivisionSettings::Boundary::kAll);
   EXPECT_TRUE(s.use_creases);
   EXPECT_TRUE(s.use_limit_surface);
+}
+
+// Nine UV maps (Blender allows eight): objects with members, since tinygltf drops empty ones.
+std::string nine_maps() {
+  std::string out;
+  for (int i = 0; i < 9; ++i)
+    out += std::string(i ? ", " : "") + R"({"name": "M)" + std::to_string(i) + R"("})";
+  return out;
 }
 
 TEST(GltfSubdivision, BadCagesAreErrorsWithTheJsonPath) {
@@ -126,11 +144,141 @@ TEST(GltfSubdivision, BadCagesAreErrorsWithTheJsonPath) {
       {std::string(kQuadCage) + R"(, "scheme": "LOOP")", ".scheme",
        "expected CATMULL_CLARK or SIMPLE"},
       {std::string(kQuadCage) + R"(, "use_creases": 1)", ".use_creases", "expected true or false"},
+      {std::string(kQuadCage) + R"(, "uv_smooth": "SMOOTH")", ".uv_smooth",
+       "expected NONE or PRESERVE_CORNERS or PRESERVE_CORNERS_AND_JUNCTIONS or "
+       "PRESERVE_CORNERS_JUNCTIONS_AND_CONCAVE or PRESERVE_BOUNDARIES or SMOOTH_ALL"},
+      {std::string(kQuadCage) + R"(, "uv_maps": {"name": "A"})", ".uv_maps",
+       "expected an array of at most 8 UV maps"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [)" + nine_maps() + "]", ".uv_maps",
+       "expected an array of at most 8 UV maps"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [1])", ".uv_maps[0]", "expected an object"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [{"uvs": [0,0, 1,0, 1,1, 0,1]}])", ".uv_maps[0]",
+       "expected a string 'name'"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [{"name": "A", "uvs": [0,0, 1,0, 1,1, 0,1]},
+                                                 {"name": "B", "uvs": [0,0, 1,0]}])",
+       ".uv_maps[1].uvs", "4 elements, expected 8 (u, v for each of the cage's corners)"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [{"name": "A", "uvs": [0,0, 1,0, 1,1, 0]}])",
+       ".uv_maps[0].uvs", "7 elements, expected a multiple of 2"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [{"name": "A", "uvs": [0,0, 1,"x", 1,1, 0,1]}])",
+       ".uv_maps[0].uvs[3]", "expected a finite number"},
+      {std::string(kQuadCage) + R"(, "uv_maps": [{"name": "A", "uvs": [0,0, 1,0, 1e39,1, 0,1]}])",
+       ".uv_maps[0].uvs[4]", "expected a finite number"},
+      {std::string(kQuadCage) + R"(, "face_primitives": [0, 0])", ".face_primitives",
+       "2 elements, expected 1 (one per cage face)"},
+      {std::string(kQuadCage) + R"(, "face_primitives": [1])", ".face_primitives[0]",
+       "expected a primitive of the node's mesh from 0 to 0"},
   };
   for (const auto& c : cases) {
     const std::string what = error_of(c.json);
     EXPECT_NE(what.find(kPath + c.where + ": " + c.what), std::string::npos)
         << c.json << "\n -> " << what;
+  }
+}
+
+// A two-quad cage (vertices 0..5, faces 0 1 4 3 and 1 2 5 4) with UV maps "A" and "B".
+const char* kStripCage = R"("cage_positions": [0,0,0, 1,0,0, 2,0,0, 0,1,0, 1,1,0, 2,1,0],
+  "cage_face_sizes": [4, 4], "cage_face_vertices": [0,1,4,3, 1,2,5,4],
+  "uv_maps": [{"name": "A", "uvs": [0,0, 1,0, 1,1, 0,1, 1,0, 2,0, 2,1, 1,1]},
+              {"name": "B", "uvs": [0,0, 0,1, 1,1, 1,0, 0,1, 0,2, 1,2, 1,1]}])";
+
+// A Blender material whose base colour is an image read through UV map `uv_map` ("" for the
+// active render map), and a normal map through the same.
+std::string textured_material(const std::string& name, const std::string& uv_map) {
+  const std::string texture =
+      R"({"uri": "tex.png", "colorspace": "sRGB", "uv_map": ")" + uv_map + R"("})";
+  return R"({"name": ")" + name +
+         R"(", "extensions": {"FILMBACK_blender": {"blender_version": [3, 4, 1], "surface": 0,
+     "nodes": [{"type": "PRINCIPLED", "name": "Principled BSDF", "inputs": {
+       "base_color": {"texture": )" +
+         texture + R"(}, "normal": {"normal_map": {"texture": )" + texture +
+         R"(, "strength": 1, "space": "TANGENT", "uv_map": ")" + uv_map + R"("}}}}]}}})";
+}
+
+// A white texel as tex.png beside `gltf`.
+std::filesystem::path with_texture(const std::filesystem::path& gltf) {
+  const std::vector<unsigned char> texels = test::png(1, 1, {255, 255, 255, 255});
+  std::ofstream(gltf.parent_path() / "tex.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(texels.data()), std::streamsize(texels.size()));
+  return gltf;
+}
+
+TEST(GltfSubdivision, UvMapsAreFoundByNameAndUnreadOnesDropped) {
+  Diagnostics diagnostics;
+  const Scene scene = import_gltf(
+      with_texture(write_gltf(std::string(kStripCage) + R"(, "uv_smooth": "SMOOTH_ALL")",
+                              textured_material("Textured", "B"),
+                              R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0}],
+                     "extensions": {"FILMBACK_blender": {"uv_maps": ["A", "B"]}}})")),
+      diagnostics);
+  EXPECT_EQ(diagnostics.count(), 0u);
+  const SubdivisionSurface& s = scene.subdivision_surfaces.at(0);
+  EXPECT_EQ(s.settings.uv_smooth, SubdivisionSettings::UvSmooth::kSmoothAll);
+  ASSERT_EQ(s.uv_maps.size(), 1u);  // "A" is read by no material
+  EXPECT_EQ(s.uv_maps[0].name, "B");
+  ASSERT_EQ(s.uv_maps[0].corner_uvs.size(), 8u);
+  EXPECT_EQ(s.uv_maps[0].corner_uvs[5].y, 2.f);
+  ASSERT_EQ(s.parts.size(), 1u);
+  EXPECT_EQ(s.parts[0].slot_uv_maps[0], 0u);
+  EXPECT_EQ(s.parts[0].slot_uv_maps[1], kNoUvMap);
+  EXPECT_EQ(s.parts[0].tangent_slot, 0u);  // the normal map's tangents from that map
+}
+
+TEST(GltfSubdivision, TheActiveRenderMapIsTheMeshsAndAMissingMapIsAWarning) {
+  Diagnostics diagnostics;
+  const Scene scene = import_gltf(
+      with_texture(write_gltf(
+          kStripCage, textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
+          R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
+                                    {"attributes": {"POSITION": 0}, "material": 1}],
+                     "extensions": {"FILMBACK_blender": {"uv_maps": ["A", "B"],
+                                                         "active_render_uv_map": "B"}}})")),
+      diagnostics);
+  const SubdivisionSurface& s = scene.subdivision_surfaces.at(0);
+  // Without face_primitives every face wears the first primitive's material.
+  ASSERT_EQ(s.parts.size(), 1u);
+  EXPECT_EQ(s.parts[0].material, 0u);
+  ASSERT_EQ(s.uv_maps.size(), 1u);
+  EXPECT_EQ(s.uv_maps[0].name, "B");
+  EXPECT_EQ(diagnostics.count(), 0u);
+
+  // Faces on both primitives: "Elsewhere" reads "C", which the cage lacks: map 0 ("A") stands in,
+  // as TEXCOORD_0 does for a triangle mesh, with a warning.
+  const Scene both =
+      import_gltf(with_texture(write_gltf(
+                      std::string(kStripCage) + R"(, "face_primitives": [1, 0])",
+                      textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
+                      R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
+                                    {"attributes": {"POSITION": 0}, "material": 1}],
+                     "extensions": {"FILMBACK_blender": {"uv_maps": ["A", "B"],
+                                                         "active_render_uv_map": "B"}}})")),
+                  diagnostics);
+  EXPECT_EQ(diagnostics.count(), 1u);
+  const SubdivisionSurface& t = both.subdivision_surfaces.at(0);
+  ASSERT_EQ(t.parts.size(), 2u);
+  EXPECT_EQ(t.parts[0].material, 1u);  // face 0's
+  EXPECT_EQ(t.parts[1].material, 0u);
+  EXPECT_EQ(t.face_parts, (std::vector<uint32_t>{0, 1}));
+  ASSERT_EQ(t.uv_maps.size(), 2u);
+  EXPECT_EQ(t.uv_maps[t.parts[0].slot_uv_maps[0]].name, "A");
+  EXPECT_EQ(t.uv_maps[t.parts[1].slot_uv_maps[0]].name, "B");
+}
+
+TEST(GltfSubdivision, AGltfTextureNeedsItsTexcoordAmongTheCagesMaps) {
+  const std::string material = R"({"name": "Tex", "pbrMetallicRoughness": {
+      "baseColorTexture": {"index": 0, "texCoord": 1}}})";
+  const std::string images = R"(, "textures": [{"source": 0}], "images": [{"uri": "tex.png"}])";
+  const std::string cage =
+      std::string(kQuadCage) + R"(, "uv_maps": [{"name": "A", "uvs": [0,0, 1,0, 1,1, 0,1]}])";
+  try {
+    Diagnostics diagnostics;
+    import_gltf(with_texture(write_gltf(cage, material, kOnePrimitive, images)), diagnostics);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(kPath + ".uv_maps: material 'Tex' reads TEXCOORD_1, and the cage has 1 "
+                                "UV maps; expected UV map 1"),
+              std::string::npos)
+        << what;
   }
 }
 

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "tests/blender/blender_shot.h"
+#include "tests/blender/checker_pixels.h"
 #include "tests/blender/shot_comparison.h"
 
 namespace fb::test {
@@ -30,15 +31,6 @@ struct Bounds {
   double block_above_noise;
 };
 
-enum class Square { kRed, kWhite, kEdge };
-
-Square classify(const Image& image, uint32_t x, uint32_t y) {
-  const double r = image.at(x, y, 0), g = image.at(x, y, 1);
-  if (!(r > 0)) return Square::kEdge;
-  const double ratio = g / r;
-  return ratio < 0.3 ? Square::kRed : ratio > 0.6 ? Square::kWhite : Square::kEdge;
-}
-
 void compare_with_cycles(const std::string& shot, const Bounds& bounds) {
   const std::optional<std::filesystem::path> blender = find_blender();
   if (!blender) GTEST_SKIP() << "needs Debian's `blender` package (blender not on PATH)";
@@ -48,15 +40,7 @@ void compare_with_cycles(const std::string& shot, const Bounds& bounds) {
   const ShotComparison cmp = compare_shot(c, f, render_second_seed(r, work));
   ASSERT_TRUE(cmp.finite);
 
-  size_t misplaced = 0, edge_moved = 0, red = 0;
-  for (uint32_t y = 0; y < c.height; ++y)
-    for (uint32_t x = 0; x < c.width; ++x) {
-      const Square a = classify(c, x, y), b = classify(f, x, y);
-      misplaced +=
-          (a == Square::kRed && b == Square::kWhite) || (a == Square::kWhite && b == Square::kRed);
-      edge_moved += (a == Square::kEdge) != (b == Square::kEdge);
-      red += a == Square::kRed;
-    }
+  const auto [misplaced, edge_moved, red] = compare_checkers(c, f);
   const double pixels = double(c.width) * c.height;
   std::printf(
       "%s shot: %zu red-square pixels in Cycles; red/white disagreements %zu (%.3f %%), "

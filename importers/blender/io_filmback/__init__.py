@@ -104,7 +104,7 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
             data["light"] = lights.light_extension(blender_object.data)
         elif blender_object.type == "MESH" and not export_settings.get("gltf_apply"):
             # With Apply Modifiers the exported mesh is already subdivided: no cage to carry.
-            surface = subdivision.subdivision_extension(blender_object)
+            surface = subdivision.subdivision_extension(blender_object, gltf2_node.mesh)
             if surface is not None:
                 data["subdivision"] = surface
         if data:

@@ -1,11 +1,13 @@
 """A mesh whose last modifier is a Subdivision Surface, as its unrefined quad cage and the
-modifier's settings (the FILMBACK_blender subdivision object): filmback refines it itself."""
+modifier's settings (the FILMBACK_blender subdivision object): filmback refines it itself, with
+the cage's UV maps (a coordinate per face corner, glTF's v = 1 - Blender's as in TEXCOORD_n) and
+which of the glTF mesh's primitives (materials) each face wears."""
 
 import bmesh
 import bpy
 
 
-def subdivision_extension(obj):
+def subdivision_extension(obj, gltf_mesh):
     modifiers = [m for m in obj.modifiers if m.show_render]
     if not modifiers or modifiers[-1].type != "SUBSURF":
         return None
@@ -14,11 +16,11 @@ def subdivision_extension(obj):
            "scheme": m.subdivision_type, "boundary_smooth": m.boundary_smooth,
            "use_creases": m.use_creases, "use_limit_surface": m.use_limit_surface,
            "uv_smooth": m.uv_smooth}
-    out.update(cage(obj, m))
+    out.update(cage(obj, m, gltf_mesh))
     return out
 
 
-def cage(obj, modifier):
+def cage(obj, modifier, gltf_mesh):
     """The mesh the modifiers before the subdivision make, in glTF axes (x, z, -y)."""
     shown = modifier.show_viewport
     modifier.show_viewport = False
@@ -27,7 +29,7 @@ def cage(obj, modifier):
         evaluated = obj.evaluated_get(depsgraph)
         me = evaluated.to_mesh()
         try:
-            return cage_arrays(me)
+            return cage_arrays(me, face_primitives(me, obj, gltf_mesh))
         finally:
             evaluated.to_mesh_clear()
     finally:
@@ -35,7 +37,7 @@ def cage(obj, modifier):
         bpy.context.evaluated_depsgraph_get()
 
 
-def cage_arrays(me):
+def cage_arrays(me, faces_primitives=None):
     positions = []
     for v in me.vertices:
         positions += [v.co.x, v.co.z, -v.co.y]
@@ -53,6 +55,44 @@ def cage_arrays(me):
         out["edge_creases"] = edge_creases
     if vertex_creases:
         out["vertex_creases"] = vertex_creases
+    if len(me.uv_layers) > 0:
+        out["uv_maps"] = [{"name": layer.name, "uvs": corner_uvs(me, layer)}
+                          for layer in me.uv_layers]
+    if faces_primitives is not None:
+        out["face_primitives"] = faces_primitives
+    return out
+
+
+def corner_uvs(me, layer):
+    """The layer's coordinates at each polygon's corners, in cage_face_vertices' order, v flipped
+    as Blender's exporter flips TEXCOORD_n."""
+    out = []
+    data = layer.data
+    for p in me.polygons:
+        for i in p.loop_indices:
+            u, v = data[i].uv
+            out += [u, 1.0 - v]
+    return out
+
+
+def face_primitives(me, obj, gltf_mesh):
+    """Which primitive of the exported mesh each polygon's material went to, or None when the mesh
+    has one primitive. Blender's exporter makes a primitive per material slot used, with the
+    slot's material (io_scene_gltf2 gltf2_blender_gather_primitives_extract.py): a polygon's
+    primitive is the one whose material is its slot's, found by name."""
+    primitives = list(getattr(gltf_mesh, "primitives", None) or [])
+    if len(primitives) < 2:
+        return None
+    names = [getattr(p.material, "name", None) if p.material is not None else None
+             for p in primitives]
+    slots = [slot.material for slot in obj.material_slots]
+    out = []
+    for p in me.polygons:
+        # Blender clamps a polygon's material index to the slots there are.
+        index = min(p.material_index, len(slots) - 1) if slots else 0
+        material = slots[index] if slots else None
+        name = material.name if material is not None else None
+        out.append(names.index(name) if name in names else 0)
     return out
 
 
