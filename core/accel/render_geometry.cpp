@@ -197,6 +197,9 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
     const Vec3f u(len > 0 ? m / len : Vec3d{});
     mesh.texturing.tangents.push_back({u.x, u.y, u.z, t[3]});
   }
+  const Transform normal_from_object = first.normal_transform();  // Cycles: a normal's transform
+  for (const Vec3f& t : source.texturing.radial_tangents)
+    mesh.texturing.radial_tangents.emplace_back(normal_from_object.vector(Vec3d(t)));
   mesh.indices = source.indices;
   // A mirroring transform turns counter-clockwise into clockwise: swap two corners so the
   // winding (and with it the front face) survives, as glTF requires.
@@ -305,7 +308,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   own_bytes_ = bytes_of(meshes_) + bytes_of(emitters_);
   for (const Mesh& mesh : meshes_) {
     own_bytes_ += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.indices) +
-                  bytes_of(mesh.texturing.tangents);
+                  bytes_of(mesh.texturing.tangents) + bytes_of(mesh.texturing.radial_tangents);
     for (const auto& texcoords : mesh.texturing.texcoords)
       own_bytes_ += bytes_of(texcoords);
   }
@@ -388,6 +391,10 @@ SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive,
     point.tangent = t;
     point.bitangent_sign = data.tangents[tri[0]][3] < 0.f ? -1.f : 1.f;
   }
+  if (!data.radial_tangents.empty())
+    point.radial_tangent = data.radial_tangents[tri[0]] * b[0] +
+                           data.radial_tangents[tri[1]] * b[1] +
+                           data.radial_tangents[tri[2]] * b[2];
   return point;
 }
 

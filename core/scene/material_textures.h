@@ -55,6 +55,11 @@ struct VertexTextureData {
   static constexpr uint32_t kSets = 2;  // TEXCOORD_0 and TEXCOORD_1
   std::array<std::vector<Vec2f>, kSets> texcoords;
   std::vector<std::array<float, 4>> tangents;  // xyz unit, w = +-1: bitangent = w (n x t)
+  // Cycles' default tangent for anisotropic closures (svm_node_tangent, radial about the object's
+  // Blender Z axis): the direction (-(g.y - 1/2), g.x - 1/2, 0) of the Generated coordinates g,
+  // in object space, to be transformed as a normal; affine in the position, so interpolating it
+  // per vertex is exact. Empty unless an anisotropic Blender material needs it.
+  std::vector<Vec3f> radial_tangents;
 };
 
 }  // namespace fb

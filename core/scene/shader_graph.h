@@ -112,7 +112,7 @@ struct ShaderGraph {
   std::vector<std::string> uv_maps;
   uint32_t normal_map_uv_slot = 0;  // the UV map whose tangents normal maps use
   bool has_normal_map = false;
-  bool needs_tangent = false;  // an anisotropic Principled without a Tangent input
+  bool needs_radial_tangent = false;  // an anisotropic Principled (Cycles' default tangent)
 };
 
 }  // namespace fb

@@ -33,6 +33,15 @@ bool any_weight(Rgb w) {
   return std::max({std::abs(w.x), std::abs(w.y), std::abs(w.z)}) > kWeightCutoff;
 }
 
+// Cycles' default Tangent input (svm_node_tangent, radial): the radial direction made
+// perpendicular to the normal, T = N x normalize(radial x N); zero (Surface then picks one) without
+// the mesh's radial data.
+Vec3f default_tangent(Vec3f radial, Vec3f n) {
+  const Vec3f side = cross(radial, n);
+  const float len = length(side);
+  return len > 0.f ? cross(n, side / len) : Vec3f{};
+}
+
 // Nesting bound for the walk: the importer refuses cycles, and a graph has at most 1024 nodes.
 constexpr int kMaxDepth = 1024;
 
@@ -216,7 +225,7 @@ void GraphShader::build(const SurfacePoint& point, const ShadingFrame& frame,
         p.transmission_roughness = in_number(Socket::kTransmissionRoughness);
         p.normal = in_normal(Socket::kNormal);
         p.clearcoat_normal = in_normal(Socket::kClearcoatNormal);
-        p.tangent = point.tangent;
+        p.tangent = default_tangent(point.radial_tangent, smooth);
         p.distribution = node.distribution;
         p.subsurface_method = node.subsurface_method;
         const float alpha = principled_alpha(in_number(Socket::kAlpha));

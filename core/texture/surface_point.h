@@ -20,6 +20,7 @@ struct SurfacePoint {
   uint32_t uv_sets = 0;  // how many of `uv` the mesh has
   Vec3f tangent{};       // unit, or zero when the mesh has none
   float bitangent_sign = 1.f;
+  Vec3f radial_tangent{};  // VertexTextureData::radial_tangents in render space, or zero
 };
 
 }  // namespace fb

@@ -142,6 +142,12 @@ class GraphReader {
     if (const auto surface = ext_.whole("surface", 0, double(nodes.size()) - 1))
       graph_.surface = uint32_t(*surface);
     check_acyclic();
+    for (const ShaderNode& node : graph_.nodes) {
+      const ShaderInput& a = node.in(Socket::kAnisotropic);
+      if (node.type == ShaderNodeType::kPrincipled &&
+          (a.kind == ShaderInput::Kind::kTexture || a.value.x != 0.f))
+        graph_.needs_radial_tangent = true;
+    }
     return std::move(graph_);
   }
 
@@ -393,6 +399,36 @@ std::optional<uint32_t> MeshUvMaps::texcoord(const std::string& name) const {
   const auto it = std::find(names.begin(), names.end(), wanted);
   if (it == names.end()) return std::nullopt;
   return uint32_t(it - names.begin());
+}
+
+std::vector<Vec3f> radial_tangents(const std::vector<Vec3f>& positions,
+                                   const Fields& mesh_extension) {
+  // Blender's axes from glTF's: (x, y, z)_blender = (x, -z, y)_gltf.
+  const auto blender = [](Vec3f p) { return Vec3d{p.x, -double(p.z), p.y}; };
+  Vec3d location, size;
+  const auto loc = mesh_extension.numbers("texspace_location", 3, -kLargestValue, kLargestValue);
+  const auto sz = mesh_extension.numbers("texspace_size", 3, -kLargestValue, kLargestValue);
+  if (loc && sz && loc->size() == 3 && sz->size() == 3) {
+    location = {(*loc)[0], (*loc)[1], (*loc)[2]};
+    size = {(*sz)[0], (*sz)[1], (*sz)[2]};
+  } else {
+    Bounds3d box;
+    for (const Vec3f& p : positions)
+      box.extend(blender(p));
+    if (!box.empty()) location = (box.lo + box.hi) * 0.5, size = (box.hi - box.lo) * 0.5;
+  }
+  // Cycles' Generated coordinates (blender/mesh.cpp, mesh_texture_space): g = (co - location) /
+  // (2 size) + 1/2 per axis, an axis of size 0 left unscaled.
+  const auto half_extent = [](double s) { return s != 0 ? 0.5 / s : 1.0; };
+  const Vec3d scale{half_extent(size.x), half_extent(size.y), half_extent(size.z)};
+  std::vector<Vec3f> out;
+  out.reserve(positions.size());
+  for (const Vec3f& p : positions) {
+    const Vec3d g = (blender(p) - location) * scale;  // g - 1/2
+    // svm_node_tangent's radial Z, (-(g.y - 1/2), g.x - 1/2, 0), back in glTF's axes.
+    out.push_back(Vec3f(Vec3d{-g.y, 0, -g.x}));
+  }
+  return out;
 }
 
 MeshUvMaps read_mesh_uv_maps(const Fields& mesh_extension) {

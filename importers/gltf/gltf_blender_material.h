@@ -29,4 +29,10 @@ struct MeshUvMaps {
 };
 MeshUvMaps read_mesh_uv_maps(const Fields& mesh_extension);
 
+// VertexTextureData::radial_tangents of a mesh's object-space positions (glTF axes), from the
+// texture space its FILMBACK_blender extension carries (Blender's object axes), else from the
+// positions' bounds (Blender's automatic texture space).
+std::vector<Vec3f> radial_tangents(const std::vector<Vec3f>& positions,
+                                   const Fields& mesh_extension);
+
 }  // namespace fb::gltf

@@ -4,6 +4,7 @@
 #include "importers/gltf/gltf_blender_material.h"
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <cstring>
 #include <fstream>
@@ -216,6 +217,40 @@ TEST(BlenderMaterial, BadGraphsNameTheJsonPath) {
           R"({"nodes": [{"type": "DIFFUSE", "inputs": {"color": {"texture": {"uri": "../x.png"}}}}]})"),
       at + "nodes[0].inputs.color.texture.uri: '../x.png' refers outside the scene's folder");
   expect(import_error(R"({"surface": 3, "nodes": []})"), at + "surface");
+}
+
+}  // namespace
+}  // namespace fb
+
+namespace fb {
+namespace {
+
+// Cycles' default tangent (radial about Blender's Z, through the texture space's centre), per
+// vertex in glTF's object axes: at Blender (1, 0, 0), 1 m right of a centre with half-size 2, the
+// Generated coordinate is 1/2 + 1/4 and the radial direction Blender's (0, 1/4, 0), which is
+// glTF's (0, 0, -1/4); at Blender (0, 2, 0) it is Blender's (-1/2, 0, 0).
+TEST(BlenderMaterial, RadialTangentsFollowBlendersTextureSpace) {
+  tinygltf::Value::Object ext;
+  ext["texspace_location"] = gltf::number_array({0.0, 0.0, 0.0});
+  ext["texspace_size"] = gltf::number_array({2.0, 2.0, 2.0});
+  const tinygltf::Value value(ext);
+  const gltf::Fields fields(value, "meshes[0].extensions.FILMBACK_blender", "x.gltf");
+  // glTF (x, y, z) is Blender (x, -z, y).
+  const std::vector<Vec3f> t = gltf::radial_tangents({{1, 0, 0}, {0, 0, -2}}, fields);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].x, 0.f);
+  EXPECT_EQ(t[0].y, 0.f);
+  EXPECT_EQ(t[0].z, -0.25f);
+  EXPECT_EQ(t[1].x, -0.5f);
+  EXPECT_EQ(t[1].y, 0.f);
+  EXPECT_EQ(t[1].z, 0.f);
+  // Without a texture space, the positions' bounds (Blender's automatic one): centre (1/2, 1, 0),
+  // half-size (1/2, 1, 0); the flat z axis stays unscaled.
+  const tinygltf::Value none;
+  const std::vector<Vec3f> a =
+      gltf::radial_tangents({{1, 0, 0}, {0, 0, -2}}, gltf::Fields(none, "m", "x.gltf"));
+  EXPECT_EQ(a[0].z, -0.5f);  // Blender x: (1 - 1/2) / (2 * 1/2)
+  EXPECT_EQ(a[0].x, 0.5f);   // Blender y: -(0 - 1) / (2 * 1)
 }
 
 }  // namespace

@@ -303,6 +303,8 @@ void read_texturing(const AccessorContext& ctx, const tinygltf::Primitive& prim,
   const TexcoordPlan plan =
       plan_texcoords(material, read_mesh_uv_maps(mesh_extension), ctx.file, path, diagnostics);
   VertexTextureData& out = mesh.texturing;
+  if (material.shader_graph && material.shader_graph->needs_radial_tangent)
+    out.radial_tangents = radial_tangents(mesh.positions, mesh_extension);
   for (uint32_t slot = 0; slot < VertexTextureData::kSets; ++slot) {
     if (!plan.slots[slot]) continue;
     const uint32_t n = *plan.slots[slot];

@@ -40,14 +40,18 @@ TEST_P(BlenderPrincipled, MatchesCycles) {
   std::printf("%s: %s; Blender %.1f s (Cycles %.1f s), filmback %.1f s\n", shot.c_str(),
               cmp.summary().c_str(), r.blender_s, r.cycles_s, r.filmback_s);
   ASSERT_TRUE(cmp.finite);
-  EXPECT_LE(cmp.mean_relative, cmp.noise_mean_relative + kMeanAboveNoise);
+  // The anisotropic lobes follow Cycles' default tangent (radial about each object's Z axis):
+  // measured 2.57 % against a floor of 2.40 %; an arbitrary tangent gives 3.93 %, which the
+  // issue's 2 % above the floor would let through, so this shot is held to 1 %.
+  const double mean_above_noise = shot == "anisotropic" ? 0.01 : kMeanAboveNoise;
+  EXPECT_LE(cmp.mean_relative, cmp.noise_mean_relative + mean_above_noise);
   EXPECT_LE(cmp.worst_block, cmp.worst_noise_block + kBlockAboveNoise);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shots, BlenderPrincipled,
                          testing::Values("roughness_0.2", "roughness_0.5", "roughness_0.9",
-                                         "layers", "glass_mix", "nodes", "default", "sphere_light",
-                                         "disk_light"),
+                                         "layers", "anisotropic", "glass_mix", "nodes", "default",
+                                         "sphere_light", "disk_light"),
                          [](const testing::TestParamInfo<const char*>& info) {
                            std::string name = info.param;
                            for (char& c : name)

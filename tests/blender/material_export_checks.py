@@ -471,6 +471,9 @@ def check_meshes(c):
         active = next(l.name for l in blender_mesh.uv_layers if l.active_render)
         c.expect(f"mesh '{mesh['name']}'.active_render_uv_map", data.get("active_render_uv_map"),
                  active)
+        for key in ("texspace_location", "texspace_size"):
+            c.expect(f"mesh '{mesh['name']}'.{key}", data.get(key),
+                     list(getattr(blender_mesh, key)))
     print("TEXCOORD_n holds, per mesh (measured):", json.dumps(measured))
 
 

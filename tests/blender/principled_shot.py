@@ -105,6 +105,13 @@ GLASS = principled("glass", (0.95, 0.95, 1.0), 0.0, 0.4, Transmission=1.0, IOR=1
 MULTISCATTER = principled("multiscatter", (0.9, 0.6, 0.2), 0.5, 0.6, distribution="MULTI_GGX")
 
 
+# Anisotropic lobes along Cycles' default tangent (radial about each object's Z axis).
+ANISOTROPIC = (principled("brushed gold", (1.0, 0.77, 0.34), 1.0, 0.3, Anisotropic=0.9),
+               principled("turned", (0.2, 0.4, 0.3), 0.0, 0.25, Anisotropic=0.7,
+                          Anisotropic_Rotation=0.25),
+               principled("brushed steel", (0.6, 0.6, 0.62), 1.0, 0.5, Anisotropic=-0.6))
+
+
 def normal_mapped():
     """A Principled BSDF normal-mapped by material_shot.py's ridges, on a sphere: the tangent frame
     follows the sphere's UV map."""
@@ -194,6 +201,7 @@ SHOTS = {
     "roughness_0.5": Shot(ground_at(0.5), spheres_at(0.5), (SUN,)),
     "roughness_0.9": Shot(ground_at(0.9), spheres_at(0.9), (SUN,)),
     "layers": Shot(ground_at(0.5), (SHEEN, CLEARCOAT, SPECULAR_TINT), (SUN_BEHIND,)),
+    "anisotropic": Shot(ground_at(0.5), ANISOTROPIC, (SUN, SUN_BEHIND)),
     "glass_mix": Shot(ground_at(0.5), (GLASS, glossy_diffuse_mix, MULTISCATTER),
                       (SUN_HIGH,)),
     "nodes": Shot(ground_at(0.5), (normal_mapped, emission_add_transparent, HALF_ALPHA),
