@@ -49,12 +49,10 @@ constexpr int kMaxDepth = 1024;
 
 std::array<float, 4> GraphShader::texel(uint32_t index, const SurfacePoint& point) const {
   const ImageTextureNode& t = graph_.textures[index];
-  const Vec2f uv = t.uv_slot < point.uv_sets ? point.uv[t.uv_slot] : Vec2f{0.f, 0.f};
-  const auto& m = t.uv_transform;
+  const Vec2f st = texture_position(point, t.uv_slot, t.uv_transform);
   TextureLookup lookup;
   lookup.image = t.image;
-  lookup.s = m[0] * uv.x + m[1] * uv.y + m[2];
-  lookup.t = m[3] * uv.x + m[4] * uv.y + m[5];
+  lookup.s = st.x, lookup.t = st.y;
   lookup.wrap_s = lookup.wrap_t = t.wrap;
   lookup.interpolation = t.interpolation;
   lookup.srgb = t.srgb;

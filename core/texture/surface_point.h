@@ -23,4 +23,13 @@ struct SurfacePoint {
   Vec3f radial_tangent{};  // VertexTextureData::radial_tangents in render space, or zero
 };
 
+// Where texture coordinate set `set` puts the point in a texture, through a 2x3 transform
+// `m` (TextureRef::uv_transform): (s, t) = [a b c; d e f] (u, v, 1). A set the mesh lacks reads
+// (0, 0).
+inline Vec2f texture_position(const SurfacePoint& point, uint32_t set,
+                              const std::array<float, 6>& m) {
+  const Vec2f uv = set < point.uv_sets ? point.uv[set] : Vec2f{0.f, 0.f};
+  return {m[0] * uv.x + m[1] * uv.y + m[2], m[3] * uv.x + m[4] * uv.y + m[5]};
+}
+
 }  // namespace fb

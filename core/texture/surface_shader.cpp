@@ -43,12 +43,10 @@ SolidColour SurfaceShader::solid_colour(const SolidPattern& pattern,
 
 std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfacePoint& point,
                                            bool srgb) const {
-  const Vec2f uv = ref.texcoord < point.uv_sets ? point.uv[ref.texcoord] : Vec2f{0.f, 0.f};
-  const auto& m = ref.uv_transform;
+  const Vec2f st = texture_position(point, ref.texcoord, ref.uv_transform);
   TextureLookup lookup;
   lookup.image = ref.image;
-  lookup.s = m[0] * uv.x + m[1] * uv.y + m[2];
-  lookup.t = m[3] * uv.x + m[4] * uv.y + m[5];
+  lookup.s = st.x, lookup.t = st.y;
   lookup.wrap_s = ref.wrap_s;
   lookup.wrap_t = ref.wrap_t;
   lookup.srgb = srgb;
