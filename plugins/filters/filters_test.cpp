@@ -76,7 +76,7 @@ TEST_P(FilterTest, SampleWeightsAreUnbiasedForTheFilter) {
   // 4 standard errors of the sample mean (zero for exactly sampled filters, 2.5e-3 for Lanczos'
   // signed weights) plus 1e-4 for the quadrature of the exact value.
   const auto filter = test::make_filter(GetParam());
-  const size_t n = 400000;
+  constexpr size_t n = 400000;
   const Sampled s = draw(*filter, n);
   const float* r = s.r;
   auto g = [&](double x, double y) { return 1.0 + x * x / (r[0] * r[0]) + 0.5 * y; };
@@ -88,7 +88,7 @@ TEST_P(FilterTest, SampleWeightsAreUnbiasedForTheFilter) {
     estimate += wg, estimate2 += wg * wg;
     weight_sum += sample.weight, weight2_sum += double(sample.weight) * sample.weight;
   }
-  const auto standard_error = [n](double sum, double sum2) {
+  const auto standard_error = [](double sum, double sum2) {
     return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)) / n);
   };
   double exact = 0;  // quadrature of h g
