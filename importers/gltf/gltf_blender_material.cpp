@@ -142,11 +142,15 @@ class GraphReader {
     if (const auto surface = ext_.whole("surface", 0, double(nodes.size()) - 1))
       graph_.surface = uint32_t(*surface);
     check_acyclic();
-    for (const ShaderNode& node : graph_.nodes) {
-      const ShaderInput& a = node.in(Socket::kAnisotropic);
-      if (node.type == ShaderNodeType::kPrincipled &&
-          (a.kind == ShaderInput::Kind::kTexture || a.value.x != 0.f))
-        graph_.needs_radial_tangent = true;
+    for (size_t i = 0; i < graph_.nodes.size(); ++i) {
+      const ShaderNode& node = graph_.nodes[i];
+      if (node.type != ShaderNodeType::kPrincipled) continue;
+      if (varies_or_nonzero(node.in(Socket::kAnisotropic))) graph_.needs_radial_tangent = true;
+      if (varies_or_nonzero(node.in(Socket::kSubsurface)))
+        warn(ext_.path() + "." + index_path("nodes", i) + ".inputs.subsurface",
+             "'" + node.name +
+                 "': subsurface scattering renders as its diffuse fallback (the Principled "
+                 "diffuse of the base and subsurface colours mixed by Subsurface; docs/blender.md)");
     }
     return std::move(graph_);
   }
@@ -358,6 +362,10 @@ class GraphReader {
     }
     graph_.uv_maps.push_back(name);
     return uint32_t(graph_.uv_maps.size() - 1);
+  }
+
+  static bool varies_or_nonzero(const ShaderInput& in) {
+    return in.kind == ShaderInput::Kind::kTexture || in.value.x != 0.f;
   }
 
   // Mix and Add shaders must not reach themselves: the host walks the graph at every hit.

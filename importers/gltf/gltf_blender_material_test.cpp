@@ -193,6 +193,16 @@ TEST(BlenderMaterial, TransparentWeightBecomesCoverage) {
   EXPECT_NEAR(shader.emission(0, point).x * shader.alpha(0, point), 0.6f * 2.f, 1e-6);
 }
 
+// Subsurface scattering is rendered as its diffuse fallback: said once per node that has it.
+TEST(BlenderMaterial, SubsurfaceIsWarnedAsAFallback) {
+  const Imported none = import(quad_with(R"({"surface": 0, "nodes": [
+    {"type": "PRINCIPLED", "inputs": {"subsurface": 0}}]})"));
+  EXPECT_EQ(none.warnings, 0u);
+  const Imported some = import(quad_with(R"({"surface": 0, "nodes": [
+    {"type": "PRINCIPLED", "name": "Skin", "inputs": {"subsurface": 0.3}}]})"));
+  EXPECT_EQ(some.warnings, 1u);
+}
+
 TEST(BlenderMaterial, BadGraphsNameTheJsonPath) {
   const std::string at = "quad.gltf: materials[0].extensions.FILMBACK_blender.";
   const auto expect = [](const std::string& error, const std::string& wanted) {
