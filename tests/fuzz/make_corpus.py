@@ -43,6 +43,27 @@ def gltf_corpus():
     textured.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}},
                                   "emissiveTexture": {"index": 1}}]
     files["textured.gltf"] = textured.json_text()
+    blender = triangle_scene()
+    texture = {"uri": "texture.png", "uv_map": "UVMap", "uv_transform": [2, 0, 0.5, 0, 2, 0],
+               "extension": "CLIP", "interpolation": "Cubic", "colorspace": "Non-Color"}
+    blender.doc["materials"] = [{"extensions": {"FILMBACK_blender": {
+        "blender_version": [3, 4, 1], "surface": 4, "warnings": ["a node not carried"],
+        "nodes": [
+            {"type": "PRINCIPLED", "distribution": "MULTI_GGX", "inputs": {
+                "base_color": {"texture": texture}, "roughness": {"texture": texture, "channel": "G"},
+                "anisotropic": 0.5, "sheen": 1, "clearcoat": 0.5, "subsurface": 0.2, "alpha": 0.8,
+                "emission": [1, 0.5, 0], "emission_strength": 2,
+                "normal": {"normal_map": {"texture": texture, "strength": 0.7}}}},
+            {"type": "GLASS", "distribution": "BECKMANN", "inputs": {"ior": 1.33, "roughness": 0.1}},
+            {"type": "MIX_SHADER", "inputs": {"fac": {"texture": texture, "output": "Alpha"}},
+             "shaders": [0, 1]},
+            {"type": "TRANSPARENT", "inputs": {"color": [0.5, 0.5, 0.5]}},
+            {"type": "ADD_SHADER", "shaders": [2, 3]}]}}}]
+    blender.doc["meshes"][0]["primitives"][0]["material"] = 0
+    blender.doc["meshes"][0]["extensions"] = {"FILMBACK_blender": {
+        "uv_maps": ["UVMap"], "texspace_location": [0, 0, 0], "texspace_size": [1, 1, 1]}}
+    blender.doc["extensionsUsed"] = ["FILMBACK_blender"]
+    files["blender_material.gltf"] = blender.json_text()
     lit = triangle_scene()
     lit.doc["extensionsUsed"] = ["KHR_lights_punctual"]
     lit.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
