@@ -8,7 +8,8 @@ uint32_t CornerSplitter::add(uint32_t vertex, const uint32_t* values, bool& fres
   // Most vertices have one combination, seams a few: a short list per vertex.
   uint32_t* link = &first_[vertex];
   for (; *link != kNone; link = &next_[*link]) {
-    const uint32_t* known = &values_of_[size_t(*link) * channels_];
+    // data(), not [], since a mesh without UV maps has no values at all (channels_ == 0).
+    const uint32_t* known = values_of_.data() + size_t(*link) * channels_;
     if (std::equal(values, values + channels_, known)) {
       fresh = false;
       return *link;
