@@ -4,9 +4,11 @@
 
 namespace fb {
 
-std::vector<ConfigurationFit> fit_configurations(const SceneReport& scene) {
+std::vector<ConfigurationFit> fit_configurations(const SceneReport& scene,
+                                                 ReferenceKind reference) {
   std::vector<ConfigurationFit> fits;
   for (const RenderRow& row : scene.rows) {
+    if (!row.measured(reference)) continue;
     auto it = std::find_if(fits.begin(), fits.end(), [&](const ConfigurationFit& f) {
       return f.renderer == row.renderer && f.configuration == row.configuration;
     });
@@ -14,6 +16,7 @@ std::vector<ConfigurationFit> fit_configurations(const SceneReport& scene) {
       ConfigurationFit fit;
       fit.renderer = row.renderer;
       fit.configuration = row.configuration;
+      fit.reference = reference;
       it = fits.insert(fits.end(), std::move(fit));
     }
     it->rows.push_back(&row);
@@ -22,12 +25,13 @@ std::vector<ConfigurationFit> fit_configurations(const SceneReport& scene) {
     std::vector<double> render_s, spp, rmse, relmse, fixed_s;
     for (const RenderRow* row : fit.rows) {
       fixed_s.push_back(row->total_s - row->render_s);
-      if (row->reference_noise && row->error.rmse < kFitAboveReferenceNoise * *row->reference_noise)
+      const MeasuredError& m = *row->measured(reference);
+      if (m.reference_noise && m.error.rmse < kFitAboveReferenceNoise * *m.reference_noise)
         continue;
       render_s.push_back(row->render_s);
       spp.push_back(row->spp);
-      rmse.push_back(row->error.rmse);
-      relmse.push_back(row->error.relmse);
+      rmse.push_back(m.error.rmse);
+      relmse.push_back(m.error.relmse);
     }
     fit.fitted = rmse.size();
     fit.by_render_s = fit_log_log(render_s, rmse);
@@ -39,16 +43,23 @@ std::vector<ConfigurationFit> fit_configurations(const SceneReport& scene) {
   return fits;
 }
 
+ReferenceKind primary_reference(const SceneReport& scene) {
+  for (const RenderRow& row : scene.rows)
+    if (row.cycles_reference) return ReferenceKind::kCycles;
+  return ReferenceKind::kOwn;
+}
+
 TargetError default_target(const std::vector<ConfigurationFit>& fits, std::optional<double> given) {
   if (given) return {*given, "given with --target-error"};
   TargetError target{0, ""};
   for (const ConfigurationFit& fit : fits) {
     const RenderRow& last = *fit.rows.back();
-    if (last.error.rmse > target.rmse)
-      target = {last.error.rmse, "the largest RMSE any configuration has at its highest spp (" +
-                                     fit.configuration + " at " + std::to_string(last.spp) +
-                                     " spp), so every configuration reaches it within the "
-                                     "measured range"};
+    const double rmse = last.measured(fit.reference)->error.rmse;
+    if (rmse > target.rmse)
+      target = {rmse, "the largest RMSE any configuration has at its highest spp (" +
+                          fit.configuration + " at " + std::to_string(last.spp) +
+                          " spp), so every configuration reaches it within the "
+                          "measured range"};
   }
   return target;
 }

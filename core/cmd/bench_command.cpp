@@ -1,6 +1,7 @@
 // `filmback bench` (docs/cli.md, "bench"): checks what was typed, runs every scene through
 // filmback (and Cycles), and writes the report folder.
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "core/cmd/bench_report.h"
 #include "core/cmd/commands.h"
 #include "core/util/error.h"
+#include "core/util/program_on_path.h"
 #include "core/util/temporary_file.h"
 
 namespace fb {
@@ -103,23 +105,57 @@ void write_text(const fs::path& file, const std::string& text) {
   });
 }
 
-// Runs plot.py; each scene's plot file name, or none (with one warning) when it drew none.
-std::vector<std::string> draw_plots(const fs::path& output,
-                                    const std::vector<SceneReport>& scenes) {
+// Debian's Python, tried first: python3-matplotlib installs into it, while the python3 first on
+// PATH may be a version manager's (pyenv) without matplotlib (issue 17).
+constexpr const char* kSystemPython = "/usr/bin/python3";
+
+// The interpreters plot.py is tried with, in order: Debian's, then the python3 on PATH when that
+// is another file.
+std::vector<fs::path> python_candidates() {
+  std::vector<fs::path> out;
+  if (access(kSystemPython, X_OK) == 0) out.push_back(kSystemPython);
+  if (const std::optional<fs::path> on_path = program_on_path("python3")) {
+    std::error_code ec;
+    if (out.empty() || !fs::equivalent(out.front(), *on_path, ec)) out.push_back(*on_path);
+  }
+  return out;
+}
+
+// Runs plot.py with the first interpreter that has matplotlib; each scene's plot file name, or
+// none (with one warning naming the interpreters tried) when it drew none. `interpreter` is the
+// one that drew them.
+std::vector<std::string> draw_plots(const fs::path& output, const std::vector<SceneReport>& scenes,
+                                    std::string& interpreter) {
   const fs::path log = output / "work" / "plot.log";
-  const ProgramRun run =
-      run_program({"python3", bench_script("plot.py").string(), output.string()}, log);
-  std::vector<std::string> plots(scenes.size());
-  if (run.started && run.exit_status == 0)
-    for (size_t i = 0; i < scenes.size(); ++i)
-      plots[i] = scenes[i].name + ".png";
-  else if (run.exit_status == 3)
-    std::cerr << "filmback: warning: python3-matplotlib is not installed: no plots (the CSV "
-                 "files and summary.md are written)\n";
+  const std::vector<fs::path> pythons = python_candidates();
+  const char* consequence = ": no plots (the CSV files and summary.md are written)\n";
+  std::string without;  // the interpreters that lack matplotlib
+  for (const fs::path& python : pythons) {
+    const ProgramRun run =
+        run_program({python.string(), bench_script("plot.py").string(), output.string()}, log);
+    if (run.started && run.exit_status == 0) {
+      interpreter = python.string();
+      std::cout << "bench: plots drawn by " << interpreter << std::endl;
+      std::vector<std::string> plots;
+      for (const SceneReport& scene : scenes)
+        plots.push_back(scene.name + ".png");
+      return plots;
+    }
+    if (run.exit_status != 3) {
+      std::cerr << "filmback: warning: " << describe_failure(run, python.string() + " (plots)", log)
+                << consequence;
+      return std::vector<std::string>(scenes.size());
+    }
+    without += (without.empty() ? "" : " nor for ") + python.string();
+  }
+  if (pythons.empty())
+    std::cerr << "filmback: warning: no Python: neither " << kSystemPython
+              << " nor a python3 on PATH (Debian packages python3 and python3-matplotlib)"
+              << consequence;
   else
-    std::cerr << "filmback: warning: " << describe_failure(run, "python3 (plots)", log)
-              << ": no plots (the CSV files and summary.md are written)\n";
-  return plots;
+    std::cerr << "filmback: warning: matplotlib is not installed for " << without
+              << " (Debian package python3-matplotlib, for " << kSystemPython << ")" << consequence;
+  return std::vector<std::string>(scenes.size());
 }
 
 }  // namespace
@@ -163,7 +199,10 @@ int run_bench(BenchCommand& c) {
     const std::optional<BlenderShot>& shot = shots[i];
     FilmbackBench filmback(name, shot ? shot->gltf : scene, reference, settings, loader, work);
     std::optional<CyclesBench> cycles;
-    if (shot && settings.against_cycles) cycles.emplace(name, *shot, settings, filmback);
+    if (shot && settings.against_cycles) {
+      cycles.emplace(name, *shot, settings, filmback);
+      filmback.measure_against_cycles(cycles->reference(), cycles->reference_note());
+    }
     // Cycles' render at each sample count right after filmback's, so that a change in the
     // machine's load falls on both alike.
     for (uint32_t spp : settings.spp) {
@@ -183,7 +222,7 @@ int run_bench(BenchCommand& c) {
   context.finished = utc_now();
   context.load_after = load_average();
 
-  const std::vector<std::string> plots = draw_plots(c.output, reports);
+  const std::vector<std::string> plots = draw_plots(c.output, reports, context.plot_interpreter);
   write_text(c.output / "summary.md", summary_markdown(reports, context, plots));
   std::cout << "bench: wrote " << (c.output / "summary.md").string() << std::endl;
   return 0;

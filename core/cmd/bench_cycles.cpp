@@ -1,7 +1,6 @@
 #include "core/cmd/bench_cycles.h"
 
 #include <charconv>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -100,26 +99,19 @@ CyclesBench::CyclesBench(const std::string& name, const BlenderShot& shot,
                               "cycles_reference_" + std::to_string(h + 1))
                     .image;
   }
-  AveragedReference averaged = average_halves(halves[0], halves[1]);
-  reference_ = std::move(averaged.image);
+  reference_ = average_halves(halves[0], halves[1]);
   reference_note_ = {"cycles", "the shot's",
                      "Cycles, 2 x " + std::to_string(half) + " spp (seeds " +
                          std::to_string(settings.seed + 1) + " and " +
                          std::to_string(settings.seed + 2) + ")",
-                     averaged.noise};
+                     reference_.noise};
   const std::optional<size_t> shot_filter = filmback.shot_filter();
   if (!shot_filter) return;
-  const Image& ours = filmback.reference(*shot_filter);
-  const ReferenceNote& our_note = filmback.reference_note(*shot_filter);
-  if (ours.width != reference_.width || ours.height != reference_.height) return;
-  note_.bias = image_error(ours, reference_);
-  note_.bias_filter = our_note.filter;
-  note_.bias_noise_rmse =
-      std::hypot(our_note.noise ? our_note.noise->rmse : 0, averaged.noise.rmse);
-  double sum_ours = 0, sum_cycles = 0;
-  for (size_t i = 0; i < ours.pixels.size(); ++i)
-    sum_ours += ours.pixels[i], sum_cycles += reference_.pixels[i];
-  note_.mean_ratio = sum_ours / sum_cycles;
+  const AveragedReference& ours = filmback.reference(*shot_filter);
+  if (ours.image.width != reference_.image.width || ours.image.height != reference_.image.height)
+    return;
+  note_.agreement = compare_references(ours, reference_);
+  note_.agreement_filter = filmback.reference_note(*shot_filter).filter;
 }
 
 void CyclesBench::render(uint32_t spp) {
@@ -132,12 +124,13 @@ void CyclesBench::render(uint32_t spp) {
   row.render_s = r.render_s;
   row.total_s = r.process_s;
   row.samples_per_s = double(r.image.width) * r.image.height * spp / r.render_s;
-  row.error = image_error(r.image, reference_);
-  row.reference_noise = reference_note_.noise->rmse;
+  // Cycles' own reference is Cycles' reference: both measures are the same.
+  row.own = {image_error(r.image, reference_.image), reference_.noise.rmse};
+  row.cycles_reference = row.own;
   char line[256];
   std::snprintf(line, sizeof line,
                 "bench: %s: cycles at %u spp: %.3f s render, %.3f s process, RMSE %.4g",
-                name_.c_str(), spp, row.render_s, row.total_s, row.error.rmse);
+                name_.c_str(), spp, row.render_s, row.total_s, row.own.error.rmse);
   std::cout << line << std::endl;
   rows_.push_back(std::move(row));
 }

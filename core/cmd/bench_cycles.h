@@ -37,8 +37,8 @@ BlenderShot prepare_blender_shot(const std::filesystem::path& source,
 class CyclesBench {
  public:
   // Cycles' reference: the mean of two renders of half settings.reference_spp with seeds
-  // settings.seed + 1 and + 2, like filmback's; and the bias between it and filmback's reference
-  // for the shot's pixel filter, when a configuration uses that filter.
+  // settings.seed + 1 and + 2, like filmback's; and how filmback's reference for the shot's pixel
+  // filter agrees with it (compare_references), when a configuration uses that filter.
   CyclesBench(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
               const FilmbackBench& filmback);
 
@@ -48,11 +48,15 @@ class CyclesBench {
   // Cycles' rows, its reference and the comparison, into `report`.
   void add_to(SceneReport& report);
 
+  // The reference both renderers are measured against (FilmbackBench::measure_against_cycles).
+  const AveragedReference& reference() const { return reference_; }
+  const ReferenceNote& reference_note() const { return reference_note_; }
+
  private:
   std::string name_;
   const BlenderShot& shot_;
   const BenchSettings& settings_;
-  Image reference_;
+  AveragedReference reference_;
   ReferenceNote reference_note_;
   CyclesNote note_;
   std::vector<RenderRow> rows_;

@@ -123,8 +123,9 @@ void FilmbackBench::make_references(const std::optional<fs::path>& reference_fil
     const std::optional<std::string>& filter = settings_.filters[f];
     ReferenceNote note{"filmback", filter_text(filter), "", std::nullopt};
     if (reference_file) {
-      references_.push_back(colour_channels(read_image(*reference_file), reference_file->string()));
-      check_size(references_.back(), *reference_file,
+      references_.push_back(
+          {colour_channels(read_image(*reference_file), reference_file->string()), {}, {}});
+      check_size(references_.back().image, *reference_file,
                  RenderJob(scene_, options(1, kDefaultSampler, filter, settings_.seed), loader_));
       note.source = reference_file->string();
     } else {
@@ -143,12 +144,18 @@ void FilmbackBench::make_references(const std::optional<fs::path>& reference_fil
                     std::to_string(settings_.seed + 1) + " and " +
                     std::to_string(settings_.seed + 2) + ")";
       write_images(averaged.image, {work / ("reference_filter" + std::to_string(f) + ".exr")}, {});
-      references_.push_back(std::move(averaged.image));
+      references_.push_back(std::move(averaged));
     }
     if (!shot_filter_ && scene_.settings.filter && note.filter == *scene_.settings.filter)
       shot_filter_ = f;
     report_.references.push_back(std::move(note));
   }
+}
+
+void FilmbackBench::measure_against_cycles(const AveragedReference& cycles,
+                                           const ReferenceNote& note) {
+  cycles_reference_ = &cycles;
+  if (note.noise) cycles_reference_noise_ = note.noise->rmse;
 }
 
 void FilmbackBench::render(uint32_t spp) {
@@ -168,14 +175,22 @@ void FilmbackBench::render(uint32_t spp) {
     row.total_s = report_.import_s + t.build_s + t.render_s;
     row.samples_per_s = double(t.result.stats.samples) / t.render_s;
     row.rays_per_s = double(t.result.stats.rays) / t.render_s;
-    row.error = image_error(image, references_[c.filter_index]);
-    row.dropped = t.result.stats.dropped_samples;
+    row.own.error = image_error(image, references_[c.filter_index].image);
     if (const auto& noise = report_.references[c.filter_index].noise)
-      row.reference_noise = noise->rmse;
-    char line[256];
-    std::snprintf(line, sizeof line, "bench: %s: %s at %u spp: %.3f s (%u runs), RMSE %.4g",
-                  name_.c_str(), row.configuration.c_str(), spp, row.render_s, row.runs,
-                  row.error.rmse);
+      row.own.reference_noise = noise->rmse;
+    if (cycles_reference_ && shot_filter_ == c.filter_index &&
+        cycles_reference_->image.width == image.width &&
+        cycles_reference_->image.height == image.height)
+      row.cycles_reference = {image_error(image, cycles_reference_->image),
+                              cycles_reference_noise_};
+    row.dropped = t.result.stats.dropped_samples;
+    char line[320];
+    const int n = std::snprintf(
+        line, sizeof line, "bench: %s: %s at %u spp: %.3f s (%u runs), RMSE %.4g", name_.c_str(),
+        row.configuration.c_str(), spp, row.render_s, row.runs, row.own.error.rmse);
+    if (row.cycles_reference && n > 0 && size_t(n) < sizeof line)
+      std::snprintf(line + n, sizeof line - n, " (%.4g against Cycles' reference)",
+                    row.cycles_reference->error.rmse);
     std::cout << line << std::endl;
     report_.rows.push_back(std::move(row));
   }

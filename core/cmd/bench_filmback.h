@@ -32,12 +32,16 @@ class FilmbackBench {
   // after the last render.
   SceneReport finish();
 
-  // R, G, B, per BenchSettings::filters entry.
-  const Image& reference(size_t filter) const { return references_[filter]; }
+  // R, G, B, per BenchSettings::filters entry (a reference given as a file has no halves).
+  const AveragedReference& reference(size_t filter) const { return references_[filter]; }
   const ReferenceNote& reference_note(size_t filter) const { return report_.references[filter]; }
   // The first filter that is the scene's own pixel filter (the one Cycles renders a Blender shot
   // with), if any.
   std::optional<size_t> shot_filter() const { return shot_filter_; }
+
+  // From now on, the configurations with the shot's pixel filter are also measured against
+  // Cycles' reference (`cycles` must outlive the renders), beside their own.
+  void measure_against_cycles(const AveragedReference& cycles, const ReferenceNote& note);
 
  private:
   struct Timed;
@@ -55,8 +59,10 @@ class FilmbackBench {
   const PluginLoader& loader_;
   SceneReport report_;
   Scene scene_;
-  std::vector<Image> references_;
+  std::vector<AveragedReference> references_;
   std::optional<size_t> shot_filter_;
+  const AveragedReference* cycles_reference_ = nullptr;
+  std::optional<double> cycles_reference_noise_;
   std::vector<double> build_times_;
 };
 

@@ -41,9 +41,11 @@ ImageError image_error(const Image& image, const Image& reference) {
 }
 
 AveragedReference average_halves(const Image& a, const Image& b) {
-  AveragedReference out{a, {}};
-  for (size_t i = 0; i < a.pixels.size(); ++i)
+  AveragedReference out{a, {}, a};
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
     out.image.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
+    out.half_difference.pixels[i] = 0.5f * (a.pixels[i] - b.pixels[i]);
+  }
   const ImageError between = image_error(a, b);
   out.noise.rmse = between.rmse / 2;
   out.noise.max_abs = between.max_abs / 2;
@@ -55,6 +57,20 @@ AveragedReference average_halves(const Image& a, const Image& b) {
     relative += d * d / 4 / (r * r + kRelMseEpsilon);
   }
   out.noise.relmse = relative / double(a.pixels.size());
+  return out;
+}
+
+ReferenceAgreement compare_references(const AveragedReference& ours,
+                                      const AveragedReference& theirs) {
+  ReferenceAgreement out;
+  out.between = image_error(ours.image, theirs.image);
+  out.noise_rmse = std::hypot(ours.noise.rmse, theirs.noise.rmse);
+  Image twin = ours.image;
+  for (const Image* half : {&ours.half_difference, &theirs.half_difference})
+    if (half->pixels.size() == twin.pixels.size())
+      for (size_t i = 0; i < twin.pixels.size(); ++i)
+        twin.pixels[i] += half->pixels[i];
+  out.comparison = compare_images(theirs.image, ours.image, twin);
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/image/image.h"
+#include "core/image/image_comparison.h"
 
 namespace fb {
 
@@ -31,12 +32,39 @@ ImageError image_error(const Image& image, const Image& reference);
 // The mean of two renders with independent seeds, and the error of that mean against the
 // expected image: with A and B independent and equally noisy, E[(A - B)²] = 2σ² while the mean
 // (A + B)/2 has variance σ²/2, so its MSE (and relMSE) is a quarter of A's against B, its RMSE
-// half of it, and its largest error is estimated as half the largest |A - B|.
+// half of it, and its largest error is estimated as half the largest |A - B|. (A - B)/2 has the
+// mean's noise variance, σ²/2, without its signal: what compare_references adds to make a twin.
 struct AveragedReference {
   Image image;
   ImageError noise;
+  Image half_difference;  // (A - B)/2; no pixels for a reference given as one image
 };
 AveragedReference average_halves(const Image& a, const Image& b);
+
+// Two renderers' references of one shot (filmback's `ours` against Cycles' `theirs`), each the mean
+// of two halves: how far apart they are beyond their noise, so that measuring both renderers
+// against `theirs` is known to measure convergence and not a difference of the models.
+struct ReferenceAgreement {
+  ImageError between;     // ours against theirs
+  double noise_rmse = 0;  // what their noise alone gives: sqrt(noise_ours² + noise_theirs²)
+  // Mean and per-block relative differences beside their noise floor. The twin is ours plus
+  // both half differences: with independent noise, ours - theirs = bias + n_ours - n_theirs,
+  // whose noise has variance (σ_ours² + σ_theirs²)/2, the variance of the sum of the half
+  // differences; so |ours - twin| is what the references' difference would be without a bias.
+  ImageComparison comparison;
+};
+ReferenceAgreement compare_references(const AveragedReference& ours,
+                                      const AveragedReference& theirs);
+
+// Issue 14's bar for filmback against Cycles (tests/blender): the mean relative difference at
+// most 2 % and every 16x16 block at most 5 % above their noise floors.
+constexpr double kAgreeMeanAboveNoise = 0.02;
+constexpr double kAgreeBlockAboveNoise = 0.05;
+inline bool references_agree(const ReferenceAgreement& a) {
+  const ImageComparison& c = a.comparison;
+  return c.finite && c.mean_relative <= c.noise_mean_relative + kAgreeMeanAboveNoise &&
+         c.worst_block <= c.worst_noise_block + kAgreeBlockAboveNoise;
+}
 
 // log(error) = intercept + slope log(x), least squares over the points given.
 struct LogLogFit {

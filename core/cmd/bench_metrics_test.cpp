@@ -48,6 +48,67 @@ TEST(BenchMetrics, AveragedReferenceKnowsItsOwnNoise) {
               0.05 * actual * actual / (kTruth * kTruth));
 }
 
+// The mean of halves T + d and T - d: the image T and half difference d, pixel for pixel.
+AveragedReference constant_halves(const Image& truth, float d) {
+  Image a = truth, b = truth;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    a.pixels[i] += d, b.pixels[i] -= d;
+  return average_halves(a, b);
+}
+
+// Known halves, a known bias in one 16x16 block: every number of the agreement follows by hand.
+TEST(BenchMetrics, ReferencesAgreementMeasuresTheBiasAboveBothNoises) {
+  constexpr float kOurs = 0.01f, kTheirs = 0.02f, kBias = 0.16f;
+  const Image truth = rgb_image(32, 32, 1.f);
+  Image biased = truth;
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x)
+      for (size_t c = 0; c < 3; ++c)
+        biased.pixels[(size_t(y) * 32 + x) * 3 + c] += kBias;
+  const AveragedReference ours = constant_halves(biased, kOurs);
+  const AveragedReference theirs = constant_halves(truth, kTheirs);
+  EXPECT_NEAR(ours.half_difference.pixels[7], kOurs, 1e-6);
+  EXPECT_NEAR(ours.noise.rmse, kOurs, 1e-6);
+
+  const ReferenceAgreement a = compare_references(ours, theirs);
+  EXPECT_NEAR(a.between.rmse, kBias / 2, 1e-6);  // in a quarter of the pixels
+  EXPECT_NEAR(a.noise_rmse, std::hypot(kOurs, kTheirs), 1e-6);
+  // The twin is ours + d_ours + d_theirs: 3 % above ours everywhere, against a reference of 1.
+  EXPECT_NEAR(a.comparison.noise_mean_relative, kOurs + kTheirs, 1e-6);
+  EXPECT_NEAR(a.comparison.worst_noise_block, kOurs + kTheirs, 1e-6);
+  EXPECT_NEAR(a.comparison.mean_relative, kBias / 4, 1e-6);
+  EXPECT_NEAR(a.comparison.mean_ratio, 1 + kBias / 4, 1e-6);
+  EXPECT_NEAR(a.comparison.worst_block, kBias, 1e-6);
+  EXPECT_EQ(a.comparison.worst_block_x, 0u);
+  // The mean (4 %) is within 2 % of its floor (3 %); the block (16 %) is not within 5 % of its.
+  EXPECT_FALSE(references_agree(a));
+  EXPECT_TRUE(references_agree(compare_references(constant_halves(truth, kOurs), theirs)));
+}
+
+// Unbiased references with independent Gaussian noise: the twin's difference from ours has the
+// distribution of ours - theirs, so the mean relative difference equals its noise floor, both
+// E|N(0, s)| / T = sqrt(2/π) s / T with s² = (σ_ours² + σ_theirs²)/2 (each mean of two halves of
+// σ has variance σ²/2).
+TEST(BenchMetrics, UnbiasedReferencesDifferByTheirNoiseFloor) {
+  constexpr float kTruth = 2.f, kOurs = 0.1f, kTheirs = 0.05f;
+  std::mt19937 random(11);
+  std::normal_distribution<float> ours_noise(0.f, kOurs), theirs_noise(0.f, kTheirs);
+  const Image truth = rgb_image(256, 128, kTruth);
+  Image a = truth, b = truth, c = truth, d = truth;
+  for (size_t i = 0; i < truth.pixels.size(); ++i) {
+    a.pixels[i] += ours_noise(random), b.pixels[i] += ours_noise(random);
+    c.pixels[i] += theirs_noise(random), d.pixels[i] += theirs_noise(random);
+  }
+  const ReferenceAgreement r = compare_references(average_halves(a, b), average_halves(c, d));
+  const double s = std::sqrt((kOurs * kOurs + kTheirs * kTheirs) / 2.0);
+  const double expected = std::sqrt(2 / M_PI) * s / kTruth;
+  EXPECT_NEAR(r.comparison.mean_relative, expected, 0.01 * expected);
+  EXPECT_NEAR(r.comparison.noise_mean_relative, expected, 0.01 * expected);
+  EXPECT_NEAR(r.between.rmse, s, 0.01 * s);
+  EXPECT_NEAR(r.noise_rmse, s, 0.01 * s);
+  EXPECT_TRUE(references_agree(r));
+}
+
 TEST(BenchMetrics, FitRecoversAPowerLawAndInvertsIt) {
   std::vector<double> x, error;
   for (double t : {0.5, 1.0, 4.0, 16.0}) {

@@ -75,17 +75,33 @@ void write_references(std::ostringstream& md, const SceneReport& scene) {
     md << "| " << r.renderer << " | " << r.filter << " | " << r.source << " | "
        << (r.noise ? format("%.3g", r.noise->rmse) : "not measured") << " | "
        << (r.noise ? format("%.3g", r.noise->relmse) : "not measured") << " |\n";
-  if (const auto& c = scene.cycles; c && c->bias)
-    md << "\nBetween the renderers (filmback's reference with " << c->bias_filter
-       << " against Cycles'): RMSE " << format("%.3g", c->bias->rmse)
-       << " (their noise alone: " << format("%.3g", c->bias_noise_rmse) << "), relMSE "
-       << format("%.3g", c->bias->relmse) << ", filmback / Cycles mean "
-       << format("%.4f", c->mean_ratio)
-       << ". What exceeds the noise is a difference of the models, not of convergence: each "
-          "renderer's error is measured against its own reference.\n";
-  else if (c)
+  const auto& c = scene.cycles;
+  if (!c) return;
+  if (!c->agreement) {
     md << "\nNo filmback configuration uses the shot's pixel filter, so the renderers' references "
-          "are not compared.\n";
+          "are not compared and filmback is not measured against Cycles' reference.\n";
+    return;
+  }
+  const ReferenceAgreement& a = *c->agreement;
+  const ImageComparison& m = a.comparison;
+  const bool agree = references_agree(a);
+  md << "\nThe two references (filmback's with " << c->agreement_filter
+     << " against Cycles'): filmback / Cycles mean " << format("%.4f", m.mean_ratio)
+     << "; mean relative difference " << format("%.2f", 100 * m.mean_relative)
+     << " % (their noise alone: " << format("%.2f", 100 * m.noise_mean_relative)
+     << " %); worst 16x16 block " << format("%.2f", 100 * m.worst_block) << " % at ("
+     << m.worst_block_x << ", " << m.worst_block_y << "), filmback / Cycles "
+     << format("%.3f", m.worst_block_ratio)
+     << " there (noise alone: " << format("%.2f", 100 * m.worst_noise_block) << " %); RMSE "
+     << format("%.3g", a.between.rmse) << " (noise alone: " << format("%.3g", a.noise_rmse)
+     << "), relMSE " << format("%.3g", a.between.relmse) << ". By issue 14's bar (the mean at most "
+     << format("%g", 100 * kAgreeMeanAboveNoise) << " % and every block at most "
+     << format("%g", 100 * kAgreeBlockAboveNoise) << " % above their noise) they "
+     << (agree ? "agree: measured against Cycles' reference, both renderers' errors are "
+                 "convergence."
+               : "do **not** agree: measured against Cycles' reference, filmback's error includes "
+                 "that difference, which no sample count removes.")
+     << "\n";
 }
 
 void write_memory(std::ostringstream& md, const SceneReport& scene) {
@@ -110,9 +126,21 @@ void write_memory(std::ostringstream& md, const SceneReport& scene) {
   md << "\n";
 }
 
+// How fits.csv and scenes.csv name a reference.
+std::string reference_key(ReferenceKind kind) {
+  return kind == ReferenceKind::kCycles ? "cycles" : "own";
+}
+
+// "Cycles' reference (for both renderers)" or "each configuration's own reference".
+std::string reference_name(ReferenceKind kind) {
+  return kind == ReferenceKind::kCycles ? "Cycles' reference (one reference for both renderers)"
+                                        : "each renderer's own reference";
+}
+
 void write_fits(std::ostringstream& md, const std::vector<ConfigurationFit>& fits,
-                const TargetError& target) {
-  md << "\nConvergence: the slope of log RMSE against log time (and against log spp) by least "
+                const TargetError& target, ReferenceKind reference) {
+  md << "\nConvergence, errors against " << reference_name(reference)
+     << ": the slope of log RMSE against log time (and against log spp) by least "
         "squares over the renders whose RMSE is at least "
      << format("%g", kFitAboveReferenceNoise) << " x their reference's own. Time to reach RMSE "
      << format("%.4g", target.rmse) << " (" << target.why
@@ -127,22 +155,31 @@ void write_fits(std::ostringstream& md, const std::vector<ConfigurationFit>& fit
     const RenderRow& last = *fit.rows.back();
     md << "| " << (fit.renderer == "cycles" ? "**Cycles**" : fit.configuration) << " | "
        << fit.fitted << " of " << fit.rows.size() << " | " << rate(fit.by_render_s) << " | "
-       << rate(fit.by_spp) << " | " << format("%.4g", last.error.rmse) << " (" << last.spp
-       << " spp) | " << seconds(t.render_s) << " | " << seconds(t.total_s)
+       << rate(fit.by_spp) << " | " << format("%.4g", last.measured(reference)->error.rmse) << " ("
+       << last.spp << " spp) | " << seconds(t.render_s) << " | " << seconds(t.total_s)
        << (t.extrapolated ? " (extrapolated)" : "") << " |\n";
   }
 }
 
 void write_cycles_ratio(std::ostringstream& md, const std::vector<ConfigurationFit>& fits,
-                        const RenderRow& cycles, const std::optional<CyclesNote>& note) {
-  md << "\nAgainst Cycles at its " << cycles.spp << "-spp error: RMSE "
-     << format("%.4g", cycles.error.rmse) << ", relMSE " << format("%.4g", cycles.error.relmse)
-     << " (Cycles: render " << format("%.3g", cycles.render_s) << " s, whole process "
-     << format("%.3g", cycles.total_s)
-     << " s). Each renderer's error is against its own "
-        "reference. RMSE is absolute, so it favours the darker image";
-  if (note && note->bias)
-    md << " (here filmback's, by its mean ratio " << format("%.3f", note->mean_ratio) << ")";
+                        const RenderRow& cycles, const std::optional<CyclesNote>& note,
+                        ReferenceKind reference) {
+  const ImageError& goal = cycles.own.error;
+  if (reference == ReferenceKind::kCycles)
+    md << "\n### Against Cycles, on one reference\n\nBoth renderers' errors are against Cycles' "
+          "reference. ";
+  else
+    md << "\n### Against Cycles, each against its own reference\n\nThe measure used before "
+          "filmback rendered Blender's materials as Cycles does, kept for continuity: each "
+          "renderer's error is against its own reference, so a difference of the models does not "
+          "count. ";
+  md << "Cycles at " << cycles.spp << " spp: RMSE " << format("%.4g", goal.rmse) << ", relMSE "
+     << format("%.4g", goal.relmse) << " (render " << format("%.3g", cycles.render_s)
+     << " s, whole process " << format("%.3g", cycles.total_s)
+     << " s). RMSE is absolute, so it favours the darker image";
+  if (note && note->agreement)
+    md << " (filmback / Cycles mean " << format("%.3f", note->agreement->comparison.mean_ratio)
+       << ")";
   md << "; relMSE is relative per pixel and does not.\n\n"
      << "| filmback configuration | at Cycles' RMSE: render | total | **total / Cycles' "
         "process** | render / Cycles' render | at Cycles' relMSE: total | **total / Cycles' "
@@ -153,8 +190,8 @@ void write_cycles_ratio(std::ostringstream& md, const std::vector<ConfigurationF
   const auto flag = [](const TimeToError& t) { return t.extrapolated ? " (extrapolated)" : ""; };
   for (const ConfigurationFit& fit : fits) {
     if (fit.renderer != "filmback") continue;
-    const TimeToError t = time_to_error(fit, cycles.error.rmse);
-    const TimeToError r = time_to_relmse(fit, cycles.error.relmse);
+    const TimeToError t = time_to_error(fit, goal.rmse);
+    const TimeToError r = time_to_relmse(fit, goal.relmse);
     md << "| " << fit.configuration << " | " << seconds(t.render_s) << " | " << seconds(t.total_s)
        << flag(t) << " | **" << ratio(t.total_s, cycles.total_s) << "** | "
        << ratio(t.render_s, cycles.render_s) << " | " << seconds(r.total_s) << flag(r) << " | **"
@@ -165,60 +202,139 @@ void write_cycles_ratio(std::ostringstream& md, const std::vector<ConfigurationF
 }  // namespace
 
 std::string renders_csv(const std::vector<SceneReport>& scenes) {
-  std::string out =
-      csv_line({"scene", "renderer", "configuration", "sampler", "filter", "spp", "runs",
-                "render_s", "total_s", "samples_per_s", "rays_per_s", "rmse", "relmse",
-                "max_abs_error", "nonfinite_dropped", "reference_noise_rmse"});
+  std::string out = csv_line({"scene",
+                              "renderer",
+                              "configuration",
+                              "sampler",
+                              "filter",
+                              "spp",
+                              "runs",
+                              "render_s",
+                              "total_s",
+                              "samples_per_s",
+                              "rays_per_s",
+                              "rmse",
+                              "relmse",
+                              "max_abs_error",
+                              "nonfinite_dropped",
+                              "reference_noise_rmse",
+                              "cycles_ref_rmse",
+                              "cycles_ref_relmse",
+                              "cycles_ref_max_abs_error",
+                              "cycles_ref_noise_rmse"});
   for (const SceneReport& scene : scenes)
-    for (const RenderRow& r : scene.rows)
-      out += csv_line(
-          {scene.name, r.renderer, r.configuration, r.sampler, r.filter, std::to_string(r.spp),
-           std::to_string(r.runs), g6(r.render_s), g6(r.total_s), g6(r.samples_per_s),
-           optional_g6(r.rays_per_s), g6(r.error.rmse), g6(r.error.relmse), g6(r.error.max_abs),
-           r.dropped ? std::to_string(*r.dropped) : "", optional_g6(r.reference_noise)});
+    for (const RenderRow& r : scene.rows) {
+      const std::optional<MeasuredError>& c = r.cycles_reference;
+      out += csv_line({scene.name,
+                       r.renderer,
+                       r.configuration,
+                       r.sampler,
+                       r.filter,
+                       std::to_string(r.spp),
+                       std::to_string(r.runs),
+                       g6(r.render_s),
+                       g6(r.total_s),
+                       g6(r.samples_per_s),
+                       optional_g6(r.rays_per_s),
+                       g6(r.own.error.rmse),
+                       g6(r.own.error.relmse),
+                       g6(r.own.error.max_abs),
+                       r.dropped ? std::to_string(*r.dropped) : "",
+                       optional_g6(r.own.reference_noise),
+                       c ? g6(c->error.rmse) : "",
+                       c ? g6(c->error.relmse) : "",
+                       c ? g6(c->error.max_abs) : "",
+                       c ? optional_g6(c->reference_noise) : ""});
+    }
   return out;
 }
 
 std::string fits_csv(const std::vector<SceneReport>& scenes) {
-  std::string out = csv_line({"scene", "renderer", "configuration", "error", "x", "slope",
-                              "intercept", "x_min", "x_max", "points", "fixed_s"});
+  std::string out = csv_line({"scene", "renderer", "configuration", "reference", "error", "x",
+                              "slope", "intercept", "x_min", "x_max", "points", "fixed_s"});
   struct Line {
     const char* error;
     const char* x;
     const std::optional<LogLogFit>& fit;
   };
   for (const SceneReport& scene : scenes)
-    for (const ConfigurationFit& fit : fit_configurations(scene))
-      for (const Line& line :
-           {Line{"rmse", "render_s", fit.by_render_s}, Line{"rmse", "spp", fit.by_spp},
-            Line{"relmse", "render_s", fit.relmse_by_render_s}})
-        if (line.fit)
-          out += csv_line({scene.name, fit.renderer, fit.configuration, line.error, line.x,
-                           g6(line.fit->slope), g6(line.fit->intercept), g6(line.fit->x_min),
-                           g6(line.fit->x_max), std::to_string(line.fit->points), g6(fit.fixed_s)});
+    for (ReferenceKind reference : {ReferenceKind::kOwn, ReferenceKind::kCycles})
+      for (const ConfigurationFit& fit : fit_configurations(scene, reference))
+        for (const Line& line :
+             {Line{"rmse", "render_s", fit.by_render_s}, Line{"rmse", "spp", fit.by_spp},
+              Line{"relmse", "render_s", fit.relmse_by_render_s}})
+          if (line.fit)
+            out += csv_line({scene.name, fit.renderer, fit.configuration, reference_key(reference),
+                             line.error, line.x, g6(line.fit->slope), g6(line.fit->intercept),
+                             g6(line.fit->x_min), g6(line.fit->x_max),
+                             std::to_string(line.fit->points), g6(fit.fixed_s)});
   return out;
 }
 
 std::string scenes_csv(const std::vector<SceneReport>& scenes, const BenchContext& context) {
-  std::string out = csv_line({"scene", "file", "width", "height", "import_s", "build_s",
-                              "prepare_s", "rss_before_bytes", "peak_rss_bytes", "peak_is_scene",
-                              "geometry_bvh_bytes", "film_bytes", "target_rmse", "cycles_spp",
-                              "cycles_rmse", "bias_rmse", "bias_noise_rmse", "mean_ratio"});
+  std::string out = csv_line({"scene",
+                              "file",
+                              "width",
+                              "height",
+                              "import_s",
+                              "build_s",
+                              "prepare_s",
+                              "rss_before_bytes",
+                              "peak_rss_bytes",
+                              "peak_is_scene",
+                              "geometry_bvh_bytes",
+                              "film_bytes",
+                              "target_reference",
+                              "target_rmse",
+                              "cycles_spp",
+                              "cycles_rmse",
+                              "bias_rmse",
+                              "bias_noise_rmse",
+                              "mean_ratio",
+                              "mean_relative_difference",
+                              "mean_relative_noise",
+                              "worst_block",
+                              "worst_block_noise",
+                              "worst_block_x",
+                              "worst_block_y",
+                              "worst_block_ratio",
+                              "references_agree"});
   for (const SceneReport& scene : scenes) {
-    const std::vector<ConfigurationFit> fits = fit_configurations(scene);
+    const ReferenceKind primary = primary_reference(scene);
+    const std::vector<ConfigurationFit> fits = fit_configurations(scene, primary);
     const RenderRow* cycles = cycles_reference_render(fits);
     const MemoryNote& m = scene.memory;
-    const CyclesNote* c = scene.cycles ? &*scene.cycles : nullptr;
-    out +=
-        csv_line({scene.name, scene.file.string(), std::to_string(scene.width),
-                  std::to_string(scene.height), g6(scene.import_s), g6(scene.build_s),
-                  optional_g6(scene.prepare_s), m.before ? std::to_string(m.before->current) : "",
-                  m.after ? std::to_string(m.after->peak) : "", m.peak_is_the_scene_s ? "1" : "0",
-                  std::to_string(m.geometry_bytes), std::to_string(m.film_bytes),
-                  g6(default_target(fits, context.target_error).rmse),
-                  cycles ? std::to_string(cycles->spp) : "", cycles ? g6(cycles->error.rmse) : "",
-                  c && c->bias ? g6(c->bias->rmse) : "", c && c->bias ? g6(c->bias_noise_rmse) : "",
-                  c && c->bias ? g6(c->mean_ratio) : ""});
+    const ReferenceAgreement* a =
+        scene.cycles && scene.cycles->agreement ? &*scene.cycles->agreement : nullptr;
+    const auto agreement = [&](auto value) { return a ? value(*a) : std::string(); };
+    out += csv_line(
+        {scene.name,
+         scene.file.string(),
+         std::to_string(scene.width),
+         std::to_string(scene.height),
+         g6(scene.import_s),
+         g6(scene.build_s),
+         optional_g6(scene.prepare_s),
+         m.before ? std::to_string(m.before->current) : "",
+         m.after ? std::to_string(m.after->peak) : "",
+         m.peak_is_the_scene_s ? "1" : "0",
+         std::to_string(m.geometry_bytes),
+         std::to_string(m.film_bytes),
+         reference_key(primary),
+         g6(default_target(fits, context.target_error).rmse),
+         cycles ? std::to_string(cycles->spp) : "",
+         cycles ? g6(cycles->own.error.rmse) : "",
+         agreement([](const auto& x) { return g6(x.between.rmse); }),
+         agreement([](const auto& x) { return g6(x.noise_rmse); }),
+         agreement([](const auto& x) { return g6(x.comparison.mean_ratio); }),
+         agreement([](const auto& x) { return g6(x.comparison.mean_relative); }),
+         agreement([](const auto& x) { return g6(x.comparison.noise_mean_relative); }),
+         agreement([](const auto& x) { return g6(x.comparison.worst_block); }),
+         agreement([](const auto& x) { return g6(x.comparison.worst_noise_block); }),
+         agreement([](const auto& x) { return std::to_string(x.comparison.worst_block_x); }),
+         agreement([](const auto& x) { return std::to_string(x.comparison.worst_block_y); }),
+         agreement([](const auto& x) { return g6(x.comparison.worst_block_ratio); }),
+         agreement([](const auto& x) { return std::string(references_agree(x) ? "1" : "0"); })});
   }
   return out;
 }
@@ -242,22 +358,32 @@ std::string summary_markdown(const std::vector<SceneReport>& scenes, const Bench
         "start and the image it writes. Cycles' *render* is `bpy.ops.render.render()` (scene "
         "sync, BVH, sampling); its *total* is the whole Blender process, from its start to the "
         "EXR written.\n"
-     << "- Errors are over R, G and B of every pixel against the configuration's reference: "
+     << "- Errors are over R, G and B of every pixel against a reference: with Cycles, Cycles' "
+        "reference for both renderers (filmback's configurations with the shot's pixel filter), "
+        "and beside it each renderer's own (the columns rmse, relmse of renders.csv; "
+        "cycles_ref_* are against Cycles'); else the configuration's own. "
         "RMSE, relMSE = mean (x - r)^2 / (r^2 + "
      << format("%g", kRelMseEpsilon)
      << "), the largest absolute error. A reference is the mean of two renders at half its "
         "sample count with other seeds than the measured renders; half the RMSE of their "
         "difference is its own RMSE, below which measured errors mean nothing.\n"
      << "- Per render: renders.csv; fitted lines: fits.csv; per scene: scenes.csv.\n";
+  if (!context.plot_interpreter.empty())
+    md << "- Plots drawn by `" << context.plot_interpreter << "` (share/filmback/bench/plot.py).\n";
   for (size_t i = 0; i < scenes.size(); ++i) {
     const SceneReport& scene = scenes[i];
-    const std::vector<ConfigurationFit> fits = fit_configurations(scene);
+    const ReferenceKind primary = primary_reference(scene);
+    const std::vector<ConfigurationFit> fits = fit_configurations(scene, primary);
     write_scene_header(md, scene);
     write_references(md, scene);
     write_memory(md, scene);
-    write_fits(md, fits, default_target(fits, context.target_error));
-    if (const RenderRow* cycles = cycles_reference_render(fits))
-      write_cycles_ratio(md, fits, *cycles, scene.cycles);
+    write_fits(md, fits, default_target(fits, context.target_error), primary);
+    if (const RenderRow* cycles = cycles_reference_render(fits)) {
+      write_cycles_ratio(md, fits, *cycles, scene.cycles, primary);
+      if (primary != ReferenceKind::kOwn)
+        write_cycles_ratio(md, fit_configurations(scene, ReferenceKind::kOwn), *cycles,
+                           scene.cycles, ReferenceKind::kOwn);
+    }
     if (!plots[i].empty()) md << "\n![" << scene.name << "](" << plots[i] << ")\n";
   }
   return md.str();

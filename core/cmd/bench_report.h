@@ -19,6 +19,7 @@ struct BenchContext {
   std::optional<double> load_before, load_after;
   unsigned threads = 0;
   std::optional<double> target_error;  // --target-error
+  std::string plot_interpreter;        // the Python that drew the plots; "" when none did
 };
 
 std::string renders_csv(const std::vector<SceneReport>& scenes);

@@ -38,6 +38,17 @@ struct BenchSettings {
 // there the reference's noise is a tenth or more of the measured MSE.
 constexpr double kFitAboveReferenceNoise = 3;
 
+// Which reference a render's error is measured against.
+enum class ReferenceKind {
+  kOwn,     // the renderer's own: filmback's reference for filmback, Cycles' for Cycles
+  kCycles,  // Cycles' reference for both renderers: one reference (issue 14, issue 17)
+};
+
+struct MeasuredError {
+  ImageError error;
+  std::optional<double> reference_noise;  // RMSE of that reference, when measured
+};
+
 struct RenderRow {
   std::string renderer;       // "filmback" or "cycles"
   std::string configuration;  // "sobol, gaussian", "cycles"
@@ -47,10 +58,17 @@ struct RenderRow {
   double render_s = 0;  // filmback: RenderJob::run(); Cycles: bpy.ops.render.render()
   double total_s = 0;   // filmback: import + RenderJob construction + run; Cycles: the process
   double samples_per_s = 0;
-  std::optional<double> rays_per_s;       // filmback only
-  ImageError error;                       // against the configuration's reference
-  std::optional<uint64_t> dropped;        // non-finite samples; filmback only
-  std::optional<double> reference_noise;  // RMSE of that reference, when measured
+  std::optional<double> rays_per_s;  // filmback only
+  MeasuredError own;                 // against the configuration's own reference
+  // Against Cycles' reference: with --against cycles, for Cycles and for the filmback
+  // configurations that render with the shot's pixel filter (the one Cycles uses).
+  std::optional<MeasuredError> cycles_reference;
+  std::optional<uint64_t> dropped;  // non-finite samples; filmback only
+
+  // The error against `kind`'s reference, or none.
+  const MeasuredError* measured(ReferenceKind kind) const {
+    return kind == ReferenceKind::kOwn ? &own : cycles_reference ? &*cycles_reference : nullptr;
+  }
 };
 
 struct ReferenceNote {
@@ -68,12 +86,10 @@ struct MemoryNote {
 
 struct CyclesNote {
   std::string settings;  // blender_prepare.py's line
-  // filmback's reference against Cycles' (the same pixel filter), and what their own noise
-  // alone would give: sqrt(noise_f² + noise_c²).
-  std::optional<ImageError> bias;
-  double bias_noise_rmse = 0;
-  double mean_ratio = 0;  // sum of filmback's reference / sum of Cycles', over R, G, B
-  std::string bias_filter;
+  // filmback's reference against Cycles' (the same pixel filter); none when no configuration
+  // renders with the shot's filter, or the references differ in size.
+  std::optional<ReferenceAgreement> agreement;
+  std::string agreement_filter;
 };
 
 struct SceneReport {

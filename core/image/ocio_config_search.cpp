@@ -5,6 +5,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/util/program_on_path.h"
+
 namespace fb {
 namespace {
 
@@ -40,17 +42,6 @@ void add_candidates(const fs::path& root, std::vector<fs::path>& out) {
     out.push_back(v / kRelativeConfig);
 }
 
-std::optional<fs::path> blender_on_path() {
-  const char* path = std::getenv("PATH");
-  std::istringstream folders(path ? path : "");
-  for (std::string folder; std::getline(folders, folder, ':');) {
-    std::error_code ec;
-    const fs::path candidate = fs::path(folder.empty() ? "." : folder) / "blender";
-    if (fs::is_regular_file(candidate, ec)) return fs::canonical(candidate, ec);
-  }
-  return std::nullopt;
-}
-
 }  // namespace
 
 std::vector<fs::path> blender_config_candidates() {
@@ -60,8 +51,12 @@ std::vector<fs::path> blender_config_candidates() {
     return {fs::path(datafiles) / "colormanagement" / "config.ocio"};
   add_candidates("/usr/share/blender", out);
   add_candidates("/usr/local/share/blender", out);
-  if (const auto blender = blender_on_path(); blender && !blender->empty())
-    add_candidates(blender->parent_path(), out);
+  // Resolved through links: Blender's archives are often linked into a folder on PATH.
+  if (const auto blender = program_on_path("blender")) {
+    std::error_code ec;
+    const fs::path file = fs::canonical(*blender, ec);
+    if (!ec && !file.empty()) add_candidates(file.parent_path(), out);
+  }
   return out;
 }
 

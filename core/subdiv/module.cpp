@@ -41,14 +41,15 @@ extern "C" __attribute__((visibility("default"))) int filmback_subdiv_refine(
       throw std::runtime_error("unknown face-varying interpolation " +
                                std::to_string(cage->fvar_linear));
     const bool faces = request->triangle_faces != 0;
+    const bool polygon_normals = request->polygon_normals != 0;
     auto refiner = fb::subdiv::make_refiner(*cage);
     const fb::subdiv::Triangles t =
         request->cage_limit ? fb::subdiv::cage_limit(*refiner, *cage)
         : request->edge_rates
             ? fb::subdiv::tessellate(*refiner, *cage, request->edge_rates, request->quality,
-                                     request->max_triangles, faces)
+                                     request->max_triangles, faces, polygon_normals)
             : fb::subdiv::refine_uniform(*refiner, *cage, request->level, request->max_triangles,
-                                         faces);
+                                         faces, polygon_normals);
     out->positions = copy_out(t.positions);
     out->normals = copy_out(t.normals);
     out->uvs = copy_out(t.uvs);

@@ -45,13 +45,24 @@ class CornerSplitter {
   std::vector<uint32_t> vertex_of_, values_of_;
 };
 
+// Normals as Blender computes a mesh's (blenkernel's mesh_normals.cc, which Cycles renders for a
+// mesh its Subdivision Surface modifier refined): each polygon's normal (Newell's: for a triangle
+// the cross product of two edges, for a quad that of its diagonals) added to each of its
+// vertices weighted by the polygon's angle at that corner, then normalised. `polygons` holds
+// each polygon's vertex count then its vertices; `owner[v]` is the vertex whose sum v shares
+// (the split copies of one surface point take one normal). Vertices no polygon gives a normal
+// keep theirs.
+void mesh_normals(const std::vector<float>& positions, const std::vector<uint32_t>& polygons,
+                  const std::vector<uint32_t>& owner, std::vector<float>& normals);
+
 // Throws std::runtime_error with what OpenSubdiv or the cage got wrong.
 std::unique_ptr<Far::TopologyRefiner> make_refiner(const fb_subdiv_cage& cage);
 
 // Uniform refinement to `level`, as Blender's modifier without use_limit_surface: each cage face
-// becomes 4^level quads (n-gons n * 4^(level-1)), split into two triangles each.
+// becomes 4^level quads (n-gons n * 4^(level-1)), split into two triangles each. Normals: the
+// refined quads' (mesh_normals) with `polygon_normals`, else the limit surface's.
 Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage, uint32_t level,
-                         uint64_t max_triangles, bool triangle_faces);
+                         uint64_t max_triangles, bool triangle_faces, bool polygon_normals);
 
 // The cage's vertices pushed to the limit surface (Far's limit masks), and no triangles.
 Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage);
@@ -60,8 +71,10 @@ Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
 // where a UV channel has a seam, the positions still shared). The
 // limit is evaluated through patches isolated `quality` levels deep around irregular and
 // semi-sharp features, as Blender's modifier does (docs/blender.md gives the differences).
+// Normals: with `polygon_normals`, those of the quads of the tessellation (mesh_normals; with
+// uniform rates, the quads of Blender's refined mesh), else the limit surface's.
 Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage,
                      const uint32_t* edge_rates, uint32_t quality, uint64_t max_triangles,
-                     bool triangle_faces);
+                     bool triangle_faces, bool polygon_normals);
 
 }  // namespace fb::subdiv

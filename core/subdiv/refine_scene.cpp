@@ -258,6 +258,9 @@ SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const Su
     // refinement of the cage itself.
     request.edge_rates = rates.empty() ? nullptr : rates.data();
     request.triangle_faces = s.parts.size() > 1;
+    // Blender's modifier leaves a mesh whose normals Blender computes from its polygons, and
+    // Cycles renders those; its adaptive subdivision evaluates the limit surface's.
+    request.polygon_normals = mode != SubdivMode::kAdaptive;
     fb_subdiv_mesh out{};
     if (module.refine(&data.cage, &request, &out) != 0)
       throw InputError(where(scene, s) + ": " + out.error +

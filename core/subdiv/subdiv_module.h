@@ -12,7 +12,7 @@
 extern "C" {
 #endif
 
-#define FB_SUBDIV_ABI_VERSION 2u
+#define FB_SUBDIV_ABI_VERSION 3u
 #define FB_SUBDIV_ENTRY_POINT "filmback_subdiv_refine"
 #define FB_SUBDIV_FREE_POINT "filmback_subdiv_free"
 
@@ -66,7 +66,10 @@ typedef struct fb_subdiv_cage {
  * from vertex k to k+1), sharing the points of shared edges so the result has no cracks; rates
  * of 2^level everywhere give the vertices of uniform refinement, on the limit surface. With
  * edge_rates null: uniform refinement to `level` without the limit (Blender's
- * use_limit_surface off), normals still from the limit surface. */
+ * use_limit_surface off). Normals: with polygon_normals, those Blender computes for the refined
+ * mesh (its polygons' normals averaged at each vertex, weighted by their corner angles: what
+ * Cycles renders for a Subdivision Surface modifier's mesh); else the limit surface's (Cycles'
+ * adaptive subdivision). */
 typedef struct fb_subdiv_request {
   uint32_t struct_size;
   uint32_t level;
@@ -74,10 +77,11 @@ typedef struct fb_subdiv_request {
   uint32_t quality;       /* limit evaluation: patches isolated this many levels (Blender's) */
   uint32_t cage_limit;    /* non-zero: only the cage's vertices pushed to the limit, no triangles */
   uint64_t max_triangles; /* refuse (with an error) to make more */
-  uint32_t triangle_faces; /* non-zero: say which cage face each triangle comes from */
+  uint32_t triangle_faces;  /* non-zero: say which cage face each triangle comes from */
+  uint32_t polygon_normals; /* non-zero: Blender's normals of the refined mesh (see above) */
 } fb_subdiv_request;
 
-/* A triangle mesh with smooth normals (from the limit surface's tangents), owned by the module.
+/* A triangle mesh with smooth normals (the request's), owned by the module.
  * With texture coordinates its vertices are split along the seams of every channel: each vertex
  * has one value per channel, and the split vertices of one surface point have the same position
  * and normal, bit for bit. */

@@ -70,7 +70,7 @@ struct Scratch {
   Bfr::Surface<float> surface;
   std::vector<Bfr::Surface<float>> uv_surfaces;
   std::vector<float> patch_points, uv_patch_points, coords;
-  std::vector<int> rates, facets, boundary;
+  std::vector<int> rates, facets, boundary, quads;
 };
 
 }  // namespace
@@ -83,7 +83,7 @@ struct Scratch {
 // output vertex is split, and the copies take the one evaluated position.
 Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage,
                      const uint32_t* edge_rates, uint32_t quality, uint64_t max_triangles,
-                     bool triangle_faces) {
+                     bool triangle_faces, bool polygon_normals) {
   // Blender (intern/opensubdiv) isolates irregular and semi-sharp features `quality` levels deep
   // before fitting patches; Bfr's approximation levels are that isolation. Measured against
   // Blender 3.4's evaluated meshes (tests/blender/blender_subdiv_test.cpp): within 1.2e-7 m on
@@ -92,6 +92,11 @@ Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
   factory_options.SetApproxLevelSmooth(int(quality)).SetApproxLevelSharp(int(quality));
   const Factory factory(refiner, factory_options);
   const Bfr::Tessellation::Options options;  // triangles, (u, v) pairs
+  // The same points joined into quads where the pattern has them (every facet, with uniform
+  // rates): the polygons whose normals Blender averages (polygon_normals).
+  Bfr::Tessellation::Options quad_options;
+  quad_options.SetFacetSize(4).PreserveQuads(true);
+  std::vector<std::vector<uint32_t>> face_polygons(polygon_normals ? cage.face_count : 0);
   const uint32_t channels = cage.uv_channel_count;
 
   // Sequentially: the rates agree along every edge, every shared point (cage corner, edge
@@ -269,6 +274,23 @@ Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
     if (triangle_faces)
       std::fill_n(out.triangle_faces.begin() + ptrdiff_t(layout[f].facet_first),
                   pattern.GetNumFacets(), f);
+    if (polygon_normals) {
+      Bfr::Tessellation quads(surface.GetParameterization(), int(n), s.rates.data(), quad_options);
+      if (quads.GetNumCoords() != pattern.GetNumCoords())
+        throw std::runtime_error("the quad tessellation of face " + std::to_string(f) +
+                                 " has other points than the triangles'");
+      s.quads.resize(size_t(quads.GetNumFacets()) * 4);
+      quads.GetFacets(s.quads.data());
+      quads.TransformFacetCoordIndices(s.quads.data(), s.boundary.data(),
+                                       int(layout[f].interior_first) - int(b));
+      std::vector<uint32_t>& polygons = face_polygons[f];
+      for (size_t q = 0; q < s.quads.size(); q += 4) {
+        const uint32_t corners = s.quads[q + 3] < 0 ? 3 : 4;  // a triangle's fourth index is -1
+        polygons.push_back(corners);
+        for (uint32_t k = 0; k < corners; ++k)
+          polygons.push_back(uint32_t(s.quads[q + k]));
+      }
+    }
   });
   // The split points of a seam take the position evaluated once, so the surface stays closed.
   for (const auto& [to, from] : owners.copies)
@@ -276,6 +298,16 @@ Triangles tessellate(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
       out.positions[3 * size_t(to) + i] = out.positions[3 * size_t(from) + i];
       out.normals[3 * size_t(to) + i] = out.normals[3 * size_t(from) + i];
     }
+  if (polygon_normals) {
+    std::vector<uint32_t> polygons, owner(points);
+    for (const std::vector<uint32_t>& face : face_polygons)
+      polygons.insert(polygons.end(), face.begin(), face.end());
+    for (uint32_t v = 0; v < points; ++v)
+      owner[v] = v;
+    for (const auto& [to, from] : owners.copies)
+      owner[to] = from;
+    mesh_normals(out.positions, polygons, owner, out.normals);
+  }
   return out;
 }
 

@@ -90,7 +90,7 @@ Triangles cage_limit(const Far::TopologyRefiner& refiner, const fb_subdiv_cage& 
 }
 
 Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& cage, uint32_t level,
-                         uint64_t max_triangles, bool triangle_faces) {
+                         uint64_t max_triangles, bool triangle_faces, bool polygon_normals) {
   const uint64_t count = level > 24 ? UINT64_MAX : triangle_count(cage, level);
   if (count > max_triangles)
     throw std::runtime_error("level " + std::to_string(level) + " makes " + std::to_string(count) +
@@ -117,6 +117,30 @@ Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& ca
   // positions stay those of the refined cage).
   std::vector<Point> limit(n), du(n), dv(n);
   primvar.Limit(src, limit, du, dv);
+  std::vector<float> positions(3 * n), normals(3 * n);
+  for (size_t v = 0; v < n; ++v) {
+    const float* a = du[v].p;
+    const float* b = dv[v].p;
+    const float nrm[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                          a[0] * b[1] - a[1] * b[0]};
+    const float len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+    for (int i = 0; i < 3; ++i) {
+      positions[3 * v + i] = src[v].p[i];
+      normals[3 * v + i] = len > 0 ? nrm[i] / len : 0;
+    }
+  }
+  if (polygon_normals) {
+    std::vector<uint32_t> polygons, owner(n);
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+      const auto face = last.GetFaceVertices(f);
+      polygons.push_back(uint32_t(face.size()));
+      for (int k = 0; k < face.size(); ++k)
+        polygons.push_back(uint32_t(face[k]));
+    }
+    for (size_t v = 0; v < n; ++v)
+      owner[v] = uint32_t(v);
+    mesh_normals(positions, polygons, owner, normals);
+  }
 
   // The face corners of the last level, each a vertex and a value per channel: the output's
   // vertices, split along the channels' seams.
@@ -142,15 +166,9 @@ Triangles refine_uniform(Far::TopologyRefiner& refiner, const fb_subdiv_cage& ca
   out.uvs.resize(2 * channels * vertices);
   for (uint32_t id = 0; id < vertices; ++id) {
     const uint32_t v = splitter.vertex(id);
-    const Point& p = src[v];
-    const float* a = du[v].p;
-    const float* b = dv[v].p;
-    float nrm[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                    a[0] * b[1] - a[1] * b[0]};
-    const float len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
     for (int i = 0; i < 3; ++i) {
-      out.positions[3 * size_t(id) + i] = p.p[i];
-      out.normals[3 * size_t(id) + i] = len > 0 ? nrm[i] / len : 0;
+      out.positions[3 * size_t(id) + i] = positions[3 * size_t(v) + i];
+      out.normals[3 * size_t(id) + i] = normals[3 * size_t(v) + i];
     }
     for (uint32_t c = 0; c < channels; ++c) {
       const Uv& uv = uvs[c][splitter.value(id, c)];

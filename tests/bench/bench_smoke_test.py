@@ -22,6 +22,10 @@ FILMBACK_NUMBERS = ("render_s", "total_s", "samples_per_s", "rays_per_s", "rmse"
                     "max_abs_error", "reference_noise_rmse")
 CYCLES_NUMBERS = ("render_s", "total_s", "samples_per_s", "rmse", "relmse", "max_abs_error",
                   "reference_noise_rmse")
+# Against Cycles' reference: every row of a Blender shot run against Cycles (the filmback rows
+# render with the shot's pixel filter, the one Cycles uses).
+COMMON_NUMBERS = ("cycles_ref_rmse", "cycles_ref_relmse", "cycles_ref_max_abs_error",
+                  "cycles_ref_noise_rmse")
 
 
 def fail(message):
@@ -37,6 +41,21 @@ def finite(row, keys):
             fail(f"{key} is '{row[key]}' in {row}")
         if not math.isfinite(value) or value < 0:
             fail(f"{key} is {value} in {row}")
+
+
+def check_plots(summary, stderr, name, report):
+    """Either the plot is drawn and the summary names an interpreter that has matplotlib, or the
+    warning names the interpreters that lack it."""
+    marker = "Plots drawn by `"
+    if marker in summary:
+        python = summary.split(marker, 1)[1].split("`", 1)[0]
+        has = subprocess.run([python, "-c", "import matplotlib"], capture_output=True)
+        if has.returncode != 0:
+            fail(f"the summary names {python}, which has no matplotlib")
+        if not os.path.isfile(os.path.join(report, name + ".png")):
+            fail("the summary names a plot interpreter but no plot is written")
+    elif "matplotlib is not installed for " not in stderr:
+        fail(f"no plot and no warning naming the interpreters:\n{stderr}")
 
 
 def main():
@@ -83,6 +102,14 @@ def main():
         if row["scene"] != name:
             fail(f"scene '{row['scene']}', expected '{name}'")
         finite(row, FILMBACK_NUMBERS if row["renderer"] == "filmback" else CYCLES_NUMBERS)
+        if args.against_cycles:
+            finite(row, COMMON_NUMBERS)
+        elif row["cycles_ref_rmse"]:
+            fail(f"an error against Cycles' reference without Cycles: {row}")
+    # Cycles' own reference is Cycles' reference: both measures of a Cycles row are one.
+    for row in cycles:
+        if row["rmse"] != row["cycles_ref_rmse"]:
+            fail(f"Cycles' two errors differ: {row}")
     for row in filmback:
         if not row["nonfinite_dropped"].isdigit():
             fail(f"nonfinite_dropped is '{row['nonfinite_dropped']}'")
@@ -93,13 +120,19 @@ def main():
     finite(scenes[0], ("import_s", "build_s", "peak_rss_bytes", "geometry_bvh_bytes",
                        "film_bytes", "target_rmse"))
     if args.against_cycles:
-        finite(scenes[0], ("prepare_s", "cycles_rmse", "bias_rmse", "mean_ratio"))
+        finite(scenes[0], ("prepare_s", "cycles_rmse", "bias_rmse", "mean_ratio",
+                           "mean_relative_difference", "mean_relative_noise", "worst_block",
+                           "worst_block_noise"))
+        if scenes[0]["target_reference"] != "cycles":
+            fail(f"the target is on the '{scenes[0]['target_reference']}' reference")
     with open(os.path.join(report, "summary.md")) as f:
         summary = f.read()
     if f"## {name}" not in summary or "| configuration |" not in summary:
         fail("summary.md lacks the scene's section or its table")
-    if args.against_cycles and "Against Cycles" not in summary:
-        fail("summary.md lacks the comparison with Cycles")
+    if args.against_cycles and ("Against Cycles, on one reference" not in summary or
+                                "Against Cycles, each against its own reference" not in summary):
+        fail("summary.md lacks a comparison with Cycles")
+    check_plots(summary, run.stderr, name, report)
     print(f"ok: {len(rows)} renders, summary.md written")
 
 

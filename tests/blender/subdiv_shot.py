@@ -114,8 +114,8 @@ def write_case(out, name, obj, uvs=False):
                 out.write("t %.9g %.9g\n" % tuple(layer[i].uv))
     depsgraph = bpy.context.evaluated_depsgraph_get()
     evaluated = obj.evaluated_get(depsgraph).to_mesh()
-    for v in evaluated.vertices:
-        out.write("r %.9g %.9g %.9g\n" % tuple(v.co))
+    for v in evaluated.vertices:  # position and the normal Cycles renders with
+        out.write("r %.9g %.9g %.9g %.9g %.9g %.9g\n" % (*v.co, *v.normal))
     if uvs:
         layer = evaluated.uv_layers.active.data
         for loop in evaluated.loops:
