@@ -35,8 +35,8 @@ struct Outcome {
 Outcome run_filmback(const std::string& args, const fs::path& plugin_dir, const fs::path& scratch) {
   const fs::path err = scratch / "stderr.txt";
   const std::string command = "FILMBACK_PLUGIN_PATH='" + plugin_dir.string() +
-                              "' '" FB_FILMBACK_EXE "' " + args + " >/dev/null 2>'" +
-                              err.string() + "'";
+                              "' '" FB_FILMBACK_EXE "' " + args + " >/dev/null 2>'" + err.string() +
+                              "'";
   const int raw = std::system(command.c_str());
   std::ifstream in(err);
   std::stringstream text;
@@ -73,8 +73,8 @@ TEST(AbiGrowth, FrozenIntegratorLoadsWithTheSizesItKnows) {
   EXPECT_EQ(api.scene_size, frozen.scene);
   EXPECT_EQ(api.scene_api_size, frozen.scene_api);
   EXPECT_NE(api.radiance, nullptr);
-  for (const auto& [kind, name] : {std::pair{FB_KIND_CAMERA, "frozenpinhole"},
-                                   std::pair{FB_KIND_FILTER, "frozenbox"}})
+  for (const auto& [kind, name] :
+       {std::pair{FB_KIND_CAMERA, "frozenpinhole"}, std::pair{FB_KIND_FILTER, "frozenbox"}})
     EXPECT_NO_THROW(PluginLoader({kFrozenPlugins}).load(kind, name)) << name;
 }
 
@@ -92,8 +92,8 @@ TEST(AbiGrowth, FrozenPluginsRenderThroughTheCli) {
   test::GltfBuilder gltf;
   const int material = gltf.material({float(kBase), float(kBase), float(kBase)});
   const float e = float(3 * kDistance), z = float(-kDistance);
-  const int quad = gltf.mesh({{-e, -e, z}, {e, -e, z}, {e, e, z}, {-e, e, z}}, {0, 1, 2, 0, 2, 3},
-                             material);
+  const int quad =
+      gltf.mesh({{-e, -e, z}, {e, -e, z}, {e, e, z}, {-e, e, z}}, {0, 1, 2, 0, 2, 3}, material);
   const int camera = gltf.perspective_camera(M_PI / 2, 1.0, 0.01, 100);
   test::GltfBuilder::Node plane_node, camera_node;
   plane_node.mesh = quad;
@@ -102,12 +102,12 @@ TEST(AbiGrowth, FrozenPluginsRenderThroughTheCli) {
   gltf.node(camera_node);
   const fs::path scene = gltf.write(scratch / "plane.gltf");
   const fs::path image = scratch / "frozen.exr";
-  const Outcome run = run_filmback(
-      "render '" + scene.string() + "' --res " + std::to_string(kSize) + "x" +
-          std::to_string(kSize) +
-          " --spp 4 -q --camera-model frozenpinhole --filter frozenbox --integrator frozendepth -o '" +
-          image.string() + "'",
-      kFrozenPlugins, scratch);
+  const Outcome run = run_filmback("render '" + scene.string() + "' --res " +
+                                       std::to_string(kSize) + "x" + std::to_string(kSize) +
+                                       " --spp 4 -q --camera-model frozenpinhole --filter "
+                                       "frozenbox --integrator frozendepth -o '" +
+                                       image.string() + "'",
+                                   kFrozenPlugins, scratch);
   ASSERT_EQ(run.status, 0) << run.err;
   const Image out = read_image(image);
   ASSERT_EQ(out.width, uint32_t(kSize));
@@ -140,10 +140,10 @@ TEST(AbiGrowth, NewerPluginIsRefusedNamingFileAndSizes) {
   }
   const fs::path scratch = test::scratch_dir();
   const fs::path image = scratch / "future.exr";
-  const Outcome run = run_filmback("render '" FB_DEFAULT_SCENE
-                                   "' --res 4x4 --spp 1 -q --integrator future -o '" +
-                                       image.string() + "'",
-                                   kFuturePlugins, scratch);
+  const Outcome run =
+      run_filmback("render '" FB_DEFAULT_SCENE "' --res 4x4 --spp 1 -q --integrator future -o '" +
+                       image.string() + "'",
+                   kFuturePlugins, scratch);
   EXPECT_EQ(run.status, 1) << run.err;
   EXPECT_NE(run.err.find(file.string() + ": " + reason), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(image));

@@ -38,8 +38,14 @@ static const fb_integrator_api api = {sizeof(fb_integrator_api),
                                       sizeof(fb_scene),
                                       sizeof(fb_scene_api)};
 
-static const fb_plugin plugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR,
-                                 "future", "1.0.0", "An integrator from a newer SDK", NULL, 0,
+static const fb_plugin plugin = {FB_ABI_VERSION,
+                                 sizeof(fb_plugin),
+                                 FB_KIND_INTEGRATOR,
+                                 "future",
+                                 "1.0.0",
+                                 "An integrator from a newer SDK",
+                                 NULL,
+                                 0,
                                  &api};
 
 FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {

@@ -39,13 +39,21 @@ struct Read {
   bool mirror;
 };
 
+// A filter descriptor with `schema`, for the host's binder.
+fb_plugin plugin_with(const std::vector<fb_param_desc>& schema) {
+  fb_plugin plugin{};
+  plugin.abi_version = FB_ABI_VERSION;
+  plugin.struct_size = sizeof(fb_plugin);
+  plugin.kind = FB_KIND_FILTER;
+  plugin.params = schema.data();
+  plugin.param_count = uint32_t(schema.size());
+  return plugin;
+}
+
 // What a plugin with `schema` reads through handles from create()'s values for `settings`.
 Read read_through_handles(const std::vector<fb_param_desc>& schema,
                           const std::vector<std::pair<std::string, std::string>>& settings) {
-  const fb_plugin plugin{FB_ABI_VERSION, sizeof(fb_plugin),      FB_KIND_FILTER,
-                         "t",            "1",                    "s",
-                         schema.data(),  uint32_t(schema.size()), nullptr};
-  const BoundParams bound(plugin, settings);
+  const BoundParams bound(plugin_with(schema), settings);
   const fb_value* values = bound.data();
   const size_t n = schema.size();
   return {param<double>(schema.data(), n, "radius")(values),
@@ -74,10 +82,7 @@ TEST(NamedParams, ReorderedSchemaReadsTheSameValues) {
     EXPECT_TRUE(r.mirror);
   }
   // The control: by position, the reversed schema's first value is another parameter.
-  const fb_plugin reversed_plugin{FB_ABI_VERSION, sizeof(fb_plugin),        FB_KIND_FILTER, "t",
-                                  "1",            "s",                      reversed.data(),
-                                  uint32_t(reversed.size()), nullptr};
-  const BoundParams bound(reversed_plugin, settings);
+  const BoundParams bound(plugin_with(reversed), settings);
   EXPECT_EQ(bound.data()[0].number[0], 0.75);  // sigma, where radius was
 }
 
@@ -87,7 +92,9 @@ TEST(NamedParams, AMissingNameOrAWrongTypeIsAnErrorCreateReports) {
   EXPECT_THROW(param<double>(kSchema, std::size(kSchema), "show"), std::invalid_argument);
   // Through the SDK's create(): the message reaches the error buffer.
   struct Misread {
-    explicit Misread(const fb_value* values) { param<float>(kSchema, std::size(kSchema), "rad")(values); }
+    explicit Misread(const fb_value* values) {
+      param<float>(kSchema, std::size(kSchema), "rad")(values);
+    }
   };
   char text[256] = "";
   void* instance = nullptr;

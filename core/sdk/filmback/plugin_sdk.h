@@ -72,8 +72,9 @@ constexpr uint32_t param_type_of() {
   else if constexpr (std::is_same_v<T, const char*>)
     return FB_PARAM_STRING;
   else {
-    static_assert(std::is_same_v<T, Rgb>, "a parameter reads as double, float, int, bool, "
-                                          "const char* or fb::Rgb");
+    static_assert(std::is_same_v<T, Rgb>,
+                  "parameters read as double, float, int, bool, "
+                  "const char* or fb::Rgb");
     return FB_PARAM_RGB;
   }
 }

@@ -63,10 +63,15 @@ static void generate_rays(const void* instance, const fb_camera_sample* samples,
 
 static const fb_camera_api api = {sizeof(fb_camera_api), create, destroy, needs, generate_rays};
 
-static const fb_plugin plugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_CAMERA,
-                                 "frozenpinhole", "1.0.0",
+static const fb_plugin plugin = {FB_ABI_VERSION,
+                                 sizeof(fb_plugin),
+                                 FB_KIND_CAMERA,
+                                 "frozenpinhole",
+                                 "1.0.0",
                                  "Pinhole through pixel centres, built against the frozen header",
-                                 NULL, 0, &api};
+                                 NULL,
+                                 0,
+                                 &api};
 
 FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
   return &plugin;

@@ -45,12 +45,18 @@ static void sample(const void* instance, const float* u, size_t count, fb_filter
   }
 }
 
-static const fb_filter_api api = {sizeof(fb_filter_api), create,   destroy, radius,
-                                  evaluate,              integral, sample};
+static const fb_filter_api api = {
+    sizeof(fb_filter_api), create, destroy, radius, evaluate, integral, sample};
 
-static const fb_plugin plugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_FILTER, "frozenbox",
-                                 "1.0.0", "Box filter, built against the frozen header", params,
-                                 1, &api};
+static const fb_plugin plugin = {FB_ABI_VERSION,
+                                 sizeof(fb_plugin),
+                                 FB_KIND_FILTER,
+                                 "frozenbox",
+                                 "1.0.0",
+                                 "Box filter, built against the frozen header",
+                                 params,
+                                 1,
+                                 &api};
 
 FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
   return &plugin;

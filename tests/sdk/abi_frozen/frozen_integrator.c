@@ -60,13 +60,18 @@ static void radiance(const void* instance, const fb_scene* scene, fb_trace_conte
   free(hits);
 }
 
-static const fb_integrator_api api = {sizeof(fb_integrator_api), create, destroy, channels,
-                                      radiance, sizeof(fb_hit)};
+static const fb_integrator_api api = {
+    sizeof(fb_integrator_api), create, destroy, channels, radiance, sizeof(fb_hit)};
 
-static const fb_plugin plugin = {FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_INTEGRATOR,
-                                 "frozendepth", "1.0.0",
+static const fb_plugin plugin = {FB_ABI_VERSION,
+                                 sizeof(fb_plugin),
+                                 FB_KIND_INTEGRATOR,
+                                 "frozendepth",
+                                 "1.0.0",
                                  "Depth, distance and base colour, built against the frozen header",
-                                 NULL, 0, &api};
+                                 NULL,
+                                 0,
+                                 &api};
 
 FB_EXPORT const fb_plugin* filmback_plugin_v1(void) {
   return &plugin;
