@@ -37,6 +37,7 @@ struct RenderJob::Plugins {
   std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
   std::string subdiv_summary;
   std::vector<fb_material> materials;
+  fb_scene_api scene_api{};  // host_scene_api(), as long as the integrator knows it
   fb_scene scene{};
 };
 
@@ -293,8 +294,11 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
     fm.double_sided = m.double_sided;
     p.materials.push_back(fm);
   }
-  p.scene.struct_size = sizeof(fb_scene);
-  p.scene.api = &host_scene_api();
+  // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
+  p.scene_api = host_scene_api();
+  p.scene_api.struct_size = p.integrator->scene_api_size();
+  p.scene.struct_size = p.integrator->scene_size();
+  p.scene.api = &p.scene_api;
   p.scene.materials = p.materials.data();
   p.scene.material_count = uint32_t(p.materials.size());
   options.background.value_or(scene.background).store(p.scene.background);
