@@ -10,6 +10,8 @@
 
 #include <filmback/plugin_abi.h>
 
+#include "core/util/shared_library.h"
+
 namespace fb {
 
 // One opened plugin file whose descriptor passed every check; closed when the last user goes.
@@ -17,7 +19,6 @@ class PluginLibrary {
  public:
   // Throws InputError "file: reason" for anything that is not a well-formed filmback plugin.
   explicit PluginLibrary(const std::filesystem::path& file);
-  ~PluginLibrary();
   PluginLibrary(const PluginLibrary&) = delete;
   PluginLibrary& operator=(const PluginLibrary&) = delete;
 
@@ -30,7 +31,7 @@ class PluginLibrary {
 
  private:
   std::filesystem::path file_;
-  void* handle_ = nullptr;
+  SharedLibrary library_;
   const fb_plugin* descriptor_ = nullptr;
 };
 

@@ -20,41 +20,30 @@ Matrix rotation(Vec3d degrees) {
   return axis(2, degrees.z) * axis(1, degrees.y) * axis(0, degrees.x);
 }
 
-const char* const kPatterns[] = {
-    "checker", "hexagon", "brick", "gradient", "bozo", "spotted", "granite", "marble", "wood",
-    "agate", "leopard", "onion", "radial", "spiral1", "spiral2", "waves", "ripples", "wrinkles",
-    "bumps", "dents", "crackle", "cells", "image_map", "boxed", "cylindrical", "spherical",
-    "planar", "mandel", "julia", "magnet", "object", "function", "pigment_pattern",
-    "density_file", "facets", "quilted", "tiling", "pavement", "slope", "aoi", "cubic",
-    "average", "image_pattern", "square", "triangular", "bump_map",
+// POV-Ray's pattern keywords that filmback does not evaluate (beside those it does, named in
+// core/scene/solid_texture.h): a pigment of one is parsed and rendered in its average colour.
+const char* const kAveragedPatterns[] = {
+    "image_map", "boxed",   "cylindrical",   "spherical", "planar",          "mandel",
+    "julia",     "magnet",  "object",        "function",  "pigment_pattern", "density_file",
+    "facets",    "quilted", "tiling",        "pavement",  "slope",           "aoi",
+    "cubic",     "average", "image_pattern", "square",    "triangular",      "bump_map",
 };
 
-bool is_pattern(const std::string& w) {
-  for (const char* p : kPatterns) {
+bool is_averaged_pattern(const std::string& w) {
+  for (const char* p : kAveragedPatterns) {
     if (w == p) return true;
   }
   return false;
 }
 
-Pattern pattern_of(const std::string& w) {
-  static const std::pair<const char*, Pattern> kMap[] = {
-      {"checker", Pattern::kChecker}, {"hexagon", Pattern::kHexagon},
-      {"brick", Pattern::kBrick},     {"gradient", Pattern::kGradient},
-      {"bozo", Pattern::kBozo},       {"spotted", Pattern::kSpotted},
-      {"granite", Pattern::kGranite}, {"marble", Pattern::kMarble},
-      {"wood", Pattern::kWood},       {"agate", Pattern::kAgate},
-      {"leopard", Pattern::kLeopard}, {"onion", Pattern::kOnion},
-      {"radial", Pattern::kRadial},   {"spiral1", Pattern::kSpiral1},
-      {"spiral2", Pattern::kSpiral2}, {"waves", Pattern::kWaves},
-      {"ripples", Pattern::kRipples}, {"wrinkles", Pattern::kWrinkles},
-      {"bumps", Pattern::kBumps},     {"dents", Pattern::kDents},
-      {"crackle", Pattern::kCrackle}, {"cells", Pattern::kCells},
-      {"image_map", Pattern::kImageMap},
-  };
-  for (const auto& [name, pattern] : kMap) {
-    if (w == name) return pattern;
-  }
-  return Pattern::kOther;
+// "solid" names a plain colour in the scene model's table; it is no keyword of POV-Ray's.
+std::optional<Pattern> evaluated_pattern(const std::string& w) {
+  const std::optional<Pattern> kind = solid_pattern_named(w);
+  return kind == Pattern::kSolid ? std::nullopt : kind;
+}
+
+bool is_pattern(const std::string& w) {
+  return evaluated_pattern(w) || is_averaged_pattern(w);
 }
 
 Colour mix(const Colour& a, const Colour& b, double t) {
@@ -102,7 +91,8 @@ Pigment solid(const Colour& c) {
 
 void move_pigment(Pigment& pigment, const Matrix& inverse) {
   pigment.pattern_from_world = pigment.pattern_from_world * inverse;
-  for (Pigment& entry : pigment.list) move_pigment(entry, inverse);
+  for (Pigment& entry : pigment.list)
+    move_pigment(entry, inverse);
 }
 
 }  // namespace
@@ -116,8 +106,8 @@ void transform_texture(Texture& texture, const Matrix& inverse) {
 void Parser::parse_pattern_arguments(const std::string& w) {
   if (w == "gradient") {
     parse_vector();
-  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" ||
-             w == "magnet" || w == "agate_turb" || w == "pavement" || w == "facets") {
+  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" || w == "magnet" ||
+             w == "agate_turb" || w == "pavement" || w == "facets") {
     if (starts_value(peek())) parse_float();
   } else if (w == "julia") {
     parse_numeric(2);
@@ -200,8 +190,8 @@ std::optional<Matrix> Parser::parse_transform_item(const Tok& tok) {
     }
     vector_level_ = saved;
     expect(">");
-    return Matrix::from_rows({e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8],
-                              e[11], 0, 0, 0, 1});
+    return Matrix::from_rows(
+        {e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8], e[11], 0, 0, 0, 1});
   }
   if (w == "transform") return parse_transform_block();
   return std::nullopt;
@@ -267,8 +257,8 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       if (tok.word("pigment")) {
         next();
         p.list.push_back(parse_pigment());
-      } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric()) ||
-                 tok.symbol("<") || tok.token.kind == TokenKind::kNumber) {
+      } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric()) || tok.symbol("<") ||
+                 tok.token.kind == TokenKind::kNumber) {
         Pigment entry;
         entry.colour = parse_colour();
         p.list.push_back(entry);
@@ -290,10 +280,12 @@ Pigment Parser::parse_pigment_items(const char* closing) {
     } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric())) {
       unget(std::move(tok));
       p.pattern = Pattern::kSolid;
+      p.averaged = false;
       p.name.clear();
       p.colour = parse_colour();
     } else if (tok.keyword() && is_pattern(w)) {
-      p.pattern = pattern_of(w);
+      p.pattern = evaluated_pattern(w).value_or(Pattern::kSolid);
+      p.averaged = !evaluated_pattern(w);
       p.name = w;
       p.colour_map.clear();
       p.list.clear();
@@ -307,13 +299,14 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       } else if (w == "hexagon") {
         add_list_entries(3);
         const Colour defaults[3] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};  // blue, green, red
-        while (p.list.size() < 3) p.list.push_back(solid(defaults[p.list.size()]));
+        while (p.list.size() < 3)
+          p.list.push_back(solid(defaults[p.list.size()]));
       } else if (w == "gradient") {
         p.gradient = parse_vector();
       } else {
         parse_pattern_arguments(w);
       }
-      if (p.pattern == Pattern::kOther) unsupported("pattern " + w, location_of(tok));
+      if (p.averaged && w != "image_map") unsupported("pattern " + w, location_of(tok));
     } else if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
       p.colour_map = parse_colour_map(w == "pigment_map");
     } else if (tok.identifier && tok.value.get<ColourMap>()) {
@@ -332,12 +325,16 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       p.phase = parse_float();
     } else if (w == "ramp_wave" || w == "triangle_wave" || w == "sine_wave" ||
                w == "scallop_wave" || w == "cubic_wave" || w == "poly_wave") {
-      p.wave = w == "ramp_wave" ? Wave::kRamp : w == "triangle_wave" ? Wave::kTriangle
-               : w == "sine_wave" ? Wave::kSine : w == "scallop_wave" ? Wave::kScallop
-               : w == "cubic_wave" ? Wave::kCubic : Wave::kPoly;
+      p.wave = w == "ramp_wave"       ? Wave::kRamp
+               : w == "triangle_wave" ? Wave::kTriangle
+               : w == "sine_wave"     ? Wave::kSine
+               : w == "scallop_wave"  ? Wave::kScallop
+               : w == "cubic_wave"    ? Wave::kCubic
+                                      : Wave::kPoly;
       if (w == "poly_wave") {
         const Tok& n = peek();
-        if (n.token.kind == TokenKind::kNumber || (n.identifier && n.value.kind == ValueKind::kFloat)) {
+        if (n.token.kind == TokenKind::kNumber ||
+            (n.identifier && n.value.kind == ValueKind::kFloat)) {
           p.wave_exponent = parse_float();
         }
       }
@@ -381,7 +378,7 @@ Pigment Parser::parse_pigment_items(const char* closing) {
   }
   // the parser's estimate of the pattern's mean, which converters use where they cannot
   // evaluate the pattern
-  if (p.pattern != Pattern::kSolid) {
+  if (p.pattern != Pattern::kSolid || p.averaged) {
     p.colour = p.list.empty() ? map_average(p.colour_map) : list_average(p.list);
   }
   return p;
@@ -483,7 +480,8 @@ Texture Parser::parse_texture_items(const char* closing) {
   for (;;) {
     Tok tok = next();
     if (tok.symbol(closing)) break;
-    if (tok.token.kind == TokenKind::kEnd) fail(std::string("missing '") + closing + "' in texture");
+    if (tok.token.kind == TokenKind::kEnd)
+      fail(std::string("missing '") + closing + "' in texture");
     const std::string& w = tok.token.text;
     if (first && tok.identifier && tok.value.get<Texture>()) {
       t = *tok.value.get<Texture>();
