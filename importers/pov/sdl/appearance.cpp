@@ -2,6 +2,7 @@
 // material, and the transforms (translate/rotate/scale/matrix/transform) they and objects share.
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "importers/pov/sdl/parser.h"
 
@@ -91,8 +92,7 @@ Pigment solid(const Colour& c) {
 
 void move_pigment(Pigment& pigment, const Matrix& inverse) {
   pigment.pattern_from_world = pigment.pattern_from_world * inverse;
-  for (Pigment& entry : pigment.list)
-    move_pigment(entry, inverse);
+  for (Pigment& entry : pigment.list) move_pigment(entry, inverse);
 }
 
 }  // namespace
@@ -106,8 +106,8 @@ void transform_texture(Texture& texture, const Matrix& inverse) {
 void Parser::parse_pattern_arguments(const std::string& w) {
   if (w == "gradient") {
     parse_vector();
-  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" || w == "magnet" ||
-             w == "agate_turb" || w == "pavement" || w == "facets") {
+  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" ||
+             w == "magnet" || w == "agate_turb" || w == "pavement" || w == "facets") {
     if (starts_value(peek())) parse_float();
   } else if (w == "julia") {
     parse_numeric(2);
@@ -190,8 +190,8 @@ std::optional<Matrix> Parser::parse_transform_item(const Tok& tok) {
     }
     vector_level_ = saved;
     expect(">");
-    return Matrix::from_rows(
-        {e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8], e[11], 0, 0, 0, 1});
+    return Matrix::from_rows({e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8],
+                              e[11], 0, 0, 0, 1});
   }
   if (w == "transform") return parse_transform_block();
   return std::nullopt;
@@ -257,8 +257,8 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       if (tok.word("pigment")) {
         next();
         p.list.push_back(parse_pigment());
-      } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric()) || tok.symbol("<") ||
-                 tok.token.kind == TokenKind::kNumber) {
+      } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric()) ||
+                 tok.symbol("<") || tok.token.kind == TokenKind::kNumber) {
         Pigment entry;
         entry.colour = parse_colour();
         p.list.push_back(entry);
@@ -299,8 +299,7 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       } else if (w == "hexagon") {
         add_list_entries(3);
         const Colour defaults[3] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};  // blue, green, red
-        while (p.list.size() < 3)
-          p.list.push_back(solid(defaults[p.list.size()]));
+        while (p.list.size() < 3) p.list.push_back(solid(defaults[p.list.size()]));
       } else if (w == "gradient") {
         p.gradient = parse_vector();
       } else {
@@ -325,16 +324,12 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       p.phase = parse_float();
     } else if (w == "ramp_wave" || w == "triangle_wave" || w == "sine_wave" ||
                w == "scallop_wave" || w == "cubic_wave" || w == "poly_wave") {
-      p.wave = w == "ramp_wave"       ? Wave::kRamp
-               : w == "triangle_wave" ? Wave::kTriangle
-               : w == "sine_wave"     ? Wave::kSine
-               : w == "scallop_wave"  ? Wave::kScallop
-               : w == "cubic_wave"    ? Wave::kCubic
-                                      : Wave::kPoly;
+      p.wave = w == "ramp_wave" ? Wave::kRamp : w == "triangle_wave" ? Wave::kTriangle
+               : w == "sine_wave" ? Wave::kSine : w == "scallop_wave" ? Wave::kScallop
+               : w == "cubic_wave" ? Wave::kCubic : Wave::kPoly;
       if (w == "poly_wave") {
         const Tok& n = peek();
-        if (n.token.kind == TokenKind::kNumber ||
-            (n.identifier && n.value.kind == ValueKind::kFloat)) {
+        if (n.token.kind == TokenKind::kNumber || (n.identifier && n.value.kind == ValueKind::kFloat)) {
           p.wave_exponent = parse_float();
         }
       }
@@ -480,8 +475,7 @@ Texture Parser::parse_texture_items(const char* closing) {
   for (;;) {
     Tok tok = next();
     if (tok.symbol(closing)) break;
-    if (tok.token.kind == TokenKind::kEnd)
-      fail(std::string("missing '") + closing + "' in texture");
+    if (tok.token.kind == TokenKind::kEnd) fail(std::string("missing '") + closing + "' in texture");
     const std::string& w = tok.token.text;
     if (first && tok.identifier && tok.value.get<Texture>()) {
       t = *tok.value.get<Texture>();
