@@ -38,7 +38,7 @@ class RenderSolid {
   std::optional<SolidHit> first_hit(Vec3d origin, Vec3d direction, double t_min) const;
 
   // Whether a render-space point lies in the solid's set (on its boundary: either answer). What
-  // tessellates CSG asks it of each primitive (core/scene/csg_probe.h).
+  // tessellates CSG asks it of each primitive (core/tessellate/csg_probe.h).
   bool contains(Vec3d point) const;
 
   const Bounds3d& bounds() const { return bounds_; }

@@ -1,15 +1,16 @@
 #include "core/cmd/bench_cycles.h"
 
-#include <charconv>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "core/cmd/bench_metrics.h"
 #include "core/cmd/bench_process.h"
 #include "core/image/image_io.h"
 #include "core/util/error.h"
+#include "core/util/parse_number.h"
 
 namespace fb {
 namespace {
@@ -54,10 +55,10 @@ CyclesRender render_cycles(const BlenderShot& shot, uint32_t spp, uint64_t seed,
                   shot.work / (name + ".log"), "Cycles at " + std::to_string(spp) + " spp");
   const fs::path seconds_file = exr.string() + ".render_s";
   const std::string seconds = read_text(seconds_file);
-  const auto [end, ec] =
-      std::from_chars(seconds.data(), seconds.data() + seconds.size(), r.render_s);
-  if (ec != std::errc() || end != seconds.data() + seconds.size())
+  const std::optional<double> render_s = parse_number(seconds);
+  if (!render_s)
     throw_input(seconds_file.string(), "", "expected a number of seconds, found '" + seconds + "'");
+  r.render_s = *render_s;
   r.image = colour_channels(read_image(exr), exr.string());
   return r;
 }

@@ -1,7 +1,7 @@
 #include <iostream>
 
 #include "core/cmd/commands.h"
-#include "core/scene/tessellate.h"
+#include "core/tessellate/tessellate.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_writer.h"
 

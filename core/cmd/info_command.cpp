@@ -29,17 +29,19 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
       shot.width_px ? std::pair{*shot.width_px, *shot.height_px} : default_resolution(camera);
   const CameraQuantities q = describe_camera(c, width, height);
   const bool ortho = c.projection == FB_PROJECTION_ORTHOGRAPHIC;
+  // the sensor side that spans the image
+  const char* fitted =
+      sensor_fit_name(q.horizontal_fit ? FB_SENSOR_FIT_HORIZONTAL : FB_SENSOR_FIT_VERTICAL);
   std::cout << "  " << camera.name << "  [" << camera.source << "]  "
             << (ortho ? "orthographic" : "perspective") << '\n';
   if (ortho) {
     std::cout << format("    ortho scale %.6g m, sensor fit %s (%s at %ux%u)\n", c.ortho_scale_m,
-                        sensor_fit_name(c.sensor_fit), q.horizontal_fit ? "horizontal" : "vertical",
-                        width, height);
+                        sensor_fit_name(c.sensor_fit), fitted, width, height);
   } else {
     std::cout << format(
         "    focal length %.3f mm, sensor %.2f x %.2f mm, fit %s (%s at %ux%u), shift %.4g, %.4g\n",
         c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm, sensor_fit_name(c.sensor_fit),
-        q.horizontal_fit ? "horizontal" : "vertical", width, height, c.shift_x, c.shift_y);
+        fitted, width, height, c.shift_x, c.shift_y);
     std::cout << format(
         "    field of view %.4f deg horizontal x %.4f deg vertical (imaged sensor area %.2f x %.2f "
         "mm)\n",

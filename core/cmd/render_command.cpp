@@ -19,6 +19,7 @@
 #include "core/plugin/params.h"
 #include "core/render/memory_estimate.h"
 #include "core/util/error.h"
+#include "core/util/parse_number.h"
 #include "importers/import_scene.h"
 
 namespace fb {
@@ -55,10 +56,9 @@ Vec2d parse_pair(const std::string& text, char separator, const char* option, do
       std::string_view(text).substr(0, at),
       at == std::string::npos ? std::string_view() : std::string_view(text).substr(at + 1)};
   for (int i = 0; i < 2; ++i) {
-    const auto [end, ec] =
-        std::from_chars(parts[i].data(), parts[i].data() + parts[i].size(), v[i]);
-    if (at == std::string::npos || ec != std::errc() || end != parts[i].data() + parts[i].size() ||
-        !(v[i] >= lo && v[i] <= hi))
+    const std::optional<double> number = parse_number(parts[i]);
+    v[i] = number.value_or(NAN);
+    if (at == std::string::npos || !(v[i] >= lo && v[i] <= hi))
       throw UsageError(std::string(option) + " '" + text + "': expected two numbers in [" +
                        number_text(lo) + ", " + number_text(hi) + "] separated by '" + separator +
                        "'");
@@ -67,13 +67,10 @@ Vec2d parse_pair(const std::string& text, char separator, const char* option, do
 }
 
 // One number in [lo, hi]; "inf" is accepted when hi is infinite.
-double parse_number(const std::string& text, const char* option, double lo, double hi) {
-  double v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  const bool infinite = text == "inf" && std::isinf(hi);
-  if (infinite) v = HUGE_VAL;
-  if (!infinite && (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v) ||
-                    !(v >= lo && v <= hi)))
+double option_number(const std::string& text, const char* option, double lo, double hi) {
+  if (text == "inf" && std::isinf(hi)) return HUGE_VAL;
+  const double v = parse_number(text).value_or(NAN);
+  if (!(v >= lo && v <= hi))
     throw UsageError(std::string(option) + " '" + text + "': expected a number in [" +
                      number_text(lo) + ", " + number_text(hi) + "]");
   return v;
@@ -83,33 +80,27 @@ double parse_number(const std::string& text, const char* option, double lo, doub
 void parse_physical(const RenderCommand& c, RenderOptions& o) {
   CameraOverrides& cam = o.camera_overrides;
   if (!c.focal_length.empty())
-    cam.focal_length_mm = parse_number(c.focal_length, "--focal-length", 1e-3, 1e5);
+    cam.focal_length_mm = option_number(c.focal_length, "--focal-length", 1e-3, 1e5);
   if (!c.fstop.empty()) {
-    const double n = parse_number(c.fstop, "--fstop", 0, HUGE_VAL);
+    const double n = option_number(c.fstop, "--fstop", 0, HUGE_VAL);
     cam.fstop = n > 0 ? n : HUGE_VAL;  // 0: no aperture, as "inf"
   }
   if (!c.focus_distance.empty())
-    cam.focus_distance_m = parse_number(c.focus_distance, "--focus-distance", 1e-6, HUGE_VAL);
+    cam.focus_distance_m = option_number(c.focus_distance, "--focus-distance", 1e-6, HUGE_VAL);
   if (!c.sensor.empty()) cam.sensor_mm = parse_pair(c.sensor, 'x', "--sensor", 1e-3, 1e4);
   if (!c.shift.empty()) cam.shift = parse_pair(c.shift, ',', "--shift", -100, 100);
   if (!c.sensor_fit.empty()) {
-    if (c.sensor_fit == "auto")
-      cam.sensor_fit = FB_SENSOR_FIT_AUTO;
-    else if (c.sensor_fit == "horizontal")
-      cam.sensor_fit = FB_SENSOR_FIT_HORIZONTAL;
-    else if (c.sensor_fit == "vertical")
-      cam.sensor_fit = FB_SENSOR_FIT_VERTICAL;
-    else
-      throw UsageError("--sensor-fit '" + c.sensor_fit +
-                       "': expected auto, horizontal or vertical");
+    cam.sensor_fit = sensor_fit_named(c.sensor_fit);
+    if (!cam.sensor_fit)
+      throw UsageError("--sensor-fit '" + c.sensor_fit + "': expected " + sensor_fit_choices());
   }
   if (!c.shutter.empty()) {
     o.shutter_s = parse_pair(c.shutter, ',', "--shutter", -1e6, 1e6);
     if (o.shutter_s->y < o.shutter_s->x)
       throw UsageError("--shutter '" + c.shutter + "': expected OPEN,CLOSE with CLOSE >= OPEN");
   }
-  if (!c.frame.empty()) o.frame = parse_number(c.frame, "--frame", -1e9, 1e9);
-  if (!c.fps.empty()) o.fps = parse_number(c.fps, "--fps", 1e-3, 1e6);
+  if (!c.frame.empty()) o.frame = option_number(c.frame, "--frame", -1e9, 1e9);
+  if (!c.fps.empty()) o.fps = option_number(c.fps, "--fps", 1e-3, 1e6);
   if (!c.sensor_model.empty()) {
     if (c.sensor_model == "simple")
       o.sensor_model = FB_SENSOR_SIMPLE;
@@ -118,7 +109,7 @@ void parse_physical(const RenderCommand& c, RenderOptions& o) {
     else
       throw UsageError("--sensor-model '" + c.sensor_model + "': expected simple or physical");
   }
-  if (!c.iso.empty()) o.iso = parse_number(c.iso, "--iso", 1, 1e7);
+  if (!c.iso.empty()) o.iso = option_number(c.iso, "--iso", 1, 1e7);
 }
 
 // The command line's numbers for 8-bit outputs, checked before the scene is read.
@@ -129,9 +120,9 @@ struct ViewOverrides {
 // Blender's ranges (its RNA): exposure -32..32 stops, gamma 0..5, dither 0..2.
 ViewOverrides parse_view_overrides(const RenderCommand& c) {
   ViewOverrides o;
-  if (!c.exposure.empty()) o.exposure_stops = parse_number(c.exposure, "--exposure", -32, 32);
-  if (!c.gamma.empty()) o.gamma = parse_number(c.gamma, "--gamma", 0, 5);
-  if (!c.dither.empty()) o.dither_intensity = parse_number(c.dither, "--dither", 0, 2);
+  if (!c.exposure.empty()) o.exposure_stops = option_number(c.exposure, "--exposure", -32, 32);
+  if (!c.gamma.empty()) o.gamma = option_number(c.gamma, "--gamma", 0, 5);
+  if (!c.dither.empty()) o.dither_intensity = option_number(c.dither, "--dither", 0, 2);
   return o;
 }
 

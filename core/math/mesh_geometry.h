@@ -1,5 +1,5 @@
 // Small double-precision helpers shared by the code that cuts and joins meshes
-// (core/scene/csg_trim.cpp, core/scene/seam_join.cpp).
+// (core/tessellate/csg_trim.cpp, core/tessellate/seam_join.cpp).
 #pragma once
 
 #include <algorithm>

@@ -1,6 +1,5 @@
 #include "core/plugin/loader.h"
 
-#include <dlfcn.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -70,16 +69,12 @@ std::string plugin_file_name(uint32_t kind, std::string_view name) {
   return "libfilmback_" + std::string(kind_name(kind)) + "_" + std::string(name) + ".so";
 }
 
-PluginLibrary::PluginLibrary(const fs::path& file) : file_(file) {
+PluginLibrary::PluginLibrary(const fs::path& file) : file_(file), library_(file) {
   auto fail = [&](const std::string& reason) -> InputError {
     return InputError(located(file.string(), "", reason));
   };
-  // RTLD_NOW: an unresolved symbol is reported here, naming the file, not mid-render.
-  handle_ = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle_) {
-    std::string why = dlerror();
-    // dlerror() starts with the path, which the message names already.
-    if (why.starts_with(file.string() + ": ")) why.erase(0, file.string().size() + 2);
+  if (!library_.is_open()) {
+    const std::string& why = library_.error();
     const size_t at = why.find("undefined symbol: ");
     if (at != std::string::npos)
       throw fail("missing symbol: " + why.substr(at + 18) +
@@ -91,19 +86,13 @@ PluginLibrary::PluginLibrary(const fs::path& file) : file_(file) {
                  " (the plugin needs a shared library the dynamic loader cannot find)");
     throw fail("not a filmback plugin: cannot load it as a shared library (" + why + ")");
   }
-  auto entry = reinterpret_cast<fb_entry_point_fn>(dlsym(handle_, FB_ENTRY_POINT));
+  auto entry = reinterpret_cast<fb_entry_point_fn>(library_.symbol(FB_ENTRY_POINT));
   std::string problem = "not a filmback plugin: it has no " FB_ENTRY_POINT " entry point";
   if (entry) {
     const PluginCrashGuard guard(file, FB_ENTRY_POINT "() or the descriptor it returned");
     problem = check_descriptor(entry(), read_);
   }
-  if (problem.empty()) return;
-  dlclose(handle_);
-  throw fail(problem);
-}
-
-PluginLibrary::~PluginLibrary() {
-  if (handle_) dlclose(handle_);
+  if (!problem.empty()) throw fail(problem);  // library_ closes the file
 }
 
 // A folder named twice (say in FILMBACK_PLUGIN_PATH as well) is searched once: otherwise each of

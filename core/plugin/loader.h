@@ -12,6 +12,7 @@
 #include <filmback/plugin_abi.h>
 
 #include "core/plugin/descriptor.h"
+#include "core/util/shared_library.h"
 
 namespace fb {
 
@@ -20,7 +21,6 @@ class PluginLibrary {
  public:
   // Throws InputError "file: reason" for anything that is not a well-formed filmback plugin.
   explicit PluginLibrary(const std::filesystem::path& file);
-  ~PluginLibrary();
   PluginLibrary(const PluginLibrary&) = delete;
   PluginLibrary& operator=(const PluginLibrary&) = delete;
 
@@ -40,7 +40,7 @@ class PluginLibrary {
 
  private:
   std::filesystem::path file_;
-  void* handle_ = nullptr;
+  SharedLibrary library_;
   PluginDescriptor read_;
 };
 

@@ -1,10 +1,11 @@
 #include "core/plugin/params.h"
 
-#include <charconv>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "core/util/error.h"
+#include "core/util/parse_number.h"
 
 namespace fb {
 namespace {
@@ -23,12 +24,6 @@ std::vector<std::string_view> split_top_level(std::string_view text, char separa
   }
   parts.push_back(text.substr(start));
   return parts;
-}
-
-bool parse_number(std::string_view text, double& out) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  return ec == std::errc() && ptr == end && std::isfinite(out);
 }
 
 bool is_identifier(std::string_view s) {
@@ -77,10 +72,11 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
   switch (desc.type) {
     case FB_PARAM_FLOAT:
     case FB_PARAM_INT: {
-      double x;
+      const std::optional<double> number = parse_number(text);
       const bool whole = desc.type == FB_PARAM_INT;
-      if (!parse_number(text, x) || (whole && x != std::floor(x)))
+      if (!number || (whole && *number != std::floor(*number)))
         return whole ? "a whole number" : "a finite number";
+      const double x = *number;
       if (x < desc.min_value || x > desc.max_value)
         return std::string(whole ? "a whole number" : "a number") + describe_bounds(desc);
       value.number[0] = x;
@@ -100,12 +96,11 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
       if ((parts.size() != 1 && parts.size() != 3) || (parts.size() == 3 && !bracketed))
         return "a colour: one number, or [r,g,b]";
       for (size_t i = 0; i < 3; ++i) {
-        double x;
-        if (!parse_number(parts[parts.size() == 1 ? 0 : i], x))
-          return "a colour: one number, or [r,g,b]";
-        if (x < desc.min_value || x > desc.max_value)
+        const std::optional<double> x = parse_number(parts[parts.size() == 1 ? 0 : i]);
+        if (!x) return "a colour: one number, or [r,g,b]";
+        if (*x < desc.min_value || *x > desc.max_value)
           return "colour components" + describe_bounds(desc);
-        value.number[i] = x;
+        value.number[i] = *x;
       }
       return {};
     }

@@ -58,17 +58,6 @@ CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px
   return q;
 }
 
-const char* sensor_fit_name(uint32_t fit) {
-  switch (fit) {
-    case FB_SENSOR_FIT_HORIZONTAL:
-      return "horizontal";
-    case FB_SENSOR_FIT_VERTICAL:
-      return "vertical";
-    default:
-      return "auto";
-  }
-}
-
 double FocusTrack::at(double frame) const {
   const double x = std::clamp(frame - first_frame, 0.0, double(distances_m.size() - 1));
   const size_t i = std::min(size_t(x), distances_m.size() - 1);

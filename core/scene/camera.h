@@ -11,6 +11,7 @@
 
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
+#include "core/scene/sensor_fit.h"
 
 namespace fb {
 
@@ -72,6 +73,5 @@ fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_p
                                   const SensorResponse& sensor = {});
 CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px,
                                  uint32_t height_px);
-const char* sensor_fit_name(uint32_t fit);
 
 }  // namespace fb

@@ -1,7 +1,7 @@
 // Analytic solids: exact primitives combined by constructive solid geometry, as POV-Ray scenes
 // describe them (docs/architecture.md "Solids"). The render intersects them exactly (ray-interval
 // CSG, core/accel/solid_intersect.h); what needs triangles tessellates the primitives
-// (core/scene/tessellate.h).
+// (core/tessellate/tessellate.h).
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,11 @@
 // core/texture/solid_pattern.h evaluates them at every hit (docs/pov.md, "Appearance").
 #pragma once
 
+#include <cstddef>
+#include <iterator>
+#include <optional>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include <filmback/vec.h>
@@ -48,18 +53,47 @@ enum class SolidPatternKind {
   kWrinkles,
   kDents,
   kCrackle,
-  kCells,
+  kCells,  // the last kind (solid_pattern_names_cover_the_enum)
 };
+
+// The one list of the patterns filmback evaluates, with POV-Ray's keyword for each ("solid" is
+// ours: a plain colour), in the enum's order. The POV-Ray reader, its converter and the glTF
+// extension (importers/gltf/gltf_povray_pattern.cpp) all read the pattern's name here.
+inline constexpr std::pair<SolidPatternKind, const char*> kSolidPatternNames[] = {
+    {SolidPatternKind::kSolid, "solid"},       {SolidPatternKind::kChecker, "checker"},
+    {SolidPatternKind::kHexagon, "hexagon"},   {SolidPatternKind::kBrick, "brick"},
+    {SolidPatternKind::kGradient, "gradient"}, {SolidPatternKind::kBozo, "bozo"},
+    {SolidPatternKind::kSpotted, "spotted"},   {SolidPatternKind::kBumps, "bumps"},
+    {SolidPatternKind::kGranite, "granite"},   {SolidPatternKind::kMarble, "marble"},
+    {SolidPatternKind::kWood, "wood"},         {SolidPatternKind::kAgate, "agate"},
+    {SolidPatternKind::kLeopard, "leopard"},   {SolidPatternKind::kOnion, "onion"},
+    {SolidPatternKind::kRadial, "radial"},     {SolidPatternKind::kSpiral1, "spiral1"},
+    {SolidPatternKind::kSpiral2, "spiral2"},   {SolidPatternKind::kWaves, "waves"},
+    {SolidPatternKind::kRipples, "ripples"},   {SolidPatternKind::kWrinkles, "wrinkles"},
+    {SolidPatternKind::kDents, "dents"},       {SolidPatternKind::kCrackle, "crackle"},
+    {SolidPatternKind::kCells, "cells"}};
+
+// Every kind once, in order, so that a kind added to the enum must be named here too.
+constexpr bool solid_pattern_names_cover_the_enum() {
+  for (size_t i = 0; i < std::size(kSolidPatternNames); ++i)
+    if (size_t(kSolidPatternNames[i].first) != i) return false;
+  return size_t(SolidPatternKind::kCells) + 1 == std::size(kSolidPatternNames);
+}
+static_assert(solid_pattern_names_cover_the_enum());
+
+// The kind POV-Ray's keyword `name` names, if filmback evaluates it.
+constexpr std::optional<SolidPatternKind> solid_pattern_named(std::string_view name) {
+  for (const auto& [kind, keyword] : kSolidPatternNames)
+    if (name == keyword) return kind;
+  return std::nullopt;
+}
 
 // POV-Ray's wave types: how a value pattern's raw value becomes the colour map's index.
 enum class SolidWave { kRamp, kTriangle, kSine, kScallop, kCubic, kPoly };
 
-struct SolidPattern {
-  SolidPatternKind kind = SolidPatternKind::kSolid;
-  SolidColour colour;                       // kSolid
-  std::vector<SolidColourStop> colour_map;  // value patterns; empty: black to white
-  std::vector<SolidPattern> list;           // list patterns, each with its own pattern space
-  Transform pattern_from_world;             // world: filmback's right-handed world, metres
+// A pattern's modifiers (POV-Ray 3.7 manual, "Pattern Modifiers"), as the SDL reader's pigment
+// (importers/pov/pov_scene.h) holds them and as the scene model's pattern does.
+struct SolidPatternModifiers {
   // Turbulence (POV-Ray's classic warp): the point moves by `turbulence` times a fractal vector
   // noise of `octaves` octaves, each `lambda` times the frequency and `omega` times the amplitude
   // of the last. Marble, wood, agate and the spirals use it inside the pattern instead.
@@ -69,11 +103,19 @@ struct SolidPattern {
   double frequency = 1, phase = 0;
   SolidWave wave = SolidWave::kRamp;
   double wave_exponent = 1;  // kPoly
-  Vec3d gradient{0, 1, 0};   // kGradient's direction, unit
+  Vec3d gradient{0, 1, 0};   // kGradient's direction (unit in a SolidPattern)
   Vec3d brick_size{8, 3, 4.5};
   double mortar = 0.5;
-  int spiral_arms = 1;
+  int spiral_arms = 1;          // spiral1 / spiral2 N
   double agate_turbulence = 1;  // agate_turb
+};
+
+struct SolidPattern : SolidPatternModifiers {
+  SolidPatternKind kind = SolidPatternKind::kSolid;
+  SolidColour colour;                       // kSolid
+  std::vector<SolidColourStop> colour_map;  // value patterns; empty: black to white
+  std::vector<SolidPattern> list;           // list patterns, each with its own pattern space
+  Transform pattern_from_world;             // world: filmback's right-handed world, metres
 };
 
 }  // namespace fb

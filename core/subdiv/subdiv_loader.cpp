@@ -1,10 +1,9 @@
 #include "core/subdiv/subdiv_loader.h"
 
-#include <dlfcn.h>
-
 #include <cstdlib>
 #include <mutex>
 #include <optional>
+#include <utility>
 
 #include "core/util/error.h"
 
@@ -27,24 +26,20 @@ fs::path module_path() {
 }
 
 SubdivModule open_module() {
-  SubdivModule m;
-  m.file = module_path();
-  const std::string name = m.file.string();
-  // RTLD_NOW: a missing OpenSubdiv is reported here, naming the file, not at the first call.
-  void* handle = dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle)
-    throw InputError(name +
+  const fs::path file = module_path();
+  SharedLibrary library(file);
+  if (!library.is_open())
+    throw InputError(file.string() +
                      ": cannot load the subdivision module, which the scene's subdivision "
                      "surfaces need (" +
-                     dlerror() + ")");
-  m.refine = reinterpret_cast<fb_subdiv_refine_fn>(dlsym(handle, FB_SUBDIV_ENTRY_POINT));
-  m.free = reinterpret_cast<fb_subdiv_free_fn>(dlsym(handle, FB_SUBDIV_FREE_POINT));
-  if (!m.refine || !m.free) {
-    dlclose(handle);
-    throw InputError(name + ": not filmback's subdivision module (no " FB_SUBDIV_ENTRY_POINT
-                            " or " FB_SUBDIV_FREE_POINT ")");
-  }
-  return m;  // the handle stays open for the life of the process
+                     library.error() + ")");
+  const auto refine = reinterpret_cast<fb_subdiv_refine_fn>(library.symbol(FB_SUBDIV_ENTRY_POINT));
+  const auto free = reinterpret_cast<fb_subdiv_free_fn>(library.symbol(FB_SUBDIV_FREE_POINT));
+  if (!refine || !free)
+    throw InputError(file.string() +
+                     ": not filmback's subdivision module (no " FB_SUBDIV_ENTRY_POINT
+                     " or " FB_SUBDIV_FREE_POINT ")");
+  return {file, refine, free, std::move(library)};
 }
 
 }  // namespace
@@ -52,7 +47,9 @@ SubdivModule open_module() {
 const SubdivModule& subdiv_module() {
   // Not std::call_once's static: a failed load is retried (and reported) by the next caller.
   static std::mutex mutex;
-  static std::optional<SubdivModule> module;
+  // Never destroyed: once opened, the module stays mapped for the life of the process, however
+  // late a mesh it refined is freed.
+  static auto& module = *new std::optional<SubdivModule>;
   const std::lock_guard lock(mutex);
   if (!module) module = open_module();
   return *module;

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/subdiv/subdiv_module.h"
+#include "core/util/shared_library.h"
 
 namespace fb {
 
@@ -12,6 +13,7 @@ struct SubdivModule {
   std::filesystem::path file;
   fb_subdiv_refine_fn refine = nullptr;
   fb_subdiv_free_fn free = nullptr;
+  SharedLibrary library;  // open while refine and free are in use
 };
 
 // The module beside the executable (../lib/filmback/, the build tree's or the install tree's),

@@ -132,9 +132,9 @@ TEST(SolidPattern, TurbulenceIsBoundedByItsOctavesAndDeterministic) {
 
 TEST(SolidPattern, EveryValuePatternStaysInTheUnitIntervalAfterItsWave) {
   using K = SolidPatternKind;
-  for (K kind : {K::kGradient, K::kBozo, K::kSpotted, K::kBumps, K::kGranite, K::kMarble, K::kWood,
-                 K::kAgate, K::kLeopard, K::kOnion, K::kRadial, K::kSpiral1, K::kSpiral2, K::kWaves,
-                 K::kRipples, K::kWrinkles, K::kDents, K::kCrackle, K::kCells}) {
+  for (const auto& [kind, name] : kSolidPatternNames) {
+    if (kind == K::kSolid || kind == K::kChecker || kind == K::kHexagon || kind == K::kBrick)
+      continue;  // a colour and the list patterns: no value to wave
     SolidPattern s = grey_ramp(kind);
     s.turbulence = {0.5, 0.5, 0.5};
     double lo = 1, hi = 0;

@@ -15,16 +15,7 @@ namespace {
 using tinygltf::Value;
 using K = SolidPatternKind;
 
-// POV-Ray's own keywords.
-constexpr std::pair<K, const char*> kKinds[] = {
-    {K::kSolid, "solid"},     {K::kChecker, "checker"},   {K::kHexagon, "hexagon"},
-    {K::kBrick, "brick"},     {K::kGradient, "gradient"}, {K::kBozo, "bozo"},
-    {K::kSpotted, "spotted"}, {K::kBumps, "bumps"},       {K::kGranite, "granite"},
-    {K::kMarble, "marble"},   {K::kWood, "wood"},         {K::kAgate, "agate"},
-    {K::kLeopard, "leopard"}, {K::kOnion, "onion"},       {K::kRadial, "radial"},
-    {K::kSpiral1, "spiral1"}, {K::kSpiral2, "spiral2"},   {K::kWaves, "waves"},
-    {K::kRipples, "ripples"}, {K::kWrinkles, "wrinkles"}, {K::kDents, "dents"},
-    {K::kCrackle, "crackle"}, {K::kCells, "cells"}};
+// POV-Ray's own keywords (the patterns' are core/scene/solid_texture.h's kSolidPatternNames).
 constexpr std::pair<SolidWave, const char*> kWaves[] = {
     {SolidWave::kRamp, "ramp"},   {SolidWave::kTriangle, "triangle"},
     {SolidWave::kSine, "sine"},   {SolidWave::kScallop, "scallop"},
@@ -100,7 +91,7 @@ SolidPattern read(const Fields& f, int depth, size_t& count) {
                 "list patterns nested deeper than " + std::to_string(kMaxPatternDepth));
   SolidPattern p;
   if (!f.has("pattern")) f.fail("pattern", "expected the pattern's name");
-  p.kind = value_of(kKinds, f, "pattern", K::kSolid);
+  p.kind = value_of(kSolidPatternNames, f, "pattern", K::kSolid);
   p.colour = read_colour(f, p.kind == K::kSolid);
   for (const Fields& stop : f.objects("colour_map", kMaxMapEntries)) {
     const std::optional<double> value = stop.number("value", 0, 1);
@@ -139,7 +130,7 @@ SolidPattern read(const Fields& f, int depth, size_t& count) {
 tinygltf::Value pattern_json(const SolidPattern& p) {
   const SolidPattern d;  // what the reader assumes for what is not written
   Value::Object o = colour_json(p.colour);
-  o["pattern"] = Value(std::string(name_of(kKinds, p.kind)));
+  o["pattern"] = Value(std::string(name_of(kSolidPatternNames, p.kind)));
   if (!p.colour_map.empty()) {
     Value::Array map;
     for (const SolidColourStop& stop : p.colour_map) {

@@ -1,8 +1,10 @@
 #include "importers/gltf/gltf_shot.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 
+#include "core/scene/sensor_fit.h"
 #include "core/util/error.h"
 
 namespace fb::gltf {
@@ -65,14 +67,9 @@ bool apply_camera_fields(const Fields& f, PhysicalCamera& camera) {
   set(note(f.number("sensor_width_mm", 1e-3, 1e4)), camera.sensor_width_mm);
   set(note(f.number("sensor_height_mm", 1e-3, 1e4)), camera.sensor_height_mm);
   if (const auto fit = note(f.word("sensor_fit"))) {
-    if (same_word(*fit, "auto"))
-      camera.sensor_fit = FB_SENSOR_FIT_AUTO;
-    else if (same_word(*fit, "horizontal"))
-      camera.sensor_fit = FB_SENSOR_FIT_HORIZONTAL;
-    else if (same_word(*fit, "vertical"))
-      camera.sensor_fit = FB_SENSOR_FIT_VERTICAL;
-    else
-      f.fail("sensor_fit", "'" + *fit + "', expected auto, horizontal or vertical");
+    const std::optional<uint32_t> named = sensor_fit_named(*fit);
+    if (!named) f.fail("sensor_fit", "'" + *fit + "', expected " + sensor_fit_choices());
+    camera.sensor_fit = *named;
   }
   set(note(f.number("shift_x", -100, 100)), camera.shift_x);
   set(note(f.number("shift_y", -100, 100)), camera.shift_y);

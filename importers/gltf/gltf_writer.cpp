@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "core/scene/sensor_fit.h"
 #include "core/util/error.h"
 #include "core/util/temporary_file.h"
 #include "importers/gltf/gltf_povray_light.h"
@@ -214,11 +215,10 @@ void add_camera(tinygltf::Model& model, tinygltf::Node& node, const SceneCamera&
     out.perspective.znear = p.clip_near_m > 0 ? p.clip_near_m : 1e-3;
     out.perspective.zfar = std::isfinite(p.clip_far_m) ? p.clip_far_m : 1e9;
   }
-  static const char* kFits[] = {"auto", "horizontal", "vertical"};
   Value::Object ours{{"focal_length_mm", number(p.focal_length_mm)},
                      {"sensor_width_mm", number(p.sensor_width_mm)},
                      {"sensor_height_mm", number(p.sensor_height_mm)},
-                     {"sensor_fit", Value(std::string(kFits[p.sensor_fit % 3]))},
+                     {"sensor_fit", Value(std::string(sensor_fit_name(p.sensor_fit)))},
                      {"shift_x", number(p.shift_x)},
                      {"shift_y", number(p.shift_y)},
                      {"clip_near_m", number(p.clip_near_m)},

@@ -23,80 +23,12 @@ SolidColour solid_colour(const Colour& c, double gamma) {
           float(std::clamp(c.transmit, 0.0, 1.0))};
 }
 
-SolidPatternKind solid_kind(Pattern p) {
-  using K = SolidPatternKind;
-  switch (p) {
-    case Pattern::kChecker:
-      return K::kChecker;
-    case Pattern::kHexagon:
-      return K::kHexagon;
-    case Pattern::kBrick:
-      return K::kBrick;
-    case Pattern::kGradient:
-      return K::kGradient;
-    case Pattern::kBozo:
-      return K::kBozo;
-    case Pattern::kSpotted:
-      return K::kSpotted;
-    case Pattern::kGranite:
-      return K::kGranite;
-    case Pattern::kMarble:
-      return K::kMarble;
-    case Pattern::kWood:
-      return K::kWood;
-    case Pattern::kAgate:
-      return K::kAgate;
-    case Pattern::kLeopard:
-      return K::kLeopard;
-    case Pattern::kOnion:
-      return K::kOnion;
-    case Pattern::kRadial:
-      return K::kRadial;
-    case Pattern::kSpiral1:
-      return K::kSpiral1;
-    case Pattern::kSpiral2:
-      return K::kSpiral2;
-    case Pattern::kWaves:
-      return K::kWaves;
-    case Pattern::kRipples:
-      return K::kRipples;
-    case Pattern::kWrinkles:
-      return K::kWrinkles;
-    case Pattern::kBumps:
-      return K::kBumps;
-    case Pattern::kDents:
-      return K::kDents;
-    case Pattern::kCrackle:
-      return K::kCrackle;
-    case Pattern::kCells:
-      return K::kCells;
-    default:
-      return K::kSolid;  // a colour, or an image/unknown pattern by its average
-  }
-}
-
-SolidWave solid_wave(Wave w) {
-  switch (w) {
-    case Wave::kTriangle:
-      return SolidWave::kTriangle;
-    case Wave::kSine:
-      return SolidWave::kSine;
-    case Wave::kScallop:
-      return SolidWave::kScallop;
-    case Wave::kCubic:
-      return SolidWave::kCubic;
-    case Wave::kPoly:
-      return SolidWave::kPoly;
-    default:
-      return SolidWave::kRamp;
-  }
-}
-
 // A pigment as a solid texture; `pov_from_input` takes the points it will be evaluated at
 // (filmback's world for objects, the sky's own space for a sky_sphere) into POV-Ray's space.
 SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_input) {
   SolidPattern s;
-  s.kind = solid_kind(p.pattern);
+  // an averaged pattern is its average colour
+  s.kind = p.averaged ? SolidPatternKind::kSolid : p.pattern;
   s.colour = solid_colour(p.colour, gamma);
   if (s.kind == SolidPatternKind::kSolid) return s;
   s.pattern_from_world = p.pattern_from_world * pov_from_input;
@@ -104,10 +36,7 @@ SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_
     s.colour_map.push_back({float(std::clamp(e.value, 0.0, 1.0)), solid_colour(e.colour, gamma)});
   for (const Pigment& entry : p.list)
     s.list.push_back(to_solid(entry, gamma, pov_from_input));
-  s.turbulence = p.turbulence;
-  s.octaves = p.octaves, s.omega = p.omega, s.lambda = p.lambda;
-  s.frequency = p.frequency, s.phase = p.phase;
-  s.wave = solid_wave(p.wave);
+  static_cast<SolidPatternModifiers&>(s) = p;
   // Marble, wood and the spirals default to triangle_wave (checked against POV-Ray's renders,
   // pov_appearance_test). pov::Pigment does not say whether a ramp_wave was written, so ramp
   // means the default here.
@@ -115,13 +44,9 @@ SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_
        s.kind == SolidPatternKind::kSpiral1 || s.kind == SolidPatternKind::kSpiral2) &&
       s.wave == SolidWave::kRamp)
     s.wave = SolidWave::kTriangle;
-  s.wave_exponent = p.wave_exponent;
   // POV-Ray normalises the gradient vector (checked: `gradient <2,0,0>` repeats every unit).
   const double len = std::sqrt(dot(p.gradient, p.gradient));
   s.gradient = len > 0 ? p.gradient / len : Vec3d{0, 0, 0};
-  s.brick_size = p.brick_size, s.mortar = p.mortar;
-  s.spiral_arms = p.spiral_arms;
-  s.agate_turbulence = p.agate_turbulence;
   return s;
 }
 
@@ -302,7 +227,7 @@ void MaterialTable::report(const Texture& texture) {
   if (texture.has_normal) once("normal perturbation", texture.where);
   if (texture.finish.brilliance != 1) once("finish brilliance", texture.where);
   const auto walk = [&](const auto& self, const Pigment& p) -> void {
-    if (p.pattern == Pattern::kImageMap || p.pattern == Pattern::kOther)
+    if (p.averaged)
       once("pattern " + (p.name.empty() ? std::string("image_map") : p.name) +
                " (its average colour is used)",
            p.where);
@@ -378,7 +303,7 @@ void convert_environment(const Scene& scene, fb::Scene& out, Diagnostics& diagno
   const SkySphere& sky = *scene.sky_sphere;
   std::vector<SolidPattern> layers;
   for (const Pigment& p : sky.pigments) {
-    if (p.pattern == Pattern::kImageMap || p.pattern == Pattern::kOther)
+    if (p.averaged)
       diagnostics.warn(p.where.text() + ": sky_sphere pattern " + p.name +
                        " is not rendered (its average colour is used)");
     layers.push_back(to_solid(p, gamma, Transform()));  // evaluated in the sky's own space

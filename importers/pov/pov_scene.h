@@ -12,6 +12,7 @@
 #include <filmback/vec.h>
 
 #include "core/math/transform.h"
+#include "core/scene/solid_texture.h"
 
 namespace fb::pov {
 
@@ -34,58 +35,27 @@ struct Colour {
 
 // ---- Appearance -------------------------------------------------------------------------------
 
-enum class Pattern {
-  kSolid,  // `colour` only
-  kChecker,
-  kHexagon,
-  kBrick,  // list patterns: `list` holds 2, 3, 2 entries
-  kGradient,
-  kBozo,
-  kSpotted,
-  kGranite,
-  kMarble,
-  kWood,
-  kAgate,
-  kLeopard,
-  kOnion,
-  kRadial,
-  kSpiral1,
-  kSpiral2,
-  kWaves,
-  kRipples,
-  kWrinkles,
-  kBumps,
-  kDents,
-  kCrackle,
-  kCells,
-  kImageMap,  // not evaluated: the converter uses `average` (see pov_appearance)
-  kOther,     // a pattern the evaluator knows only by name (`name`); approximated by `average`
-};
-
-enum class Wave { kRamp, kTriangle, kSine, kScallop, kCubic, kPoly };
+// The patterns filmback evaluates are the scene model's (core/scene/solid_texture.h, whose table
+// names them); a pigment of any other pattern is `averaged`.
+using Pattern = SolidPatternKind;
+using Wave = SolidWave;
 
 struct ColourMapEntry {
   double value = 0;  // in [0, 1]
   Colour colour;
 };
 
-struct Pigment {
+// The modifiers as written: the converter normalises the gradient and picks each pattern's
+// default wave (pov_appearance).
+struct Pigment : SolidPatternModifiers {
   Pattern pattern = Pattern::kSolid;
+  // image_map, or a pattern the evaluator knows only by name: not evaluated, the converter uses
+  // `colour`, the parser's estimate of its average (see pov_appearance)
+  bool averaged = false;
   std::string name;  // the pattern's keyword, for messages
   Colour colour;     // kSolid; otherwise the pattern's average, as the parser estimates it
   std::vector<ColourMapEntry> colour_map;  // value patterns; empty: POV-Ray's default grey ramp
   std::vector<Pigment> list;               // list patterns (checker A, B ...)
-  Vec3d gradient{0, 1, 0};                 // kGradient's axis
-  Vec3d turbulence{0, 0, 0};
-  int octaves = 6;
-  double omega = 0.5, lambda = 2.0;
-  double frequency = 1, phase = 0;
-  Wave wave = Wave::kRamp;
-  double wave_exponent = 1;  // kPoly
-  Vec3d brick_size{8, 3, 4.5};
-  double mortar = 0.5;
-  int spiral_arms = 1;          // spiral1 / spiral2 N
-  double agate_turbulence = 1;  // agate_turb
   // Pattern space from POV world space: the pigment's own transforms and every transform applied
   // to the object after the pigment was attached, composed by the evaluator.
   Matrix pattern_from_world;

@@ -2,6 +2,7 @@
 // material, and the transforms (translate/rotate/scale/matrix/transform) they and objects share.
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "importers/pov/sdl/parser.h"
 
@@ -20,41 +21,30 @@ Matrix rotation(Vec3d degrees) {
   return axis(2, degrees.z) * axis(1, degrees.y) * axis(0, degrees.x);
 }
 
-const char* const kPatterns[] = {
-    "checker", "hexagon", "brick", "gradient", "bozo", "spotted", "granite", "marble", "wood",
-    "agate", "leopard", "onion", "radial", "spiral1", "spiral2", "waves", "ripples", "wrinkles",
-    "bumps", "dents", "crackle", "cells", "image_map", "boxed", "cylindrical", "spherical",
-    "planar", "mandel", "julia", "magnet", "object", "function", "pigment_pattern",
-    "density_file", "facets", "quilted", "tiling", "pavement", "slope", "aoi", "cubic",
-    "average", "image_pattern", "square", "triangular", "bump_map",
+// POV-Ray's pattern keywords that filmback does not evaluate (beside those it does, named in
+// core/scene/solid_texture.h): a pigment of one is parsed and rendered in its average colour.
+const char* const kAveragedPatterns[] = {
+    "image_map", "boxed",   "cylindrical",   "spherical", "planar",          "mandel",
+    "julia",     "magnet",  "object",        "function",  "pigment_pattern", "density_file",
+    "facets",    "quilted", "tiling",        "pavement",  "slope",           "aoi",
+    "cubic",     "average", "image_pattern", "square",    "triangular",      "bump_map",
 };
 
-bool is_pattern(const std::string& w) {
-  for (const char* p : kPatterns) {
+bool is_averaged_pattern(const std::string& w) {
+  for (const char* p : kAveragedPatterns) {
     if (w == p) return true;
   }
   return false;
 }
 
-Pattern pattern_of(const std::string& w) {
-  static const std::pair<const char*, Pattern> kMap[] = {
-      {"checker", Pattern::kChecker}, {"hexagon", Pattern::kHexagon},
-      {"brick", Pattern::kBrick},     {"gradient", Pattern::kGradient},
-      {"bozo", Pattern::kBozo},       {"spotted", Pattern::kSpotted},
-      {"granite", Pattern::kGranite}, {"marble", Pattern::kMarble},
-      {"wood", Pattern::kWood},       {"agate", Pattern::kAgate},
-      {"leopard", Pattern::kLeopard}, {"onion", Pattern::kOnion},
-      {"radial", Pattern::kRadial},   {"spiral1", Pattern::kSpiral1},
-      {"spiral2", Pattern::kSpiral2}, {"waves", Pattern::kWaves},
-      {"ripples", Pattern::kRipples}, {"wrinkles", Pattern::kWrinkles},
-      {"bumps", Pattern::kBumps},     {"dents", Pattern::kDents},
-      {"crackle", Pattern::kCrackle}, {"cells", Pattern::kCells},
-      {"image_map", Pattern::kImageMap},
-  };
-  for (const auto& [name, pattern] : kMap) {
-    if (w == name) return pattern;
-  }
-  return Pattern::kOther;
+// "solid" names a plain colour in the scene model's table; it is no keyword of POV-Ray's.
+std::optional<Pattern> evaluated_pattern(const std::string& w) {
+  const std::optional<Pattern> kind = solid_pattern_named(w);
+  return kind == Pattern::kSolid ? std::nullopt : kind;
+}
+
+bool is_pattern(const std::string& w) {
+  return evaluated_pattern(w) || is_averaged_pattern(w);
 }
 
 Colour mix(const Colour& a, const Colour& b, double t) {
@@ -290,10 +280,12 @@ Pigment Parser::parse_pigment_items(const char* closing) {
     } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric())) {
       unget(std::move(tok));
       p.pattern = Pattern::kSolid;
+      p.averaged = false;
       p.name.clear();
       p.colour = parse_colour();
     } else if (tok.keyword() && is_pattern(w)) {
-      p.pattern = pattern_of(w);
+      p.pattern = evaluated_pattern(w).value_or(Pattern::kSolid);
+      p.averaged = !evaluated_pattern(w);
       p.name = w;
       p.colour_map.clear();
       p.list.clear();
@@ -313,7 +305,7 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       } else {
         parse_pattern_arguments(w);
       }
-      if (p.pattern == Pattern::kOther) unsupported("pattern " + w, location_of(tok));
+      if (p.averaged && w != "image_map") unsupported("pattern " + w, location_of(tok));
     } else if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
       p.colour_map = parse_colour_map(w == "pigment_map");
     } else if (tok.identifier && tok.value.get<ColourMap>()) {
@@ -381,7 +373,7 @@ Pigment Parser::parse_pigment_items(const char* closing) {
   }
   // the parser's estimate of the pattern's mean, which converters use where they cannot
   // evaluate the pattern
-  if (p.pattern != Pattern::kSolid) {
+  if (p.pattern != Pattern::kSolid || p.averaged) {
     p.colour = p.list.empty() ? map_average(p.colour_map) : list_average(p.list);
   }
   return p;

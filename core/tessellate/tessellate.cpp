@@ -1,11 +1,11 @@
-#include "core/scene/tessellate.h"
+#include "core/tessellate/tessellate.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
 
-#include "core/scene/tessellate_csg.h"
+#include "core/tessellate/tessellate_csg.h"
 
 namespace fb {
 

@@ -1,13 +1,14 @@
 // Any solid, CSG included, as triangles (`filmback convert`; docs/architecture.md "Solids"): each
-// primitive that carries surface is tessellated (core/scene/tessellate.h), trimmed to the part the
-// render shows of it, with the render's normal and the primitive's material
-// (core/scene/csg_trim.h), and the pieces are joined along their seams (core/scene/seam_join.h).
+// primitive that carries surface is tessellated (core/tessellate/tessellate.h), trimmed to the part
+// the render shows of it, with the render's normal and the primitive's material
+// (core/tessellate/csg_trim.h), and the pieces are joined along their seams
+// (core/tessellate/seam_join.h).
 #pragma once
 
 #include <vector>
 
 #include "core/scene/scene.h"
-#include "core/scene/tessellate.h"
+#include "core/tessellate/tessellate.h"
 #include "core/util/diagnostics.h"
 
 namespace fb {

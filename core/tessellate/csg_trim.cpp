@@ -1,4 +1,4 @@
-#include "core/scene/csg_trim.h"
+#include "core/tessellate/csg_trim.h"
 
 #include <algorithm>
 #include <cmath>

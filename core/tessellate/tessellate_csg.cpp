@@ -1,4 +1,4 @@
-#include "core/scene/tessellate_csg.h"
+#include "core/tessellate/tessellate_csg.h"
 
 #include <tbb/parallel_for.h>
 
@@ -7,10 +7,10 @@
 #include <cstring>
 #include <map>
 
-#include "core/scene/csg_probe.h"
-#include "core/scene/csg_trim.h"
-#include "core/scene/seam_join.h"
-#include "core/scene/triangle_bvh.h"
+#include "core/tessellate/csg_probe.h"
+#include "core/tessellate/csg_trim.h"
+#include "core/tessellate/seam_join.h"
+#include "core/tessellate/triangle_bvh.h"
 
 namespace fb {
 

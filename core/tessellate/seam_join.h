@@ -1,4 +1,4 @@
-// The trimmed surfaces of one CSG solid's primitives (core/scene/csg_trim.h) joined into one
+// The trimmed surfaces of one CSG solid's primitives (core/tessellate/csg_trim.h) joined into one
 // surface. Where two primitives' surfaces meet, each side has cut its triangles at its own points
 // of the common crossing curve; each side's cut vertices are inserted into the other side's seam
 // edges (a vertex lies within the tolerance of the other side's chord, and strictly between its
@@ -12,7 +12,7 @@
 
 #include <filmback/vec.h>
 
-#include "core/scene/csg_trim.h"
+#include "core/tessellate/csg_trim.h"
 
 namespace fb {
 

@@ -1,6 +1,6 @@
 // Triangle meshes of analytic primitives (core/scene/solid.h) to a stated chord tolerance, for
-// what needs triangles (`filmback convert` to glTF); core/scene/tessellate_csg.h builds CSG from
-// them.
+// what needs triangles (`filmback convert` to glTF); core/tessellate/tessellate_csg.h builds CSG
+// from them.
 #pragma once
 
 #include "core/scene/scene.h"
@@ -33,13 +33,14 @@ void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics);
 // The primitive as a mesh in its object space (instance it with world_from_object), with outward
 // counter-clockwise faces and the surface's own normals at the vertices, and sharp edges
 // (box, caps) split. Every point of the mesh lies within the tolerance of the surface
-// (core/scene/tessellate_test.cpp measures it). The mesh takes the primitive's material and name.
+// (core/tessellate/tessellate_test.cpp measures it). The mesh takes the primitive's material and
+// name.
 TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& options);
 
 // Replaces scene.solids by meshes and instances: a primitive by its mesh in its object space, any
 // other solid (CSG, an inverted primitive) by the meshes of its surface
-// (core/scene/tessellate_csg.h). Half-spaces become squares about the scene's first camera (else
-// the origin) reaching at least options.plane_half_size_m and ten times as far as the bounded
+// (core/tessellate/tessellate_csg.h). Half-spaces become squares about the scene's first camera
+// (else the origin) reaching at least options.plane_half_size_m and ten times as far as the bounded
 // geometry. A solid with no surface (an empty intersection) is reported.
 void tessellate_solids(Scene& scene, TessellationOptions options, Diagnostics& diagnostics);
 

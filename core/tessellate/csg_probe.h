@@ -1,8 +1,9 @@
-// A solid's set point by point, for tessellating CSG (core/scene/tessellate_csg.h): on which side
-// of each primitive a point lies, whether a point of one primitive's boundary is surface of the
-// whole set (and which way the set's normal points there), and the primitive's exact surface near
-// a point. Every query goes through the renderer's own intersector (core/accel/solid_intersect.h),
-// so any primitive the renderer intersects can be probed, and the mesh agrees with the render.
+// A solid's set point by point, for tessellating CSG (core/tessellate/tessellate_csg.h): on which
+// side of each primitive a point lies, whether a point of one primitive's boundary is surface of
+// the whole set (and which way the set's normal points there), and the primitive's exact surface
+// near a point. Every query goes through the renderer's own intersector
+// (core/accel/solid_intersect.h), so any primitive the renderer intersects can be probed, and the
+// mesh agrees with the render.
 #pragma once
 
 #include <array>

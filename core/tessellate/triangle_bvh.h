@@ -1,6 +1,7 @@
 // Triangles in world space, each tagged with what it approximates, in a bounding volume hierarchy
 // for box queries; and the segment where two triangles cross. Tessellating CSG
-// (core/scene/csg_trim.h) asks them where other primitives' boundaries pass through a triangle.
+// (core/tessellate/csg_trim.h) asks them where other primitives' boundaries pass through a
+// triangle.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-#include "core/scene/triangle_bvh.h"
+#include "core/tessellate/triangle_bvh.h"
 
 #include <algorithm>
 #include <cmath>

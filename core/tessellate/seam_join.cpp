@@ -1,4 +1,4 @@
-#include "core/scene/seam_join.h"
+#include "core/tessellate/seam_join.h"
 
 #include <algorithm>
 #include <cmath>

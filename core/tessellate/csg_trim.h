@@ -26,9 +26,9 @@
 
 #include <filmback/vec.h>
 
-#include "core/scene/csg_probe.h"
 #include "core/scene/scene.h"
-#include "core/scene/triangle_bvh.h"
+#include "core/tessellate/csg_probe.h"
+#include "core/tessellate/triangle_bvh.h"
 
 namespace fb {
 

@@ -1,4 +1,4 @@
-#include "core/scene/csg_probe.h"
+#include "core/tessellate/csg_probe.h"
 
 #include <cmath>
 

@@ -2,7 +2,7 @@
 // (core/accel/solid_intersect.h): how far the mesh strays from the exact surface, whether it is
 // closed, and whether a render of the mesh covers the same pixels, with the same materials, as a
 // render of the exact solid.
-#include "core/scene/tessellate_csg.h"
+#include "core/tessellate/tessellate_csg.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Tessellated primitives stay within their tolerance of the exact surface, and are not needlessly
 // finer than it.
-#include "core/scene/tessellate.h"
+#include "core/tessellate/tessellate.h"
 
 #include <gtest/gtest.h>
 
