@@ -85,8 +85,13 @@ void parse_physical(const RenderCommand& c, RenderOptions& o) {
   if (!c.focal_length.empty())
     cam.focal_length_mm = parse_number(c.focal_length, "--focal-length", 1e-3, 1e5);
   if (!c.fstop.empty()) {
-    const double n = parse_number(c.fstop, "--fstop", 0, HUGE_VAL);
-    cam.fstop = n > 0 ? n : HUGE_VAL;  // 0: no aperture, as "inf"
+    std::optional<double> n;
+    try {
+      n = parse_number(c.fstop, "--fstop", -HUGE_VAL, HUGE_VAL);
+    } catch (const UsageError&) {  // not a number: said below as for any other bad f-number
+    }
+    cam.fstop = n ? fstop_from(*n) : std::nullopt;
+    if (!cam.fstop) throw UsageError("--fstop '" + c.fstop + "': " + kFstopExpected);
   }
   if (!c.focus_distance.empty())
     cam.focus_distance_m = parse_number(c.focus_distance, "--focus-distance", 1e-6, HUGE_VAL);
