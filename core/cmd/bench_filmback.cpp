@@ -146,8 +146,7 @@ void FilmbackBench::make_references(const std::optional<fs::path>& reference_fil
       write_images(averaged.image, {work / ("reference_filter" + std::to_string(f) + ".exr")}, {});
       references_.push_back(std::move(averaged));
     }
-    if (!shot_filter_ && note.filter == shot_filter_text(scene_.settings))
-      shot_filter_ = f;
+    if (!shot_filter_ && note.filter == shot_filter_text(scene_.settings)) shot_filter_ = f;
     report_.references.push_back(std::move(note));
   }
 }

@@ -40,8 +40,8 @@ const char* pixel_filter_name(PixelFilterSetting::Type type) {
 void print_origins(const SceneCamera& camera) {
   std::cout << "    from:\n";
   for (size_t v = 0; v < kCameraValueCount; ++v)
-    std::cout << "      " << camera_value_name(CameraValue(v)) << ": "
-              << camera.origins[v].text() << '\n';
+    std::cout << "      " << camera_value_name(CameraValue(v)) << ": " << camera.origins[v].text()
+              << '\n';
 }
 
 void print_camera(const SceneCamera& camera, const ShotSettings& shot) {

@@ -97,9 +97,9 @@ TEST(BoundParams, SetNumberBindsTypedValuesExactlyWithinTheSchemasBounds) {
   EXPECT_EQ(bound.values()[0].number[0], 1.0 / 3);
   EXPECT_NE(bound.set_number(plugin, "sigma", 0), "");  // below the schema's minimum
   EXPECT_NE(bound.set_number(plugin, "sigma", NAN), "");
-  EXPECT_NE(bound.set_number(plugin, "show", 1), "");  // a string parameter
+  EXPECT_NE(bound.set_number(plugin, "show", 1), "");    // a string parameter
   EXPECT_NE(bound.set_number(plugin, "radius", 1), "");  // not in the schema
-  EXPECT_EQ(bound.values()[0].number[0], 1.0 / 3);      // a refused value changes nothing
+  EXPECT_EQ(bound.values()[0].number[0], 1.0 / 3);       // a refused value changes nothing
 }
 
 }  // namespace

@@ -149,8 +149,8 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
   BoundParams params(library->descriptor(), {});
   for (const auto& [key, x] : plugin.numbers)
     if (std::string expected = params.set_number(library->descriptor(), key, x); !expected.empty())
-      origin.fail("the plugin " + plugin_text(plugin) + ": parameter '" + key + "' = " +
-                  number_text(x) + ": expected " + expected);
+      origin.fail("the plugin " + plugin_text(plugin) + ": parameter '" + key +
+                  "' = " + number_text(x) + ": expected " + expected);
   try {
     return std::make_unique<Instance>(library, params);
   } catch (const UsageError& e) {
@@ -204,7 +204,8 @@ void check_focus_beyond_focal_length(const SceneCamera& camera) {
   const bool blame_focus = focus.typed() || !focal.typed();
   const std::string what =
       "focus distance " + number_text(c.focus_distance_m) + " m is not beyond the focal length " +
-      number_text(c.focal_length_mm) + " mm (" + (blame_focus ? "focal length from " + focal.text() : "focus distance from " + focus.text()) +
+      number_text(c.focal_length_mm) + " mm (" +
+      (blame_focus ? "focal length from " + focal.text() : "focus distance from " + focus.text()) +
       "): a lens cannot focus closer than its focal length (its image distance f D / (D - f) "
       "is infinite or negative); expected a focus distance over " +
       number_text(focal_m) + " m";

@@ -25,8 +25,8 @@ fb_plugin shape(const char* name, const fb_param_desc* params, uint32_t count) {
 
 // "[w0,w1,...]", each value checked by the plugin-parameter parser.
 std::vector<double> parse_table(std::string_view text) {
-  const fb_param_desc value{"values", FB_PARAM_FLOAT, "1", "", nullptr, 0,
-                            ShutterCurve::kMaxTableValue, ""};
+  const fb_param_desc value{
+      "values", FB_PARAM_FLOAT, "1", "", nullptr, 0, ShutterCurve::kMaxTableValue, ""};
   if (text.size() < 2 || text.front() != '[' || text.back() != ']')
     throw UsageError("values '" + std::string(text) + "': expected a bracketed list [w0,w1,...]");
   std::vector<double> values;

@@ -157,7 +157,7 @@ struct ShotSettings {
   ValueOrigin shutter_curve_origin;    // where shutter_curve came from
   std::optional<double> pixel_aspect;  // pixel width / height
   std::optional<PixelFilterSetting> filter;  // the shot's pixel filter
-  double film_exposure = 1.0;          // linear gain on the image (Cycles' Film > Exposure)
+  double film_exposure = 1.0;                // linear gain on the image (Cycles' Film > Exposure)
   // Blender's Color Management and Dither, for 8-bit outputs only (docs/blender.md); a file that
   // names no view transform gets the plain sRGB curve.
   ViewSettings view;

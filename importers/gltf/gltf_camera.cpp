@@ -2,6 +2,8 @@
 
 #include <tiny_gltf.h>
 
+#include <filmback/camera_projection.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -32,6 +34,17 @@ double vertical_fov_deg(const PhysicalCamera& camera, double aspect) {
   constexpr uint32_t kHeight = 100000;
   const auto width = uint32_t(std::max(1.0, std::round(aspect * kHeight)));
   return describe_camera(camera, width, kHeight).vertical_fov_deg;
+}
+
+// The focal length under which the camera's sensor and fit give yfov at this image shape: the
+// fitted side spans sensor / f at unit depth, the vertical side that over the aspect when the fit
+// is horizontal (view_plane, core/sdk/filmback/camera_projection.h; the image shape goes in as a
+// 1 x 1 image's pixel aspect).
+double focal_for_yfov(const PhysicalCamera& camera, double yfov_rad, double aspect) {
+  const fb_camera_setup setup = make_camera_setup(camera, 1, 1, aspect);
+  const double tan_half_y = std::tan(yfov_rad / 2);
+  return fitted_sensor_mm(setup) /
+         (2 * (fits_horizontally(setup) ? tan_half_y * aspect : tan_half_y));
 }
 
 void set(SceneCamera& camera, V v, double x, ValueOrigin origin) {
@@ -69,12 +82,8 @@ void read_core_projection(const tinygltf::Camera& g, const std::string& cpath,
       set(camera, V::kSensorFit, FB_SENSOR_FIT_VERTICAL,
           at(".perspective", "no aspectRatio: yfov is kept for any image shape"));
     }
-    // The focal length that gives yfov under the sensor and fit: tan(fov / 2) is proportional to
-    // 1 / f (docs/camera-model.md).
-    const double aspect = camera.intended_aspect.value_or(kDefaultAspect);
-    PhysicalCamera& phys = camera.physical;
-    phys.focal_length_mm *=
-        std::tan(vertical_fov_deg(phys, aspect) * std::numbers::pi / 360) / std::tan(p.yfov / 2);
+    camera.physical.focal_length_mm =
+        focal_for_yfov(camera.physical, p.yfov, camera.intended_aspect.value_or(kDefaultAspect));
     camera.origins[size_t(V::kFocalLength)] =
         at(".perspective.yfov", "under the sensor and its fit");
     set(camera, V::kClipNear, p.znear, at(".perspective.znear"));
@@ -118,7 +127,8 @@ std::vector<CameraSource> camera_sources(const tinygltf::Camera& g, const std::s
   if (const tinygltf::Value* ext = extension(g, "EXT_camera_physical"))
     sources.push_back(
         read_ext_camera_physical(Fields(*ext, cpath + ".extensions.EXT_camera_physical", file)));
-  sources.push_back(read_blender_camera_fields(Fields(g.extras, cpath + ".extras", file), "extras"));
+  sources.push_back(
+      read_blender_camera_fields(Fields(g.extras, cpath + ".extras", file), "extras"));
   std::erase_if(sources, [](const CameraSource& s) { return !s.names_any(); });
   return sources;
 }
@@ -192,10 +202,9 @@ void agree_with_yfov(const tinygltf::Camera& g, const std::string& cpath, const 
   const std::string shape = camera.intended_aspect ? "" : " at 16:9, the default image shape";
   const bool focal_named = named(decided, V::kFocalLength);
   if (!focal_named) {
-    phys.focal_length_mm *= std::tan(vertical_fov_deg(phys, aspect) * std::numbers::pi / 360) /
-                            std::tan(g.perspective.yfov / 2);
-    camera.origins[size_t(V::kFocalLength)] = ValueOrigin::from_file(
-        file, yfov_path, "under the sensor and its fit" + shape);
+    phys.focal_length_mm = focal_for_yfov(phys, g.perspective.yfov, aspect);
+    camera.origins[size_t(V::kFocalLength)] =
+        ValueOrigin::from_file(file, yfov_path, "under the sensor and its fit" + shape);
     return;
   }
   const CameraSource& source = *decided[size_t(V::kFocalLength)];
@@ -249,9 +258,9 @@ SceneCamera read_camera(const tinygltf::Model& model, const tinygltf::Node& node
   const auto decided = take_sources_whole(sources, file, camera, diagnostics);
   const PhysicalCamera& phys = camera.physical;
   if (!(phys.clip_far_m > phys.clip_near_m))
-    camera.origin(V::kClipFar).fail("expected clip_far_m > clip_near_m (" +
-                                    number_text(phys.clip_near_m) + " m at " +
-                                    camera.origin(V::kClipNear).text() + ")");
+    camera.origin(V::kClipFar)
+        .fail("expected clip_far_m > clip_near_m (" + number_text(phys.clip_near_m) + " m at " +
+              camera.origin(V::kClipNear).text() + ")");
   if (!sources.empty() && g.type == "perspective")
     agree_with_yfov(g, cpath, file, decided, core, camera, diagnostics);
   return camera;

@@ -15,11 +15,11 @@ struct NumberField {
   double lo, hi;
 };
 constexpr NumberField kNumbers[] = {
-    {CameraValue::kFocalLength, 1e-3, 1e5},      {CameraValue::kSensorWidth, 1e-3, 1e4},
-    {CameraValue::kSensorHeight, 1e-3, 1e4},     {CameraValue::kShiftX, -100, 100},
-    {CameraValue::kShiftY, -100, 100},           {CameraValue::kOrthoScale, 1e-9, 1e9},
-    {CameraValue::kClipNear, 0, 1e18},           {CameraValue::kClipFar, 0, 1e18},
-    {CameraValue::kFocusDistance, 1e-6, 1e18},   {CameraValue::kApertureRotation, -1e3, 1e3},
+    {CameraValue::kFocalLength, 1e-3, 1e5},    {CameraValue::kSensorWidth, 1e-3, 1e4},
+    {CameraValue::kSensorHeight, 1e-3, 1e4},   {CameraValue::kShiftX, -100, 100},
+    {CameraValue::kShiftY, -100, 100},         {CameraValue::kOrthoScale, 1e-9, 1e9},
+    {CameraValue::kClipNear, 0, 1e18},         {CameraValue::kClipFar, 0, 1e18},
+    {CameraValue::kFocusDistance, 1e-6, 1e18}, {CameraValue::kApertureRotation, -1e3, 1e3},
     {CameraValue::kApertureRatio, 1e-2, 1e2},
 };
 
@@ -64,16 +64,14 @@ CameraSource read_blender_camera_fields(const Fields& f, const char* name) {
   if (const auto fit = f.word("sensor_fit"))
     named(CameraValue::kSensorFit, double(sensor_fit(f, *fit)));
   if (f.has("fstop")) {
-    const auto n = f.type("fstop") == Fields::Type::kNumber
-                       ? f.number("fstop", -HUGE_VAL, HUGE_VAL)
-                       : std::nullopt;
+    const auto n = f.type("fstop") == Fields::Type::kNumber ? f.number("fstop", -HUGE_VAL, HUGE_VAL)
+                                                            : std::nullopt;
     const std::optional<double> fstop = n ? fstop_from(*n) : std::nullopt;
     if (!fstop) f.fail("fstop", (n ? number_text(*n) + ", " : std::string()) + kFstopExpected);
     named(CameraValue::kFstop, fstop);
   }
   const auto blades = f.whole("aperture_blades", 0, 64);
-  if (blades == 1 || blades == 2)
-    f.fail("aperture_blades", "expected 0 (round) or 3 to 64 blades");
+  if (blades == 1 || blades == 2) f.fail("aperture_blades", "expected 0 (round) or 3 to 64 blades");
   named(CameraValue::kApertureBlades, blades);
   s.focus_track = read_focus_track(f);
   s.track_path = f.path() + ".focus_distance_per_frame_m";
@@ -84,8 +82,8 @@ CameraSource read_ext_camera_physical(const Fields& f) {
   CameraSource s;
   s.name = "EXT_camera_physical";
   s.path = f.path();
-  for (CameraValue v : {CameraValue::kFocalLength, CameraValue::kSensorWidth,
-                        CameraValue::kSensorHeight})
+  for (CameraValue v :
+       {CameraValue::kFocalLength, CameraValue::kSensorWidth, CameraValue::kSensorHeight})
     s.expresses[size_t(v)] = true;
   if (const auto focal = f.number("focalLength", 1e-6, 1e2)) {
     s.values[size_t(CameraValue::kFocalLength)] = *focal * 1000;

@@ -1,6 +1,7 @@
 // Cameras and shot settings as Blender's add-on writes them (docs/blender.md, "Cameras"): the
 // precedence FILMBACK_blender > EXT_camera_physical > extras > yfov taking a source whole (a table
-// of source combinations and options, with each value's origin), the 0.01 degree agreement check, focus tracks, the scene's settings, and errors naming the file and JSON path.
+// of source combinations and options, with each value's origin), the 0.01 degree agreement check,
+// focus tracks, the scene's settings, and errors naming the file and JSON path.
 #include "importers/gltf/gltf_camera.h"
 
 #include <gtest/gtest.h>
@@ -100,7 +101,8 @@ std::vector<PrecedenceCase> precedence_cases() {
         {V::kFstop, HUGE_VAL, "FILMBACK_blender names none: depth of field off"},
         {V::kShiftX, 0, "FILMBACK_blender names none"}},
        "cameras[0].extras: focal_length_mm, shift_x, fstop ignored: FILMBACK_blender describes"},
-      {"bug 2: extras' sensor and fit without a focal length: the focal length from yfov under them",
+      {"bug 2: extras' sensor and fit without a focal length: the focal length from yfov under "
+       "them",
        R"("extras": {"sensor_width_mm": 24, "sensor_height_mm": 36, "sensor_fit": "vertical"})",
        {},
        // yfov = 2 atan(18 / 50 / (16/9)), vertical fit on 36 mm: f = 18 / tan(yfov / 2)
@@ -172,7 +174,8 @@ TEST(GltfCamera, PrecedenceTakesTheHighestSourceWholeAndKeepsEachValuesOrigin) {
 TEST(GltfCamera, ExtrasWithoutAFocalLengthKeepYfovsFrame) {
   Diagnostics d;
   const Scene scene = import(
-      write_gltf(R"("extras": {"sensor_width_mm": 24, "sensor_height_mm": 36, "sensor_fit": "vertical"})"),
+      write_gltf(
+          R"("extras": {"sensor_width_mm": 24, "sensor_height_mm": 36, "sensor_fit": "vertical"})"),
       d);
   const CameraQuantities q = describe_camera(scene.cameras.at(0).physical, 1920, 1080);
   EXPECT_NEAR(q.vertical_fov_deg, kDefaultYfov * 180 / std::numbers::pi, 1e-9);

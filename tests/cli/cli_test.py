@@ -741,13 +741,17 @@ class CliTest(unittest.TestCase):
         return self.scene(g)
 
     def test_scene_filter_error_is_bad_input_naming_the_scene(self):
-        # Cycles' Gaussian of width 0.01 px has sigma 0.0025 px, below the plugin's 1e-3.
+        # Cycles' filter widths run from 0.01 to 10 px: beyond is the scene's error, exit 1, while
+        # a bad --filter is the user's, exit 2, and --filter replaces the scene's filter.
+        scene = self.camera_scene(shot={"filter_type": "GAUSSIAN", "filter_width_px": 20})
+        self.assert_input_error(scene, "scenes[0].extensions.FILMBACK_blender.filter_width_px",
+                                "expected a number in [0.01, 10]")
         scene = self.camera_scene(shot={"filter_type": "GAUSSIAN", "filter_width_px": 0.01})
-        self.assert_input_error(scene, "scenes[0].extensions.FILMBACK_blender", "gaussian",
-                                "'sigma' = 0.0025", "expected a number in [0.001, 16]")
         self.assert_usage_error(scene, TINY + ["--filter", "gaussian:sigma=0"],
                                 "--filter 'gaussian:sigma=0': ", "sigma")
-        self.assert_rendered(self.render(scene, *TINY, "--filter", "box"), "image.exr")
+        result = self.render(scene, *TINY[:-1])
+        self.assert_rendered(result, "image.exr")
+        self.assertIn("filter gaussian:radius=0.015,sigma=0.0025 (importance)", result.stdout)
 
     def test_bad_fstop_names_where_it_came_from(self):
         scene = self.camera_scene(ours={"fstop": -1})
@@ -760,13 +764,14 @@ class CliTest(unittest.TestCase):
                                         "expected 0 (a pinhole) or an f-number in (0, 1e6]")
 
     def test_focus_inside_the_focal_length_names_both_origins(self):
-        scene = self.camera_scene(ours={"focal_length_mm": 50, "fstop": 2, "focus_distance_m": 0.04})
+        # yfov 0.8 on a square image: f = 18 mm / tan(0.4) = 42.28 mm, from yfov.
+        scene = self.camera_scene(ours={"fstop": 2, "focus_distance_m": 0.04})
         self.assert_input_error(scene, "cameras[0].extensions.FILMBACK_blender.focus_distance_m",
-                                "not beyond the focal length 50 mm (focal length from %s: "
-                                "cameras[0].extensions.FILMBACK_blender.focal_length_mm)" % scene)
-        scene = self.camera_scene(ours={"focal_length_mm": 50, "fstop": 2})
+                                "not beyond the focal length 42.2785 mm (focal length from %s: "
+                                "cameras[0].perspective.yfov (under the sensor and its fit))" % scene)
+        scene = self.camera_scene(ours={"fstop": 2})
         self.assert_usage_error(scene, TINY + ["--focus-distance", "0.01"], "--focus-distance: ",
-                                "not beyond the focal length 50 mm")
+                                "not beyond the focal length 42.2785 mm")
 
     def test_info_prints_each_values_origin_and_the_ignored_extras(self):
         # Bug 1 of issue 15: custom properties named like ours gave depth of field Blender had off.
