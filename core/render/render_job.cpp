@@ -94,9 +94,10 @@ TypedPlugin filter_plugin_for(const PixelFilterSetting& filter) {
 // "gaussian:radius=2.25,sigma=0.375": for the plan line and the image metadata only.
 std::string plugin_text(const TypedPlugin& plugin) {
   std::string text = plugin.name;
-  for (size_t i = 0; i < plugin.numbers.size(); ++i)
-    text += (i ? "," : ":") + std::string(plugin.numbers[i].first) + "=" +
-            number_text(plugin.numbers[i].second);
+  for (size_t i = 0; i < plugin.numbers.size(); ++i) {
+    text.append(i ? "," : ":").append(plugin.numbers[i].first).append("=");
+    text.append(number_text(plugin.numbers[i].second));
+  }
   return text;
 }
 
