@@ -764,14 +764,14 @@ class CliTest(unittest.TestCase):
                                         "expected 0 (a pinhole) or an f-number in (0, 1e6]")
 
     def test_focus_inside_the_focal_length_names_both_origins(self):
-        # yfov 0.8 on a square image: f = 18 mm / tan(0.4) = 42.28 mm, from yfov.
+        # yfov 0.8 on a square image: f = 18 mm / tan(0.4) = 42.574 mm, from yfov.
         scene = self.camera_scene(ours={"fstop": 2, "focus_distance_m": 0.04})
         self.assert_input_error(scene, "cameras[0].extensions.FILMBACK_blender.focus_distance_m",
-                                "not beyond the focal length 42.2785 mm (focal length from %s: "
+                                "not beyond the focal length 42.574 mm (focal length from %s: "
                                 "cameras[0].perspective.yfov (under the sensor and its fit))" % scene)
         scene = self.camera_scene(ours={"fstop": 2})
         self.assert_usage_error(scene, TINY + ["--focus-distance", "0.01"], "--focus-distance: ",
-                                "not beyond the focal length 42.2785 mm")
+                                "not beyond the focal length 42.574 mm")
 
     def test_info_prints_each_values_origin_and_the_ignored_extras(self):
         # Bug 1 of issue 15: custom properties named like ours gave depth of field Blender had off.
