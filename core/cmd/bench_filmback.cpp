@@ -88,7 +88,7 @@ RenderOptions FilmbackBench::options(uint32_t spp, SamplerKind sampler,
 }
 
 std::string FilmbackBench::filter_text(const std::optional<std::string>& filter) const {
-  return filter.value_or(shot_filter_text(scene_.settings).value_or(kDefaultFilter));
+  return planned_filter_text(filter, scene_.settings);
 }
 
 FilmbackBench::Timed FilmbackBench::run(const RenderOptions& options, bool measured) {

@@ -46,6 +46,11 @@ std::string describe_bounds(const fb_param_desc& desc) {
   return out.str();
 }
 
+// A number parameter bounded above by infinity admits it ("inf"): a focus at infinity, say.
+bool admits_infinity(const fb_param_desc& desc) {
+  return desc.type == FB_PARAM_FLOAT && desc.max_value == HUGE_VAL;
+}
+
 }  // namespace
 
 PluginSpec parse_plugin_spec(std::string_view text, std::string_view option) {
@@ -72,7 +77,8 @@ std::string parse_param_value(const fb_param_desc& desc, std::string_view text, 
   switch (desc.type) {
     case FB_PARAM_FLOAT:
     case FB_PARAM_INT: {
-      const std::optional<double> number = parse_number(text);
+      const std::optional<double> number =
+          text == "inf" && admits_infinity(desc) ? HUGE_VAL : parse_number(text);
       const bool whole = desc.type == FB_PARAM_INT;
       if (!number || (whole && *number != std::floor(*number)))
         return whole ? "a whole number" : "a finite number";
@@ -155,7 +161,8 @@ std::string BoundParams::set_number(const fb_plugin& plugin, std::string_view ke
     if (key != desc.name) continue;
     const bool whole = desc.type == FB_PARAM_INT;
     if (desc.type != FB_PARAM_FLOAT && !whole) return "a parameter of type float or int";
-    if (!std::isfinite(x) || (whole && x != std::floor(x)))
+    if (std::isnan(x) || (std::isinf(x) && !(x > 0 && admits_infinity(desc))) ||
+        (whole && x != std::floor(x)))
       return whole ? "a whole number" : "a finite number";
     if (x < desc.min_value || x > desc.max_value)
       return std::string(whole ? "a whole number" : "a number") + describe_bounds(desc);

@@ -11,10 +11,10 @@
 #include "core/accel/render_geometry.h"
 #include "core/film/splat_tiles.h"
 #include "core/plugin/instances.h"
-#include "core/plugin/params.h"
 #include "core/render/light_sampler.h"
 #include "core/render/memory_estimate.h"
 #include "core/render/motion.h"
+#include "core/render/plugin_choice_loader.h"
 #include "core/render/shutter.h"
 #include "core/render/trace_context.h"
 #include "core/scene/default_camera.h"
@@ -28,7 +28,6 @@ struct RenderJob::Plugins {
   std::unique_ptr<CameraInstance> camera;
   std::unique_ptr<FilterInstance> filter;
   std::unique_ptr<IntegratorInstance> integrator;
-  std::string filter_text, integrator_text;
   std::unique_ptr<RenderGeometry> geometry;
   std::unique_ptr<LightSampler> lights;
   ShutterCurve shutter_curve;
@@ -42,65 +41,6 @@ struct RenderJob::Plugins {
 };
 
 namespace {
-
-// The named camera (else the first, else one framing the scene), placed where it is at time_s.
-SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name,
-                          double time_s) {
-  const auto posed = [&](SceneCamera camera) {
-    camera.world_from_camera = scene.world_from_camera(camera, time_s);
-    if (!camera.world_from_camera.is_finite())  // an animated scale of 0, say
-      throw InputError(scene.file.string() + ": camera '" + camera.name +
-                       "' at t = " + number_text(time_s) + " s: its transform is degenerate");
-    return camera;
-  };
-  if (!name)
-    return scene.cameras.empty() ? frame_bounds(scene.world_bounds(time_s))
-                                 : posed(scene.cameras.front());
-  return posed(find_camera(scene, *name));
-}
-
-// The shutter curve: --shutter-curve, else the shot's sampled curve as it is (typed, never
-// printed and parsed), else a box. An error names where the curve came from.
-ShutterCurve shutter_curve(const std::optional<std::string>& typed, const ShotSettings& shot) {
-  if (typed) return ShutterCurve::parse(*typed, "--shutter-curve");
-  const std::vector<double>& values = shot.shutter_curve;
-  if (std::adjacent_find(values.begin(), values.end(), std::not_equal_to<>()) == values.end())
-    return ShutterCurve();  // empty or constant: a box
-  if (std::optional<ShutterCurve> curve = ShutterCurve::table(values)) return std::move(*curve);
-  shot.shutter_curve_origin.fail(ShutterCurve::kTableExpected);
-}
-
-// A plugin and number parameters chosen from typed scene data.
-struct TypedPlugin {
-  const char* name;
-  std::vector<std::pair<const char*, double>> numbers;
-};
-
-// Cycles' pixel filters as filter plugins (docs/filters.md, "Against Blender"): Blackman-Harris of
-// width w spans +-w; the Gaussian of width w is exp(-8x^2/w^2) (sigma = w/4) cut at +-1.5w; the box
-// of width w spans +-w/2.
-TypedPlugin filter_plugin_for(const PixelFilterSetting& filter) {
-  const double w = filter.width_px;
-  switch (filter.type) {
-    case PixelFilterSetting::Type::kGaussian:
-      return {"gaussian", {{"radius", 1.5 * w}, {"sigma", w / 4}}};
-    case PixelFilterSetting::Type::kBox:
-      return {"box", {{"radius", w / 2}}};
-    case PixelFilterSetting::Type::kBlackmanHarris:
-      break;
-  }
-  return {"blackman_harris", {{"width", w}}};
-}
-
-// "gaussian:radius=2.25,sigma=0.375": for the plan line and the image metadata only.
-std::string plugin_text(const TypedPlugin& plugin) {
-  std::string text = plugin.name;
-  for (size_t i = 0; i < plugin.numbers.size(); ++i) {
-    text.append(i ? "," : ":").append(plugin.numbers[i].first).append("=");
-    text.append(number_text(plugin.numbers[i].second));
-  }
-  return text;
-}
 
 ImageMetadata::Matrix to_float_matrix(const Transform& t) {
   ImageMetadata::Matrix m;
@@ -126,54 +66,6 @@ Transform ndc_from_camera(const fb_camera_setup& setup) {
                                0, 0, -1, 0});
 }
 
-// Loads the plugin `text` names ("NAME[:k=v,...]") and creates an instance with its parameters;
-// usage errors say which option they came from.
-template <typename Instance, typename... Setup>
-std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
-                                      const std::string& text, const char* option,
-                                      const Setup&... setup) {
-  const PluginSpec spec = parse_plugin_spec(text, option);
-  auto library = loader.load(kind, spec.name);
-  try {
-    return std::make_unique<Instance>(library, BoundParams(library->descriptor(), spec.settings),
-                                      setup...);
-  } catch (const UsageError& e) {
-    throw UsageError(std::string(option) + " '" + text + "': " + e.what());
-  }
-}
-
-// Loads `plugin` and creates an instance with its typed values; an error names `origin`, where the
-// values came from (a scene's file and JSON path: bad input).
-template <typename Instance>
-std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
-                                      const TypedPlugin& plugin, const ValueOrigin& origin) {
-  auto library = loader.load(kind, plugin.name);
-  BoundParams params(library->descriptor(), {});
-  for (const auto& [key, x] : plugin.numbers)
-    if (std::string expected = params.set_number(library->descriptor(), key, x); !expected.empty())
-      origin.fail("the plugin " + plugin_text(plugin) + ": parameter '" + key +
-                  "' = " + number_text(x) + ": expected " + expected);
-  try {
-    return std::make_unique<Instance>(library, params);
-  } catch (const UsageError& e) {
-    origin.fail("the plugin " + plugin_text(plugin) + ": " + e.what());
-  }
-}
-
-// Only what the shot needs: a pinhole unless it has an aperture (docs/camera-model.md).
-std::string camera_model_for(const PhysicalCamera& camera, const SensorResponse& sensor) {
-  if (camera.projection == FB_PROJECTION_ORTHOGRAPHIC) {
-    if (sensor.model == FB_SENSOR_PHYSICAL)
-      throw UsageError(
-          "--sensor-model physical: an orthographic camera has no aperture to expose through");
-    return "orthographic";
-  }
-  if (camera.has_aperture()) return "thinlens";
-  if (sensor.model == FB_SENSOR_PHYSICAL)
-    throw UsageError("--sensor-model physical needs an aperture: give --fstop (the shot has none)");
-  return "perspective";
-}
-
 // A moving vertex may stray a twentieth of a pixel from its true path between motion steps: the
 // pixel's footprint per metre of distance (perspective) or in metres (orthographic).
 MotionTolerance motion_tolerance(const fb_camera_setup& setup) {
@@ -189,29 +81,6 @@ SubdivView subdiv_view(const fb_camera_setup& setup, const SceneCamera& camera) 
   const ViewPlane v = view_plane(setup);
   return {camera.world_from_camera.inverse(), v.fx, v.fy,
           setup.projection == FB_PROJECTION_ORTHOGRAPHIC};
-}
-
-// A lens cannot focus closer than its focal length: the thin lens's image distance
-// D_img = f D / (D - f) (1/f = 1/D + 1/D_img) is infinite at D = f and negative inside it
-// (docs/camera-model.md). The error names where both values came from: a typed option is bad
-// usage, else the scene's value is bad input.
-void check_focus_beyond_focal_length(const SceneCamera& camera) {
-  const PhysicalCamera& c = camera.physical;
-  const double focal_m = c.focal_length_mm * 1e-3;
-  if (c.projection != FB_PROJECTION_PERSPECTIVE || !c.has_aperture() ||
-      c.focus_distance_m > focal_m)
-    return;
-  const ValueOrigin& focus = camera.origin(CameraValue::kFocusDistance);
-  const ValueOrigin& focal = camera.origin(CameraValue::kFocalLength);
-  const bool blame_focus = focus.typed() || !focal.typed();
-  const std::string what =
-      "focus distance " + number_text(c.focus_distance_m) + " m is not beyond the focal length " +
-      number_text(c.focal_length_mm) + " mm (" +
-      (blame_focus ? "focal length from " + focal.text() : "focus distance from " + focus.text()) +
-      "): a lens cannot focus closer than its focal length (its image distance f D / (D - f) "
-      "is infinite or negative); expected a focus distance over " +
-      number_text(focal_m) + " m";
-  (blame_focus ? focus : focal).fail(what);
 }
 
 // Splatting places each sample anywhere in its pixel and spreads it to the pixels within the
@@ -243,140 +112,80 @@ std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
 
 }  // namespace
 
-std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
-  const double aspect = camera.intended_aspect.value_or(16.0 / 9.0);
-  if (aspect >= 1.0)
-    return {kDefaultLongSidePx,
-            std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx / aspect)))};
-  return {std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx * aspect))),
-          kDefaultLongSidePx};
-}
-
-std::optional<std::string> shot_filter_text(const ShotSettings& shot) {
-  if (!shot.filter) return std::nullopt;
-  return plugin_text(filter_plugin_for(*shot.filter));
-}
-
-void CameraOverrides::apply(SceneCamera& camera) const {
-  const auto typed = [&](CameraValue v, const std::optional<double>& x, const char* option) {
-    if (!x) return;
-    set_camera_value(camera.physical, v, *x);
-    camera.origins[size_t(v)] = ValueOrigin::from_option(option);
-  };
-  using V = CameraValue;
-  typed(V::kFocalLength, focal_length_mm, "--focal-length");
-  typed(V::kFstop, fstop, "--fstop");
-  typed(V::kFocusDistance, focus_distance_m, "--focus-distance");
-  if (sensor_mm) {
-    typed(V::kSensorWidth, sensor_mm->x, "--sensor");
-    typed(V::kSensorHeight, sensor_mm->y, "--sensor");
-  }
-  if (sensor_fit) typed(V::kSensorFit, double(*sensor_fit), "--sensor-fit");
-  if (shift) {
-    typed(V::kShiftX, shift->x, "--shift");
-    typed(V::kShiftY, shift->y, "--shift");
-  }
-}
-
 RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader)
-    : scene_(scene), options_(options), plugins_(std::make_unique<Plugins>()) {
-  // The frame's time on the scene's timeline, t = frame / fps (glTF's, as Blender writes it): each
-  // from the command line, else the scene's extras, else frame 0 at kDefaultFps.
-  frame_ = options.frame.value_or(scene.settings.frame.value_or(0.0));
-  fps_ = options.fps.value_or(scene.settings.fps.value_or(kDefaultFps));
-  const double frame_s = frame_ / fps_;
-  const ShotSettings& shot = scene.settings;
-  shutter_s_ = options.shutter_s.value_or(
-      shot.shutter_open_s ? Vec2d{*shot.shutter_open_s, *shot.shutter_close_s} : Vec2d{0, 0});
-  times_ = {frame_s, frame_s + shutter_s_.x, frame_s + shutter_s_.y};
-  // The camera, its focus and the lights where they stand while the shutter is open.
-  const double still_s = times_.still_s();
-  camera_ = choose_camera(scene, options.camera, still_s);
-  if (camera_.focus_track)
-    camera_.physical.focus_distance_m = camera_.focus_track->at(still_s * fps_);
-  options.camera_overrides.apply(camera_);
-  check_focus_beyond_focal_length(camera_);
-  if (options.width.has_value() != options.height.has_value())
-    throw UsageError("--res: give both width and height");
-  std::tie(width_, height_) = options.width   ? std::pair{*options.width, *options.height}
-                              : shot.width_px ? std::pair{*shot.width_px, *shot.height_px}
-                                              : default_resolution(camera_);
-  spp_ = options.samples_per_pixel.value_or(kDefaultSamplesPerPixel);
-  // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
-  const double open_s = shutter_s_.y - shutter_s_.x;
-  sensor_ = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
+    : scene_(scene),
+      options_(options),
+      plan_(plan_shot(scene, options)),
+      plugins_(std::make_unique<Plugins>()) {
+  load_plugins(loader);
+  build_geometry();
+  choose_time_samples();
+  make_scene_table();
+  camera_reason_ = describe_lens(plan_.camera.physical, plugins_->camera->needs());
+}
 
+void RenderJob::load_plugins(const PluginLoader& loader) {
   Plugins& p = *plugins_;
-  p.shutter_curve = shutter_curve(options.shutter_curve, shot);
-  pixel_aspect_ = shot.pixel_aspect.value_or(1.0);
-  p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
-  const fb_camera_setup setup =
-      make_camera_setup(camera_.physical, width_, height_, pixel_aspect_, sensor_);
-  p.camera = instantiate<CameraInstance>(
-      loader, FB_KIND_CAMERA,
-      options.camera_model.value_or(camera_model_for(camera_.physical, sensor_)), "--camera-model",
-      setup);
-  // --filter, else the shot's pixel filter with its exact values, else the default.
-  if (!options.filter && shot.filter) {
-    const TypedPlugin filter = filter_plugin_for(*shot.filter);
-    p.filter_text = plugin_text(filter);
-    p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, filter, shot.filter->origin);
-  } else {
-    p.filter_text = options.filter.value_or(kDefaultFilter);
-    p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
-  }
-  check_splat_reach(*p.filter, p.filter_text, options.reconstruction);
-  p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text,
-                                                 "--integrator");
+  p.shutter_curve = plan_.shutter_curve;
+  p.camera = load_camera(loader, plan_);
+  p.filter = load_filter(loader, plan_.filter);
+  check_splat_reach(*p.filter, plan_.filter.text(), options_.reconstruction);
+  p.integrator = load_integrator(loader, plan_.integrator);
+}
 
-  // Render space: world translated so the camera is at the origin; only this is narrowed to float.
-  p.render_from_world = Transform::translate(-camera_.world_from_camera.translation());
-  // Subdivision surfaces become triangles here, where the camera that adaptive refinement needs
-  // is known; a scene without any never loads the subdivision module.
-  const Scene* geometry_scene = &scene;
-  if (options.subdiv == SubdivMode::kRender && !scene.subdivision_surfaces.empty()) {
+// Render space: world translated so the camera is at the origin; only this is narrowed to float.
+// Subdivision surfaces become triangles here, where the camera that adaptive refinement needs is
+// known; a scene without any never loads the subdivision module.
+void RenderJob::build_geometry() {
+  Plugins& p = *plugins_;
+  const SceneCamera& camera = plan_.camera;
+  const fb_camera_setup setup = plan_.camera_setup();
+  p.render_from_world = Transform::translate(-camera.world_from_camera.translation());
+  const Scene* geometry_scene = &scene_;
+  if (options_.subdiv == SubdivMode::kRender && !scene_.subdivision_surfaces.empty()) {
     // Refining is itself the allocation to bound: its count is known from the cages.
-    double triangles = double(scene.triangle_count()), texturing = texturing_bytes(scene);
-    for (const SubdivisionSurface& surface : scene.subdivision_surfaces) {
+    double triangles = double(scene_.triangle_count()), texturing = texturing_bytes(scene_);
+    for (const SubdivisionSurface& surface : scene_.subdivision_surfaces) {
       triangles += refined_triangles(surface);
       texturing += refined_texturing_bytes(surface);
     }
     check_memory_budget(triangles, texturing);
   }
-  if (!scene.subdivision_surfaces.empty()) {
-    p.refined = std::make_unique<Scene>(scene);
+  if (!scene_.subdivision_surfaces.empty()) {
+    p.refined = std::make_unique<Scene>(scene_);
     SubdivReport report =
-        refine_subdivision_surfaces(*p.refined, options.subdiv, subdiv_view(setup, camera_));
+        refine_subdivision_surfaces(*p.refined, options_.subdiv, subdiv_view(setup, camera));
     for (const std::string& warning : report.warnings)
       std::cerr << "warning: " << warning << '\n';
     p.subdiv_summary = std::move(report.summary);
     geometry_scene = p.refined.get();
   }
   check_memory_budget(double(geometry_scene->triangle_count()), texturing_bytes(*geometry_scene));
-  p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, times_,
+  p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, plan_.times,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
-                                            still_s, options.background);
-  choose_time_samples(scene);
-  for (const Material& m : scene.materials) {
+                                            plan_.times.still_s(), options_.background);
+}
+
+// The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
+void RenderJob::make_scene_table() {
+  Plugins& p = *plugins_;
+  for (const Material& m : scene_.materials) {
     fb_material fm{};
     m.base_color.store(fm.base_color);
     m.emission.store(fm.emission);
     fm.double_sided = m.double_sided;
     p.materials.push_back(fm);
   }
-  // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
   p.scene_api = host_scene_api();
   p.scene_api.struct_size = p.integrator->scene_api_size();
   p.scene.struct_size = p.integrator->scene_size();
   p.scene.api = &p.scene_api;
   p.scene.materials = p.materials.data();
   p.scene.material_count = uint32_t(p.materials.size());
-  options.background.value_or(scene.background).store(p.scene.background);
+  options_.background.value_or(scene_.background).store(p.scene.background);
   p.scene.scene_radius_m = length(p.geometry->bounds_centre()) + p.geometry->bounds_radius();
-  Vec3f(normalize(camera_.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
-
-  camera_reason_ = describe_lens(camera_.physical, p.camera->needs());
+  Vec3f(normalize(plan_.camera.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
 }
 
 RenderJob::~RenderJob() = default;
@@ -386,9 +195,9 @@ void RenderJob::check_memory_budget(double triangles, double texturing) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
-  const MemoryEstimate estimate =
-      estimate_memory(width_, height_, p.integrator->channels().size(), options_.reconstruction,
-                      SplatTiles::reach(std::max(radius[0], radius[1])), triangles, texturing);
+  const MemoryEstimate estimate = estimate_memory(
+      plan_.width_px, plan_.height_px, p.integrator->channels().size(), options_.reconstruction,
+      SplatTiles::reach(std::max(radius[0], radius[1])), triangles, texturing);
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else
@@ -399,38 +208,40 @@ void RenderJob::check_memory_budget(double triangles, double texturing) const {
 
 // Time samples only when something moves while the shutter is open (docs/camera-model.md), and a
 // camera path only when the camera moves; time_reason_ says which for the plan line.
-void RenderJob::choose_time_samples(const Scene& scene) {
+void RenderJob::choose_time_samples() {
+  const ShotTimes& times = plan_.times;
+  const Vec2d& shutter_s = plan_.shutter_s;
   Plugins& p = *plugins_;
   std::ostringstream out;
-  out << "frame " << number_text(frame_) << " at " << number_text(fps_)
-      << " fps (t = " << number_text(times_.frame_s) << " s), ";
-  if (!times_.shutter_open()) {
-    if (shutter_s_.x != 0)
-      out << "zero-length shutter at t = " << number_text(times_.open_s) << " s";
+  out << "frame " << number_text(plan_.frame) << " at " << number_text(plan_.fps)
+      << " fps (t = " << number_text(times.frame_s) << " s), ";
+  if (!times.shutter_open()) {
+    if (shutter_s.x != 0)
+      out << "zero-length shutter at t = " << number_text(times.open_s) << " s";
     else
       out << "shutter closed";
     out << ": no time samples";
     time_reason_ = out.str();
     return;
   }
-  const bool camera_moves = scene.moves(camera_.node_index, times_.open_s, times_.close_s);
+  const bool camera_moves = scene_.moves(plan_.camera.node_index, times.open_s, times.close_s);
   const size_t moving = p.geometry->moving_instance_count();
   const bool camera_needs_time = p.camera->needs() & FB_CAMERA_NEEDS_TIME;
-  out << "shutter open " << number_text(shutter_s_.y - shutter_s_.x) << " s ("
+  out << "shutter open " << number_text(shutter_s.y - shutter_s.x) << " s ("
       << p.shutter_curve.description() << ")";
   if (!camera_moves && moving == 0 && !camera_needs_time) {
     out << ", nothing moves in it: no time samples";
     time_reason_ = out.str();
     return;
   }
-  p.time = {&p.shutter_curve, shutter_s_.x, shutter_s_.y};
+  p.time = {&p.shutter_curve, shutter_s.x, shutter_s.y};
   out << ": time samples for";
   if (moving > 0)
     out << " " << moving << " moving instance" << (moving > 1 ? "s" : "") << " (up to "
         << p.geometry->most_motion_steps() << " motion steps)";
   if (camera_moves) {
     p.camera_path =
-        std::make_unique<CameraPath>(scene, camera_, p.render_from_world, times_.frame_s);
+        std::make_unique<CameraPath>(scene_, plan_.camera, p.render_from_world, times.frame_s);
     out << (moving > 0 ? "," : "") << " the moving camera";
   }
   if (camera_needs_time) out << (moving > 0 || camera_moves ? "," : "") << " the camera plugin";
@@ -475,13 +286,13 @@ std::string material_models(const Scene& scene) {
 
 RenderChoices RenderJob::choices() const {
   const Plugins& p = *plugins_;
-  return {camera_.name,
-          camera_.source,
+  return {plan_.camera.name,
+          plan_.camera.source,
           p.camera->name(),
           camera_reason_,
-          p.filter_text,
+          plan_.filter.text(),
           reconstruction_name(options_.reconstruction),
-          p.integrator_text,
+          plan_.integrator.text(),
           sampler_name(options_.sampler),
           time_reason_,
           p.subdiv_summary,
@@ -495,17 +306,18 @@ std::string RenderJob::plan() const {
   const RenderChoices c = choices();
   std::ostringstream out;
   out << "filmback: camera '" << c.camera << "' (" << c.camera_source << ") through "
-      << c.camera_model << " (" << c.lens << "), " << width_ << "x" << height_ << ", " << spp_
-      << " spp (" << c.sampler << "), filter " << c.filter << " (" << c.reconstruction
-      << "), integrator " << c.integrator << "; " << c.time << "; " << c.triangles << " triangles, "
-      << c.lights << " lights, " << c.emissive_triangles << " emissive triangles";
+      << c.camera_model << " (" << c.lens << "), " << plan_.width_px << "x" << plan_.height_px
+      << ", " << plan_.samples_per_pixel << " spp (" << c.sampler << "), filter " << c.filter
+      << " (" << c.reconstruction << "), integrator " << c.integrator << "; " << c.time << "; "
+      << c.triangles << " triangles, " << c.lights << " lights, " << c.emissive_triangles
+      << " emissive triangles";
   if (!c.subdivision.empty()) out << "; " << c.subdivision;
   out << "; " << c.materials;
   return out.str();
 }
 
 Film RenderJob::make_film() const {
-  return Film(width_, height_, plugins_->integrator->channels());
+  return Film(plan_.width_px, plan_.height_px, plugins_->integrator->channels());
 }
 
 RenderResult RenderJob::run() const {
@@ -521,8 +333,8 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
                       *p.geometry,
                       *p.lights,
                       p.scene,
-                      camera_.world_from_camera.without_scale_and_translation(),
-                      spp_,
+                      plan_.camera.world_from_camera.without_scale_and_translation(),
+                      plan_.samples_per_pixel,
                       options_.sampler,
                       options_.seed,
                       options_.reconstruction};
@@ -530,7 +342,8 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
   inputs.camera_path = p.camera_path.get();
   std::optional<Progress> progress;
   if (options_.show_progress)
-    progress.emplace(sample_count(inputs, width_, height_), std::cerr, stderr_is_terminal());
+    progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,
+                     stderr_is_terminal());
   RenderResult result;
   result.stats = render_image(inputs, film, control, progress ? &*progress : nullptr);
   progress.reset();
@@ -559,9 +372,8 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
 
 ImageMetadata RenderJob::metadata(const RenderResult& result) const {
   const RenderStats& stats = result.stats;
-  const fb_camera_setup setup =
-      make_camera_setup(camera_.physical, width_, height_, pixel_aspect_, sensor_);
-  const Transform camera_from_world = camera_.world_from_camera.inverse();
+  const fb_camera_setup setup = plan_.camera_setup();
+  const Transform camera_from_world = plan_.camera.world_from_camera.inverse();
   ImageMetadata m;
   // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera); ours, glTF's,
   // looks down -Z: flip z. worldToNDC needs no flip.
@@ -577,7 +389,7 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
                                    {"filmback/render_seconds", float(stats.seconds)}});
   // OpenEXR's standard lens and exposure attributes (ImfStandardAttributes.h: focus in scene units,
   // aperture as the f-number, expTime in seconds, isoSpeed), as OIIO names them.
-  if (camera_.physical.has_aperture()) {
+  if (plan_.camera.physical.has_aperture()) {
     m.floats.push_back({"FNumber", float(setup.fstop)});
     if (std::isfinite(setup.focus_distance_m))
       m.floats.push_back({"focus", float(setup.focus_distance_m)});
@@ -586,7 +398,7 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
     m.floats.insert(m.floats.end(), {{"ExposureTime", float(setup.exposure_time_s)},
                                      {"isoSpeed", float(setup.iso)}});
   m.ints = {
-      {"filmback/samples_per_pixel", int(spp_)},
+      {"filmback/samples_per_pixel", int(plan_.samples_per_pixel)},
       {"filmback/dropped_samples", int(std::min<uint64_t>(stats.dropped_samples, INT32_MAX))}};
   if (stats.interrupted)
     m.ints.insert(m.ints.end(), {{"filmback/interrupted", 1},
@@ -594,13 +406,13 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
                                  {"filmback/most_samples", int(result.most_samples)}});
   m.strings = {{"Software", "filmback"},
                {"filmback/scene", scene_.file.filename().string()},
-               {"filmback/camera", camera_.name},
+               {"filmback/camera", plan_.camera.name},
                {"filmback/sensor_fit", sensor_fit_name(setup.sensor_fit)},
                {"filmback/camera_model", plugins_->camera->name()},
-               {"filmback/filter", plugins_->filter_text},
+               {"filmback/filter", plan_.filter.text()},
                {"filmback/reconstruction", reconstruction_name(options_.reconstruction)},
                {"filmback/sampler", sampler_name(options_.sampler)},
-               {"filmback/integrator", plugins_->integrator_text}};
+               {"filmback/integrator", plan_.integrator.text()}};
   return m;
 }
 

@@ -21,14 +21,11 @@ import sys
 
 SOURCE_SUFFIXES = {".c", ".cc", ".cpp", ".h", ".hpp"}
 
-# Where core may name a concrete plugin, and why. The first two are the one table from projection
-# and defaults to plugins that issue 15's shot plan takes over (then this table names that file
-# alone). The others use the same words in another sense.
+# Where core may name a concrete plugin, and why: the shot plan holds the one table from a shot's
+# projection, pixel filter and defaults to plugins. The others use the same words in another sense.
 ALLOWED_PLUGIN_NAMES = {
-    # camera_model_for, filter_plugin_for (Cycles' pixel filters)
-    "core/render/render_job.cpp": {"perspective", "orthographic", "thinlens", "gaussian", "box",
-                                   "blackman_harris"},
-    "core/render/render_job.h": {"gaussian", "path"},  # kDefaultFilter, kDefaultIntegrator
+    "core/render/shot_plan.cpp": {"perspective", "orthographic", "thinlens", "gaussian", "box",
+                                  "blackman_harris", "path"},
     "core/render/shutter.cpp": {"box"},  # the box shutter curve, not the box filter
     "core/cmd/info_command.cpp": {"perspective", "orthographic"},  # the projection it prints
 }

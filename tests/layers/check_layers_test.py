@@ -26,8 +26,8 @@ CLEAN = {
     "core/scene/scene.h": '#include "core/math/transform.h"\n#include "core/scene/solid.h"\n',
     "core/accel/solid_intersect.h": '#include "core/scene/solid.h"\n',
     "core/tessellate/csg_probe.h": '#include "core/accel/solid_intersect.h"\n',
-    "core/render/render_job.h": 'constexpr const char* kDefaultFilter = "gaussian";\n',
-    "core/render/render_job.cpp": 'const char* f() { return "thinlens"; }\n',
+    "core/render/shot_plan.cpp": 'constexpr const char* kDefaultFilter = "gaussian";\n'
+                                 'const char* f() { return "thinlens"; }\n',
     "core/render/shutter.cpp": 'bool box(const char* s) { return s == "box"; }\n',
     "core/cmd/convert_command.cpp": '#include "importers/gltf/gltf_writer.h"\n'
                                     '#include "core/tessellate/tessellate.h"\n',
@@ -70,8 +70,8 @@ PLANTED = {
         {"core/plugin/y.cpp": 'auto f = "libfilmback_camera_thinlens.so";\n'},
         "core/plugin/y.cpp:1:", '"thinlens"'),
     "an allowed file naming another plugin": (
-        {"core/render/render_job.h": 'constexpr const char* k = "thinlens";\n'},
-        "core/render/render_job.h:1:", '"thinlens"'),
+        {"core/render/shutter.cpp": 'constexpr const char* k = "thinlens";\n'},
+        "core/render/shutter.cpp:1:", '"thinlens"'),
     "a plugin added to plugins/CMakeLists.txt, with no edit of the checker": (
         {"plugins/CMakeLists.txt": PLUGINS_CMAKE +
          "filmback_add_plugin(camera fisheye cameras/fisheye/fisheye.cpp)\n",

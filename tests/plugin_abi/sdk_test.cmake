@@ -59,7 +59,29 @@ elseif(STEP STREQUAL "plugin")
   if(NOT EXISTS ${_image})
     message(FATAL_ERROR "filmback render --filter outoftree wrote no ${_image}")
   endif()
-  message(STATUS "${_plugin}: built by ${CXX_COMPILER}, listed and used in a render by the installed filmback")
+  # A camera model with a parameter of its own, which filmback learns from its schema alone: at
+  # roll 0 its image is the perspective camera's, every pixel value equal (idiff with zero
+  # tolerance); rolled, it is not.
+  run(${PREFIX}/${BINDIR}/filmback plugins)
+  expect_contains("${run_out}" "camera outoftree 1.0.0" "filmback plugins")
+  expect_contains("${run_out}" "roll_deg" "filmback plugins")
+  foreach(_camera perspective outoftree outoftree:roll_deg=180)
+    string(MAKE_C_IDENTIFIER ${_camera} _id)
+    run(${PREFIX}/${BINDIR}/filmback render ${SCENE} -o ${_build}/${_id}.exr --res 32x18 --spp 1
+        -q --camera-model ${_camera})
+  endforeach()
+  execute_process(COMMAND idiff -fail 0 -warn 0 ${_build}/perspective.exr ${_build}/outoftree.exr
+                  RESULT_VARIABLE _unrolled OUTPUT_VARIABLE _out)
+  if(NOT _unrolled EQUAL 0)
+    message(FATAL_ERROR "--camera-model outoftree (roll 0) differs from perspective:\n${_out}")
+  endif()
+  execute_process(COMMAND idiff -fail 0 -warn 0 ${_build}/outoftree.exr
+                          ${_build}/outoftree_roll_deg_180.exr RESULT_VARIABLE _rolled
+                  OUTPUT_QUIET)
+  if(_rolled EQUAL 0)
+    message(FATAL_ERROR "--camera-model outoftree:roll_deg=180 rendered the unrolled image")
+  endif()
+  message(STATUS "${_plugin}: built by ${CXX_COMPILER}, listed and used in a render by the installed filmback; so was the out-of-tree camera")
 else()
   message(FATAL_ERROR "STEP must be install or plugin")
 endif()

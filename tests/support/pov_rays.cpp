@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/render/plugin_choice_loader.h"
 #include "importers/pov/pov_space.h"
 #include "support/plugins.h"
 
@@ -28,14 +29,12 @@ WorldRay pov_ray(const pov::PovCameraVectors& c, double x_px, double y_px, uint3
 
 std::unique_ptr<CameraInstance> make_camera_plugin(const pov::PovCamera& camera, uint32_t width_px,
                                                    uint32_t height_px) {
-  const PhysicalCamera& physical = camera.camera.physical;
-  const char* name = physical.projection == FB_PROJECTION_ORTHOGRAPHIC ? "orthographic"
-                     : physical.has_aperture()                         ? "thinlens"
-                                                                       : "perspective";
-  auto library = loader().load(FB_KIND_CAMERA, name);
-  return std::make_unique<CameraInstance>(
-      library, BoundParams(library->descriptor(), {}),
-      make_camera_setup(physical, width_px, height_px, camera.pixel_aspect));
+  Scene scene;
+  scene.cameras.push_back(camera.camera);
+  scene.settings.pixel_aspect = camera.pixel_aspect;
+  RenderOptions options;
+  options.width = width_px, options.height = height_px;
+  return load_camera(loader(), plan_shot(scene, options));
 }
 
 WorldRay filmback_ray(const CameraInstance& plugin, const SceneCamera& camera,

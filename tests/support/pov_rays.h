@@ -26,8 +26,8 @@ struct WorldRay {
 WorldRay pov_ray(const pov::PovCameraVectors& camera, double x_px, double y_px, uint32_t width_px,
                  uint32_t height_px);
 
-// The camera plugin filmback would choose for this camera ("perspective", "orthographic" or, with
-// an aperture, "thinlens"), set up for a W x H image with the camera's pixel aspect.
+// The camera plugin the shot plan chooses for this camera, loaded with the plan's values and set up
+// for a W x H image with the camera's pixel aspect.
 std::unique_ptr<CameraInstance> make_camera_plugin(const pov::PovCamera& camera, uint32_t width_px,
                                                    uint32_t height_px);
 

@@ -76,7 +76,8 @@ typedef struct fb_param_desc {
   const char* default_value; /* as a user would type it */
   const char* unit;          /* "px", "mm", "m", "s", "" */
   const char* choices;       /* strings only: "a|b|c", or NULL for free text */
-  double min_value;          /* numbers: inclusive bounds (use +-HUGE_VAL for none) */
+  double min_value;          /* numbers: inclusive bounds (use +-HUGE_VAL for none; a FLOAT
+                                bounded by +HUGE_VAL also admits "inf") */
   double max_value;
   const char* doc; /* one sentence */
 } fb_param_desc;
@@ -130,7 +131,10 @@ typedef struct fb_camera_setup {
   double ortho_scale_m; /* orthographic: view extent along the fitted side */
   double clip_near_m;   /* depth along the view axis */
   double clip_far_m;    /* HUGE_VAL for none */
-  /* the lens */
+  /* The lens, as the shot has it, kept for camera plugins built before camera parameters: a
+     lens model declares its values as parameters (thinlens: fstop, focus_distance_m,
+     aperture_blades, aperture_rotation_rad, aperture_ratio), which the host fills by name from the
+     shot (docs/plugins.md, "Camera parameters"). */
   double fstop;                 /* HUGE_VAL: a pinhole */
   double focus_distance_m;      /* along the view axis; HUGE_VAL: focused at infinity */
   uint32_t aperture_blades;     /* 0: a round aperture */

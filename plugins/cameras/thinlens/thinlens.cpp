@@ -1,5 +1,10 @@
 // Camera `thinlens`: depth of field as Blender/Cycles model it, from the photographer's numbers.
 //
+// The lens values are this plugin's parameters (its schema below); the host passes a shot's lens
+// values by these names (core/render/shot_plan.cpp) and keeps only pose, sensor and resolution in
+// fb_camera_setup. The f-number arrives as itself and becomes a radius here, the one translation
+// on its way from the scene (docs/architecture.md, "The f-number's way").
+//
 // The aperture is a disk (or a regular polygon of `aperture_blades` blades, rotated) of radius
 // f / (2N) at the camera origin; its x is divided by `aperture_ratio` (anamorphic bokeh). A ray
 // leaves a lens point and passes through the point where the pinhole ray of its raster position
@@ -40,36 +45,50 @@ Vec2f sample_polygon(Vec2f u, uint32_t blades, float rotation) {
           b.y * std::sin(a0) + (1.f - b.x - b.y) * std::sin(a1)};
 }
 
+// Blender's names and units (Camera > Depth of Field); the bounds are the ones Blender and
+// fb_camera_setup's readers accept. A focus distance bounded by infinity admits "inf".
+constexpr fb_param_desc kParams[] = {
+    {"fstop", FB_PARAM_FLOAT, "2.8", "f-number", nullptr, 1e-6, 1e6,
+     "aperture as an f-number N: radius f / 2N"},
+    {"focus_distance_m", FB_PARAM_FLOAT, "inf", "m", nullptr, 1e-6, HUGE_VAL,
+     "distance of the plane in focus along the view axis; inf: focused at infinity"},
+    {"aperture_blades", FB_PARAM_INT, "0", "", nullptr, 0, 64,
+     "0: a round aperture; else a regular polygon of at least 3 blades"},
+    {"aperture_rotation_rad", FB_PARAM_FLOAT, "0", "rad", nullptr, -1e3, 1e3,
+     "rotation of the blades"},
+    {"aperture_ratio", FB_PARAM_FLOAT, "1", "", nullptr, 1e-2, 1e2,
+     "anamorphic bokeh: the aperture's x is divided by it"},
+};
+constexpr auto kFstop = fb::param<double>(kParams, "fstop");
+constexpr auto kFocusDistance = fb::param<double>(kParams, "focus_distance_m");
+constexpr auto kBlades = fb::param<int>(kParams, "aperture_blades");
+constexpr auto kRotation = fb::param<double>(kParams, "aperture_rotation_rad");
+constexpr auto kRatio = fb::param<double>(kParams, "aperture_ratio");
+
 class ThinLens {
  public:
-  ThinLens(const fb_value*, const fb_camera_setup& s)
+  ThinLens(const fb_value* values, const fb_camera_setup& s)
       : plane_(fb::view_plane(s)),
         near_(s.clip_near_m),
         far_(s.clip_far_m),
-        radius_m_(s.focal_length_mm * 1e-3 / (2 * s.fstop)),
-        focus_m_(s.focus_distance_m),
-        blades_(s.aperture_blades),
-        rotation_(float(s.aperture_rotation_rad)),
-        inverse_ratio_(float(1 / s.aperture_ratio)) {
+        radius_m_(s.focal_length_mm * 1e-3 / (2 * kFstop(values))),
+        focus_m_(kFocusDistance(values)),
+        blades_(uint32_t(kBlades(values))),
+        rotation_(float(kRotation(values))),
+        inverse_ratio_(float(1 / kRatio(values))) {
     if (s.projection != FB_PROJECTION_PERSPECTIVE)
       throw std::invalid_argument("a thin lens needs a perspective projection");
-    if (!(s.fstop > 0 && std::isfinite(s.fstop)))
-      throw std::invalid_argument("a thin lens needs a finite, positive f-number");
-    if (!(s.focus_distance_m > 0))
-      throw std::invalid_argument("the focus distance must be positive");
-    if (s.aperture_blades == 1 || s.aperture_blades == 2)
+    if (blades_ == 1 || blades_ == 2)
       throw std::invalid_argument("an aperture has 0 (round) or at least 3 blades");
-    if (!(s.aperture_ratio > 0)) throw std::invalid_argument("the aperture ratio must be positive");
     if (!(s.focal_length_mm > 0) || !(near_ >= 0) || !(far_ > near_))
       throw std::invalid_argument("focal length and clip range must be positive and non-empty");
     if (const char* problem = fb::view_plane_problem(plane_, s))
       throw std::invalid_argument(problem);
     if (s.sensor_model == FB_SENSOR_PHYSICAL) {
-      const double n = double(s.aperture_blades);
+      const double n = double(blades_), fstop = kFstop(values);
       const double area_vs_disk =
-          (s.aperture_blades ? n * std::sin(2 * kPi / n) / (2 * kPi) : 1.0) / s.aperture_ratio;
-      exposure_ =
-          float(kPi / (4 * s.fstop * s.fstop) * s.exposure_time_s * s.iso / 100 * area_vs_disk);
+          (blades_ ? n * std::sin(2 * kPi / n) / (2 * kPi) : 1.0) / kRatio(values);
+      exposure_ = float(kPi / (4 * fstop * fstop) * s.exposure_time_s * s.iso / 100 * area_vs_disk);
     }
   }
 
@@ -116,9 +135,9 @@ class ThinLens {
 
 constexpr fb_camera_api kApi = fb::camera_api<ThinLens>();
 constexpr fb_plugin kPlugin = fb::describe(
-    "thinlens", "1.0.0",
+    "thinlens", "1.1.0",
     "Thin lens with Blender's f-number, focus distance, blades, rotation and anamorphic ratio",
-    kApi);
+    kParams, kApi);
 
 }  // namespace
 

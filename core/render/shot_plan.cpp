@@ -1,0 +1,270 @@
+#include "core/render/shot_plan.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <filmback/camera_projection.h>
+
+#include "core/plugin/params.h"
+#include "core/scene/default_camera.h"
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+// The named camera (else the first, else one framing the scene), placed where it is at time_s.
+SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& name,
+                          double time_s) {
+  const auto posed = [&](SceneCamera camera) {
+    camera.world_from_camera = scene.world_from_camera(camera, time_s);
+    if (!camera.world_from_camera.is_finite())  // an animated scale of 0, say
+      throw InputError(scene.file.string() + ": camera '" + camera.name +
+                       "' at t = " + number_text(time_s) + " s: its transform is degenerate");
+    return camera;
+  };
+  if (!name)
+    return scene.cameras.empty() ? frame_bounds(scene.world_bounds(time_s))
+                                 : posed(scene.cameras.front());
+  return posed(find_camera(scene, *name));
+}
+
+// The shutter curve: --shutter-curve, else the shot's sampled curve as it is (typed, never
+// printed and parsed), else a box. An error names where the curve came from.
+ShutterCurve shutter_curve(const std::optional<std::string>& typed, const ShotSettings& shot) {
+  if (typed) return ShutterCurve::parse(*typed, "--shutter-curve");
+  const std::vector<double>& values = shot.shutter_curve;
+  if (std::adjacent_find(values.begin(), values.end(), std::not_equal_to<>()) == values.end())
+    return ShutterCurve();  // empty or constant: a box
+  if (std::optional<ShutterCurve> curve = ShutterCurve::table(values)) return std::move(*curve);
+  shot.shutter_curve_origin.fail(ShutterCurve::kTableExpected);
+}
+
+// A plugin named in an option's text ("NAME[:k=v,...]"); a malformed text is that option's error.
+PluginChoice typed_choice(const std::string& text, const char* option) {
+  PluginSpec spec = parse_plugin_spec(text, option);
+  return {std::move(spec.name), std::move(spec.settings), {}, ValueOrigin::from_option(option)};
+}
+
+// --- The one table from a shot to plugins (tests/layers/check_layers.py allows plugin names
+// --- here and nowhere else in core).
+
+constexpr const char* kDefaultFilter = "gaussian";
+constexpr const char* kDefaultIntegrator = "path";
+
+// Cycles' pixel filters as filter plugins (docs/filters.md, "Against Blender"): Blackman-Harris of
+// width w spans +-w; the Gaussian of width w is exp(-8x^2/w^2) (sigma = w/4) cut at +-1.5w; the box
+// of width w spans +-w/2.
+PluginChoice filter_for(const PixelFilterSetting& filter) {
+  const double w = filter.width_px;
+  const auto number = [&](const char* key, double x) {
+    return PlannedNumber{key, x, filter.origin};
+  };
+  switch (filter.type) {
+    case PixelFilterSetting::Type::kGaussian:
+      return {"gaussian", {}, {number("radius", 1.5 * w), number("sigma", w / 4)}, filter.origin};
+    case PixelFilterSetting::Type::kBox:
+      return {"box", {}, {number("radius", w / 2)}, filter.origin};
+    case PixelFilterSetting::Type::kBlackmanHarris:
+      break;
+  }
+  return {"blackman_harris", {}, {number("width", w)}, filter.origin};
+}
+
+// --filter, else the shot's pixel filter with its exact values, else the default.
+PluginChoice choose_filter(const std::optional<std::string>& typed, const ShotSettings& shot) {
+  if (typed) return typed_choice(*typed, "--filter");
+  if (shot.filter) return filter_for(*shot.filter);
+  return {kDefaultFilter, {}, {}, ValueOrigin::by_default("the shot names no pixel filter")};
+}
+
+// The lens values as parameters of the camera plugin (thinlens's schema: docs/camera-model.md).
+// The f-number travels as itself: the plugin alone turns f/N into an aperture radius f / 2N.
+std::vector<PlannedNumber> lens_numbers(const SceneCamera& camera) {
+  const PhysicalCamera& c = camera.physical;
+  std::vector<PlannedNumber> numbers;
+  const auto add = [&](const char* key, double x, CameraValue v) {
+    numbers.push_back({key, x, camera.origin(v)});
+  };
+  if (c.has_aperture()) add("fstop", c.fstop, CameraValue::kFstop);
+  add("focus_distance_m", c.focus_distance_m, CameraValue::kFocusDistance);
+  add("aperture_blades", c.aperture_blades, CameraValue::kApertureBlades);
+  add("aperture_rotation_rad", c.aperture_rotation_rad, CameraValue::kApertureRotation);
+  add("aperture_ratio", c.aperture_ratio, CameraValue::kApertureRatio);
+  return numbers;
+}
+
+// --camera-model (given the shot's lens values where it declares them), else only what the shot
+// needs: a pinhole unless it has an aperture (docs/camera-model.md).
+PluginChoice choose_camera_model(const std::optional<std::string>& typed, const SceneCamera& camera,
+                                 const SensorResponse& sensor) {
+  const PhysicalCamera& c = camera.physical;
+  if (typed) {
+    PluginChoice choice = typed_choice(*typed, "--camera-model");
+    choice.numbers = lens_numbers(camera);
+    return choice;
+  }
+  if (c.projection == FB_PROJECTION_ORTHOGRAPHIC) {
+    if (sensor.model == FB_SENSOR_PHYSICAL)
+      throw UsageError(
+          "--sensor-model physical: an orthographic camera has no aperture to expose through");
+    return {"orthographic", {}, {}, camera.origin(CameraValue::kOrthoScale)};
+  }
+  if (c.has_aperture())
+    return {"thinlens", {}, lens_numbers(camera), camera.origin(CameraValue::kFstop)};
+  if (sensor.model == FB_SENSOR_PHYSICAL)
+    throw UsageError("--sensor-model physical needs an aperture: give --fstop (the shot has none)");
+  return {"perspective", {}, {}, camera.origin(CameraValue::kFstop)};
+}
+
+PluginChoice choose_integrator(const std::optional<std::string>& typed) {
+  if (typed) return typed_choice(*typed, "--integrator");
+  return {kDefaultIntegrator, {}, {}, ValueOrigin::by_default("--integrator not given")};
+}
+
+// --- end of the table
+
+// A lens cannot focus closer than its focal length: the thin lens's image distance
+// D_img = f D / (D - f) (1/f = 1/D + 1/D_img) is infinite at D = f and negative inside it
+// (docs/camera-model.md). The error names where both values came from: a typed option is bad
+// usage, else the scene's value is bad input.
+void check_focus_beyond_focal_length(const SceneCamera& camera) {
+  const PhysicalCamera& c = camera.physical;
+  const double focal_m = c.focal_length_mm * 1e-3;
+  if (c.projection != FB_PROJECTION_PERSPECTIVE || !c.has_aperture() ||
+      c.focus_distance_m > focal_m)
+    return;
+  const ValueOrigin& focus = camera.origin(CameraValue::kFocusDistance);
+  const ValueOrigin& focal = camera.origin(CameraValue::kFocalLength);
+  const bool blame_focus = focus.typed() || !focal.typed();
+  const std::string what =
+      "focus distance " + number_text(c.focus_distance_m) + " m is not beyond the focal length " +
+      number_text(c.focal_length_mm) + " mm (" +
+      (blame_focus ? "focal length from " + focal.text() : "focus distance from " + focus.text()) +
+      "): a lens cannot focus closer than its focal length (its image distance f D / (D - f) "
+      "is infinite or negative); expected a focus distance over " +
+      number_text(focal_m) + " m";
+  (blame_focus ? focus : focal).fail(what);
+}
+
+// The frame's time on the scene's timeline, t = frame / fps (glTF's, as Blender writes it), and the
+// shutter around it: each from the command line, else the scene's settings, else frame 0 at
+// kDefaultFps with a closed shutter.
+void plan_times(const ShotSettings& shot, const RenderOptions& options, ShotPlan& plan) {
+  plan.frame = options.frame.value_or(shot.frame.value_or(0.0));
+  plan.fps = options.fps.value_or(shot.fps.value_or(kDefaultFps));
+  const double frame_s = plan.frame / plan.fps;
+  plan.shutter_s = options.shutter_s.value_or(
+      shot.shutter_open_s ? Vec2d{*shot.shutter_open_s, *shot.shutter_close_s} : Vec2d{0, 0});
+  plan.times = {frame_s, frame_s + plan.shutter_s.x, frame_s + plan.shutter_s.y};
+  plan.shutter_curve = shutter_curve(options.shutter_curve, shot);
+}
+
+// The camera, its focus and overrides where it stands while the shutter is open.
+SceneCamera plan_camera(const Scene& scene, const RenderOptions& options, const ShotPlan& plan) {
+  const double still_s = plan.times.still_s();
+  SceneCamera camera = choose_camera(scene, options.camera, still_s);
+  if (camera.focus_track)
+    camera.physical.focus_distance_m = camera.focus_track->at(still_s * plan.fps);
+  options.camera_overrides.apply(camera);
+  check_focus_beyond_focal_length(camera);
+  return camera;
+}
+
+void plan_image(const ShotSettings& shot, const RenderOptions& options, ShotPlan& plan) {
+  if (options.width.has_value() != options.height.has_value())
+    throw UsageError("--res: give both width and height");
+  std::tie(plan.width_px, plan.height_px) =
+      options.width   ? std::pair{*options.width, *options.height}
+      : shot.width_px ? std::pair{*shot.width_px, *shot.height_px}
+                      : default_resolution(plan.camera);
+  plan.samples_per_pixel = options.samples_per_pixel.value_or(kDefaultSamplesPerPixel);
+  plan.pixel_aspect = shot.pixel_aspect.value_or(1.0);
+  // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
+  const double open_s = plan.shutter_s.y - plan.shutter_s.x;
+  plan.sensor = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
+}
+
+}  // namespace
+
+namespace {
+
+void append_setting(std::string& text, const std::string& key, const std::string& value) {
+  text.append(text.find(':') == std::string::npos ? ":" : ",")
+      .append(key)
+      .append("=")
+      .append(value);
+}
+
+}  // namespace
+
+std::string PluginChoice::typed_text() const {
+  std::string out = name;
+  for (const auto& [key, value] : typed)
+    append_setting(out, key, value);
+  return out;
+}
+
+std::string PluginChoice::text() const {
+  std::string out = typed_text();
+  for (const PlannedNumber& n : numbers)
+    if (std::none_of(typed.begin(), typed.end(), [&](const auto& t) { return t.first == n.key; }))
+      append_setting(out, n.key, number_text(n.value));
+  return out;
+}
+
+fb_camera_setup ShotPlan::camera_setup() const {
+  return make_camera_setup(camera.physical, width_px, height_px, pixel_aspect, sensor);
+}
+
+ShotPlan plan_shot(const Scene& scene, const RenderOptions& options) {
+  const ShotSettings& shot = scene.settings;
+  ShotPlan plan;
+  plan_times(shot, options, plan);
+  plan.camera = plan_camera(scene, options, plan);
+  plan_image(shot, options, plan);
+  plan.camera_model = choose_camera_model(options.camera_model, plan.camera, plan.sensor);
+  plan.filter = choose_filter(options.filter, shot);
+  plan.integrator = choose_integrator(options.integrator);
+  return plan;
+}
+
+std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
+  const double aspect = camera.intended_aspect.value_or(16.0 / 9.0);
+  if (aspect >= 1.0)
+    return {kDefaultLongSidePx,
+            std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx / aspect)))};
+  return {std::max<uint32_t>(1, uint32_t(std::lround(kDefaultLongSidePx * aspect))),
+          kDefaultLongSidePx};
+}
+
+std::string planned_filter_text(const std::optional<std::string>& typed, const ShotSettings& shot) {
+  return choose_filter(typed, shot).text();
+}
+
+std::optional<std::string> shot_filter_text(const ShotSettings& shot) {
+  if (!shot.filter) return std::nullopt;
+  return filter_for(*shot.filter).text();
+}
+
+void CameraOverrides::apply(SceneCamera& camera) const {
+  const auto typed = [&](CameraValue v, const std::optional<double>& x, const char* option) {
+    if (!x) return;
+    set_camera_value(camera.physical, v, *x);
+    camera.origins[size_t(v)] = ValueOrigin::from_option(option);
+  };
+  using V = CameraValue;
+  typed(V::kFocalLength, focal_length_mm, "--focal-length");
+  typed(V::kFstop, fstop, "--fstop");
+  typed(V::kFocusDistance, focus_distance_m, "--focus-distance");
+  if (sensor_mm) {
+    typed(V::kSensorWidth, sensor_mm->x, "--sensor");
+    typed(V::kSensorHeight, sensor_mm->y, "--sensor");
+  }
+  if (sensor_fit) typed(V::kSensorFit, double(*sensor_fit), "--sensor-fit");
+  if (shift) {
+    typed(V::kShiftX, shift->x, "--shift");
+    typed(V::kShiftY, shift->y, "--shift");
+  }
+}
+
+}  // namespace fb

@@ -1,0 +1,122 @@
+// The shot plan: one pure step from a scene, its shot settings and the command line to typed
+// choices: the camera posed at the shot's time, the resolution, samples, times, shutter curve and
+// sensor, and which camera, filter and integrator plugins render it with which values. Each value
+// keeps its origin (core/scene/value_origin.h), so that `filmback info` can print it and an error
+// names it. The plan loads nothing and reads no file; a RenderJob loads what it names
+// (core/render/render_job.h). This file's .cpp holds the one table from a shot's projection and
+// pixel filter to plugins (docs/architecture.md, "The shot plan").
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <filmback/vec.h>
+
+#include "core/film/film.h"
+#include "core/render/sampler.h"
+#include "core/render/shutter.h"
+#include "core/scene/scene.h"
+#include "core/scene/value_origin.h"
+#include "core/subdiv/refine_scene.h"
+
+namespace fb {
+
+// Values typed on the command line that replace the scene camera's (docs/cli.md).
+struct CameraOverrides {
+  std::optional<double> focal_length_mm;
+  std::optional<double> fstop;  // as fstop_from gives it: HUGE_VAL is a pinhole
+  std::optional<double> focus_distance_m;
+  std::optional<Vec2d> sensor_mm;  // width, height
+  std::optional<uint32_t> sensor_fit;
+  std::optional<Vec2d> shift;
+  // Replaces the camera's values, each with the option as its origin.
+  void apply(SceneCamera& camera) const;
+};
+
+struct RenderOptions {
+  std::optional<uint32_t> width, height;  // both or neither
+  std::optional<uint32_t> samples_per_pixel;
+  std::optional<std::string> camera;        // a scene camera by name
+  std::optional<std::string> camera_model;  // "NAME[:k=v,...]": overrides the projection's plugin
+  std::optional<std::string> filter;        // "NAME[:k=v,...]"
+  std::optional<std::string> integrator;    // "NAME[:k=v,...]"
+  std::optional<Rgb> background;
+  CameraOverrides camera_overrides;
+  std::optional<Vec2d> shutter_s;            // open, close, relative to the frame's time
+  std::optional<std::string> shutter_curve;  // "box", "trapezoid[:ramp=R]", "table:values=[...]"
+  std::optional<double> frame, fps;
+  uint32_t sensor_model = FB_SENSOR_SIMPLE;
+  double iso = 100.0;
+  uint64_t seed = 0;
+  SamplerKind sampler = kDefaultSampler;                        // docs/sampling.md
+  Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
+  SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
+  bool show_progress = true;
+  // What the render may hold at its peak (core/render/memory_estimate.h); none: half of the
+  // machine's memory.
+  std::optional<uint64_t> memory_limit_bytes;
+};
+
+// Documented defaults (docs/cli.md).
+constexpr uint32_t kDefaultLongSidePx = 1280;
+constexpr uint32_t kDefaultSamplesPerPixel = 64;
+constexpr double kDefaultFps = 24;  // Blender's; matters only when the frame is not 0
+
+// A number the plan hands a plugin parameter: typed data, never printed and parsed back.
+struct PlannedNumber {
+  std::string key;
+  double value = 0;
+  ValueOrigin origin;  // the scene value (file and JSON path) or option it came from
+};
+
+// One plugin as the plan chose it.
+struct PluginChoice {
+  std::string name;
+  // key=value pairs typed with the name in an option ("--filter gaussian:sigma=1"), in order.
+  std::vector<std::pair<std::string, std::string>> typed;
+  // Values from the shot. Each sets the parameter of its name when the plugin declares one and
+  // `typed` does not set it: a shot's lens values reach any camera plugin with a parameter of
+  // that name (docs/plugins.md, "Camera parameters").
+  std::vector<PlannedNumber> numbers;
+  // Why this plugin: the option that named it, the shot value that called for it, or a default.
+  // Errors about the plugin or its values name it.
+  ValueOrigin origin;
+  // "gaussian:radius=2.25,sigma=0.375": the typed pairs, then the shot's numbers, for the plan
+  // line, the image metadata and messages (the render passes the values as they are).
+  std::string text() const;
+  std::string typed_text() const;  // the name and the typed pairs only: what the user wrote
+};
+
+struct ShotPlan {
+  SceneCamera camera;  // posed at the still time, its focus track evaluated, options applied
+  uint32_t width_px = 0, height_px = 0, samples_per_pixel = 0;
+  double pixel_aspect = 1;  // pixel width / height
+  double frame = 0, fps = kDefaultFps;
+  Vec2d shutter_s;  // open, close, relative to the frame's time
+  ShotTimes times;  // the shutter and the frame's time on the scene's timeline, s
+  ShutterCurve shutter_curve;
+  SensorResponse sensor;
+  PluginChoice camera_model, filter, integrator;
+
+  // The host's part of the camera (pose aside): projection, sensor, resolution, and, for plugins
+  // built before camera parameters, the lens (plugin_abi.h).
+  fb_camera_setup camera_setup() const;
+};
+
+// Throws UsageError for options that contradict each other or the shot, InputError (naming the
+// file and JSON path) for scene values no plugin can take. Reads nothing but its arguments.
+ShotPlan plan_shot(const Scene& scene, const RenderOptions& options);
+
+// The image size a render gets without --res: the long side kDefaultLongSidePx at the shot's
+// intended aspect (16:9 when the scene does not say).
+std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera);
+
+// The filter a render with `typed` (--filter) uses on this shot, as PluginChoice::text() says it:
+// "gaussian:radius=2.25,sigma=0.375" for a shot's Gaussian of width 1.5 px.
+std::string planned_filter_text(const std::optional<std::string>& typed, const ShotSettings& shot);
+// The shot's own pixel filter so; nothing when the shot names none.
+std::optional<std::string> shot_filter_text(const ShotSettings& shot);
+
+}  // namespace fb
