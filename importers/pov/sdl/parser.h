@@ -229,7 +229,6 @@ class Parser {
   void count_objects(uint64_t n);
 
  private:
-  friend class DirectiveRunner;
   struct Frame {
     std::shared_ptr<TokenFile> file;
     size_t pos = 0;
@@ -295,7 +294,20 @@ class Parser {
   int vector_level_ = -1;  // expression nesting at which '>' closes a vector literal
 
   // directives.cpp
-  void run_directive(const Token& token);
+  void run_directive(const Token& token);  // dispatches to one of the run_* below
+  void run_if();
+  void run_ifdef(bool runs_if_defined);
+  void run_else(const std::string& which);
+  void run_while();
+  void run_for();
+  void run_switch();
+  void run_case(const std::string& which);
+  void run_break();
+  void run_undef();
+  void run_version();
+  void run_message(const std::string& which);
+  void run_default();
+  void run_fclose();
   void skip_to_branch(bool from_if_start);
   void skip_levels(int levels);
   bool parse_condition();
