@@ -214,12 +214,17 @@ class Parser {
   // ---- objects (objects.cpp) ----
   bool is_object_keyword(const Tok& tok) const;
   Node parse_object(const Tok& keyword);
+  Node parse_object_reference();  // object { ... }, after the '{'
+  bool parse_csg_children(const std::string& keyword, const SourceLocation& where, Object& o,
+                          Node& node);
   void parse_mesh(Object& o);
   void parse_mesh2(Object& o);
   bool parse_polynomial(const std::string& keyword, Object& o);
   void skip_rest_of_block();  // to the '}' closing a block already open
   void parse_object_mods(Node& node);
-  void ensure_texture(Object& o);  // the object's own texture, from the #default one if none
+  void parse_clipped_by(Node& node, Object& o);
+  void complete_appearance(Object& o);  // after the modifiers: CSG and mesh inheritance
+  void ensure_texture(Object& o);       // the object's own texture, from the #default one if none
 
   // ---- scene statements (statements.cpp) ----
   CameraStatement parse_camera(const Tok& keyword);
