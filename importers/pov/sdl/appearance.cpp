@@ -4,6 +4,7 @@
 #include <numbers>
 #include <optional>
 
+#include "importers/pov/sdl/keyword_table.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {
@@ -238,13 +239,6 @@ constexpr PigmentModifier kPigmentModifiers[] = {
        parser.skip_block();
      }},
 };
-
-const PigmentModifier* find_pigment_modifier(std::string_view w) {
-  for (const PigmentModifier& modifier : kPigmentModifiers) {
-    if (modifier.name == w) return &modifier;
-  }
-  return nullptr;
-}
 
 // ---- texture steps (POV-Ray 3.7 manual 3.5.1 "Texture", 3.5.6 "Patterned Textures") ----
 
@@ -490,7 +484,7 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       p.colour_map = parse_colour_map(w == "pigment_map");
     } else if (tok.identifier && tok.value.get<ColourMap>()) {
       p.colour_map = *tok.value.get<ColourMap>();
-    } else if (const PigmentModifier* modifier = find_pigment_modifier(w)) {
+    } else if (const PigmentModifier* modifier = find_keyword(kPigmentModifiers, w)) {
       modifier->parse(*this, p, tok);
     } else if (auto m = parse_transform_item(tok)) {
       move_pigment(p, m->inverse());

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "importers/pov/sdl/keyword_table.h"
+
 namespace fb::pov::sdl {
 
 std::string number_string(double value) {
@@ -87,16 +89,6 @@ class Args {
 
 Value boolean(bool b) {
   return Value::number(b ? 1 : 0);
-}
-
-// A table entry: a keyword and what it evaluates to. Linear search is enough: each table is a few
-// dozen short names, searched once per built-in met.
-template <typename Entry, size_t N>
-const Entry* find_entry(const Entry (&table)[N], std::string_view name) {
-  for (const Entry& entry : table) {
-    if (entry.name == name) return &entry;
-  }
-  return nullptr;
 }
 
 // ---- constants and render settings (manual 3.3.1.1.5 "Float Identifiers", 3.3.1.3.3 "Built-in
@@ -526,10 +518,10 @@ constexpr Function kFunctions[] = {
 
 std::optional<Value> builtin(Parser& p, const Tok& tok) {
   const std::string& word = tok.token.text;
-  if (const Constant* c = find_entry(kConstants, word)) return c->value(p.options());
-  if (const UnaryMath* f = find_entry(kUnaryMath, word)) return unary_math(p, word, *f);
-  if (const BinaryMath* f = find_entry(kBinaryMath, word)) return binary_math(p, word, *f);
-  if (const Function* f = find_entry(kFunctions, word)) return f->call(p, tok);
+  if (const Constant* c = find_keyword(kConstants, word)) return c->value(p.options());
+  if (const UnaryMath* f = find_keyword(kUnaryMath, word)) return unary_math(p, word, *f);
+  if (const BinaryMath* f = find_keyword(kBinaryMath, word)) return binary_math(p, word, *f);
+  if (const Function* f = find_keyword(kFunctions, word)) return f->call(p, tok);
   return std::nullopt;
 }
 

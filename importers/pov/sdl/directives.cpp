@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "importers/pov/sdl/keyword_table.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {
@@ -319,9 +320,7 @@ void Parser::run_directive(const Token& token) {
       {"write", [](P p, W) { p.run_write(); }},
   };
   const std::string& which = token.text;
-  for (const Entry& entry : kDirectives) {
-    if (entry.name == which) return entry.run(*this, which);
-  }
+  if (const Entry* entry = find_keyword(kDirectives, which)) return entry->run(*this, which);
   fail("unknown directive #" + which);
 }
 
