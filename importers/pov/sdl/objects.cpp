@@ -1,8 +1,10 @@
 // Objects: the finite and infinite primitives, triangle meshes, polygon, object references, CSG,
 // and the modifiers every object takes (transforms, texture, flags, clipped_by).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "importers/pov/sdl/keyword_table.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {
@@ -148,62 +150,50 @@ Node missing_node(const std::string& keyword, const SourceLocation& where) {
 // ---- the primitives' own arguments (POV-Ray 3.7 manual 3.4.1 "Finite Solid Primitives",
 // 3.4.3 "Infinite Solid Primitives", 3.4.2 "Finite Patch Primitives") ----
 
-void parse_sphere(Parser& p, Object& o) {  // sphere { Center, Radius }
-  o.shape = Shape::kSphere;
-  o.a = p.parse_vector();
-  p.accept(",");
-  o.r0 = p.parse_float();
-}
+// Where a primitive's argument goes: the points or vectors `a` and `b`, the radii (or distance)
+// `r0` and `r1`.
+enum class Arg { kA, kB, kR0, kR1 };
 
-void parse_box(Parser& p, Object& o) {  // box { Corner1, Corner2 }
-  o.shape = Shape::kBox;
-  o.a = p.parse_vector();
-  p.accept(",");
-  o.b = p.parse_vector();
-}
+// A primitive whose arguments are a fixed list of vectors and floats, separated by optional
+// commas.
+struct Primitive {
+  std::string_view name;
+  Shape shape;
+  std::array<Arg, 4> args;
+  int count;
+  bool optional_r1 = false;  // disc's hole radius
+};
 
-void parse_plane(Parser& p, Object& o) {  // plane { Normal, Distance }
-  o.shape = Shape::kPlane;
-  o.a = p.parse_vector();
-  p.accept(",");
-  o.r0 = p.parse_float();
-}
+constexpr Primitive kPrimitives[] = {
+    {"sphere", Shape::kSphere, {Arg::kA, Arg::kR0}, 2},                 // Center, Radius
+    {"box", Shape::kBox, {Arg::kA, Arg::kB}, 2},                        // Corner1, Corner2
+    {"plane", Shape::kPlane, {Arg::kA, Arg::kR0}, 2},                   // Normal, Distance
+    {"cylinder", Shape::kCylinder, {Arg::kA, Arg::kB, Arg::kR0}, 3},    // Base, Cap, Radius
+    {"cone", Shape::kCone, {Arg::kA, Arg::kR0, Arg::kB, Arg::kR1}, 4},  // Base, r, Cap, r
+    {"torus", Shape::kTorus, {Arg::kR0, Arg::kR1}, 2},                  // Major, Minor
+    {"disc", Shape::kDisc, {Arg::kA, Arg::kB, Arg::kR0}, 3, true},      // Center, Normal, r
+};
 
-void parse_cylinder(Parser& p, Object& o) {  // cylinder { Base, Cap, Radius }
-  o.shape = Shape::kCylinder;
-  o.a = p.parse_vector();
-  p.accept(",");
-  o.b = p.parse_vector();
-  p.accept(",");
-  o.r0 = p.parse_float();
-}
-
-void parse_cone(Parser& p, Object& o) {  // cone { Base, Base_Radius, Cap, Cap_Radius }
-  o.shape = Shape::kCone;
-  o.a = p.parse_vector();
-  p.accept(",");
-  o.r0 = p.parse_float();
-  p.accept(",");
-  o.b = p.parse_vector();
-  p.accept(",");
-  o.r1 = p.parse_float();
-}
-
-void parse_torus(Parser& p, Object& o) {  // torus { Major, Minor }
-  o.shape = Shape::kTorus;
-  o.r0 = p.parse_float();
-  p.accept(",");
-  o.r1 = p.parse_float();
-}
-
-void parse_disc(Parser& p, Object& o) {  // disc { Center, Normal, Radius [, Hole_Radius] }
-  o.shape = Shape::kDisc;
-  o.a = p.parse_vector();
-  p.accept(",");
-  o.b = p.parse_vector();
-  p.accept(",");
-  o.r0 = p.parse_float();
-  if (p.accept(",")) o.r1 = p.parse_float();
+void parse_primitive(Parser& p, Object& o, const Primitive& primitive) {
+  o.shape = primitive.shape;
+  for (int i = 0; i < primitive.count; ++i) {
+    if (i) p.accept(",");
+    switch (primitive.args[static_cast<size_t>(i)]) {
+      case Arg::kA:
+        o.a = p.parse_vector();
+        break;
+      case Arg::kB:
+        o.b = p.parse_vector();
+        break;
+      case Arg::kR0:
+        o.r0 = p.parse_float();
+        break;
+      case Arg::kR1:
+        o.r1 = p.parse_float();
+        break;
+    }
+  }
+  if (primitive.optional_r1 && p.accept(",")) o.r1 = p.parse_float();
 }
 
 // triangle { C1, C2, C3 } / smooth_triangle { C1, N1, C2, N2, C3, N3 }: a one-triangle mesh.
@@ -249,33 +239,19 @@ void parse_polygon(Parser& p, Object& o) {
   }
 }
 
-// The objects whose body is their own arguments then the modifiers, one line each.
+// The other shapes, whose arguments need their own parser.
 struct ShapeParser {
   std::string_view name;
   void (*parse)(Parser&, Object&);
 };
 
 constexpr ShapeParser kShapes[] = {
-    {"sphere", parse_sphere},
-    {"box", parse_box},
-    {"plane", parse_plane},
-    {"cylinder", parse_cylinder},
-    {"cone", parse_cone},
-    {"torus", parse_torus},
-    {"disc", parse_disc},
     {"triangle", [](Parser& p, Object& o) { parse_triangle(p, o, false); }},
     {"smooth_triangle", [](Parser& p, Object& o) { parse_triangle(p, o, true); }},
     {"mesh", [](Parser& p, Object& o) { p.parse_mesh(o); }},
     {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
     {"polygon", parse_polygon},
 };
-
-const ShapeParser* find_shape(std::string_view keyword) {
-  for (const ShapeParser& shape : kShapes) {
-    if (shape.name == keyword) return &shape;
-  }
-  return nullptr;
-}
 
 bool is_polynomial(std::string_view w) {
   return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly";
@@ -529,7 +505,9 @@ Node Parser::parse_object(const Tok& keyword) {
   expect("{");
   if (w == "object") return parse_object_reference();
   bool dropped = false;  // an unsupported object left out of this CSG
-  if (const ShapeParser* shape = find_shape(w)) {
+  if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
+    parse_primitive(*this, o, *primitive);
+  } else if (const ShapeParser* shape = find_keyword(kShapes, w)) {
     shape->parse(*this, o);
   } else if (is_polynomial(w)) {
     if (!parse_polynomial(w, o)) {
