@@ -97,7 +97,7 @@ void move_pigment(Pigment& pigment, const Matrix& inverse) {
     move_pigment(entry, inverse);
 }
 
-// ---- pigment steps (POV-Ray 3.7 manual 3.5.11 "Patterns", 3.5.12 "Pattern Modifiers") ----
+// ---- pigment steps (POV-Ray 3.7 reference, "Patterns", "Pattern Modifiers") ----
 
 // The entries of a list pattern (checker A, B; hexagon A, B, C; brick A, B), at most `max`:
 // pigments, colours or pigment identifiers.
@@ -240,7 +240,7 @@ constexpr PigmentModifier kPigmentModifiers[] = {
      }},
 };
 
-// ---- texture steps (POV-Ray 3.7 manual 3.5.1 "Texture", 3.5.6 "Patterned Textures") ----
+// ---- texture steps (POV-Ray 3.7 reference, "Texture", "Patterned Textures") ----
 
 // A texture pattern is not evaluated: the first texture of its list or map stands for the whole
 // pattern, so only that one is kept.

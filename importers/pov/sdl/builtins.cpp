@@ -91,8 +91,8 @@ Value boolean(bool b) {
   return Value::number(b ? 1 : 0);
 }
 
-// ---- constants and render settings (manual 3.3.1.1.5 "Float Identifiers", 3.3.1.3.3 "Built-in
-// Vector Identifiers") ----
+// ---- constants and render settings (POV-Ray 3.7 reference, "Float Identifiers" and
+// "Built-in Vector Identifiers") ----
 
 struct Constant {
   std::string_view name;
@@ -146,7 +146,7 @@ constexpr Constant kConstants[] = {
     {"version", [](O) { return Value::number(3.7); }},
 };
 
-// ---- float functions of one float (manual 3.3.1.1.6 "Float Functions") ----
+// ---- float functions of one float (POV-Ray 3.7 reference, "Float Functions") ----
 
 // The domain is checked before the call, so that ln(0) names its cause instead of "overflows".
 struct UnaryMath {
@@ -264,7 +264,7 @@ Value select_by_sign(Parser& p, const Tok& tok) {
   return s < 0 ? neg : zero;
 }
 
-// ---- vector functions (manual 3.3.1.3.4 "Vector Functions") ----
+// ---- vector functions (POV-Ray 3.7 reference, "Vector Functions") ----
 
 Value vector_length(Parser& p, const Tok& tok) {
   const std::string& word = tok.token.text;
@@ -318,7 +318,7 @@ Value vturbulence(Parser& p, const Tok& tok) {
   return from_vec3({0, 0, 0});
 }
 
-// ---- string functions (manual 3.3.1.9.5 "String Functions") ----
+// ---- string functions (POV-Ray 3.7 reference, "String Functions") ----
 
 Value vstr(Parser& p, const Tok& tok) {
   Args a(p, tok.token.text);

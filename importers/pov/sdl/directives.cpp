@@ -279,7 +279,7 @@ void Parser::directive(const Token& token) {
   run_directive(token);
 }
 
-// The directives by name, one line each (POV-Ray 3.7 manual 3.3.2 "Language Directives"); each
+// The directives by name, one line each (POV-Ray 3.7 reference, "Language Directives"); each
 // family's handler reads its own arguments. The lambdas are written inside a member, so they reach
 // the private handlers.
 void Parser::run_directive(const Token& token) {
@@ -459,7 +459,7 @@ void Parser::run_message(const std::string& which) {
   if (which == "error") fail("#error: " + text.text);
 }
 
-// #default { texture | pigment | finish | normal ... } (manual 3.3.2.3).
+// #default { texture | pigment | finish | normal ... }.
 void Parser::run_default() {
   expect("{");
   for (;;) {

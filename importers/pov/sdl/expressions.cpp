@@ -27,7 +27,7 @@ double srgb_decode(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-// ---- the values only #declare and #local hold (POV-Ray 3.7 manual 3.3.2.2 "Declare") ----
+// ---- the values only #declare and #local hold (POV-Ray 3.7 reference, "Declare") ----
 
 // texture {..} [texture {..} ...]: of layered textures the first, the base layer, is kept.
 Texture parse_layered_texture(Parser& p) {
@@ -40,7 +40,7 @@ Texture parse_layered_texture(Parser& p) {
   return texture;
 }
 
-// sky_sphere { [Identifier] pigment {..} ... transforms } (manual 3.4.10.4).
+// sky_sphere { [Identifier] pigment {..} ... transforms }.
 SkySphere parse_sky_sphere(Parser& p) {
   SkySphere sky;
   p.expect("{");
@@ -135,7 +135,7 @@ void fill_array(Parser& p, ArrayValue& array, size_t dim, size_t& index) {
            std::to_string(sizes[dim]));
 }
 
-// array[n][m]... [{ initialisers }] (manual 3.3.2.4 "Array Identifiers").
+// array[n][m]... [{ initialisers }] (POV-Ray 3.7 reference, "Array Identifiers").
 Value parse_array(Parser& p) {
   double total = 1;
   std::vector<size_t> sizes = parse_array_sizes(p, total);

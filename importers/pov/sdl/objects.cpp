@@ -147,8 +147,8 @@ Node missing_node(const std::string& keyword, const SourceLocation& where) {
   return node;
 }
 
-// ---- the primitives' own arguments (POV-Ray 3.7 manual 3.4.1 "Finite Solid Primitives",
-// 3.4.3 "Infinite Solid Primitives", 3.4.2 "Finite Patch Primitives") ----
+// ---- the primitives' own arguments (POV-Ray 3.7 reference, "Finite Solid Primitives",
+// "Infinite Solid Primitives", "Finite Patch Primitives") ----
 
 // Where a primitive's argument goes: the points or vectors `a` and `b`, the radii (or distance)
 // `r0` and `r1`.
@@ -257,7 +257,7 @@ bool is_polynomial(std::string_view w) {
   return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly";
 }
 
-// ---- mesh2 (manual 3.4.2.2.2): its blocks, read in any order ----
+// ---- mesh2 (POV-Ray 3.7 reference, "Mesh2"): its blocks, read in any order ----
 
 // The `{ Count,` that opens a mesh2 block, bounded by the object limit.
 size_t mesh2_count(Parser& p) {
@@ -373,7 +373,7 @@ void finish_mesh2(Parser& p, Object& o, std::vector<Vec3d>& normals,
   }
 }
 
-// ---- object modifiers (manual 3.4.9 "Object Modifiers") ----
+// ---- object modifiers (POV-Ray 3.7 reference, "Object Modifiers") ----
 
 void take_material(const MaterialValue& m, Object& o) {
   if (m.texture) {
