@@ -4,6 +4,7 @@
 #include <numbers>
 #include <optional>
 
+#include "importers/pov/sdl/keyword_table.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {
@@ -92,7 +93,222 @@ Pigment solid(const Colour& c) {
 
 void move_pigment(Pigment& pigment, const Matrix& inverse) {
   pigment.pattern_from_world = pigment.pattern_from_world * inverse;
-  for (Pigment& entry : pigment.list) move_pigment(entry, inverse);
+  for (Pigment& entry : pigment.list)
+    move_pigment(entry, inverse);
+}
+
+// ---- pigment steps (POV-Ray 3.7 reference, "Patterns", "Pattern Modifiers") ----
+
+// The entries of a list pattern (checker A, B; hexagon A, B, C; brick A, B), at most `max`:
+// pigments, colours or pigment identifiers.
+void parse_list_entries(Parser& parser, Pigment& p, size_t max) {
+  p.list.clear();
+  for (;;) {
+    const Tok& tok = parser.peek();
+    if (p.list.size() >= max) break;
+    if (tok.word("pigment")) {
+      parser.next();
+      p.list.push_back(parser.parse_pigment());
+    } else if (parser.starts_colour(tok) || (tok.identifier && tok.value.numeric()) ||
+               tok.symbol("<") || tok.token.kind == TokenKind::kNumber) {
+      Pigment entry;
+      entry.colour = parser.parse_colour();
+      p.list.push_back(entry);
+    } else if (tok.identifier && tok.value.get<Pigment>()) {
+      p.list.push_back(*parser.next().value.get<Pigment>());
+    } else {
+      break;
+    }
+    parser.accept(",");
+  }
+}
+
+// A pattern keyword and its arguments; list patterns get POV-Ray's default entries where the
+// scene gives fewer.
+void parse_pigment_pattern(Parser& parser, Pigment& p, const Tok& tok) {
+  const std::string& w = tok.token.text;
+  p.pattern = evaluated_pattern(w).value_or(Pattern::kSolid);
+  p.averaged = !evaluated_pattern(w);
+  p.name = w;
+  p.colour_map.clear();
+  p.list.clear();
+  if (w == "checker" || w == "brick") {
+    parse_list_entries(parser, p, 2);
+    // defaults (POV-Ray manual 3.5.11): checker blue and green, brick white mortar and red
+    Colour a = w == "checker" ? Colour{0, 0, 1} : Colour{1, 1, 1};
+    Colour b = w == "checker" ? Colour{0, 1, 0} : Colour{1, 0, 0};
+    if (p.list.size() < 1) p.list.push_back(solid(a));
+    if (p.list.size() < 2) p.list.push_back(solid(b));
+  } else if (w == "hexagon") {
+    parse_list_entries(parser, p, 3);
+    const Colour defaults[3] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};  // blue, green, red
+    while (p.list.size() < 3)
+      p.list.push_back(solid(defaults[p.list.size()]));
+  } else if (w == "gradient") {
+    p.gradient = parser.parse_vector();
+  } else {
+    parser.parse_pattern_arguments(w);
+  }
+  if (p.averaged && w != "image_map") parser.unsupported("pattern " + w, parser.location_of(tok));
+}
+
+// poly_wave [Exponent]
+void parse_poly_wave(Parser& parser, Pigment& p) {
+  p.wave = Wave::kPoly;
+  const Tok& n = parser.peek();
+  if (n.token.kind == TokenKind::kNumber || (n.identifier && n.value.kind == ValueKind::kFloat)) {
+    p.wave_exponent = parser.parse_float();
+  }
+}
+
+// A modifier whose optional value is dropped (image_map's once, crackle's metric ...).
+void skip_optional_value(Parser& parser) {
+  const Tok& n = parser.peek();
+  if (n.token.kind == TokenKind::kNumber || n.symbol("<") || n.symbol("-") ||
+      (n.identifier && n.value.numeric())) {
+    parser.parse_expression();
+  }
+}
+
+void skip_two_floats(Parser& parser) {
+  parser.parse_float();
+  parser.accept(",");
+  parser.parse_float();
+}
+
+// The modifiers a pigment reads after its pattern, one line each: those with a field in Pigment
+// are kept, the others read and dropped (uv_mapping and warp reported).
+struct PigmentModifier {
+  std::string_view name;
+  void (*parse)(Parser&, Pigment&, const Tok&);
+};
+
+using P = Parser&;
+using G = Pigment&;
+using T = const Tok&;
+constexpr PigmentModifier kPigmentModifiers[] = {
+    {"turbulence", [](P parser, G p, T) { p.turbulence = parser.parse_vector(); }},
+    {"octaves", [](P parser, G p, T) { p.octaves = static_cast<int>(parser.parse_float()); }},
+    {"omega", [](P parser, G p, T) { p.omega = parser.parse_float(); }},
+    {"lambda", [](P parser, G p, T) { p.lambda = parser.parse_float(); }},
+    {"frequency", [](P parser, G p, T) { p.frequency = parser.parse_float(); }},
+    {"phase", [](P parser, G p, T) { p.phase = parser.parse_float(); }},
+    {"ramp_wave", [](P, G p, T) { p.wave = Wave::kRamp; }},
+    {"triangle_wave", [](P, G p, T) { p.wave = Wave::kTriangle; }},
+    {"sine_wave", [](P, G p, T) { p.wave = Wave::kSine; }},
+    {"scallop_wave", [](P, G p, T) { p.wave = Wave::kScallop; }},
+    {"cubic_wave", [](P, G p, T) { p.wave = Wave::kCubic; }},
+    {"poly_wave", [](P parser, G p, T) { parse_poly_wave(parser, p); }},
+    {"brick_size", [](P parser, G p, T) { p.brick_size = parser.parse_vector(); }},
+    {"mortar", [](P parser, G p, T) { p.mortar = parser.parse_float(); }},
+    {"quick_color", [](P parser, G, T) { parser.parse_colour(); }},
+    {"quick_colour", [](P parser, G, T) { parser.parse_colour(); }},
+    {"agate_turb", [](P parser, G, T) { parser.parse_float(); }},
+    {"uv_mapping",
+     [](P parser, G, T tok) { parser.unsupported("uv_mapping", parser.location_of(tok)); }},
+    // mandel/julia: interior Type, Factor
+    {"interior", [](P parser, G, T) { skip_two_floats(parser); }},
+    {"exterior", [](P parser, G, T) { skip_two_floats(parser); }},
+    {"noise_generator", [](P parser, G, T) { parser.parse_float(); }},
+    {"metric", [](P parser, G, T) { parser.parse_float(); }},
+    {"offset", [](P parser, G, T) { parser.parse_float(); }},
+    {"control0", [](P parser, G, T) { parser.parse_float(); }},
+    {"control1", [](P parser, G, T) { parser.parse_float(); }},
+    {"interpolate", [](P parser, G, T) { parser.parse_float(); }},
+    {"map_type", [](P parser, G, T) { parser.parse_float(); }},
+    {"form", [](P parser, G, T) { parser.parse_vector(); }},
+    {"solid", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"once", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"use_colour", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"use_color", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"use_index", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"use_alpha", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"orientation", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"dist_exp", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"major_radius", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"exponent", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"coords", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"accuracy", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"repeat", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"flip", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"precision", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"color_space", [](P parser, G, T) { skip_optional_value(parser); }},
+    {"warp",
+     [](P parser, G, T tok) {
+       parser.unsupported("warp", parser.location_of(tok));
+       parser.skip_block();
+     }},
+};
+
+// ---- texture steps (POV-Ray 3.7 reference, "Texture", "Patterned Textures") ----
+
+// A texture pattern is not evaluated: the first texture of its list or map stands for the whole
+// pattern, so only that one is kept.
+void keep_first(std::optional<Texture>& first_sub, Texture sub) {
+  if (!first_sub) first_sub = std::move(sub);
+}
+
+// tiles { texture {..} tile2 texture {..} }
+void parse_tiles(Parser& parser, std::optional<Texture>& first_sub) {
+  parser.expect("{");
+  for (;;) {
+    Tok item = parser.next();
+    if (item.symbol("}")) break;
+    if (item.word("texture")) {
+      keep_first(first_sub, parser.parse_texture());
+    } else if (!item.word("tile2")) {
+      parser.fail("unexpected '" + item.token.text + "' in tiles");
+    }
+  }
+}
+
+// texture_map { [v texture {..}] ... } or material_map { "file" options texture {..} ... }
+// (`map` names which).
+void parse_texture_map(Parser& parser, const std::string& map, std::optional<Texture>& first_sub) {
+  parser.expect("{");
+  for (;;) {
+    Tok entry = parser.next();
+    if (entry.symbol("}")) break;
+    if (entry.word("texture") && map == "material_map") {
+      keep_first(first_sub, parser.parse_texture());
+      continue;
+    }
+    if (!entry.symbol("[")) {
+      if (map == "material_map") continue;  // image file and options
+      parser.fail("expected '[' in texture_map");
+    }
+    if (parser.starts_value(parser.peek()) && !parser.starts_colour(parser.peek()))
+      parser.parse_float();
+    parser.accept(",");
+    if (parser.peek().word("texture")) {
+      parser.next();
+      keep_first(first_sub, parser.parse_texture());
+      parser.expect("]");
+    } else {
+      keep_first(first_sub, parser.parse_texture_items("]"));  // [v Ident], [v pigment {..} ..]
+    }
+  }
+}
+
+// pigment, finish or normal (keyword or identifier) of a plain texture: false if `tok` is none.
+bool parse_texture_part(Parser& parser, const Tok& tok, Texture& t) {
+  const std::string& w = tok.token.text;
+  if (w == "pigment") {
+    t.pigment = parser.parse_pigment();
+  } else if (tok.identifier && tok.value.get<Pigment>()) {
+    t.pigment = *tok.value.get<Pigment>();
+  } else if (w == "finish") {
+    t.finish = parser.parse_finish();
+  } else if (tok.identifier && tok.value.get<Finish>()) {
+    t.finish = *tok.value.get<Finish>();
+  } else if (w == "normal") {
+    t.has_normal = true;
+    parser.unsupported("normal", parser.location_of(tok));
+    parser.skip_block();
+  } else {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -106,8 +322,8 @@ void transform_texture(Texture& texture, const Matrix& inverse) {
 void Parser::parse_pattern_arguments(const std::string& w) {
   if (w == "gradient") {
     parse_vector();
-  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" ||
-             w == "magnet" || w == "agate_turb" || w == "pavement" || w == "facets") {
+  } else if (w == "spiral1" || w == "spiral2" || w == "mandel" || w == "tiling" || w == "magnet" ||
+             w == "agate_turb" || w == "pavement" || w == "facets") {
     if (starts_value(peek())) parse_float();
   } else if (w == "julia") {
     parse_numeric(2);
@@ -190,8 +406,8 @@ std::optional<Matrix> Parser::parse_transform_item(const Tok& tok) {
     }
     vector_level_ = saved;
     expect(">");
-    return Matrix::from_rows({e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8],
-                              e[11], 0, 0, 0, 1});
+    return Matrix::from_rows(
+        {e[0], e[3], e[6], e[9], e[1], e[4], e[7], e[10], e[2], e[5], e[8], e[11], 0, 0, 0, 1});
   }
   if (w == "transform") return parse_transform_block();
   return std::nullopt;
@@ -249,27 +465,6 @@ Pigment Parser::parse_pigment_items(const char* closing) {
   Nesting guard(*this);
   Pigment p = default_texture_.pigment;
   p.where = here();
-  auto add_list_entries = [&](size_t max) {
-    p.list.clear();
-    for (;;) {
-      const Tok& tok = peek();
-      if (p.list.size() >= max) break;
-      if (tok.word("pigment")) {
-        next();
-        p.list.push_back(parse_pigment());
-      } else if (starts_colour(tok) || (tok.identifier && tok.value.numeric()) ||
-                 tok.symbol("<") || tok.token.kind == TokenKind::kNumber) {
-        Pigment entry;
-        entry.colour = parse_colour();
-        p.list.push_back(entry);
-      } else if (tok.identifier && tok.value.get<Pigment>()) {
-        p.list.push_back(*next().value.get<Pigment>());
-      } else {
-        break;
-      }
-      accept(",");
-    }
-  };
   bool first = true;
   for (;;) {
     Tok tok = next();
@@ -284,86 +479,13 @@ Pigment Parser::parse_pigment_items(const char* closing) {
       p.name.clear();
       p.colour = parse_colour();
     } else if (tok.keyword() && is_pattern(w)) {
-      p.pattern = evaluated_pattern(w).value_or(Pattern::kSolid);
-      p.averaged = !evaluated_pattern(w);
-      p.name = w;
-      p.colour_map.clear();
-      p.list.clear();
-      if (w == "checker" || w == "brick") {
-        add_list_entries(2);
-        // defaults (POV-Ray manual 3.5.11): checker blue and green, brick white mortar and red
-        Colour a = w == "checker" ? Colour{0, 0, 1} : Colour{1, 1, 1};
-        Colour b = w == "checker" ? Colour{0, 1, 0} : Colour{1, 0, 0};
-        if (p.list.size() < 1) p.list.push_back(solid(a));
-        if (p.list.size() < 2) p.list.push_back(solid(b));
-      } else if (w == "hexagon") {
-        add_list_entries(3);
-        const Colour defaults[3] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};  // blue, green, red
-        while (p.list.size() < 3) p.list.push_back(solid(defaults[p.list.size()]));
-      } else if (w == "gradient") {
-        p.gradient = parse_vector();
-      } else {
-        parse_pattern_arguments(w);
-      }
-      if (p.averaged && w != "image_map") unsupported("pattern " + w, location_of(tok));
+      parse_pigment_pattern(*this, p, tok);
     } else if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
       p.colour_map = parse_colour_map(w == "pigment_map");
     } else if (tok.identifier && tok.value.get<ColourMap>()) {
       p.colour_map = *tok.value.get<ColourMap>();
-    } else if (w == "turbulence") {
-      p.turbulence = parse_vector();
-    } else if (w == "octaves") {
-      p.octaves = static_cast<int>(parse_float());
-    } else if (w == "omega") {
-      p.omega = parse_float();
-    } else if (w == "lambda") {
-      p.lambda = parse_float();
-    } else if (w == "frequency") {
-      p.frequency = parse_float();
-    } else if (w == "phase") {
-      p.phase = parse_float();
-    } else if (w == "ramp_wave" || w == "triangle_wave" || w == "sine_wave" ||
-               w == "scallop_wave" || w == "cubic_wave" || w == "poly_wave") {
-      p.wave = w == "ramp_wave" ? Wave::kRamp : w == "triangle_wave" ? Wave::kTriangle
-               : w == "sine_wave" ? Wave::kSine : w == "scallop_wave" ? Wave::kScallop
-               : w == "cubic_wave" ? Wave::kCubic : Wave::kPoly;
-      if (w == "poly_wave") {
-        const Tok& n = peek();
-        if (n.token.kind == TokenKind::kNumber || (n.identifier && n.value.kind == ValueKind::kFloat)) {
-          p.wave_exponent = parse_float();
-        }
-      }
-    } else if (w == "brick_size") {
-      p.brick_size = parse_vector();
-    } else if (w == "mortar") {
-      p.mortar = parse_float();
-    } else if (w == "quick_color" || w == "quick_colour") {
-      parse_colour();
-    } else if (w == "agate_turb") {
-      parse_float();
-    } else if (w == "uv_mapping") {
-      unsupported("uv_mapping", location_of(tok));
-    } else if (w == "interior" || w == "exterior") {
-      parse_float();  // mandel/julia: type, factor
-      accept(",");
-      parse_float();
-    } else if (w == "noise_generator" || w == "metric" || w == "offset" || w == "control0" ||
-               w == "control1" || w == "interpolate" || w == "map_type") {
-      parse_float();
-    } else if (w == "form") {
-      parse_vector();
-    } else if (w == "solid" || w == "once" || w == "use_colour" || w == "use_color" ||
-               w == "use_index" || w == "use_alpha" || w == "orientation" || w == "dist_exp" ||
-               w == "major_radius" || w == "exponent" || w == "coords" || w == "accuracy" ||
-               w == "repeat" || w == "flip" || w == "precision" || w == "color_space") {
-      const Tok& n = peek();
-      if (n.token.kind == TokenKind::kNumber || n.symbol("<") || n.symbol("-") ||
-          (n.identifier && n.value.numeric())) {
-        parse_expression();
-      }
-    } else if (w == "warp") {
-      unsupported("warp", location_of(tok));
-      skip_block();
+    } else if (const PigmentModifier* modifier = find_keyword(kPigmentModifiers, w)) {
+      modifier->parse(*this, p, tok);
     } else if (auto m = parse_transform_item(tok)) {
       move_pigment(p, m->inverse());
     } else {
@@ -461,6 +583,8 @@ Texture Parser::parse_texture() {
 
 // A texture's body. Texture patterns (`checker texture {..} texture {..}`, texture_map,
 // material_map, tiles) are approximated by their first texture, and reported.
+// A texture's body up to `closing`: a plain texture's parts, or a texture pattern (tiles,
+// texture_map, material_map, a pattern keyword), of which the first texture is used.
 Texture Parser::parse_texture_items(const char* closing) {
   Nesting guard(*this);
   Texture t = default_texture_;
@@ -469,68 +593,26 @@ Texture Parser::parse_texture_items(const char* closing) {
   bool first = true;
   bool patterned = false;
   std::optional<Texture> first_sub;
-  auto keep = [&](Texture sub) {
-    if (!first_sub) first_sub = std::move(sub);
-  };
   for (;;) {
     Tok tok = next();
     if (tok.symbol(closing)) break;
-    if (tok.token.kind == TokenKind::kEnd) fail(std::string("missing '") + closing + "' in texture");
+    if (tok.token.kind == TokenKind::kEnd)
+      fail(std::string("missing '") + closing + "' in texture");
     const std::string& w = tok.token.text;
     if (first && tok.identifier && tok.value.get<Texture>()) {
       t = *tok.value.get<Texture>();
     } else if (patterned && tok.identifier && tok.value.get<Texture>()) {
-      keep(*tok.value.get<Texture>());
-    } else if (w == "pigment") {
-      t.pigment = parse_pigment();
-    } else if (tok.identifier && tok.value.get<Pigment>()) {
-      t.pigment = *tok.value.get<Pigment>();
-    } else if (w == "finish") {
-      t.finish = parse_finish();
-    } else if (tok.identifier && tok.value.get<Finish>()) {
-      t.finish = *tok.value.get<Finish>();
-    } else if (w == "normal") {
-      t.has_normal = true;
-      unsupported("normal", location_of(tok));
-      skip_block();
+      keep_first(first_sub, *tok.value.get<Texture>());
+    } else if (parse_texture_part(*this, tok, t)) {
+      // pigment, finish or normal, read
     } else if (w == "texture" && patterned) {
-      keep(parse_texture());
+      keep_first(first_sub, parse_texture());
     } else if (w == "tiles") {
       patterned = true;
       unsupported("texture pattern tiles (first texture used)", location_of(tok));
-      expect("{");
-      for (;;) {
-        Tok item = next();
-        if (item.symbol("}")) break;
-        if (item.word("texture")) {
-          keep(parse_texture());
-        } else if (!item.word("tile2")) {
-          fail("unexpected '" + item.token.text + "' in tiles");
-        }
-      }
+      parse_tiles(*this, first_sub);
     } else if ((w == "texture_map" || w == "material_map") && patterned) {
-      expect("{");
-      for (;;) {
-        Tok entry = next();
-        if (entry.symbol("}")) break;
-        if (entry.word("texture") && w == "material_map") {
-          keep(parse_texture());
-          continue;
-        }
-        if (!entry.symbol("[")) {
-          if (w == "material_map") continue;  // image file and options
-          fail("expected '[' in texture_map");
-        }
-        if (starts_value(peek()) && !starts_colour(peek())) parse_float();
-        accept(",");
-        if (peek().word("texture")) {
-          next();
-          keep(parse_texture());
-          expect("]");
-        } else {
-          keep(parse_texture_items("]"));  // [v Ident], [v pigment {..} finish {..}]
-        }
-      }
+      parse_texture_map(*this, w, first_sub);
     } else if (tok.keyword() && (is_pattern(w) || w == "material_map")) {
       patterned = true;
       unsupported("texture pattern " + w + " (first texture used)", location_of(tok));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "importers/pov/sdl/keyword_table.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {
@@ -278,173 +279,210 @@ void Parser::directive(const Token& token) {
   run_directive(token);
 }
 
+// The directives by name, one line each (POV-Ray 3.7 reference, "Language Directives"); each
+// family's handler reads its own arguments. The lambdas are written inside a member, so they reach
+// the private handlers.
 void Parser::run_directive(const Token& token) {
-  const std::string& d = token.text;
-  const std::string_view which = d;  // compared by length first
-  if (which == "declare" || which == "local") return run_declare(which == "local");
-  if (which == "if") {
-    if (parse_condition()) {
-      conds_.emplace_back();  // a kIf
-    } else {
-      skip_to_branch(true);
-    }
-    return;
+  struct Entry {
+    std::string_view name;
+    void (*run)(Parser&, const std::string& which);
+  };
+  using P = Parser&;
+  using W = const std::string&;
+  static constexpr Entry kDirectives[] = {
+      {"declare", [](P p, W) { p.run_declare(false); }},
+      {"local", [](P p, W) { p.run_declare(true); }},
+      {"if", [](P p, W) { p.run_if(); }},
+      {"ifdef", [](P p, W) { p.run_ifdef(true); }},
+      {"ifndef", [](P p, W) { p.run_ifdef(false); }},
+      {"else", [](P p, W which) { p.run_else(which); }},
+      {"elseif", [](P p, W which) { p.run_else(which); }},
+      {"end", [](P p, W) { p.run_end(); }},
+      {"while", [](P p, W) { p.run_while(); }},
+      {"for", [](P p, W) { p.run_for(); }},
+      {"switch", [](P p, W) { p.run_switch(); }},
+      {"case", [](P p, W which) { p.run_case(which); }},
+      {"range", [](P p, W which) { p.run_case(which); }},
+      {"break", [](P p, W) { p.run_break(); }},
+      {"macro", [](P p, W) { p.run_macro_definition(); }},
+      {"include", [](P p, W) { p.run_include(); }},
+      {"undef", [](P p, W) { p.run_undef(); }},
+      {"version", [](P p, W) { p.run_version(); }},
+      {"debug", [](P p, W which) { p.run_message(which); }},
+      {"warning", [](P p, W which) { p.run_message(which); }},
+      {"error", [](P p, W which) { p.run_message(which); }},
+      {"render", [](P p, W which) { p.run_message(which); }},
+      {"statistics", [](P p, W which) { p.run_message(which); }},
+      {"default", [](P p, W) { p.run_default(); }},
+      {"fopen", [](P p, W) { p.run_fopen(); }},
+      {"fclose", [](P p, W) { p.run_fclose(); }},
+      {"read", [](P p, W) { p.run_read(); }},
+      {"write", [](P p, W) { p.run_write(); }},
+  };
+  const std::string& which = token.text;
+  if (const Entry* entry = find_keyword(kDirectives, which)) return entry->run(*this, which);
+  fail("unknown directive #" + which);
+}
+
+void Parser::run_if() {
+  if (parse_condition()) {
+    conds_.emplace_back();  // a kIf
+  } else {
+    skip_to_branch(true);
   }
-  if (which == "ifdef" || which == "ifndef") {
-    expect("(");
-    Token name = raw_next();
-    bool defined = name.kind == TokenKind::kWord && lookup(name.text) != nullptr;
-    if (defined && raw().kind == TokenKind::kSymbol && raw().text == "[") {
-      Value* array = lookup(name.text);
-      size_t index = 0;
-      bool inside = array->kind == ValueKind::kArray;
-      for (size_t dim = 0; inside && dim < array->array->sizes.size(); ++dim) {
-        expect("[");
-        double i = parse_float();
-        expect("]");
-        inside = i >= 0 && i < static_cast<double>(array->array->sizes[dim]);
-        if (inside) index = index * array->array->sizes[dim] + static_cast<size_t>(i);
-      }
-      defined = inside && array->array->elements[index].has_value();
+}
+
+// #ifdef (A) / #ifdef (A[i]...): the name is read raw, since a lookup would fail on it.
+void Parser::run_ifdef(bool runs_if_defined) {
+  expect("(");
+  Token name = raw_next();
+  bool defined = name.kind == TokenKind::kWord && lookup(name.text) != nullptr;
+  if (defined && raw().kind == TokenKind::kSymbol && raw().text == "[") {
+    Value* array = lookup(name.text);
+    size_t index = 0;
+    bool inside = array->kind == ValueKind::kArray;
+    for (size_t dim = 0; inside && dim < array->array->sizes.size(); ++dim) {
+      expect("[");
+      double i = parse_float();
+      expect("]");
+      inside = i >= 0 && i < static_cast<double>(array->array->sizes[dim]);
+      if (inside) index = index * array->array->sizes[dim] + static_cast<size_t>(i);
     }
-    expect(")");
-    if (defined == (which == "ifdef")) {
-      conds_.emplace_back();  // a kIf
-    } else {
-      skip_to_branch(true);
-    }
-    return;
+    defined = inside && array->array->elements[index].has_value();
   }
-  if (which == "else" || which == "elseif") {
-    // reached from a branch that ran: skip the rest up to the #end
-    if (conds_.size() == frames_.back().cond_base) fail("#" + d + " without #if");
-    Cond& cond = conds_.back();
-    if (which == "elseif" && cond.kind != CondKind::kIf) fail("#elseif without #if");
-    conds_.pop_back();
-    skip_levels(1);
-    return;
+  expect(")");
+  if (defined == runs_if_defined) {
+    conds_.emplace_back();  // a kIf
+  } else {
+    skip_to_branch(true);
   }
-  if (which == "end") return run_end();
-  if (which == "while") {
-    size_t at = frames_.back().pos - 1;
-    if (parse_condition()) {
-      Cond cond;
-      cond.kind = CondKind::kWhile;
-      cond.loop_pos = at;
-      conds_.push_back(cond);
-    } else {
-      skip_levels(1);
-    }
-    return;
-  }
-  if (which == "for") {
-    expect("(");
-    Token variable = raw_next();
-    if (variable.kind != TokenKind::kWord) fail("expected the #for variable");
-    expect(",");
-    double start = parse_float();
-    expect(",");
-    double end = parse_float();
-    double step = accept(",") ? parse_float() : 1;
-    expect(")");
-    if (step == 0) fail("#for step 0 never ends");
-    assign(variable.text, Value::number(start), false);
-    if (step > 0 ? start <= end : start >= end) {
-      Cond cond;
-      cond.kind = CondKind::kFor;
-      cond.loop_pos = frames_.back().pos;
-      cond.variable = variable.text;
-      cond.end = end;
-      cond.step = step;
-      conds_.push_back(cond);
-    } else {
-      skip_levels(1);
-    }
-    return;
-  }
-  if (which == "switch") {
-    expect("(");
+}
+
+// #else / #elseif reached from a branch that ran: skips the rest up to the #end.
+void Parser::run_else(const std::string& which) {
+  if (conds_.size() == frames_.back().cond_base) fail("#" + which + " without #if");
+  Cond& cond = conds_.back();
+  if (which == "elseif" && cond.kind != CondKind::kIf) fail("#elseif without #if");
+  conds_.pop_back();
+  skip_levels(1);
+}
+
+void Parser::run_while() {
+  size_t at = frames_.back().pos - 1;
+  if (parse_condition()) {
     Cond cond;
-    cond.kind = CondKind::kSwitch;
-    cond.switch_value = parse_float();
-    expect(")");
+    cond.kind = CondKind::kWhile;
+    cond.loop_pos = at;
     conds_.push_back(cond);
-    return run_switch_search();
+  } else {
+    skip_levels(1);
   }
-  if (which == "case" || which == "range") {
-    // met while a case runs: falls through (POV-Ray runs on to #break)
-    if (conds_.size() == frames_.back().cond_base || conds_.back().kind != CondKind::kSwitch) {
-      fail("#" + d + " outside #switch");
+}
+
+// #for (Variable, Start, End [, Step]): the body runs while Variable has not passed End.
+void Parser::run_for() {
+  expect("(");
+  Token variable = raw_next();
+  if (variable.kind != TokenKind::kWord) fail("expected the #for variable");
+  expect(",");
+  double start = parse_float();
+  expect(",");
+  double end = parse_float();
+  double step = accept(",") ? parse_float() : 1;
+  expect(")");
+  if (step == 0) fail("#for step 0 never ends");
+  assign(variable.text, Value::number(start), false);
+  if (step > 0 ? start <= end : start >= end) {
+    Cond cond;
+    cond.kind = CondKind::kFor;
+    cond.loop_pos = frames_.back().pos;
+    cond.variable = variable.text;
+    cond.end = end;
+    cond.step = step;
+    conds_.push_back(cond);
+  } else {
+    skip_levels(1);
+  }
+}
+
+void Parser::run_switch() {
+  expect("(");
+  Cond cond;
+  cond.kind = CondKind::kSwitch;
+  cond.switch_value = parse_float();
+  expect(")");
+  conds_.push_back(cond);
+  run_switch_search();
+}
+
+// #case / #range met while a case runs: falls through (POV-Ray runs on to #break).
+void Parser::run_case(const std::string& which) {
+  if (conds_.size() == frames_.back().cond_base || conds_.back().kind != CondKind::kSwitch) {
+    fail("#" + which + " outside #switch");
+  }
+  skip_parenthesised();
+}
+
+// Leaves the innermost #switch, #while or #for.
+void Parser::run_break() {
+  int levels = 0;
+  for (size_t i = conds_.size(); i-- > frames_.back().cond_base;) {
+    ++levels;
+    if (conds_[i].kind != CondKind::kIf) {
+      conds_.resize(i);
+      return skip_levels(levels);
     }
-    skip_parenthesised();
-    return;
   }
-  if (which == "break") {
-    // leaves the innermost #switch, #while or #for
-    int levels = 0;
-    for (size_t i = conds_.size(); i-- > frames_.back().cond_base;) {
-      ++levels;
-      if (conds_[i].kind != CondKind::kIf) {
-        conds_.resize(i);
-        return skip_levels(levels);
-      }
+  fail("#break outside #switch, #while or #for");
+}
+
+void Parser::run_undef() {
+  Token name = raw_next();
+  for (size_t i = scopes_.size(); i-- > 0;) {
+    if (scopes_[i].erase(name.text)) break;
+  }
+}
+
+void Parser::run_version() {
+  double version = parse_float();
+  accept(";");
+  scene_.version = version;
+  Value v = Value::number(version);
+  scopes_[0]["version"] = v;
+}
+
+// #debug, #warning, #error, #render, #statistics: only #warning and #error have an effect here.
+void Parser::run_message(const std::string& which) {
+  Value text = parse_expression();
+  if (text.kind != ValueKind::kString) fail("#" + which + " expects a string");
+  if (which == "warning") warn(text.text);
+  if (which == "error") fail("#error: " + text.text);
+}
+
+// #default { texture | pigment | finish | normal ... }.
+void Parser::run_default() {
+  expect("{");
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol("}")) break;
+    if (tok.word("texture")) {
+      default_texture_ = parse_texture();
+    } else if (tok.word("pigment")) {
+      default_texture_.pigment = parse_pigment();
+    } else if (tok.word("finish")) {
+      default_texture_.finish = parse_finish();
+    } else if (tok.word("normal")) {
+      skip_block();
+    } else {
+      fail("expected texture, pigment, finish or normal in #default");
     }
-    fail("#break outside #switch, #while or #for");
   }
-  if (which == "macro") return run_macro_definition();
-  if (which == "include") return run_include();
-  if (which == "undef") {
-    Token name = raw_next();
-    for (size_t i = scopes_.size(); i-- > 0;) {
-      if (scopes_[i].erase(name.text)) break;
-    }
-    return;
-  }
-  if (which == "version") {
-    double version = parse_float();
-    accept(";");
-    scene_.version = version;
-    Value v = Value::number(version);
-    scopes_[0]["version"] = v;
-    return;
-  }
-  if (which == "debug" || which == "warning" || which == "error" || which == "render" ||
-      which == "statistics") {
-    Value text = parse_expression();
-    if (text.kind != ValueKind::kString) fail("#" + d + " expects a string");
-    if (which == "warning") warn(text.text);
-    if (which == "error") fail("#error: " + text.text);
-    return;
-  }
-  if (which == "default") {
-    expect("{");
-    for (;;) {
-      Tok tok = next();
-      if (tok.symbol("}")) break;
-      if (tok.word("texture")) {
-        default_texture_ = parse_texture();
-      } else if (tok.word("pigment")) {
-        default_texture_.pigment = parse_pigment();
-      } else if (tok.word("finish")) {
-        default_texture_.finish = parse_finish();
-      } else if (tok.word("normal")) {
-        skip_block();
-      } else {
-        fail("expected texture, pigment, finish or normal in #default");
-      }
-    }
-    return;
-  }
-  if (which == "fopen") return run_fopen();
-  if (which == "fclose") {
-    Token name = raw_next();
-    for (auto& scope : scopes_)
-      scope.erase(name.text);
-    return;
-  }
-  if (which == "read") return run_read();
-  if (which == "write") return run_write();
-  fail("unknown directive #" + d);
+}
+
+void Parser::run_fclose() {
+  Token name = raw_next();
+  for (auto& scope : scopes_)
+    scope.erase(name.text);
 }
 
 }  // namespace fb::pov::sdl

@@ -27,6 +27,132 @@ double srgb_decode(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
+// ---- the values only #declare and #local hold (POV-Ray 3.7 reference, "Declare") ----
+
+// texture {..} [texture {..} ...]: of layered textures the first, the base layer, is kept.
+Texture parse_layered_texture(Parser& p) {
+  Texture texture = p.parse_texture();
+  while (p.peek().word("texture")) {
+    p.unsupported("layered texture (base layer used)", p.here());
+    p.next();
+    p.parse_texture();
+  }
+  return texture;
+}
+
+// sky_sphere { [Identifier] pigment {..} ... transforms }.
+SkySphere parse_sky_sphere(Parser& p) {
+  SkySphere sky;
+  p.expect("{");
+  for (;;) {
+    Tok item = p.next();
+    if (item.symbol("}")) break;
+    if (item.identifier && item.value.get<SkySphere>()) {
+      sky = *item.value.get<SkySphere>();
+    } else if (item.word("pigment")) {
+      sky.pigments.push_back(p.parse_pigment());
+    } else if (auto m = p.parse_transform_item(item)) {
+      sky.transform = *m * sky.transform;
+    } else if (item.word("emission")) {
+      p.parse_colour();
+    } else {
+      p.fail("unexpected " + item.token.text + " in sky_sphere");
+    }
+  }
+  return sky;
+}
+
+// Blocks declared by name but not evaluated: skipped, held as an opaque value that names them.
+constexpr std::string_view kOpaqueBlocks[] = {
+    "normal", "texture_map", "normal_map", "slope_map",        "density_map", "media",    "density",
+    "fog",    "rainbow",     "spline",     "interior_texture", "photons",     "radiosity"};
+
+bool is_opaque_block(std::string_view w) {
+  for (std::string_view block : kOpaqueBlocks) {
+    if (w == block) return true;
+  }
+  return false;
+}
+
+Value skip_opaque_block(Parser& p, const std::string& w) {
+  p.skip_block();
+  Value value;
+  value.kind = ValueKind::kOpaque;
+  value.text = w;
+  return value;
+}
+
+// function [(params)] { ... }: not evaluated.
+Value skip_function(Parser& p) {
+  if (p.peek().symbol("(")) p.skip_parenthesised();
+  p.skip_block();
+  Value value;
+  value.kind = ValueKind::kFunction;
+  return value;
+}
+
+// The [n][m]... after `array`: each size at least 1, their product within the element limit.
+std::vector<size_t> parse_array_sizes(Parser& p, double& total) {
+  std::vector<size_t> sizes;
+  total = 1;
+  while (p.peek().symbol("[")) {
+    p.next();
+    double n = p.parse_float();
+    p.expect("]");
+    if (!(n >= 1)) p.fail("array size " + number_string(n) + ": an array needs at least 1");
+    total *= n;
+    if (!(total <= static_cast<double>(p.options().limits.array_elements))) {
+      const std::string count =
+          total < 1e15 ? std::to_string(static_cast<uint64_t>(total)) : number_string(total);
+      p.fail("array of " + count + " elements: " + p.array_limit_message());
+    }
+    sizes.push_back(static_cast<size_t>(n));
+  }
+  if (sizes.empty()) p.fail("expected the array's size [n]");
+  return sizes;
+}
+
+// The initialiser list of dimension `dim` and those nested in it, filling `array` in row-major
+// order from `index`.
+void fill_array(Parser& p, ArrayValue& array, size_t dim, size_t& index) {
+  const std::vector<size_t>& sizes = array.sizes;
+  p.expect("{");
+  size_t n = 0;
+  for (;;) {
+    if (p.accept("}")) break;
+    if (n > 0) p.accept(",");  // POV-Ray also takes elements separated by blanks
+    if (p.accept("}")) break;
+    if (n >= sizes[dim]) p.fail("too many array initialisers");
+    if (dim + 1 < sizes.size()) {
+      fill_array(p, array, dim + 1, index);
+    } else {
+      array.elements[index++] = p.parse_rvalue();
+    }
+    ++n;
+  }
+  if (n != sizes[dim])
+    p.fail("array initialiser has " + std::to_string(n) + " elements, the array " +
+           std::to_string(sizes[dim]));
+}
+
+// array[n][m]... [{ initialisers }] (POV-Ray 3.7 reference, "Array Identifiers").
+Value parse_array(Parser& p) {
+  double total = 1;
+  std::vector<size_t> sizes = parse_array_sizes(p, total);
+  p.count_array_elements(static_cast<uint64_t>(total));
+  auto array = std::make_shared<ArrayValue>();
+  array->sizes = sizes;
+  array->elements.resize(static_cast<size_t>(total));
+  if (p.peek().symbol("{")) {
+    size_t index = 0;
+    fill_array(p, *array, 0, index);
+  }
+  Value value;
+  value.kind = ValueKind::kArray;
+  value.array = std::move(array);
+  return value;
+}
+
 }  // namespace
 
 Colour to_colour(const Value& value, bool float_fills_filter_transmit) {
@@ -196,16 +322,7 @@ Value Parser::parse_rvalue() {
     if (is_object_keyword(tok)) return Value::of(parse_object(tok));
     if (w == "pigment") return Value::of(parse_pigment());
     if (w == "finish") return Value::of(parse_finish());
-    if (w == "texture") {
-      Texture texture = parse_texture();
-      // layered textures (`texture {..} texture {..}`): the first, the base layer, is kept
-      while (peek().word("texture")) {
-        unsupported("layered texture (base layer used)", here());
-        next();
-        parse_texture();
-      }
-      return Value::of(std::move(texture));
-    }
+    if (w == "texture") return Value::of(parse_layered_texture(*this));
     if (w == "interior") return Value::of(parse_interior());
     if (w == "material") return Value::of(parse_material());
     if (w == "camera") return Value::of(parse_camera(tok));
@@ -213,97 +330,10 @@ Value Parser::parse_rvalue() {
     if (w == "color_map" || w == "colour_map" || w == "pigment_map") {
       return Value::of(parse_colour_map(w == "pigment_map"));
     }
-    if (w == "sky_sphere") {
-      Tok brace = tok;
-      unget(std::move(tok));
-      next();
-      (void)brace;
-      SkySphere sky;
-      expect("{");
-      for (;;) {
-        Tok item = next();
-        if (item.symbol("}")) break;
-        if (item.identifier && item.value.get<SkySphere>()) {
-          sky = *item.value.get<SkySphere>();
-        } else if (item.word("pigment")) {
-          sky.pigments.push_back(parse_pigment());
-        } else if (auto m = parse_transform_item(item)) {
-          sky.transform = *m * sky.transform;
-        } else if (item.word("emission")) {
-          parse_colour();
-        } else {
-          fail("unexpected " + item.token.text + " in sky_sphere");
-        }
-      }
-      return Value::of(std::move(sky));
-    }
-    if (w == "normal" || w == "texture_map" || w == "normal_map" || w == "slope_map" ||
-        w == "density_map" || w == "media" || w == "density" || w == "fog" || w == "rainbow" ||
-        w == "spline" || w == "interior_texture" || w == "photons" || w == "radiosity") {
-      skip_block();
-      Value value;
-      value.kind = ValueKind::kOpaque;
-      value.text = w;
-      return value;
-    }
-    if (w == "function") {
-      if (peek().symbol("(")) skip_parenthesised();
-      skip_block();
-      Value value;
-      value.kind = ValueKind::kFunction;
-      return value;
-    }
-    if (w == "array") {
-      std::vector<size_t> sizes;
-      double total = 1;
-      while (peek().symbol("[")) {
-        next();
-        double n = parse_float();
-        expect("]");
-        if (!(n >= 1)) fail("array size " + number_string(n) + ": an array needs at least 1");
-        total *= n;
-        if (!(total <= static_cast<double>(options_.limits.array_elements))) {
-          const std::string count =
-              total < 1e15 ? std::to_string(static_cast<uint64_t>(total)) : number_string(total);
-          fail("array of " + count + " elements: " + array_limit_message());
-        }
-        sizes.push_back(static_cast<size_t>(n));
-      }
-      if (sizes.empty()) fail("expected the array's size [n]");
-      count_array_elements(static_cast<uint64_t>(total));
-      auto array = std::make_shared<ArrayValue>();
-      array->sizes = sizes;
-      array->elements.resize(static_cast<size_t>(total));
-      if (peek().symbol("{")) {
-        // nested initialiser lists, one level per dimension
-        size_t index = 0;
-        std::vector<size_t> count(sizes.size(), 0);
-        std::function<void(size_t)> fill = [&](size_t dim) {
-          expect("{");
-          size_t n = 0;
-          for (;;) {
-            if (accept("}")) break;
-            if (n > 0) accept(",");  // POV-Ray also takes elements separated by blanks
-            if (accept("}")) break;
-            if (n >= sizes[dim]) fail("too many array initialisers");
-            if (dim + 1 < sizes.size()) {
-              fill(dim + 1);
-            } else {
-              array->elements[index++] = parse_rvalue();
-            }
-            ++n;
-          }
-          if (n != sizes[dim])
-            fail("array initialiser has " + std::to_string(n) + " elements, the array " +
-                 std::to_string(sizes[dim]));
-        };
-        fill(0);
-      }
-      Value value;
-      value.kind = ValueKind::kArray;
-      value.array = std::move(array);
-      return value;
-    }
+    if (w == "sky_sphere") return Value::of(parse_sky_sphere(*this));
+    if (is_opaque_block(w)) return skip_opaque_block(*this, w);
+    if (w == "function") return skip_function(*this);
+    if (w == "array") return parse_array(*this);
   }
   unget(std::move(tok));
   return parse_expression();

@@ -1,8 +1,10 @@
 // Objects: the finite and infinite primitives, triangle meshes, polygon, object references, CSG,
 // and the modifiers every object takes (transforms, texture, flags, clipped_by).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
+#include "importers/pov/sdl/keyword_table.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {
@@ -139,6 +141,331 @@ void triangulate_loop(const std::vector<Vec3d>& points, uint32_t first, uint32_t
     emit(ring[0], ring[i], ring[i + 1]);
 }
 
+Node missing_node(const std::string& keyword, const SourceLocation& where) {
+  Node node;
+  node.missing.push_back({keyword, where, std::nullopt});
+  return node;
+}
+
+// ---- the primitives' own arguments (POV-Ray 3.7 reference, "Finite Solid Primitives",
+// "Infinite Solid Primitives", "Finite Patch Primitives") ----
+
+// Where a primitive's argument goes: the points or vectors `a` and `b`, the radii (or distance)
+// `r0` and `r1`.
+enum class Arg { kA, kB, kR0, kR1 };
+
+// A primitive whose arguments are a fixed list of vectors and floats, separated by optional
+// commas.
+struct Primitive {
+  std::string_view name;
+  Shape shape;
+  std::array<Arg, 4> args;
+  int count;
+  bool optional_r1 = false;  // disc's hole radius
+};
+
+constexpr Primitive kPrimitives[] = {
+    {"sphere", Shape::kSphere, {Arg::kA, Arg::kR0}, 2},                 // Center, Radius
+    {"box", Shape::kBox, {Arg::kA, Arg::kB}, 2},                        // Corner1, Corner2
+    {"plane", Shape::kPlane, {Arg::kA, Arg::kR0}, 2},                   // Normal, Distance
+    {"cylinder", Shape::kCylinder, {Arg::kA, Arg::kB, Arg::kR0}, 3},    // Base, Cap, Radius
+    {"cone", Shape::kCone, {Arg::kA, Arg::kR0, Arg::kB, Arg::kR1}, 4},  // Base, r, Cap, r
+    {"torus", Shape::kTorus, {Arg::kR0, Arg::kR1}, 2},                  // Major, Minor
+    {"disc", Shape::kDisc, {Arg::kA, Arg::kB, Arg::kR0}, 3, true},      // Center, Normal, r
+};
+
+void parse_primitive(Parser& p, Object& o, const Primitive& primitive) {
+  o.shape = primitive.shape;
+  for (int i = 0; i < primitive.count; ++i) {
+    if (i) p.accept(",");
+    switch (primitive.args[static_cast<size_t>(i)]) {
+      case Arg::kA:
+        o.a = p.parse_vector();
+        break;
+      case Arg::kB:
+        o.b = p.parse_vector();
+        break;
+      case Arg::kR0:
+        o.r0 = p.parse_float();
+        break;
+      case Arg::kR1:
+        o.r1 = p.parse_float();
+        break;
+    }
+  }
+  if (primitive.optional_r1 && p.accept(",")) o.r1 = p.parse_float();
+}
+
+// triangle { C1, C2, C3 } / smooth_triangle { C1, N1, C2, N2, C3, N3 }: a one-triangle mesh.
+void parse_triangle(Parser& p, Object& o, bool smooth) {
+  o.shape = Shape::kMesh;
+  for (int i = 0; i < 3; ++i) {
+    if (i) p.accept(",");
+    o.vertices.push_back(p.parse_vector());
+    if (smooth) {
+      p.accept(",");
+      o.normals.push_back(p.parse_vector());
+    }
+  }
+  o.indices = {0, 1, 2};
+}
+
+// polygon { Count, P1, ... }: sub-polygons close where a point repeats the first of its loop
+// (POV-Ray manual 3.4.2.4); each loop is triangulated on its own (holes are not cut).
+void parse_polygon(Parser& p, Object& o) {
+  o.shape = Shape::kMesh;
+  double n = p.parse_count();
+  if (!(n >= 3 && n <= static_cast<double>(p.options().limits.objects)))
+    p.fail("polygon needs at least 3 points");
+  p.count_objects(static_cast<uint64_t>(n));
+  std::vector<Vec3d> points;
+  for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
+    p.accept(",");
+    Value v = p.parse_numeric(3);
+    points.push_back({v.v[0], v.v[1], v.v[2]});
+  }
+  size_t start = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    bool closes = i > start + 1 && points[i].x == points[start].x &&
+                  points[i].y == points[start].y && points[i].z == points[start].z;
+    if (closes || i + 1 == points.size()) {
+      size_t end = closes ? i : i + 1;
+      uint32_t first = static_cast<uint32_t>(o.vertices.size());
+      o.vertices.insert(o.vertices.end(), points.begin() + static_cast<std::ptrdiff_t>(start),
+                        points.begin() + static_cast<std::ptrdiff_t>(end));
+      triangulate_loop(o.vertices, first, static_cast<uint32_t>(end - start), o.indices);
+      start = i + 1;
+    }
+  }
+}
+
+// The other shapes, whose arguments need their own parser.
+struct ShapeParser {
+  std::string_view name;
+  void (*parse)(Parser&, Object&);
+};
+
+constexpr ShapeParser kShapes[] = {
+    {"triangle", [](Parser& p, Object& o) { parse_triangle(p, o, false); }},
+    {"smooth_triangle", [](Parser& p, Object& o) { parse_triangle(p, o, true); }},
+    {"mesh", [](Parser& p, Object& o) { p.parse_mesh(o); }},
+    {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
+    {"polygon", parse_polygon},
+};
+
+bool is_polynomial(std::string_view w) {
+  return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly";
+}
+
+// ---- mesh2 (POV-Ray 3.7 reference, "Mesh2"): its blocks, read in any order ----
+
+// The `{ Count,` that opens a mesh2 block, bounded by the object limit.
+size_t mesh2_count(Parser& p) {
+  p.expect("{");
+  double n = p.parse_count();
+  if (!(n >= 0 && n <= static_cast<double>(p.options().limits.objects))) p.fail("bad mesh2 count");
+  p.count_objects(static_cast<uint64_t>(n));
+  return static_cast<size_t>(n);
+}
+
+// The `, }` that closes a mesh2 block (a trailing comma is allowed).
+void mesh2_close(Parser& p) {
+  p.accept(",");
+  p.expect("}");
+}
+
+void parse_mesh2_vectors(Parser& p, std::vector<Vec3d>& target) {
+  size_t n = mesh2_count(p);
+  for (size_t i = 0; i < n; ++i) {
+    p.accept(",");
+    target.push_back(p.parse_vector());
+  }
+  mesh2_close(p);
+}
+
+void skip_mesh2_uv_vectors(Parser& p) {
+  size_t n = mesh2_count(p);
+  for (size_t i = 0; i < n; ++i) {
+    p.accept(",");
+    p.parse_numeric(2);
+  }
+  mesh2_close(p);
+}
+
+void parse_mesh2_texture_list(Parser& p, Object& o) {
+  size_t n = mesh2_count(p);
+  for (size_t i = 0; i < n; ++i) {
+    p.accept(",");
+    Tok t = p.next();
+    if (!t.word("texture")) p.fail("expected texture in texture_list");
+    o.textures.push_back(p.parse_texture());
+  }
+  mesh2_close(p);
+}
+
+// The optional texture indices after a face: one, or one per corner (only the first is kept).
+void parse_face_texture_index(Parser& p, Object& o) {
+  p.accept(",");
+  // (a float; the next face is a vector, perhaps a vector identifier: `F1+A, F2+A` in
+  // shapes.inc's HFCreate_)
+  const Tok& after = p.peek();
+  const bool texture_index = after.token.kind == TokenKind::kNumber || after.symbol("(") ||
+                             (after.identifier && after.value.kind == ValueKind::kFloat);
+  if (!texture_index) return;
+  double t = p.parse_float();
+  if (!(t >= 0 && t < 4294967295.0)) p.fail("bad mesh2 texture index");
+  o.triangle_textures.resize(o.indices.size() / 3 - 1, 0);
+  o.triangle_textures.push_back(static_cast<uint32_t>(t));
+  for (int k = 0; k < 2; ++k) {
+    if (!p.peek().symbol(",")) break;
+    p.next();
+    const Tok& more = p.peek();
+    if (more.symbol("<") || more.symbol("}")) break;
+    p.parse_float();
+  }
+}
+
+// face_indices, normal_indices or uv_indices (`block`): three indices per triangle.
+void parse_mesh2_indices(Parser& p, const std::string& block, Object& o,
+                         std::vector<uint32_t>& normal_indices) {
+  size_t n = mesh2_count(p);
+  for (size_t i = 0; i < n; ++i) {
+    p.accept(",");
+    Value v = p.parse_numeric(3);
+    for (int k = 0; k < 3; ++k) {
+      if (!(v.v[k] >= 0 && v.v[k] < 4294967295.0)) p.fail("negative or huge mesh2 index");
+      uint32_t index = static_cast<uint32_t>(v.v[k]);
+      if (block == "face_indices") o.indices.push_back(index);
+      if (block == "normal_indices") normal_indices.push_back(index);
+    }
+    if (block == "face_indices") parse_face_texture_index(p, o);
+  }
+  mesh2_close(p);
+}
+
+// Checks every index against its list, and gives the mesh its normals: per vertex, or, with
+// normal_indices, per corner.
+void finish_mesh2(Parser& p, Object& o, std::vector<Vec3d>& normals,
+                  const std::vector<uint32_t>& normal_indices) {
+  if (!o.triangle_textures.empty()) o.triangle_textures.resize(o.indices.size() / 3, 0);
+  for (uint32_t t : o.triangle_textures) {
+    if (t >= o.textures.size()) p.fail("mesh2 texture index past the texture_list");
+  }
+  for (uint32_t i : o.indices) {
+    if (i >= o.vertices.size())
+      p.fail("mesh2 face index " + std::to_string(i) + " past the vertex_vectors");
+  }
+  if (!normals.empty() && !normal_indices.empty()) {
+    if (normal_indices.size() != o.indices.size())
+      p.fail("mesh2 normal_indices and face_indices differ in count");
+    // one normal per corner: corners become vertices of their own
+    std::vector<Vec3d> vertices, corner_normals;
+    for (size_t i = 0; i < o.indices.size(); ++i) {
+      if (normal_indices[i] >= normals.size()) p.fail("mesh2 normal index past the normal_vectors");
+      vertices.push_back(o.vertices[o.indices[i]]);
+      corner_normals.push_back(normals[normal_indices[i]]);
+      o.indices[i] = static_cast<uint32_t>(i);
+    }
+    o.vertices = std::move(vertices);
+    o.normals = std::move(corner_normals);
+  } else if (normals.size() == o.vertices.size()) {
+    o.normals = std::move(normals);
+  }
+}
+
+// ---- object modifiers (POV-Ray 3.7 reference, "Object Modifiers") ----
+
+void take_material(const MaterialValue& m, Object& o) {
+  if (m.texture) {
+    o.texture = *m.texture;
+    o.texture_given = true;
+  }
+  if (m.interior) o.interior = m.interior;
+}
+
+// texture, pigment, finish, normal, interior, material: false if `tok` is none of them.
+bool parse_appearance_mod(Parser& p, const Tok& tok, Object& o) {
+  const std::string& w = tok.token.text;
+  if (w == "texture") {
+    Texture t = p.parse_texture();
+    if (o.texture_given && o.shape != Shape::kMesh) return true;  // layered: the first stays
+    o.texture = std::move(t);
+    o.texture_given = true;
+  } else if (w == "pigment") {
+    Pigment pigment = p.parse_pigment();
+    p.ensure_texture(o);
+    o.texture.pigment = std::move(pigment);
+  } else if (w == "finish") {
+    Finish f = p.parse_finish();
+    p.ensure_texture(o);
+    o.texture.finish = f;
+  } else if (w == "normal") {
+    p.unsupported("normal", p.location_of(tok));
+    p.skip_block();
+    p.ensure_texture(o);
+    o.texture.has_normal = true;
+  } else if (w == "interior") {
+    o.interior = p.parse_interior();
+  } else if (w == "material") {
+    take_material(p.parse_material(), o);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// The flags, each with an optional boolean (`hollow off`); those with no field are parsed and
+// have no effect here.
+struct Flag {
+  std::string_view name;
+  bool Object::*field;
+};
+
+constexpr Flag kFlags[] = {
+    {"hollow", &Object::hollow},
+    {"no_shadow", &Object::no_shadow},
+    {"no_image", &Object::no_image},
+    {"no_reflection", &Object::no_reflection},
+    {"double_illuminate", &Object::double_illuminate},
+    {"open", &Object::open},
+    {"no_radiosity", nullptr},
+    {"sturm", nullptr},
+    {"global_lights", nullptr},
+    {"split_union", nullptr},
+    {"cutaway_textures", nullptr},
+    {"hierarchy", nullptr},
+    {"smooth", nullptr},
+    {"uv_mapping", nullptr},
+};
+
+bool parse_flag(Parser& p, std::string_view w, Object& o) {
+  for (const Flag& flag : kFlags) {
+    if (flag.name != w) continue;
+    bool value = p.parse_bool_option();
+    if (flag.field) o.*flag.field = value;
+    return true;
+  }
+  return false;
+}
+
+// A declared texture or material used as a modifier.
+bool take_declared_appearance(const Tok& tok, Object& o) {
+  if (!tok.identifier) return false;
+  if (const Texture* texture = tok.value.get<Texture>()) {
+    // a texture identifier after a texture is a layer; as the first one it is the texture
+    if (!o.texture_given) {
+      o.texture = *texture;
+      o.texture_given = true;
+    }
+    return true;
+  }
+  if (const MaterialValue* material = tok.value.get<MaterialValue>()) {
+    take_material(*material, o);
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool Parser::is_object_keyword(const Tok& tok) const {
@@ -152,6 +479,9 @@ bool Parser::is_object_keyword(const Tok& tok) const {
   return false;
 }
 
+// One object statement, its keyword read: an unsupported kind is skipped and reported, the others
+// read their arguments (a shape, a polynomial, a reference or a CSG's children) then the
+// modifiers.
 Node Parser::parse_object(const Tok& keyword) {
   Nesting guard(*this);
   const std::string& w = keyword.token.text;
@@ -159,9 +489,7 @@ Node Parser::parse_object(const Tok& keyword) {
   for (std::string_view u : kUnsupported) {
     if (w == u) {
       skip_block();
-      Node node;
-      node.missing.push_back({w, where, std::nullopt});
-      return node;
+      return missing_node(w, where);
     }
   }
   count_objects(1);
@@ -175,143 +503,69 @@ Node Parser::parse_object(const Tok& keyword) {
   o.keyword = w;
   o.where = where;
   expect("{");
+  if (w == "object") return parse_object_reference();
   bool dropped = false;  // an unsupported object left out of this CSG
-  if (w == "sphere") {
-    o.shape = Shape::kSphere;
-    o.a = parse_vector();
-    accept(",");
-    o.r0 = parse_float();
-  } else if (w == "box") {
-    o.shape = Shape::kBox;
-    o.a = parse_vector();
-    accept(",");
-    o.b = parse_vector();
-  } else if (w == "plane") {
-    o.shape = Shape::kPlane;
-    o.a = parse_vector();
-    accept(",");
-    o.r0 = parse_float();
-  } else if (w == "cylinder") {
-    o.shape = Shape::kCylinder;
-    o.a = parse_vector();
-    accept(",");
-    o.b = parse_vector();
-    accept(",");
-    o.r0 = parse_float();
-  } else if (w == "cone") {
-    o.shape = Shape::kCone;
-    o.a = parse_vector();
-    accept(",");
-    o.r0 = parse_float();
-    accept(",");
-    o.b = parse_vector();
-    accept(",");
-    o.r1 = parse_float();
-  } else if (w == "torus") {
-    o.shape = Shape::kTorus;
-    o.r0 = parse_float();
-    accept(",");
-    o.r1 = parse_float();
-  } else if (w == "disc") {
-    o.shape = Shape::kDisc;
-    o.a = parse_vector();
-    accept(",");
-    o.b = parse_vector();
-    accept(",");
-    o.r0 = parse_float();
-    if (accept(",")) o.r1 = parse_float();
-  } else if (w == "triangle" || w == "smooth_triangle") {
-    o.shape = Shape::kMesh;
-    bool smooth = w == "smooth_triangle";
-    for (int i = 0; i < 3; ++i) {
-      if (i) accept(",");
-      o.vertices.push_back(parse_vector());
-      if (smooth) {
-        accept(",");
-        o.normals.push_back(parse_vector());
-      }
-    }
-    o.indices = {0, 1, 2};
-  } else if (w == "quadric" || w == "cubic" || w == "quartic" || w == "poly") {
+  if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
+    parse_primitive(*this, o, *primitive);
+  } else if (const ShapeParser* shape = find_keyword(kShapes, w)) {
+    shape->parse(*this, o);
+  } else if (is_polynomial(w)) {
     if (!parse_polynomial(w, o)) {
       skip_rest_of_block();
-      Node missing;
-      missing.missing.push_back({w, where, std::nullopt});  // above degree 4
-      return missing;
+      return missing_node(w, where);  // above degree 4
     }
-  } else if (w == "mesh") {
-    parse_mesh(o);
-  } else if (w == "mesh2") {
-    parse_mesh2(o);
-  } else if (w == "polygon") {
-    o.shape = Shape::kMesh;
-    double n = parse_count();
-    if (!(n >= 3 && n <= static_cast<double>(options_.limits.objects)))
-      fail("polygon needs at least 3 points");
-    count_objects(static_cast<uint64_t>(n));
-    std::vector<Vec3d> points;
-    for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
-      accept(",");
-      Value v = parse_numeric(3);
-      points.push_back({v.v[0], v.v[1], v.v[2]});
-    }
-    // sub-polygons close where a point repeats the first of its loop (POV-Ray manual 3.4.2.4);
-    // each loop is triangulated on its own (holes are not cut)
-    size_t start = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-      bool closes = i > start + 1 && points[i].x == points[start].x &&
-                    points[i].y == points[start].y && points[i].z == points[start].z;
-      if (closes || i + 1 == points.size()) {
-        size_t end = closes ? i : i + 1;
-        uint32_t first = static_cast<uint32_t>(o.vertices.size());
-        o.vertices.insert(o.vertices.end(), points.begin() + static_cast<std::ptrdiff_t>(start),
-                          points.begin() + static_cast<std::ptrdiff_t>(end));
-        triangulate_loop(o.vertices, first, static_cast<uint32_t>(end - start), o.indices);
-        start = i + 1;
-      }
-    }
-  } else if (w == "object") {
-    Tok first = next();
-    if (first.identifier && first.value.get<Node>()) {
-      node = *first.value.get<Node>();
-    } else if (is_object_keyword(first)) {
-      node = parse_object(first);
-    } else {
-      fail("expected an object identifier in object { }");
-    }
-    if (!node.object) {
-      // an unsupported or light-only object: transforms still move its lights
-      parse_object_mods(node);
-      return node;
-    }
-    parse_object_mods(node);
-    return node;
   } else {
-    if (w == "light_group") unsupported("light_group (its lights light the whole scene)", where);
-    o.shape = w == "union"          ? Shape::kUnion
-              : w == "merge"        ? Shape::kMerge
-              : w == "intersection" ? Shape::kIntersection
-                                    : Shape::kDifference;
-    for (;;) {
-      Tok tok = next();
-      if (!is_object_keyword(tok)) {
-        unget(std::move(tok));
-        break;
-      }
-      Node child = parse_object(tok);
-      node.lights.insert(node.lights.end(), child.lights.begin(), child.lights.end());
-      node.missing.insert(node.missing.end(), child.missing.begin(), child.missing.end());
-      if (child.object) {
-        o.children.push_back(std::move(*child.object));
-      } else if (child.lights.empty()) {
-        if (o.shape == Shape::kDifference && o.children.empty()) dropped = true;
-      }
-    }
+    dropped = parse_csg_children(w, where, o, node);
   }
   node.object = std::move(o);
   parse_object_mods(node);
   if (dropped) node.object.reset();  // a difference whose base is unsupported
   return node;
+}
+
+// object { Identifier | Object ... }: a copy of a declared or inline object, then modifiers (an
+// unsupported or light-only object's transforms still move its lights).
+Node Parser::parse_object_reference() {
+  Node node;
+  Tok first = next();
+  if (first.identifier && first.value.get<Node>()) {
+    node = *first.value.get<Node>();
+  } else if (is_object_keyword(first)) {
+    node = parse_object(first);
+  } else {
+    fail("expected an object identifier in object { }");
+  }
+  parse_object_mods(node);
+  return node;
+}
+
+// union, merge, intersection, difference, light_group: the children, their lights and missing
+// objects gathered into `node`. True if the difference's base was unsupported (the whole
+// difference is then left out).
+bool Parser::parse_csg_children(const std::string& w, const SourceLocation& where, Object& o,
+                                Node& node) {
+  if (w == "light_group") unsupported("light_group (its lights light the whole scene)", where);
+  o.shape = w == "union"          ? Shape::kUnion
+            : w == "merge"        ? Shape::kMerge
+            : w == "intersection" ? Shape::kIntersection
+                                  : Shape::kDifference;
+  bool dropped = false;
+  for (;;) {
+    Tok tok = next();
+    if (!is_object_keyword(tok)) {
+      unget(std::move(tok));
+      break;
+    }
+    Node child = parse_object(tok);
+    node.lights.insert(node.lights.end(), child.lights.begin(), child.lights.end());
+    node.missing.insert(node.missing.end(), child.missing.begin(), child.missing.end());
+    if (child.object) {
+      o.children.push_back(std::move(*child.object));
+    } else if (child.lights.empty()) {
+      if (o.shape == Shape::kDifference && o.children.empty()) dropped = true;
+    }
+  }
+  return dropped;
 }
 
 void Parser::parse_mesh(Object& o) {
@@ -392,79 +646,21 @@ void Parser::parse_mesh(Object& o) {
 
 void Parser::parse_mesh2(Object& o) {
   o.shape = Shape::kMesh;
-  auto count_of = [&]() {
-    expect("{");
-    double n = parse_count();
-    if (!(n >= 0 && n <= static_cast<double>(options_.limits.objects))) fail("bad mesh2 count");
-    count_objects(static_cast<uint64_t>(n));
-    return static_cast<size_t>(n);
-  };
   std::vector<Vec3d> normals;
   std::vector<uint32_t> normal_indices;
   for (;;) {
     Tok tok = next();
     const std::string& w = tok.token.text;
-    if (w == "vertex_vectors" || w == "normal_vectors") {
-      size_t n = count_of();
-      std::vector<Vec3d>& target = w == "vertex_vectors" ? o.vertices : normals;
-      for (size_t i = 0; i < n; ++i) {
-        accept(",");
-        target.push_back(parse_vector());
-      }
-      accept(",");
-      expect("}");
+    if (w == "vertex_vectors") {
+      parse_mesh2_vectors(*this, o.vertices);
+    } else if (w == "normal_vectors") {
+      parse_mesh2_vectors(*this, normals);
     } else if (w == "uv_vectors") {
-      size_t n = count_of();
-      for (size_t i = 0; i < n; ++i) {
-        accept(",");
-        parse_numeric(2);
-      }
-      accept(",");
-      expect("}");
+      skip_mesh2_uv_vectors(*this);
     } else if (w == "texture_list") {
-      size_t n = count_of();
-      for (size_t i = 0; i < n; ++i) {
-        accept(",");
-        Tok t = next();
-        if (!t.word("texture")) fail("expected texture in texture_list");
-        o.textures.push_back(parse_texture());
-      }
-      accept(",");
-      expect("}");
+      parse_mesh2_texture_list(*this, o);
     } else if (w == "face_indices" || w == "normal_indices" || w == "uv_indices") {
-      size_t n = count_of();
-      for (size_t i = 0; i < n; ++i) {
-        accept(",");
-        Value v = parse_numeric(3);
-        for (int k = 0; k < 3; ++k) {
-          if (!(v.v[k] >= 0 && v.v[k] < 4294967295.0)) fail("negative or huge mesh2 index");
-          uint32_t index = static_cast<uint32_t>(v.v[k]);
-          if (w == "face_indices") o.indices.push_back(index);
-          if (w == "normal_indices") normal_indices.push_back(index);
-        }
-        if (w != "face_indices") continue;
-        // optional texture indices after the face: one, or one per corner
-        accept(",");
-        // (a float; the next face is a vector, perhaps a vector identifier: `F1+A, F2+A` in
-        // shapes.inc's HFCreate_)
-        const Tok& after = peek();
-        const bool texture_index = after.token.kind == TokenKind::kNumber || after.symbol("(") ||
-                                   (after.identifier && after.value.kind == ValueKind::kFloat);
-        if (!texture_index) continue;
-        double t = parse_float();
-        if (!(t >= 0 && t < 4294967295.0)) fail("bad mesh2 texture index");
-        o.triangle_textures.resize(o.indices.size() / 3 - 1, 0);
-        o.triangle_textures.push_back(static_cast<uint32_t>(t));
-        for (int k = 0; k < 2; ++k) {
-          if (!peek().symbol(",")) break;
-          next();
-          const Tok& more = peek();
-          if (more.symbol("<") || more.symbol("}")) break;
-          parse_float();
-        }
-      }
-      accept(",");
-      expect("}");
+      parse_mesh2_indices(*this, w, o, normal_indices);
     } else if (w == "inside_vector") {
       parse_vector();
     } else {
@@ -472,30 +668,7 @@ void Parser::parse_mesh2(Object& o) {
       break;
     }
   }
-  if (!o.triangle_textures.empty()) o.triangle_textures.resize(o.indices.size() / 3, 0);
-  for (uint32_t t : o.triangle_textures) {
-    if (t >= o.textures.size()) fail("mesh2 texture index past the texture_list");
-  }
-  for (uint32_t i : o.indices) {
-    if (i >= o.vertices.size())
-      fail("mesh2 face index " + std::to_string(i) + " past the vertex_vectors");
-  }
-  if (!normals.empty() && !normal_indices.empty()) {
-    if (normal_indices.size() != o.indices.size())
-      fail("mesh2 normal_indices and face_indices differ in count");
-    // one normal per corner: corners become vertices of their own
-    std::vector<Vec3d> vertices, corner_normals;
-    for (size_t i = 0; i < o.indices.size(); ++i) {
-      if (normal_indices[i] >= normals.size()) fail("mesh2 normal index past the normal_vectors");
-      vertices.push_back(o.vertices[o.indices[i]]);
-      corner_normals.push_back(normals[normal_indices[i]]);
-      o.indices[i] = static_cast<uint32_t>(i);
-    }
-    o.vertices = std::move(vertices);
-    o.normals = std::move(corner_normals);
-  } else if (normals.size() == o.vertices.size()) {
-    o.normals = std::move(normals);
-  }
+  finish_mesh2(*this, o, normals, normal_indices);
 }
 
 // quadric { <A,B,C>, <D,E,F>, <G,H,I>, J }: A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x +
@@ -558,102 +731,55 @@ void Parser::parse_object_mods(Node& node) {
     // modifiers of a light-only or unsupported object: parsed, nothing to change
     Object scratch;
     Object& o = node.object ? *node.object : scratch;
-    if (w == "texture") {
-      Texture t = parse_texture();
-      if (o.texture_given && o.shape != Shape::kMesh) continue;  // layered: the first stays
-      o.texture = std::move(t);
-      o.texture_given = true;
-    } else if (w == "pigment") {
-      Pigment p = parse_pigment();
-      ensure_texture(o);
-      o.texture.pigment = std::move(p);
-    } else if (w == "finish") {
-      Finish f = parse_finish();
-      ensure_texture(o);
-      o.texture.finish = f;
-    } else if (w == "normal") {
-      unsupported("normal", location_of(tok));
-      skip_block();
-      ensure_texture(o);
-      o.texture.has_normal = true;
-    } else if (w == "interior") {
-      o.interior = parse_interior();
-    } else if (w == "material") {
-      MaterialValue m = parse_material();
-      if (m.texture) {
-        o.texture = *m.texture;
-        o.texture_given = true;
-      }
-      if (m.interior) o.interior = m.interior;
-    } else if (w == "inverse") {
+    if (parse_appearance_mod(*this, tok, o) || parse_flag(*this, w, o)) continue;
+    if (w == "inverse") {
       o.inverse = !o.inverse;
-    } else if (w == "hollow") {
-      o.hollow = parse_bool_option();
-    } else if (w == "no_shadow") {
-      o.no_shadow = parse_bool_option();
-    } else if (w == "no_image") {
-      o.no_image = parse_bool_option();
-    } else if (w == "no_reflection") {
-      o.no_reflection = parse_bool_option();
-    } else if (w == "double_illuminate") {
-      o.double_illuminate = parse_bool_option();
-    } else if (w == "open") {
-      o.open = parse_bool_option();
-    } else if (w == "no_radiosity" || w == "sturm" || w == "global_lights" || w == "split_union" ||
-               w == "cutaway_textures" || w == "hierarchy" || w == "smooth" || w == "uv_mapping") {
-      parse_bool_option();
     } else if (w == "inside_vector") {
       parse_vector();
     } else if (w == "clipped_by") {
-      expect("{");
-      for (;;) {
-        Tok item = next();
-        if (item.symbol("}")) break;
-        if (item.word("bounded_by")) continue;  // clipped_by { bounded_by }: nothing to clip
-        if (!is_object_keyword(item)) fail("expected an object in clipped_by");
-        Node clip = parse_object(item);
-        node.missing.insert(node.missing.end(), clip.missing.begin(), clip.missing.end());
-        if (clip.object) o.clipped_by.push_back(std::move(*clip.object));
-      }
+      parse_clipped_by(node, o);
     } else if (w == "bounded_by") {
       skip_block();  // only a speed hint
     } else if (w == "photons" || w == "radiosity" || w == "interior_texture") {
       unsupported(w, location_of(tok));
       skip_block();
-    } else if (tok.identifier && tok.value.get<Texture>()) {
-      // a texture identifier after a texture is a layer; as the first one it is the texture
-      if (!o.texture_given) {
-        o.texture = *tok.value.get<Texture>();
-        o.texture_given = true;
-      }
-    } else if (tok.identifier && tok.value.get<MaterialValue>()) {
-      const MaterialValue& m = *tok.value.get<MaterialValue>();
-      if (m.texture) {
-        o.texture = *m.texture;
-        o.texture_given = true;
-      }
-      if (m.interior) o.interior = m.interior;
-    } else {
+    } else if (!take_declared_appearance(tok, o)) {
       fail("unexpected '" + w + "' in " + (node.object ? node.object->keyword : "object"));
     }
   }
-  if (!node.object) return;
-  Object& o = *node.object;
+  if (node.object) complete_appearance(*node.object);
+}
+
+// clipped_by { Object ... }: the clipping objects; the unsupported ones are reported with `node`.
+void Parser::parse_clipped_by(Node& node, Object& o) {
+  expect("{");
+  for (;;) {
+    Tok item = next();
+    if (item.symbol("}")) break;
+    if (item.word("bounded_by")) continue;  // clipped_by { bounded_by }: nothing to clip
+    if (!is_object_keyword(item)) fail("expected an object in clipped_by");
+    Node clip = parse_object(item);
+    node.missing.insert(node.missing.end(), clip.missing.begin(), clip.missing.end());
+    if (clip.object) o.clipped_by.push_back(std::move(*clip.object));
+  }
+}
+
+// After the modifiers: a CSG's children inherit its texture and interior, and mesh triangles
+// without their own texture take the mesh's.
+void Parser::complete_appearance(Object& o) {
   if (is_csg(o.shape)) inherit(o, o.texture_given ? &o.texture : nullptr, o.interior);
-  if (!o.triangle_textures.empty()) {
-    // mesh triangles without their own texture take the mesh's
-    uint32_t own = static_cast<uint32_t>(o.textures.size());
-    bool used = false;
-    for (uint32_t& t : o.triangle_textures) {
-      if (t == UINT32_MAX) {
-        t = own;
-        used = true;
-      }
+  if (o.triangle_textures.empty()) return;
+  uint32_t own = static_cast<uint32_t>(o.textures.size());
+  bool used = false;
+  for (uint32_t& t : o.triangle_textures) {
+    if (t == UINT32_MAX) {
+      t = own;
+      used = true;
     }
-    if (used) {
-      ensure_texture(o);
-      o.textures.push_back(o.texture);
-    }
+  }
+  if (used) {
+    ensure_texture(o);
+    o.textures.push_back(o.texture);
   }
 }
 

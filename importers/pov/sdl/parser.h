@@ -214,12 +214,17 @@ class Parser {
   // ---- objects (objects.cpp) ----
   bool is_object_keyword(const Tok& tok) const;
   Node parse_object(const Tok& keyword);
+  Node parse_object_reference();  // object { ... }, after the '{'
+  bool parse_csg_children(const std::string& keyword, const SourceLocation& where, Object& o,
+                          Node& node);
   void parse_mesh(Object& o);
   void parse_mesh2(Object& o);
   bool parse_polynomial(const std::string& keyword, Object& o);
   void skip_rest_of_block();  // to the '}' closing a block already open
   void parse_object_mods(Node& node);
-  void ensure_texture(Object& o);  // the object's own texture, from the #default one if none
+  void parse_clipped_by(Node& node, Object& o);
+  void complete_appearance(Object& o);  // after the modifiers: CSG and mesh inheritance
+  void ensure_texture(Object& o);       // the object's own texture, from the #default one if none
 
   // ---- scene statements (statements.cpp) ----
   CameraStatement parse_camera(const Tok& keyword);
@@ -229,7 +234,6 @@ class Parser {
   void count_objects(uint64_t n);
 
  private:
-  friend class DirectiveRunner;
   struct Frame {
     std::shared_ptr<TokenFile> file;
     size_t pos = 0;
@@ -295,7 +299,20 @@ class Parser {
   int vector_level_ = -1;  // expression nesting at which '>' closes a vector literal
 
   // directives.cpp
-  void run_directive(const Token& token);
+  void run_directive(const Token& token);  // dispatches to one of the run_* below
+  void run_if();
+  void run_ifdef(bool runs_if_defined);
+  void run_else(const std::string& which);
+  void run_while();
+  void run_for();
+  void run_switch();
+  void run_case(const std::string& which);
+  void run_break();
+  void run_undef();
+  void run_version();
+  void run_message(const std::string& which);
+  void run_default();
+  void run_fclose();
   void skip_to_branch(bool from_if_start);
   void skip_levels(int levels);
   bool parse_condition();
