@@ -255,7 +255,7 @@ std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
 }
 
 // A command's exit status, its error printed as one line: 2 for bad usage, 1 for bad input and
-// every other failure (docs/conventions.md, "Errors").
+// every other failure (docs/cli.md, "Exit status").
 int exit_status_of(const std::function<int()>& run_command) {
   try {
     return run_command();

@@ -229,7 +229,8 @@ void check_outputs(const std::vector<std::filesystem::path>& outputs) {
   }
 }
 
-// Checkpoints of this render (docs/cli.md, "Checkpoints"); the file is the report's.
+// Checkpoints of this render (docs/cli.md, "Interrupts and checkpoints"); the file is
+// report.checkpoint.
 struct Checkpoints {
   bool enabled = false;                             // written, resumed from, or both
   Clock::duration every = Clock::duration::zero();  // zero: only when interrupted
