@@ -213,15 +213,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
                                const ShotTimes& times, const MotionTolerance& tolerance)
     : shader_(std::make_unique<SurfaceShader>(scene, render_from_world.inverse())),
       embree_(std::make_unique<Embree>()) {
-  embree_->device = rtcNewDevice(nullptr);
-  if (!embree_->device) throw InputError("cannot create an Embree device");
-  rtcSetDeviceErrorFunction(embree_->device, record_embree_error, &embree_->error);
-  rtcSetDeviceMemoryMonitorFunction(embree_->device, count_embree_bytes, nullptr);
-  embree_->scene = rtcNewScene(embree_->device);
-  // Watertight triangle tests: no ray slips between two triangles of a closed mesh (light leaks
-  // into closed rooms), and single rays and packets agree on every hit.
-  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
-
+  open_embree();
   meshes_.reserve(scene.instances.size());  // alpha filters keep pointers to their mesh
   if (times.shutter_open()) {
     open_s_ = float(times.open_s - times.frame_s);
@@ -238,50 +230,81 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
             : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())});
     moving_instances_ += moving;
     most_motion_steps_ = std::max(most_motion_steps_, mesh.step_count);
-
-    const Material& material = scene.materials[mesh.material];
-    if (max_component(material.emission) > 0.f) {
-      mesh.first_emitter = static_cast<uint32_t>(emitters_.size());
-      for (size_t i = 0; i < mesh.indices.size(); i += 3) {
-        EmissiveTriangle e{mesh.positions[mesh.indices[i]],
-                           mesh.positions[mesh.indices[i + 1]],
-                           mesh.positions[mesh.indices[i + 2]],
-                           {},
-                           0.f,
-                           mesh.material,
-                           uint32_t(meshes_.size()),
-                           uint32_t(i / 3),
-                           moving};
-        const Vec3f c = cross(e.p1 - e.p0, e.p2 - e.p0);
-        e.area = 0.5f * length(c);
-        e.normal = e.area > 0.f ? c / (2.f * e.area) : Vec3f{0, 0, 1};
-        emitters_.push_back(e);  // zero-area ones stay, so indices match primitive IDs
-      }
-    }
-
-    RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryTimeStepCount(geometry, mesh.step_count);
-    for (uint32_t k = 0; k < mesh.step_count; ++k)
-      rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
-                                 mesh.positions.data() + k * mesh.vertex_count, 0, sizeof(Vec3f),
-                                 mesh.vertex_count);
-    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               mesh.indices.data(), 0, 3 * sizeof(uint32_t),
-                               mesh.indices.size() / 3);
-    if (shader_->has_alpha(mesh.material)) {
-      mesh.shader = shader_.get();
-      // The slot the mesh is moved into below; meshes_ never reallocates (reserved).
-      rtcSetGeometryUserData(geometry, meshes_.data() + meshes_.size());
-      rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
-      rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
-    }
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometryByID(embree_->scene, geometry, static_cast<unsigned>(meshes_.size()));
-    rtcReleaseGeometry(geometry);
-    triangle_count_ += mesh.indices.size() / 3;
-    meshes_.push_back(
-        std::move(mesh));  // vector storage moves with it: the shared pointers stay valid
+    if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
+    attach_mesh(std::move(mesh));
   }
+  attach_solids(scene, render_from_world);
+  rtcCommitScene(embree_->scene);
+  if (!embree_->error.empty())
+    throw InputError("Embree could not build the scene: " + embree_->error);
+  if (!bounds_.empty()) {
+    centre_ = Vec3f((bounds_.lo + bounds_.hi) * 0.5);
+    radius_ = static_cast<float>(length(bounds_.hi - bounds_.lo) * 0.5);
+  }
+  own_bytes_ = count_own_bytes();
+  live_bytes_total.fetch_add(int64_t(own_bytes_), std::memory_order_relaxed);
+}
+
+void RenderGeometry::open_embree() {
+  embree_->device = rtcNewDevice(nullptr);
+  if (!embree_->device) throw InputError("cannot create an Embree device");
+  rtcSetDeviceErrorFunction(embree_->device, record_embree_error, &embree_->error);
+  rtcSetDeviceMemoryMonitorFunction(embree_->device, count_embree_bytes, nullptr);
+  embree_->scene = rtcNewScene(embree_->device);
+  // Watertight triangle tests: no ray slips between two triangles of a closed mesh (light leaks
+  // into closed rooms), and single rays and packets agree on every hit.
+  rtcSetSceneFlags(embree_->scene, RTC_SCENE_FLAG_ROBUST);
+}
+
+// Each triangle of an emissive mesh, at its first motion step, as the mesh meshes_.size() will be.
+void RenderGeometry::add_emitters(Mesh& mesh, bool moving) {
+  mesh.first_emitter = static_cast<uint32_t>(emitters_.size());
+  for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+    EmissiveTriangle e{mesh.positions[mesh.indices[i]],
+                       mesh.positions[mesh.indices[i + 1]],
+                       mesh.positions[mesh.indices[i + 2]],
+                       {},
+                       0.f,
+                       mesh.material,
+                       uint32_t(meshes_.size()),
+                       uint32_t(i / 3),
+                       moving};
+    const Vec3f c = cross(e.p1 - e.p0, e.p2 - e.p0);
+    e.area = 0.5f * length(c);
+    e.normal = e.area > 0.f ? c / (2.f * e.area) : Vec3f{0, 0, 1};
+    emitters_.push_back(e);  // zero-area ones stay, so indices match primitive IDs
+  }
+}
+
+// The mesh as Embree triangle geometry sharing its buffers (one vertex buffer per motion step),
+// with the alpha filter when its material has alpha; its Embree ID is its index in meshes_.
+void RenderGeometry::attach_mesh(Mesh mesh) {
+  RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryTimeStepCount(geometry, mesh.step_count);
+  for (uint32_t k = 0; k < mesh.step_count; ++k)
+    rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
+                               mesh.positions.data() + k * mesh.vertex_count, 0, sizeof(Vec3f),
+                               mesh.vertex_count);
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                             mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.indices.size() / 3);
+  if (shader_->has_alpha(mesh.material)) {
+    mesh.shader = shader_.get();
+    // The slot the mesh is moved into below; meshes_ never reallocates (reserved).
+    rtcSetGeometryUserData(geometry, meshes_.data() + meshes_.size());
+    rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(embree_->scene, geometry, static_cast<unsigned>(meshes_.size()));
+  rtcReleaseGeometry(geometry);
+  triangle_count_ += mesh.indices.size() / 3;
+  meshes_.push_back(
+      std::move(mesh));  // vector storage moves with it: the shared pointers stay valid
+}
+
+// The analytic solids as Embree user geometry, after the meshes; the unbounded ones reach as far
+// as solid_reach says.
+void RenderGeometry::attach_solids(const Scene& scene, const Transform& render_from_world) {
   Bounds3d bounded = bounds_;
   for (const Solid& solid : scene.solids) {
     const Bounds3d b = solid_bounds(solid, render_from_world);
@@ -298,21 +321,17 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     attach_solid(embree_->device, embree_->scene, attached,
                  unsigned(meshes_.size() + solids_.size() - 1));
   }
-  rtcCommitScene(embree_->scene);
-  if (!embree_->error.empty())
-    throw InputError("Embree could not build the scene: " + embree_->error);
-  if (!bounds_.empty()) {
-    centre_ = Vec3f((bounds_.lo + bounds_.hi) * 0.5);
-    radius_ = static_cast<float>(length(bounds_.hi - bounds_.lo) * 0.5);
-  }
-  own_bytes_ = bytes_of(meshes_) + bytes_of(emitters_);
+}
+
+size_t RenderGeometry::count_own_bytes() const {
+  size_t bytes = bytes_of(meshes_) + bytes_of(emitters_);
   for (const Mesh& mesh : meshes_) {
-    own_bytes_ += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.indices) +
-                  bytes_of(mesh.texturing.tangents) + bytes_of(mesh.texturing.radial_tangents);
+    bytes += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.indices) +
+             bytes_of(mesh.texturing.tangents) + bytes_of(mesh.texturing.radial_tangents);
     for (const auto& texcoords : mesh.texturing.texcoords)
-      own_bytes_ += bytes_of(texcoords);
+      bytes += bytes_of(texcoords);
   }
-  live_bytes_total.fetch_add(int64_t(own_bytes_), std::memory_order_relaxed);
+  return bytes;
 }
 
 RenderGeometry::~RenderGeometry() {

@@ -101,6 +101,13 @@ class RenderGeometry {
   float embree_time(float time_s) const;
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
                   const std::vector<Transform>& render_from_object_steps);
+  // The constructor's steps: the Embree device and scene; the emitters of an emissive mesh; a mesh
+  // and the solids into the Embree scene; and the bytes this object holds (live_bytes()).
+  void open_embree();
+  void add_emitters(Mesh& mesh, bool moving);
+  void attach_mesh(Mesh mesh);
+  void attach_solids(const Scene& scene, const Transform& render_from_world);
+  size_t count_own_bytes() const;
   std::unique_ptr<SurfaceShader> shader_;   // materials' textures, evaluated at each hit
   std::vector<Mesh> meshes_;                // indexed by Embree geometry ID
   std::vector<RenderSolid> solids_;         // Embree geometry IDs from meshes_.size() on

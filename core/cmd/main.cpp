@@ -1,5 +1,6 @@
 // filmback's command-line front end: `render`, `info`, `convert`, `plugins`, `bench` (docs/cli.md).
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <optional>
 
 #include <iostream>
@@ -17,14 +18,8 @@ void add_import_options(CLI::App* command, fb::ImportOptions& options) {
   command->add_option("--clock", options.clock, "POV-Ray: the value of `clock` (default 0)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"filmback: a physically based renderer that keeps the camera of the shot"};
-  app.require_subcommand(1);
-
-  fb::RenderCommand render;
-  CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR, PNG and/or JPEG");
+// `render`: the scene, the outputs, the sample count and size, and the plugins.
+void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& render) {
   render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb, .pov)")->required();
   render_cmd
       ->add_option("-o,--output", render.outputs, "output image, .exr, .png or .jpg (repeatable)")
@@ -50,6 +45,10 @@ int main(int argc, char** argv) {
                          "integrator NAME[:k=v,...] (default path)");
   render_cmd->add_option("--background", render.background,
                          "uniform background radiance: one value or r,g,b (W/sr/m^2)");
+}
+
+// `render`: the lens, sensor, shutter and frame, each replacing the shot's (docs/cli.md).
+void add_physical_camera_options(CLI::App* render_cmd, fb::RenderCommand& render) {
   CLI::Option_group* camera_group = render_cmd->add_option_group(
       "physical camera", "each replaces the value the shot carries (docs/cli.md)");
   camera_group->add_option("--focal-length", render.focal_length, "focal length in mm");
@@ -74,6 +73,10 @@ int main(int argc, char** argv) {
   camera_group->add_option("--sensor-model", render.sensor_model,
                            "simple (pixel = radiance, as Cycles; default) or physical (exposure)");
   camera_group->add_option("--iso", render.iso, "physical sensor: ISO speed (default 100)");
+}
+
+// `render`: the view of 8-bit outputs, as Blender saves a render (docs/cli.md).
+void add_colour_options(CLI::App* render_cmd, fb::RenderCommand& render) {
   CLI::Option_group* colour_group = render_cmd->add_option_group(
       "colour", "8-bit outputs (PNG, JPEG) as Blender saves a render; each replaces the shot's");
   colour_group->add_option("--view-transform", render.view_transform,
@@ -88,6 +91,11 @@ int main(int argc, char** argv) {
                            "Blender's dither intensity, 0 to 2 (default: the shot's, else 0)");
   colour_group->add_option("--ocio-config", render.ocio_config,
                            "OpenColorIO config (default: $OCIO, else the installed Blender's)");
+}
+
+// `render`: how the render runs: subdivision, memory, threads, sampler, progress, checkpoints and
+// the JSON report.
+void add_run_options(CLI::App* render_cmd, fb::RenderCommand& render) {
   render_cmd
       ->add_option("--subdiv", render.subdiv,
                    "subdivision surfaces: render (Blender's render level, default) or adaptive "
@@ -110,21 +118,44 @@ int main(int argc, char** argv) {
                        "continue from the checkpoint: the same image as an uninterrupted render");
   render_cmd->add_option("--stats-json", render.stats_json,
                          "write timings, counts, warnings and the chosen models as JSON");
-  add_import_options(render_cmd, render.import);
+}
 
-  std::filesystem::path info_scene;
+CLI::App* add_render_command(CLI::App& app, fb::RenderCommand& render) {
+  CLI::App* render_cmd = app.add_subcommand("render", "render a scene to EXR, PNG and/or JPEG");
+  add_scene_and_plugin_options(render_cmd, render);
+  add_physical_camera_options(render_cmd, render);
+  add_colour_options(render_cmd, render);
+  add_run_options(render_cmd, render);
+  add_import_options(render_cmd, render.import);
+  return render_cmd;
+}
+
+// What `filmback info` is asked: the resolution stays text until the command runs, so that a bad
+// one is reported as every other usage error is.
+struct InfoCommand {
+  std::filesystem::path scene;
+  std::optional<std::string> camera;
+  std::string resolution;
+  fb::ImportOptions import;
+};
+
+CLI::App* add_info_command(CLI::App& app, InfoCommand& info) {
   CLI::App* info_cmd =
       app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
-  info_cmd->add_option("scene", info_scene, "scene file (.gltf, .glb, .pov)")->required();
-  std::optional<std::string> info_camera;
-  info_cmd->add_option("--camera", info_camera, "list only the camera of this name");
-  std::string info_resolution;
-  info_cmd->add_option("--res", info_resolution,
+  info_cmd->add_option("scene", info.scene, "scene file (.gltf, .glb, .pov)")->required();
+  info_cmd->add_option("--camera", info.camera, "list only the camera of this name");
+  info_cmd->add_option("--res", info.resolution,
                        "image size WxH the camera is described for (POV-Ray: image_width/height)");
-  fb::ImportOptions info_import;
-  add_import_options(info_cmd, info_import);
+  add_import_options(info_cmd, info.import);
+  return info_cmd;
+}
 
-  fb::ConvertCommand convert;
+int run_info_command(InfoCommand& info) {
+  if (!info.resolution.empty()) info.import.resolution = fb::parse_resolution(info.resolution);
+  return fb::run_info(info.scene, info.import, info.camera);
+}
+
+CLI::App* add_convert_command(CLI::App& app, fb::ConvertCommand& convert) {
   CLI::App* convert_cmd =
       app.add_subcommand("convert", "write a scene as glTF 2.0 (analytic shapes tessellated)");
   convert_cmd->add_option("input", convert.input, "scene file (.pov, .gltf, .glb)")->required();
@@ -137,11 +168,10 @@ int main(int argc, char** argv) {
                    "(default: a thousandth of each shape's size)")
       ->check(CLI::Range(1e-6, 1e3));
   add_import_options(convert_cmd, convert.import);
+  return convert_cmd;
+}
 
-  CLI::App* plugins_cmd =
-      app.add_subcommand("plugins", "list every plugin found, with its parameters");
-
-  fb::BenchCommand bench;
+CLI::App* add_bench_command(CLI::App& app, fb::BenchCommand& bench) {
   CLI::App* bench_cmd = app.add_subcommand(
       "bench",
       "render scenes at increasing sample counts: error against time, convergence "
@@ -199,7 +229,20 @@ int main(int argc, char** argv) {
       ->add_option("--threads", bench.threads, "worker threads of both renderers (default 0: all)")
       ->check(CLI::Range(0u, 4096u));
   add_import_options(bench_cmd, bench.import);
+  return bench_cmd;
+}
 
+// The command line as typed, for the bench report.
+std::string command_line(int argc, char** argv) {
+  std::string line = "filmback";
+  for (int i = 1; i < argc; ++i)
+    line += std::string(" ") + argv[i];
+  return line;
+}
+
+// The exit status when the command line does not parse (2), or asks for help (0); none when it
+// parses.
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -208,20 +251,14 @@ int main(int argc, char** argv) {
     std::cerr << "filmback: error: " << e.what() << " (see filmback --help)\n";
     return 2;
   }
+  return std::nullopt;
+}
+
+// A command's exit status, its error printed as one line: 2 for bad usage, 1 for bad input and
+// every other failure (docs/cli.md, "Exit status").
+int exit_status_of(const std::function<int()>& run_command) {
   try {
-    if (render_cmd->parsed()) return fb::run_render(render);
-    if (info_cmd->parsed()) {
-      if (!info_resolution.empty()) info_import.resolution = fb::parse_resolution(info_resolution);
-      return fb::run_info(info_scene, info_import, info_camera);
-    }
-    if (convert_cmd->parsed()) return fb::run_convert(convert);
-    if (plugins_cmd->parsed()) return fb::run_plugins();
-    if (bench_cmd->parsed()) {
-      bench.command_line = "filmback";
-      for (int i = 1; i < argc; ++i)
-        bench.command_line += std::string(" ") + argv[i];
-      return fb::run_bench(bench);
-    }
+    return run_command();
   } catch (const fb::UsageError& e) {
     std::cerr << "filmback: error: " << e.what() << '\n';
     return 2;
@@ -235,5 +272,37 @@ int main(int argc, char** argv) {
     std::cerr << "filmback: error: " << e.what() << '\n';
     return 1;
   }
-  return 2;
+}
+
+struct Subcommand {
+  CLI::App* command;
+  std::function<int()> run;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"filmback: a physically based renderer that keeps the camera of the shot"};
+  app.require_subcommand(1);
+  fb::RenderCommand render;
+  InfoCommand info;
+  fb::ConvertCommand convert;
+  fb::BenchCommand bench;
+  // In the order `filmback --help` lists them (a braced list is evaluated left to right).
+  const Subcommand subcommands[] = {
+      {add_render_command(app, render), [&] { return fb::run_render(render); }},
+      {add_info_command(app, info), [&] { return run_info_command(info); }},
+      {add_convert_command(app, convert), [&] { return fb::run_convert(convert); }},
+      {app.add_subcommand("plugins", "list every plugin found, with its parameters"),
+       [] { return fb::run_plugins(); }},
+      {add_bench_command(app, bench),
+       [&] {
+         bench.command_line = command_line(argc, argv);
+         return fb::run_bench(bench);
+       }},
+  };
+  if (const std::optional<int> status = parse_command_line(app, argc, argv)) return *status;
+  for (const Subcommand& subcommand : subcommands)
+    if (subcommand.command->parsed()) return exit_status_of(subcommand.run);
+  return 2;  // not reached: exactly one subcommand is required
 }

@@ -229,85 +229,133 @@ void check_outputs(const std::vector<std::filesystem::path>& outputs) {
   }
 }
 
-int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
-  InterruptGuard interrupts;  // until the render runs, a signal ends the process at once
+// Checkpoints of this render (docs/cli.md, "Interrupts and checkpoints"); the file is
+// report.checkpoint.
+struct Checkpoints {
+  bool enabled = false;                             // written, resumed from, or both
+  Clock::duration every = Clock::duration::zero();  // zero: only when interrupted
+  // Everything that decides the samples, so that a checkpoint of another render is refused; set
+  // once the job is made.
+  std::string key;
+};
+
+// What the command line asks beyond RenderOptions: the 8-bit view's numbers and the checkpoints.
+struct CommandChoices {
+  ViewOverrides view_overrides;
+  Checkpoints checkpoints;
+};
+
+// Every option checked, and put into c.options, before the scene is read: a typo fails at once.
+CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
   check_outputs(c.outputs);
   if (!c.resolution.empty()) {
     const auto [width, height] = parse_resolution(c.resolution);
     c.options.width = width, c.options.height = height;
   }
   parse_physical(c, c.options);
-  const ViewOverrides view_overrides = parse_view_overrides(c);
+  CommandChoices choices;
+  choices.view_overrides = parse_view_overrides(c);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (!c.memory_limit.empty()) c.options.memory_limit_bytes = parse_memory_size(c.memory_limit);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
   if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
   if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");
   c.options.show_progress = !c.quiet;
-  const bool checkpoints = !c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty();
-  if (checkpoints && c.options.reconstruction == Reconstruction::kSplat)
+  Checkpoints& checkpoints = choices.checkpoints;
+  checkpoints.enabled = !c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty();
+  if (checkpoints.enabled && c.options.reconstruction == Reconstruction::kSplat)
     throw UsageError(
         "--checkpoint-every/--resume: not with --reconstruction splat (its tiles' sums are not "
         "saved)");
-  const Clock::duration every = c.checkpoint_every.empty()
-                                    ? Clock::duration::zero()
-                                    : parse_duration(c.checkpoint_every, "--checkpoint-every");
-  if (checkpoints)
+  if (!c.checkpoint_every.empty())
+    checkpoints.every = parse_duration(c.checkpoint_every, "--checkpoint-every");
+  if (checkpoints.enabled)
     report.checkpoint = c.checkpoint.empty() ? default_checkpoint(c.outputs.front()) : c.checkpoint;
+  return choices;
+}
 
-  Diagnostics diagnostics;
+// The scene, read at the resolution and frame the command line asks for.
+Scene read_scene(RenderCommand& c, Diagnostics& diagnostics, RenderReport& report) {
   c.import.resolution.reset();
   if (c.options.width) c.import.resolution = {*c.options.width, *c.options.height};
   if (c.options.frame) c.import.frame = *c.options.frame;
-  auto stage = Clock::now();
-  const Scene scene = import_scene(c.scene, c.import, diagnostics);
+  const auto stage = Clock::now();
+  Scene scene = import_scene(c.scene, c.import, diagnostics);
   report.import_s = seconds_since(stage);
-  const auto [view, view_origin] = view_settings(c, view_overrides, scene);
-  // Made before the render, so that a bad config or name fails at once: only 8-bit outputs need it.
-  DisplayTransform display;
-  const bool eight_bit = std::any_of(c.outputs.begin(), c.outputs.end(), [](const auto& out) {
-    return is_8_bit(image_format_for(out));
-  });
-  if (eight_bit) display = DisplayTransform::create(view, view_origin, c.ocio_config, diagnostics);
-  report.warnings = diagnostics.messages();
-  diagnostics.print(std::cerr);
+  return scene;
+}
 
-  std::optional<tbb::global_control> threads;
-  if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
-  const PluginLoader loader(PluginLoader::default_search_dirs());
-  stage = Clock::now();
-  const RenderJob job(scene, c.options, loader);
-  report.setup_s = seconds_since(stage);
+// How the outputs show the render: the shot's view settings with the command line's, and the
+// display transform of 8-bit outputs.
+struct OutputView {
+  ViewSettings view;
+  bool eight_bit = false;    // some output is a PNG or JPEG
+  DisplayTransform display;  // made only when eight_bit
+  // What the outputs apply, for the EXR's metadata too.
+  const ViewSettings& applied() const { return eight_bit ? display.settings() : view; }
+};
+
+OutputView output_view(const RenderCommand& c, const ViewOverrides& overrides, const Scene& scene,
+                       Diagnostics& diagnostics) {
+  OutputView out;
+  const auto [view, view_origin] = view_settings(c, overrides, scene);
+  out.view = view;
+  out.eight_bit = std::any_of(c.outputs.begin(), c.outputs.end(), [](const auto& output) {
+    return is_8_bit(image_format_for(output));
+  });
+  // Made before the render, so that a bad config or name fails at once: only 8-bit outputs need it.
+  if (out.eight_bit)
+    out.display = DisplayTransform::create(view, view_origin, c.ocio_config, diagnostics);
+  return out;
+}
+
+// The job's choices into the report, and its plan line unless quiet.
+void report_plan(const RenderJob& job, const RenderCommand& c, RenderReport& report) {
   report.choices = job.choices();
   report.width = job.width(), report.height = job.height();
   report.samples_per_pixel = job.samples_per_pixel();
   report.seed = c.options.seed;
   if (!c.quiet) std::cout << job.plan() << std::endl;
+}
 
-  // Everything that decides the samples: a checkpoint of another render is refused.
-  const std::string key = checkpoints ? job.plan() + "; seed " + std::to_string(c.options.seed) +
-                                            "; scene content " + content_hash(c.scene)
-                                      : std::string();
+std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
+  return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
+         content_hash(c.scene);
+}
+
+// The job's empty film, or with --resume the film the checkpoint holds.
+Film open_film(const RenderJob& job, bool resume, const Checkpoints& checkpoints,
+               RenderReport& report) {
   Film film = job.make_film();
-  if (c.resume) {
+  if (resume) {
     if (!std::filesystem::exists(report.checkpoint))
       throw InputError("--resume: no checkpoint '" + report.checkpoint.string() +
                        "' (--checkpoint-every writes one)");
-    read_checkpoint(report.checkpoint, key, job.samples_per_pixel(), kTileSize, film);
+    read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film);
     report.resumed = true;
   }
-  interrupts.arm();
+  return film;
+}
+
+// A signal stops the render; checkpoints are written on the way when asked for.
+RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints& checkpoints,
+                             RenderReport& report) {
   RenderControl control;
   control.cancel = &interrupts.requested();
-  if (every != Clock::duration::zero()) {
-    control.checkpoint_every = every;
-    control.checkpoint = [&](const Film& f) {
-      write_checkpoint(f, key, report.checkpoint);
+  if (checkpoints.every != Clock::duration::zero()) {
+    control.checkpoint_every = checkpoints.every;
+    control.checkpoint = [&checkpoints, &report](const Film& f) {
+      write_checkpoint(f, checkpoints.key, report.checkpoint);
       ++report.checkpoints_written;
     };
   }
-  stage = Clock::now();
-  const RenderResult result = job.run(film, control);
+  return control;
+}
+
+RenderResult run_job(const RenderJob& job, Film& film, const RenderControl& control,
+                     const InterruptGuard& interrupts, RenderReport& report) {
+  const auto stage = Clock::now();
+  RenderResult result = job.run(film, control);
   report.render_s = seconds_since(stage);
   if (result.stats.interrupted) {
     report.signal = interrupts.signal_number();
@@ -315,22 +363,31 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
   }
   report.stats = result.stats;
   report.fewest_samples = result.fewest_samples, report.most_samples = result.most_samples;
+  return result;
+}
 
-  const RenderStats& s = result.stats;
-  if (s.interrupted && result.most_samples == 0) {
-    std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
-  } else {
-    stage = Clock::now();
-    ImageMetadata metadata = job.metadata(result);
-    add_view_metadata(eight_bit ? display.settings() : view, metadata);
-    write_images(result.image, c.outputs, metadata, display);
-    if (s.interrupted && checkpoints) {
-      write_checkpoint(film, key, report.checkpoint);
-      ++report.checkpoints_written;
-    }
-    if (!s.interrupted && checkpoints) std::filesystem::remove(report.checkpoint);
-    report.write_s = seconds_since(stage);
+// The image into every output; the checkpoint kept for --resume when interrupted, removed when
+// complete.
+void write_outputs(const RenderJob& job, const RenderResult& result, const Film& film,
+                   const OutputView& view, const std::vector<std::filesystem::path>& outputs,
+                   const Checkpoints& checkpoints, RenderReport& report) {
+  const auto stage = Clock::now();
+  ImageMetadata metadata = job.metadata(result);
+  add_view_metadata(view.applied(), metadata);
+  write_images(result.image, outputs, metadata, view.display);
+  const bool interrupted = result.stats.interrupted;
+  if (interrupted && checkpoints.enabled) {
+    write_checkpoint(film, checkpoints.key, report.checkpoint);
+    ++report.checkpoints_written;
   }
+  if (!interrupted && checkpoints.enabled) std::filesystem::remove(report.checkpoint);
+  report.write_s = seconds_since(stage);
+}
+
+// One line: the render's size, speed and dropped samples, or what an interrupted render holds.
+void print_summary(const RenderJob& job, const RenderResult& result,
+                   const InterruptGuard& interrupts, const Checkpoints& checkpoints) {
+  const RenderStats& s = result.stats;
   char line[320];
   std::snprintf(line, sizeof line,
                 "filmback: rendered %ux%u at %u spp in %.2f s: %.2f M samples/s, %.2f M rays/s, "
@@ -344,11 +401,42 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
                   "samples%s",
                   interrupts.signal_number(), s.seconds, result.fewest_samples, result.most_samples,
                   job.samples_per_pixel(),
-                  checkpoints ? "; --resume continues from the checkpoint" : "");
+                  checkpoints.enabled ? "; --resume continues from the checkpoint" : "");
   std::cout << line << std::endl;
+}
+
+int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
+  InterruptGuard interrupts;  // until the render runs, a signal ends the process at once
+  CommandChoices choices = parse_options(c, report);
+  Diagnostics diagnostics;
+  const Scene scene = read_scene(c, diagnostics, report);
+  const OutputView view = output_view(c, choices.view_overrides, scene, diagnostics);
+  report.warnings = diagnostics.messages();
+  diagnostics.print(std::cerr);
+
+  std::optional<tbb::global_control> threads;
+  if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
+  const PluginLoader loader(PluginLoader::default_search_dirs());
+  const auto stage = Clock::now();
+  const RenderJob job(scene, c.options, loader);
+  report.setup_s = seconds_since(stage);
+  report_plan(job, c, report);
+
+  Checkpoints& checkpoints = choices.checkpoints;
+  if (checkpoints.enabled) checkpoints.key = checkpoint_key(job, c);
+  Film film = open_film(job, c.resume, checkpoints, report);
+  interrupts.arm();
+  const RenderResult result =
+      run_job(job, film, render_control(interrupts, checkpoints, report), interrupts, report);
+  const bool interrupted = result.stats.interrupted;
+  if (interrupted && result.most_samples == 0)
+    std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
+  else
+    write_outputs(job, result, film, view, c.outputs, checkpoints, report);
+  print_summary(job, result, interrupts, checkpoints);
   report.total_s = seconds_since(start);
-  report.status = s.interrupted ? "interrupted" : "complete";
-  return s.interrupted ? 128 + interrupts.signal_number() : 0;
+  report.status = interrupted ? "interrupted" : "complete";
+  return interrupted ? 128 + interrupts.signal_number() : 0;
 }
 
 }  // namespace

@@ -97,6 +97,14 @@ class Surface {
   // A node's Normal input turned to I's side (zero: the interpolated normal), then
   // ensure_valid_reflection as svm_node_closure_bsdf applies it.
   Vec3f node_normal(Vec3f normal) const;
+  // The Principled BSDF's lobes, each made from what add_principled computes once for all of them
+  // (node_closures.cpp).
+  struct PrincipledCommon;
+  void add_principled_diffuse(const PrincipledCommon& p);
+  void add_principled_sheen(const PrincipledCommon& p);
+  void add_principled_specular(const PrincipledCommon& p);
+  void add_principled_transmission(const PrincipledCommon& p);
+  void add_principled_clearcoat(const PrincipledCommon& p);
   ClosureContext context() const { return {frame_.I, frame_.Ng, frame_.N}; }
   // Cycles' bump shadowing of a diffuse closure whose normal differs from the interpolated one.
   float bump_factor(const Closure& c, Vec3f wi) const;

@@ -119,40 +119,49 @@ void fill_small_holes(JoinedSurface& s, double tolerance_m) {
     }
 }
 
-}  // namespace
-
-JoinedSurface join_surfaces(const std::vector<SurfacePart>& parts, double tolerance_m) {
-  JoinedSurface out;
-  std::vector<uint32_t> leaf_of;  // per vertex
-  std::vector<uint64_t> seam;     // per vertex
+// The parts' vertices and triangles in one list each, with where each came from.
+struct Gathered {
+  JoinedSurface surface;
+  std::vector<uint32_t> leaf_of;  // per vertex: its primitive
+  std::vector<uint64_t> seam;     // per vertex: the seam it was cut on, or kNoSeam
   std::vector<uint32_t> owner;    // per triangle: its primitive
+};
+
+Gathered gather(const std::vector<SurfacePart>& parts) {
+  Gathered g;
+  JoinedSurface& out = g.surface;
   for (const SurfacePart& part : parts) {
     const uint32_t base = uint32_t(out.positions.size());
     const TrimmedSurface& s = part.surface;
     out.positions.insert(out.positions.end(), s.positions.begin(), s.positions.end());
     for (uint32_t partner : s.partner) {
-      leaf_of.push_back(part.leaf);
-      seam.push_back(seam_of(part.leaf, partner));
+      g.leaf_of.push_back(part.leaf);
+      g.seam.push_back(seam_of(part.leaf, partner));
     }
     for (const TrimmedSurface::Triangle& t : s.triangles) {
       out.triangles.push_back({{t.v[0] + base, t.v[1] + base, t.v[2] + base}, t.n, part.material});
-      owner.push_back(part.leaf);
+      g.owner.push_back(part.leaf);
     }
   }
+  return g;
+}
+
+// One vertex where both sides of a seam found the same point (within kSnapFraction of the
+// tolerance); the triangles this collapses are dropped.
+void merge_shared_cut_vertices(Gathered& g, double tolerance_m) {
+  JoinedSurface& out = g.surface;
   std::vector<char> used(out.positions.size(), 0);
   for (const JoinedSurface::Triangle& t : out.triangles)
     for (uint32_t v : t.v)
       used[v] = 1;
-
-  // One vertex where both sides found the same point.
   std::vector<uint32_t> same(out.positions.size());
   const double snap = kSnapFraction * tolerance_m;
   Grid grid(tolerance_m);
   for (uint32_t v = 0; v < out.positions.size(); ++v) {
     same[v] = v;
-    if (!used[v] || seam[v] == kNoSeam) continue;
+    if (!used[v] || g.seam[v] == kNoSeam) continue;
     grid.near(out.positions[v], out.positions[v], snap, [&](uint32_t w) {
-      if (same[v] == v && seam[w] == seam[v] && leaf_of[w] != leaf_of[v] &&
+      if (same[v] == v && g.seam[w] == g.seam[v] && g.leaf_of[w] != g.leaf_of[v] &&
           length(out.positions[w] - out.positions[v]) <= snap)
         same[v] = w;
     });
@@ -166,128 +175,158 @@ JoinedSurface join_surfaces(const std::vector<SurfacePart>& parts, double tolera
       v = same[v];
     if (t.v[0] == t.v[1] || t.v[1] == t.v[2] || t.v[2] == t.v[0]) continue;
     kept.push_back(t);
-    kept_owner.push_back(owner[i]);
+    kept_owner.push_back(g.owner[i]);
   }
   out.triangles.swap(kept);
-  owner.swap(kept_owner);
+  g.owner.swap(kept_owner);
+}
 
-  // Seam edges with nothing on their other side, per seam, and each seam's vertices.
+// One seam's edges with nothing on their other side, and their vertices.
+struct OpenSeam {
+  std::vector<std::pair<size_t, int>> edges;  // triangle, edge
+  std::vector<uint32_t> vertices;
+  double longest = 0;
+};
+
+std::unordered_map<uint64_t, OpenSeam> open_seams(const Gathered& g) {
+  const JoinedSurface& out = g.surface;
   std::unordered_set<uint64_t> edges;
   for (const JoinedSurface::Triangle& t : out.triangles)
     for (int k = 0; k < 3; ++k)
       edges.insert(directed(t.v[size_t(k)], t.v[size_t((k + 1) % 3)]));
-  struct Seam {
-    std::vector<std::pair<size_t, int>> edges;  // triangle, edge
-    std::vector<uint32_t> vertices;
-    double longest = 0;
-  };
-  std::unordered_map<uint64_t, Seam> seams;
+  std::unordered_map<uint64_t, OpenSeam> seams;
   std::vector<char> listed(out.positions.size(), 0);
   for (size_t i = 0; i < out.triangles.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       const uint32_t a = out.triangles[i].v[size_t(k)], b = out.triangles[i].v[size_t((k + 1) % 3)];
-      if (seam[a] == kNoSeam || seam[a] != seam[b] || edges.count(directed(b, a))) continue;
-      Seam& s = seams[seam[a]];
+      if (g.seam[a] == kNoSeam || g.seam[a] != g.seam[b] || edges.count(directed(b, a))) continue;
+      OpenSeam& s = seams[g.seam[a]];
       s.edges.push_back({i, k});
       s.longest = std::max(s.longest, length(out.positions[b] - out.positions[a]));
       for (uint32_t v : {a, b})
         if (!listed[v]) listed[v] = 1, s.vertices.push_back(v);
     }
+  return seams;
+}
 
-  // Each vertex of one side goes into the nearest open edge of the other side along the same
-  // seam (where the seam turns at a sharp edge, the nearest is on the vertex's own branch), in
-  // order along it.
-  std::unordered_map<uint64_t, std::vector<Insertion>> insertions;  // triangle * 3 + edge
+// Vertices to insert into triangle edges, keyed by triangle * 3 + edge, in order along the edge.
+using Insertions = std::unordered_map<uint64_t, std::vector<Insertion>>;
+
+// Each vertex of one side of `s` goes into the nearest open edge of the other side (where the seam
+// turns at a sharp edge, the nearest is on the vertex's own branch).
+void add_seam_insertions(const Gathered& g, const OpenSeam& s, double tolerance_m,
+                         Insertions& insertions) {
+  const JoinedSurface& out = g.surface;
+  const double snap = kSnapFraction * tolerance_m;
   const double reach = kReachFraction * tolerance_m;
-  for (const auto& [key, s] : seams) {
-    Grid near(std::max(s.longest, tolerance_m));
-    for (uint32_t v : s.vertices)
-      near.add(out.positions[v], v);
-    struct Best {
-      double distance, overshoot;  // to the segment; beyond its ends along it
-      uint64_t edge;
-      double t;
-    };
-    std::unordered_map<uint32_t, Best> best;
-    for (const std::pair<size_t, int>& edge : s.edges) {
-      // Named copies, not a structured binding: clang 14 cannot capture one in the lambda below.
-      const size_t i = edge.first;
-      const int k = edge.second;
-      const uint32_t a = out.triangles[i].v[size_t(k)], b = out.triangles[i].v[size_t((k + 1) % 3)];
-      const Vec3d pa = out.positions[a], pb = out.positions[b], ab = pb - pa;
-      near.near(pa, pb, reach, [&](uint32_t w) {
-        if (w == a || w == b || leaf_of[w] == owner[i]) return;
-        const Vec3d p = out.positions[w];
-        if (length(p - pa) <= snap || length(p - pb) <= snap) return;
-        const double t = dot(p - pa, ab) / dot(ab, ab);
-        const double distance = distance_to_segment(p, pa, pb);
-        const double overshoot = std::max({0.0, -t, t - 1}) * length(ab);
-        if (distance > reach) return;
-        const Best candidate{distance, overshoot, uint64_t(i) * 3 + uint64_t(k), t};
-        const auto [it, added] = best.try_emplace(w, candidate);
-        // Past the shared end of two edges it is equally near both: the one it overshoots less.
-        if (!added &&
-            (distance < it->second.distance - snap ||
-             (distance <= it->second.distance + snap && overshoot < it->second.overshoot)))
-          it->second = candidate;
-      });
-    }
-    for (const auto& [w, b] : best)
-      insertions[b.edge].push_back({b.t, w});
+  Grid near(std::max(s.longest, tolerance_m));
+  for (uint32_t v : s.vertices)
+    near.add(out.positions[v], v);
+  struct Best {
+    double distance, overshoot;  // to the segment; beyond its ends along it
+    uint64_t edge;
+    double t;
+  };
+  std::unordered_map<uint32_t, Best> best;
+  for (const std::pair<size_t, int>& edge : s.edges) {
+    // Named copies, not a structured binding: clang 14 cannot capture one in the lambda below.
+    const size_t i = edge.first;
+    const int k = edge.second;
+    const uint32_t a = out.triangles[i].v[size_t(k)], b = out.triangles[i].v[size_t((k + 1) % 3)];
+    const Vec3d pa = out.positions[a], pb = out.positions[b], ab = pb - pa;
+    near.near(pa, pb, reach, [&](uint32_t w) {
+      if (w == a || w == b || g.leaf_of[w] == g.owner[i]) return;
+      const Vec3d p = out.positions[w];
+      if (length(p - pa) <= snap || length(p - pb) <= snap) return;
+      const double t = dot(p - pa, ab) / dot(ab, ab);
+      const double distance = distance_to_segment(p, pa, pb);
+      const double overshoot = std::max({0.0, -t, t - 1}) * length(ab);
+      if (distance > reach) return;
+      const Best candidate{distance, overshoot, uint64_t(i) * 3 + uint64_t(k), t};
+      const auto [it, added] = best.try_emplace(w, candidate);
+      // Past the shared end of two edges it is equally near both: the one it overshoots less.
+      if (!added && (distance < it->second.distance - snap ||
+                     (distance <= it->second.distance + snap && overshoot < it->second.overshoot)))
+        it->second = candidate;
+    });
   }
+  for (const auto& [w, b] : best)
+    insertions[b.edge].push_back({b.t, w});
+}
+
+Insertions seam_insertions(const Gathered& g, double tolerance_m) {
+  Insertions insertions;
+  for (const auto& [key, s] : open_seams(g))
+    add_seam_insertions(g, s, tolerance_m, insertions);
   for (auto& [edge, along] : insertions)
     std::sort(along.begin(), along.end(),
               [](const Insertion& x, const Insertion& y) { return x.t < y.t; });
+  return insertions;
+}
 
-  // Each triangle with new vertices on its edges, as a fan: from the opposite corner when they
-  // are on one edge, else from its centroid.
-  std::vector<JoinedSurface::Triangle> rebuilt;
-  for (size_t i = 0; i < out.triangles.size(); ++i) {
-    const JoinedSurface::Triangle& t = out.triangles[i];
-    std::vector<uint32_t> ring;
-    std::vector<Vec3d> normals;
-    int edges_with = 0, last = 0;
-    for (int k = 0; k < 3; ++k) {
-      const size_t a = size_t(k), b = size_t((k + 1) % 3);
-      ring.push_back(t.v[a]);
-      normals.push_back(t.n[a]);
-      const auto it = insertions.find(uint64_t(i) * 3 + uint64_t(k));
-      if (it == insertions.end()) continue;
-      ++edges_with, last = k;
-      for (const Insertion& in : it->second) {
-        ring.push_back(in.vertex);
-        normals.push_back(unit_or(t.n[a] * (1 - in.t) + t.n[b] * in.t, t.n[a]));
-      }
+// Triangle `i` with the new vertices on its edges, as a fan: from the opposite corner when they
+// are on one edge, else from its centroid (a new vertex).
+void refan_triangle(JoinedSurface& out, size_t i, const Insertions& insertions,
+                    std::vector<JoinedSurface::Triangle>& rebuilt) {
+  const JoinedSurface::Triangle& t = out.triangles[i];
+  std::vector<uint32_t> ring;
+  std::vector<Vec3d> normals;
+  int edges_with = 0, last = 0;
+  for (int k = 0; k < 3; ++k) {
+    const size_t a = size_t(k), b = size_t((k + 1) % 3);
+    ring.push_back(t.v[a]);
+    normals.push_back(t.n[a]);
+    const auto it = insertions.find(uint64_t(i) * 3 + uint64_t(k));
+    if (it == insertions.end()) continue;
+    ++edges_with, last = k;
+    for (const Insertion& in : it->second) {
+      ring.push_back(in.vertex);
+      normals.push_back(unit_or(t.n[a] * (1 - in.t) + t.n[b] * in.t, t.n[a]));
     }
-    if (edges_with == 0) {
-      rebuilt.push_back(t);
-      continue;
-    }
-    const size_t n = ring.size();
-    if (edges_with == 1) {
-      // The ring starts at corner 0; the corner opposite edge `last` is corner last + 2.
-      size_t apex = 0;
-      for (size_t j = 0; j < n; ++j)
-        if (ring[j] == t.v[size_t((last + 2) % 3)]) apex = j;
-      for (size_t j = 1; j + 1 < n; ++j) {
-        const size_t u = (apex + j) % n, w = (apex + j + 1) % n;
-        rebuilt.push_back(
-            {{ring[apex], ring[u], ring[w]}, {normals[apex], normals[u], normals[w]}, t.material});
-      }
-      continue;
-    }
-    const uint32_t centre = uint32_t(out.positions.size());
-    out.positions.push_back(
-        (out.positions[t.v[0]] + out.positions[t.v[1]] + out.positions[t.v[2]]) * (1.0 / 3));
-    const Vec3d nc = unit_or(t.n[0] + t.n[1] + t.n[2], t.n[0]);
-    for (size_t j = 0; j < n; ++j)
-      rebuilt.push_back({{centre, ring[j], ring[(j + 1) % n]},
-                         {nc, normals[j], normals[(j + 1) % n]},
-                         t.material});
   }
+  if (edges_with == 0) {
+    rebuilt.push_back(t);
+    return;
+  }
+  const size_t n = ring.size();
+  if (edges_with == 1) {
+    // The ring starts at corner 0; the corner opposite edge `last` is corner last + 2.
+    size_t apex = 0;
+    for (size_t j = 0; j < n; ++j)
+      if (ring[j] == t.v[size_t((last + 2) % 3)]) apex = j;
+    for (size_t j = 1; j + 1 < n; ++j) {
+      const size_t u = (apex + j) % n, w = (apex + j + 1) % n;
+      rebuilt.push_back(
+          {{ring[apex], ring[u], ring[w]}, {normals[apex], normals[u], normals[w]}, t.material});
+    }
+    return;
+  }
+  const uint32_t centre = uint32_t(out.positions.size());
+  out.positions.push_back((out.positions[t.v[0]] + out.positions[t.v[1]] + out.positions[t.v[2]]) *
+                          (1.0 / 3));
+  const Vec3d nc = unit_or(t.n[0] + t.n[1] + t.n[2], t.n[0]);
+  for (size_t j = 0; j < n; ++j)
+    rebuilt.push_back(
+        {{centre, ring[j], ring[(j + 1) % n]}, {nc, normals[j], normals[(j + 1) % n]}, t.material});
+}
+
+}  // namespace
+
+// The steps of the header's join: gather the parts, make each point both sides of a seam found
+// into one vertex, insert each side's remaining cut vertices into the other side's open seam
+// edges, re-triangulate the triangles that received some, and close the small holes left where
+// three primitives meet.
+JoinedSurface join_surfaces(const std::vector<SurfacePart>& parts, double tolerance_m) {
+  Gathered g = gather(parts);
+  merge_shared_cut_vertices(g, tolerance_m);
+  const Insertions insertions = seam_insertions(g, tolerance_m);
+  JoinedSurface& out = g.surface;
+  std::vector<JoinedSurface::Triangle> rebuilt;
+  for (size_t i = 0; i < out.triangles.size(); ++i)
+    refan_triangle(out, i, insertions, rebuilt);
   out.triangles.swap(rebuilt);
   fill_small_holes(out, tolerance_m);
-  return out;
+  return std::move(g.surface);
 }
 
 }  // namespace fb
