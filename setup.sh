@@ -78,9 +78,9 @@ if [ "$mode" = test ]; then
     sampled_out+='portrait_auto|tele_600mm|vertical_fit|wide_12mm)'
     sampled_out+='|Shots/BlenderPrincipled\.MatchesCycles/(roughness_0_2|roughness_0_9|anisotropic|'
     sampled_out+='nodes|sphere_light)'
-    sampled_out+='|BlenderMaterials\.(AlphaCutout|EmissiveTexture)MatchesCycles'
+    sampled_out+='|BlenderMaterials\.(AlphaCutout|EmissiveTexture)MatchesCycles|BlenderAlbedo\..*'
     sampled_out+='|Shots/PovConvert\.ValidatesAndRendersAsThePovWithinNoise/(mirrored_camera|lights|'
-    sampled_out+='sample_debug|sample_filtfun|sample_laser))$'
+    sampled_out+='sample_debug|sample_filtfun|sample_laser))( |$)'
   fi
   status=0
   mkdir -p build/logs

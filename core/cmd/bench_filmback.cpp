@@ -88,7 +88,7 @@ RenderOptions FilmbackBench::options(uint32_t spp, SamplerKind sampler,
 }
 
 std::string FilmbackBench::filter_text(const std::optional<std::string>& filter) const {
-  return filter.value_or(scene_.settings.filter.value_or(kDefaultFilter));
+  return filter.value_or(shot_filter_text(scene_.settings).value_or(kDefaultFilter));
 }
 
 FilmbackBench::Timed FilmbackBench::run(const RenderOptions& options, bool measured) {
@@ -146,8 +146,7 @@ void FilmbackBench::make_references(const std::optional<fs::path>& reference_fil
       write_images(averaged.image, {work / ("reference_filter" + std::to_string(f) + ".exr")}, {});
       references_.push_back(std::move(averaged));
     }
-    if (!shot_filter_ && scene_.settings.filter && note.filter == *scene_.settings.filter)
-      shot_filter_ = f;
+    if (!shot_filter_ && note.filter == shot_filter_text(scene_.settings)) shot_filter_ = f;
     report_.references.push_back(std::move(note));
   }
 }

@@ -23,6 +23,27 @@ std::string point(Vec3d p) {
   return format("(%.6g, %.6g, %.6g)", p.x, p.y, p.z);
 }
 
+// Cycles' names (Film > Pixel Filter).
+const char* pixel_filter_name(PixelFilterSetting::Type type) {
+  switch (type) {
+    case PixelFilterSetting::Type::kGaussian:
+      return "GAUSSIAN";
+    case PixelFilterSetting::Type::kBox:
+      return "BOX";
+    case PixelFilterSetting::Type::kBlackmanHarris:
+      break;
+  }
+  return "BLACKMAN_HARRIS";
+}
+
+// Where each value came from (docs/blender.md, "Cameras"): one line per value.
+void print_origins(const SceneCamera& camera) {
+  std::cout << "    from:\n";
+  for (size_t v = 0; v < kCameraValueCount; ++v)
+    std::cout << "      " << camera_value_name(CameraValue(v)) << ": " << camera.origins[v].text()
+              << '\n';
+}
+
 void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
   const PhysicalCamera& c = camera.physical;
   const auto [width, height] =
@@ -87,6 +108,7 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
                    c.shift_x, c.shift_y, c.ortho_scale_m, c.clip_near_m, c.clip_far_m, c.fstop,
                    c.focus_distance_m, c.aperture_blades, c.aperture_rotation_rad,
                    c.aperture_ratio);
+  print_origins(camera);
 }
 
 void print_shot(const ShotSettings& s) {
@@ -98,7 +120,9 @@ void print_shot(const ShotSettings& s) {
   if (s.shutter_open_s)
     std::cout << format(", shutter %.6g s to %.6g s%s", *s.shutter_open_s, *s.shutter_close_s,
                         s.shutter_curve.empty() ? "" : " with a curve");
-  if (s.filter) std::cout << ", filter " << *s.filter;
+  if (s.filter)
+    std::cout << ", filter " << pixel_filter_name(s.filter->type)
+              << format(" %.6g px wide (%s)", s.filter->width_px, s.filter->origin.text().c_str());
   if (s.film_exposure != 1.0) std::cout << format(", film exposure x%.6g", s.film_exposure);
   std::cout << '\n';
   const ViewSettings& v = s.view;

@@ -82,8 +82,10 @@ void parse_physical(const RenderCommand& c, RenderOptions& o) {
   if (!c.focal_length.empty())
     cam.focal_length_mm = option_number(c.focal_length, "--focal-length", 1e-3, 1e5);
   if (!c.fstop.empty()) {
-    const double n = option_number(c.fstop, "--fstop", 0, HUGE_VAL);
-    cam.fstop = n > 0 ? n : HUGE_VAL;  // 0: no aperture, as "inf"
+    // "inf" as well as 0 for no aperture, as --shutter's "inf" (docs/cli.md).
+    const std::optional<double> n = c.fstop == "inf" ? HUGE_VAL : parse_number(c.fstop);
+    cam.fstop = n ? fstop_from(*n) : std::nullopt;
+    if (!cam.fstop) throw UsageError("--fstop '" + c.fstop + "': " + kFstopExpected);
   }
   if (!c.focus_distance.empty())
     cam.focus_distance_m = option_number(c.focus_distance, "--focus-distance", 1e-6, HUGE_VAL);

@@ -80,6 +80,11 @@ class IntegratorInstance : public PluginInstance {
  public:
   IntegratorInstance(std::shared_ptr<const PluginLibrary> library, const BoundParams& params);
   const std::vector<std::string>& channels() const { return channels_; }
+  // What the plugin knows of what the host hands it (plugin_abi.h, "Growth"): the host writes hit
+  // records of hit_size bytes, and gives a scene and a function table of these sizes.
+  uint32_t hit_size() const { return api_.hit_size; }
+  uint32_t scene_size() const { return api_.scene_size; }
+  uint32_t scene_api_size() const { return api_.scene_api_size; }
   void radiance(const fb_scene& scene, fb_trace_context* context, std::span<const fb_ray> rays,
                 float* values) const {
     api_.radiance(instance(), &scene, context, rays.data(), rays.size(), values);

@@ -9,7 +9,6 @@
 #include <map>
 
 #include "core/plugin/crash_guard.h"
-#include "core/plugin/descriptor.h"
 #include "core/util/error.h"
 
 #ifndef FILMBACK_INSTALL_PLUGIN_DIR
@@ -91,8 +90,7 @@ PluginLibrary::PluginLibrary(const fs::path& file) : file_(file), library_(file)
   std::string problem = "not a filmback plugin: it has no " FB_ENTRY_POINT " entry point";
   if (entry) {
     const PluginCrashGuard guard(file, FB_ENTRY_POINT "() or the descriptor it returned");
-    descriptor_ = entry();
-    problem = check_descriptor(descriptor_);
+    problem = check_descriptor(entry(), read_);
   }
   if (!problem.empty()) throw fail(problem);  // library_ closes the file
 }

@@ -6,10 +6,12 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include <filmback/plugin_abi.h>
 
+#include "core/plugin/descriptor.h"
 #include "core/util/shared_library.h"
 
 namespace fb {
@@ -22,17 +24,24 @@ class PluginLibrary {
   PluginLibrary(const PluginLibrary&) = delete;
   PluginLibrary& operator=(const PluginLibrary&) = delete;
 
-  const fb_plugin& descriptor() const { return *descriptor_; }
+  // The descriptor and the function table as this filmback reads them (plugin_abi.h, "Growth"):
+  // an older plugin's, with the fields its layout lacks at their defaults.
+  const fb_plugin& descriptor() const { return read_.plugin; }
   const std::filesystem::path& file() const { return file_; }
   template <typename Api>
   const Api& api() const {
-    return *static_cast<const Api*>(descriptor_->api);
+    if constexpr (std::is_same_v<Api, fb_camera_api>)
+      return read_.camera;
+    else if constexpr (std::is_same_v<Api, fb_filter_api>)
+      return read_.filter;
+    else
+      return read_.integrator;
   }
 
  private:
   std::filesystem::path file_;
   SharedLibrary library_;
-  const fb_plugin* descriptor_ = nullptr;
+  PluginDescriptor read_;
 };
 
 const char* kind_name(uint32_t kind);  // "camera", "filter", "integrator"

@@ -149,6 +149,23 @@ BoundParams::BoundParams(const fb_plugin& plugin,
     values_[i].text = texts_[i].c_str();
 }
 
+std::string BoundParams::set_number(const fb_plugin& plugin, std::string_view key, double x) {
+  for (uint32_t i = 0; i < plugin.param_count; ++i) {
+    const fb_param_desc& desc = plugin.params[i];
+    if (key != desc.name) continue;
+    const bool whole = desc.type == FB_PARAM_INT;
+    if (desc.type != FB_PARAM_FLOAT && !whole) return "a parameter of type float or int";
+    if (!std::isfinite(x) || (whole && x != std::floor(x)))
+      return whole ? "a whole number" : "a finite number";
+    if (x < desc.min_value || x > desc.max_value)
+      return std::string(whole ? "a whole number" : "a number") + describe_bounds(desc);
+    values_[i] = fb_value{{x, 0, 0}, ""};  // no text: the value was never text
+    texts_[i].clear();
+    return {};
+  }
+  return "a parameter the plugin has";
+}
+
 const char* param_type_name(uint32_t type) {
   switch (type) {
     case FB_PARAM_FLOAT:

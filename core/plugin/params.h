@@ -33,6 +33,10 @@ class BoundParams {
               const std::vector<std::pair<std::string, std::string>>& settings);
   BoundParams(const BoundParams&) = delete;
   BoundParams& operator=(const BoundParams&) = delete;
+  // Sets the number parameter `key` from typed data (a scene's value, never printed and parsed
+  // back), checking its type and bounds. Returns an empty string on success, else what was
+  // expected.
+  std::string set_number(const fb_plugin& plugin, std::string_view key, double x);
   const fb_value* data() const { return values_.empty() ? nullptr : values_.data(); }
   const std::vector<fb_value>& values() const { return values_; }
 

@@ -87,5 +87,20 @@ TEST(BoundParams, FillsDefaultsAndRejectsUnknownOrRepeatedKeys) {
   EXPECT_THROW(BoundParams(plugin, {{"sigma", "0"}}), UsageError);
 }
 
+// A scene's value reaches the plugin exactly: 1/3 stays 1/3, where "%g" text would give 0.333333.
+TEST(BoundParams, SetNumberBindsTypedValuesExactlyWithinTheSchemasBounds) {
+  const fb_param_desc params[] = {kFloat, kChoice};
+  fb_plugin plugin{FB_ABI_VERSION, sizeof(fb_plugin), FB_KIND_FILTER, "test", "1", "s", params, 2,
+                   nullptr};
+  BoundParams bound(plugin, {});
+  EXPECT_EQ(bound.set_number(plugin, "sigma", 1.0 / 3), "");
+  EXPECT_EQ(bound.values()[0].number[0], 1.0 / 3);
+  EXPECT_NE(bound.set_number(plugin, "sigma", 0), "");  // below the schema's minimum
+  EXPECT_NE(bound.set_number(plugin, "sigma", NAN), "");
+  EXPECT_NE(bound.set_number(plugin, "show", 1), "");    // a string parameter
+  EXPECT_NE(bound.set_number(plugin, "radius", 1), "");  // not in the schema
+  EXPECT_EQ(bound.values()[0].number[0], 1.0 / 3);       // a refused value changes nothing
+}
+
 }  // namespace
 }  // namespace fb

@@ -37,6 +37,7 @@ struct RenderJob::Plugins {
   std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
   std::string subdiv_summary;
   std::vector<fb_material> materials;
+  fb_scene_api scene_api{};  // host_scene_api(), as long as the integrator knows it
   fb_scene scene{};
 };
 
@@ -58,14 +59,47 @@ SceneCamera choose_camera(const Scene& scene, const std::optional<std::string>& 
   return posed(find_camera(scene, *name));
 }
 
-// A shot's sampled shutter curve in --shutter-curve's table syntax.
-std::string table_curve(const std::vector<double>& values) {
-  std::string text = "table:values=[";
-  for (size_t i = 0; i < values.size(); ++i) {
-    if (i > 0) text += ',';
-    text += number_text(values[i]);
+// The shutter curve: --shutter-curve, else the shot's sampled curve as it is (typed, never
+// printed and parsed), else a box. An error names where the curve came from.
+ShutterCurve shutter_curve(const std::optional<std::string>& typed, const ShotSettings& shot) {
+  if (typed) return ShutterCurve::parse(*typed, "--shutter-curve");
+  const std::vector<double>& values = shot.shutter_curve;
+  if (std::adjacent_find(values.begin(), values.end(), std::not_equal_to<>()) == values.end())
+    return ShutterCurve();  // empty or constant: a box
+  if (std::optional<ShutterCurve> curve = ShutterCurve::table(values)) return std::move(*curve);
+  shot.shutter_curve_origin.fail(ShutterCurve::kTableExpected);
+}
+
+// A plugin and number parameters chosen from typed scene data.
+struct TypedPlugin {
+  const char* name;
+  std::vector<std::pair<const char*, double>> numbers;
+};
+
+// Cycles' pixel filters as filter plugins (docs/filters.md, "Against Blender"): Blackman-Harris of
+// width w spans +-w; the Gaussian of width w is exp(-8x^2/w^2) (sigma = w/4) cut at +-1.5w; the box
+// of width w spans +-w/2.
+TypedPlugin filter_plugin_for(const PixelFilterSetting& filter) {
+  const double w = filter.width_px;
+  switch (filter.type) {
+    case PixelFilterSetting::Type::kGaussian:
+      return {"gaussian", {{"radius", 1.5 * w}, {"sigma", w / 4}}};
+    case PixelFilterSetting::Type::kBox:
+      return {"box", {{"radius", w / 2}}};
+    case PixelFilterSetting::Type::kBlackmanHarris:
+      break;
   }
-  return text + "]";
+  return {"blackman_harris", {{"width", w}}};
+}
+
+// "gaussian:radius=2.25,sigma=0.375": for the plan line and the image metadata only.
+std::string plugin_text(const TypedPlugin& plugin) {
+  std::string text = plugin.name;
+  for (size_t i = 0; i < plugin.numbers.size(); ++i) {
+    text.append(i ? "," : ":").append(plugin.numbers[i].first).append("=");
+    text.append(number_text(plugin.numbers[i].second));
+  }
+  return text;
 }
 
 ImageMetadata::Matrix to_float_matrix(const Transform& t) {
@@ -108,6 +142,24 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
   }
 }
 
+// Loads `plugin` and creates an instance with its typed values; an error names `origin`, where the
+// values came from (a scene's file and JSON path: bad input).
+template <typename Instance>
+std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
+                                      const TypedPlugin& plugin, const ValueOrigin& origin) {
+  auto library = loader.load(kind, plugin.name);
+  BoundParams params(library->descriptor(), {});
+  for (const auto& [key, x] : plugin.numbers)
+    if (std::string expected = params.set_number(library->descriptor(), key, x); !expected.empty())
+      origin.fail("the plugin " + plugin_text(plugin) + ": parameter '" + key +
+                  "' = " + number_text(x) + ": expected " + expected);
+  try {
+    return std::make_unique<Instance>(library, params);
+  } catch (const UsageError& e) {
+    origin.fail("the plugin " + plugin_text(plugin) + ": " + e.what());
+  }
+}
+
 // Only what the shot needs: a pinhole unless it has an aperture (docs/camera-model.md).
 std::string camera_model_for(const PhysicalCamera& camera, const SensorResponse& sensor) {
   if (camera.projection == FB_PROJECTION_ORTHOGRAPHIC) {
@@ -141,24 +193,25 @@ SubdivView subdiv_view(const fb_camera_setup& setup, const SceneCamera& camera) 
 
 // A lens cannot focus closer than its focal length: the thin lens's image distance
 // D_img = f D / (D - f) (1/f = 1/D + 1/D_img) is infinite at D = f and negative inside it
-// (docs/camera-model.md). The error names where the values came from: the typed option, else the
-// scene's camera.
-void check_focus_beyond_focal_length(const SceneCamera& camera, const CameraOverrides& typed,
-                                     const std::filesystem::path& file) {
+// (docs/camera-model.md). The error names where both values came from: a typed option is bad
+// usage, else the scene's value is bad input.
+void check_focus_beyond_focal_length(const SceneCamera& camera) {
   const PhysicalCamera& c = camera.physical;
   const double focal_m = c.focal_length_mm * 1e-3;
   if (c.projection != FB_PROJECTION_PERSPECTIVE || !c.has_aperture() ||
       c.focus_distance_m > focal_m)
     return;
+  const ValueOrigin& focus = camera.origin(CameraValue::kFocusDistance);
+  const ValueOrigin& focal = camera.origin(CameraValue::kFocalLength);
+  const bool blame_focus = focus.typed() || !focal.typed();
   const std::string what =
       "focus distance " + number_text(c.focus_distance_m) + " m is not beyond the focal length " +
-      number_text(c.focal_length_mm) +
-      " mm: a lens cannot focus closer than its focal length (its image distance f D / (D - f) "
+      number_text(c.focal_length_mm) + " mm (" +
+      (blame_focus ? "focal length from " + focal.text() : "focus distance from " + focus.text()) +
+      "): a lens cannot focus closer than its focal length (its image distance f D / (D - f) "
       "is infinite or negative); expected a focus distance over " +
       number_text(focal_m) + " m";
-  if (typed.focus_distance_m) throw UsageError("--focus-distance: " + what);
-  if (typed.focal_length_mm) throw UsageError("--focal-length: " + what);
-  throw_input(file.string(), camera.source, what);
+  (blame_focus ? focus : focal).fail(what);
 }
 
 // Splatting places each sample anywhere in its pixel and spreads it to the pixels within the
@@ -199,13 +252,30 @@ std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera) {
           kDefaultLongSidePx};
 }
 
-void CameraOverrides::apply(PhysicalCamera& camera) const {
-  if (focal_length_mm) camera.focal_length_mm = *focal_length_mm;
-  if (fstop) camera.fstop = *fstop;
-  if (focus_distance_m) camera.focus_distance_m = *focus_distance_m;
-  if (sensor_mm) camera.sensor_width_mm = sensor_mm->x, camera.sensor_height_mm = sensor_mm->y;
-  if (sensor_fit) camera.sensor_fit = *sensor_fit;
-  if (shift) camera.shift_x = shift->x, camera.shift_y = shift->y;
+std::optional<std::string> shot_filter_text(const ShotSettings& shot) {
+  if (!shot.filter) return std::nullopt;
+  return plugin_text(filter_plugin_for(*shot.filter));
+}
+
+void CameraOverrides::apply(SceneCamera& camera) const {
+  const auto typed = [&](CameraValue v, const std::optional<double>& x, const char* option) {
+    if (!x) return;
+    set_camera_value(camera.physical, v, *x);
+    camera.origins[size_t(v)] = ValueOrigin::from_option(option);
+  };
+  using V = CameraValue;
+  typed(V::kFocalLength, focal_length_mm, "--focal-length");
+  typed(V::kFstop, fstop, "--fstop");
+  typed(V::kFocusDistance, focus_distance_m, "--focus-distance");
+  if (sensor_mm) {
+    typed(V::kSensorWidth, sensor_mm->x, "--sensor");
+    typed(V::kSensorHeight, sensor_mm->y, "--sensor");
+  }
+  if (sensor_fit) typed(V::kSensorFit, double(*sensor_fit), "--sensor-fit");
+  if (shift) {
+    typed(V::kShiftX, shift->x, "--shift");
+    typed(V::kShiftY, shift->y, "--shift");
+  }
 }
 
 RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader)
@@ -224,8 +294,8 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   camera_ = choose_camera(scene, options.camera, still_s);
   if (camera_.focus_track)
     camera_.physical.focus_distance_m = camera_.focus_track->at(still_s * fps_);
-  options.camera_overrides.apply(camera_.physical);
-  check_focus_beyond_focal_length(camera_, options.camera_overrides, scene.file);
+  options.camera_overrides.apply(camera_);
+  check_focus_beyond_focal_length(camera_);
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
   std::tie(width_, height_) = options.width   ? std::pair{*options.width, *options.height}
@@ -237,13 +307,7 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
   sensor_ = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
 
   Plugins& p = *plugins_;
-  if (options.shutter_curve)
-    p.shutter_curve = ShutterCurve::parse(*options.shutter_curve, "--shutter-curve");
-  else if (std::adjacent_find(shot.shutter_curve.begin(), shot.shutter_curve.end(),
-                              std::not_equal_to<>()) != shot.shutter_curve.end())  // not a box
-    p.shutter_curve = ShutterCurve::parse(table_curve(shot.shutter_curve),
-                                          scene.file.string() + ": the shot's shutter_curve");
-  p.filter_text = options.filter.value_or(shot.filter.value_or(kDefaultFilter));
+  p.shutter_curve = shutter_curve(options.shutter_curve, shot);
   pixel_aspect_ = shot.pixel_aspect.value_or(1.0);
   p.integrator_text = options.integrator.value_or(kDefaultIntegrator);
   const fb_camera_setup setup =
@@ -252,7 +316,15 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
       loader, FB_KIND_CAMERA,
       options.camera_model.value_or(camera_model_for(camera_.physical, sensor_)), "--camera-model",
       setup);
-  p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
+  // --filter, else the shot's pixel filter with its exact values, else the default.
+  if (!options.filter && shot.filter) {
+    const TypedPlugin filter = filter_plugin_for(*shot.filter);
+    p.filter_text = plugin_text(filter);
+    p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, filter, shot.filter->origin);
+  } else {
+    p.filter_text = options.filter.value_or(kDefaultFilter);
+    p.filter = instantiate<FilterInstance>(loader, FB_KIND_FILTER, p.filter_text, "--filter");
+  }
   check_splat_reach(*p.filter, p.filter_text, options.reconstruction);
   p.integrator = instantiate<IntegratorInstance>(loader, FB_KIND_INTEGRATOR, p.integrator_text,
                                                  "--integrator");
@@ -293,8 +365,11 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
     fm.double_sided = m.double_sided;
     p.materials.push_back(fm);
   }
-  p.scene.struct_size = sizeof(fb_scene);
-  p.scene.api = &host_scene_api();
+  // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
+  p.scene_api = host_scene_api();
+  p.scene_api.struct_size = p.integrator->scene_api_size();
+  p.scene.struct_size = p.integrator->scene_size();
+  p.scene.api = &p.scene_api;
   p.scene.materials = p.materials.data();
   p.scene.material_count = uint32_t(p.materials.size());
   options.background.value_or(scene.background).store(p.scene.background);

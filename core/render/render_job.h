@@ -22,12 +22,13 @@ namespace fb {
 // Values typed on the command line that replace the scene camera's (docs/cli.md).
 struct CameraOverrides {
   std::optional<double> focal_length_mm;
-  std::optional<double> fstop;  // HUGE_VAL: a pinhole
+  std::optional<double> fstop;  // as fstop_from gives it: HUGE_VAL is a pinhole
   std::optional<double> focus_distance_m;
   std::optional<Vec2d> sensor_mm;  // width, height
   std::optional<uint32_t> sensor_fit;
   std::optional<Vec2d> shift;
-  void apply(PhysicalCamera& camera) const;
+  // Replaces the camera's values, each with the option as its origin.
+  void apply(SceneCamera& camera) const;
 };
 
 struct RenderOptions {
@@ -64,6 +65,11 @@ constexpr double kDefaultFps = 24;  // Blender's; matters only when the frame is
 // The image size a render gets without --res: the long side kDefaultLongSidePx at the shot's
 // intended aspect (16:9 when the scene does not say).
 std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera);
+
+// The shot's pixel filter as the filter plugin it renders with, "gaussian:radius=2.25,sigma=0.375",
+// for display and comparison only (the render passes the values typed); nothing when the shot
+// names none.
+std::optional<std::string> shot_filter_text(const ShotSettings& shot);
 
 // What a RenderJob chose and why, as its plan line says it (docs/cli.md, "--stats-json").
 struct RenderChoices {

@@ -99,6 +99,7 @@ class TileRenderer {
     context.geometry = &in_.geometry;
     context.lights = &in_.lights;
     context.sampler = &sampler_;
+    context.hit_size = in_.integrator.hit_size();
     context.rays_traced = 0;
     SplatTiles::Tile* splat_tile = splats_ ? &splats_->tile(x0, y0) : nullptr;
 

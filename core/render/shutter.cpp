@@ -23,15 +23,15 @@ fb_plugin shape(const char* name, const fb_param_desc* params, uint32_t count) {
   return {FB_ABI_VERSION, sizeof(fb_plugin), 0, name, "", "", params, count, nullptr};
 }
 
-constexpr size_t kMaxTableValues = 4096;
-
+// "[w0,w1,...]", each value checked by the plugin-parameter parser.
 std::vector<double> parse_table(std::string_view text) {
-  const fb_param_desc value{"values", FB_PARAM_FLOAT, "1", "", nullptr, 0, 1e6, ""};
+  const fb_param_desc value{
+      "values", FB_PARAM_FLOAT, "1", "", nullptr, 0, ShutterCurve::kMaxTableValue, ""};
   if (text.size() < 2 || text.front() != '[' || text.back() != ']')
     throw UsageError("values '" + std::string(text) + "': expected a bracketed list [w0,w1,...]");
   std::vector<double> values;
   std::string_view rest = text.substr(1, text.size() - 2);
-  while (values.size() <= kMaxTableValues) {
+  while (values.size() <= ShutterCurve::kMaxTableValues) {
     const size_t comma = rest.find(',');
     fb_value parsed;
     if (std::string expected = parse_param_value(value, rest.substr(0, comma), parsed);
@@ -41,12 +41,6 @@ std::vector<double> parse_table(std::string_view text) {
     if (comma == std::string_view::npos) break;
     rest.remove_prefix(comma + 1);
   }
-  double sum = 0;
-  for (double v : values)
-    sum += v;
-  if (values.size() < 2 || values.size() > kMaxTableValues || !(sum > 0))
-    throw UsageError("values '" + std::string(text) + "': expected 2 to " +
-                     std::to_string(kMaxTableValues) + " values, not all zero");
   return values;
 }
 
@@ -77,18 +71,29 @@ ShutterCurve ShutterCurve::parse(std::string_view text, std::string_view option)
     }
     if (spec.name == "table") {
       const BoundParams params(shape("table", kTableParams, 1), spec.settings);
-      std::vector<double> values = parse_table(params.values()[0].text);
-      std::vector<double> knots(values.size());
-      for (size_t i = 0; i < knots.size(); ++i)
-        knots[i] = double(i) / double(knots.size() - 1);
-      const std::string description = "table of " + std::to_string(values.size()) + " values";
-      return ShutterCurve(std::move(knots), std::move(values), description);
+      const std::string_view text = params.values()[0].text;
+      if (std::optional<ShutterCurve> curve = table(parse_table(text))) return std::move(*curve);
+      throw UsageError("values '" + std::string(text) + "': " + kTableExpected);
     }
   } catch (const UsageError& e) {
     throw UsageError(std::string(option) + " '" + std::string(text) + "': " + e.what());
   }
   throw UsageError(std::string(option) + " '" + std::string(text) +
                    "': expected box, trapezoid[:ramp=R] or table:values=[w0,w1,...]");
+}
+
+std::optional<ShutterCurve> ShutterCurve::table(std::vector<double> values) {
+  double sum = 0;
+  for (double v : values) {
+    if (!(v >= 0 && v <= kMaxTableValue)) return std::nullopt;
+    sum += v;
+  }
+  if (values.size() < 2 || values.size() > kMaxTableValues || !(sum > 0)) return std::nullopt;
+  std::vector<double> knots(values.size());
+  for (size_t i = 0; i < knots.size(); ++i)
+    knots[i] = double(i) / double(knots.size() - 1);
+  const std::string description = "table of " + std::to_string(values.size()) + " values";
+  return ShutterCurve(std::move(knots), std::move(values), description);
 }
 
 double ShutterCurve::sample(double u) const {

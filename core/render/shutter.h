@@ -4,6 +4,7 @@
 // 256-entry inverted-CDF table; this inverts the piecewise-linear curve exactly).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,6 +19,14 @@ class ShutterCurve {
   // at evenly spaced times from open to close, linear in between). The plugin-parameter syntax;
   // throws UsageError naming `option`.
   static ShutterCurve parse(std::string_view text, std::string_view option);
+  // The table shape from typed values (a scene's sampled curve): 2 to kMaxTableValues values in
+  // [0, kMaxTableValue], not all zero. Nothing otherwise; the caller reports kTableExpected,
+  // naming where the values came from.
+  static std::optional<ShutterCurve> table(std::vector<double> values);
+  static constexpr size_t kMaxTableValues = 4096;
+  static constexpr double kMaxTableValue = 1e6;
+  static constexpr const char* kTableExpected =
+      "expected 2 to 4096 values in [0, 1e6], not all zero";
 
   // The fraction s of the open interval (0 at open, 1 at close) for a sample u in [0, 1):
   // the inverse of cdf().

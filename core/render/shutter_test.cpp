@@ -105,5 +105,18 @@ TEST(ShutterCurve, BadTextIsAUsageErrorNamingTheOption) {
   }
 }
 
+// A scene's sampled curve is used as it is: 1/3 stays 1/3 (printed with %g it was 0.333333, which
+// moves the CDF by 1e-7). For w(s) = 1/3 + 2s/3 the area to s = 1/2 is 1/6 + 1/12 = 1/4 of the
+// total 2/3: cdf(1/2) = 3/8.
+TEST(ShutterCurve, TableFromTypedValuesIsExactAndRefusesWhatParseRefuses) {
+  const std::optional<ShutterCurve> curve = ShutterCurve::table({1.0 / 3, 1});
+  ASSERT_TRUE(curve);
+  EXPECT_NEAR(curve->cdf(0.5), 3.0 / 8, 1e-15);
+  EXPECT_FALSE(ShutterCurve::table({1}));
+  EXPECT_FALSE(ShutterCurve::table({0, 0}));
+  EXPECT_FALSE(ShutterCurve::table({1, -1}));
+  EXPECT_FALSE(ShutterCurve::table(std::vector<double>(ShutterCurve::kMaxTableValues + 1, 1)));
+}
+
 }  // namespace
 }  // namespace fb

@@ -1,16 +1,43 @@
 #include "core/render/trace_context.h"
 
+#include <cstring>
+
+#include "core/plugin/abi_layout.h"
+
 namespace fb {
 namespace {
 
+// Hit records live in the integrator's memory at its own size, c->hit_size (plugin_abi.h,
+// "Growth"): an integrator built against an older header has shorter records, so the host traces
+// into a record of its own size and copies the part the plugin knows, with the plugin's stride.
 int intersect(fb_trace_context* c, const fb_ray* ray, fb_hit* hit) {
   ++c->rays_traced;
-  return c->geometry->intersect(*ray, *hit, &c->surfaces) ? 1 : 0;
+  if (c->hit_size == sizeof(fb_hit)) return c->geometry->intersect(*ray, *hit, &c->surfaces);
+  fb_hit full{};
+  const bool found = c->geometry->intersect(*ray, full, &c->surfaces);
+  std::memcpy(hit, &full, c->hit_size);
+  return found ? 1 : 0;
 }
 
 void intersect_batch(fb_trace_context* c, const fb_ray* rays, size_t count, fb_hit* hits) {
   c->rays_traced += count;
-  c->geometry->intersect_coherent(rays, count, hits, &c->surfaces);
+  if (c->hit_size == sizeof(fb_hit)) {
+    c->geometry->intersect_coherent(rays, count, hits, &c->surfaces);
+    return;
+  }
+  c->full_hits.assign(count, fb_hit{});
+  c->geometry->intersect_coherent(rays, count, c->full_hits.data(), &c->surfaces);
+  auto* out = reinterpret_cast<unsigned char*>(hits);
+  for (size_t i = 0; i < count; ++i)
+    std::memcpy(out + i * c->hit_size, &c->full_hits[i], c->hit_size);
+}
+
+// A record the integrator hands back, read as this host's fb_hit: no further than the fields of
+// the plugin's layout, the fields it lacks zero (surface NULL: no surface).
+const fb_hit& host_hit(const fb_trace_context* c, const fb_hit* hit, fb_hit& copy) {
+  if (c->hit_size == sizeof(fb_hit)) return *hit;
+  copy = read_covered(hit, fields_end(kHitLayouts, c->hit_size), fb_hit{});
+  return copy;
 }
 
 int occluded(fb_trace_context* c, const fb_ray* ray) {
@@ -24,7 +51,8 @@ int sample_light(fb_trace_context* c, const float position[3], const float u[3],
 }
 
 float light_pdf(fb_trace_context* c, const float position[3], const fb_hit* hit) {
-  return c->lights->pdf(Vec3f(position), *hit);
+  fb_hit copy;
+  return c->lights->pdf(Vec3f(position), host_hit(c, hit, copy));
 }
 
 void next_samples(fb_trace_context* c, size_t path, float* u, uint32_t count) {
@@ -35,19 +63,20 @@ void background(fb_trace_context* c, const float direction[3], float radiance[3]
   c->lights->background(Vec3f(direction), *pdf).store(radiance);
 }
 
-const Surface* surface_of(const fb_hit* hit) {
-  return reinterpret_cast<const Surface*>(hit->surface);
+const Surface* surface_of(const fb_trace_context* c, const fb_hit* hit) {
+  fb_hit copy;
+  return reinterpret_cast<const Surface*>(host_hit(c, hit, copy).surface);
 }
 
-void bsdf_eval(fb_trace_context*, const fb_hit* hit, const float wi[3], float f_cos[3],
+void bsdf_eval(fb_trace_context* c, const fb_hit* hit, const float wi[3], float f_cos[3],
                float* pdf) {
-  const Surface* surface = surface_of(hit);
+  const Surface* surface = surface_of(c, hit);
   *pdf = 0.f;
   (surface ? surface->eval(Vec3f(wi), *pdf) : Rgb{}).store(f_cos);
 }
 
-int bsdf_sample(fb_trace_context*, const fb_hit* hit, const float u[3], fb_bsdf_sample* out) {
-  const Surface* surface = surface_of(hit);
+int bsdf_sample(fb_trace_context* c, const fb_hit* hit, const float u[3], fb_bsdf_sample* out) {
+  const Surface* surface = surface_of(c, hit);
   SurfaceSample s;
   if (!surface || !surface->sample(u, s)) return 0;
   s.wi.store(out->wi);

@@ -18,6 +18,10 @@ struct fb_trace_context {
   const fb::Sampler* sampler = nullptr;
   std::vector<fb::SampleKey> paths;  // one per ray of the current batch
   fb::SurfaceArena surfaces;         // of the hits the current batch traces (fb_hit.surface)
+  // The integrator's fb_hit size (fb_integrator_api.hit_size): smaller when it was built against
+  // an older header, whose records the host writes and reads no further (plugin_abi.h, "Growth").
+  uint32_t hit_size = sizeof(fb_hit);
+  std::vector<fb_hit> full_hits;  // a batch traced at this host's size, for such an integrator
   uint64_t rays_traced = 0;
 };
 

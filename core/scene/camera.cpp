@@ -8,6 +8,56 @@
 
 namespace fb {
 
+std::optional<double> fstop_from(double n) {
+  if (n == 0 || n == HUGE_VAL) return HUGE_VAL;
+  if (n > 0 && n <= kMaxFstop) return n;
+  return std::nullopt;
+}
+
+namespace {
+
+// Each value's name and member, in CameraValue order.
+struct CameraMember {
+  const char* name;
+  double PhysicalCamera::*number;
+  uint32_t PhysicalCamera::*whole;
+};
+constexpr CameraMember kMembers[kCameraValueCount] = {
+    {"focal_length_mm", &PhysicalCamera::focal_length_mm, nullptr},
+    {"sensor_width_mm", &PhysicalCamera::sensor_width_mm, nullptr},
+    {"sensor_height_mm", &PhysicalCamera::sensor_height_mm, nullptr},
+    {"sensor_fit", nullptr, &PhysicalCamera::sensor_fit},
+    {"shift_x", &PhysicalCamera::shift_x, nullptr},
+    {"shift_y", &PhysicalCamera::shift_y, nullptr},
+    {"ortho_scale_m", &PhysicalCamera::ortho_scale_m, nullptr},
+    {"clip_near_m", &PhysicalCamera::clip_near_m, nullptr},
+    {"clip_far_m", &PhysicalCamera::clip_far_m, nullptr},
+    {"fstop", &PhysicalCamera::fstop, nullptr},
+    {"focus_distance_m", &PhysicalCamera::focus_distance_m, nullptr},
+    {"aperture_blades", nullptr, &PhysicalCamera::aperture_blades},
+    {"aperture_rotation_rad", &PhysicalCamera::aperture_rotation_rad, nullptr},
+    {"aperture_ratio", &PhysicalCamera::aperture_ratio, nullptr},
+};
+
+}  // namespace
+
+const char* camera_value_name(CameraValue v) {
+  return kMembers[size_t(v)].name;
+}
+
+double camera_value(const PhysicalCamera& camera, CameraValue v) {
+  const CameraMember& m = kMembers[size_t(v)];
+  return m.number ? camera.*m.number : double(camera.*m.whole);
+}
+
+void set_camera_value(PhysicalCamera& camera, CameraValue v, double x) {
+  const CameraMember& m = kMembers[size_t(v)];
+  if (m.number)
+    camera.*m.number = x;
+  else
+    camera.*m.whole = uint32_t(x);
+}
+
 fb_camera_setup make_camera_setup(const PhysicalCamera& camera, uint32_t width_px,
                                   uint32_t height_px, double pixel_aspect,
                                   const SensorResponse& sensor) {

@@ -2,6 +2,7 @@
 // converts into this; the render turns it into an fb_camera_setup for the camera plugin.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
 #include "core/scene/sensor_fit.h"
+#include "core/scene/value_origin.h"
 
 namespace fb {
 
@@ -31,8 +33,43 @@ struct PhysicalCamera {
   double aperture_rotation_rad = 0.0;
   double aperture_ratio = 1.0;  // anamorphic bokeh, as Cycles
 
-  bool has_aperture() const { return std::isfinite(fstop) && fstop > 0; }
+  bool has_aperture() const { return std::isfinite(fstop); }
 };
+
+// Blender's F-Stop as a scene or --fstop gives it, the one place that reads it: 0 (Blender's depth
+// of field off) and infinity mean a pinhole, HUGE_VAL; otherwise an f-number in (0, kMaxFstop].
+// Nothing otherwise: the caller reports kFstopExpected, naming where the number came from.
+constexpr double kMaxFstop = 1e6;
+constexpr const char* kFstopExpected = "expected 0 (a pinhole) or an f-number in (0, 1e6]";
+std::optional<double> fstop_from(double n);
+
+// The values of a PhysicalCamera one by one, under the names of the FILMBACK_blender extension
+// (docs/blender.md, "What is carried"), so that each can say where it came from.
+enum class CameraValue : uint8_t {
+  kFocalLength,
+  kSensorWidth,
+  kSensorHeight,
+  kSensorFit,
+  kShiftX,
+  kShiftY,
+  kOrthoScale,
+  kClipNear,
+  kClipFar,
+  kFstop,
+  kFocusDistance,
+  kApertureBlades,
+  kApertureRotation,
+  kApertureRatio,
+  kCount
+};
+constexpr size_t kCameraValueCount = size_t(CameraValue::kCount);
+const char* camera_value_name(CameraValue v);  // "focal_length_mm"
+// The value as a number (the sensor fit and blade count as their numbers).
+double camera_value(const PhysicalCamera& camera, CameraValue v);
+void set_camera_value(PhysicalCamera& camera, CameraValue v, double x);
+
+// Where each value of a scene camera came from, indexed by CameraValue.
+using CameraOrigins = std::array<ValueOrigin, kCameraValueCount>;
 
 // How the sensor turns light into pixel values (docs/camera-model.md, "Exposure").
 struct SensorResponse {
@@ -57,6 +94,8 @@ struct SceneCamera {
   uint32_t node_index = kNoNode;          // in Scene::hierarchy, whose animation may move it
   std::optional<double> intended_aspect;  // width / height the shot was made for
   std::optional<FocusTrack> focus_track;  // replaces physical.focus_distance_m when present
+  CameraOrigins origins;                  // where each value of `physical` came from
+  const ValueOrigin& origin(CameraValue v) const { return origins[size_t(v)]; }
 };
 
 // The quantities `filmback info` reports, for a given image size.

@@ -20,6 +20,7 @@
 #include "core/scene/solid.h"
 #include "core/scene/solid_texture.h"
 #include "core/scene/subdivision_surface.h"
+#include "core/scene/value_origin.h"
 
 namespace fb {
 
@@ -138,15 +139,25 @@ struct EnvironmentMap {
 };
 
 // What a file says about how its shot is rendered (glTF: scenes[i].extras, docs/scenes.md).
+// Cycles' Film > Pixel Filter as a scene names it: typed, so that its exact values reach the filter
+// plugin the render chooses for it (core/render/scene_filter.h).
+struct PixelFilterSetting {
+  enum class Type { kBlackmanHarris, kGaussian, kBox };
+  Type type = Type::kBlackmanHarris;
+  double width_px = 1.5;  // Cycles' filter_width
+  ValueOrigin origin;     // the scene file and the JSON path of the object that names it
+};
+
 struct ShotSettings {
   std::optional<uint32_t> width_px, height_px;
   std::optional<double> fps;
   std::optional<double> frame;
   std::optional<double> shutter_open_s, shutter_close_s;  // relative to the frame's time
   std::vector<double> shutter_curve;   // weights evenly spaced over the open shutter; empty: box
+  ValueOrigin shutter_curve_origin;    // where shutter_curve came from
   std::optional<double> pixel_aspect;  // pixel width / height
-  std::optional<std::string> filter;   // the shot's pixel filter as a filter plugin, "NAME:k=v,..."
-  double film_exposure = 1.0;          // linear gain on the image (Cycles' Film > Exposure)
+  std::optional<PixelFilterSetting> filter;  // the shot's pixel filter
+  double film_exposure = 1.0;                // linear gain on the image (Cycles' Film > Exposure)
   // Blender's Color Management and Dither, for 8-bit outputs only (docs/blender.md); a file that
   // names no view transform gets the plain sRGB curve.
   ViewSettings view;

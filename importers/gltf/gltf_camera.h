@@ -1,6 +1,7 @@
-// A glTF camera node as a SceneCamera: the core projection (yfov/aspectRatio or xmag/ymag), then
-// Blender's physical camera where the file carries it, by precedence FILMBACK_blender >
-// EXT_camera_physical > extras with the same names (docs/blender.md, "Cameras").
+// A glTF camera node as a SceneCamera. Its values come from one source taken whole, by precedence
+// FILMBACK_blender > EXT_camera_physical > extras with the same names > the core projection
+// (yfov/aspectRatio or xmag/ymag); a lower source fills only what the higher one cannot express,
+// and each value keeps where it came from (docs/blender.md, "Cameras").
 #pragma once
 
 #include <string>

@@ -1,6 +1,7 @@
 // Cameras and shot settings as Blender's add-on writes them (docs/blender.md, "Cameras"): the
-// precedence FILMBACK_blender > EXT_camera_physical > extras > yfov, the 0.01 degree agreement
-// check, focus tracks, the scene's settings, and errors naming the file and JSON path.
+// precedence FILMBACK_blender > EXT_camera_physical > extras > yfov taking a source whole (a table
+// of source combinations and options, with each value's origin), the 0.01 degree agreement check,
+// focus tracks, the scene's settings, and errors naming the file and JSON path.
 #include "importers/gltf/gltf_camera.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "core/render/render_job.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
@@ -54,21 +56,131 @@ std::string error_of(const std::filesystem::path& file) {
   return "(no error)";
 }
 
-TEST(GltfCamera, FilmbackExtensionOverridesExtPhysicalAndExtras) {
+// One row of the precedence table: the camera's sources as JSON members, options typed on the
+// command line, and what the camera must hold: each listed value and a fragment of its origin.
+struct Expected {
+  CameraValue value;
+  double number;
+  const char* origin;
+};
+struct PrecedenceCase {
+  const char* name;
+  const char* camera_members;
+  CameraOverrides typed;
+  std::vector<Expected> expected;
+  const char* warning;  // a fragment of the one warning expected, or nullptr for none
+  double yfov = kDefaultYfov;
+};
+
+constexpr const char* kOurs = "cameras[0].extensions.FILMBACK_blender.";
+constexpr const char* kExt = "cameras[0].extensions.EXT_camera_physical.";
+constexpr const char* kExtras = "cameras[0].extras.";
+using V = CameraValue;
+
+std::vector<PrecedenceCase> precedence_cases() {
+  // 35 mm on 36 x 24 mm, vertical fit, at 16:9: yfov = 2 atan(12 / 35).
+  const double vertical_35_focal = 35;
+  CameraOverrides typed_pinhole;
+  typed_pinhole.fstop = fstop_from(0);
+  typed_pinhole.focal_length_mm = 85;
+  return {
+      {"core yfov alone: Blender's 36 mm AUTO, a pinhole",
+       "",
+       {},
+       {{V::kFocalLength, 50, "cameras[0].perspective.yfov"},
+        {V::kSensorWidth, 36, "default"},
+        {V::kFstop, HUGE_VAL, "no source names it: a pinhole"},
+        {V::kClipNear, 0.1, "cameras[0].perspective.znear"}},
+       nullptr},
+      {"bug 1: extras named like ours give no depth of field when FILMBACK_blender describes",
+       R"("extras": {"fstop": 2.8, "shift_x": 0.1, "focal_length_mm": 20},
+          "extensions": {"FILMBACK_blender": {"focal_length_mm": 50, "sensor_width_mm": 36,
+                         "sensor_height_mm": 24, "sensor_fit": "auto"}})",
+       {},
+       {{V::kFocalLength, 50, "FILMBACK_blender.focal_length_mm"},
+        {V::kFstop, HUGE_VAL, "FILMBACK_blender names none: depth of field off"},
+        {V::kShiftX, 0, "FILMBACK_blender names none"}},
+       "cameras[0].extras: focal_length_mm, shift_x, fstop ignored: FILMBACK_blender describes"},
+      {"bug 2: extras' sensor and fit without a focal length: the focal length from yfov under "
+       "them",
+       R"("extras": {"sensor_width_mm": 24, "sensor_height_mm": 36, "sensor_fit": "vertical"})",
+       {},
+       // yfov = 2 atan(18 / 50 / (16/9)), vertical fit on 36 mm: f = 18 / tan(yfov / 2)
+       {{V::kFocalLength, 50 * 16.0 / 9, "cameras[0].perspective.yfov (under the sensor"},
+        {V::kSensorHeight, 36, "extras.sensor_height_mm"},
+        {V::kSensorFit, FB_SENSOR_FIT_VERTICAL, "extras.sensor_fit"}},
+       nullptr},
+      {"EXT_camera_physical: lens and sensor; extras fill the aperture and fit it cannot express",
+       R"("extras": {"fstop": 4, "sensor_fit": "vertical", "focal_length_mm": 20},
+          "extensions": {"EXT_camera_physical": {"focalLength": 0.035,
+                                                 "sensorSize": [0.036, 0.024]}})",
+       {},
+       {{V::kFocalLength, vertical_35_focal, "EXT_camera_physical.focalLength"},
+        {V::kSensorWidth, 36, "EXT_camera_physical.sensorSize[0]"},
+        {V::kSensorFit, FB_SENSOR_FIT_VERTICAL, "extras.sensor_fit"},
+        {V::kFstop, 4, "extras.fstop"}},
+       "cameras[0].extras: focal_length_mm ignored: EXT_camera_physical describes",
+       2 * std::atan(12.0 / 35)},
+      {"FILMBACK_blender over EXT_camera_physical: EXT's sensor never fills ours",
+       R"("extensions": {"EXT_camera_physical": {"focalLength": 0.035, "sensorSize": [0.024, 0.016]},
+                         "FILMBACK_blender": {"focal_length_mm": 35, "sensor_fit": "vertical"}})",
+       {},
+       {{V::kFocalLength, 35, "FILMBACK_blender.focal_length_mm"},
+        {V::kSensorWidth, 36, "default"},
+        {V::kSensorHeight, 24, "default"}},
+       "EXT_camera_physical: sensor_width_mm, sensor_height_mm ignored",
+       2 * std::atan(12.0 / 35)},
+      {"options replace the highest source, and say so",
+       R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50, "sensor_fit": "auto",
+                         "fstop": 2, "focus_distance_m": 3}})",
+       typed_pinhole,
+       {{V::kFocalLength, 85, "--focal-length"},
+        {V::kFstop, HUGE_VAL, "--fstop"},
+        {V::kFocusDistance, 3, "FILMBACK_blender.focus_distance_m"}},
+       nullptr},
+      {"fstop 0 in FILMBACK_blender is depth of field off",
+       R"("extensions": {"FILMBACK_blender": {"fstop": 0}}, "extras": {"fstop": 0})",
+       {},
+       {{V::kFstop, HUGE_VAL, "FILMBACK_blender.fstop"}},
+       nullptr},
+  };
+}
+
+TEST(GltfCamera, PrecedenceTakesTheHighestSourceWholeAndKeepsEachValuesOrigin) {
+  for (const PrecedenceCase& c : precedence_cases()) {
+    SCOPED_TRACE(c.name);
+    Diagnostics d;
+    const Scene scene = import(write_gltf(c.camera_members, "", c.yfov), d);
+    SceneCamera camera = scene.cameras.at(0);
+    c.typed.apply(camera);
+    for (const Expected& e : c.expected) {
+      SCOPED_TRACE(camera_value_name(e.value));
+      if (std::isinf(e.number)) {
+        EXPECT_EQ(camera_value(camera.physical, e.value), e.number);
+      } else {
+        EXPECT_NEAR(camera_value(camera.physical, e.value), e.number, 1e-9 * std::abs(e.number));
+      }
+      EXPECT_NE(camera.origin(e.value).text().find(e.origin), std::string::npos)
+          << camera.origin(e.value).text();
+    }
+    if (c.warning) {
+      ASSERT_EQ(d.count(), 1u);
+      EXPECT_NE(d.messages().at(0).find(c.warning), std::string::npos) << d.messages().at(0);
+    } else {
+      EXPECT_EQ(d.count(), 0u) << (d.count() ? d.messages().at(0) : "");
+    }
+  }
+}
+
+// Bug 2 as a render would see it: the frame is yfov's, within 1e-9 degrees (it was 13.7 px off).
+TEST(GltfCamera, ExtrasWithoutAFocalLengthKeepYfovsFrame) {
   Diagnostics d;
-  const Scene scene =
-      import(write_gltf(R"("extras": {"focal_length_mm": 20, "fstop": 4, "shift_x": 0.25},
-      "extensions": {"EXT_camera_physical": {"focalLength": 0.035, "sensorSize": [0.036, 0.024]},
-                     "FILMBACK_blender": {"focal_length_mm": 50, "sensor_width_mm": 36,
-                                          "sensor_height_mm": 24, "sensor_fit": "auto",
-                                          "aperture_blades": 6}})"),
-             d);
-  const PhysicalCamera& c = scene.cameras.at(0).physical;
-  EXPECT_EQ(c.focal_length_mm, 50);  // ours over EXT's 35 and extras' 20
-  EXPECT_EQ(c.fstop, 4);             // only extras name it
-  EXPECT_EQ(c.shift_x, 0.25);        // only extras name it
-  EXPECT_EQ(c.aperture_blades, 6u);  // ours
-  EXPECT_EQ(d.count(), 0u);          // 50 mm AUTO reproduces yfov
+  const Scene scene = import(
+      write_gltf(
+          R"("extras": {"sensor_width_mm": 24, "sensor_height_mm": 36, "sensor_fit": "vertical"})"),
+      d);
+  const CameraQuantities q = describe_camera(scene.cameras.at(0).physical, 1920, 1080);
+  EXPECT_NEAR(q.vertical_fov_deg, kDefaultYfov * 180 / std::numbers::pi, 1e-9);
 }
 
 TEST(GltfCamera, ExtCameraPhysicalAloneTakesTheFitThatGivesYfov) {
@@ -145,22 +257,13 @@ TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
   EXPECT_EQ(s.fps, 30.0);  // the timeline of the keys, frame / fps, as Blender exports them
   EXPECT_EQ(s.frame, 7.0);
   EXPECT_EQ(s.shutter_curve, (std::vector<double>{0, 1, 0}));
-  EXPECT_EQ(s.filter, "gaussian:radius=3,sigma=0.5");  // Cycles: exp(-8x^2/w^2) cut at 1.5w
+  ASSERT_TRUE(s.filter);
+  EXPECT_EQ(s.filter->type, PixelFilterSetting::Type::kGaussian);
+  EXPECT_EQ(s.filter->width_px, 2.0);
+  EXPECT_EQ(s.filter->origin.path, "scenes[0].extensions.FILMBACK_blender");
+  EXPECT_EQ(s.filter->origin.file, scene.file.string());
   EXPECT_EQ(s.film_exposure, 0.5);
   EXPECT_EQ(d.count(), 0u);
-}
-
-TEST(GltfShot, CyclesFiltersMapToFilterPlugins) {
-  const auto filter_of = [](const char* type) {
-    Diagnostics d;
-    return import(write_gltf(
-                      "", std::string(R"("extensions": {"FILMBACK_blender": {"filter_type": ")") +
-                              type + R"(", "filter_width_px": 1.5}})"),
-                  d)
-        .settings.filter.value_or("");
-  };
-  EXPECT_EQ(filter_of("BLACKMAN_HARRIS"), "blackman_harris:width=1.5");
-  EXPECT_EQ(filter_of("BOX"), "box:radius=0.75");
 }
 
 TEST(GltfShot, ViewSettingsAreRead) {

@@ -2,6 +2,7 @@
 
 #include <tiny_gltf.h>
 
+#include <cctype>
 #include <cmath>
 
 #include "core/util/error.h"
@@ -15,6 +16,13 @@ std::string index_path(const char* array, size_t i) {
 std::string out_of_range(const char* what, long index, size_t count, const char* array) {
   return std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
          std::to_string(count) + " " + array + ")";
+}
+
+bool same_word(const std::string& word, const char* lower_case) {
+  if (word.size() != std::char_traits<char>::length(lower_case)) return false;
+  for (size_t i = 0; i < word.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(word[i])) != lower_case[i]) return false;
+  return true;
 }
 
 tinygltf::Value number_array(std::initializer_list<double> values) {

@@ -23,6 +23,9 @@ std::string index_path(const char* array, size_t i);
 // "mesh index 5 is out of range (the file has 1 meshes)": what was found and what was expected.
 std::string out_of_range(const char* what, long index, size_t count, const char* array);
 
+// Whether `word` is `lower_case` in any case: Blender's enum words ("AUTO", "Gaussian").
+bool same_word(const std::string& word, const char* lower_case);
+
 // A JSON array of these numbers; of a vector's or a colour's three components.
 tinygltf::Value number_array(std::initializer_list<double> values);
 tinygltf::Value number_array(Vec3d v);

@@ -725,6 +725,68 @@ class CliTest(unittest.TestCase):
         self.assert_usage_error(self.scene(animated_scene()), TINY + ["--shutter-curve", "table:values=[0,0]"],
                                 "--shutter-curve 'table:values=[0,0]': ", "not all zero")
 
+    # --- where a value came from: the scene (exit 1, naming the file) or an option (exit 2) ------
+
+    def camera_scene(self, ours=None, extras=None, shot=None):
+        """triangle_scene() whose camera carries `ours` (FILMBACK_blender) and `extras`, and whose
+        scene extension carries `shot`."""
+        g = triangle_scene()
+        g.doc["extensionsUsed"] = ["FILMBACK_blender"]
+        if ours is not None:
+            g.doc["cameras"][0]["extensions"] = {"FILMBACK_blender": ours}
+        if extras is not None:
+            g.doc["cameras"][0]["extras"] = extras
+        if shot is not None:
+            g.doc["scenes"][0]["extensions"] = {"FILMBACK_blender": shot}
+        return self.scene(g)
+
+    def test_scene_filter_error_is_bad_input_naming_the_scene(self):
+        # Cycles' filter widths run from 0.01 to 10 px: beyond is the scene's error, exit 1, while
+        # a bad --filter is the user's, exit 2, and --filter replaces the scene's filter.
+        scene = self.camera_scene(shot={"filter_type": "GAUSSIAN", "filter_width_px": 20})
+        self.assert_input_error(scene, "scenes[0].extensions.FILMBACK_blender.filter_width_px",
+                                "expected a number in [0.01, 10]")
+        scene = self.camera_scene(shot={"filter_type": "GAUSSIAN", "filter_width_px": 0.01})
+        self.assert_usage_error(scene, TINY + ["--filter", "gaussian:sigma=0"],
+                                "--filter 'gaussian:sigma=0': ", "sigma")
+        result = self.render(scene, *TINY[:-1])
+        self.assert_rendered(result, "image.exr")
+        self.assertIn("filter gaussian:radius=0.015,sigma=0.0025 (importance)", result.stdout)
+
+    def test_bad_fstop_names_where_it_came_from(self):
+        scene = self.camera_scene(ours={"fstop": -1})
+        self.assert_input_error(scene, "cameras[0].extensions.FILMBACK_blender.fstop",
+                                "-1, expected 0 (a pinhole) or an f-number in (0, 1e6]")
+        scene = self.camera_scene()
+        for fstop in ["-1", "wide", "nan"]:
+            with self.subTest(fstop=fstop):
+                self.assert_usage_error(scene, TINY + ["--fstop", fstop], "--fstop '%s': " % fstop,
+                                        "expected 0 (a pinhole) or an f-number in (0, 1e6]")
+
+    def test_focus_inside_the_focal_length_names_both_origins(self):
+        # yfov 0.8 on a square image: f = 18 mm / tan(0.4) = 42.574 mm, from yfov.
+        scene = self.camera_scene(ours={"fstop": 2, "focus_distance_m": 0.04})
+        self.assert_input_error(scene, "cameras[0].extensions.FILMBACK_blender.focus_distance_m",
+                                "not beyond the focal length 42.574 mm (focal length from %s: "
+                                "cameras[0].perspective.yfov (under the sensor and its fit))" % scene)
+        scene = self.camera_scene(ours={"fstop": 2})
+        self.assert_usage_error(scene, TINY + ["--focus-distance", "0.01"], "--focus-distance: ",
+                                "not beyond the focal length 42.574 mm")
+
+    def test_info_prints_each_values_origin_and_the_ignored_extras(self):
+        # Bug 1 of issue 15: custom properties named like ours gave depth of field Blender had off.
+        scene = self.camera_scene(ours={"focal_length_mm": 50, "sensor_fit": "auto"},
+                                  extras={"fstop": 2.8})
+        result = self.run_cli("info", scene, "--camera", "shot")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("      focal_length_mm: %s: cameras[0].extensions.FILMBACK_blender.focal_length_mm\n"
+                      % scene, result.stdout)
+        self.assertIn("      fstop: default (FILMBACK_blender names none: depth of field off, a pinhole)",
+                      result.stdout)
+        self.assertIn("pinhole (no aperture", result.stdout)
+        self.assertIn("%s: cameras[0].extras: fstop ignored: FILMBACK_blender describes the camera"
+                      % scene, result.stderr)
+
     # --- what works ----------------------------------------------------------------------------
 
     def test_unsupported_features_warn_once_each(self):

@@ -83,6 +83,8 @@ class DescriptorBuilder {
         function(table_.integrator.create), function(table_.integrator.destroy);
         function(table_.integrator.channels), function(table_.integrator.radiance);
         table_.integrator.hit_size = number(sizeof(fb_hit));
+        table_.integrator.scene_size = number(sizeof(fb_scene));
+        table_.integrator.scene_api_size = number(sizeof(fb_scene_api));
     }
     p.api = in_.ConsumeBool() ? nullptr : &table_;
     return p;
@@ -106,11 +108,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
   DescriptorBuilder builder(in);
   const fb_plugin descriptor = builder.build();
-  if (fb::check_descriptor(&descriptor).empty()) {
+  fb::PluginDescriptor read;
+  if (fb::check_descriptor(&descriptor, read).empty()) {
     // Accepted: its file name can be formed, and its defaults bind (an InputError here would
     // escape and be reported: the checks let through a descriptor a render then refuses).
     fb::plugin_file_name(descriptor.kind, descriptor.name);
-    fb::BoundParams bound(descriptor, {});
+    fb::BoundParams bound(read.plugin, {});
   }
   return 0;
 }

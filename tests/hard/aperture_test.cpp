@@ -35,7 +35,7 @@ const test::Blob& nearest(const std::vector<test::Blob>& blobs, Vec2d at) {
 void check_blur(const char* file, RenderOptions options, double relative_limit) {
   const Scene scene = load_hard_scene(file);
   SceneCamera camera = scene.cameras.at(0);
-  options.camera_overrides.apply(camera.physical);
+  options.camera_overrides.apply(camera);
   const PhysicalCamera& lens = camera.physical;
   const uint32_t width = *scene.settings.width_px, height = *scene.settings.height_px;
   const double pixel_mm = lens.sensor_width_mm / width;  // fit AUTO on a landscape frame

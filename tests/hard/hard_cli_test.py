@@ -43,7 +43,7 @@ class HardCliTest(cli_test.CliTest):
         scene = SCENES / "focus_inside_focal_length.gltf"
         start = time.monotonic()
         self.assert_error(self.render(scene, "-q"), cli_test.INPUT,
-                          "%s: nodes[1] (cameras[0]): " % scene,
+                          "%s: cameras[0].extensions.FILMBACK_blender.focus_distance_m: " % scene,
                           "focus distance 0.04 m is not beyond the focal length 50 mm",
                           "expected a focus distance over 0.05 m")
         report("focus inside f, CLI", 0, 0, "exit 1, file, camera, value and bound",

@@ -25,7 +25,9 @@ SOURCE_SUFFIXES = {".c", ".cc", ".cpp", ".h", ".hpp"}
 # and defaults to plugins that issue 15's shot plan takes over (then this table names that file
 # alone). The others use the same words in another sense.
 ALLOWED_PLUGIN_NAMES = {
-    "core/render/render_job.cpp": {"perspective", "orthographic", "thinlens"},  # camera_model_for
+    # camera_model_for, filter_plugin_for (Cycles' pixel filters)
+    "core/render/render_job.cpp": {"perspective", "orthographic", "thinlens", "gaussian", "box",
+                                   "blackman_harris"},
     "core/render/render_job.h": {"gaussian", "path"},  # kDefaultFilter, kDefaultIntegrator
     "core/render/shutter.cpp": {"box"},  # the box shutter curve, not the box filter
     "core/cmd/info_command.cpp": {"perspective", "orthographic"},  # the projection it prints

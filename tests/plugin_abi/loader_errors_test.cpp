@@ -46,14 +46,15 @@ const std::vector<BrokenCase>& broken_cases() {
        "ABI version mismatch: the plugin was built for plugin ABI 2, this filmback speaks 1 "
        "(rebuild it against this SDK)"},
       {"bigdescriptor", FB_KIND_FILTER,
-       "descriptor size mismatch: the plugin's fb_plugin is " +
+       "plugin newer than this filmback: its fb_plugin is " +
            std::to_string(sizeof(fb_plugin) + sizeof(void*)) + " bytes, this filmback's is " +
-           std::to_string(sizeof(fb_plugin)) + " (rebuild it against this SDK)"},
+           std::to_string(sizeof(fb_plugin)) +
+           " (update filmback, or rebuild the plugin against this SDK)"},
       {"bigtable", FB_KIND_FILTER,
-       "filter function table size mismatch: the plugin's is " +
+       "plugin newer than this filmback: its filter function table is " +
            std::to_string(sizeof(fb_filter_api) + sizeof(void (*)())) +
            " bytes, this filmback's is " + std::to_string(sizeof(fb_filter_api)) +
-           " (rebuild it against this SDK)"},
+           " (update filmback, or rebuild the plugin against this SDK)"},
       {"wrongkind", FB_KIND_CAMERA,
        "wrong kind: the file name says camera, the plugin declares itself a filter"},
       {"misnamed", FB_KIND_FILTER,

@@ -12,6 +12,27 @@
  * (which must match the file name libfilmback_<kind>_<name>.so) and the kind's function table,
  * which starts with its own struct_size.
  *
+ * Growth (docs/plugins.md, "ABI growth"): within ABI version 1 a struct only grows, by fields
+ * appended at its end, and a plugin built against an older header keeps loading and running.
+ * Every struct that may grow has its size said: its first field `struct_size` (fb_plugin, the
+ * function tables, fb_camera_setup, fb_scene, fb_scene_api), or a size the integrator declares
+ * (fb_integrator_api: hit_size, scene_size, scene_api_size).
+ *  - What the plugin hands the host (fb_plugin, its function table) may have any size from the
+ *    first published layout (tests/sdk/abi_frozen/filmback/plugin_abi.h) up to the host's: the
+ *    host reads only the fields that size covers and takes the default each field documents for
+ *    the rest.
+ *  - What the host hands the plugin is filled only as far as the plugin's declared size covers:
+ *    hit records are written with hit_size as their stride; fb_scene and its fb_scene_api say the
+ *    plugin's scene_size and scene_api_size in their struct_size (a table no longer than the
+ *    plugin knows). fb_camera_setup, which the plugin only reads, carries the host's struct_size;
+ *    the plugin reads the fields it knows.
+ *  - A plugin newer than the host (any of these sizes larger than the host's) is refused, naming
+ *    the file and both sizes.
+ * Structs without a size (fb_param_desc, fb_value, the samples, rays, fb_material, fb_light_sample,
+ * fb_bsdf_sample, fb_light_crossing) are frozen. A growth must change sizeof: appended fields add
+ * up to at least the struct's alignment (two uint32_t after a pointer-aligned struct, not one,
+ * which would fall into its tail padding and leave two layouts the same size).
+ *
  * Spaces and units (docs/conventions.md): raster x right, y down, origin at the top-left corner of
  * the image; camera space looks down -Z with +Y up; render space is world space translated so that
  * the camera sits at the origin; metres, seconds, radiance in W sr^-1 m^-2.
@@ -187,8 +208,9 @@ typedef struct fb_hit {
   uint32_t emitter;          /* emissive-triangle light index, or FB_NONE */
   /* The surface at the hit, its material's textures evaluated by the host (glTF
    * metallic-roughness, docs/plugins.md "Surfaces"). shading_normal above already has the normal
-   * map applied. These fields were appended to fb_hit together with fb_integrator_api.hit_size:
-   * an integrator built before them has a smaller function table and is refused at load time. */
+   * map applied. Fields appended to fb_hit reach only integrators that declare them:
+   * fb_integrator_api.hit_size says how much of a record the plugin knows, and the host writes
+   * that much. */
   float base_color[3]; /* linear reflectance (metals: the colour at normal incidence) */
   float metallic;      /* 0 dielectric ... 1 metal */
   float roughness;     /* perceptual, as glTF and Blender: GGX alpha = roughness^2 */
@@ -210,7 +232,8 @@ typedef struct fb_hit {
    * (its material's closures, textures evaluated, normals turned to the ray's side): pass the hit
    * to fb_scene_api's bsdf_eval() and bsdf_sample(). Opaque. A hit of intersect_batch keeps it
    * until the radiance() call that traced it returns; a hit of intersect() until 63 more rays have
-   * been traced with intersect() on the same context. */
+   * been traced with intersect() on the same context. Appended after the first published layout:
+   * the host reads it as NULL (no surface: bsdf_* find no light) from an older integrator. */
   const struct fb_surface* surface;
 } fb_hit;
 
@@ -326,9 +349,14 @@ typedef struct fb_integrator_api {
   /* values[i * channel_count + c] for ray i; one call per batch of camera rays. */
   void (*radiance)(const void* instance, const fb_scene* scene, fb_trace_context* context,
                    const fb_ray* rays, size_t count, float* values);
-  /* sizeof(fb_hit) as the plugin was built: the host writes hit records into the plugin's
-   * memory, so the loader refuses a plugin whose records are not this host's. */
+  /* sizeof(fb_hit) as the plugin was built: the host writes hit records of this size (and with
+   * this stride) into the plugin's memory, and reads no more of a record the plugin hands it. */
   uint32_t hit_size;
+  /* sizeof(fb_scene) and sizeof(fb_scene_api) as the plugin was built: the host says them in the
+   * struct_size of the scene and the function table it hands radiance(). Appended after the first
+   * published layout: a table without them (struct_size 48 on LP64) gets that layout's sizes. */
+  uint32_t scene_size;
+  uint32_t scene_api_size;
 } fb_integrator_api;
 
 #ifdef __cplusplus

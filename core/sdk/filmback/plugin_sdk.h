@@ -8,11 +8,13 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "plugin_abi.h"
+#include "vec.h"
 
 namespace fb {
 
@@ -43,6 +45,79 @@ int create_instance(void** instance, fb_error_buffer error, Args&&... args) {
 template <typename T>
 void destroy_instance(void* instance) {
   delete static_cast<T*>(instance);
+}
+
+// ------------------------------------------------------------------ parameters, by name
+//
+// create() receives the validated values in the order of the plugin's schema. A plugin reads them
+// through handles found by name, so that its code never depends on that order:
+//
+//   constexpr fb_param_desc kParams[] = {{"radius", FB_PARAM_FLOAT, ...}, {"sigma", ...}};
+//   constexpr auto kSigma = fb::param<double>(kParams, "sigma");  // looked up once
+//   explicit Gaussian(const fb_value* values) : sigma_(kSigma(values)) {}
+//
+// A handle knows its parameter's place and C++ type: double or float (FB_PARAM_FLOAT), int
+// (FB_PARAM_INT), bool (FB_PARAM_BOOL), const char* (FB_PARAM_STRING: valid only during create(),
+// copy what you keep) or fb::Rgb (FB_PARAM_RGB). Made in a constexpr, a name the schema lacks or a
+// type that is not the parameter's fails to compile; made at run time, it throws
+// std::invalid_argument, which create() reports.
+template <typename T>
+constexpr uint32_t param_type_of() {
+  if constexpr (std::is_same_v<T, double> || std::is_same_v<T, float>)
+    return FB_PARAM_FLOAT;
+  else if constexpr (std::is_same_v<T, int>)
+    return FB_PARAM_INT;
+  else if constexpr (std::is_same_v<T, bool>)
+    return FB_PARAM_BOOL;
+  else if constexpr (std::is_same_v<T, const char*>)
+    return FB_PARAM_STRING;
+  else {
+    static_assert(std::is_same_v<T, Rgb>,
+                  "parameters read as double, float, int, bool, "
+                  "const char* or fb::Rgb");
+    return FB_PARAM_RGB;
+  }
+}
+
+template <typename T>
+class Param {
+ public:
+  constexpr explicit Param(uint32_t index) : index_(index) {}
+  constexpr uint32_t index() const { return index_; }
+  // This parameter's value among create()'s `values`.
+  T operator()(const fb_value* values) const {
+    const fb_value& v = values[index_];
+    if constexpr (std::is_same_v<T, const char*>)
+      return v.text;
+    else if constexpr (std::is_same_v<T, bool>)
+      return v.number[0] != 0;
+    else if constexpr (std::is_same_v<T, Rgb>)
+      return Rgb(float(v.number[0]), float(v.number[1]), float(v.number[2]));
+    else
+      return T(v.number[0]);
+  }
+
+ private:
+  uint32_t index_;
+};
+
+// The handle of parameter `name` in `schema` (count entries), typed T.
+template <typename T>
+constexpr Param<T> param(const fb_param_desc* schema, size_t count, std::string_view name) {
+  for (size_t i = 0; i < count; ++i) {
+    if (!schema[i].name || name != schema[i].name) continue;
+    if (schema[i].type != param_type_of<T>())
+      throw std::invalid_argument("parameter '" + std::string(name) +
+                                  "' is not of the type the plugin reads it as");
+    return Param<T>(uint32_t(i));
+  }
+  throw std::invalid_argument("the plugin reads a parameter '" + std::string(name) +
+                              "' its schema lacks");
+}
+
+template <typename T, size_t N>
+constexpr Param<T> param(const fb_param_desc (&schema)[N], std::string_view name) {
+  return param<T>(schema, N, name);
 }
 
 // The first hits of a batch of camera rays, traced as one coherent batch (Embree packets): rays
@@ -125,7 +200,9 @@ constexpr fb_integrator_api integrator_api() {
              size_t count, float* values) {
             static_cast<const Integrator*>(self)->radiance(*scene, context, rays, count, values);
           },
-          sizeof(fb_hit)};
+          sizeof(fb_hit),
+          sizeof(fb_scene),
+          sizeof(fb_scene_api)};
 }
 
 // The plugin's descriptor; its kind follows from the type of its function table.

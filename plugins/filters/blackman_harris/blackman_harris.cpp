@@ -19,23 +19,25 @@ namespace {
 
 constexpr double kA0 = 0.35875, kA1 = 0.48829, kA2 = 0.14128, kA3 = 0.01168;
 
+constexpr fb_param_desc kParams[] = {
+    {"width", FB_PARAM_FLOAT, "1.5", "px", nullptr, 1e-3, 16,
+     "Cycles' filter width: the support is +-width px (Cycles doubles it for this filter)"},
+};
+constexpr auto kWidth = fb::param<double>(kParams, "width");
+
 class BlackmanHarris : public fb::SeparableFilter {
  public:
-  explicit BlackmanHarris(const fb_value* params)
+  explicit BlackmanHarris(const fb_value* values)
       : SeparableFilter(
-            [width = params[0].number[0]](double v) {
+            [width = kWidth(values)](double v) {
               if (std::abs(v) > width) return 0.0;
               // cos 2t = 2c^2 - 1 and cos 3t = (4c^2 - 3) c: one cosine instead of three.
               const double c = std::cos(2 * std::numbers::pi * (v / (2 * width) + 0.5));
               return kA0 - kA1 * c + kA2 * (2 * c * c - 1) - kA3 * (4 * c * c - 3) * c;
             },
-            params[0].number[0], 2 * params[0].number[0] * kA0) {}
+            kWidth(values), 2 * kWidth(values) * kA0) {}
 };
 
-const fb_param_desc kParams[] = {
-    {"width", FB_PARAM_FLOAT, "1.5", "px", nullptr, 1e-3, 16,
-     "Cycles' filter width: the support is +-width px (Cycles doubles it for this filter)"},
-};
 constexpr fb_filter_api kApi = fb::filter_api<BlackmanHarris>();
 constexpr fb_plugin kPlugin = fb::describe("blackman_harris", "1.0.0",
                                            "Blackman-Harris filter as Cycles' default, normalised, "

@@ -6,9 +6,14 @@
 
 namespace {
 
+constexpr fb_param_desc kParams[] = {
+    {"radius", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "half-width of the square support"},
+};
+constexpr auto kRadius = fb::param<float>(kParams, "radius");
+
 class Box {
  public:
-  explicit Box(const fb_value* params) : radius_(float(params[0].number[0])) {}
+  explicit Box(const fb_value* values) : radius_(kRadius(values)) {}
   float radius() const { return radius_; }
   float evaluate(float x, float y) const {
     const bool inside = std::abs(x) <= radius_ && std::abs(y) <= radius_;
@@ -23,9 +28,6 @@ class Box {
   float radius_;
 };
 
-const fb_param_desc kParams[] = {
-    {"radius", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "half-width of the square support"},
-};
 constexpr fb_filter_api kApi = fb::filter_api<Box>();
 constexpr fb_plugin kPlugin =
     fb::describe("box", "1.0.0", "Box filter, normalised, sampled exactly", kParams, kApi);

@@ -23,15 +23,17 @@ fb::SeparableFilter make_gaussian(double radius_px, double sigma_px) {
       radius_px, norm);
 }
 
-class Gaussian : public fb::SeparableFilter {
- public:
-  explicit Gaussian(const fb_value* params)
-      : SeparableFilter(make_gaussian(params[0].number[0], params[1].number[0])) {}
-};
-
-const fb_param_desc kParams[] = {
+constexpr fb_param_desc kParams[] = {
     {"radius", FB_PARAM_FLOAT, "1.5", "px", nullptr, 1e-3, 16, "support half-width; zero beyond"},
     {"sigma", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "standard deviation"},
+};
+constexpr auto kRadius = fb::param<double>(kParams, "radius");
+constexpr auto kSigma = fb::param<double>(kParams, "sigma");
+
+class Gaussian : public fb::SeparableFilter {
+ public:
+  explicit Gaussian(const fb_value* values)
+      : SeparableFilter(make_gaussian(kRadius(values), kSigma(values))) {}
 };
 
 constexpr fb_filter_api kApi = fb::filter_api<Gaussian>();

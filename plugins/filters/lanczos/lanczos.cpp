@@ -23,21 +23,24 @@ double sinc(double x) {
   return std::abs(px) < 1e-6 ? 1 - px * px / 6 : std::sin(px) / px;
 }
 
-class Lanczos : public fb::SeparableFilter {
- public:
-  explicit Lanczos(const fb_value* params)
-      : SeparableFilter(
-            [radius = params[0].number[0], tau = params[1].number[0]](double x) {
-              return std::abs(x) < radius ? sinc(x) * sinc(x / tau) : 0.0;
-            },
-            params[0].number[0]) {}
-};
-
-const fb_param_desc kParams[] = {
+constexpr fb_param_desc kParams[] = {
     {"radius", FB_PARAM_FLOAT, "3", "px", nullptr, 0.5, 16, "half-width of the support"},
     {"tau", FB_PARAM_FLOAT, "3", "px", nullptr, 1, 16,
      "the window sinc(x/tau) reaches its first zero at tau px; tau = radius is Lanczos' window"},
 };
+constexpr auto kRadius = fb::param<double>(kParams, "radius");
+constexpr auto kTau = fb::param<double>(kParams, "tau");
+
+class Lanczos : public fb::SeparableFilter {
+ public:
+  explicit Lanczos(const fb_value* values)
+      : SeparableFilter(
+            [radius = kRadius(values), tau = kTau(values)](double x) {
+              return std::abs(x) < radius ? sinc(x) * sinc(x / tau) : 0.0;
+            },
+            kRadius(values)) {}
+};
+
 constexpr fb_filter_api kApi = fb::filter_api<Lanczos>();
 constexpr fb_plugin kPlugin =
     fb::describe("lanczos", "1.0.0",

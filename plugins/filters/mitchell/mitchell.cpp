@@ -27,14 +27,7 @@ fb::SeparableFilter make_mitchell(double radius_px, double b, double c) {
                              radius_px / 2);
 }
 
-class Mitchell : public fb::SeparableFilter {
- public:
-  explicit Mitchell(const fb_value* params)
-      : SeparableFilter(
-            make_mitchell(params[0].number[0], params[1].number[0], params[2].number[0])) {}
-};
-
-const fb_param_desc kParams[] = {
+constexpr fb_param_desc kParams[] = {
     {"radius", FB_PARAM_FLOAT, "2", "px", nullptr, 1e-3, 16,
      "half-width of the support; 2 keeps the cubic on its native 1-px knots"},
     {"b", FB_PARAM_FLOAT, "0.3333333333333333", "", nullptr, 0, 1,
@@ -42,6 +35,16 @@ const fb_param_desc kParams[] = {
     {"c", FB_PARAM_FLOAT, "0.3333333333333333", "", nullptr, 0, 1,
      "Mitchell-Netravali C: ringing, negative lobes (0.5 with B = 0 is Catmull-Rom)"},
 };
+constexpr auto kRadius = fb::param<double>(kParams, "radius");
+constexpr auto kB = fb::param<double>(kParams, "b");
+constexpr auto kC = fb::param<double>(kParams, "c");
+
+class Mitchell : public fb::SeparableFilter {
+ public:
+  explicit Mitchell(const fb_value* values)
+      : SeparableFilter(make_mitchell(kRadius(values), kB(values), kC(values))) {}
+};
+
 constexpr fb_filter_api kApi = fb::filter_api<Mitchell>();
 constexpr fb_plugin kPlugin =
     fb::describe("mitchell", "1.0.0",

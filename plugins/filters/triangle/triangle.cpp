@@ -9,9 +9,15 @@
 
 namespace {
 
+constexpr fb_param_desc kParams[] = {
+    {"radius", FB_PARAM_FLOAT, "1", "px", nullptr, 1e-3, 16,
+     "half-width of the support; 1 is linear interpolation's kernel"},
+};
+constexpr auto kRadius = fb::param<double>(kParams, "radius");
+
 class Triangle {
  public:
-  explicit Triangle(const fb_value* params) : radius_(params[0].number[0]) {}
+  explicit Triangle(const fb_value* values) : radius_(kRadius(values)) {}
   float radius() const { return float(radius_); }
   float evaluate(float x, float y) const { return float(tent(x) * tent(y)); }
   double integral() const { return 1.0; }
@@ -30,10 +36,6 @@ class Triangle {
   double radius_;
 };
 
-const fb_param_desc kParams[] = {
-    {"radius", FB_PARAM_FLOAT, "1", "px", nullptr, 1e-3, 16,
-     "half-width of the support; 1 is linear interpolation's kernel"},
-};
 constexpr fb_filter_api kApi = fb::filter_api<Triangle>();
 constexpr fb_plugin kPlugin = fb::describe(
     "triangle", "1.0.0", "Triangle (tent) filter, normalised, sampled exactly by its inverse CDF",

@@ -15,13 +15,19 @@ namespace {
 constexpr float kMissDepth = 1e10f;
 enum class Show { kAlbedo, kNormal, kDepth };
 
+constexpr fb_param_desc kParams[] = {
+    {"show", FB_PARAM_STRING, "albedo", "", "albedo|normal|depth", 0, 0,
+     "which AOV the R, G, B channels (and a PNG) show; normals as 0.5 + 0.5 n"},
+};
+constexpr auto kShow = fb::param<const char*>(kParams, "show");
+
 class Aov {
  public:
   static constexpr const char* kChannels[] = {"R",        "G",   "B",   "albedo.R", "albedo.G",
                                               "albedo.B", "N.X", "N.Y", "N.Z",      "Z"};
 
-  explicit Aov(const fb_value* params) {
-    const char* show = params[0].text;
+  explicit Aov(const fb_value* values) {
+    const char* show = kShow(values);
     show_ = std::strcmp(show, "normal") == 0  ? Show::kNormal
             : std::strcmp(show, "depth") == 0 ? Show::kDepth
                                               : Show::kAlbedo;
@@ -61,11 +67,6 @@ class Aov {
   }
 
   Show show_;
-};
-
-const fb_param_desc kParams[] = {
-    {"show", FB_PARAM_STRING, "albedo", "", "albedo|normal|depth", 0, 0,
-     "which AOV the R, G, B channels (and a PNG) show; normals as 0.5 + 0.5 n"},
 };
 
 constexpr fb_integrator_api kApi = fb::integrator_api<Aov>();

@@ -21,13 +21,23 @@ using fb::Vec3f;
 
 constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this short of the light
 
+constexpr fb_param_desc kParams[] = {
+    {"max_depth", FB_PARAM_INT, "8", "", nullptr, 0, 1024,
+     "most bounces a path takes (0: emitters only, 1: direct light)"},
+    {"rr_depth", FB_PARAM_INT, "3", "", nullptr, 1, 1024,
+     "bounces before Russian roulette may end a path"},
+    {"clamp", FB_PARAM_FLOAT, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL,
+     "largest component a sample's radiance may have (scaled down to it: biased); 0 is off"},
+};
+constexpr auto kMaxDepth = fb::param<int>(kParams, "max_depth");
+constexpr auto kRrDepth = fb::param<int>(kParams, "rr_depth");
+constexpr auto kClamp = fb::param<float>(kParams, "clamp");
+
 class PathTracer {
  public:
   static constexpr const char* kChannels[] = {"R", "G", "B"};
-  explicit PathTracer(const fb_value* params)
-      : max_depth_(int(params[0].number[0])),
-        rr_depth_(int(params[1].number[0])),
-        clamp_(float(params[2].number[0])) {}
+  explicit PathTracer(const fb_value* values)
+      : max_depth_(kMaxDepth(values)), rr_depth_(kRrDepth(values)), clamp_(kClamp(values)) {}
   void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
                 float* values) const {
     const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
@@ -165,15 +175,6 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
   }
   return L;
 }
-
-const fb_param_desc kParams[] = {
-    {"max_depth", FB_PARAM_INT, "8", "", nullptr, 0, 1024,
-     "most bounces a path takes (0: emitters only, 1: direct light)"},
-    {"rr_depth", FB_PARAM_INT, "3", "", nullptr, 1, 1024,
-     "bounces before Russian roulette may end a path"},
-    {"clamp", FB_PARAM_FLOAT, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL,
-     "largest component a sample's radiance may have (scaled down to it: biased); 0 is off"},
-};
 
 constexpr fb_integrator_api kApi = fb::integrator_api<PathTracer>();
 constexpr fb_plugin kPlugin =

@@ -11,12 +11,13 @@ struct Box {
   float radius_px;
 };
 
-const fb_param_desc kParams[] = {
+constexpr fb_param_desc kParams[] = {
     {"radius", FB_PARAM_FLOAT, "0.5", "px", nullptr, 1e-3, 16, "half-width of the square support"},
 };
+constexpr auto kRadius = fb::param<float>(kParams, "radius");  // by name, not by position
 
-int create(const fb_value* params, void** instance, fb_error_buffer error) {
-  return fb::create_instance<Box>(instance, error, Box{float(params[0].number[0])});
+int create(const fb_value* values, void** instance, fb_error_buffer error) {
+  return fb::create_instance<Box>(instance, error, Box{kRadius(values)});
 }
 void radius(const void* self, float r[2]) {
   r[0] = r[1] = static_cast<const Box*>(self)->radius_px;

@@ -1,0 +1,102 @@
+#include "importers/gltf/gltf_camera_source.h"
+
+#include "core/scene/sensor_fit.h"
+#include "core/util/error.h"
+
+namespace fb::gltf {
+namespace {
+
+// Frames of a focus track, at most: a bound on what a file allocates.
+constexpr size_t kMaxTrackFrames = 100000;
+
+// Each number Blender's camera carries, with the range a file may give it (Blender's RNA ranges,
+// widened to what still traces: docs/blender.md, "What is carried").
+struct NumberField {
+  CameraValue value;
+  double lo, hi;
+};
+constexpr NumberField kNumbers[] = {
+    {CameraValue::kFocalLength, 1e-3, 1e5},    {CameraValue::kSensorWidth, 1e-3, 1e4},
+    {CameraValue::kSensorHeight, 1e-3, 1e4},   {CameraValue::kShiftX, -100, 100},
+    {CameraValue::kShiftY, -100, 100},         {CameraValue::kOrthoScale, 1e-9, 1e9},
+    {CameraValue::kClipNear, 0, 1e18},         {CameraValue::kClipFar, 0, 1e18},
+    {CameraValue::kFocusDistance, 1e-6, 1e18}, {CameraValue::kApertureRotation, -1e3, 1e3},
+    {CameraValue::kApertureRatio, 1e-2, 1e2},
+};
+
+uint32_t sensor_fit(const Fields& f, const std::string& word) {
+  const std::optional<uint32_t> named = sensor_fit_named(word);
+  if (!named) f.fail("sensor_fit", "'" + word + "', expected " + sensor_fit_choices());
+  return *named;
+}
+
+// focus_distance_per_frame_m: {"first_frame": F, "values": [m, ...]}.
+std::optional<FocusTrack> read_focus_track(const Fields& camera) {
+  if (!camera.has("focus_distance_per_frame_m")) return std::nullopt;
+  const Fields f = camera.object("focus_distance_per_frame_m");
+  const auto first = f.whole("first_frame", -1e9, 1e9);
+  auto values = f.numbers("values", kMaxTrackFrames, 1e-6, 1e18);
+  if (!first || !values || values->empty())
+    throw_input(f.file(), f.path(),
+                "expected first_frame and a non-empty array 'values' of distances in metres");
+  return FocusTrack{*first, std::move(*values)};
+}
+
+}  // namespace
+
+bool CameraSource::names_any() const {
+  for (const auto& v : values)
+    if (v) return true;
+  return focus_track.has_value();
+}
+
+CameraSource read_blender_camera_fields(const Fields& f, const char* name) {
+  CameraSource s;
+  s.name = name;
+  s.path = f.path();
+  s.expresses.fill(true);
+  const auto named = [&](CameraValue v, std::optional<double> x) {
+    s.values[size_t(v)] = x;
+    s.paths[size_t(v)] = f.path() + "." + camera_value_name(v);
+  };
+  for (const NumberField& n : kNumbers)
+    named(n.value, f.number(camera_value_name(n.value), n.lo, n.hi));
+  if (const auto fit = f.word("sensor_fit"))
+    named(CameraValue::kSensorFit, double(sensor_fit(f, *fit)));
+  if (f.has("fstop")) {
+    const auto n = f.type("fstop") == Fields::Type::kNumber ? f.number("fstop", -HUGE_VAL, HUGE_VAL)
+                                                            : std::nullopt;
+    const std::optional<double> fstop = n ? fstop_from(*n) : std::nullopt;
+    if (!fstop) f.fail("fstop", (n ? number_text(*n) + ", " : std::string()) + kFstopExpected);
+    named(CameraValue::kFstop, fstop);
+  }
+  const auto blades = f.whole("aperture_blades", 0, 64);
+  if (blades == 1 || blades == 2) f.fail("aperture_blades", "expected 0 (round) or 3 to 64 blades");
+  named(CameraValue::kApertureBlades, blades);
+  s.focus_track = read_focus_track(f);
+  s.track_path = f.path() + ".focus_distance_per_frame_m";
+  return s;
+}
+
+CameraSource read_ext_camera_physical(const Fields& f) {
+  CameraSource s;
+  s.name = "EXT_camera_physical";
+  s.path = f.path();
+  for (CameraValue v :
+       {CameraValue::kFocalLength, CameraValue::kSensorWidth, CameraValue::kSensorHeight})
+    s.expresses[size_t(v)] = true;
+  if (const auto focal = f.number("focalLength", 1e-6, 1e2)) {
+    s.values[size_t(CameraValue::kFocalLength)] = *focal * 1000;
+    s.paths[size_t(CameraValue::kFocalLength)] = f.path() + ".focalLength";
+  }
+  if (const auto sensor = f.numbers("sensorSize", 2, 1e-6, 10)) {
+    if (sensor->size() != 2) f.fail("sensorSize", "expected [width, height] in metres");
+    s.values[size_t(CameraValue::kSensorWidth)] = (*sensor)[0] * 1000;
+    s.values[size_t(CameraValue::kSensorHeight)] = (*sensor)[1] * 1000;
+    s.paths[size_t(CameraValue::kSensorWidth)] = f.path() + ".sensorSize[0]";
+    s.paths[size_t(CameraValue::kSensorHeight)] = f.path() + ".sensorSize[1]";
+  }
+  return s;
+}
+
+}  // namespace fb::gltf
