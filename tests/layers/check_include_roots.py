@@ -7,9 +7,10 @@ For each case, a one-line file `#include "<a header of FOLDER>"` is written wher
 target would sit (its quote search finds nothing beside it) and preprocessed with the target's own
 include directories, as the build gives them (FLAGS_DIR/<target>.includes, one per line, written
 by tests/layers/CMakeLists.txt). A header that must resolve must preprocess; one that must not must
-fail naming that header as not found, and resolve once the whole source tree is added to the
-path (as every library had it before the roots): so a probe cannot pass by misspelling. The header is the first of its folder, so renaming files needs no
-edit here (a case may name one header instead). Usage: check_include_roots.py COMPILER SOURCE_ROOT FLAGS_DIR
+fail naming that header as not found, and resolve once the whole source tree is added to the path
+(as every library had it before the roots): so a probe cannot pass by misspelling. The header is
+the first of its folder, so renaming files needs no edit here (a case may name one header).
+Usage: check_include_roots.py COMPILER SOURCE_ROOT FLAGS_DIR
 """
 
 import pathlib
