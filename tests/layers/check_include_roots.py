@@ -38,6 +38,7 @@ CASES = [
     ("filmback_importers", "importers/gltf", "core/cmd", False),
     ("filmback_importers", "importers/gltf", "core/tessellate", False),
     ("filmback_pov_sdl", "importers/pov/sdl", "importers/pov", True),
+    ("filmback_pov_sdl", "importers/pov/sdl", "importers/gltf", False),
     ("filmback_pov_sdl", "importers/pov/sdl", "core/cmd", False),
     # The module shares its folder with the core's loader of it: its own header.
     ("filmback_subdiv", "core/subdiv", "core/subdiv/refine.h", True),
