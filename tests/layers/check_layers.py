@@ -8,6 +8,7 @@ read) and fails, naming the file and line, when
     the accelerator above all;
   - anything but the front end includes the conversion's tessellation (core/tessellate/);
   - a plugin or the plugin SDK includes core/ or importers/ (they see the SDK only);
+  - an include climbs with ../ (it would pass the include roots the compiler holds);
   - core names a concrete plugin (a string literal that is a plugin's name, a spec
     "name:key=value", or its library name) outside the places in ALLOWED_PLUGIN_NAMES.
 The plugin names are read from plugins/CMakeLists.txt, so a new plugin is checked without editing
@@ -54,6 +55,12 @@ def include_rules():
         (under("plugins/", "core/sdk/"),
          under("core/", "importers/"),
          "plugins and the plugin SDK see only the SDK's headers (<filmback/...>)"),
+        # A quoted include is looked up beside the including file first, which no include root
+        # holds: "../../importers/x.h" from core/render would reach the importers.
+        (lambda p: True,
+         lambda target: ".." in target.split("/"),
+         "includes are spelled from the source root (\"core/scene/scene.h\"), never climbing "
+         "with ../ past the include roots"),
     ]
 
 

@@ -57,6 +57,9 @@ PLANTED = {
     "the renderer including the tessellation": (
         {"core/render/loop.cpp": '#include "core/tessellate/tessellate.h"\n'},
         "core/render/loop.cpp:1:", "core/tessellate/tessellate.h"),
+    "core climbing to an importer with ../": (
+        {"core/render/loop.cpp": '#include "../../importers/gltf/gltf_shot.h"\n'},
+        "core/render/loop.cpp:1:", "../../importers/gltf/gltf_shot.h"),
     "a plugin including core": (
         {"plugins/filters/box/box.cpp": '#include "core/plugin/params.h"\n'},
         "plugins/filters/box/box.cpp:1:", "core/plugin/params.h"),
