@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/cmd/commands.h"
+#include "core/render/shot_plan.h"
 #include "core/scene/camera.h"
 #include "importers/import_scene.h"
 
@@ -165,6 +166,30 @@ std::pair<const char*, const char*> light_quantity(LightType t) {
 
 }  // namespace
 
+// What `filmback render` chooses with no other option: the shot plan (core/render/shot_plan.h),
+// each plugin with why it was chosen and each value it is handed with where that came from. A shot
+// no plugin can render says why instead.
+void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
+  RenderOptions options;
+  options.camera = camera;
+  std::cout << "plan (filmback render without options)";
+  try {
+    const ShotPlan plan = plan_shot(scene, options);
+    std::cout << format(": camera '%s', %ux%u, %u spp\n", plan.camera.name.c_str(), plan.width_px,
+                        plan.height_px, plan.samples_per_pixel);
+    for (const auto& [kind, choice] : {std::pair{"camera model", &plan.camera_model},
+                                       {"filter", &plan.filter},
+                                       {"integrator", &plan.integrator}}) {
+      std::cout << "  " << kind << " " << choice->name << "  (" << choice->origin.text() << ")\n";
+      for (const PlannedNumber& n : choice->numbers)
+        std::cout << "    " << n.key << format(" = %.17g", n.value) << "  from " << n.origin.text()
+                  << '\n';
+    }
+  } catch (const std::runtime_error& e) {  // InputError or UsageError: the scene as it stands
+    std::cout << ": cannot render: " << e.what() << '\n';
+  }
+}
+
 int run_info(const std::filesystem::path& file, const ImportOptions& options,
              const std::optional<std::string>& only_camera) {
   Diagnostics diagnostics;
@@ -172,6 +197,7 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
   diagnostics.print(std::cerr);
   if (only_camera) {
     print_camera(find_camera(scene, *only_camera), scene.settings);
+    print_plan(scene, only_camera);
     return 0;
   }
   std::cout << "scene " << file.string() << '\n';
@@ -238,6 +264,7 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
   for (const Material& m : scene.materials)
     std::cout << "  " << m.name << "  base colour " << rgb(m.base_color) << ", emission "
               << rgb(m.emission) << " W/sr/m^2" << (m.double_sided ? ", double-sided" : "") << '\n';
+  print_plan(scene, std::nullopt);
   return 0;
 }
 

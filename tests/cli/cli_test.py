@@ -787,6 +787,25 @@ class CliTest(unittest.TestCase):
         self.assertIn("%s: cameras[0].extras: fstop ignored: FILMBACK_blender describes the camera"
                       % scene, result.stderr)
 
+    def test_info_prints_the_shot_plan_with_each_plugin_values_origin(self):
+        # The plan info prints is the one render uses: the lens values reach thinlens by name,
+        # each with the JSON path it came from; the shot's filter arrives as typed numbers.
+        scene = self.camera_scene(ours={"fstop": 2, "focus_distance_m": 3},
+                                  shot={"filter_type": "BOX", "filter_width_px": 1.25})
+        result = self.run_cli("info", scene)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        ours = "%s: cameras[0].extensions.FILMBACK_blender." % scene
+        self.assertIn("  camera model thinlens  (%sfstop)\n" % ours, result.stdout)
+        self.assertIn("    fstop = 2  from %sfstop\n" % ours, result.stdout)
+        self.assertIn("    focus_distance_m = 3  from %sfocus_distance_m\n" % ours, result.stdout)
+        self.assertIn("  filter box  (%s: scenes[0].extensions.FILMBACK_blender" % scene,
+                      result.stdout)
+        self.assertIn("    radius = 0.625  from ", result.stdout)
+        self.assertRegex(result.stdout, r"  integrator path  \(default")
+        render = self.render(scene, *TINY[:-1])
+        self.assertIn("through thinlens (f/2 focused at 3 m", render.stdout)
+        self.assertIn("filter box:radius=0.625 (importance)", render.stdout)
+
     # --- what works ----------------------------------------------------------------------------
 
     def test_unsupported_features_warn_once_each(self):
