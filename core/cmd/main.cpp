@@ -28,14 +28,17 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
       ->add_option("--spp", render.options.samples_per_pixel, "samples per pixel (default 64)")
       ->check(CLI::Range(1u, 1000000u));
   render_cmd->add_option("--res", render.resolution,
-                         "image size WxH in pixels (default: long side 1280 at the shot's aspect)");
+                         "image size WxH in pixels (default: the shot's, else long side 1280 at "
+                         "the shot's aspect)");
   render_cmd->add_option("--camera", render.options.camera,
                          "scene camera by name (default: the first in node order)");
   render_cmd->add_option(
       "--camera-model", render.options.camera_model,
-      "camera plugin NAME[:k=v,...] (default: perspective or orthographic, as the shot's camera)");
+      "camera plugin NAME[:k=v,...]; the shot's lens values fill its parameters of those names "
+      "(default: thinlens with an aperture, else perspective or orthographic, as the shot's "
+      "camera)");
   render_cmd->add_option("--filter", render.options.filter,
-                         "pixel filter NAME[:k=v,...] (default gaussian)");
+                         "pixel filter NAME[:k=v,...] (default: the shot's, else gaussian)");
   render_cmd
       ->add_option("--reconstruction", render.reconstruction,
                    "importance: each sample in its own pixel, weighted h/pdf; splat: spread to "

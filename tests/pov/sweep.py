@@ -3,9 +3,9 @@ scene: whether it imported and rendered, how long it took, and the unsupported f
 (docs/pov.md "Sample scenes"). Two counts are tracked: scenes that render with no error, and
 scenes that render with complete geometry (no object skipped or approximated away).
 
-    sweep.py --filmback build/bin/filmback [--every 10] [--timeout 60] [--out DIR]
+    sweep.py --filmback build/bin/filmback [--every 20] [--timeout 60] [--out DIR]
 
---every N takes every Nth scene of the sorted list (CI: a fixed sample of about 40); without it,
+--every N takes every Nth scene of the sorted list (CI: a fixed sample of 20); without it,
 all 396. Writes DIR/sweep.csv and DIR/sweep.md. Exits non-zero only if filmback crashed (killed
 by a signal) or left a non-finite pixel: an unsupported scene is a result, not a failure.
 """
