@@ -39,9 +39,7 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
     fail(choice, e.what());
   }
   for (const PlannedNumber& n : choice.numbers) {
-    const bool typed = std::any_of(choice.typed.begin(), choice.typed.end(),
-                                   [&](const auto& t) { return t.first == n.key; });
-    if (typed || !declares(plugin, n.key)) continue;
+    if (choice.typed_key(n.key) || !declares(plugin, n.key)) continue;
     if (std::string expected = params->set_number(plugin, n.key, n.value); !expected.empty())
       n.origin.fail("the plugin " + choice.name + "'s parameter '" + n.key +
                     "' = " + number_text(n.value) + ": expected " + expected);

@@ -30,7 +30,6 @@ struct RenderJob::Plugins {
   std::unique_ptr<IntegratorInstance> integrator;
   std::unique_ptr<RenderGeometry> geometry;
   std::unique_ptr<LightSampler> lights;
-  ShutterCurve shutter_curve;
   TimeSampling time;
   std::unique_ptr<CameraPath> camera_path;
   std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
@@ -126,7 +125,6 @@ RenderJob::RenderJob(const Scene& scene, const RenderOptions& options, const Plu
 
 void RenderJob::load_plugins(const PluginLoader& loader) {
   Plugins& p = *plugins_;
-  p.shutter_curve = plan_.shutter_curve;
   p.camera = load_camera(loader, plan_);
   p.filter = load_filter(loader, plan_.filter);
   check_splat_reach(*p.filter, plan_.filter.text(), options_.reconstruction);
@@ -228,13 +226,13 @@ void RenderJob::choose_time_samples() {
   const size_t moving = p.geometry->moving_instance_count();
   const bool camera_needs_time = p.camera->needs() & FB_CAMERA_NEEDS_TIME;
   out << "shutter open " << number_text(shutter_s.y - shutter_s.x) << " s ("
-      << p.shutter_curve.description() << ")";
+      << plan_.shutter_curve.description() << ")";
   if (!camera_moves && moving == 0 && !camera_needs_time) {
     out << ", nothing moves in it: no time samples";
     time_reason_ = out.str();
     return;
   }
-  p.time = {&p.shutter_curve, shutter_s.x, shutter_s.y};
+  p.time = {&plan_.shutter_curve, shutter_s.x, shutter_s.y};
   out << ": time samples for";
   if (moving > 0)
     out << " " << moving << " moving instance" << (moving > 1 ? "s" : "") << " (up to "

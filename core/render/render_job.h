@@ -42,6 +42,9 @@ class RenderJob {
  public:
   RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader);
   ~RenderJob();
+  // Not copied or moved: the time sampling points into the plan's shutter curve.
+  RenderJob(const RenderJob&) = delete;
+  RenderJob& operator=(const RenderJob&) = delete;
 
   RenderChoices choices() const;
   std::string plan() const;  // one line: what was chosen and why

@@ -204,11 +204,14 @@ std::string PluginChoice::typed_text() const {
   return out;
 }
 
+bool PluginChoice::typed_key(std::string_view key) const {
+  return std::any_of(typed.begin(), typed.end(), [&](const auto& t) { return t.first == key; });
+}
+
 std::string PluginChoice::text() const {
   std::string out = typed_text();
   for (const PlannedNumber& n : numbers)
-    if (std::none_of(typed.begin(), typed.end(), [&](const auto& t) { return t.first == n.key; }))
-      append_setting(out, n.key, number_text(n.value));
+    if (!typed_key(n.key)) append_setting(out, n.key, number_text(n.value));
   return out;
 }
 

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -87,6 +88,7 @@ struct PluginChoice {
   // line, the image metadata and messages (the render passes the values as they are).
   std::string text() const;
   std::string typed_text() const;  // the name and the typed pairs only: what the user wrote
+  bool typed_key(std::string_view key) const;  // whether `typed` sets `key`
 };
 
 struct ShotPlan {
