@@ -181,7 +181,7 @@ void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
                                        {"filter", &plan.filter},
                                        {"integrator", &plan.integrator}}) {
       std::cout << "  " << kind << " " << choice->name << "  (" << choice->origin.text() << ")\n";
-      for (const PlannedNumber& n : choice->numbers)
+      for (const NamedNumber& n : choice->numbers)
         std::cout << "    " << n.key << format(" = %.17g", n.value) << "  from " << n.origin.text()
                   << '\n';
     }

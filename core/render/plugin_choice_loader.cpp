@@ -38,7 +38,7 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
   } catch (const UsageError& e) {
     fail(choice, e.what());
   }
-  for (const PlannedNumber& n : choice.numbers) {
+  for (const NamedNumber& n : choice.numbers) {
     if (choice.typed_key(n.key) || !declares(plugin, n.key)) continue;
     if (std::string expected = params->set_number(plugin, n.key, n.value); !expected.empty())
       n.origin.fail("the plugin " + choice.name + "'s parameter '" + n.key +

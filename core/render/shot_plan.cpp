@@ -56,9 +56,7 @@ constexpr const char* kDefaultIntegrator = "path";
 // of width w spans +-w/2.
 PluginChoice filter_for(const PixelFilterSetting& filter) {
   const double w = filter.width_px;
-  const auto number = [&](const char* key, double x) {
-    return PlannedNumber{key, x, filter.origin};
-  };
+  const auto number = [&](const char* key, double x) { return NamedNumber{key, x, filter.origin}; };
   switch (filter.type) {
     case PixelFilterSetting::Type::kGaussian:
       return {"gaussian", {}, {number("radius", 1.5 * w), number("sigma", w / 4)}, filter.origin};
@@ -79,9 +77,9 @@ PluginChoice choose_filter(const std::optional<std::string>& typed, const ShotSe
 
 // The lens values as parameters of the camera plugin (thinlens's schema: docs/camera-model.md).
 // The f-number travels as itself: the plugin alone turns f/N into an aperture radius f / 2N.
-std::vector<PlannedNumber> lens_numbers(const SceneCamera& camera) {
+std::vector<NamedNumber> lens_numbers(const SceneCamera& camera) {
   const PhysicalCamera& c = camera.physical;
-  std::vector<PlannedNumber> numbers;
+  std::vector<NamedNumber> numbers;
   const auto add = [&](const char* key, double x, CameraValue v) {
     numbers.push_back({key, x, camera.origin(v)});
   };
@@ -93,14 +91,49 @@ std::vector<PlannedNumber> lens_numbers(const SceneCamera& camera) {
   return numbers;
 }
 
-// --camera-model (given the shot's lens values where it declares them), else only what the shot
-// needs: a pinhole unless it has an aperture (docs/camera-model.md).
+// The shot's values for a camera plugin: its lens, then its own projection's values, if any.
+std::vector<NamedNumber> camera_numbers(const SceneCamera& camera) {
+  std::vector<NamedNumber> numbers = lens_numbers(camera);
+  if (camera.model)
+    numbers.insert(numbers.end(), camera.model->numbers.begin(), camera.model->numbers.end());
+  return numbers;
+}
+
+// Projections a scene names (CameraModel::kind) and the camera plugins that render them
+// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones.
+struct ModelPlugin {
+  std::string_view kind, plugin;
+};
+constexpr ModelPlugin kModelPlugins[] = {
+    {"equirectangular", "equirectangular"},
+    {"fisheye_equidistant", "fisheye_equidistant"},
+    {"fisheye_equisolid", "fisheye_equisolid"},
+    {"mirrorball", "mirrorball"},
+    {"fisheye_polynomial", "fisheye_polynomial"},
+    {"central_cylindrical", "central_cylindrical"},
+    {"equiangular_cubemap_face", "equiangular_cubemap_face"},
+};
+
+PluginChoice model_plugin(const CameraModel& model, std::vector<NamedNumber> numbers) {
+  std::string kinds;
+  for (const ModelPlugin& row : kModelPlugins) {
+    if (row.kind == model.kind)
+      return {std::string(row.plugin), {}, std::move(numbers), model.origin};
+    kinds.append(kinds.empty() ? "" : ", ").append(row.kind);
+  }
+  model.origin.fail("no camera plugin renders the projection '" + model.kind +
+                    "'; expected one of " + kinds);
+}
+
+// --camera-model (given the shot's values where it declares them), else only what the shot
+// needs: its own projection's plugin, else a pinhole unless it has an aperture
+// (docs/camera-model.md).
 PluginChoice choose_camera_model(const std::optional<std::string>& typed, const SceneCamera& camera,
                                  const SensorResponse& sensor) {
   const PhysicalCamera& c = camera.physical;
   if (typed) {
     PluginChoice choice = typed_choice(*typed, "--camera-model");
-    choice.numbers = lens_numbers(camera);
+    choice.numbers = camera_numbers(camera);
     return choice;
   }
   if (c.projection == FB_PROJECTION_ORTHOGRAPHIC) {
@@ -109,10 +142,11 @@ PluginChoice choose_camera_model(const std::optional<std::string>& typed, const 
           "--sensor-model physical: an orthographic camera has no aperture to expose through");
     return {"orthographic", {}, {}, camera.origin(CameraValue::kOrthoScale)};
   }
+  if (sensor.model == FB_SENSOR_PHYSICAL && !c.has_aperture())
+    throw UsageError("--sensor-model physical needs an aperture: give --fstop (the shot has none)");
+  if (camera.model) return model_plugin(*camera.model, camera_numbers(camera));
   if (c.has_aperture())
     return {"thinlens", {}, lens_numbers(camera), camera.origin(CameraValue::kFstop)};
-  if (sensor.model == FB_SENSOR_PHYSICAL)
-    throw UsageError("--sensor-model physical needs an aperture: give --fstop (the shot has none)");
   return {"perspective", {}, {}, camera.origin(CameraValue::kFstop)};
 }
 
@@ -210,7 +244,7 @@ bool PluginChoice::typed_key(std::string_view key) const {
 
 std::string PluginChoice::text() const {
   std::string out = typed_text();
-  for (const PlannedNumber& n : numbers)
+  for (const NamedNumber& n : numbers)
     if (!typed_key(n.key)) append_setting(out, n.key, number_text(n.value));
   return out;
 }

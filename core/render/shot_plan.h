@@ -65,13 +65,6 @@ constexpr uint32_t kDefaultLongSidePx = 1280;
 constexpr uint32_t kDefaultSamplesPerPixel = 64;
 constexpr double kDefaultFps = 24;  // Blender's; matters only when the frame is not 0
 
-// A number the plan hands a plugin parameter: typed data, never printed and parsed back.
-struct PlannedNumber {
-  std::string key;
-  double value = 0;
-  ValueOrigin origin;  // the scene value (file and JSON path) or option it came from
-};
-
 // One plugin as the plan chose it.
 struct PluginChoice {
   std::string name;
@@ -80,7 +73,7 @@ struct PluginChoice {
   // Values from the shot. Each sets the parameter of its name when the plugin declares one and
   // `typed` does not set it: a shot's lens values reach any camera plugin with a parameter of
   // that name (docs/plugins.md, "Camera parameters").
-  std::vector<PlannedNumber> numbers;
+  std::vector<NamedNumber> numbers;
   // Why this plugin: the option that named it, the shot value that called for it, or a default.
   // Errors about the plugin or its values name it.
   ValueOrigin origin;

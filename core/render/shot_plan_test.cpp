@@ -40,7 +40,7 @@ Scene scene_with_camera(bool lens) {
 
 std::map<std::string, std::pair<double, std::string>> numbers_of(const PluginChoice& choice) {
   std::map<std::string, std::pair<double, std::string>> out;
-  for (const PlannedNumber& n : choice.numbers)
+  for (const NamedNumber& n : choice.numbers)
     out[n.key] = {n.value, n.origin.text()};
   return out;
 }
@@ -125,6 +125,35 @@ TEST(ShotPlan, LensValuesTravelTypedWithTheirOrigins) {
   EXPECT_EQ(numbers.at("focus_distance_m"), std::pair(7.25, std::string("--focus-distance")));
   EXPECT_EQ(numbers.at("aperture_blades").first, 6);
   EXPECT_EQ(plan.camera_setup().fstop, 2);  // still there for plugins built before parameters
+}
+
+// A projection of the scene's own goes to the plugin the table names for it, with its values and
+// their origins; a kind no plugin renders is the scene's error, naming where it was read.
+TEST(ShotPlan, SceneProjectionsChooseTheirPluginAndHandOnTheirValues) {
+  Scene scene = scene_with_camera(false);
+  SceneCamera& camera = scene.cameras[0];
+  camera.physical.projection = FB_PROJECTION_PANORAMIC;
+  camera.model = CameraModel{"fisheye_equidistant",
+                             {{"fov_rad", 3.0, from_shot("panorama.fov_rad")}},
+                             from_shot("panorama.type")};
+  const ShotPlan plan = plan_shot(scene, {});
+  EXPECT_EQ(plan.camera_model.name, "fisheye_equidistant");
+  EXPECT_EQ(plan.camera_model.origin.text(),
+            std::string(kFile) + ": cameras[0].extensions.FILMBACK_blender.panorama.type");
+  EXPECT_EQ(numbers_of(plan.camera_model).at("fov_rad").first, 3.0);
+
+  RenderOptions typed;  // a typed camera model still gets the projection's values
+  typed.camera_model = "perspective";
+  EXPECT_EQ(numbers_of(plan_shot(scene, typed).camera_model).count("fov_rad"), 1u);
+
+  camera.model->kind = "fisheye_made_up";
+  try {
+    plan_shot(scene, {});
+    ADD_FAILURE() << "an unknown projection was planned";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("panorama.type"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'fisheye_made_up'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ShotPlan, ShotFilterValuesAreExactAndNameTheirObject) {

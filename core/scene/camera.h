@@ -86,6 +86,16 @@ struct FocusTrack {
   double at(double frame) const;
 };
 
+// A projection beyond Blender's perspective and orthographic ones (docs/camera-model.md): the
+// scene's name for it ("equirectangular", "fisheye_equisolid", a POV-Ray camera type) and its
+// values under the names of the camera plugin's parameters. The shot plan maps the name to a
+// plugin (core/render/shot_plan.cpp, the one table of plugin names) and hands it the numbers.
+struct CameraModel {
+  std::string kind;
+  std::vector<NamedNumber> numbers;
+  ValueOrigin origin;  // where the scene names the kind
+};
+
 struct SceneCamera {
   std::string name;    // the glTF camera's name, else its node's name
   std::string source;  // where it came from: "nodes[3] (cameras[0])"
@@ -94,6 +104,7 @@ struct SceneCamera {
   uint32_t node_index = kNoNode;          // in Scene::hierarchy, whose animation may move it
   std::optional<double> intended_aspect;  // width / height the shot was made for
   std::optional<FocusTrack> focus_track;  // replaces physical.focus_distance_m when present
+  std::optional<CameraModel> model;       // when physical.projection is FB_PROJECTION_PANORAMIC
   CameraOrigins origins;                  // where each value of `physical` came from
   const ValueOrigin& origin(CameraValue v) const { return origins[size_t(v)]; }
 };

@@ -25,4 +25,13 @@ struct ValueOrigin {
   [[noreturn]] void fail(std::string_view what) const;
 };
 
+// A number under the name of the plugin parameter it is for, with where it came from: a shot's
+// lens values, a panorama's field of view, a filter's width. Typed data, never printed and parsed
+// back.
+struct NamedNumber {
+  std::string key;
+  double value = 0;
+  ValueOrigin origin;  // the scene value (file and JSON path) or option it came from
+};
+
 }  // namespace fb

@@ -110,7 +110,10 @@ typedef struct fb_error_buffer {
 
 /* ------------------------------------------------------------------------------------ camera */
 
-enum { FB_PROJECTION_PERSPECTIVE = 1, FB_PROJECTION_ORTHOGRAPHIC = 2 };
+/* PANORAMIC: a projection of the plugin's own (equirectangular, fisheye, ...), whose values are its
+   parameters; the view plane's values (focal length, sensor, shift) are the shot's as Blender has
+   them, which some panoramas use (Cycles' equisolid fisheye). */
+enum { FB_PROJECTION_PERSPECTIVE = 1, FB_PROJECTION_ORTHOGRAPHIC = 2, FB_PROJECTION_PANORAMIC = 3 };
 enum { FB_SENSOR_FIT_AUTO = 0, FB_SENSOR_FIT_HORIZONTAL = 1, FB_SENSOR_FIT_VERTICAL = 2 };
 /* SIMPLE: pixel = radiance, as Cycles. PHYSICAL: pixel = exposure (docs/camera-model.md). */
 enum { FB_SENSOR_SIMPLE = 0, FB_SENSOR_PHYSICAL = 1 };
