@@ -23,7 +23,7 @@ struct RenderCommand {
   std::string sampler;            // a SamplerKind's name; empty: the default
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
-  std::string shutter, frame, fps, sensor_model, iso;
+  std::string shutter, rolling_shutter, frame, fps, sensor_model, iso;
   // The view settings of 8-bit outputs (docs/cli.md, "Colour"): each replaces the shot's. Names
   // as typed; numbers as typed, parsed by run_render.
   std::optional<std::string> view_transform, look, display;

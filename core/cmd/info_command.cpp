@@ -90,12 +90,12 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
       "    clip %.6g m to %s, at %s m\n", c.clip_near_m,
       std::isinf(c.clip_far_m) ? "infinity" : format("%.6g m", c.clip_far_m).c_str(),
       point(camera.world_from_camera.translation()).c_str());
-  if (camera.focus_track)
-    std::cout << format(
-        "    focus varies over frames %.17g to %.17g (%zu values)\n",
-        camera.focus_track->first_frame,
-        camera.focus_track->first_frame + double(camera.focus_track->distances_m.size() - 1),
-        camera.focus_track->distances_m.size());
+  if (const std::optional<LensTrack>& track = camera.lens_track)
+    for (CameraValue v : LensTrack::kTracked)
+      if (const size_t n = track->values[size_t(v)].size())
+        std::cout << format("    %s varies over frames %.17g to %.17g (%zu values)\n",
+                            camera_value_name(v), track->first_frame,
+                            track->first_frame + double(n - 1), n);
   // Every value exactly as imported (%.17g round-trips a double), under the names of the
   // FILMBACK_blender extension, for scripts: docs/blender.md, "Cameras".
   std::cout << "    exact: projection=" << (ortho ? "orthographic" : "perspective")
@@ -121,6 +121,9 @@ void print_shot(const ShotSettings& s) {
   if (s.shutter_open_s)
     std::cout << format(", shutter %.6g s to %.6g s%s", *s.shutter_open_s, *s.shutter_close_s,
                         s.shutter_curve.empty() ? "" : " with a curve");
+  if (s.rolling_shutter_duration)
+    std::cout << format(", rolling shutter top to bottom, each row %.6g of it",
+                        *s.rolling_shutter_duration);
   if (s.filter)
     std::cout << ", filter " << pixel_filter_name(s.filter->type)
               << format(" %.6g px wide (%s)", s.filter->width_px, s.filter->origin.text().c_str());

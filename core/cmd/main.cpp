@@ -69,6 +69,9 @@ void add_physical_camera_options(CLI::App* render_cmd, fb::RenderCommand& render
   camera_group->add_option("--shutter-curve", render.options.shutter_curve,
                            "how the shutter weighs time: box (default), trapezoid[:ramp=R] or "
                            "table:values=[w0,w1,...]");
+  camera_group->add_option("--rolling-shutter", render.rolling_shutter,
+                           "rolling shutter, rows read top to bottom: each row's share of the open "
+                           "shutter in [0, 1] (Cycles' duration), or none (default: the shot's)");
   camera_group->add_option("--frame", render.frame,
                            "frame to render, time = frame / fps (default: the scene's, else 0)");
   camera_group->add_option("--fps", render.fps,

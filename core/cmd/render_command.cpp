@@ -101,6 +101,10 @@ void parse_physical(const RenderCommand& c, RenderOptions& o) {
     if (o.shutter_s->y < o.shutter_s->x)
       throw UsageError("--shutter '" + c.shutter + "': expected OPEN,CLOSE with CLOSE >= OPEN");
   }
+  if (c.rolling_shutter == "none")
+    o.rolling_shutter = std::optional<RollingShutter>();
+  else if (!c.rolling_shutter.empty())
+    o.rolling_shutter = RollingShutter{option_number(c.rolling_shutter, "--rolling-shutter", 0, 1)};
   if (!c.frame.empty()) o.frame = option_number(c.frame, "--frame", -1e9, 1e9);
   if (!c.fps.empty()) o.fps = option_number(c.fps, "--fps", 1e-3, 1e6);
   if (!c.sensor_model.empty()) {

@@ -2,6 +2,8 @@
 // drawn from the shutter, and where a moving camera is at that time.
 #pragma once
 
+#include <optional>
+
 #include <filmback/plugin_abi.h>
 
 #include "core/math/transform.h"
@@ -14,7 +16,15 @@ namespace fb {
 struct TimeSampling {
   const ShutterCurve* curve = nullptr;  // null: no time samples, every ray at the frame's time
   double open_s = 0, close_s = 0;
-  float time_s(float u) const { return float(open_s + (close_s - open_s) * curve->sample(u)); }
+  std::optional<RollingShutter> rolling;
+  uint32_t height_px = 0;  // of the film, for the rolling shutter's rows
+  // The fraction of the open shutter (0 at open, 1 at close) of a ray of film row `row` (0 at
+  // the top) drawn with the sample u.
+  double fraction(float u, double row) const {
+    const double s = curve->sample(u);
+    return rolling ? rolling->fraction(s, row, height_px) : s;
+  }
+  float time_s(double fraction) const { return float(open_s + (close_s - open_s) * fraction); }
 };
 
 // A camera that moves while the shutter is open. Render space stays centred on the camera at the

@@ -225,14 +225,18 @@ void RenderJob::choose_time_samples() {
   const bool camera_moves = scene_.moves(plan_.camera.node_index, times.open_s, times.close_s);
   const size_t moving = p.geometry->moving_instance_count();
   const bool camera_needs_time = p.camera->needs() & FB_CAMERA_NEEDS_TIME;
+  const bool zooms = plan_.zoom.has_value();
   out << "shutter open " << number_text(shutter_s.y - shutter_s.x) << " s ("
-      << plan_.shutter_curve.description() << ")";
-  if (!camera_moves && moving == 0 && !camera_needs_time) {
+      << plan_.shutter_curve.description();
+  if (plan_.rolling_shutter) out << ", " << plan_.rolling_shutter->description();
+  out << ")";
+  if (!camera_moves && moving == 0 && !camera_needs_time && !zooms) {
     out << ", nothing moves in it: no time samples";
     time_reason_ = out.str();
     return;
   }
-  p.time = {&plan_.shutter_curve, shutter_s.x, shutter_s.y};
+  p.time = {&plan_.shutter_curve, shutter_s.x, shutter_s.y, plan_.rolling_shutter,
+            plan_.height_px};
   out << ": time samples for";
   if (moving > 0)
     out << " " << moving << " moving instance" << (moving > 1 ? "s" : "") << " (up to "
@@ -243,6 +247,10 @@ void RenderJob::choose_time_samples() {
     out << (moving > 0 ? "," : "") << " the moving camera";
   }
   if (camera_needs_time) out << (moving > 0 || camera_moves ? "," : "") << " the camera plugin";
+  if (zooms)
+    out << (moving > 0 || camera_moves || camera_needs_time ? "," : "") << " the zoom (x"
+        << number_text(plan_.zoom->k_open) << " to x" << number_text(plan_.zoom->k_close)
+        << " of the view at the shutter's centre)";
   time_reason_ = out.str();
 }
 
@@ -338,6 +346,7 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
                       options_.reconstruction};
   inputs.time = p.time;
   inputs.camera_path = p.camera_path.get();
+  if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
   std::optional<Progress> progress;
   if (options_.show_progress)
     progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,

@@ -123,15 +123,21 @@ class TileRenderer {
       for (size_t i = 0; i < n; ++i) {
         fb_camera_sample& c = w.camera_samples[i];
         c = {};
-        c.film_x = float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x;
-        c.film_y = float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y;
+        const Vec2f film = film_position(w, i);
+        c.film_x = film.x;
+        c.film_y = film.y;
         if (needs_ & FB_CAMERA_NEEDS_LENS) {
           const Vec2f u = sampler_.get_2d(w.lens_seed[i], s);
           c.lens_u = u.x;
           c.lens_v = u.y;
         }
-        if (in_.time.curve)  // the shutter integral: only when something moves while it is open
-          c.time_s = in_.time.time_s(sampler_.get_1d(w.time_seed[i], s));
+        if (in_.time.curve) {  // the shutter integral: only when something moves while it is open
+          // A rolling shutter's row is the pixel's, as Cycles' (not the filtered position's).
+          const double fraction =
+              in_.time.fraction(sampler_.get_1d(w.time_seed[i], s), float(w.py[i]) - margin_y_);
+          c.time_s = in_.time.time_s(fraction);
+          if (in_.zoom) in_.zoom->apply(fraction, c.film_x, c.film_y);
+        }
       }
       in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
       for (size_t i = 0; i < n; ++i) {
@@ -158,8 +164,9 @@ class TileRenderer {
         } else {
           std::fill_n(v, channels_, 0.f);
         }
-        const fb_camera_sample& at = w.camera_samples[i];
-        const bool kept = splat_tile ? splats_->splat(*splat_tile, at.film_x, at.film_y, v)
+        // Splatted where the sample lies on the film, not where a zoom sent the camera's look.
+        const Vec2f at = film_position(w, i);
+        const bool kept = splat_tile ? splats_->splat(*splat_tile, at.x, at.y, v)
                                      : film_.add(w.px[i], w.py[i], v, w.filter_samples[i].weight);
         if (!kept) ++stats.dropped_samples;
       }
@@ -171,6 +178,12 @@ class TileRenderer {
   }
 
  private:
+  // Sample i's position on the film, raster pixels: its pixel plus the filter's offset.
+  Vec2f film_position(const TileWork& w, size_t i) const {
+    return {float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x,
+            float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y};
+  }
+
   const RenderInputs& in_;
   Film& film_;
   SplatTiles* splats_;         // null: importance sampling, every sample in its own pixel

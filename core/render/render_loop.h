@@ -19,6 +19,7 @@
 #include "core/render/motion.h"
 #include "core/render/progress.h"
 #include "core/render/sampler.h"
+#include "core/render/zoom_in_shutter.h"
 
 namespace fb {
 
@@ -38,6 +39,9 @@ struct RenderInputs {
   // shutter is open; a moving camera places each ray at its own time.
   TimeSampling time = {};
   const CameraPath* camera_path = nullptr;
+  // A zoom while the shutter is open: each raster position scaled for its ray's time before the
+  // camera plugin maps it (core/render/zoom_in_shutter.h). Only with time samples.
+  const ZoomInShutter* zoom = nullptr;
 };
 
 struct RenderStats {

@@ -39,6 +39,24 @@ ShutterCurve shutter_curve(const std::optional<std::string>& typed, const ShotSe
   shot.shutter_curve_origin.fail(ShutterCurve::kTableExpected);
 }
 
+// The rolling shutter: --rolling-shutter, else the shot's; none while the shutter is closed, as
+// Cycles rolls it only with motion blur on (its shuttertime is -1 then: kernel/camera/camera.h).
+std::optional<RollingShutter> rolling_shutter(
+    const std::optional<std::optional<RollingShutter>>& typed, const ShotSettings& shot,
+    const ShotTimes& times) {
+  std::optional<RollingShutter> rolling;
+  if (typed)
+    rolling = *typed;
+  else if (shot.rolling_shutter_duration)
+    rolling = RollingShutter{*shot.rolling_shutter_duration};
+  if (times.shutter_open()) return rolling;
+  if (typed && *typed)
+    throw UsageError(
+        "--rolling-shutter: the shutter is closed; give --shutter OPEN,CLOSE (a rolling shutter "
+        "reads its rows while it is open)");
+  return std::nullopt;
+}
+
 // A plugin named in an option's text ("NAME[:k=v,...]"); a malformed text is that option's error.
 PluginChoice typed_choice(const std::string& text, const char* option) {
   PluginSpec spec = parse_plugin_spec(text, option);
@@ -191,14 +209,25 @@ void plan_times(const ShotSettings& shot, const RenderOptions& options, ShotPlan
       shot.shutter_open_s ? Vec2d{*shot.shutter_open_s, *shot.shutter_close_s} : Vec2d{0, 0});
   plan.times = {frame_s, frame_s + plan.shutter_s.x, frame_s + plan.shutter_s.y};
   plan.shutter_curve = shutter_curve(options.shutter_curve, shot);
+  plan.rolling_shutter = rolling_shutter(options.rolling_shutter, shot, plan.times);
 }
 
-// The camera, its focus and overrides where it stands while the shutter is open.
+// The shutter's centre as a frame number: where Cycles syncs the field of view when the shutter
+// is open (blender/camera.cpp, sync_camera_motion at motion time 0), else the frame.
+double centre_frame(const ShotPlan& plan) {
+  if (!plan.times.shutter_open()) return plan.frame;
+  return 0.5 * (plan.times.open_s + plan.times.close_s) * plan.fps;
+}
+
+// The camera, its lens values and overrides where it stands while the shutter is open: the lens
+// track's values at the frame, as Cycles syncs them, the focal length at the shutter's centre.
 SceneCamera plan_camera(const Scene& scene, const RenderOptions& options, const ShotPlan& plan) {
-  const double still_s = plan.times.still_s();
-  SceneCamera camera = choose_camera(scene, options.camera, still_s);
-  if (camera.focus_track)
-    camera.physical.focus_distance_m = camera.focus_track->at(still_s * plan.fps);
+  SceneCamera camera = choose_camera(scene, options.camera, plan.times.still_s());
+  if (const std::optional<LensTrack>& track = camera.lens_track) {
+    track->apply(plan.frame, camera.physical);
+    if (track->tracks(CameraValue::kFocalLength))
+      camera.physical.focal_length_mm = track->at(CameraValue::kFocalLength, centre_frame(plan));
+  }
   options.camera_overrides.apply(camera);
   check_focus_beyond_focal_length(camera);
   return camera;
@@ -216,6 +245,25 @@ void plan_image(const ShotSettings& shot, const RenderOptions& options, ShotPlan
   // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
   const double open_s = plan.shutter_s.y - plan.shutter_s.x;
   plan.sensor = SensorResponse{options.sensor_model, open_s > 0 ? open_s : 1.0, options.iso};
+}
+
+// A zoom within the open shutter (core/render/zoom_in_shutter.h): the focal length's track at
+// shutter open and close against the centre's, for Blender's perspective camera only, as Cycles
+// (have_perspective_motion is for CAMERA_PERSPECTIVE); none when --focal-length replaces it.
+std::optional<ZoomInShutter> plan_zoom(const ShotPlan& plan) {
+  const SceneCamera& camera = plan.camera;
+  constexpr CameraValue kFocal = CameraValue::kFocalLength;
+  if (!plan.times.shutter_open() || !camera.lens_track || !camera.lens_track->tracks(kFocal) ||
+      camera.origin(kFocal).typed() || camera.physical.projection != FB_PROJECTION_PERSPECTIVE ||
+      camera.model)
+    return std::nullopt;
+  const auto setup_at = [&](double time_s) {
+    PhysicalCamera c = camera.physical;
+    c.focal_length_mm = camera.lens_track->at(kFocal, time_s * plan.fps);
+    return make_camera_setup(c, plan.width_px, plan.height_px, plan.pixel_aspect);
+  };
+  return zoom_in_shutter(setup_at(plan.times.open_s), plan.camera_setup(),
+                         setup_at(plan.times.close_s));
 }
 
 }  // namespace
@@ -259,6 +307,7 @@ ShotPlan plan_shot(const Scene& scene, const RenderOptions& options) {
   plan_times(shot, options, plan);
   plan.camera = plan_camera(scene, options, plan);
   plan_image(shot, options, plan);
+  plan.zoom = plan_zoom(plan);
   plan.camera_model = choose_camera_model(options.camera_model, plan.camera, plan.sensor);
   plan.filter = choose_filter(options.filter, shot);
   plan.integrator = choose_integrator(options.integrator);

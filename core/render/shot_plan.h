@@ -18,6 +18,7 @@
 #include "core/film/film.h"
 #include "core/render/sampler.h"
 #include "core/render/shutter.h"
+#include "core/render/zoom_in_shutter.h"
 #include "core/scene/scene.h"
 #include "core/scene/value_origin.h"
 #include "core/subdiv/refine_scene.h"
@@ -47,6 +48,9 @@ struct RenderOptions {
   CameraOverrides camera_overrides;
   std::optional<Vec2d> shutter_s;            // open, close, relative to the frame's time
   std::optional<std::string> shutter_curve;  // "box", "trapezoid[:ramp=R]", "table:values=[...]"
+  // --rolling-shutter: a duration in [0, 1], or none (0 rows) for a global shutter; replaces
+  // the shot's.
+  std::optional<std::optional<RollingShutter>> rolling_shutter;
   std::optional<double> frame, fps;
   uint32_t sensor_model = FB_SENSOR_SIMPLE;
   double iso = 100.0;
@@ -85,13 +89,15 @@ struct PluginChoice {
 };
 
 struct ShotPlan {
-  SceneCamera camera;  // posed at the still time, its focus track evaluated, options applied
+  SceneCamera camera;  // posed at the still time, its lens track evaluated, options applied
   uint32_t width_px = 0, height_px = 0, samples_per_pixel = 0;
   double pixel_aspect = 1;  // pixel width / height
   double frame = 0, fps = kDefaultFps;
   Vec2d shutter_s;  // open, close, relative to the frame's time
   ShotTimes times;  // the shutter and the frame's time on the scene's timeline, s
   ShutterCurve shutter_curve;
+  std::optional<RollingShutter> rolling_shutter;  // only while the shutter is open
+  std::optional<ZoomInShutter> zoom;              // the focal length's track within the shutter
   SensorResponse sensor;
   PluginChoice camera_model, filter, integrator;
 

@@ -126,4 +126,13 @@ double ShutterCurve::cdf(double s) const {
   return (area_[i] + values_[i] * x + 0.5 * k * x * x) / area_.back();
 }
 
+double RollingShutter::fraction(double s, double row, uint32_t height_px) const {
+  const double r = (std::clamp(row, 0.0, double(height_px) - 1) + 1) / double(height_px);
+  return 0.5 + duration * (s - 0.5) + (1 - duration) * (r - 0.5);
+}
+
+std::string RollingShutter::description() const {
+  return "rolling top to bottom, each row " + number_text(duration) + " of it";
+}
+
 }  // namespace fb

@@ -4,6 +4,7 @@
 // 256-entry inverted-CDF table; this inverts the piecewise-linear curve exactly).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -40,6 +41,23 @@ class ShutterCurve {
   std::vector<double> values_;  // the curve at each knot, >= 0
   std::vector<double> area_;    // under the curve from 0 to each knot; area_.back() > 0
   std::string description_;     // for the plan line
+};
+
+// Cycles' rolling shutter (kernel/camera/camera.h, camera_sample, rolling_shutter_type TOP): the
+// sensor reads its rows from the top down while the shutter is open, each row all at once, and a
+// row's rays take their time from that row's window, a share `duration` of the shutter. Cycles
+// blends the row's time r and the time s drawn from the shutter curve (fractions of the open
+// shutter, 0 at open) by the duration d:
+//   s' = 0.5 + d (s - 0.5) + (1 - d) (r - 0.5),  r = (row + 1) / height,
+// with rows counted from the top (Cycles counts y from the bottom row: r = 1 - y / height). At
+// d = 0 each row is an instant; at d = 1 every row sees the whole shutter (no rolling).
+struct RollingShutter {
+  double duration = 0;  // in [0, 1]
+  static constexpr const char* kExpected = "expected a duration in [0, 1] (a share of the shutter)";
+  // s' for a shutter fraction s and film row `row` (0 at the top; rows outside the film, which
+  // splatting samples, take the nearest row's time) of an image `height_px` rows high.
+  double fraction(double s, double row, uint32_t height_px) const;
+  std::string description() const;  // for the plan line
 };
 
 }  // namespace fb

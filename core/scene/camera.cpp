@@ -108,11 +108,17 @@ CameraQuantities describe_camera(const PhysicalCamera& camera, uint32_t width_px
   return q;
 }
 
-double FocusTrack::at(double frame) const {
-  const double x = std::clamp(frame - first_frame, 0.0, double(distances_m.size() - 1));
-  const size_t i = std::min(size_t(x), distances_m.size() - 1);
-  if (i + 1 == distances_m.size()) return distances_m[i];
-  return std::lerp(distances_m[i], distances_m[i + 1], x - double(i));
+double LensTrack::at(CameraValue v, double frame) const {
+  const std::vector<double>& track = values[size_t(v)];
+  const double x = std::clamp(frame - first_frame, 0.0, double(track.size() - 1));
+  const size_t i = std::min(size_t(x), track.size() - 1);
+  if (i + 1 == track.size()) return track[i];
+  return std::lerp(track[i], track[i + 1], x - double(i));
+}
+
+void LensTrack::apply(double frame, PhysicalCamera& camera) const {
+  for (CameraValue v : kTracked)
+    if (tracks(v)) set_camera_value(camera, v, at(v, frame));
 }
 
 }  // namespace fb

@@ -78,12 +78,21 @@ struct SensorResponse {
   double iso = 100.0;            // PHYSICAL only
 };
 
-// A focus distance per frame (Blender's focus object, or an animated focus distance), linear in
-// between and held beyond the ends.
-struct FocusTrack {
+// Lens values that vary from frame to frame: Blender's animated focal length, focus distance (or
+// focus object), f-stop and shift, one value per frame from first_frame on, linear in between and
+// held beyond the ends (docs/camera-model.md, "Animated lenses"). Each value has its own list;
+// an empty one is not tracked.
+struct LensTrack {
+  static constexpr CameraValue kTracked[] = {CameraValue::kFocalLength,
+                                             CameraValue::kFocusDistance, CameraValue::kFstop,
+                                             CameraValue::kShiftX, CameraValue::kShiftY};
   double first_frame = 0;
-  std::vector<double> distances_m;  // one per frame from first_frame on; not empty
-  double at(double frame) const;
+  std::array<std::vector<double>, kCameraValueCount> values;
+
+  bool tracks(CameraValue v) const { return !values[size_t(v)].empty(); }
+  double at(CameraValue v, double frame) const;  // tracks(v)
+  // Every tracked value of `camera` set to the track's at `frame`.
+  void apply(double frame, PhysicalCamera& camera) const;
 };
 
 // A projection beyond Blender's perspective and orthographic ones (docs/camera-model.md): the
@@ -103,7 +112,7 @@ struct SceneCamera {
   Transform world_from_camera;            // rest pose, scale removed: looks down -Z, +Y up
   uint32_t node_index = kNoNode;          // in Scene::hierarchy, whose animation may move it
   std::optional<double> intended_aspect;  // width / height the shot was made for
-  std::optional<FocusTrack> focus_track;  // replaces physical.focus_distance_m when present
+  std::optional<LensTrack> lens_track;    // replaces the values it tracks at the shot's frame
   std::optional<CameraModel> model;       // when physical.projection is FB_PROJECTION_PANORAMIC
   CameraOrigins origins;                  // where each value of `physical` came from
   const ValueOrigin& origin(CameraValue v) const { return origins[size_t(v)]; }

@@ -165,10 +165,14 @@ std::array<const CameraSource*, kCameraValueCount> take_sources_whole(
       diagnostics.warn(located(file, sources[i].path,
                                ignored[i] + " ignored: " + sources.front().name +
                                    " describes the camera (docs/blender.md, \"Cameras\")"));
-  if (const CameraSource* s = decided[size_t(V::kFocusDistance)]; s && s->focus_track) {
-    camera.focus_track = s->focus_track;
-    camera.origins[size_t(V::kFocusDistance)] =
-        ValueOrigin::from_file(file, s->track_path, "at the rendered frame");
+  // Each tracked value from the track of the source that decided it.
+  for (V v : LensTrack::kTracked) {
+    const CameraSource* s = decided[size_t(v)];
+    if (!s || !s->lens_track || !s->lens_track->tracks(v)) continue;
+    if (!camera.lens_track) camera.lens_track = LensTrack{s->lens_track->first_frame, {}};
+    camera.lens_track->values[size_t(v)] = s->lens_track->values[size_t(v)];
+    camera.origins[size_t(v)] = ValueOrigin::from_file(
+        file, s->track_path + "." + camera_value_name(v), "at the rendered frame");
   }
   return decided;
 }

@@ -1,13 +1,18 @@
 #include "importers/gltf/gltf_camera_source.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "core/scene/sensor_fit.h"
 #include "core/util/error.h"
 
 namespace fb::gltf {
 namespace {
 
-// Frames of a focus track, at most: a bound on what a file allocates.
+// Frames of a lens track, at most: a bound on what a file allocates.
 constexpr size_t kMaxTrackFrames = 100000;
+constexpr const char* kPerFrame = "per_frame";
+constexpr double kMinTrackFstop = 1e-6;
 
 // Each number Blender's camera carries, with the range a file may give it (Blender's RNA ranges,
 // widened to what still traces: docs/blender.md, "What is carried").
@@ -30,16 +35,36 @@ uint32_t sensor_fit(const Fields& f, const std::string& word) {
   return *named;
 }
 
-// focus_distance_per_frame_m: {"first_frame": F, "values": [m, ...]}.
-std::optional<FocusTrack> read_focus_track(const Fields& camera) {
-  if (!camera.has("focus_distance_per_frame_m")) return std::nullopt;
-  const Fields f = camera.object("focus_distance_per_frame_m");
+// per_frame: {"first_frame": F, "focal_length_mm": [...], "focus_distance_m": [...], "fstop":
+// [...], "shift_x": [...], "shift_y": [...]}, each list optional, each value in its scalar's
+// range (an f-number here, never 0: a pinhole cannot be interpolated).
+std::optional<LensTrack> read_lens_track(const Fields& camera) {
+  if (!camera.has(kPerFrame)) return std::nullopt;
+  if (camera.type(kPerFrame) != Fields::Type::kObject)
+    camera.fail(kPerFrame, "expected an object {\"first_frame\": F, \"focal_length_mm\": [...], ...}");
+  const Fields f = camera.object(kPerFrame);
+  LensTrack track;
   const auto first = f.whole("first_frame", -1e9, 1e9);
-  auto values = f.numbers("values", kMaxTrackFrames, 1e-6, 1e18);
-  if (!first || !values || values->empty())
+  if (!first) f.fail("first_frame", "expected the first frame's number, an integer");
+  track.first_frame = *first;
+  bool any = false;
+  for (CameraValue v : LensTrack::kTracked) {
+    const char* name = camera_value_name(v);
+    const auto range = std::find_if(std::begin(kNumbers), std::end(kNumbers),
+                                    [&](const NumberField& n) { return n.value == v; });
+    const double lo = range != std::end(kNumbers) ? range->lo : kMinTrackFstop;
+    const double hi = range != std::end(kNumbers) ? range->hi : kMaxFstop;
+    auto values = f.numbers(name, kMaxTrackFrames, lo, hi);
+    if (!values) continue;
+    if (values->empty()) f.fail(name, "expected at least one value (one per frame)");
+    track.values[size_t(v)] = std::move(*values);
+    any = true;
+  }
+  if (!any)
     throw_input(f.file(), f.path(),
-                "expected first_frame and a non-empty array 'values' of distances in metres");
-  return FocusTrack{*first, std::move(*values)};
+                "expected at least one of focal_length_mm, focus_distance_m, fstop, shift_x, "
+                "shift_y (an array, one value per frame from first_frame on)");
+  return track;
 }
 
 }  // namespace
@@ -47,7 +72,7 @@ std::optional<FocusTrack> read_focus_track(const Fields& camera) {
 bool CameraSource::names_any() const {
   for (const auto& v : values)
     if (v) return true;
-  return focus_track.has_value();
+  return lens_track.has_value();
 }
 
 CameraSource read_blender_camera_fields(const Fields& f, const char* name) {
@@ -73,8 +98,8 @@ CameraSource read_blender_camera_fields(const Fields& f, const char* name) {
   const auto blades = f.whole("aperture_blades", 0, 64);
   if (blades == 1 || blades == 2) f.fail("aperture_blades", "expected 0 (round) or 3 to 64 blades");
   named(CameraValue::kApertureBlades, blades);
-  s.focus_track = read_focus_track(f);
-  s.track_path = f.path() + ".focus_distance_per_frame_m";
+  s.lens_track = read_lens_track(f);
+  s.track_path = f.path() + "." + kPerFrame;
   return s;
 }
 

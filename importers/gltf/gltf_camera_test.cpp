@@ -223,17 +223,69 @@ TEST(GltfCamera, DisagreementBeyondOneHundredthOfADegreeIsWarnedNamingTheSourceU
   EXPECT_EQ(quiet.count(), 0u);
 }
 
-TEST(GltfCamera, FocusTrackIsInterpolatedBetweenFramesAndHeldBeyond) {
+TEST(GltfCamera, LensTrackIsInterpolatedBetweenFramesAndHeldBeyond) {
   Diagnostics d;
   const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
-      "focus_distance_m": 3, "focus_distance_per_frame_m": {"first_frame": 10, "values": [2, 4, 8]}}})"),
+      "focus_distance_m": 3, "per_frame": {"first_frame": 10, "focus_distance_m": [2, 4, 8],
+      "focal_length_mm": [30, 40], "fstop": [2.8, 1.4, 2], "shift_x": [0, 0.1], "shift_y": [-0.1]}}})"),
                              d);
-  const FocusTrack& t = scene.cameras.at(0).focus_track.value();
-  EXPECT_EQ(t.at(5), 2);
-  EXPECT_EQ(t.at(10), 2);
-  EXPECT_EQ(t.at(10.5), 3);
-  EXPECT_EQ(t.at(12), 8);
-  EXPECT_EQ(t.at(100), 8);
+  const SceneCamera& camera = scene.cameras.at(0);
+  const LensTrack& t = camera.lens_track.value();
+  using V = CameraValue;
+  EXPECT_EQ(t.at(V::kFocusDistance, 5), 2);
+  EXPECT_EQ(t.at(V::kFocusDistance, 10), 2);
+  EXPECT_EQ(t.at(V::kFocusDistance, 10.5), 3);
+  EXPECT_EQ(t.at(V::kFocusDistance, 12), 8);
+  EXPECT_EQ(t.at(V::kFocusDistance, 100), 8);
+  EXPECT_EQ(t.at(V::kFocalLength, 10.25), 32.5);
+  EXPECT_EQ(t.at(V::kFocalLength, 12), 40);  // each list held beyond its own end
+  EXPECT_EQ(t.at(V::kFstop, 11.5), 1.7);
+  EXPECT_EQ(t.at(V::kShiftX, 10.5), 0.05);
+  EXPECT_EQ(t.at(V::kShiftY, 11), -0.1);
+  EXPECT_FALSE(t.tracks(V::kSensorWidth));
+  PhysicalCamera at_11 = camera.physical;
+  t.apply(11, at_11);
+  EXPECT_EQ(at_11.focal_length_mm, 40);
+  EXPECT_EQ(at_11.focus_distance_m, 4);
+  EXPECT_EQ(at_11.fstop, 1.4);
+  EXPECT_EQ(at_11.shift_x, 0.1);
+  EXPECT_EQ(camera.origin(V::kFocalLength).path,
+            "cameras[0].extensions.FILMBACK_blender.per_frame.focal_length_mm");
+  EXPECT_EQ(camera.origin(V::kShiftY).path,
+            "cameras[0].extensions.FILMBACK_blender.per_frame.shift_y");
+}
+
+TEST(GltfCamera, HostileLensTracksAreErrorsNamingTheJsonPath) {
+  const auto error = [](const std::string& per_frame) {
+    return error_of(
+        write_gltf(R"("extensions": {"FILMBACK_blender": {"per_frame": )" + per_frame + "}}"));
+  };
+  const std::string path = "cameras[0].extensions.FILMBACK_blender.per_frame";
+  const auto names = [](const std::string& text, const std::string& fragment) {
+    return text.find(fragment) != std::string::npos;
+  };
+  EXPECT_PRED2(names, error(R"({"first_frame": 1, "focus_distance_m": [1, "NaN"]})"),
+               path + ".focus_distance_m[1]: expected a number");
+  EXPECT_PRED2(names, error(R"({"first_frame": 1, "focal_length_mm": [50, 1e300]})"),
+               path + ".focal_length_mm[1]: expected a number in [0.001, 100000]");
+  EXPECT_PRED2(names, error(R"({"first_frame": 1, "fstop": [2, 0]})"),
+               path + ".fstop[1]: expected a number in [1e-06, 1000000]");
+  EXPECT_PRED2(names, error(R"({"first_frame": 1, "shift_x": [0, -101]})"),
+               path + ".shift_x[1]: expected a number in [-100, 100]");
+  EXPECT_PRED2(names, error(R"({"first_frame": 1, "shift_y": []})"),
+               path + ".shift_y: expected at least one value");
+  EXPECT_PRED2(names, error(R"({"focal_length_mm": [50]})"),
+               path + ".first_frame: expected the first frame's number");
+  EXPECT_PRED2(names, error(R"({"first_frame": 0.5, "focal_length_mm": [50]})"),
+               path + ".first_frame: expected");
+  EXPECT_PRED2(names, error(R"({"first_frame": 1})"),
+               path + ": expected at least one of focal_length_mm");
+  EXPECT_PRED2(names, error("[1, 2]"), path + ": expected an object");
+  std::string huge = R"({"first_frame": 0, "focal_length_mm": [50)";
+  for (int i = 0; i < 100000; ++i)
+    huge += ",50";
+  EXPECT_PRED2(names, error(huge + "]}"),
+               path + ".focal_length_mm: expected an array of at most 100000 numbers");
 }
 
 TEST(GltfCamera, FstopZeroIsBlendersDepthOfFieldOff) {
@@ -264,6 +316,40 @@ TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
   EXPECT_EQ(s.filter->origin.file, scene.file.string());
   EXPECT_EQ(s.film_exposure, 0.5);
   EXPECT_EQ(d.count(), 0u);
+}
+
+TEST(GltfShot, RollingShutterIsCyclesTopToBottomWithinTheShutter) {
+  Diagnostics d;
+  const auto settings = [&](const std::string& members) {
+    return import(write_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"), d)
+        .settings;
+  };
+  const std::string shutter = R"("shutter_open_s": -0.01, "shutter_close_s": 0.01, )";
+  EXPECT_EQ(settings(shutter + R"("rolling_shutter_type": "TOP", "rolling_shutter_duration": 0.25)")
+                .rolling_shutter_duration,
+            0.25);
+  EXPECT_EQ(settings(shutter + R"("rolling_shutter_type": "TOP")").rolling_shutter_duration,
+            0.1);  // Cycles' default
+  EXPECT_FALSE(
+      settings(shutter + R"("rolling_shutter_type": "NONE", "rolling_shutter_duration": 0.5)")
+          .rolling_shutter_duration);
+  EXPECT_FALSE(settings(shutter.substr(0, shutter.size() - 2)).rolling_shutter_duration);
+  const std::string path = "scenes[0].extensions.FILMBACK_blender.";
+  const auto error = [&](const std::string& members) {
+    return error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"));
+  };
+  EXPECT_NE(error(shutter + R"("rolling_shutter_type": "BOTTOM")")
+                .find(path + "rolling_shutter_type: 'BOTTOM', expected NONE or TOP"),
+            std::string::npos);
+  EXPECT_NE(error(shutter + R"("rolling_shutter_type": "TOP", "rolling_shutter_duration": 1.5)")
+                .find(path + "rolling_shutter_duration: expected a number in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(error(shutter + R"("rolling_shutter_type": "TOP", "rolling_shutter_duration": "NaN")")
+                .find(path + "rolling_shutter_duration: expected a number"),
+            std::string::npos);
+  EXPECT_NE(error(R"("rolling_shutter_type": "TOP")")
+                .find(path + "rolling_shutter_type: TOP without shutter_open_s"),
+            std::string::npos);
 }
 
 TEST(GltfShot, ViewSettingsAreRead) {
@@ -311,10 +397,6 @@ TEST(GltfCamera, BadValuesAreErrorsNamingTheFileAndJsonPath) {
       error_of(write_gltf(R"("extensions": {"EXT_camera_physical": {"sensorSize": [0.036]}})"))
           .find("EXT_camera_physical.sensorSize: expected [width, height]"),
       std::string::npos);
-  EXPECT_NE(error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"focus_distance_per_frame_m":
-                {"first_frame": 1, "values": [1, "x"]}}})"))
-                .find("focus_distance_per_frame_m.values[1]: expected a number"),
-            std::string::npos);
   EXPECT_NE(
       error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"filter_type": "MITCHELL"}})"))
           .find("scenes[0].extensions.FILMBACK_blender.filter_type: 'MITCHELL'"),

@@ -46,6 +46,21 @@ void read_view_settings(const Fields& f, ShotSettings& s) {
   s.view_json_path = f.path();
 }
 
+// Cycles' rolling shutter (scene.cycles.rolling_shutter_type NONE or TOP and its duration, 0.1
+// when absent as in Cycles): only with the shutter it reads its rows in.
+void read_rolling_shutter(const Fields& f, ShotSettings& s) {
+  const auto type = f.word("rolling_shutter_type");
+  const auto duration = f.number("rolling_shutter_duration", 0, 1);
+  if (!type || same_word(*type, "none")) return;
+  if (!same_word(*type, "top"))
+    f.fail("rolling_shutter_type", "'" + *type + "', expected NONE or TOP");
+  if (!s.shutter_open_s)
+    f.fail("rolling_shutter_type",
+           "TOP without shutter_open_s and shutter_close_s: expected the shutter the rolling "
+           "shutter reads its rows in (Cycles rolls it only with motion blur on)");
+  s.rolling_shutter_duration = duration.value_or(0.1);
+}
+
 }  // namespace
 
 ShotSettings read_shot_settings(const Fields& f) {
@@ -73,6 +88,7 @@ ShotSettings read_shot_settings(const Fields& f) {
     s.shutter_curve = std::move(*curve);
     s.shutter_curve_origin = ValueOrigin::from_file(f.file(), f.path() + ".shutter_curve");
   }
+  read_rolling_shutter(f, s);
   if (f.has("filter_type") || f.has("filter_width_px")) s.filter = cycles_filter(f);
   s.film_exposure = f.number("film_exposure", 0, 1e6).value_or(1.0);
   read_view_settings(f, s);

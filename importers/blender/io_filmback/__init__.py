@@ -95,9 +95,9 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         from . import camera, lights, subdivision
         data = {}
         if blender_object.type == "CAMERA" and gltf2_node.camera is not None:
-            self._add(gltf2_node.camera, EXTENSION,
-                      camera.camera_extension(blender_object, bpy.context.scene, self.frame))
-            physical = camera.ext_camera_physical(blender_object.data)
+            ours = camera.camera_extension(blender_object, bpy.context.scene, self.frame)
+            self._add(gltf2_node.camera, EXTENSION, ours)
+            physical = camera.ext_camera_physical(blender_object.data, ours["focal_length_mm"])
             if physical is not None:
                 self._add(gltf2_node.camera, "EXT_camera_physical", physical)
         elif blender_object.type == "LIGHT":

@@ -71,8 +71,14 @@ def shutter(scene):
     mapping.initialize()
     curve = mapping.curves[0]
     n = SHUTTER_CURVE_SAMPLES
-    return {"shutter_open_s": start, "shutter_close_s": start + length,
-            "shutter_curve": [mapping.evaluate(curve, i / (n - 1)) for i in range(n)]}
+    out = {"shutter_open_s": start, "shutter_close_s": start + length,
+           "shutter_curve": [mapping.evaluate(curve, i / (n - 1)) for i in range(n)]}
+    # Cycles' rolling shutter (rows read top to bottom), with motion blur only, as Cycles.
+    rolling = getattr(getattr(scene, "cycles", None), "rolling_shutter_type", "NONE")
+    if rolling != "NONE":
+        out["rolling_shutter_type"] = rolling
+        out["rolling_shutter_duration"] = scene.cycles.rolling_shutter_duration
+    return out
 
 
 def world(scene, image_files, holder):
