@@ -242,6 +242,82 @@ TEST(ShotPlan, ContradictionsAreUsageErrorsAndBadSceneValuesNameTheFile) {
   EXPECT_THROW(plan_shot(scene_with_camera(false), bad_text), UsageError);
 }
 
+// Frames 0 and 1 of a lens track; at 24 fps, a half-frame shutter centred on frame 0.5 opens at
+// frame 0.25 and closes at 0.75.
+Scene scene_with_lens_track() {
+  Scene scene = scene_with_camera(true);
+  LensTrack track;
+  using V = CameraValue;
+  track.values[size_t(V::kFocalLength)] = {40, 60};
+  track.values[size_t(V::kFocusDistance)] = {2, 6};
+  track.values[size_t(V::kFstop)] = {2, 4};
+  track.values[size_t(V::kShiftX)] = {0, 0.2};
+  scene.cameras[0].lens_track = track;
+  scene.settings.fps = 24, scene.settings.frame = 0.5;
+  scene.settings.shutter_open_s = -0.25 / 24, scene.settings.shutter_close_s = 0.25 / 24;
+  return scene;
+}
+
+TEST(ShotPlan, LensTrackIsTheFramesAndAZoomScalesAboutThePrincipalPointWithinTheShutter) {
+  const ShotPlan plan = plan_shot(scene_with_lens_track(), {});
+  const PhysicalCamera& c = plan.camera.physical;
+  EXPECT_DOUBLE_EQ(c.focal_length_mm, 50);
+  EXPECT_DOUBLE_EQ(c.focus_distance_m, 4);
+  EXPECT_DOUBLE_EQ(c.fstop, 3);
+  EXPECT_DOUBLE_EQ(c.shift_x, 0.1);
+  // The view plane's extent goes as 1 / f on the same sensor and fit: k = f_centre / f_open.
+  ASSERT_TRUE(plan.zoom);
+  EXPECT_DOUBLE_EQ(plan.zoom->k_open, 50.0 / 45);
+  EXPECT_DOUBLE_EQ(plan.zoom->k_close, 50.0 / 55);
+  EXPECT_DOUBLE_EQ(plan.zoom->cx_px, 32 - 0.1 * 64);  // shift: a fraction of the fitted width
+  EXPECT_DOUBLE_EQ(plan.zoom->cy_px, 24);
+  // Linear from open to the centre and from the centre to close, about the principal point.
+  for (const auto& [s, k] : {std::pair{0.0, 50.0 / 45}, {0.25, (50.0 / 45 + 1) / 2}, {0.5, 1.0},
+                             {0.75, (1 + 50.0 / 55) / 2}, {1.0, 50.0 / 55}}) {
+    float x = 60, y = 4;
+    plan.zoom->apply(s, x, y);
+    EXPECT_NEAR(x, 25.6 + (60 - 25.6) * k, 1e-5) << "s = " << s;
+    EXPECT_NEAR(y, 24 + (4 - 24) * k, 1e-5) << "s = " << s;
+  }
+
+  // --focal-length replaces the track: no zoom. A closed shutter: the frame's values, no zoom.
+  RenderOptions typed;
+  typed.camera_overrides.focal_length_mm = 50;
+  EXPECT_FALSE(plan_shot(scene_with_lens_track(), typed).zoom);
+  RenderOptions closed;
+  closed.shutter_s = Vec2d{0, 0};
+  closed.frame = 0.25;
+  const ShotPlan still = plan_shot(scene_with_lens_track(), closed);
+  EXPECT_FALSE(still.zoom);
+  EXPECT_DOUBLE_EQ(still.camera.physical.focal_length_mm, 45);
+  // A shutter after the frame (Cycles' START): the focal length at its centre, the rest at the
+  // frame (blender/camera.cpp syncs only the field of view at the shutter's times).
+  RenderOptions start;
+  start.shutter_s = Vec2d{0, 0.25 / 24};
+  const ShotPlan later = plan_shot(scene_with_lens_track(), start);
+  EXPECT_DOUBLE_EQ(later.camera.physical.focal_length_mm, 52.5);
+  EXPECT_DOUBLE_EQ(later.camera.physical.focus_distance_m, 4);
+  EXPECT_DOUBLE_EQ(later.zoom->k_open, 52.5 / 50);
+}
+
+TEST(ShotPlan, RollingShutterIsTheShotsOrTypedAndOnlyWhileTheShutterIsOpen) {
+  Scene scene = scene_with_camera(false);
+  scene.settings.shutter_open_s = -0.01, scene.settings.shutter_close_s = 0.01;
+  scene.settings.rolling_shutter_duration = 0.2;
+  EXPECT_EQ(plan_shot(scene, {}).rolling_shutter->duration, 0.2);
+  RenderOptions typed;
+  typed.rolling_shutter = RollingShutter{0.5};
+  EXPECT_EQ(plan_shot(scene, typed).rolling_shutter->duration, 0.5);
+  RenderOptions none;
+  none.rolling_shutter = std::optional<RollingShutter>();
+  EXPECT_FALSE(plan_shot(scene, none).rolling_shutter);
+  RenderOptions closed;
+  closed.shutter_s = Vec2d{0, 0};
+  EXPECT_FALSE(plan_shot(scene, closed).rolling_shutter);
+  closed.rolling_shutter = RollingShutter{0.5};
+  EXPECT_THROW(plan_shot(scene, closed), UsageError);
+}
+
 TEST(ShotPlan, IsPure) {
   const Scene scene = scene_with_camera(true);
   RenderOptions options;

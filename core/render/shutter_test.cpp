@@ -118,5 +118,21 @@ TEST(ShutterCurve, TableFromTypedValuesIsExactAndRefusesWhatParseRefuses) {
   EXPECT_FALSE(ShutterCurve::table(std::vector<double>(ShutterCurve::kMaxTableValues + 1, 1)));
 }
 
+// Cycles' rows (kernel/camera/camera.h): r = 1 - y / H with y counted from the bottom row, so the
+// top row (y = H - 1) is read at 1 / H and the bottom one at 1; the duration d blends in the
+// shutter's own time s.
+TEST(RollingShutter, RowsAreReadTopToBottomAndTheDurationBlendsInTheShuttersTime) {
+  const RollingShutter instant{0};
+  EXPECT_DOUBLE_EQ(instant.fraction(0.9, 0, 4), 0.25);
+  EXPECT_DOUBLE_EQ(instant.fraction(0.1, 3, 4), 1.0);
+  EXPECT_DOUBLE_EQ(instant.fraction(0.5, -2, 4), 0.25);  // splatting's rows beyond the film
+  EXPECT_DOUBLE_EQ(instant.fraction(0.5, 7, 4), 1.0);
+  const RollingShutter global{1};
+  EXPECT_DOUBLE_EQ(global.fraction(0.3, 0, 4), 0.3);
+  const RollingShutter cycles{0.1};
+  EXPECT_DOUBLE_EQ(cycles.fraction(0.8, 1, 4), 0.5 + 0.1 * (0.8 - 0.5) + 0.9 * (0.5 - 0.5));
+  EXPECT_DOUBLE_EQ(cycles.fraction(0.0, 0, 4), 0.5 + 0.1 * -0.5 + 0.9 * (0.25 - 0.5));
+}
+
 }  // namespace
 }  // namespace fb
