@@ -235,8 +235,7 @@ void RenderJob::choose_time_samples() {
     time_reason_ = out.str();
     return;
   }
-  p.time = {&plan_.shutter_curve, shutter_s.x, shutter_s.y, plan_.rolling_shutter,
-            plan_.height_px};
+  p.time = {&plan_.shutter_curve, shutter_s.x, shutter_s.y, plan_.rolling_shutter, plan_.height_px};
   out << ": time samples for";
   if (moving > 0)
     out << " " << moving << " moving instance" << (moving > 1 ? "s" : "") << " (up to "

@@ -272,8 +272,11 @@ TEST(ShotPlan, LensTrackIsTheFramesAndAZoomScalesAboutThePrincipalPointWithinThe
   EXPECT_DOUBLE_EQ(plan.zoom->cx_px, 32 - 0.1 * 64);  // shift: a fraction of the fitted width
   EXPECT_DOUBLE_EQ(plan.zoom->cy_px, 24);
   // Linear from open to the centre and from the centre to close, about the principal point.
-  for (const auto& [s, k] : {std::pair{0.0, 50.0 / 45}, {0.25, (50.0 / 45 + 1) / 2}, {0.5, 1.0},
-                             {0.75, (1 + 50.0 / 55) / 2}, {1.0, 50.0 / 55}}) {
+  for (const auto& [s, k] : {std::pair{0.0, 50.0 / 45},
+                             {0.25, (50.0 / 45 + 1) / 2},
+                             {0.5, 1.0},
+                             {0.75, (1 + 50.0 / 55) / 2},
+                             {1.0, 50.0 / 55}}) {
     float x = 60, y = 4;
     plan.zoom->apply(s, x, y);
     EXPECT_NEAR(x, 25.6 + (60 - 25.6) * k, 1e-5) << "s = " << s;

@@ -83,9 +83,9 @@ struct SensorResponse {
 // held beyond the ends (docs/camera-model.md, "Animated lenses"). Each value has its own list;
 // an empty one is not tracked.
 struct LensTrack {
-  static constexpr CameraValue kTracked[] = {CameraValue::kFocalLength,
-                                             CameraValue::kFocusDistance, CameraValue::kFstop,
-                                             CameraValue::kShiftX, CameraValue::kShiftY};
+  static constexpr CameraValue kTracked[] = {CameraValue::kFocalLength, CameraValue::kFocusDistance,
+                                             CameraValue::kFstop, CameraValue::kShiftX,
+                                             CameraValue::kShiftY};
   double first_frame = 0;
   std::array<std::vector<double>, kCameraValueCount> values;
 

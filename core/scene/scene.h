@@ -155,12 +155,12 @@ struct ShotSettings {
   std::optional<double> shutter_open_s, shutter_close_s;  // relative to the frame's time
   std::vector<double> shutter_curve;   // weights evenly spaced over the open shutter; empty: box
   ValueOrigin shutter_curve_origin;    // where shutter_curve came from
-  // Cycles' rolling shutter (rolling_shutter_type TOP): its duration, a share of the shutter in
-  // [0, 1] (docs/camera-model.md, "Rolling shutter"); none: a global shutter.
-  std::optional<double> rolling_shutter_duration;
   std::optional<double> pixel_aspect;  // pixel width / height
   std::optional<PixelFilterSetting> filter;  // the shot's pixel filter
   double film_exposure = 1.0;                // linear gain on the image (Cycles' Film > Exposure)
+  // Cycles' rolling shutter (rolling_shutter_type TOP): its duration, a share of the shutter in
+  // [0, 1] (docs/camera-model.md, "Rolling shutter"); none: a global shutter.
+  std::optional<double> rolling_shutter_duration;
   // Blender's Color Management and Dither, for 8-bit outputs only (docs/blender.md); a file that
   // names no view transform gets the plain sRGB curve.
   ViewSettings view;

@@ -41,7 +41,8 @@ uint32_t sensor_fit(const Fields& f, const std::string& word) {
 std::optional<LensTrack> read_lens_track(const Fields& camera) {
   if (!camera.has(kPerFrame)) return std::nullopt;
   if (camera.type(kPerFrame) != Fields::Type::kObject)
-    camera.fail(kPerFrame, "expected an object {\"first_frame\": F, \"focal_length_mm\": [...], ...}");
+    camera.fail(kPerFrame,
+                "expected an object {\"first_frame\": F, \"focal_length_mm\": [...], ...}");
   const Fields f = camera.object(kPerFrame);
   LensTrack track;
   const auto first = f.whole("first_frame", -1e9, 1e9);
@@ -54,9 +55,9 @@ std::optional<LensTrack> read_lens_track(const Fields& camera) {
                                     [&](const NumberField& n) { return n.value == v; });
     const double lo = range != std::end(kNumbers) ? range->lo : kMinTrackFstop;
     const double hi = range != std::end(kNumbers) ? range->hi : kMaxFstop;
+    // tinygltf drops an empty array: it reads as absent.
     auto values = f.numbers(name, kMaxTrackFrames, lo, hi);
     if (!values) continue;
-    if (values->empty()) f.fail(name, "expected at least one value (one per frame)");
     track.values[size_t(v)] = std::move(*values);
     any = true;
   }

@@ -21,7 +21,7 @@ struct CameraSource {
   std::array<bool, kCameraValueCount> expresses{};
   std::array<std::optional<double>, kCameraValueCount> values;  // what it names
   std::array<std::string, kCameraValueCount> paths;             // the JSON path of each
-  std::optional<LensTrack> lens_track;  // per_frame
+  std::optional<LensTrack> lens_track;                          // per_frame
   std::string track_path;
 
   bool names_any() const;

@@ -53,8 +53,8 @@ ShotRenders render(const std::string& shot) {
                      std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / ("lens_motion_" + shot));
 }
 
-#define SKIP_WITHOUT_BLENDER()                                                                  \
-  if (!find_blender())                                                                          \
+#define SKIP_WITHOUT_BLENDER()                                                                \
+  if (!find_blender())                                                                        \
   GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package " \
                   "`blender` (apt-get install blender) to run the tests against Blender."
 
@@ -87,8 +87,7 @@ TEST(BlenderLensMotion, RollingShutterMatchesCycles) {
               d, r.shot.text("width_px").c_str(), r.shot.text("height_px").c_str(),
               r.shot.text("samples").c_str(), r.blender_s, r.filmback_s);
   std::printf("%-12s | %8s %8s | %8s %8s | %8s %8s | %8s %8s | %7s\n", "marker", "frame_x",
-              "frame_y", "top_x", "top_y", "bottom_x", "bottom_y", "cycles_x", "cycles_y",
-              "fb-cy");
+              "frame_y", "top_x", "top_y", "bottom_x", "bottom_y", "cycles_x", "cycles_y", "fb-cy");
   for (const Record& m : r.markers) {
     const double x0 = m.number("frame_x_px"), y0 = m.number("frame_y_px");
     const double vx = m.number("travel_x_px"), vy = m.number("travel_y_px");
@@ -133,8 +132,8 @@ TEST(BlenderLensMotion, ZoomRackFocusAndShiftMatchCycles) {
     const double error = std::hypot(fb->x_px - cy->x_px, fb->y_px - cy->y_px);
     const double cy_rms = rms_radius_px(*cy), fb_rms = rms_radius_px(*fb);
     std::printf("%-10s | %8.3f %8.3f | %8.3f %8.3f %8.3f | %8.3f %8.3f %8.3f | %7.4f %7.4f\n",
-                name.c_str(), x0, y0, cy->x_px, cy->y_px, cy_rms, fb->x_px, fb->y_px, fb_rms,
-                error, fb_rms - cy_rms);
+                name.c_str(), x0, y0, cy->x_px, cy->y_px, cy_rms, fb->x_px, fb->y_px, fb_rms, error,
+                fb_rms - cy_rms);
     EXPECT_LT(error, kMaxCentroidErrorPx) << name << ": filmback's centroid against Cycles'";
     EXPECT_NEAR(fb_rms, cy_rms, kMaxRadiusErrorPx) << name << ": the blur's RMS radius";
   }
