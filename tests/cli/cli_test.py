@@ -712,12 +712,22 @@ class CliTest(unittest.TestCase):
                   "shutter open 0.5 s (box), nothing moves in it: no time samples"),
                  (["--shutter-curve", "trapezoid:ramp=0.1", "--shutter", "-0.1,0.1", "--frame", "12"],
                   "shutter open 0.2 s (trapezoid ramp 0.1): time samples"),
+                 (["--shutter", "0,0.5", "--rolling-shutter", "0.25"], "shutter open 0.5 s (box, rolling "
+                  "top to bottom, each row 0.25 of it): time samples for 1 moving instance"),
+                 (["--shutter", "0,0.5", "--frame", "36", "--rolling-shutter", "0"], "shutter open 0.5 s "
+                  "(box, rolling top to bottom, each row 0 of it), nothing moves in it: no time samples"),
                  ([], "frame 0 at 24 fps (t = 0 s), shutter closed: no time samples")]
         for options, plan in cases:
             with self.subTest(options=options):
                 result = self.render(scene, "--res", "16x16", "--spp", "1", *options)
                 self.assertEqual(result.returncode, 0, result.stderr)
                 self.assertIn(plan, result.stdout)
+
+    def test_bad_rolling_shutter(self):
+        self.assert_usage_error(self.scene(animated_scene()), TINY + ["--shutter", "0,1", "--rolling-shutter", "1.5"],
+                                "--rolling-shutter '1.5': ", "expected a number in [0, 1]")
+        self.assert_usage_error(self.scene(animated_scene()), TINY + ["--rolling-shutter", "0.1"],
+                                "--rolling-shutter: the shutter is closed", "give --shutter OPEN,CLOSE")
 
     def test_bad_shutter_curve(self):
         self.assert_usage_error(self.scene(animated_scene()), TINY + ["--shutter-curve", "trapezoid:ramp=0.9"],
