@@ -100,7 +100,7 @@ std::vector<NamedNumber> camera_numbers(const SceneCamera& camera) {
 }
 
 // Projections a scene names (CameraModel::kind) and the camera plugins that render them
-// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones.
+// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones, and POV-Ray's.
 struct ModelPlugin {
   std::string_view kind, plugin;
 };
@@ -112,6 +112,13 @@ constexpr ModelPlugin kModelPlugins[] = {
     {"fisheye_polynomial", "fisheye_polynomial"},
     {"central_cylindrical", "central_cylindrical"},
     {"equiangular_cubemap_face", "equiangular_cubemap_face"},
+    // POV-Ray 3.7's camera types (importers/pov/pov_camera.cpp)
+    {"pov_fisheye", "pov_fisheye"},
+    {"pov_ultra_wide_angle", "pov_ultra_wide_angle"},
+    {"pov_omnimax", "pov_omnimax"},
+    {"pov_panoramic", "pov_panoramic"},
+    {"pov_cylinder", "pov_cylinder"},
+    {"pov_spherical", "pov_spherical"},
 };
 
 PluginChoice model_plugin(const CameraModel& model, std::vector<NamedNumber> numbers) {
