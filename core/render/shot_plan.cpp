@@ -100,7 +100,7 @@ std::vector<NamedNumber> camera_numbers(const SceneCamera& camera) {
 }
 
 // Projections a scene names (CameraModel::kind) and the camera plugins that render them
-// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones, and POV-Ray's.
+// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones.
 struct ModelPlugin {
   std::string_view kind, plugin;
 };

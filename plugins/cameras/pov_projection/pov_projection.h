@@ -28,12 +28,19 @@ constexpr double kRadiansPerDegree = std::numbers::pi / 180;
 // the importer takes as metres.
 constexpr double kMaxAngleDeg = 1e6;
 constexpr fb_param_desc kAngleParam = {
-    "angle_deg", FB_PARAM_FLOAT, "90", "deg", nullptr, 0, kMaxAngleDeg,
+    "angle_deg",
+    FB_PARAM_FLOAT,
+    "90",
+    "deg",
+    nullptr,
+    0,
+    kMaxAngleDeg,
     "POV-Ray's camera angle (its default 90), the field of view as this type spreads it"};
-constexpr fb_param_desc kRightLengthParam = {"right_length_m", FB_PARAM_FLOAT, "1.33", "m", nullptr,
-                                             1e-12, 1e12, "length of POV-Ray's right vector"};
-constexpr fb_param_desc kUpLengthParam = {"up_length_m", FB_PARAM_FLOAT, "1", "m", nullptr,
-                                          1e-12, 1e12, "length of POV-Ray's up vector"};
+constexpr fb_param_desc kRightLengthParam = {
+    "right_length_m", FB_PARAM_FLOAT, "1.33", "m",
+    nullptr,          1e-12,          1e12,   "length of POV-Ray's right vector"};
+constexpr fb_param_desc kUpLengthParam = {
+    "up_length_m", FB_PARAM_FLOAT, "1", "m", nullptr, 1e-12, 1e12, "length of POV-Ray's up vector"};
 
 // POV-Ray's image coordinates of a raster point.
 struct ImagePoint {
@@ -56,7 +63,8 @@ class PovImage {
           "the physical sensor needs an aperture to expose through; POV-Ray's camera types have "
           "none here");
     if (!(width_px_ > 0) || !(height_px_ > 0)) throw std::invalid_argument("the image is empty");
-    if (!(near_m_ >= 0) || !(far_m_ > near_m_)) throw std::invalid_argument("the clip range is empty");
+    if (!(near_m_ >= 0) || !(far_m_ > near_m_))
+      throw std::invalid_argument("the clip range is empty");
   }
 
   ImagePoint point(const fb_camera_sample& s) const {

@@ -47,10 +47,9 @@ class PovSpherical {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<PovSpherical>();
-constexpr fb_plugin kPlugin =
-    fb::describe("pov_spherical", "1.0.0",
-                 "POV-Ray's spherical camera: longitude and latitude linear across the image",
-                 kParams, kApi);
+constexpr fb_plugin kPlugin = fb::describe(
+    "pov_spherical", "1.0.0",
+    "POV-Ray's spherical camera: longitude and latitude linear across the image", kParams, kApi);
 
 }  // namespace
 
