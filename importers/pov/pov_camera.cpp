@@ -41,8 +41,29 @@ void warn(Diagnostics& diagnostics, const CameraStatement& s, const std::string&
   diagnostics.warn(located(place(s), "", what));
 }
 
-const char* type_name(const CameraStatement& s) {
-  switch (s.type) {
+// An orthonormal frame built from three vectors in the order given (Gram-Schmidt): the first keeps
+// its direction, the second its component perpendicular to the first, the third its component
+// perpendicular to both. Not finite when they do not span space.
+struct Frame {
+  Vec3d axis[3];
+};
+
+Frame gram_schmidt(Vec3d a, Vec3d b, Vec3d c) {
+  Frame f{};
+  const Vec3d in[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    Vec3d v = in[i];
+    for (int j = 0; j < i; ++j)
+      v = v - dot(v, f.axis[j]) * f.axis[j];
+    f.axis[i] = v * (1 / length(v));
+  }
+  return f;
+}
+
+}  // namespace
+
+const char* keyword_of(CameraType type) {
+  switch (type) {
     case CameraType::kPerspective:
       return "perspective";
     case CameraType::kOrthographic:
@@ -64,27 +85,6 @@ const char* type_name(const CameraStatement& s) {
   }
   return "unknown";
 }
-
-// An orthonormal frame built from three vectors in the order given (Gram-Schmidt): the first keeps
-// its direction, the second its component perpendicular to the first, the third its component
-// perpendicular to both. Not finite when they do not span space.
-struct Frame {
-  Vec3d axis[3];
-};
-
-Frame gram_schmidt(Vec3d a, Vec3d b, Vec3d c) {
-  Frame f{};
-  const Vec3d in[3] = {a, b, c};
-  for (int i = 0; i < 3; ++i) {
-    Vec3d v = in[i];
-    for (int j = 0; j < i; ++j)
-      v = v - dot(v, f.axis[j]) * f.axis[j];
-    f.axis[i] = v * (1 / length(v));
-  }
-  return f;
-}
-
-}  // namespace
 
 PovCameraVectors evaluate_camera(const CameraStatement& s, Diagnostics& diagnostics) {
   PovCameraVectors v;
@@ -249,12 +249,12 @@ PovCamera convert_projection(const CameraStatement& s, const PovCameraVectors& v
   if (off_deg > kNegligibleDeg)
     warn(diagnostics, s,
          std::string("the camera's direction, right and up vectors are not perpendicular (up to ") +
-             number_text(off_deg) + " degrees off): POV-Ray's " + type_name(s) +
+             number_text(off_deg) + " degrees off): POV-Ray's " + keyword_of(s.type) +
              " camera uses them as given, filmback with up and right made perpendicular to "
              "direction");
   if (v.focal_blur)
     warn(diagnostics, s,
-         std::string("unsupported feature 'focal_blur' with a ") + type_name(s) +
+         std::string("unsupported feature 'focal_blur' with a ") + keyword_of(s.type) +
              " camera: rendered in focus");
 
   // The spherical camera turns about right and up by the right-hand rule in POV-Ray's space, so a
@@ -282,7 +282,7 @@ PovCamera convert_projection(const CameraStatement& s, const PovCameraVectors& v
   p.sensor_width_mm = kSensorMm;
   p.sensor_height_mm = kSensorMm * length(v.up) / length(v.right);
   p.focal_length_mm = kSensorMm * length(v.direction) / length(v.right);
-  c.model = CameraModel{std::string("pov_") + type_name(s), projection_numbers(s, v),
+  c.model = CameraModel{std::string("pov_") + keyword_of(s.type), projection_numbers(s, v),
                         ValueOrigin::from_file(place(s), "camera type")};
   return out;  // pixel aspect 1: the plugin spreads the image over the raster as POV-Ray does
 }

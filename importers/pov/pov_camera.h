@@ -33,6 +33,9 @@ struct PovCameraVectors {
   double angle_deg = 90, angle_h_deg = 360, angle_v_deg = 180;
 };
 
+// The camera type's keyword as a scene writes it: "perspective", "fisheye", "cylinder", ...
+const char* keyword_of(CameraType type);
+
 // Applies POV-Ray's order and defaults. Throws InputError where POV-Ray stops with an error
 // (a negative angle, angle >= 180 for perspective and orthographic, a cylinder type other than 1
 // to 4, look_at at the location); warns where POV-Ray warns about a camera looking

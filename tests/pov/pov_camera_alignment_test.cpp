@@ -354,24 +354,9 @@ pov::CameraStatement statement(const Shot& shot) {
 }
 
 std::string type_sdl(const Shot& shot) {
-  switch (shot.type) {
-    case CameraType::kOrthographic:
-      return "orthographic";
-    case CameraType::kFisheye:
-      return "fisheye";
-    case CameraType::kUltraWideAngle:
-      return "ultra_wide_angle";
-    case CameraType::kOmnimax:
-      return "omnimax";
-    case CameraType::kPanoramic:
-      return "panoramic";
-    case CameraType::kCylinder:
-      return "cylinder " + std::to_string(shot.cylinder);
-    case CameraType::kSpherical:
-      return "spherical";
-    default:
-      return "perspective";
-  }
+  const std::string keyword = pov::keyword_of(shot.type);
+  return shot.type == CameraType::kCylinder ? keyword + " " + std::to_string(shot.cylinder)
+                                            : keyword;
 }
 
 // The camera block with its keywords in an order unlike POV-Ray's evaluation order (transforms

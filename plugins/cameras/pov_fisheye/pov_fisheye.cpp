@@ -14,39 +14,31 @@ namespace {
 
 namespace pp = fb::pov_projection;
 
-constexpr fb_param_desc kParams[] = {pp::kAngleParam, pp::kRightLengthParam, pp::kUpLengthParam};
-constexpr auto kAngle = fb::param<double>(kParams, "angle_deg");
-constexpr auto kRightLength = fb::param<double>(kParams, "right_length_m");
-constexpr auto kUpLength = fb::param<double>(kParams, "up_length_m");
-
 class PovFisheye {
  public:
   PovFisheye(const fb_value* values, const fb_camera_setup& setup)
-      : image_(setup),
-        half_angle_rad_(kAngle(values) * pp::kRadiansPerDegree / 2),
-        right_(kRightLength(values)),
-        up_(kUpLength(values)) {}
+      : image_(setup), values_(pp::angle_and_lengths(values)) {}
 
   uint32_t needs() const { return 0; }
 
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     const pp::ImagePoint p = image_.point(s);
-    const double u = 2 * p.x0 * right_, v = 2 * p.y0 * up_;
+    const double u = 2 * p.x0 * values_.right_m, v = 2 * p.y0 * values_.up_m;
     const double r = std::sqrt(u * u + v * v);
     if (r > 1) return pp::PovImage::set_no_ray(ray);
-    pp::set_polar_ray(image_, u, v, r, r * half_angle_rad_, ray);
+    pp::set_polar_ray(image_, u, v, r, r * values_.angle_rad / 2, ray);
   }
 
  private:
   pp::PovImage image_;
-  double half_angle_rad_, right_, up_;
+  pp::AngleAndLengths values_;
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<PovFisheye>();
 constexpr fb_plugin kPlugin =
     fb::describe("pov_fisheye", "1.0.0",
                  "POV-Ray's fisheye camera: equidistant, angle across the circle of |right| x |up|",
-                 kParams, kApi);
+                 pp::kAngleAndLengthsParams, kApi);
 
 }  // namespace
 

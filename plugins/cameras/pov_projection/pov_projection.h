@@ -12,7 +12,7 @@
 // POV-Ray leaves it, with a finite direction all the same.
 #pragma once
 
-#include <filmback/plugin_abi.h>
+#include <filmback/plugin_sdk.h>
 
 #include <cmath>
 #include <numbers>
@@ -41,6 +41,19 @@ constexpr fb_param_desc kRightLengthParam = {
     nullptr,          1e-12,          1e12,   "length of POV-Ray's right vector"};
 constexpr fb_param_desc kUpLengthParam = {
     "up_length_m", FB_PARAM_FLOAT, "1", "m", nullptr, 1e-12, 1e12, "length of POV-Ray's up vector"};
+
+// The schema of the types that take an angle and both lengths (fisheye, ultra_wide_angle), and
+// its values.
+constexpr fb_param_desc kAngleAndLengthsParams[] = {kAngleParam, kRightLengthParam, kUpLengthParam};
+struct AngleAndLengths {
+  double angle_rad, right_m, up_m;
+};
+inline AngleAndLengths angle_and_lengths(const fb_value* values) {
+  constexpr auto angle = fb::param<double>(kAngleAndLengthsParams, "angle_deg");
+  constexpr auto right = fb::param<double>(kAngleAndLengthsParams, "right_length_m");
+  constexpr auto up = fb::param<double>(kAngleAndLengthsParams, "up_length_m");
+  return {angle(values) * kRadiansPerDegree, right(values), up(values)};
+}
 
 // POV-Ray's image coordinates of a raster point.
 struct ImagePoint {

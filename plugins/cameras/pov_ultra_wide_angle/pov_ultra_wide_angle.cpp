@@ -13,17 +13,12 @@ namespace {
 
 namespace pp = fb::pov_projection;
 
-constexpr fb_param_desc kParams[] = {pp::kAngleParam, pp::kRightLengthParam, pp::kUpLengthParam};
-constexpr auto kAngle = fb::param<double>(kParams, "angle_deg");
-constexpr auto kRightLength = fb::param<double>(kParams, "right_length_m");
-constexpr auto kUpLength = fb::param<double>(kParams, "up_length_m");
-
 class PovUltraWideAngle {
  public:
   PovUltraWideAngle(const fb_value* values, const fb_camera_setup& setup)
-      : image_(setup),
-        across_rad_(kAngle(values) * pp::kRadiansPerDegree),
-        up_rad_(across_rad_ * kUpLength(values) / kRightLength(values)) {}
+      : PovUltraWideAngle(pp::angle_and_lengths(values), setup) {}
+  PovUltraWideAngle(const pp::AngleAndLengths& v, const fb_camera_setup& setup)
+      : image_(setup), across_rad_(v.angle_rad), up_rad_(v.angle_rad * v.up_m / v.right_m) {}
 
   uint32_t needs() const { return 0; }
 
@@ -42,8 +37,8 @@ class PovUltraWideAngle {
 constexpr fb_camera_api kApi = fb::camera_api<PovUltraWideAngle>();
 constexpr fb_plugin kPlugin = fb::describe(
     "pov_ultra_wide_angle", "1.0.0",
-    "POV-Ray's ultra_wide_angle camera: angle across the image, sines of the two angles", kParams,
-    kApi);
+    "POV-Ray's ultra_wide_angle camera: angle across the image, sines of the two angles",
+    pp::kAngleAndLengthsParams, kApi);
 
 }  // namespace
 
