@@ -12,7 +12,7 @@
 // 3 and 4 are orthographic along the axis.
 #include <filmback/plugin_sdk.h>
 
-#include "../pov_projection/pov_projection.h"
+#include "plugins/cameras/pov_projection/pov_projection.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 // theta = r angle / 2, so the circle's edge sees angle / 2 off the axis (angle 360: straight back).
 #include <filmback/plugin_sdk.h>
 
-#include "../pov_projection/pov_projection.h"
+#include "plugins/cameras/pov_projection/pov_projection.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 // (sin(phi) sin(theta) < tan(135 degrees) cos(theta)) are not traced either.
 #include <filmback/plugin_sdk.h>
 
-#include "../pov_projection/pov_projection.h"
+#include "plugins/cameras/pov_projection/pov_projection.h"
 
 namespace {
 

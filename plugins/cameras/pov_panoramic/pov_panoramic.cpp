@@ -9,7 +9,7 @@
 // bottom edges (|m| within 1e-10 of pi/2) POV-Ray puts +-2e10 for tan(m): straight up or down.
 #include <filmback/plugin_sdk.h>
 
-#include "../pov_projection/pov_projection.h"
+#include "plugins/cameras/pov_projection/pov_projection.h"
 
 namespace {
 

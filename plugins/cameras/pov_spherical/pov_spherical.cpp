@@ -11,7 +11,7 @@
 // the image repeats.
 #include <filmback/plugin_sdk.h>
 
-#include "../pov_projection/pov_projection.h"
+#include "plugins/cameras/pov_projection/pov_projection.h"
 
 namespace {
 

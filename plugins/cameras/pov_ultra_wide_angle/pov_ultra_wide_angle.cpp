@@ -7,7 +7,7 @@
 // ray: with angle above 180 the edges look backwards.
 #include <filmback/plugin_sdk.h>
 
-#include "../pov_projection/pov_projection.h"
+#include "plugins/cameras/pov_projection/pov_projection.h"
 
 namespace {
 
