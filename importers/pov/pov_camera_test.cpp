@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -14,6 +16,7 @@
 #include <filmback/camera_projection.h>
 
 #include "core/util/error.h"
+#include "importers/pov/pov_importer.h"
 #include "importers/pov/pov_space.h"
 #include "support/pov_rays.h"
 
@@ -552,6 +555,34 @@ TEST(PovCamera, BadProjectionAnglesAndTypesAreErrorsWithTheirPlace) {
     EXPECT_EQ(error_of(s), "scene.pov:7:1: invalid cylinder camera type " +
                                std::to_string(variant) + ": valid are types 1 to 4");
   }
+}
+
+// The same errors from a .pov file: the importer names the keyword's line and column.
+TEST(PovCamera, BadProjectionsInAFileNameTheirPlace) {
+  const std::filesystem::path folder = std::filesystem::path(testing::TempDir()) / "pov_camera";
+  std::filesystem::create_directories(folder);
+  const auto error_in = [&](const std::string& camera) {
+    {
+      std::ofstream out(folder / "scene.pov");
+      out << "#version 3.7;\ncamera {\n" << camera << "\n}\n";
+    }
+    Diagnostics diagnostics;
+    ImportOptions options;
+    options.resolution = {64, 48};
+    try {
+      import_pov(folder / "scene.pov", options, diagnostics);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_in("  fisheye\n  angle -5"),
+            "scene.pov:4:3: camera angle: negative viewing angle");
+  EXPECT_EQ(error_in("  spherical location 0\n    angle 90, -1"),
+            "scene.pov:4:5: camera angle: negative vertical angle");
+  EXPECT_EQ(error_in("  cylinder 7"),
+            "scene.pov:2:1: invalid cylinder camera type 7: valid are types 1 to 4");
+  EXPECT_EQ(error_in("  cylinder 2 angle 400"), "no error");
 }
 
 // Angles of 0, 360 and beyond are POV-Ray's to render (it takes any angle >= 0): rays keep to

@@ -763,5 +763,69 @@ INSTANTIATE_TEST_SUITE_P(Povray, PovCameraShot, testing::ValuesIn(kShots),
                            return std::string(info.param.name);
                          });
 
+// Where POV-Ray traces no ray (outside a fisheye's and omnimax's circle, below omnimax's floor)
+// its pixel is black whatever the background; filmback's too, and finite. POV-Ray renders one ray
+// per pixel centre (-A) on a coloured background; filmback 16 samples a pixel. A pixel whose
+// centre and corners POV-Ray's formula all leaves untraced must be 0 in both; one they all trace
+// must be the background in both (POV-Ray's 16-bit PNG: within 1e-4).
+TEST(PovProjection, UntracedPixelsAreBlackAsPovRays) {
+  const std::optional<fs::path> povray = find_on_path("povray");
+  if (!povray) GTEST_SKIP() << kNoPovray;
+  constexpr uint32_t kWidth = 48, kHeight = 36;
+  const float background[3] = {1.f, 0.5f, 0.25f};
+  for (const char* type : {"fisheye angle 200", "omnimax"}) {
+    SCOPED_TRACE(type);
+    const fs::path work =
+        fs::path(FILMBACK_POV_WORK_DIR) / "untraced" / std::string(type).substr(0, 7);
+    fs::remove_all(work);
+    fs::create_directories(work);
+    {
+      std::ofstream out(work / "scene.pov");
+      out << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\nbackground { rgb <1, 0.5, "
+             "0.25> }\ncamera { "
+          << type << " location <0, 0, 0> look_at <0, 1, 3> }\n";
+    }
+    run_logged("cd " + quoted(work) + " && " + quoted(*povray) +
+                   " +Iscene.pov +Opovray.png +FN16 File_Gamma=1.0 -D -V -A +W" +
+                   std::to_string(kWidth) + " +H" + std::to_string(kHeight),
+               work / "povray.log");
+    const Image pov_image = read_image(work / "povray.png");
+    const Image image = filmback_render(work / "scene.pov", kWidth, kHeight, 16);
+    Diagnostics diagnostics;
+    pov::EvaluateOptions options;
+    options.scene_file = work / "scene.pov";
+    options.image_width = kWidth;
+    options.image_height = kHeight;
+    const pov::PovCameraVectors camera =
+        pov::evaluate_camera(*pov::evaluate_pov(options).camera, diagnostics);
+    int untraced = 0, traced = 0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+      for (uint32_t x = 0; x < kWidth; ++x) {
+        int hits = 0;
+        for (const auto& [dx, dy] :
+             {std::pair{0.5, 0.5}, {0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}})
+          hits += pov_ray(camera, x + dx, y + dy, kWidth, kHeight).weight > 0;
+        for (size_t c = 0; c < 3; ++c) {
+          const float ours = image.pixels[(size_t(y) * kWidth + x) * 3 + c];
+          const float theirs = pov_image.pixels[(size_t(y) * kWidth + x) * 3 + c];
+          ASSERT_TRUE(std::isfinite(ours)) << "pixel " << x << ", " << y;
+          if (hits == 0) {
+            EXPECT_EQ(ours, 0.f) << "pixel " << x << ", " << y;
+            EXPECT_EQ(theirs, 0.f) << "pixel " << x << ", " << y;
+          } else if (hits == 5) {
+            EXPECT_NEAR(ours, background[c], 1e-5) << "pixel " << x << ", " << y;
+            EXPECT_NEAR(theirs, background[c], 1e-4) << "pixel " << x << ", " << y;
+          }
+        }
+        untraced += hits == 0;
+        traced += hits == 5;
+      }
+    std::printf("%s: %d pixels untraced, %d traced all over, of %u\n", type, untraced, traced,
+                kWidth * kHeight);
+    EXPECT_GT(untraced, 100);
+    EXPECT_GT(traced, 500);
+  }
+}
+
 }  // namespace
 }  // namespace fb::test
