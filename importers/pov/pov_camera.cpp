@@ -18,6 +18,8 @@ constexpr double kEpsilon = 1e-10;  // POV-Ray's EPSILON (frame.h), as Parse_Cam
 constexpr double kNegligiblePx = 0.01;
 // Nor a projection type's vectors off perpendicular by less than this.
 constexpr double kNegligibleDeg = 1e-6;
+// The converted camera's sensor width: the focal length follows from it and the field of view.
+constexpr double kSensorMm = 36;
 
 // "file:line:column", as the SDL evaluator's messages; nothing for POV-Ray's default camera.
 std::string place(const CameraStatement& s) {
@@ -278,7 +280,6 @@ PovCamera convert_projection(const CameraStatement& s, const PovCameraVectors& v
   p.clip_near_m = 0;  // POV-Ray's rays start at the location
   // The plugin maps raster points itself. The view plane, which only estimates on-screen sizes
   // for a panorama (subdivision), is the perspective camera of the same vectors.
-  constexpr double kSensorMm = 36;
   p.sensor_width_mm = kSensorMm;
   p.sensor_height_mm = kSensorMm * length(v.up) / length(v.right);
   p.focal_length_mm = kSensorMm * length(v.direction) / length(v.right);
@@ -335,8 +336,7 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
   p.clip_near_m = 0;  // POV-Ray's rays start at the location (orthographic: its plane)
   // The image spans rx x uy whatever its size: pixels are rx / uy * H / W wide per unit height.
   out.pixel_aspect = rx / uy * double(height_px) / double(width_px);
-  // 1 POV-Ray unit is 1 m; a 36 mm sensor with the focal length that gives this field of view.
-  constexpr double kSensorMm = 36;
+  // 1 POV-Ray unit is 1 m; a kSensorMm sensor with the focal length that gives this field of view.
   p.sensor_width_mm = kSensorMm;
   p.sensor_height_mm = kSensorMm * uy / rx;
   if (orthographic) {
