@@ -523,6 +523,29 @@ TEST(PovCamera, ProjectionValuesNameTheirPlaceInTheScene) {
   EXPECT_EQ(diagnostics.count(), 0u);
 }
 
+// What `filmback info` prints under the plan: each plugin's own derived quantities.
+TEST(PovCamera, ProjectionPluginsDescribeTheirFieldOfView) {
+  Diagnostics diagnostics;
+  const auto describe = [&](const CameraStatement& s) {
+    return test::make_camera_plugin(convert_camera(s, 160, 120, diagnostics), 160, 120)->describe();
+  };
+  // A fisheye's circle is W / |right| px wide and H / |up| high: 160 / 1.33 = 120.301.
+  EXPECT_EQ(describe(projection(CameraType::kFisheye, 180)),
+            "field of view: 180 deg across the image circle (90 deg from the axis at its edge)\n"
+            "image circle: 120.301 px wide, 120 px high, centred; no rays outside it\n");
+  EXPECT_EQ(describe(projection(CameraType::kSpherical, 240)),
+            "field of view: 240 deg across, 120 deg up; 1.5 x 1 deg a pixel\n");
+  CameraStatement cylinder = projection(CameraType::kCylinder, 100);
+  cylinder.cylinder_type = 4;
+  cylinder.right = {3, 0, 0};
+  EXPECT_EQ(describe(cylinder),
+            "field of view: 100 deg around the right axis; 3 m along it (rays from a line: "
+            "orthographic)\n");
+  // ultra_wide_angle spreads angle |up| / |right| up: 133 * 1 / 1.33 = 100.
+  EXPECT_EQ(describe(projection(CameraType::kUltraWideAngle, 133)),
+            "field of view: 133 deg across, 100 deg up\n");
+}
+
 // The message a bad camera statement gives, or "" if it converts.
 std::string error_of(const CameraStatement& s) {
   Diagnostics diagnostics;

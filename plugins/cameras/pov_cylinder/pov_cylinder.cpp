@@ -41,6 +41,16 @@ class PovCylinder {
 
   uint32_t needs() const { return 0; }
 
+  std::string describe() const {
+    const double angle_deg = angle_rad_ / pp::kRadiansPerDegree;
+    const bool up_axis = variant_ == 1 || variant_ == 3;
+    const double length_m = up_axis ? up_ : right_;
+    return pp::text_of("field of view: %.6g deg around the %s axis; %.6g m along it %s\n",
+                       angle_deg, up_axis ? "up" : "right", length_m,
+                       variant_ <= 2 ? "at distance 1 (rays from the camera)"
+                                     : "(rays from a line: orthographic)");
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     const pp::ImagePoint p = image_.point(s);
     const double a = p.x0 * angle_rad_, b = p.y0 * angle_rad_;

@@ -21,6 +21,15 @@ class PovFisheye {
 
   uint32_t needs() const { return 0; }
 
+  // The circle u^2 + v^2 = 1 in pixels: u = 1 at x0 = 1 / (2 |right|).
+  std::string describe() const {
+    return pp::text_of(
+        "field of view: %.6g deg across the image circle (%.6g deg from the axis at its edge)\n"
+        "image circle: %.6g px wide, %.6g px high, centred; no rays outside it\n",
+        values_.angle_rad / pp::kRadiansPerDegree, values_.angle_rad / pp::kRadiansPerDegree / 2,
+        image_.width_px() / values_.right_m, image_.height_px() / values_.up_m);
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     const pp::ImagePoint p = image_.point(s);
     const double u = 2 * p.x0 * values_.right_m, v = 2 * p.y0 * values_.up_m;

@@ -34,6 +34,14 @@ class PovOmnimax {
 
   uint32_t needs() const { return 0; }
 
+  std::string describe() const {
+    const double edge_rad = kTheta1 + kTheta3 + kTheta5;
+    return pp::text_of(
+        "field of view: %.6g deg across the dome's circle (%.6g deg from the axis at its edge); "
+        "no rays more than 45 deg below the axis\n",
+        2 * edge_rad / pp::kRadiansPerDegree, edge_rad / pp::kRadiansPerDegree);
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     const pp::ImagePoint p = image_.point(s);
     double x = 2 * p.x0, y = 2 * p.y0;

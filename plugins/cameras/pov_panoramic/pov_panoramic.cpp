@@ -38,6 +38,13 @@ class PovPanoramic {
 
   uint32_t needs() const { return 0; }
 
+  std::string describe() const {
+    return pp::text_of(
+        "field of view: 180 deg across (longitude), latitudes up to +-90 deg as heights tan(m) on "
+        "a cylinder; right : up : direction = %.6g : %.6g : %.6g\n",
+        right_, up_, direction_);
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     constexpr double kPi = std::numbers::pi;
     const pp::ImagePoint p = image_.point(s);

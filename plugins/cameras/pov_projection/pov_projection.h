@@ -15,8 +15,10 @@
 #include <filmback/plugin_sdk.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace fb::pov_projection {
 
@@ -117,6 +119,14 @@ class PovImage {
  private:
   double width_px_, height_px_, near_m_, far_m_;
 };
+
+// printf into a string: the plugins' describe() lines for `filmback info`.
+template <typename... Args>
+std::string text_of(const char* format, Args... args) {
+  char text[256];
+  std::snprintf(text, sizeof text, format, args...);
+  return text;
+}
 
 // The ray at polar angle theta from D^ in the image direction (u, v), r = |(u, v)| > 0 (or any
 // direction when theta is 0): fisheye and omnimax. POV-Ray takes the image angle phi as asin(v/r)

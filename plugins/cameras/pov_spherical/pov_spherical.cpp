@@ -35,6 +35,12 @@ class PovSpherical {
 
   uint32_t needs() const { return 0; }
 
+  std::string describe() const {
+    const double h_deg = h_rad_ / pp::kRadiansPerDegree, v_deg = v_rad_ / pp::kRadiansPerDegree;
+    return pp::text_of("field of view: %.6g deg across, %.6g deg up; %.6g x %.6g deg a pixel\n",
+                       h_deg, v_deg, h_deg / image_.width_px(), v_deg / image_.height_px());
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     const pp::ImagePoint p = image_.point(s);
     const double h = p.x0 * h_rad_, v = p.y0 * v_rad_;

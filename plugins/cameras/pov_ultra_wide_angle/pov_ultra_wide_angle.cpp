@@ -22,6 +22,11 @@ class PovUltraWideAngle {
 
   uint32_t needs() const { return 0; }
 
+  std::string describe() const {
+    return pp::text_of("field of view: %.6g deg across, %.6g deg up\n",
+                       across_rad_ / pp::kRadiansPerDegree, up_rad_ / pp::kRadiansPerDegree);
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     const pp::ImagePoint p = image_.point(s);
     const double a = p.x0 * across_rad_, b = p.y0 * up_rad_;
