@@ -123,6 +123,22 @@ inline ParaxialLens paraxial_lens(const LensPrescription& lens) {
   return p;
 }
 
+// The lens with its aperture stop closed to f/`fstop` (0: left open); throws std::invalid_argument
+// for an f-number below the lens' own. While the stop limits the axial beam the entrance pupil
+// scales with it, so the stop's diameter for f/N is 2 (f / 2N) h, h the axial ray's height at the
+// stop per unit height in front (ParaxialLens::stop_height_per_height).
+inline LensPrescription stopped_down(LensPrescription lens, const ParaxialLens& open,
+                                     double fstop) {
+  if (fstop == 0) return lens;
+  if (fstop < open.fnumber * (1 - 1e-9))
+    throw std::invalid_argument("fstop " + std::to_string(fstop) + ": the lens opens to f/" +
+                                std::to_string(open.fnumber) + " at most");
+  LensInterface& stop = lens[stop_index(lens)];
+  stop.aperture_diameter_mm =
+      std::min(stop.aperture_diameter_mm, open.efl_mm / fstop * open.stop_height_per_height);
+  return lens;
+}
+
 // ------------------------------------------------------------------ placing the film
 //
 // With the film at distance b behind the rear vertex, positions along +z (lens space): rear
@@ -191,12 +207,6 @@ class LensStack {
       if (!refract(ray.direction, normal, n_from / n_to)) return false;
     }
     return true;
-  }
-
-  // Shrinks the aperture stop to `diameter_mm` (never opens it).
-  void close_stop(double diameter_mm) {
-    LensInterface& stop = lens_[stop_index(lens_)];
-    stop.aperture_diameter_mm = std::min(stop.aperture_diameter_mm, diameter_mm);
   }
 
  private:

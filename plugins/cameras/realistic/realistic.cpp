@@ -47,21 +47,6 @@ constexpr auto kLens = fb::param<const char*>(kParams, "lens");
 constexpr auto kFstop = fb::param<double>(kParams, "fstop");
 constexpr auto kFocusDistance = fb::param<double>(kParams, "focus_distance_m");
 
-// The lens' prescription with its stop closed to `fstop` (0: left open). The paraxial entrance
-// pupil scales with the stop when the stop limits the axial beam; the stop's diameter for f/N is
-// then 2 (f / 2N) h, h the axial ray's height at the stop per unit height in front.
-fb::LensPrescription stopped_down(fb::LensPrescription lens, const fb::ParaxialLens& open,
-                                  double fstop) {
-  if (fstop == 0) return lens;
-  if (fstop < open.fnumber * (1 - 1e-9))
-    throw std::invalid_argument("fstop " + std::to_string(fstop) + ": the lens opens to f/" +
-                                std::to_string(open.fnumber) + " at most");
-  fb::LensInterface& stop = lens[fb::stop_index(lens)];
-  stop.aperture_diameter_mm =
-      std::min(stop.aperture_diameter_mm, open.efl_mm / fstop * open.stop_height_per_height);
-  return lens;
-}
-
 class Realistic {
  public:
   Realistic(const fb_value* values, const fb_camera_setup& s)
@@ -128,7 +113,7 @@ class Realistic {
       throw std::invalid_argument("the realistic camera needs a lens file: lens=PATH");
     const fb::LensPrescription open_lens = fb::read_lens_file(path);
     const fb::ParaxialLens open = fb::paraxial_lens(open_lens);
-    const fb::LensPrescription lens = stopped_down(open_lens, open, kFstop(values));
+    const fb::LensPrescription lens = fb::stopped_down(open_lens, open, kFstop(values));
     paraxial_ = fb::paraxial_lens(lens);
     const double focus_mm = kFocusDistance(values) * 1e3;
     if (!(focus_mm > paraxial_.efl_mm * 1.001))
