@@ -24,7 +24,9 @@
 #include <filmback/plugin_sdk.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <string>
 
 #include "exit_pupil.h"
 
@@ -72,6 +74,27 @@ class Realistic {
 
   uint32_t needs() const { return FB_CAMERA_NEEDS_LENS; }
 
+  // The lens' first-order numbers for `filmback info` (fb_camera_api::describe), lines
+  // "name: value unit".
+  std::string describe() const {
+    const fb::ParaxialLens& p = paraxial_;
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  "lens file: %s\n"
+                  "effective focal length: %.6g mm\n"
+                  "back focal distance: %.6g mm (rear vertex to focal point)\n"
+                  "front focal distance: %.6g mm (front vertex to focal point)\n"
+                  "f-number: %.4g (the lens' own: %.4g)\n"
+                  "entrance pupil diameter: %.6g mm\n"
+                  "exit pupil: %.6g mm in front of the rear vertex\n"
+                  "film: %.6g mm behind the rear vertex (%.6g mm front vertex to film)\n"
+                  "working f-number at the film's centre: %.4g (from E / L = pi / 4N^2)\n",
+                  lens_path_.c_str(), p.efl_mm, p.bfl_mm, p.ffd_mm, p.fnumber, open_fnumber_,
+                  p.entrance_pupil_diameter_mm, p.exit_pupil_from_rear_mm, lens_.rear_z_mm(),
+                  lens_.front_z_mm(), working_fnumber_);
+    return text;
+  }
+
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     // The view plane's point at unit depth, as mm on the sensor, mirrored onto the film.
     const double x = (s.film_x - plane_.cx) / plane_.fx, y = -(s.film_y - plane_.cy) / plane_.fy;
@@ -113,6 +136,8 @@ class Realistic {
       throw std::invalid_argument("the realistic camera needs a lens file: lens=PATH");
     const fb::LensPrescription open_lens = fb::read_lens_file(path);
     const fb::ParaxialLens open = fb::paraxial_lens(open_lens);
+    lens_path_ = path;
+    open_fnumber_ = open.fnumber;
     const fb::LensPrescription lens = fb::stopped_down(open_lens, open, kFstop(values));
     paraxial_ = fb::paraxial_lens(lens);
     const double focus_mm = kFocusDistance(values) * 1e3;
@@ -162,6 +187,8 @@ class Realistic {
   fb::ViewPlane plane_;
   double sensor_mm_per_unit_;  // sensor mm per unit of the view plane at unit depth
   double near_m_, far_m_;
+  std::string lens_path_;
+  double open_fnumber_ = 0;
   fb::ParaxialLens paraxial_{};
   double principal_z_mm_ = 0;  // H, from the film
   fb::LensStack lens_;
