@@ -196,7 +196,7 @@ class LensStack {
       } else if (!hit_sphere(ray, vertex_z_mm_[i] - e.radius_mm, e.radius_mm, t, normal)) {
         return false;
       }
-      if (!(t > 0)) return false;
+      if (!(t >= 0)) return false;  // 0: an interface in contact with the previous one
       const Vec3d p = ray.origin + ray.direction * t;
       const double r = e.aperture_diameter_mm / 2;
       if (p.x * p.x + p.y * p.y > r * r) return false;

@@ -51,8 +51,8 @@ inline bool is_blank(char c) {
 // The interfaces of a lens file's text; `name` (the file) prefixes every error.
 inline LensPrescription parse_lens_prescription(std::string_view text, std::string_view name) {
   using lens_detail::fail_at;
-  constexpr const char* kColumns[] = {"curvature radius (mm)", "thickness (mm)",
-                                      "index of refraction", "aperture diameter (mm)"};
+  constexpr const char* kColumns[] = {"curvature radius, mm", "thickness, mm",
+                                      "index of refraction", "aperture diameter, mm"};
   if (text.size() > kMaxLensFileBytes)
     fail_at(name, 1, 1,
             "a lens file holds at most " + std::to_string(kMaxLensFileBytes) + " bytes");
