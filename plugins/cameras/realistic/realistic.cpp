@@ -141,12 +141,12 @@ class Realistic {
     const fb::LensPrescription lens = fb::stopped_down(open_lens, open, kFstop(values));
     paraxial_ = fb::paraxial_lens(lens);
     const double focus_mm = kFocusDistance(values) * 1e3;
-    if (!(focus_mm > paraxial_.efl_mm * 1.001))
+    if (!(focus_mm > paraxial_.efl_mm))
       throw std::invalid_argument("focus distance " + std::to_string(focus_mm * 1e-3) +
                                   " m is not beyond the lens' focal length " +
                                   std::to_string(paraxial_.efl_mm) + " mm");
     const double back_mm = fb::back_distance_for_focus_mm(paraxial_, focus_mm);
-    if (!(back_mm > 0))
+    if (!(back_mm > 0 && std::isfinite(back_mm)))
       throw std::invalid_argument(
           "the lens' rear focal point lies inside it: no film fits behind it");
     principal_z_mm_ = fb::front_principal_z_mm(paraxial_, back_mm);

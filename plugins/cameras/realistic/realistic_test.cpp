@@ -83,9 +83,8 @@ TEST(LensOptics, TheDoubleGaussIsAnFTwoLensAndItsStopCloses) {
 // Focusing moves the film: an object point at distance D from the front principal point, traced
 // exactly through a small aperture, meets the film at the axis.
 TEST(LensOptics, FocusingPutsTheFilmWhereAnAxialPointImages) {
-  const LensPrescription lens =
-      stopped_down(read_lens_file(kLensFolder + "dgauss50.dat"),
-                   paraxial_lens(read_lens_file(kLensFolder + "dgauss50.dat")), 64);
+  const LensPrescription open = read_lens_file(kLensFolder + "dgauss50.dat");
+  const LensPrescription lens = stopped_down(open, paraxial_lens(open), 64);
   const ParaxialLens p = paraxial_lens(lens);
   for (const double focus_mm : {500.0, 2000.0, 1e5}) {
     const double back = back_distance_for_focus_mm(p, focus_mm);
