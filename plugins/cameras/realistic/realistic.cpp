@@ -52,18 +52,12 @@ constexpr auto kFocusDistance = fb::param<double>(kParams, "focus_distance_m");
 class Realistic {
  public:
   Realistic(const fb_value* values, const fb_camera_setup& s)
-      : plane_(fb::view_plane(s)),
+      : plane_(checked_view_plane(s)),
         sensor_mm_per_unit_(s.focal_length_mm),
         near_m_(s.clip_near_m),
         far_m_(s.clip_far_m),
         lens_(placed(values)),
         pupil_(lens_, film_radius_mm(s)) {
-    if (s.projection != FB_PROJECTION_PERSPECTIVE)
-      throw std::invalid_argument("a realistic lens needs a perspective projection");
-    if (!(s.focal_length_mm > 0) || !(near_m_ >= 0) || !(far_m_ > near_m_))
-      throw std::invalid_argument("focal length and clip range must be positive and non-empty");
-    if (const char* problem = fb::view_plane_problem(plane_, s))
-      throw std::invalid_argument(problem);
     const double centre = centre_irradiance_per_radiance();
     if (!(centre > 0))
       throw std::invalid_argument(std::string(kLens(values)) +
@@ -129,6 +123,18 @@ class Realistic {
   }
 
  private:
+  // The shot's view plane, checked before the lens is read and traced.
+  static fb::ViewPlane checked_view_plane(const fb_camera_setup& s) {
+    if (s.projection != FB_PROJECTION_PERSPECTIVE)
+      throw std::invalid_argument("a realistic lens needs a perspective projection");
+    if (!(s.focal_length_mm > 0) || !(s.clip_near_m >= 0) || !(s.clip_far_m > s.clip_near_m))
+      throw std::invalid_argument("focal length and clip range must be positive and non-empty");
+    const fb::ViewPlane plane = fb::view_plane(s);
+    if (const char* problem = fb::view_plane_problem(plane, s))
+      throw std::invalid_argument(problem);
+    return plane;
+  }
+
   // Parses the lens, closes its stop, and moves the film to focus (lens_optics.h).
   fb::LensStack placed(const fb_value* values) {
     const char* path = kLens(values);
