@@ -52,8 +52,8 @@ double mean_square_difference(const Image& a, const Image& b) {
 // The light collected is checked apart, against a uniform background, where the thin lens's
 // pixels are exact.
 TEST(RealisticLens, AThinElementRendersTheThinLensImage) {
-  const std::string lens =
-      write_lens("thin_element.dat", "0 0 0 0.2747\n50 0.01 1.5 1\n-50 0 1 1\n");
+  const std::string lens = write_lens("realistic_lens_test_thin_element.dat",
+                                      "0 0 0 0.2747\n50 0.01 1.5 1\n-50 0 1 1\n");
   const ParaxialLens p = paraxial_lens(read_lens_file(lens));
   const Scene scene = load_hard_scene("aperture_f182.gltf");
   RenderOptions thin = test::box_filtered(64, "path:max_depth=0");
@@ -131,7 +131,7 @@ TEST(RealisticLens, AThinElementRendersTheThinLensImage) {
 // Against a uniform background every corner pixel is exactly 0 and no sample is non-finite.
 TEST(RealisticLens, ALensThatVignettesToNothingLeavesTheCornersBlack) {
   const std::string lens =
-      write_lens("vignetting_lens.dat", "40 4 1.5 20\n0 60 0 10\n-1e4 0 1 2\n");
+      write_lens("realistic_lens_test_vignetting.dat", "40 4 1.5 20\n0 60 0 10\n-1e4 0 1 2\n");
   const Scene scene = load_hard_scene("aperture_f182.gltf");
   RenderOptions options = test::box_filtered(16, "path:max_depth=0");
   options.camera_model = "realistic:lens=" + lens;

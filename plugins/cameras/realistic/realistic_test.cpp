@@ -163,7 +163,7 @@ TEST(LensPrescription, BadLinesAreNamedByLineAndColumn) {
 // A lens that passes light only near the axis: a 2 mm rear element 60 mm behind the stop. The
 // film's corners see nothing: weight 0 and finite rays, never NaN; the centre sees light.
 TEST(RealisticCamera, ALensThatVignettesToNothingGivesBlackCorners) {
-  const std::string path = ::testing::TempDir() + "vignetting_lens.dat";
+  const std::string path = ::testing::TempDir() + "realistic_test_vignetting_lens.dat";
   std::ofstream(path) << "40 4 1.5 20\n0 60 0 10\n-1e4 0 1 2\n";
   PhysicalCamera physical;
   physical.focal_length_mm = 50;
@@ -192,11 +192,15 @@ TEST(RealisticCamera, ALensThatVignettesToNothingGivesBlackCorners) {
     EXPECT_EQ(light(x, y), 0) << x << "," << y;
 }
 
-TEST(RealisticCamera, NeedsALensFile) {
+TEST(RealisticCamera, NeedsALensFileAndAPerspectiveShot) {
   PhysicalCamera physical;
   auto library = test::loader().load(FB_KIND_CAMERA, "realistic");
   EXPECT_THROW(CameraInstance(library, BoundParams(library->descriptor(), {}),
                               make_camera_setup(physical, 10, 10)),
+               std::runtime_error);
+  physical.projection = FB_PROJECTION_ORTHOGRAPHIC;
+  const BoundParams lens(library->descriptor(), {{"lens", kLensFolder + "dgauss50.dat"}});
+  EXPECT_THROW(CameraInstance(library, lens, make_camera_setup(physical, 10, 10)),
                std::runtime_error);
 }
 
