@@ -192,6 +192,33 @@ TEST(RealisticCamera, ALensThatVignettesToNothingGivesBlackCorners) {
     EXPECT_EQ(light(x, y), 0) << x << "," << y;
 }
 
+// The number after "name: " in a camera's description (fb_camera_api::describe), NaN if absent.
+double described(const std::string& lines, const std::string& name) {
+  const size_t at = lines.find(name + ": ");
+  return at == std::string::npos ? NAN : std::strtod(lines.c_str() + at + name.size() + 2, nullptr);
+}
+
+// What `filmback info` prints for the camera: the lens' paraxial numbers, with its stop closed.
+TEST(RealisticCamera, DescribesTheLensFirstOrderNumbers) {
+  const std::string path = kLensFolder + "dgauss50.dat";
+  const LensPrescription lens = read_lens_file(path);
+  const ParaxialLens p = paraxial_lens(lens);
+  PhysicalCamera physical;
+  auto library = test::loader().load(FB_KIND_CAMERA, "realistic");
+  const CameraInstance camera(library,
+                              BoundParams(library->descriptor(), {{"lens", path}, {"fstop", "8"}}),
+                              make_camera_setup(physical, 96, 64));
+  const std::string lines = camera.describe();
+  EXPECT_NEAR(described(lines, "effective focal length"), p.efl_mm, 1e-4) << lines;
+  EXPECT_NEAR(described(lines, "back focal distance"), p.bfl_mm, 1e-4) << lines;
+  EXPECT_NEAR(described(lines, "f-number"), 8, 1e-3) << lines;
+  EXPECT_NEAR(described(lines, "entrance pupil diameter"), p.efl_mm / 8, 1e-4) << lines;
+  // Focused at infinity the film sits at the back focus; the working f-number, from the centre's
+  // irradiance, is the paraxial one up to the pupil's aberrations (1 %).
+  EXPECT_NEAR(described(lines, "film"), p.bfl_mm, 1e-4) << lines;
+  EXPECT_NEAR(described(lines, "working f-number at the film's centre"), 8, 0.08) << lines;
+}
+
 TEST(RealisticCamera, NeedsALensFileAndAPerspectiveShot) {
   PhysicalCamera physical;
   auto library = test::loader().load(FB_KIND_CAMERA, "realistic");
