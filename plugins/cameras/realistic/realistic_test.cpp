@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 
 #include <filmback/lens_optics.h>
 
@@ -158,6 +159,62 @@ TEST(LensPrescription, BadLinesAreNamedByLineAndColumn) {
     long_lens += "1e5 1 1 20\n";
   expect_parse_error(long_lens, "bad.dat:65:1: a lens has at most 64 interfaces");
   EXPECT_THROW(read_lens_file(kLensFolder + "no_such_lens.dat"), std::invalid_argument);
+}
+
+// Mutated lens files (bytes replaced, dropped, repeated; a fixed pseudo-random sequence): the
+// parser accepts or throws std::invalid_argument naming the file, and whatever it accepts has
+// finite paraxial numbers or is refused as such, and traces rays to finite ends or blocks them.
+TEST(LensPrescription, MutatedFilesAreAcceptedOrRefusedCleanly) {
+  std::ifstream in(kLensFolder + "dgauss50.dat");
+  const std::string original((std::istreambuf_iterator<char>(in)), {});
+  const std::string alphabet = "0123456789.-+eE #\n\t nanif,x";
+  uint64_t state = 0x9e3779b97f4a7c15u;
+  const auto next = [&state] {
+    state = state * 6364136223846793005u + 1442695040888963407u;  // Knuth's MMIX LCG
+    return uint32_t(state >> 33);
+  };
+  size_t accepted = 0;
+  for (int round = 0; round < 3000; ++round) {
+    std::string text = original;
+    for (int k = 0, edits = 1 + next() % 4; k < edits; ++k) {
+      const size_t at = next() % text.size();
+      switch (next() % 3) {
+        case 0:
+          text[at] = alphabet[next() % alphabet.size()];
+          break;
+        case 1:
+          text.erase(at, 1 + next() % 8);
+          break;
+        default:
+          text = text.substr(0, at) + text.substr(at, next() % 40) + text.substr(at);
+          break;
+      }
+      if (text.empty()) text.push_back('#');
+    }
+    LensPrescription lens;
+    try {
+      lens = parse_lens_prescription(text, "mutated.dat");
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("mutated.dat:", 0), 0u) << e.what();
+      continue;
+    }
+    ++accepted;
+    ParaxialLens p;
+    try {
+      p = paraxial_lens(lens);
+    } catch (const std::invalid_argument&) {
+      continue;  // no positive power
+    }
+    ASSERT_TRUE(std::isfinite(p.efl_mm) && std::isfinite(p.bfl_mm) && std::isfinite(p.fnumber));
+    const LensStack stack(lens, std::max(p.bfl_mm, 1.0));
+    for (const double h : {0.0, 0.3, 0.9}) {
+      LensRay ray{{h, 0, 0}, normalize(Vec3d{-h, h, stack.rear_z_mm()})};
+      if (stack.trace(ray)) {
+        EXPECT_TRUE(std::isfinite(ray.origin.z) && std::isfinite(ray.direction.z)) << text;
+      }
+    }
+  }
+  EXPECT_GT(accepted, 100u);  // the mutations reach the optics, not only the parser
 }
 
 // A lens that passes light only near the axis: a 2 mm rear element 60 mm behind the stop. The
