@@ -1,9 +1,11 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "core/cmd/commands.h"
+#include "core/render/plugin_choice_loader.h"
 #include "core/render/shot_plan.h"
 #include "core/scene/camera.h"
 #include "importers/import_scene.h"
@@ -167,15 +169,38 @@ std::pair<const char*, const char*> light_quantity(LightType t) {
   }
 }
 
+// What the planned camera plugin derives from its values (fb_camera_api::describe): a panorama's
+// field of view, a lens' focal length and pupil. Loading it also proves the plan renders; when
+// the user named the plugin (--camera-model), its failure is theirs to see as an error.
+void print_camera_description(const ShotPlan& plan, bool typed) {
+  try {
+    const PluginLoader loader(PluginLoader::default_search_dirs());
+    const std::string lines = load_camera(loader, plan)->describe();
+    if (lines.empty()) return;
+    std::cout << "  camera model " << plan.camera_model.name << " says:\n";
+    std::istringstream in(lines);
+    for (std::string line; std::getline(in, line);)
+      std::cout << "    " << line << '\n';
+  } catch (const std::runtime_error& e) {  // a plugin missing or refusing the shot's values
+    if (typed) throw;
+    std::cout << "  camera model " << plan.camera_model.name << " cannot start: " << e.what()
+              << '\n';
+  }
+}
+
 }  // namespace
 
 // What `filmback render` chooses with no other option: the shot plan (core/render/shot_plan.h),
 // each plugin with why it was chosen and each value it is handed with where that came from. A shot
 // no plugin can render says why instead.
-void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
+void print_plan(const Scene& scene, const std::optional<std::string>& camera,
+                const std::optional<std::string>& camera_model) {
   RenderOptions options;
   options.camera = camera;
-  std::cout << "plan (filmback render without options)";
+  options.camera_model = camera_model;
+  std::cout << "plan (filmback render "
+            << (camera_model ? "--camera-model " + *camera_model : std::string("without options"))
+            << ")";
   try {
     const ShotPlan plan = plan_shot(scene, options);
     std::cout << format(": camera '%s', %ux%u, %u spp\n", plan.camera.name.c_str(), plan.width_px,
@@ -188,19 +213,22 @@ void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
         std::cout << "    " << n.key << format(" = %.17g", n.value) << "  from " << n.origin.text()
                   << '\n';
     }
+    print_camera_description(plan, camera_model.has_value());
   } catch (const std::runtime_error& e) {  // InputError or UsageError: the scene as it stands
+    if (camera_model) throw;
     std::cout << ": cannot render: " << e.what() << '\n';
   }
 }
 
 int run_info(const std::filesystem::path& file, const ImportOptions& options,
-             const std::optional<std::string>& only_camera) {
+             const std::optional<std::string>& only_camera,
+             const std::optional<std::string>& camera_model) {
   Diagnostics diagnostics;
   const Scene scene = import_scene(file, options, diagnostics);
   diagnostics.print(std::cerr);
   if (only_camera) {
     print_camera(find_camera(scene, *only_camera), scene.settings);
-    print_plan(scene, only_camera);
+    print_plan(scene, only_camera, camera_model);
     return 0;
   }
   std::cout << "scene " << file.string() << '\n';
@@ -267,7 +295,7 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
   for (const Material& m : scene.materials)
     std::cout << "  " << m.name << "  base colour " << rgb(m.base_color) << ", emission "
               << rgb(m.emission) << " W/sr/m^2" << (m.double_sided ? ", double-sided" : "") << '\n';
-  print_plan(scene, std::nullopt);
+  print_plan(scene, std::nullopt, camera_model);
   return 0;
 }
 
