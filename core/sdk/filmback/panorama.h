@@ -1,0 +1,266 @@
+// Cycles' panoramic projections (Blender's Camera > Panoramic types), the maths the panorama camera
+// plugins share and their tests check (docs/camera-model.md, "Panoramic cameras").
+//
+// Cycles maps a raster position to "film" coordinates (u, v) in [0,1]^2, u rightwards and v
+// upwards, then (u, v) to a direction (Cycles 3.4 kernel/camera/projection.h,
+// panorama_to_direction; Blender 4.x adds central cylindrical and the equiangular cubemap face).
+// Cycles' panorama space looks down +X with +Z up (blender/camera.cpp, blender_camera_matrix);
+// the functions here return directions in filmback's camera space, looking down -Z with +Y up, the
+// two related by (x, y, z)_filmback = (-y, z, -x)_Cycles (mirror ball: (x, z, y)_Cycles). A
+// direction of zero length means "no ray": outside a fisheye's circle, a mirror ball's disc or a
+// polynomial lens's field of view.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "camera_projection.h"
+#include "plugin_abi.h"
+#include "vec.h"
+
+namespace fb::panorama {
+
+constexpr double kPi = std::numbers::pi;
+
+// Film coordinates: u rightwards, v upwards, [0,1]^2 over the image.
+struct Film {
+  double u, v;
+};
+
+// A full (not cropped) render's view plane is [0,1]^2 moved by the lens shift, unscaled
+// (Cycles blender/camera.cpp, blender_camera_viewplane for CAMERA_PANORAMA); Cycles' raster y
+// counts from the bottom row, filmback's from the top.
+inline Film film_from_raster(const fb_camera_setup& s, double x_px, double y_px) {
+  return {x_px / s.image_width_px + s.shift_x, 1.0 - y_px / s.image_height_px + s.shift_y};
+}
+inline Vec2d raster_from_film(const fb_camera_setup& s, Film f) {
+  return {(f.u - s.shift_x) * s.image_width_px, (1.0 - f.v + s.shift_y) * s.image_height_px};
+}
+
+// The sensor's imaged extent in mm, Cycles' sensorwidth/sensorheight for the equisolid and
+// polynomial fisheyes (blender/camera.cpp, blender_camera_sync): the fitted sensor side, and the
+// other side in the image's aspect. The focal length plays no part.
+inline Vec2d imaged_sensor_mm(const fb_camera_setup& s) {
+  const double sensor = fitted_sensor_mm(s);
+  const double aspect = s.image_width_px * s.pixel_aspect / s.image_height_px;
+  return fits_horizontally(s) ? Vec2d{sensor, sensor / aspect} : Vec2d{sensor * aspect, sensor};
+}
+// Why the imaged sensor cannot be used, or nullptr.
+inline const char* imaged_sensor_problem(const fb_camera_setup& s) {
+  const Vec2d mm = imaged_sensor_mm(s);
+  return mm.x > 0 && mm.y > 0 && mm.x < 1e6 && mm.y < 1e6
+             ? nullptr
+             : "the sensor size and pixel aspect must be positive and finite";
+}
+
+// ------------------------------------------------------------------ fisheyes
+//
+// A fisheye maps a point at radius r from the image centre, in the direction (x, y)/r on the film,
+// to the direction at angle theta(r) from the view axis in the same azimuth (Cycles'
+// fisheye_to_direction). At r = 0 Cycles takes the azimuth +y, which matters only when theta(0)
+// is not 0 (a polynomial's k0).
+inline Vec3d fisheye_direction(double theta, double x, double y) {
+  const double r = std::hypot(x, y);
+  const double ex = r > 0 ? x / r : 0.0, ey = r > 0 ? y / r : 1.0;
+  const double s = std::sin(theta);
+  return {ex * s, ey * s, -std::cos(theta)};
+}
+// The angle of `d` (unit) from the view axis, and its azimuth's unit vector on the film.
+inline double off_axis_angle(Vec3d d) { return std::acos(std::fmax(-1.0, std::fmin(1.0, -d.z))); }
+inline Vec2d film_azimuth(Vec3d d) {
+  const double r = std::hypot(d.x, d.y);
+  return r > 0 ? Vec2d{d.x / r, d.y / r} : Vec2d{0.0, 1.0};
+}
+
+// Equidistant: theta = r fov / 2 with r = 1 on the circle inscribed in the film square (an
+// ellipse on a non-square image, as Cycles renders it).
+inline Vec3d equidistant_direction(Film f, double fov_rad) {
+  const double x = 2 * (f.u - 0.5), y = 2 * (f.v - 0.5);
+  const double r = std::hypot(x, y);
+  if (!(r <= 1)) return {};
+  return fisheye_direction(r * fov_rad / 2, x, y);
+}
+inline Film equidistant_film(Vec3d d, double fov_rad) {
+  const double r = off_axis_angle(d) / (fov_rad / 2);
+  const Vec2d e = film_azimuth(d);
+  return {0.5 + r * e.x / 2, 0.5 + r * e.y / 2};
+}
+
+// Equisolid: r = 2 f sin(theta / 2) in mm on the imaged sensor, cut at theta = fov / 2.
+inline Vec3d equisolid_direction(Film f, double lens_mm, double fov_rad, Vec2d sensor_mm) {
+  const double x = (f.u - 0.5) * sensor_mm.x, y = (f.v - 0.5) * sensor_mm.y;
+  const double r = std::hypot(x, y);
+  if (!(r <= 2 * lens_mm * std::sin(fov_rad / 4))) return {};
+  return fisheye_direction(2 * std::asin(std::fmin(1.0, r / (2 * lens_mm))), x, y);
+}
+inline Film equisolid_film(Vec3d d, double lens_mm, Vec2d sensor_mm) {
+  const double r = 2 * lens_mm * std::sin(off_axis_angle(d) / 2);
+  const Vec2d e = film_azimuth(d);
+  return {0.5 + r * e.x / sensor_mm.x, 0.5 + r * e.y / sensor_mm.y};
+}
+
+// Polynomial (Blender's "Fisheye Lens Polynomial", fitted to a real lens by its calibration):
+// theta(r) = -(k0 + k1 r + k2 r^2 + k3 r^3 + k4 r^4), r in mm on the imaged sensor. Cycles cuts
+// at |theta| > fov / 2; filmback also cuts where the mapping folds over (dtheta/dr changes sign,
+// so two radii would image one direction): such pixels are black, where Cycles would repeat the
+// image (docs/camera-model.md).
+struct Polynomial {
+  double k[5];
+  double theta(double r_mm) const {
+    return -(k[0] + r_mm * (k[1] + r_mm * (k[2] + r_mm * (k[3] + r_mm * k[4]))));
+  }
+  double slope(double r_mm) const {
+    return -(k[1] + r_mm * (2 * k[2] + r_mm * (3 * k[3] + r_mm * 4 * k[4])));
+  }
+  // The first radius in (0, r_max_mm] where theta stops being monotonic, else r_max_mm. A fixed
+  // scan (4096 steps) then bisection: bounded work for any coefficients.
+  double fold_radius_mm(double r_max_mm) const {
+    constexpr int kSteps = 4096;
+    const double sign = slope(0) != 0 ? slope(0) : slope(r_max_mm / kSteps);
+    double previous = 0;
+    for (int i = 1; i <= kSteps; ++i) {
+      const double r = r_max_mm * i / kSteps;
+      if (slope(r) * sign > 0) {
+        previous = r;
+        continue;
+      }
+      double lo = previous, hi = r;
+      for (int j = 0; j < 60; ++j) {
+        const double mid = (lo + hi) / 2;
+        (slope(mid) * sign > 0 ? lo : hi) = mid;
+      }
+      return lo;
+    }
+    return r_max_mm;
+  }
+};
+
+// `fold_mm`: Polynomial::fold_radius_mm over the image's corner radius.
+inline Vec3d polynomial_direction(Film f, const Polynomial& p, double fov_rad, double fold_mm,
+                                  Vec2d sensor_mm) {
+  const double x = (f.u - 0.5) * sensor_mm.x, y = (f.v - 0.5) * sensor_mm.y;
+  const double r = std::hypot(x, y);
+  const double theta = p.theta(r);
+  if (!(r <= fold_mm && std::abs(theta) <= fov_rad / 2)) return {};
+  return fisheye_direction(theta, x, y);
+}
+// The inverse on the monotonic part [0, fold_mm], by bisection (theta may decrease with r, as it
+// does for negative k1: the image is then turned half a turn, as in Cycles). The direction's
+// azimuth is flipped when theta is negative there.
+inline Film polynomial_film(Vec3d d, const Polynomial& p, double fold_mm, Vec2d sensor_mm) {
+  const double increasing = p.theta(fold_mm) >= p.theta(0) ? 1.0 : -1.0;
+  const double target = off_axis_angle(d);
+  double lo = 0, hi = fold_mm;
+  for (int j = 0; j < 80; ++j) {
+    const double mid = (lo + hi) / 2;
+    (p.theta(mid) * increasing < target ? lo : hi) = mid;
+  }
+  const double r = (lo + hi) / 2;
+  const Vec2d e = film_azimuth(d);
+  return {0.5 + increasing * r * e.x / sensor_mm.x, 0.5 + increasing * r * e.y / sensor_mm.y};
+}
+
+// ------------------------------------------------------------------ the others
+
+// Mirror ball: the film square is an orthographic view of a unit mirrored sphere seen from behind
+// the camera; a point (x, y) on its disc, of normal n = (x, y, w) with w = sqrt(1 - x^2 - y^2),
+// reflects the view ray +Z into 2 w n - Z (Cycles' mirrorball_to_direction).
+inline Vec3d mirrorball_direction(Film f) {
+  const double x = 2 * f.u - 1, y = 2 * f.v - 1;
+  const double w2 = 1 - x * x - y * y;
+  if (!(w2 >= 0)) return {};
+  const double w = std::sqrt(w2);
+  return {2 * w * x, 2 * w * y, 1 - 2 * w2};
+}
+// The normal halfway between the reflected direction and +Z.
+inline Film mirrorball_film(Vec3d d) {
+  const double scale = 2 * std::sqrt(std::fmax(0.0, (1 - d.z) / 2));
+  const double x = scale > 0 ? d.x / scale : d.x, y = scale > 0 ? d.y / scale : d.y;
+  return {(x + 1) / 2, (y + 1) / 2};
+}
+
+// Equirectangular: longitude (rightwards from the view axis) and latitude (upwards) linear in u
+// and v over Blender's ranges.
+struct AngleRange {
+  double min, max;
+  double at(double t) const { return min + (max - min) * t; }
+  double fraction(double x) const { return (x - min) / (max - min); }
+};
+inline Vec3d equirectangular_direction(Film f, AngleRange longitude, AngleRange latitude) {
+  const double lon = longitude.at(f.u), lat = latitude.at(f.v);
+  return {std::cos(lat) * std::sin(lon), std::sin(lat), -std::cos(lat) * std::cos(lon)};
+}
+inline Film equirectangular_film(Vec3d d, AngleRange longitude, AngleRange latitude) {
+  return {longitude.fraction(std::atan2(d.x, -d.z)),
+          latitude.fraction(std::asin(std::fmax(-1.0, std::fmin(1.0, d.y))))};
+}
+
+// Central cylindrical (Blender 4.0): a unit cylinder around the vertical axis, longitude linear
+// in u and height (divided by the cylinder's radius) linear in v; rays through the cylinder from
+// its centre (Cycles 4.x central_cylindrical_to_direction).
+inline Vec3d central_cylindrical_direction(Film f, AngleRange longitude, AngleRange height) {
+  const double lon = longitude.at(f.u), h = height.at(f.v);
+  return normalize(Vec3d{std::sin(lon), h, -std::cos(lon)});
+}
+inline Film central_cylindrical_film(Vec3d d, AngleRange longitude, AngleRange height) {
+  return {longitude.fraction(std::atan2(d.x, -d.z)), height.fraction(d.y / std::hypot(d.x, d.z))};
+}
+
+// One face of an equiangular cubemap (Blender 4.0; Google's EAC, "Bringing pixels front and
+// center in VR video", 2017): the angle, not the tangent, is linear across the 90 degree face.
+inline Vec3d cubemap_face_direction(Film f) {
+  return normalize(
+      Vec3d{std::tan((f.u - 0.5) * kPi / 2), std::tan((f.v - 0.5) * kPi / 2), -1.0});
+}
+inline Film cubemap_face_film(Vec3d d) {
+  return {0.5 + std::atan2(d.x, -d.z) * 2 / kPi, 0.5 + std::atan2(d.y, -d.z) * 2 / kPi};
+}
+
+// ------------------------------------------------------------------ the camera plugins' frame
+//
+// A panorama plugin is a Mapping: constructed from its parameter values and the setup (throwing
+// std::invalid_argument naming a parameter when they cannot make an image), with
+// `Vec3d direction(Film) const`. Rays start at the camera's origin (Cycles traces panoramas as
+// pinholes unless the shot has an aperture; filmback's plugins have none yet) and are clipped
+// along the ray between clip_near_m and clip_far_m, as Cycles clips panoramas
+// (kernel/camera/camera.h, camera_sample_to_ray). A raster point with no direction gets weight 0.
+template <typename Mapping>
+class Camera {
+ public:
+  Camera(const fb_value* values, const fb_camera_setup& s)
+      : setup_(s), near_(s.clip_near_m), far_(s.clip_far_m), mapping_(values, s) {
+    if (s.projection != FB_PROJECTION_PANORAMIC)
+      throw std::invalid_argument("a panoramic camera needs the panoramic projection");
+    if (s.sensor_model != FB_SENSOR_SIMPLE)
+      throw std::invalid_argument(
+          "a panoramic camera has no aperture to expose through: use the simple sensor");
+    if (!(s.image_width_px > 0 && s.image_height_px > 0) || !(near_ >= 0) || !(far_ > near_))
+      throw std::invalid_argument("the image must have pixels and the clip range be non-empty");
+    if (!(std::abs(s.shift_x) <= 1e3 && std::abs(s.shift_y) <= 1e3))
+      throw std::invalid_argument("the lens shift is not finite or too large");
+  }
+
+  uint32_t needs() const { return 0; }
+
+  void generate(const fb_camera_sample& sample, fb_camera_ray& ray) const {
+    const Vec3d d = mapping_.direction(film_from_raster(setup_, sample.film_x, sample.film_y));
+    const double length = std::sqrt(dot(d, d));
+    const bool none = !(length > 0 && std::isfinite(length));
+    const Vec3d unit = none ? Vec3d{0, 0, -1} : d / length;
+    ray.origin[0] = ray.origin[1] = ray.origin[2] = 0.f;
+    Vec3f(unit).store(ray.direction);
+    ray.t_min = float(near_);
+    ray.t_max = float(far_);
+    ray.weight = none ? 0.f : 1.f;
+  }
+
+  const Mapping& mapping() const { return mapping_; }
+
+ private:
+  fb_camera_setup setup_;
+  double near_, far_;
+  Mapping mapping_;
+};
+
+}  // namespace fb::panorama

@@ -1,0 +1,47 @@
+// Camera `equirectangular`: Cycles' equirectangular panorama. Longitude (rightwards from the view
+// axis) and latitude (upwards) are linear across the image over Blender's ranges (Camera >
+// Panoramic > Latitude/Longitude Min/Max); filmback/panorama.h has the mapping.
+#include <filmback/panorama.h>
+#include <filmback/plugin_sdk.h>
+
+namespace {
+
+namespace pano = fb::panorama;
+
+constexpr double kHalfPi = pano::kPi / 2, kTwoPi = 2 * pano::kPi;
+
+// Blender's RNA names, in radians, with its bounds.
+constexpr fb_param_desc kParams[] = {
+    {"latitude_min_rad", FB_PARAM_FLOAT, "-1.5707963267948966", "rad", nullptr, -kHalfPi - 1e-6,
+     kHalfPi + 1e-6, "latitude of the image's bottom edge"},
+    {"latitude_max_rad", FB_PARAM_FLOAT, "1.5707963267948966", "rad", nullptr, -kHalfPi - 1e-6,
+     kHalfPi + 1e-6, "latitude of the image's top edge"},
+    {"longitude_min_rad", FB_PARAM_FLOAT, "-3.141592653589793", "rad", nullptr, -kTwoPi - 1e-6,
+     kTwoPi + 1e-6, "longitude of the image's left edge, positive rightwards"},
+    {"longitude_max_rad", FB_PARAM_FLOAT, "3.141592653589793", "rad", nullptr, -kTwoPi - 1e-6,
+     kTwoPi + 1e-6, "longitude of the image's right edge"},
+};
+constexpr auto kLatitudeMin = fb::param<double>(kParams, "latitude_min_rad");
+constexpr auto kLatitudeMax = fb::param<double>(kParams, "latitude_max_rad");
+constexpr auto kLongitudeMin = fb::param<double>(kParams, "longitude_min_rad");
+constexpr auto kLongitudeMax = fb::param<double>(kParams, "longitude_max_rad");
+
+struct Equirectangular {
+  pano::AngleRange longitude, latitude;
+  Equirectangular(const fb_value* values, const fb_camera_setup&)
+      : longitude{kLongitudeMin(values), kLongitudeMax(values)},
+        latitude{kLatitudeMin(values), kLatitudeMax(values)} {}
+  fb::Vec3d direction(pano::Film f) const {
+    return pano::equirectangular_direction(f, longitude, latitude);
+  }
+};
+
+constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<Equirectangular>>();
+constexpr fb_plugin kPlugin = fb::describe(
+    "equirectangular", "1.0.0",
+    "Cycles' equirectangular panorama over Blender's latitude and longitude ranges", kParams,
+    kApi);
+
+}  // namespace
+
+FB_PLUGIN_ENTRY(kPlugin)
