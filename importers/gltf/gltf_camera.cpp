@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/util/error.h"
+#include "importers/gltf/gltf_camera_panorama.h"
 #include "importers/gltf/gltf_camera_source.h"
 #include "importers/gltf/gltf_json.h"
 
@@ -261,6 +262,14 @@ SceneCamera read_camera(const tinygltf::Model& model, const tinygltf::Node& node
     camera.origin(V::kClipFar)
         .fail("expected clip_far_m > clip_near_m (" + number_text(phys.clip_near_m) + " m at " +
               camera.origin(V::kClipNear).text() + ")");
+  if (const tinygltf::Value* ext = extension(g, "FILMBACK_blender")) {
+    // A panorama's core camera is a perspective stand-in for other viewers: no yfov to agree with.
+    camera.model = read_panorama(*ext, cpath + ".extensions.FILMBACK_blender", file);
+    if (camera.model) {
+      camera.physical.projection = FB_PROJECTION_PANORAMIC;
+      return camera;
+    }
+  }
   if (!sources.empty() && g.type == "perspective")
     agree_with_yfov(g, cpath, file, decided, core, camera, diagnostics);
   return camera;
