@@ -19,7 +19,7 @@ The projections here are the test's own reading of Cycles' definitions (docs/cam
 import math
 import os
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import bpy
 from mathutils import Euler, Vector
@@ -73,16 +73,38 @@ class PanoShot:
     direction: object  # (u, v, settings, sensor_mm) -> camera-space direction
     markers: tuple  # (name, x, y): raster fractions from the top-left corner
     sensor_mm: tuple = (36.0, 24.0)
+    sensor_fit: str = "AUTO"
+    shift: tuple = (0.0, 0.0)  # fractions of the frame (Cycles adds them to u and v)
     samples: int = 64
     world: float = 0.02  # the world's radiance, each channel
-    options: dict = field(default_factory=dict)
+
+    def imaged_sensor_mm(self):
+        """Cycles' sensorwidth, sensorheight (blender/camera.cpp): the fitted side, the other in
+        the frame's aspect."""
+        w, h = self.width_px, self.height_px
+        fit = self.sensor_fit if self.sensor_fit != "AUTO" else "HORIZONTAL" if w > h else "AUTO"
+        if fit == "HORIZONTAL":
+            return (self.sensor_mm[0], self.sensor_mm[0] * h / w)
+        side = self.sensor_mm[1] if fit == "VERTICAL" else self.sensor_mm[0]
+        return (side * w / h, side)
+
+    def look(self, x, y):
+        """The direction raster fraction (x, y) (from the top-left corner) looks in."""
+        return self.direction(x + self.shift[0], 1 - y + self.shift[1], self.settings,
+                              self.imaged_sensor_mm()).normalized()
 
 
 # Fractions of the frame on a circle of radius r (in units of the half-frame) at angle a (deg,
 # counter-clockwise from +x), for markers along a fisheye's rim.
-def on_circle(name, r, a_deg, rx=0.5, ry=0.5):
+def on_circle(name, r, a_deg, rx=0.5, ry=0.5, centre=(0.5, 0.5)):
     a = math.radians(a_deg)
-    return (name, 0.5 + rx * r * math.cos(a), 0.5 - ry * r * math.sin(a))
+    return (name, centre[0] + rx * r * math.cos(a), centre[1] - ry * r * math.sin(a))
+
+
+# The equisolid shot's circle: 11.8 mm on 36 x 24 mm, its centre where the shift puts it (u = x +
+# shift_x, v = 1 - y + shift_y at the film's centre).
+def on_equisolid_circle(name, r, a_deg):
+    return on_circle(name, r, a_deg, 11.8 / 36, 11.8 / 24, (0.5 - 0.06, 0.5 - 0.04))
 
 
 POLYNOMIAL = {"fisheye_fov": 2.2, "fisheye_polynomial_k0": 0.0, "fisheye_polynomial_k1": -0.075,
@@ -106,41 +128,44 @@ SHOTS = {
          on_circle("rim_left", 0.88, 190), on_circle("rim_bottom_right", 0.9, 300),
          on_circle("middle", 0.5, 140), on_circle("inner", 0.35, 250))),
     # 8 mm, 190 degrees on 36 x 24 mm: a circle of radius 11.8 mm inside the frame's height.
+    # Shifted by (0.06, -0.04) of the frame: the circle's centre moves left and up.
     "fisheye_equisolid": PanoShot(
         96, 64, "FISHEYE_EQUISOLID", "fisheye_equisolid",
         {"fisheye_lens": 8.0, "fisheye_fov": math.radians(190)},
         lambda u, v, s, mm: equisolid(u, v, s, mm),
-        (("centre", 0.5, 0.5), on_circle("rim_right", 0.92, 5, 11.8 / 36, 11.8 / 24),
-         on_circle("rim_top", 0.9, 80, 11.8 / 36, 11.8 / 24),
-         on_circle("rim_left", 0.9, 200, 11.8 / 36, 11.8 / 24),
-         on_circle("middle", 0.55, 300, 11.8 / 36, 11.8 / 24))),
+        (on_equisolid_circle("centre", 0.0, 0), on_equisolid_circle("rim_right", 0.92, 5),
+         on_equisolid_circle("rim_top", 0.85, 80), on_equisolid_circle("rim_left", 0.9, 200),
+         on_equisolid_circle("middle", 0.55, 300)),
+        shift=(0.06, -0.04)),
     # The whole sphere in a disc: the rim is behind the camera.
     "mirrorball": PanoShot(
         64, 64, "MIRRORBALL", "mirrorball", {}, lambda u, v, s, _: mirrorball(u, v, s),
         (("centre", 0.5, 0.5), on_circle("side_right", 0.7, 20), on_circle("side_top", 0.7, 110),
          on_circle("rim_left", 0.85, 185), on_circle("rim_bottom", 0.85, 280))),
-    # A calibrated-looking lens: theta = 0.075 r - 4e-5 r^3 (mm), cut at 126 degrees.
+    # A calibrated-looking lens: theta = 0.075 r - 4e-5 r^3 (mm), cut at 126 degrees; the sensor's
+    # 20 mm height spans the frame (fit VERTICAL), so 30 mm its width.
     "fisheye_polynomial": PanoShot(
         96, 64, "FISHEYE_LENS_POLYNOMIAL", "fisheye_polynomial", POLYNOMIAL,
         lambda u, v, s, mm: polynomial(u, v, s, mm),
         (("centre", 0.5, 0.5), ("right", 0.95, 0.45), ("top_left", 0.12, 0.12),
-         ("bottom", 0.4, 0.94), ("middle", 0.7, 0.7))),
+         ("bottom", 0.4, 0.94), ("middle", 0.7, 0.7)),
+        sensor_mm=(36.0, 20.0), sensor_fit="VERTICAL"),
 }
 
 
 def pixel_pitch_rad(shot, x, y):
     """The angle a pixel spans around raster fraction (x, y), the mean of its two sides."""
-    def direction(fx, fy):
-        return shot.direction(fx, 1 - fy, shot.settings, shot.sensor_mm).normalized()
-    d = direction(x, y)
-    return (d.angle(direction(x + 1 / shot.width_px, y)) +
-            d.angle(direction(x, y + 1 / shot.height_px))) / 2
+    d = shot.look(x, y)
+    return (d.angle(shot.look(x + 1 / shot.width_px, y)) +
+            d.angle(shot.look(x, y + 1 / shot.height_px))) / 2
 
 
 def build_camera(scene, shot):
     data = bpy.data.cameras.new("Camera")
     data.type = "PANO"
     data.sensor_width, data.sensor_height = shot.sensor_mm
+    data.sensor_fit = shot.sensor_fit
+    data.shift_x, data.shift_y = shot.shift
     data.clip_start, data.clip_end = 0.1, 200.0
     settings = data if hasattr(data, "panorama_type") else data.cycles  # Blender 4 / 3
     settings.panorama_type = shot.panorama_type
@@ -156,7 +181,7 @@ def build_camera(scene, shot):
 
 def add_marker(camera, shot, index, name, x, y):
     """A sphere 2.5 pixels in angular radius where raster fraction (x, y) looks, 3-12 m away."""
-    direction = shot.direction(x, 1 - y, shot.settings, shot.sensor_mm).normalized()
+    direction = shot.look(x, y)
     distance_m = 3.0 + 1.5 * index
     radius_m = distance_m * math.tan(2.5 * pixel_pitch_rad(shot, x, y))
     location = camera.matrix_world @ (direction * distance_m)
