@@ -36,7 +36,8 @@ constexpr double kLargest = 1e9;
 
 std::string joined(const auto& words) {
   std::string text;
-  for (std::string_view w : words) text.append(text.empty() ? "" : ", ").append(w);
+  for (std::string_view w : words)
+    text.append(text.empty() ? "" : ", ").append(w);
   return text;
 }
 
@@ -54,7 +55,8 @@ std::optional<CameraModel> read_panorama(const tinygltf::Value& blender_camera,
                                  [&](const PanoramaKind& k) { return type && k.kind == *type; });
   if (kind == std::end(kKinds)) {
     std::vector<std::string_view> kinds;
-    for (const PanoramaKind& k : kKinds) kinds.push_back(k.kind);
+    for (const PanoramaKind& k : kKinds)
+      kinds.push_back(k.kind);
     f.fail("type", (type ? "'" + *type + "'" : std::string("absent")) + ", expected one of " +
                        joined(kinds));
   }

@@ -94,9 +94,9 @@ TEST(PanoramaMapping, DirectionsAtPointsOfKnownAngle) {
   expect_direction(pano::mirrorball_direction({0.5, 1.0}), {0, 0, 1}, "mirror ball rim");
   // Polynomial theta = 0.05 r: 90 degrees at r = 10 pi mm.
   const pano::Polynomial linear{{0, -0.05, 0, 0, 0}};
-  expect_direction(pano::polynomial_direction({0.5, 0.5 + 10 * kPi / 24}, linear, kPi, 1e9,
-                                              {36, 24}),
-                   {0, 1, 0}, "polynomial, 90 deg up");
+  expect_direction(
+      pano::polynomial_direction({0.5, 0.5 + 10 * kPi / 24}, linear, kPi, 1e9, {36, 24}), {0, 1, 0},
+      "polynomial, 90 deg up");
   // Cubemap face: 45 degrees at the face's edge; central cylindrical: height 1 on radius 1.
   expect_direction(pano::cubemap_face_direction({1.0, 0.5}), normalize(Vec3d{1, 0, -1}),
                    "face edge");
@@ -113,12 +113,12 @@ TEST(PanoramaMapping, OutsideTheImageCircleThereIsNoDirection) {
   EXPECT_GT(length(pano::equisolid_direction({0.5, 0.0}, 10, kPi, {36, 24})), 0);
   EXPECT_EQ(length(pano::equisolid_direction({0.02, 0.5}, 10, kPi, {36, 24})), 0);
   const pano::Polynomial linear{{0, -0.05, 0, 0, 0}};  // a 90 deg field of view ends at 15.7 mm
-  EXPECT_GT(length(pano::polynomial_direction({0.5 + 15.6 / 36, 0.5}, linear, kPi / 2, 1e9,
-                                              {36, 24})),
-            0);
-  EXPECT_EQ(length(pano::polynomial_direction({0.5 + 15.8 / 36, 0.5}, linear, kPi / 2, 1e9,
-                                              {36, 24})),
-            0);
+  EXPECT_GT(
+      length(pano::polynomial_direction({0.5 + 15.6 / 36, 0.5}, linear, kPi / 2, 1e9, {36, 24})),
+      0);
+  EXPECT_EQ(
+      length(pano::polynomial_direction({0.5 + 15.8 / 36, 0.5}, linear, kPi / 2, 1e9, {36, 24})),
+      0);
 }
 
 TEST(PanoramaMapping, APolynomialThatFoldsOverIsCutAtItsFold) {
@@ -127,12 +127,12 @@ TEST(PanoramaMapping, APolynomialThatFoldsOverIsCutAtItsFold) {
   EXPECT_NEAR(folding.fold_radius_mm(30), 10, 1e-9);
   EXPECT_EQ(folding.fold_radius_mm(8), 8);  // no fold within 8 mm
   const double fold = folding.fold_radius_mm(30);
-  EXPECT_GT(length(pano::polynomial_direction({0.5 + 9.9 / 36, 0.5}, folding, 2 * kPi, fold,
-                                              {36, 24})),
-            0);
-  EXPECT_EQ(length(pano::polynomial_direction({0.5 + 10.1 / 36, 0.5}, folding, 2 * kPi, fold,
-                                              {36, 24})),
-            0);
+  EXPECT_GT(
+      length(pano::polynomial_direction({0.5 + 9.9 / 36, 0.5}, folding, 2 * kPi, fold, {36, 24})),
+      0);
+  EXPECT_EQ(
+      length(pano::polynomial_direction({0.5 + 10.1 / 36, 0.5}, folding, 2 * kPi, fold, {36, 24})),
+      0);
 }
 
 // ------------------------------------------------------------------ the plugins, through the ABI
@@ -160,10 +160,9 @@ fb_camera_ray generate(const CameraInstance& camera, float x, float y) {
   return ray;
 }
 
-const char* const kPlugins[] = {"equirectangular",    "fisheye_equidistant",
-                                "fisheye_equisolid",  "mirrorball",
-                                "fisheye_polynomial", "central_cylindrical",
-                                "equiangular_cubemap_face"};
+const char* const kPlugins[] = {
+    "equirectangular",    "fisheye_equidistant", "fisheye_equisolid",       "mirrorball",
+    "fisheye_polynomial", "central_cylindrical", "equiangular_cubemap_face"};
 
 TEST(PanoramaCameras, EveryRayIsFiniteAndBlackOnesWeighNothing) {
   const fb_camera_setup setup = panoramic_setup(96, 64);
@@ -184,8 +183,8 @@ TEST(PanoramaCameras, EveryRayIsFiniteAndBlackOnesWeighNothing) {
     // Blender's default lens polynomial images at most 25 degrees off the axis on 36 mm, well
     // within its 180 degree cut.
     const std::string n = name;
-    const bool has_circle = n == "fisheye_equidistant" || n == "fisheye_equisolid" ||
-                            n == "mirrorball";
+    const bool has_circle =
+        n == "fisheye_equidistant" || n == "fisheye_equisolid" || n == "mirrorball";
     EXPECT_EQ(black > 0, has_circle) << name << ": " << black << " black samples";
   }
   // The image's centre looks down the view axis; the top edge of an equirectangular image, up.

@@ -32,7 +32,8 @@ const char* const kShots[] = {"equirectangular", "fisheye_equidistant", "fisheye
 // The image with the world's radiance (R+G+B = world) taken off each pixel, so that the world is
 // black and a blob's centroid weighs only its marker's light.
 Image without_world(Image image, double world) {
-  for (float& v : image.pixels) v = std::max(0.f, v - float(world / 3));
+  for (float& v : image.pixels)
+    v = std::max(0.f, v - float(world / 3));
   return image;
 }
 
@@ -69,9 +70,9 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
     GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
                     "`blender` (apt-get install blender) to run the tests against Blender.";
   const std::string name = GetParam();
-  const ShotRenders r = render_shot(*blender, name,
-                                    std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name,
-                                    FILMBACK_PANO_SHOT_PY);
+  const ShotRenders r =
+      render_shot(*blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name,
+                  FILMBACK_PANO_SHOT_PY);
   const auto width = uint32_t(r.shot.number("width_px")),
              height = uint32_t(r.shot.number("height_px"));
   ASSERT_EQ(r.cycles.width, width);
@@ -87,12 +88,14 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
   size_t non_finite = 0, disagree = 0, lit_cycles = 0;
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
-      for (size_t c = 0; c < 3; ++c) non_finite += !std::isfinite(r.filmback.at(x, y, c));
+      for (size_t c = 0; c < 3; ++c)
+        non_finite += !std::isfinite(r.filmback.at(x, y, c));
       lit_cycles += lit(r.cycles, x, y);
       if (lit(r.cycles, x, y) != lit(r.filmback, x, y) && !on_edge(r.cycles, x, y)) {
         ++disagree;
-        ADD_FAILURE() << "pixel (" << x << ", " << y << ") is " << (lit(r.cycles, x, y) ? "" : "not ")
-                      << "lit in Cycles' render and " << (lit(r.filmback, x, y) ? "" : "not ")
+        ADD_FAILURE() << "pixel (" << x << ", " << y << ") is "
+                      << (lit(r.cycles, x, y) ? "" : "not ") << "lit in Cycles' render and "
+                      << (lit(r.filmback, x, y) ? "" : "not ")
                       << "in filmback's, away from the lit region's edge";
       }
     }
@@ -103,12 +106,13 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
   const std::vector<Blob> filmback_blobs = find_blobs(without_world(r.filmback, world), 1e-4);
   EXPECT_EQ(cycles_blobs.size(), r.markers.size()) << "blobs in the Cycles render";
   EXPECT_EQ(filmback_blobs.size(), r.markers.size()) << "blobs in the filmback render";
-  std::printf("Shot %s: %ux%u at %s spp; Blender %.1f s (Cycles %.1f s), filmback %.1f s; %zu of "
-              "%u pixels lit in Cycles' render\n",
-              name.c_str(), width, height, r.shot.text("samples").c_str(), r.blender_s,
-              r.cycles_s, r.filmback_s, lit_cycles, width * height);
-  std::printf("%-18s %9s %9s %8s %8s %8s %7s\n", "marker", "cycles_x", "cycles_y", "dx_px",
-              "dy_px", "|d|_px", "flux");
+  std::printf(
+      "Shot %s: %ux%u at %s spp; Blender %.1f s (Cycles %.1f s), filmback %.1f s; %zu of "
+      "%u pixels lit in Cycles' render\n",
+      name.c_str(), width, height, r.shot.text("samples").c_str(), r.blender_s, r.cycles_s,
+      r.filmback_s, lit_cycles, width * height);
+  std::printf("%-18s %9s %9s %8s %8s %8s %7s\n", "marker", "cycles_x", "cycles_y", "dx_px", "dy_px",
+              "|d|_px", "flux");
   double worst_px = 0;
   for (const Record& marker : r.markers) {
     const std::string& id = marker.text("name");
@@ -117,8 +121,8 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
     const Blob* f = blob_at(filmback_blobs, x, y);
     if (!c || !f) {
       ADD_FAILURE() << id << ": no " << (c ? "filmback" : "Cycles") << " blob within "
-                    << kMatchRadiusPx << " px of where the projection images it (" << x << ", "
-                    << y << ")";
+                    << kMatchRadiusPx << " px of where the projection images it (" << x << ", " << y
+                    << ")";
       continue;
     }
     const double d_px = std::hypot(f->x_px - c->x_px, f->y_px - c->y_px);
@@ -127,9 +131,10 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
                 f->x_px - c->x_px, f->y_px - c->y_px, d_px, f->flux / c->flux);
     EXPECT_LT(d_px, kMaxCentroidErrorPx) << id << ": centroids differ";
   }
-  std::printf("max centroid difference %.4f px (limit %.2f); %zu pixels lit in one render only "
-              "away from the edge\n",
-              worst_px, kMaxCentroidErrorPx, disagree);
+  std::printf(
+      "max centroid difference %.4f px (limit %.2f); %zu pixels lit in one render only "
+      "away from the edge\n",
+      worst_px, kMaxCentroidErrorPx, disagree);
 }
 
 INSTANTIATE_TEST_SUITE_P(Against, BlenderPanorama, testing::ValuesIn(kShots),

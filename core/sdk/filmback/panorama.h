@@ -12,11 +12,14 @@
 #pragma once
 
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <stdexcept>
 
 #include "camera_projection.h"
 #include "plugin_abi.h"
+#include "plugin_sdk.h"
+#include "sampling.h"
 #include "vec.h"
 
 namespace fb::panorama {
@@ -67,7 +70,9 @@ inline Vec3d fisheye_direction(double theta, double x, double y) {
   return {ex * s, ey * s, -std::cos(theta)};
 }
 // The angle of `d` (unit) from the view axis, and its azimuth's unit vector on the film.
-inline double off_axis_angle(Vec3d d) { return std::acos(std::fmax(-1.0, std::fmin(1.0, -d.z))); }
+inline double off_axis_angle(Vec3d d) {
+  return std::acos(std::fmax(-1.0, std::fmin(1.0, -d.z)));
+}
 inline Vec2d film_azimuth(Vec3d d) {
   const double r = std::hypot(d.x, d.y);
   return r > 0 ? Vec2d{d.x / r, d.y / r} : Vec2d{0.0, 1.0};
@@ -210,8 +215,7 @@ inline Film central_cylindrical_film(Vec3d d, AngleRange longitude, AngleRange h
 // One face of an equiangular cubemap (Blender 4.0; Google's EAC, "Bringing pixels front and
 // center in VR video", 2017): the angle, not the tangent, is linear across the 90 degree face.
 inline Vec3d cubemap_face_direction(Film f) {
-  return normalize(
-      Vec3d{std::tan((f.u - 0.5) * kPi / 2), std::tan((f.v - 0.5) * kPi / 2), -1.0});
+  return normalize(Vec3d{std::tan((f.u - 0.5) * kPi / 2), std::tan((f.v - 0.5) * kPi / 2), -1.0});
 }
 inline Film cubemap_face_film(Vec3d d) {
   return {0.5 + std::atan2(d.x, -d.z) * 2 / kPi, 0.5 + std::atan2(d.y, -d.z) * 2 / kPi};
@@ -219,47 +223,136 @@ inline Film cubemap_face_film(Vec3d d) {
 
 // ------------------------------------------------------------------ the camera plugins' frame
 //
+// Cycles traces panoramas with depth of field when the shot has an aperture
+// (kernel/camera/camera.h, camera_sample_panorama): every panorama plugin declares Blender's lens
+// values first in its schema, as thinlens names them, then its own.
+inline constexpr fb_param_desc kLensParams[] = {
+    {"fstop", FB_PARAM_FLOAT, "inf", "f-number", nullptr, 1e-6, HUGE_VAL,
+     "aperture as an f-number N: radius f / 2N with f the shot's focal length; inf: a pinhole"},
+    {"focus_distance_m", FB_PARAM_FLOAT, "inf", "m", nullptr, 1e-6, HUGE_VAL,
+     "distance of the sphere in focus along each ray; inf: focused at infinity"},
+    {"aperture_blades", FB_PARAM_INT, "0", "", nullptr, 0, 64,
+     "0: a round aperture; else a regular polygon of at least 3 blades"},
+    {"aperture_rotation_rad", FB_PARAM_FLOAT, "0", "rad", nullptr, -1e3, 1e3,
+     "rotation of the blades"},
+    {"aperture_ratio", FB_PARAM_FLOAT, "1", "", nullptr, 1e-2, 1e2,
+     "anamorphic bokeh: the aperture's x is divided by it"},
+};
+constexpr size_t kLensParamCount = std::size(kLensParams);
+
+// A plugin's schema: the lens values, then its own (`with_lens(kOwn).params` for fb::describe).
+template <size_t N>
+struct Schema {
+  fb_param_desc params[kLensParamCount + N];
+};
+template <size_t N>
+constexpr Schema<N> with_lens(const fb_param_desc (&own)[N]) {
+  Schema<N> schema{};
+  for (size_t i = 0; i < kLensParamCount; ++i)
+    schema.params[i] = kLensParams[i];
+  for (size_t i = 0; i < N; ++i)
+    schema.params[kLensParamCount + i] = own[i];
+  return schema;
+}
+constexpr Schema<0> with_lens() {
+  Schema<0> schema{};
+  for (size_t i = 0; i < kLensParamCount; ++i)
+    schema.params[i] = kLensParams[i];
+  return schema;
+}
+
+// Cycles' aperture frame around a ray direction d: U is its panorama space's +X axis made
+// perpendicular to d, V = d x U. +X is filmback's -Z, but the mirror ball's +X, through its
+// reflected space (x, z, y), is filmback's +X and the frame's handedness flips.
+struct LensFrame {
+  Vec3d u, v;
+};
+inline LensFrame lens_frame(Vec3d d, bool mirror_ball) {
+  const Vec3d axis = mirror_ball ? Vec3d{1, 0, 0} : Vec3d{0, 0, -1};
+  Vec3d u = axis - d * dot(axis, d);
+  // Along the axis Cycles' frame is 0/0; any perpendicular one serves a round aperture alike.
+  if (!(dot(u, u) > 1e-18)) u = mirror_ball ? Vec3d{0, 0, 1} : Vec3d{1, 0, 0};
+  u = normalize(u);
+  const Vec3d v = cross(d, u);
+  return {u, mirror_ball ? -v : v};
+}
+
 // A panorama plugin is a Mapping: constructed from its parameter values and the setup (throwing
 // std::invalid_argument naming a parameter when they cannot make an image), with
-// `Vec3d direction(Film) const`. Rays start at the camera's origin (Cycles traces panoramas as
-// pinholes unless the shot has an aperture; filmback's plugins have none yet) and are clipped
-// along the ray between clip_near_m and clip_far_m, as Cycles clips panoramas
-// (kernel/camera/camera.h, camera_sample_to_ray). A raster point with no direction gets weight 0.
+// `Vec3d direction(Film) const` (a mirror ball also has `static constexpr bool kMirrorBall`).
+// Rays are clipped along the ray between clip_near_m and clip_far_m, as Cycles clips panoramas
+// (camera_sample_to_ray); a raster point with no direction gets weight 0. With an aperture (of
+// radius f / 2N, f the shot's focal length, as Blender sets Cycles' aperturesize for every camera
+// type), a ray leaves the lens point l = U lx + V ly and passes through the point at the focus
+// distance along the pinhole ray: Cycles focuses panoramas on a sphere, not a plane.
 template <typename Mapping>
 class Camera {
  public:
   Camera(const fb_value* values, const fb_camera_setup& s)
-      : setup_(s), near_(s.clip_near_m), far_(s.clip_far_m), mapping_(values, s) {
+      : setup_(s),
+        near_(s.clip_near_m),
+        far_(s.clip_far_m),
+        focus_m_(kFocus(values)),
+        blades_(uint32_t(kBlades(values))),
+        rotation_(float(kRotation(values))),
+        inverse_ratio_(float(1 / kRatio(values))),
+        mapping_(values, s) {
     if (s.projection != FB_PROJECTION_PANORAMIC)
       throw std::invalid_argument("a panoramic camera needs the panoramic projection");
     if (s.sensor_model != FB_SENSOR_SIMPLE)
-      throw std::invalid_argument(
-          "a panoramic camera has no aperture to expose through: use the simple sensor");
+      throw std::invalid_argument("the physical sensor is not modelled for panoramic cameras");
     if (!(s.image_width_px > 0 && s.image_height_px > 0) || !(near_ >= 0) || !(far_ > near_))
       throw std::invalid_argument("the image must have pixels and the clip range be non-empty");
     if (!(std::abs(s.shift_x) <= 1e3 && std::abs(s.shift_y) <= 1e3))
       throw std::invalid_argument("the lens shift is not finite or too large");
+    if (blades_ == 1 || blades_ == 2)
+      throw std::invalid_argument("an aperture has 0 (round) or at least 3 blades");
+    if (const double fstop = kFstop(values); !std::isinf(fstop)) {
+      if (!(s.focal_length_mm > 0 && s.focal_length_mm < 1e6))
+        throw std::invalid_argument("an aperture needs the shot's focal length (f / 2N)");
+      radius_m_ = s.focal_length_mm * 1e-3 / (2 * fstop);
+    }
   }
 
-  uint32_t needs() const { return 0; }
+  uint32_t needs() const { return radius_m_ > 0 ? FB_CAMERA_NEEDS_LENS : 0; }
 
   void generate(const fb_camera_sample& sample, fb_camera_ray& ray) const {
     const Vec3d d = mapping_.direction(film_from_raster(setup_, sample.film_x, sample.film_y));
     const double length = std::sqrt(dot(d, d));
     const bool none = !(length > 0 && std::isfinite(length));
-    const Vec3d unit = none ? Vec3d{0, 0, -1} : d / length;
-    ray.origin[0] = ray.origin[1] = ray.origin[2] = 0.f;
-    Vec3f(unit).store(ray.direction);
+    Vec3d origin{}, direction = none ? Vec3d{0, 0, -1} : d / length;
+    if (radius_m_ > 0 && !none) {
+      const Vec2f l =
+          sample_aperture({sample.lens_u, sample.lens_v}, blades_, rotation_, inverse_ratio_);
+      const LensFrame frame = lens_frame(direction, is_mirror_ball());
+      origin = (frame.u * double(l.x) + frame.v * double(l.y)) * radius_m_;
+      if (!std::isinf(focus_m_)) direction = normalize(direction * focus_m_ - origin);
+    }
+    Vec3f(origin).store(ray.origin);
+    Vec3f(direction).store(ray.direction);
     ray.t_min = float(near_);
     ray.t_max = float(far_);
     ray.weight = none ? 0.f : 1.f;
   }
 
-  const Mapping& mapping() const { return mapping_; }
-
  private:
+  static constexpr bool is_mirror_ball() {
+    if constexpr (requires { Mapping::kMirrorBall; })
+      return Mapping::kMirrorBall;
+    else
+      return false;
+  }
+  static constexpr auto kFstop = fb::param<double>(kLensParams, "fstop");
+  static constexpr auto kFocus = fb::param<double>(kLensParams, "focus_distance_m");
+  static constexpr auto kBlades = fb::param<int>(kLensParams, "aperture_blades");
+  static constexpr auto kRotation = fb::param<double>(kLensParams, "aperture_rotation_rad");
+  static constexpr auto kRatio = fb::param<double>(kLensParams, "aperture_ratio");
+
   fb_camera_setup setup_;
   double near_, far_;
+  double radius_m_ = 0, focus_m_;
+  uint32_t blades_;
+  float rotation_, inverse_ratio_;
   Mapping mapping_;
 };
 

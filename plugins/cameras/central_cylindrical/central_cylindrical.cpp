@@ -11,7 +11,7 @@ namespace pano = fb::panorama;
 
 // Blender 4.x's central_cylindrical_range_u_min/max (longitude), _v_min/max (height) and
 // central_cylindrical_radius, the last three lengths.
-constexpr fb_param_desc kParams[] = {
+constexpr fb_param_desc kOwnParams[] = {
     {"central_cylindrical_range_u_min_rad", FB_PARAM_FLOAT, "-3.141592653589793", "rad", nullptr,
      -1e3, 1e3, "longitude of the image's left edge, positive rightwards"},
     {"central_cylindrical_range_u_max_rad", FB_PARAM_FLOAT, "3.141592653589793", "rad", nullptr,
@@ -23,11 +23,12 @@ constexpr fb_param_desc kParams[] = {
     {"central_cylindrical_radius_m", FB_PARAM_FLOAT, "1", "m", nullptr, 1e-5, 1e6,
      "the cylinder's radius"},
 };
-constexpr auto kUMin = fb::param<double>(kParams, "central_cylindrical_range_u_min_rad");
-constexpr auto kUMax = fb::param<double>(kParams, "central_cylindrical_range_u_max_rad");
-constexpr auto kVMin = fb::param<double>(kParams, "central_cylindrical_range_v_min_m");
-constexpr auto kVMax = fb::param<double>(kParams, "central_cylindrical_range_v_max_m");
-constexpr auto kRadius = fb::param<double>(kParams, "central_cylindrical_radius_m");
+constexpr auto kSchema = pano::with_lens(kOwnParams);
+constexpr auto kUMin = fb::param<double>(kSchema.params, "central_cylindrical_range_u_min_rad");
+constexpr auto kUMax = fb::param<double>(kSchema.params, "central_cylindrical_range_u_max_rad");
+constexpr auto kVMin = fb::param<double>(kSchema.params, "central_cylindrical_range_v_min_m");
+constexpr auto kVMax = fb::param<double>(kSchema.params, "central_cylindrical_range_v_max_m");
+constexpr auto kRadius = fb::param<double>(kSchema.params, "central_cylindrical_radius_m");
 
 struct CentralCylindrical {
   pano::AngleRange longitude, height;  // height per unit radius
@@ -43,7 +44,7 @@ constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<CentralCylindrical>>(
 constexpr fb_plugin kPlugin =
     fb::describe("central_cylindrical", "1.0.0",
                  "Blender 4's central cylindrical panorama over its longitude and height ranges",
-                 kParams, kApi);
+                 kSchema.params, kApi);
 
 }  // namespace
 

@@ -13,11 +13,12 @@ struct CubemapFace {
   fb::Vec3d direction(pano::Film f) const { return pano::cubemap_face_direction(f); }
 };
 
+constexpr auto kSchema = pano::with_lens();
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<CubemapFace>>();
 constexpr fb_plugin kPlugin = fb::describe(
     "equiangular_cubemap_face", "1.0.0",
     "Blender 4's equiangular cubemap face: 90 degrees with the angle linear across the image",
-    kApi);
+    kSchema.params, kApi);
 
 }  // namespace
 

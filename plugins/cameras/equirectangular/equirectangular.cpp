@@ -11,7 +11,7 @@ namespace pano = fb::panorama;
 constexpr double kHalfPi = pano::kPi / 2, kTwoPi = 2 * pano::kPi;
 
 // Blender's RNA names, in radians, with its bounds.
-constexpr fb_param_desc kParams[] = {
+constexpr fb_param_desc kOwnParams[] = {
     {"latitude_min_rad", FB_PARAM_FLOAT, "-1.5707963267948966", "rad", nullptr, -kHalfPi - 1e-6,
      kHalfPi + 1e-6, "latitude of the image's bottom edge"},
     {"latitude_max_rad", FB_PARAM_FLOAT, "1.5707963267948966", "rad", nullptr, -kHalfPi - 1e-6,
@@ -21,10 +21,11 @@ constexpr fb_param_desc kParams[] = {
     {"longitude_max_rad", FB_PARAM_FLOAT, "3.141592653589793", "rad", nullptr, -kTwoPi - 1e-6,
      kTwoPi + 1e-6, "longitude of the image's right edge"},
 };
-constexpr auto kLatitudeMin = fb::param<double>(kParams, "latitude_min_rad");
-constexpr auto kLatitudeMax = fb::param<double>(kParams, "latitude_max_rad");
-constexpr auto kLongitudeMin = fb::param<double>(kParams, "longitude_min_rad");
-constexpr auto kLongitudeMax = fb::param<double>(kParams, "longitude_max_rad");
+constexpr auto kSchema = pano::with_lens(kOwnParams);
+constexpr auto kLatitudeMin = fb::param<double>(kSchema.params, "latitude_min_rad");
+constexpr auto kLatitudeMax = fb::param<double>(kSchema.params, "latitude_max_rad");
+constexpr auto kLongitudeMin = fb::param<double>(kSchema.params, "longitude_min_rad");
+constexpr auto kLongitudeMax = fb::param<double>(kSchema.params, "longitude_max_rad");
 
 struct Equirectangular {
   pano::AngleRange longitude, latitude;
@@ -37,10 +38,10 @@ struct Equirectangular {
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<Equirectangular>>();
-constexpr fb_plugin kPlugin = fb::describe(
-    "equirectangular", "1.0.0",
-    "Cycles' equirectangular panorama over Blender's latitude and longitude ranges", kParams,
-    kApi);
+constexpr fb_plugin kPlugin =
+    fb::describe("equirectangular", "1.0.0",
+                 "Cycles' equirectangular panorama over Blender's latitude and longitude ranges",
+                 kSchema.params, kApi);
 
 }  // namespace
 

@@ -10,11 +10,12 @@ namespace pano = fb::panorama;
 
 // Blender's Field of View (fisheye_fov), 10 to 360 degrees; the upper bound admits 2 pi rounded
 // to float, as Blender stores it.
-constexpr fb_param_desc kParams[] = {
+constexpr fb_param_desc kOwnParams[] = {
     {"fisheye_fov_rad", FB_PARAM_FLOAT, "3.141592653589793", "rad", nullptr, 1e-3,
      2 * pano::kPi + 1e-6, "full angle the inscribed circle spans, at most 2 pi"},
 };
-constexpr auto kFov = fb::param<double>(kParams, "fisheye_fov_rad");
+constexpr auto kSchema = pano::with_lens(kOwnParams);
+constexpr auto kFov = fb::param<double>(kSchema.params, "fisheye_fov_rad");
 
 struct Equidistant {
   double fov_rad;
@@ -27,7 +28,7 @@ constexpr fb_plugin kPlugin =
     fb::describe("fisheye_equidistant", "1.0.0",
                  "Cycles' equidistant fisheye: the angle from the axis grows linearly with the "
                  "radius, over Blender's field of view",
-                 kParams, kApi);
+                 kSchema.params, kApi);
 
 }  // namespace
 

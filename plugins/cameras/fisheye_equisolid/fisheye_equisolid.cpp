@@ -9,14 +9,15 @@ namespace {
 namespace pano = fb::panorama;
 
 // Blender's fisheye_lens and fisheye_fov (Camera > Panoramic > Fisheye Equisolid).
-constexpr fb_param_desc kParams[] = {
+constexpr fb_param_desc kOwnParams[] = {
     {"fisheye_lens_mm", FB_PARAM_FLOAT, "10.5", "mm", nullptr, 1e-3, 1e4,
      "the fisheye's focal length f in r = 2 f sin(theta / 2)"},
     {"fisheye_fov_rad", FB_PARAM_FLOAT, "3.141592653589793", "rad", nullptr, 1e-3,
      2 * pano::kPi + 1e-6, "full angle imaged, at most 2 pi; beyond it, black"},
 };
-constexpr auto kLens = fb::param<double>(kParams, "fisheye_lens_mm");
-constexpr auto kFov = fb::param<double>(kParams, "fisheye_fov_rad");
+constexpr auto kSchema = pano::with_lens(kOwnParams);
+constexpr auto kLens = fb::param<double>(kSchema.params, "fisheye_lens_mm");
+constexpr auto kFov = fb::param<double>(kSchema.params, "fisheye_fov_rad");
 
 struct Equisolid {
   double lens_mm, fov_rad;
@@ -34,7 +35,7 @@ constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<Equisolid>>();
 constexpr fb_plugin kPlugin = fb::describe(
     "fisheye_equisolid", "1.0.0",
     "Cycles' equisolid fisheye from Blender's fisheye lens, field of view and the shot's sensor",
-    kParams, kApi);
+    kSchema.params, kApi);
 
 }  // namespace
 

@@ -12,7 +12,7 @@ namespace {
 namespace pano = fb::panorama;
 
 // Blender's fisheye_polynomial_k0..k4 (their defaults fit a real lens) and fisheye_fov.
-constexpr fb_param_desc kParams[] = {
+constexpr fb_param_desc kOwnParams[] = {
     {"fisheye_fov_rad", FB_PARAM_FLOAT, "3.141592653589793", "rad", nullptr, 1e-3,
      2 * pano::kPi + 1e-6, "full angle imaged, at most 2 pi; beyond it, black"},
     {"k0", FB_PARAM_FLOAT, "-1.1735143712967577e-05", "rad", nullptr, -1e3, 1e3,
@@ -26,11 +26,12 @@ constexpr fb_param_desc kParams[] = {
     {"k4", FB_PARAM_FLOAT, "-2.6064646454854524e-08", "rad/mm^4", nullptr, -1e3, 1e3,
      "theta's quartic term"},
 };
-constexpr auto kFov = fb::param<double>(kParams, "fisheye_fov_rad");
+constexpr auto kSchema = pano::with_lens(kOwnParams);
+constexpr auto kFov = fb::param<double>(kSchema.params, "fisheye_fov_rad");
 constexpr fb::Param<double> kCoefficients[] = {
-    fb::param<double>(kParams, "k0"), fb::param<double>(kParams, "k1"),
-    fb::param<double>(kParams, "k2"), fb::param<double>(kParams, "k3"),
-    fb::param<double>(kParams, "k4")};
+    fb::param<double>(kSchema.params, "k0"), fb::param<double>(kSchema.params, "k1"),
+    fb::param<double>(kSchema.params, "k2"), fb::param<double>(kSchema.params, "k3"),
+    fb::param<double>(kSchema.params, "k4")};
 
 struct LensPolynomial {
   pano::Polynomial polynomial;
@@ -58,7 +59,7 @@ constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<LensPolynomial>>();
 constexpr fb_plugin kPlugin = fb::describe(
     "fisheye_polynomial", "1.0.0",
     "Cycles' fisheye lens polynomial: theta(r) from Blender's k0..k4, cut at its field of view",
-    kParams, kApi);
+    kSchema.params, kApi);
 
 }  // namespace
 

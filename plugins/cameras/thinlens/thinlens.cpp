@@ -30,21 +30,6 @@ using fb::Vec2f;
 
 constexpr double kPi = std::numbers::pi;
 
-// Uniform point in the regular polygon with `blades` corners on the unit circle at angles
-// rotation + (2k + 1) pi / blades, as Cycles places them (regular_polygon_sample in Cycles'
-// kernel/sample/mapping.h): rotation 0 puts an edge, not a corner, across +x. A wedge chosen by
-// u.x, then a uniform point in its triangle.
-Vec2f sample_polygon(Vec2f u, uint32_t blades, float rotation) {
-  const float wedge_f = u.x * float(blades);
-  const uint32_t wedge = std::min(uint32_t(wedge_f), blades - 1);
-  const float ux = wedge_f - float(wedge);  // the remaining bits of u.x, uniform in [0,1)
-  const float a0 = rotation + float(kPi) * float(2 * wedge + 1) / float(blades);
-  const float a1 = a0 + 2.f * float(kPi) / float(blades);
-  const Vec2f b = fb::sample_uniform_triangle({ux, u.y});  // weights of the two corners
-  return {b.y * std::cos(a0) + (1.f - b.x - b.y) * std::cos(a1),
-          b.y * std::sin(a0) + (1.f - b.x - b.y) * std::sin(a1)};
-}
-
 // Blender's names and units (Camera > Depth of Field); the bounds are the ones Blender and
 // fb_camera_setup's readers accept. A focus distance bounded by infinity admits "inf".
 constexpr fb_param_desc kParams[] = {
@@ -98,9 +83,8 @@ class ThinLens {
     // The pinhole ray's direction at unit depth, and where it meets the focus plane.
     const double x = (s.film_x - plane_.cx) / plane_.fx;
     const double y = -(s.film_y - plane_.cy) / plane_.fy;
-    Vec2f lens = blades_ ? sample_polygon({s.lens_u, s.lens_v}, blades_, rotation_)
-                         : fb::sample_concentric_disk({s.lens_u, s.lens_v});
-    lens.x *= inverse_ratio_;
+    const Vec2f lens =
+        fb::sample_aperture({s.lens_u, s.lens_v}, blades_, rotation_, inverse_ratio_);
     const double lx = lens.x * radius_m_, ly = lens.y * radius_m_;
     // Towards the focus point (x D_f, y D_f, -D_f); at infinite focus, parallel to the chief ray.
     const bool infinite = std::isinf(focus_m_);
