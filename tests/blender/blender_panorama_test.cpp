@@ -2,7 +2,9 @@
 // Blender builds the shot (emissive markers over the frame, near a fisheye's rim, the poles and
 // an equirectangular seam, on a dim uniform world), exports it through filmback's add-on and
 // renders it with Cycles; filmback renders the export with the same 1 px box and sample count.
-//  - each marker's centroid agrees within 0.1 px (blobs.h; the world's radiance taken off first);
+//  - each marker's centroid agrees within 0.1 px and its blob's diameters along x and y (blobs.h:
+//    from its second moments; a defocused marker's blur) within 3 %, the world's radiance taken
+//    off first;
 //  - the lit part of the frame agrees: a pixel black in one render and lit in the other lies on
 //    the edge of Cycles' lit region (a fisheye's circle cuts it), and filmback's pixels are finite.
 // Noise floor (docs/camera-model.md, "Panoramic cameras"): two Cycles renders of a shot with
@@ -21,13 +23,14 @@ namespace fb::test {
 namespace {
 
 constexpr double kMaxCentroidErrorPx = 0.1;
+constexpr double kMaxDiameterError = 0.03;
 // A blob belongs to a marker when its centroid is this close to where the projection images the
 // marker's centre (pano_shot.py); markers are > 8 px apart and their images off-centre by < 1 px.
 constexpr double kMatchRadiusPx = 2.0;
 
 // One per entry of SHOTS in pano_shot.py.
 const char* const kShots[] = {"equirectangular", "fisheye_equidistant", "fisheye_equisolid",
-                              "mirrorball", "fisheye_polynomial"};
+                              "mirrorball",      "fisheye_polynomial",  "equirectangular_dof"};
 
 // The image with the world's radiance (R+G+B = world) taken off each pixel, so that the world is
 // black and a blob's centroid weighs only its marker's light.
@@ -113,7 +116,7 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
       r.filmback_s, lit_cycles, width * height);
   std::printf("%-18s %9s %9s %8s %8s %8s %7s\n", "marker", "cycles_x", "cycles_y", "dx_px", "dy_px",
               "|d|_px", "flux");
-  double worst_px = 0;
+  double worst_px = 0, worst_dia = 0;
   for (const Record& marker : r.markers) {
     const std::string& id = marker.text("name");
     const double x = marker.number("image_x_px"), y = marker.number("image_y_px");
@@ -127,14 +130,21 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
     }
     const double d_px = std::hypot(f->x_px - c->x_px, f->y_px - c->y_px);
     worst_px = std::max(worst_px, d_px);
-    std::printf("%-18s %9.4f %9.4f %+8.4f %+8.4f %8.4f %7.4f\n", id.c_str(), c->x_px, c->y_px,
-                f->x_px - c->x_px, f->y_px - c->y_px, d_px, f->flux / c->flux);
+    const Spread sc = spread(*c), sf = spread(*f);
+    const double cx = disk_diameter_px(sc.xx), cy = disk_diameter_px(sc.yy);
+    const double rx = disk_diameter_px(sf.xx) / cx, ry = disk_diameter_px(sf.yy) / cy;
+    worst_dia = std::max({worst_dia, std::abs(rx - 1), std::abs(ry - 1)});
+    std::printf("%-18s %9.4f %9.4f %+8.4f %+8.4f %8.4f %7.4f | %7.3f %7.4f %7.3f %7.4f\n",
+                id.c_str(), c->x_px, c->y_px, f->x_px - c->x_px, f->y_px - c->y_px, d_px,
+                f->flux / c->flux, cx, rx, cy, ry);
     EXPECT_LT(d_px, kMaxCentroidErrorPx) << id << ": centroids differ";
+    EXPECT_NEAR(rx, 1.0, kMaxDiameterError) << id << ": x diameter filmback / Cycles";
+    EXPECT_NEAR(ry, 1.0, kMaxDiameterError) << id << ": y diameter filmback / Cycles";
   }
   std::printf(
-      "max centroid difference %.4f px (limit %.2f); %zu pixels lit in one render only "
-      "away from the edge\n",
-      worst_px, kMaxCentroidErrorPx, disagree);
+      "max centroid difference %.4f px (limit %.2f), max diameter error %.2f %% (limit %.0f %%); "
+      "%zu pixels lit in one render only away from the edge\n",
+      worst_px, kMaxCentroidErrorPx, 100 * worst_dia, 100 * kMaxDiameterError, disagree);
 }
 
 INSTANTIATE_TEST_SUITE_P(Against, BlenderPanorama, testing::ValuesIn(kShots),

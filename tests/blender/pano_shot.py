@@ -77,6 +77,8 @@ class PanoShot:
     shift: tuple = (0.0, 0.0)  # fractions of the frame (Cycles adds them to u and v)
     samples: int = 64
     world: float = 0.02  # the world's radiance, each channel
+    distances_m: tuple = ()  # of the markers, in order; default 3 m + 1.5 m per marker
+    dof: tuple = ()  # (lens mm, f-number, focus distance m): Cycles' depth of field
 
     def imaged_sensor_mm(self):
         """Cycles' sensorwidth, sensorheight (blender/camera.cpp): the fitted side, the other in
@@ -150,6 +152,15 @@ SHOTS = {
         (("centre", 0.5, 0.5), ("right", 0.95, 0.45), ("top_left", 0.12, 0.12),
          ("bottom", 0.4, 0.94), ("middle", 0.7, 0.7)),
         sensor_mm=(36.0, 20.0), sensor_fit="VERTICAL"),
+    # Depth of field: Blender's aperture f / 2N = 0.2 m (f = 200 mm, f/0.5), focused 3 m away
+    # along each ray; markers from 0.6 m (blurred over about 5 px) to 20 m.
+    "equirectangular_dof": PanoShot(
+        128, 64, "EQUIRECTANGULAR", "equirectangular",
+        {"latitude_min": -1.5, "latitude_max": 1.5, "longitude_min": -3.1, "longitude_max": 3.1},
+        lambda u, v, s, _: equirectangular(u, v, s),
+        (("near", 0.3, 0.4), ("in_focus", 0.5, 0.5), ("nearer", 0.72, 0.62),
+         ("far", 0.12, 0.7), ("farther", 0.88, 0.3)),
+        samples=256, distances_m=(1.0, 3.0, 0.6, 8.0, 20.0), dof=(200.0, 0.5, 3.0)),
 }
 
 
@@ -167,6 +178,9 @@ def build_camera(scene, shot):
     data.sensor_fit = shot.sensor_fit
     data.shift_x, data.shift_y = shot.shift
     data.clip_start, data.clip_end = 0.1, 200.0
+    if shot.dof:
+        data.lens, data.dof.aperture_fstop, data.dof.focus_distance = shot.dof
+        data.dof.use_dof = True
     settings = data if hasattr(data, "panorama_type") else data.cycles  # Blender 4 / 3
     settings.panorama_type = shot.panorama_type
     for key, value in shot.settings.items():
@@ -180,9 +194,9 @@ def build_camera(scene, shot):
 
 
 def add_marker(camera, shot, index, name, x, y):
-    """A sphere 2.5 pixels in angular radius where raster fraction (x, y) looks, 3-12 m away."""
+    """A sphere 2.5 pixels in angular radius where raster fraction (x, y) looks."""
     direction = shot.look(x, y)
-    distance_m = 3.0 + 1.5 * index
+    distance_m = shot.distances_m[index] if shot.distances_m else 3.0 + 1.5 * index
     radius_m = distance_m * math.tan(2.5 * pixel_pitch_rad(shot, x, y))
     location = camera.matrix_world @ (direction * distance_m)
     bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=radius_m,
