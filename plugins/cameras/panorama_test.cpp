@@ -216,5 +216,42 @@ TEST(PanoramaCameras, RefuseOtherProjectionsAndFieldsOfViewBeyond360Degrees) {
   }
 }
 
+// What `filmback info` prints (fb_camera_api::describe), against closed forms.
+TEST(PanoramaCameras, DescribeTheirFieldOfView) {
+  const fb_camera_setup setup = panoramic_setup(96, 64);  // 36 x 24 mm imaged
+  // Equisolid 10 mm, 180 deg: the circle (14.14 mm) fills the width; the height's half (12 mm)
+  // sees 2 asin(12 / 20) from the axis.
+  const std::string equisolid =
+      make_camera("fisheye_equisolid", setup, {{"fisheye_lens_mm", "10"}})->describe();
+  const double vertical_deg = 2 * 2 * std::asin(12.0 / 20) * 180 / kPi;
+  char expected[96];
+  std::snprintf(expected, sizeof expected, "180 deg horizontal x %.6g deg vertical", vertical_deg);
+  EXPECT_NE(equisolid.find(expected), std::string::npos) << equisolid;
+  std::snprintf(expected, sizeof expected, "35 mm equivalent fisheye lens: %.6g mm",
+                10 * 43.27 / std::hypot(36.0, 24.0));  // the 43.27 mm diagonal of 35 mm film
+  EXPECT_NE(equisolid.find(expected), std::string::npos) << equisolid;  // 36 x 24 mm is 35 mm film
+  const std::string equirectangular =
+      make_camera("equirectangular", setup, {{"latitude_min_rad", "0"}})->describe();
+  EXPECT_NE(equirectangular.find("360 deg horizontal (longitude -180 to 180 deg) x 90 deg "
+                                 "vertical (latitude 0 to 90 deg)"),
+            std::string::npos)
+      << equirectangular;
+  // theta = (r - r^3 / 300) / 10 folds at 10 mm, inside the 21.6 mm corner radius; 1 / |k1| = 10.
+  const std::string folding =
+      make_camera(
+          "fisheye_polynomial", setup,
+          {{"k0", "0"}, {"k1", "-0.1"}, {"k2", "0"}, {"k3", "0.00033333333333333332"}, {"k4", "0"}})
+          ->describe();
+  EXPECT_NE(folding.find("folds over at r = 10 mm"), std::string::npos) << folding;
+  EXPECT_NE(folding.find("paraxial focal length: 10 mm"), std::string::npos) << folding;
+  // With the shot's aperture: f / 2N across, at the shot's focal length (50 mm).
+  const std::string lens =
+      make_camera("mirrorball", setup, {{"fstop", "2"}, {"focus_distance_m", "4"}})->describe();
+  EXPECT_NE(lens.find("aperture diameter: 25 mm (f/2 of the 50 mm lens), focused 4 m along each "
+                      "ray"),
+            std::string::npos)
+      << lens;
+}
+
 }  // namespace
 }  // namespace fb

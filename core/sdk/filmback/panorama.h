@@ -11,10 +11,13 @@
 // polynomial lens's field of view.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "camera_projection.h"
 #include "plugin_abi.h"
@@ -221,6 +224,34 @@ inline Film cubemap_face_film(Vec3d d) {
   return {0.5 + std::atan2(d.x, -d.z) * 2 / kPi, 0.5 + std::atan2(d.y, -d.z) * 2 / kPi};
 }
 
+// ------------------------------------------------------------------ what `filmback info` prints
+
+// printf into a std::string, for a plugin's describe() lines.
+template <typename... Args>
+std::string text(const char* format, Args... args) {
+  char line[256];
+  std::snprintf(line, sizeof line, format, args...);
+  return line;
+}
+inline double degrees(double rad) {
+  return rad * 180 / kPi;
+}
+
+// A fisheye's field of view across the frame's width, height and diagonal: twice the angle
+// `theta_deg(r)` at the half side, r in the units `half_sides` are in.
+template <typename Theta>
+std::string fisheye_fov_text(Vec2d half_sides, Theta theta_deg) {
+  return text("field of view: %.6g deg horizontal x %.6g deg vertical, %.6g deg diagonal\n",
+              2 * theta_deg(half_sides.x), 2 * theta_deg(half_sides.y),
+              2 * theta_deg(std::hypot(half_sides.x, half_sides.y)));
+}
+
+// The focal length a lens of `focal_mm` on the imaged sensor would have on 35 mm film for the same
+// diagonal angle (43.27 mm diagonal), as `filmback info` gives a perspective camera's.
+inline double equivalent_35mm_mm(double focal_mm, Vec2d sensor_mm) {
+  return focal_mm * 43.27 / std::hypot(sensor_mm.x, sensor_mm.y);
+}
+
 // ------------------------------------------------------------------ the camera plugins' frame
 //
 // Cycles traces panoramas with depth of field when the shot has an aperture
@@ -279,7 +310,8 @@ inline LensFrame lens_frame(Vec3d d, bool mirror_ball) {
 
 // A panorama plugin is a Mapping: constructed from its parameter values and the setup (throwing
 // std::invalid_argument naming a parameter when they cannot make an image), with
-// `Vec3d direction(Film) const` (a mirror ball also has `static constexpr bool kMirrorBall`).
+// `Vec3d direction(Film) const` and `std::string describe() const` (its field of view, lines for
+// `filmback info`); a mirror ball also has `static constexpr bool kMirrorBall`.
 // Rays are clipped along the ray between clip_near_m and clip_far_m, as Cycles clips panoramas
 // (camera_sample_to_ray); a raster point with no direction gets weight 0. With an aperture (of
 // radius f / 2N, f the shot's focal length, as Blender sets Cycles' aperturesize for every camera
@@ -315,6 +347,17 @@ class Camera {
   }
 
   uint32_t needs() const { return radius_m_ > 0 ? FB_CAMERA_NEEDS_LENS : 0; }
+
+  // The mapping's field of view and what it derives, then the aperture, for `filmback info`.
+  std::string describe() const {
+    std::string lines = mapping_.describe();
+    if (radius_m_ > 0)
+      lines += text(
+          "aperture diameter: %.6g mm (f/%.6g of the %.6g mm lens), focused %s\n", 2e3 * radius_m_,
+          setup_.focal_length_mm / (2e3 * radius_m_), setup_.focal_length_mm,
+          std::isinf(focus_m_) ? "at infinity" : text("%.6g m along each ray", focus_m_).c_str());
+    return lines;
+  }
 
   void generate(const fb_camera_sample& sample, fb_camera_ray& ray) const {
     const Vec3d d = mapping_.direction(film_from_raster(setup_, sample.film_x, sample.film_y));

@@ -38,11 +38,16 @@ struct CentralCylindrical {
   fb::Vec3d direction(pano::Film f) const {
     return pano::central_cylindrical_direction(f, longitude, height);
   }
+  std::string describe() const {
+    return pano::text("field of view: %.6g deg horizontal x %.6g deg vertical\n",
+                      pano::degrees(std::abs(longitude.max - longitude.min)),
+                      pano::degrees(std::abs(std::atan(height.max) - std::atan(height.min))));
+  }
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<CentralCylindrical>>();
 constexpr fb_plugin kPlugin =
-    fb::describe("central_cylindrical", "1.0.0",
+    fb::describe("central_cylindrical", "1.1.0",
                  "Blender 4's central cylindrical panorama over its longitude and height ranges",
                  kSchema.params, kApi);
 

@@ -35,11 +35,20 @@ struct Equirectangular {
   fb::Vec3d direction(pano::Film f) const {
     return pano::equirectangular_direction(f, longitude, latitude);
   }
+  std::string describe() const {
+    using pano::degrees;
+    return pano::text(
+        "field of view: %.6g deg horizontal (longitude %.6g to %.6g deg) x %.6g deg vertical "
+        "(latitude %.6g to %.6g deg)\n",
+        degrees(std::abs(longitude.max - longitude.min)), degrees(longitude.min),
+        degrees(longitude.max), degrees(std::abs(latitude.max - latitude.min)),
+        degrees(latitude.min), degrees(latitude.max));
+  }
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<Equirectangular>>();
 constexpr fb_plugin kPlugin =
-    fb::describe("equirectangular", "1.0.0",
+    fb::describe("equirectangular", "1.1.0",
                  "Cycles' equirectangular panorama over Blender's latitude and longitude ranges",
                  kSchema.params, kApi);
 

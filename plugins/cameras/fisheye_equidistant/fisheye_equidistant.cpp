@@ -21,11 +21,17 @@ struct Equidistant {
   double fov_rad;
   Equidistant(const fb_value* values, const fb_camera_setup&) : fov_rad(kFov(values)) {}
   fb::Vec3d direction(pano::Film f) const { return pano::equidistant_direction(f, fov_rad); }
+  std::string describe() const {
+    return pano::text(
+        "field of view: %.6g deg across the circle inscribed in the frame (an ellipse on a "
+        "non-square frame): %.6g deg horizontal x %.6g deg vertical\n",
+        pano::degrees(fov_rad), pano::degrees(fov_rad), pano::degrees(fov_rad));
+  }
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<Equidistant>>();
 constexpr fb_plugin kPlugin =
-    fb::describe("fisheye_equidistant", "1.0.0",
+    fb::describe("fisheye_equidistant", "1.1.0",
                  "Cycles' equidistant fisheye: the angle from the axis grows linearly with the "
                  "radius, over Blender's field of view",
                  kSchema.params, kApi);

@@ -29,11 +29,25 @@ struct Equisolid {
   fb::Vec3d direction(pano::Film f) const {
     return pano::equisolid_direction(f, lens_mm, fov_rad, sensor_mm);
   }
+  // The image circle (radius 2 f sin(fov / 4)), the angles it spans across the frame, and the
+  // fisheye of the same diagonal angle on 35 mm film.
+  std::string describe() const {
+    const double circle_mm = 2 * lens_mm * std::sin(fov_rad / 4);
+    const auto theta_deg = [&](double r_mm) {
+      return pano::degrees(2 * std::asin(std::min(r_mm, circle_mm) / (2 * lens_mm)));
+    };
+    return pano::fisheye_fov_text({sensor_mm.x / 2, sensor_mm.y / 2}, theta_deg) +
+           pano::text(
+               "image circle: %.6g mm across (%.6g deg) on the imaged %.6g x %.6g mm sensor\n"
+               "35 mm equivalent fisheye lens: %.6g mm (diagonal-based, 43.27 mm)\n",
+               2 * circle_mm, pano::degrees(fov_rad), sensor_mm.x, sensor_mm.y,
+               pano::equivalent_35mm_mm(lens_mm, sensor_mm));
+  }
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<Equisolid>>();
 constexpr fb_plugin kPlugin = fb::describe(
-    "fisheye_equisolid", "1.0.0",
+    "fisheye_equisolid", "1.1.0",
     "Cycles' equisolid fisheye from Blender's fisheye lens, field of view and the shot's sensor",
     kSchema.params, kApi);
 

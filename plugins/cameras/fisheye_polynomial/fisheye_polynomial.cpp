@@ -53,11 +53,28 @@ struct LensPolynomial {
   fb::Vec3d direction(pano::Film f) const {
     return pano::polynomial_direction(f, polynomial, fov_rad, fold_mm, sensor_mm);
   }
+  // The angles across the frame (cut by the fold and the field of view), the paraxial focal
+  // length 1 / |k1| (dr/dtheta at the axis) and its 35 mm equivalent, and where it folds over.
+  std::string describe() const {
+    const double corner_mm = std::hypot(sensor_mm.x, sensor_mm.y) / 2;
+    const auto theta_deg = [&](double r_mm) {
+      return pano::degrees(
+          std::min(std::abs(polynomial.theta(std::min(r_mm, fold_mm))), fov_rad / 2));
+    };
+    std::string lines = pano::fisheye_fov_text({sensor_mm.x / 2, sensor_mm.y / 2}, theta_deg);
+    if (const double k1 = polynomial.k[1]; k1 != 0)
+      lines += pano::text(
+          "paraxial focal length: %.6g mm (1 / |k1|); 35 mm equivalent %.6g mm (diagonal-based)\n",
+          1 / std::abs(k1), pano::equivalent_35mm_mm(1 / std::abs(k1), sensor_mm));
+    if (fold_mm < corner_mm)
+      lines += pano::text("the mapping folds over at r = %.6g mm: black beyond\n", fold_mm);
+    return lines;
+  }
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<LensPolynomial>>();
 constexpr fb_plugin kPlugin = fb::describe(
-    "fisheye_polynomial", "1.0.0",
+    "fisheye_polynomial", "1.1.0",
     "Cycles' fisheye lens polynomial: theta(r) from Blender's k0..k4, cut at its field of view",
     kSchema.params, kApi);
 

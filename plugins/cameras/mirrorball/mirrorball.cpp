@@ -12,12 +12,16 @@ struct MirrorBall {
   static constexpr bool kMirrorBall = true;  // Cycles' aperture frame (panorama.h)
   MirrorBall(const fb_value*, const fb_camera_setup&) {}
   fb::Vec3d direction(pano::Film f) const { return pano::mirrorball_direction(f); }
+  std::string describe() const {
+    return "field of view: 360 deg, the whole sphere in the disc inscribed in the frame (straight "
+           "back at its rim)\n";
+  }
 };
 
 constexpr auto kSchema = pano::with_lens();
 constexpr fb_camera_api kApi = fb::camera_api<pano::Camera<MirrorBall>>();
 constexpr fb_plugin kPlugin = fb::describe(
-    "mirrorball", "1.0.0", "Cycles' mirror ball panorama: the whole sphere", kSchema.params, kApi);
+    "mirrorball", "1.1.0", "Cycles' mirror ball panorama: the whole sphere", kSchema.params, kApi);
 
 }  // namespace
 
