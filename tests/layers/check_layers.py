@@ -26,7 +26,11 @@ SOURCE_SUFFIXES = {".c", ".cc", ".cpp", ".h", ".hpp"}
 # projection, pixel filter and defaults to plugins. The others use the same words in another sense.
 ALLOWED_PLUGIN_NAMES = {
     "core/render/shot_plan.cpp": {"perspective", "orthographic", "thinlens", "gaussian", "box",
-                                  "blackman_harris", "path"},
+                                  "blackman_harris", "path",
+                                  # kModelPlugins: the projections scenes name (Cycles' panoramas)
+                                  "equirectangular", "fisheye_equidistant", "fisheye_equisolid",
+                                  "mirrorball", "fisheye_polynomial", "central_cylindrical",
+                                  "equiangular_cubemap_face"},
     "core/render/shutter.cpp": {"box"},  # the box shutter curve, not the box filter
     "core/cmd/info_command.cpp": {"perspective", "orthographic"},  # the projection it prints
 }
