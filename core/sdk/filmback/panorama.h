@@ -308,6 +308,9 @@ inline LensFrame lens_frame(Vec3d d, bool mirror_ball) {
   return {u, mirror_ball ? -v : v};
 }
 
+// The projection is the plugin's own: a shot of any projection renders through it (a perspective
+// Blender shot with `--camera-model equirectangular`), its sensor, shift and clip range as usual.
+//
 // A panorama plugin is a Mapping: constructed from its parameter values and the setup (throwing
 // std::invalid_argument naming a parameter when they cannot make an image), with
 // `Vec3d direction(Film) const` and `std::string describe() const` (its field of view, lines for
@@ -329,8 +332,6 @@ class Camera {
         rotation_(float(kRotation(values))),
         inverse_ratio_(float(1 / kRatio(values))),
         mapping_(values, s) {
-    if (s.projection != FB_PROJECTION_PANORAMIC)
-      throw std::invalid_argument("a panoramic camera needs the panoramic projection");
     if (s.sensor_model != FB_SENSOR_SIMPLE)
       throw std::invalid_argument("the physical sensor is not modelled for panoramic cameras");
     if (!(s.image_width_px > 0 && s.image_height_px > 0) || !(near_ >= 0) || !(far_ > near_))
