@@ -74,9 +74,11 @@ struct BenchCommand {
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text);
 
 int run_render(RenderCommand& command);
-// `camera`: list only that camera (a UsageError naming the cameras there are when absent).
+// `camera`: list only that camera (a UsageError naming the cameras there are when absent);
+// `camera_model`: plan with that camera plugin, as --camera-model of render.
 int run_info(const std::filesystem::path& scene, const ImportOptions& options,
-             const std::optional<std::string>& camera);
+             const std::optional<std::string>& camera,
+             const std::optional<std::string>& camera_model);
 int run_convert(ConvertCommand& command);
 int run_plugins();
 int run_bench(BenchCommand& command);

@@ -73,11 +73,15 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
   std::cout << "  " << camera.name << "  [" << camera.source << "]  "
             << (camera.model ? camera.model->kind : projection_name(c.projection)) << '\n';
   if (camera.model) {
-    // The sensor is the one panoramas use (Cycles' equisolid and polynomial fisheyes).
-    std::cout << format("    sensor %.2f x %.2f mm, fit %s (%s at %ux%u), shift %.4g, %.4g\n",
-                        c.sensor_width_mm, c.sensor_height_mm, sensor_fit_name(c.sensor_fit),
-                        fitted, width, height, c.shift_x, c.shift_y);
+    // The lens and sensor as the scene has them (Cycles' equisolid and polynomial fisheyes use the
+    // sensor, an aperture the focal length); the field of view is the projection's own, which its
+    // plugin derives under the plan.
+    std::cout << format(
+        "    focal length %.3f mm, sensor %.2f x %.2f mm, fit %s (%s at %ux%u), shift %.4g, %.4g\n",
+        c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm, sensor_fit_name(c.sensor_fit),
+        fitted, width, height, c.shift_x, c.shift_y);
     print_model(*camera.model);
+    std::cout << "    field of view: the projection's, as its camera model says under the plan\n";
   } else if (ortho) {
     std::cout << format("    ortho scale %.6g m, sensor fit %s (%s at %ux%u)\n", c.ortho_scale_m,
                         sensor_fit_name(c.sensor_fit), fitted, width, height);
@@ -187,8 +191,9 @@ std::pair<const char*, const char*> light_quantity(LightType t) {
 }
 
 // What the planned camera plugin derives from its values (fb_camera_api::describe): a panorama's
-// field of view, a lens' focal length and pupil. Loading it also proves the plan renders.
-void print_camera_description(const ShotPlan& plan) {
+// field of view, a lens' focal length and pupil. Loading it also proves the plan renders; when
+// the user named the plugin (--camera-model), its failure is theirs to see as an error.
+void print_camera_description(const ShotPlan& plan, bool typed) {
   try {
     const PluginLoader loader(PluginLoader::default_search_dirs());
     const std::string lines = load_camera(loader, plan)->describe();
@@ -198,6 +203,7 @@ void print_camera_description(const ShotPlan& plan) {
     for (std::string line; std::getline(in, line);)
       std::cout << "    " << line << '\n';
   } catch (const std::runtime_error& e) {  // a plugin missing or refusing the shot's values
+    if (typed) throw;
     std::cout << "  camera model " << plan.camera_model.name << " cannot start: " << e.what()
               << '\n';
   }
@@ -208,10 +214,14 @@ void print_camera_description(const ShotPlan& plan) {
 // What `filmback render` chooses with no other option: the shot plan (core/render/shot_plan.h),
 // each plugin with why it was chosen and each value it is handed with where that came from. A shot
 // no plugin can render says why instead.
-void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
+void print_plan(const Scene& scene, const std::optional<std::string>& camera,
+                const std::optional<std::string>& camera_model) {
   RenderOptions options;
   options.camera = camera;
-  std::cout << "plan (filmback render without options)";
+  options.camera_model = camera_model;
+  std::cout << "plan (filmback render "
+            << (camera_model ? "--camera-model " + *camera_model : std::string("without options"))
+            << ")";
   try {
     const ShotPlan plan = plan_shot(scene, options);
     std::cout << format(": camera '%s', %ux%u, %u spp\n", plan.camera.name.c_str(), plan.width_px,
@@ -224,20 +234,22 @@ void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
         std::cout << "    " << n.key << format(" = %.17g", n.value) << "  from " << n.origin.text()
                   << '\n';
     }
-    print_camera_description(plan);
+    print_camera_description(plan, camera_model.has_value());
   } catch (const std::runtime_error& e) {  // InputError or UsageError: the scene as it stands
+    if (camera_model) throw;
     std::cout << ": cannot render: " << e.what() << '\n';
   }
 }
 
 int run_info(const std::filesystem::path& file, const ImportOptions& options,
-             const std::optional<std::string>& only_camera) {
+             const std::optional<std::string>& only_camera,
+             const std::optional<std::string>& camera_model) {
   Diagnostics diagnostics;
   const Scene scene = import_scene(file, options, diagnostics);
   diagnostics.print(std::cerr);
   if (only_camera) {
     print_camera(find_camera(scene, *only_camera), scene.settings);
-    print_plan(scene, only_camera);
+    print_plan(scene, only_camera, camera_model);
     return 0;
   }
   std::cout << "scene " << file.string() << '\n';
@@ -304,7 +316,7 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
   for (const Material& m : scene.materials)
     std::cout << "  " << m.name << "  base colour " << rgb(m.base_color) << ", emission "
               << rgb(m.emission) << " W/sr/m^2" << (m.double_sided ? ", double-sided" : "") << '\n';
-  print_plan(scene, std::nullopt);
+  print_plan(scene, std::nullopt, camera_model);
   return 0;
 }
 

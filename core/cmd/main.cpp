@@ -138,6 +138,7 @@ CLI::App* add_render_command(CLI::App& app, fb::RenderCommand& render) {
 struct InfoCommand {
   std::filesystem::path scene;
   std::optional<std::string> camera;
+  std::optional<std::string> camera_model;
   std::string resolution;
   fb::ImportOptions import;
 };
@@ -147,6 +148,9 @@ CLI::App* add_info_command(CLI::App& app, InfoCommand& info) {
       app.add_subcommand("info", "print what a scene holds, with derived camera quantities");
   info_cmd->add_option("scene", info.scene, "scene file (.gltf, .glb, .pov)")->required();
   info_cmd->add_option("--camera", info.camera, "list only the camera of this name");
+  info_cmd->add_option("--camera-model", info.camera_model,
+                       "plan with this camera plugin NAME[:k=v,...], as render does, and print "
+                       "what it derives (a lens' focal length and pupils)");
   info_cmd->add_option("--res", info.resolution,
                        "image size WxH the camera is described for (POV-Ray: image_width/height)");
   add_import_options(info_cmd, info.import);
@@ -155,7 +159,7 @@ CLI::App* add_info_command(CLI::App& app, InfoCommand& info) {
 
 int run_info_command(InfoCommand& info) {
   if (!info.resolution.empty()) info.import.resolution = fb::parse_resolution(info.resolution);
-  return fb::run_info(info.scene, info.import, info.camera);
+  return fb::run_info(info.scene, info.import, info.camera, info.camera_model);
 }
 
 CLI::App* add_convert_command(CLI::App& app, fb::ConvertCommand& convert) {

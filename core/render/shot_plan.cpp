@@ -112,6 +112,13 @@ constexpr ModelPlugin kModelPlugins[] = {
     {"fisheye_polynomial", "fisheye_polynomial"},
     {"central_cylindrical", "central_cylindrical"},
     {"equiangular_cubemap_face", "equiangular_cubemap_face"},
+    // POV-Ray 3.7's camera types (importers/pov/pov_camera.cpp)
+    {"pov_fisheye", "pov_fisheye"},
+    {"pov_ultra_wide_angle", "pov_ultra_wide_angle"},
+    {"pov_omnimax", "pov_omnimax"},
+    {"pov_panoramic", "pov_panoramic"},
+    {"pov_cylinder", "pov_cylinder"},
+    {"pov_spherical", "pov_spherical"},
 };
 
 PluginChoice model_plugin(const CameraModel& model, std::vector<NamedNumber> numbers) {

@@ -1,8 +1,11 @@
 #include "importers/pov/pov_camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/util/error.h"
 #include "importers/pov/pov_space.h"
@@ -13,6 +16,10 @@ namespace {
 constexpr double kEpsilon = 1e-10;  // POV-Ray's EPSILON (frame.h), as Parse_Camera uses it
 // Below this the camera model's approximation of a skewed camera is not worth a warning.
 constexpr double kNegligiblePx = 0.01;
+// Nor a projection type's vectors off perpendicular by less than this.
+constexpr double kNegligibleDeg = 1e-6;
+// The converted camera's sensor width: the focal length follows from it and the field of view.
+constexpr double kSensorMm = 36;
 
 // "file:line:column", as the SDL evaluator's messages; nothing for POV-Ray's default camera.
 std::string place(const CameraStatement& s) {
@@ -23,32 +30,17 @@ std::string place(const CameraStatement& s) {
   throw_input(place(s), "", what);
 }
 
-void warn(Diagnostics& diagnostics, const CameraStatement& s, const std::string& what) {
-  diagnostics.warn(located(place(s), "", what));
+// Where the angle is written (the statement, for one built without that place).
+std::string angle_place(const CameraStatement& s) {
+  return s.angle_where.file.empty() ? place(s) : s.angle_where.text();
 }
 
-const char* type_name(const CameraStatement& s) {
-  switch (s.type) {
-    case CameraType::kPerspective:
-      return "perspective";
-    case CameraType::kOrthographic:
-      return "orthographic";
-    case CameraType::kFisheye:
-      return "fisheye";
-    case CameraType::kUltraWideAngle:
-      return "ultra_wide_angle";
-    case CameraType::kOmnimax:
-      return "omnimax";
-    case CameraType::kPanoramic:
-      return "panoramic";
-    case CameraType::kCylinder:
-      return "cylinder";
-    case CameraType::kSpherical:
-      return "spherical";
-    case CameraType::kMeshCamera:
-      return "mesh_camera";
-  }
-  return "unknown";
+[[noreturn]] void fail_angle(const CameraStatement& s, const std::string& what) {
+  throw_input(angle_place(s), "camera angle", what);
+}
+
+void warn(Diagnostics& diagnostics, const CameraStatement& s, const std::string& what) {
+  diagnostics.warn(located(place(s), "", what));
 }
 
 // An orthonormal frame built from three vectors in the order given (Gram-Schmidt): the first keeps
@@ -72,6 +64,30 @@ Frame gram_schmidt(Vec3d a, Vec3d b, Vec3d c) {
 
 }  // namespace
 
+const char* keyword_of(CameraType type) {
+  switch (type) {
+    case CameraType::kPerspective:
+      return "perspective";
+    case CameraType::kOrthographic:
+      return "orthographic";
+    case CameraType::kFisheye:
+      return "fisheye";
+    case CameraType::kUltraWideAngle:
+      return "ultra_wide_angle";
+    case CameraType::kOmnimax:
+      return "omnimax";
+    case CameraType::kPanoramic:
+      return "panoramic";
+    case CameraType::kCylinder:
+      return "cylinder";
+    case CameraType::kSpherical:
+      return "spherical";
+    case CameraType::kMeshCamera:
+      return "mesh_camera";
+  }
+  return "unknown";
+}
+
 PovCameraVectors evaluate_camera(const CameraStatement& s, Diagnostics& diagnostics) {
   PovCameraVectors v;
   v.type = s.type;
@@ -84,11 +100,26 @@ PovCameraVectors evaluate_camera(const CameraStatement& s, Diagnostics& diagnost
   double direction_length = 1;
 
   const bool projective = s.type == CameraType::kPerspective || s.type == CameraType::kOrthographic;
+  if (s.type == CameraType::kCylinder && (s.cylinder_type < 1 || s.cylinder_type > 4))
+    fail(s, "invalid cylinder camera type " + std::to_string(s.cylinder_type) +
+                ": valid are types 1 to 4");
+  v.cylinder_type = s.cylinder_type;
   if (s.angle_deg) {
     const double angle = *s.angle_deg;
-    if (!(angle >= 0)) fail(s, "negative viewing angle");
+    const bool spherical = s.type == CameraType::kSpherical;
+    if (!(angle >= 0))
+      fail_angle(s, spherical ? "negative horizontal angle" : "negative viewing angle");
+    if (s.angle_v_deg && !spherical)
+      fail_angle(s, "a second angle: only a spherical camera takes one (angle H, V)");
+    if (s.angle_v_deg && !(*s.angle_v_deg >= 0)) fail_angle(s, "negative vertical angle");
+    if (spherical) {
+      v.angle_h_deg = angle;
+      v.angle_v_deg = s.angle_v_deg.value_or(angle / 2);
+    } else {
+      v.angle_deg = angle;
+    }
     if (projective) {
-      if (angle >= 180) fail(s, "viewing angle has to be smaller than 180 degrees");
+      if (angle >= 180) fail_angle(s, "viewing angle has to be smaller than 180 degrees");
       // The horizontal field of view across |right|: |direction| = |right| / (2 tan(angle / 2)).
       if (angle > 0) {
         direction_length = length(v.right) / (2 * std::tan(angle * std::numbers::pi / 360));
@@ -144,17 +175,128 @@ PovCameraVectors evaluate_camera(const CameraStatement& s, Diagnostics& diagnost
   return v;
 }
 
+namespace {
+
+[[noreturn]] void fail_degenerate(const CameraStatement& s) {
+  fail(s,
+       "the camera's direction, right and up vectors do not span space (one is zero or they are "
+       "parallel)");
+}
+
+// POV-Ray's camera types beyond perspective and orthographic, each rendered by its camera plugin
+// (plugins/cameras/pov_*: kind "pov_<type>", the parameters below).
+bool is_projection_type(CameraType type) {
+  return type != CameraType::kPerspective && type != CameraType::kOrthographic &&
+         type != CameraType::kMeshCamera;
+}
+
+// The values a projection's plugin takes (its schema), each with the place in the .pov it comes
+// from: the angle where it is written, the lengths of the vectors from the whole statement.
+std::vector<NamedNumber> projection_numbers(const CameraStatement& s, const PovCameraVectors& v) {
+  std::vector<NamedNumber> numbers;
+  const auto add = [&](const char* key, double value, ValueOrigin origin) {
+    numbers.push_back({key, value, std::move(origin)});
+  };
+  const auto length_of = [&](const char* key, const char* vector, Vec3d value) {
+    add(key, length(value),
+        ValueOrigin::from_file(place(s), "camera",
+                               std::string("|") + vector + "| after POV-Ray's camera rules"));
+  };
+  const ValueOrigin angle_origin =
+      s.angle_deg ? ValueOrigin::from_file(angle_place(s), "camera angle")
+                  : ValueOrigin::from_file(place(s), "camera", "POV-Ray's default angle");
+  switch (v.type) {
+    case CameraType::kSpherical:
+      add("angle_h_deg", v.angle_h_deg, angle_origin);
+      add("angle_v_deg", v.angle_v_deg,
+          s.angle_v_deg || !s.angle_deg
+              ? angle_origin
+              : ValueOrigin::from_file(angle_origin.file, angle_origin.path,
+                                       "half the horizontal angle, as POV-Ray"));
+      return numbers;
+    case CameraType::kCylinder:
+      add("variant", v.cylinder_type, ValueOrigin::from_file(place(s), "camera type cylinder"));
+      [[fallthrough]];
+    case CameraType::kFisheye:
+    case CameraType::kUltraWideAngle:
+      add("angle_deg", v.angle_deg, angle_origin);
+      break;
+    default:  // omnimax and panoramic have no angle
+      break;
+  }
+  length_of("right_length_m", "right", v.right);
+  length_of("up_length_m", "up", v.up);
+  if (v.type == CameraType::kPanoramic) length_of("direction_length_m", "direction", v.direction);
+  return numbers;
+}
+
+// A projection type: the camera posed with POV-Ray's normalised right, up and direction as its x,
+// y and -z axes (the frame the plugins build rays in), its values as the plugin's parameters.
+PovCamera convert_projection(const CameraStatement& s, const PovCameraVectors& v,
+                             Diagnostics& diagnostics) {
+  const Vec3d location = world_from_pov(v.location), direction = world_from_pov(v.direction),
+              right = world_from_pov(v.right), up = world_from_pov(v.up);
+  const double span = std::abs(dot(cross(right, up), direction));
+  if (!(is_finite(location) && is_finite(right) && is_finite(up) && is_finite(direction) &&
+        span > 1e-12 * length(right) * length(up) * length(direction)))
+    fail_degenerate(s);
+  // POV-Ray combines the vectors as they are; the camera needs them perpendicular. Direction is
+  // kept, up made perpendicular to it, right to both (keeping its side: a mirror stays one).
+  const Frame f = gram_schmidt(direction, up, right);
+  double off_deg = 0;
+  for (const auto& [a, b] : {std::pair{right, up}, {right, direction}, {up, direction}})
+    off_deg =
+        std::max(off_deg, std::asin(std::min(1.0, std::abs(dot(normalize(a), normalize(b))))) *
+                              180 / std::numbers::pi);
+  if (off_deg > kNegligibleDeg)
+    warn(diagnostics, s,
+         std::string("the camera's direction, right and up vectors are not perpendicular (up to ") +
+             number_text(off_deg) + " degrees off): POV-Ray's " + keyword_of(s.type) +
+             " camera uses them as given, filmback with up and right made perpendicular to "
+             "direction");
+  if (v.focal_blur)
+    warn(diagnostics, s,
+         std::string("unsupported feature 'focal_blur' with a ") + keyword_of(s.type) +
+             " camera: rendered in focus");
+
+  // The spherical camera turns about right and up by the right-hand rule in POV-Ray's space, so a
+  // frame of negative handedness turns both ways round: negating right and up (a half turn about
+  // direction) gives the pov_spherical plugin a frame its one formula fits.
+  const double handedness = dot(cross(v.up, v.direction), v.right);
+  const double turn = v.type == CameraType::kSpherical && handedness < 0 ? -1 : 1;
+  const Vec3d x = f.axis[2] * turn, y = f.axis[1] * turn, z = f.axis[0] * -1.0;
+
+  PovCamera out;
+  SceneCamera& c = out.camera;
+  c.name = "camera";
+  c.source = "camera statement at " + place(s);
+  c.world_from_camera = Transform::from_rows({x.x, y.x, z.x, location.x,  //
+                                              x.y, y.y, z.y, location.y,  //
+                                              x.z, y.z, z.z, location.z,  //
+                                              0, 0, 0, 1});
+  PhysicalCamera& p = c.physical;
+  p.projection = FB_PROJECTION_PANORAMIC;
+  p.sensor_fit = FB_SENSOR_FIT_HORIZONTAL;
+  p.clip_near_m = 0;  // POV-Ray's rays start at the location
+  // The plugin maps raster points itself. The view plane, which only estimates on-screen sizes
+  // for a panorama (subdivision), is the perspective camera of the same vectors.
+  p.sensor_width_mm = kSensorMm;
+  p.sensor_height_mm = kSensorMm * length(v.up) / length(v.right);
+  p.focal_length_mm = kSensorMm * length(v.direction) / length(v.right);
+  c.model = CameraModel{std::string("pov_") + keyword_of(s.type), projection_numbers(s, v),
+                        ValueOrigin::from_file(place(s), "camera type")};
+  return out;  // pixel aspect 1: the plugin spreads the image over the raster as POV-Ray does
+}
+
+}  // namespace
+
 PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32_t width_px,
                          uint32_t height_px, Diagnostics& diagnostics) {
   CameraStatement s;  // no statement: POV-Ray's defaults
   if (statement) s = *statement;
   const PovCameraVectors v = evaluate_camera(s, diagnostics);
+  if (is_projection_type(v.type)) return convert_projection(s, v, diagnostics);
   const bool orthographic = v.type == CameraType::kOrthographic;
-  // The evaluator itself reports mesh_camera and a camera normal (Scene::unsupported).
-  if (!orthographic && v.type != CameraType::kPerspective && v.type != CameraType::kMeshCamera)
-    warn(diagnostics, s,
-         std::string("unsupported feature 'camera type ") + type_name(s) +
-             "': rendered as a perspective camera with the same location, direction, right and up");
 
   const Vec3d location = world_from_pov(v.location), direction = world_from_pov(v.direction),
               right = world_from_pov(v.right), up = world_from_pov(v.up);
@@ -176,9 +318,7 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
   if (!(is_finite(location) && std::isfinite(rx) && std::isfinite(uy) && std::isfinite(dz) &&
         rx > 0 && uy > 0 && dz > 0 &&
         span > 1e-12 * length(right) * length(up) * length(direction)))
-    fail(s,
-         "the camera's direction, right and up vectors do not span space (one is zero or "
-         "they are parallel)");
+    fail_degenerate(s);
 
   PovCamera out;
   SceneCamera& c = out.camera;
@@ -196,8 +336,7 @@ PovCamera convert_camera(const std::optional<CameraStatement>& statement, uint32
   p.clip_near_m = 0;  // POV-Ray's rays start at the location (orthographic: its plane)
   // The image spans rx x uy whatever its size: pixels are rx / uy * H / W wide per unit height.
   out.pixel_aspect = rx / uy * double(height_px) / double(width_px);
-  // 1 POV-Ray unit is 1 m; a 36 mm sensor with the focal length that gives this field of view.
-  constexpr double kSensorMm = 36;
+  // 1 POV-Ray unit is 1 m; a kSensorMm sensor with the focal length that gives this field of view.
   p.sensor_width_mm = kSensorMm;
   p.sensor_height_mm = kSensorMm * uy / rx;
   if (orthographic) {

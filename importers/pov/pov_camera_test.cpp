@@ -6,11 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include <filmback/camera_projection.h>
 
 #include "core/util/error.h"
+#include "importers/pov/pov_importer.h"
 #include "importers/pov/pov_space.h"
 #include "support/pov_rays.h"
 
@@ -110,7 +116,8 @@ TEST(PovCamera, AngleOf180OrMoreIsAnError) {
     evaluate_camera(s, diagnostics);
     FAIL() << "angle 180 was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("scene.pov:4:10: viewing angle"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("scene.pov:4:10: camera angle: viewing angle"),
+              std::string::npos)
         << e.what();
   }
 }
@@ -376,20 +383,277 @@ TEST(PovCamera, FocalBlurIsAThinLensOfRadiusAperture4) {
   EXPECT_FALSE(convert_camera(plain, 160, 120, diagnostics).camera.physical.has_aperture());
 }
 
-TEST(PovCamera, ExoticTypesAreWarnedAndRenderedAsPerspective) {
-  CameraStatement s;
-  s.type = CameraType::kFisheye;
-  s.where = {"scene.pov", 7, 1};
-  s.angle_deg = 180;  // legal for a fisheye, and it does not rescale direction
+// The other camera types (plugins/cameras/pov_*) against POV-Ray's ray formula (support/pov_rays,
+// written from CreateCameraRay in POV-Ray's space): at every raster point of a 13 x 11 grid over
+// the image, edges included, and at points just inside and outside a fisheye's circle, the same
+// weight (traced or not), and for traced ones the same origin and direction. Every ray is finite.
+void expect_projection_rays(const CameraStatement& s, uint32_t width, uint32_t height) {
   Diagnostics diagnostics;
-  const PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  const PovCameraVectors vectors = evaluate_camera(s, diagnostics);
+  const PovCamera camera = convert_camera(s, width, height, diagnostics);
+  EXPECT_EQ(diagnostics.count(), 0u) << diagnostics.messages().front();
+  ASSERT_EQ(camera.camera.physical.projection, uint32_t(FB_PROJECTION_PANORAMIC));
+  const auto plugin = test::make_camera_plugin(camera, width, height);
+  int traced = 0, points = 0;
+  for (int j = 0; j <= 10; ++j)
+    for (int i = 0; i <= 12; ++i) {
+      // The plugin's raster points are floats: POV-Ray's ray at the same float.
+      const double x = float(width * i / 12.0), y = float(height * j / 10.0);
+      const test::WorldRay pov = test::pov_ray(vectors, x, y, width, height);
+      const test::WorldRay ours =
+          test::filmback_ray(*plugin, camera.camera, {float(x), float(y), 0.5f, 0.5f, 0.f});
+      SCOPED_TRACE(testing::Message() << "raster point (" << x << ", " << y << ")");
+      ++points;
+      ASSERT_TRUE(is_finite(ours.origin) && is_finite(ours.direction));
+      EXPECT_NEAR(length(ours.direction), 1, 1e-6);
+      EXPECT_EQ(ours.weight, pov.weight);
+      if (pov.weight == 0 || ours.weight == 0) continue;
+      ++traced;
+      expect_near(ours.direction, pov.direction, 2e-6, "direction");
+      expect_near(ours.origin, pov.origin, 2e-6 * std::max(1.0, length(pov.origin)), "origin");
+    }
+  EXPECT_GT(traced, points / 3) << "a fisheye's circle and more of the image is traced";
+}
+
+CameraStatement projection(CameraType type, std::optional<double> angle = std::nullopt) {
+  CameraStatement s;
+  s.type = type;
+  s.where = {"scene.pov", 7, 1};
+  s.angle_deg = angle;
+  if (angle) s.angle_where = {"scene.pov", 9, 3};
+  return s;
+}
+
+// A camera placed and turned every way the rules allow: look_at with a tilted sky, a rotation and
+// a translation, and vectors of unusual lengths (the types use |right| and |up| differently).
+CameraStatement posed(CameraStatement s) {
+  s.location = {1, 2, -6};
+  s.look_at = Vec3d{0.5, 0, 1};
+  s.sky = {0.2, 1, 0};
+  s.right = {1.6, 0, 0};
+  s.up = {0, 1.1, 0};
+  s.direction = {0, 0, 1.7};
+  s.transform = Transform::translate({0.3, -0.2, 0.5}) * test::pov_rotate({5, 20, -10});
+  return s;
+}
+
+TEST(PovCamera, ProjectionTypesTracePovRaysRays) {
+  const std::pair<CameraType, double> types[] = {
+      {CameraType::kFisheye, 180},   {CameraType::kUltraWideAngle, 150},
+      {CameraType::kOmnimax, 0},     {CameraType::kPanoramic, 0},
+      {CameraType::kSpherical, 360}, {CameraType::kSpherical, 120},
+  };
+  for (const auto& [type, angle] : types) {
+    SCOPED_TRACE(testing::Message() << "type " << int(type) << ", angle " << angle);
+    const CameraStatement s = projection(type, angle > 0 ? std::optional(angle) : std::nullopt);
+    expect_projection_rays(s, 160, 120);
+    expect_projection_rays(posed(s), 160, 120);
+    expect_projection_rays(s, 90, 160);  // portrait: the same vectors spread over other pixels
+  }
+  for (int variant = 1; variant <= 4; ++variant) {
+    SCOPED_TRACE(testing::Message() << "cylinder " << variant);
+    CameraStatement s = projection(CameraType::kCylinder, 200);
+    s.cylinder_type = variant;
+    expect_projection_rays(s, 160, 120);
+    expect_projection_rays(posed(s), 160, 120);
+  }
+}
+
+TEST(PovCamera, ProjectionsKeepTheMirror) {
+  // Negative handedness (cornell.pov's right -x, no look_at): the linear types mirror with the
+  // frame; the spherical camera turns about right and up, and its image is not a mirror image.
+  for (const CameraType type : {CameraType::kFisheye, CameraType::kSpherical, CameraType::kCylinder,
+                                CameraType::kPanoramic}) {
+    SCOPED_TRACE(testing::Message() << "type " << int(type));
+    CameraStatement s = projection(type);
+    s.cylinder_type = 1;
+    s.right = {-1.33, 0, 0};
+    expect_projection_rays(s, 160, 120);
+    s.right = {1.33, 0, 0};  // benchmark.pov's vectors, with look_at: h < 0
+    s.direction = {0, 1, 0};
+    s.sky = {0, 0, 1};
+    s.up = {0, 0, 1};
+    s.location = {0.5, -4, 3};
+    s.look_at = Vec3d{0, 0, 0.5};
+    expect_projection_rays(s, 160, 120);
+  }
+}
+
+TEST(PovCamera, ProjectionValuesNameTheirPlaceInTheScene) {
+  Diagnostics diagnostics;
+  CameraStatement s = projection(CameraType::kFisheye, 180);
+  s.right = {1.5, 0, 0};
+  PovCamera c = convert_camera(s, 160, 120, diagnostics);
+  ASSERT_TRUE(c.camera.model.has_value());
+  EXPECT_EQ(c.camera.model->kind, "pov_fisheye");
+  EXPECT_EQ(c.camera.model->origin.text(), "scene.pov:7:1: camera type");
+  ASSERT_EQ(c.camera.model->numbers.size(), 3u);
+  const NamedNumber& angle = c.camera.model->numbers[0];
+  EXPECT_EQ(angle.key, "angle_deg");
+  EXPECT_EQ(angle.value, 180);
+  EXPECT_EQ(angle.origin.text(), "scene.pov:9:3: camera angle");
+  EXPECT_EQ(c.camera.model->numbers[1].key, "right_length_m");
+  EXPECT_EQ(c.camera.model->numbers[1].value, 1.5);
+  EXPECT_EQ(c.camera.model->numbers[1].origin.text(),
+            "scene.pov:7:1: camera (|right| after POV-Ray's camera rules)");
+  EXPECT_EQ(c.pixel_aspect, 1);
+
+  // Spherical: `angle H` alone gives V = H / 2; no angle, 360 x 180 (Camera::Init).
+  s = projection(CameraType::kSpherical, 240);
+  c = convert_camera(s, 160, 120, diagnostics);
+  ASSERT_EQ(c.camera.model->numbers.size(), 2u);
+  EXPECT_EQ(c.camera.model->numbers[1].key, "angle_v_deg");
+  EXPECT_EQ(c.camera.model->numbers[1].value, 120);
+  EXPECT_EQ(c.camera.model->numbers[1].origin.text(),
+            "scene.pov:9:3: camera angle (half the horizontal angle, as POV-Ray)");
+  s.angle_deg.reset();
+  c = convert_camera(s, 160, 120, diagnostics);
+  EXPECT_EQ(c.camera.model->numbers[0].value, 360);
+  EXPECT_EQ(c.camera.model->numbers[1].value, 180);
+  EXPECT_EQ(c.camera.model->numbers[0].origin.text(),
+            "scene.pov:7:1: camera (POV-Ray's default angle)");
+
+  s = projection(CameraType::kCylinder);
+  s.cylinder_type = 3;
+  c = convert_camera(s, 160, 120, diagnostics);
+  EXPECT_EQ(c.camera.model->kind, "pov_cylinder");
+  EXPECT_EQ(c.camera.model->numbers[0].key, "variant");
+  EXPECT_EQ(c.camera.model->numbers[0].value, 3);
+  EXPECT_EQ(c.camera.model->numbers[1].value, 90);  // Camera::Init's angle
+  EXPECT_EQ(diagnostics.count(), 0u);
+}
+
+// What `filmback info` prints under the plan: each plugin's own derived quantities.
+TEST(PovCamera, ProjectionPluginsDescribeTheirFieldOfView) {
+  Diagnostics diagnostics;
+  const auto describe = [&](const CameraStatement& s) {
+    return test::make_camera_plugin(convert_camera(s, 160, 120, diagnostics), 160, 120)->describe();
+  };
+  // A fisheye's circle is W / |right| px wide and H / |up| high: 160 / 1.33 = 120.301.
+  EXPECT_EQ(describe(projection(CameraType::kFisheye, 180)),
+            "field of view: 180 deg across the image circle (90 deg from the axis at its edge)\n"
+            "image circle: 120.301 px wide, 120 px high, centred; no rays outside it\n");
+  EXPECT_EQ(describe(projection(CameraType::kSpherical, 240)),
+            "field of view: 240 deg across, 120 deg up; 1.5 x 1 deg a pixel\n");
+  CameraStatement cylinder = projection(CameraType::kCylinder, 100);
+  cylinder.cylinder_type = 4;
+  cylinder.right = {3, 0, 0};
+  EXPECT_EQ(describe(cylinder),
+            "field of view: 100 deg around the right axis; 3 m along it (rays from a line: "
+            "orthographic)\n");
+  // ultra_wide_angle spreads angle |up| / |right| up: 133 * 1 / 1.33 = 100.
+  EXPECT_EQ(describe(projection(CameraType::kUltraWideAngle, 133)),
+            "field of view: 133 deg across, 100 deg up\n");
+}
+
+// The message a bad camera statement gives, or "" if it converts.
+std::string error_of(const CameraStatement& s) {
+  Diagnostics diagnostics;
+  try {
+    convert_camera(s, 160, 120, diagnostics);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PovCamera, BadProjectionAnglesAndTypesAreErrorsWithTheirPlace) {
+  EXPECT_EQ(error_of(projection(CameraType::kFisheye, -10)),
+            "scene.pov:9:3: camera angle: negative viewing angle");
+  EXPECT_EQ(error_of(projection(CameraType::kSpherical, -10)),
+            "scene.pov:9:3: camera angle: negative horizontal angle");
+  CameraStatement s = projection(CameraType::kSpherical, 90);
+  s.angle_v_deg = -1;
+  EXPECT_EQ(error_of(s), "scene.pov:9:3: camera angle: negative vertical angle");
+  s.type = CameraType::kFisheye;  // POV-Ray's parser takes a second angle for spherical only
+  s.angle_v_deg = 40;
+  EXPECT_EQ(error_of(s),
+            "scene.pov:9:3: camera angle: a second angle: only a spherical camera takes one "
+            "(angle H, V)");
+  s = projection(CameraType::kFisheye, std::nan(""));
+  EXPECT_EQ(error_of(s), "scene.pov:9:3: camera angle: negative viewing angle");
+  for (const int variant : {0, 5, -1}) {
+    s = projection(CameraType::kCylinder);
+    s.cylinder_type = variant;
+    EXPECT_EQ(error_of(s), "scene.pov:7:1: invalid cylinder camera type " +
+                               std::to_string(variant) + ": valid are types 1 to 4");
+  }
+}
+
+// The same errors from a .pov file: the importer names the keyword's line and column.
+TEST(PovCamera, BadProjectionsInAFileNameTheirPlace) {
+  const std::filesystem::path folder = std::filesystem::path(testing::TempDir()) / "pov_camera";
+  std::filesystem::create_directories(folder);
+  const auto error_in = [&](const std::string& camera) {
+    {
+      std::ofstream out(folder / "scene.pov");
+      out << "#version 3.7;\ncamera {\n" << camera << "\n}\n";
+    }
+    Diagnostics diagnostics;
+    ImportOptions options;
+    options.resolution = {64, 48};
+    try {
+      import_pov(folder / "scene.pov", options, diagnostics);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_in("  fisheye\n  angle -5"),
+            "scene.pov:4:3: camera angle: negative viewing angle");
+  EXPECT_EQ(error_in("  spherical location 0\n    angle 90, -1"),
+            "scene.pov:4:5: camera angle: negative vertical angle");
+  EXPECT_EQ(error_in("  cylinder 7"),
+            "scene.pov:2:1: invalid cylinder camera type 7: valid are types 1 to 4");
+  EXPECT_EQ(error_in("  cylinder 2 angle 400"), "no error");
+}
+
+// Angles of 0, 360 and beyond are POV-Ray's to render (it takes any angle >= 0): rays keep to
+// POV-Ray's formula (a fisheye of 360 looks straight back at its rim, 720 wraps round twice), all
+// finite, none NaN. The plugins refuse an angle beyond 1e6 degrees, naming its place.
+TEST(PovCamera, ExtremeProjectionAnglesStayPovRays) {
+  for (const double angle : {0.0, 1e-9, 359.9, 360.0, 720.0, 1000.0, 123456.0}) {
+    SCOPED_TRACE(testing::Message() << "angle " << angle);
+    for (const CameraType type : {CameraType::kFisheye, CameraType::kUltraWideAngle,
+                                  CameraType::kSpherical, CameraType::kCylinder}) {
+      CameraStatement s = projection(type, angle);
+      s.cylinder_type = 2;
+      if (type == CameraType::kSpherical) s.angle_v_deg = angle * 0.7;
+      expect_projection_rays(s, 64, 48);
+    }
+  }
+  Diagnostics diagnostics;
+  const PovCamera huge = convert_camera(projection(CameraType::kFisheye, 2e6), 64, 48, diagnostics);
+  try {
+    test::make_camera_plugin(huge, 64, 48);
+    FAIL() << "an angle of 2e6 degrees was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.pov:9:3: camera angle: "), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(PovCamera, ProjectionsWarnWhatTheyCannotRender) {
+  CameraStatement s = projection(CameraType::kFisheye, 180);
+  s.up = {0, 1, 0.05};  // not perpendicular to direction: 2.86 degrees
+  Diagnostics diagnostics;
+  convert_camera(s, 160, 120, diagnostics);
   ASSERT_EQ(diagnostics.count(), 1u);
-  EXPECT_NE(
-      diagnostics.messages()[0].find("scene.pov:7:1: unsupported feature 'camera type fisheye'"),
-      std::string::npos)
+  EXPECT_NE(diagnostics.messages()[0].find("scene.pov:7:1: the camera's direction, right and up "
+                                           "vectors are not perpendicular (up to 2.86241 degrees"),
+            std::string::npos)
       << diagnostics.messages()[0];
-  EXPECT_EQ(c.camera.physical.projection, uint32_t(FB_PROJECTION_PERSPECTIVE));
-  EXPECT_NEAR(length(evaluate(s).direction), 1, 1e-15);
+
+  s = projection(CameraType::kSpherical);
+  s.aperture = 0.5;
+  s.blur_samples = 10;
+  diagnostics = Diagnostics();
+  convert_camera(s, 160, 120, diagnostics);
+  ASSERT_EQ(diagnostics.count(), 1u);
+  EXPECT_NE(diagnostics.messages()[0].find(
+                "scene.pov:7:1: unsupported feature 'focal_blur' with a spherical camera"),
+            std::string::npos)
+      << diagnostics.messages()[0];
 }
 
 TEST(PovCamera, DegenerateVectorsAreAnError) {

@@ -184,6 +184,7 @@ struct CameraStatement {
   std::optional<Vec3d> look_at;
   std::optional<double> angle_deg;    // horizontal field of view
   std::optional<double> angle_v_deg;  // the second angle of `spherical`
+  SourceLocation angle_where;         // of the `angle` keyword, when given
   std::optional<Vec3d> focal_point;
   double aperture = 0;
   int blur_samples = 0;

@@ -806,6 +806,28 @@ class CliTest(unittest.TestCase):
         self.assertIn("through thinlens (f/2 focused at 3 m", render.stdout)
         self.assertIn("filter box:radius=0.625 (importance)", render.stdout)
 
+    def test_info_with_a_camera_model_prints_what_the_plugin_derives(self):
+        # A thick biconvex singlet (R = +-100 mm, 5 mm of glass n = 1.5, stop in front):
+        # 1/f = (n-1) (1/R1 - 1/R2 + (n-1) t / (n R1 R2)) gives f = 100.840 mm, and the back focal
+        # distance f (1 - (n-1) t / (n R1)) = 99.1597 mm, which the realistic camera reports
+        # through fb_camera_api::describe.
+        scene = self.camera_scene()
+        lens = str(self.dir / "singlet.dat")
+        with open(lens, "w") as f:
+            f.write("0 1 0 20\n100 5 1.5 20\n-100 0 1 20\n")
+        result = self.run_cli("info", scene, "--camera-model", "realistic:lens=" + lens)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("plan (filmback render --camera-model realistic:lens=", result.stdout)
+        self.assertIn("  camera model realistic says:\n", result.stdout)
+        self.assertIn("    effective focal length: 100.84 mm\n", result.stdout)
+        self.assertIn("    back focal distance: 99.1597 mm", result.stdout)
+        # The user named the plugin: its refusal is an error, naming the lens file's line.
+        with open(lens, "w") as f:
+            f.write("0 1 0 20\n100 five 1.5 20\n")
+        bad = self.run_cli("info", scene, "--camera-model", "realistic:lens=" + lens)
+        self.assertEqual(bad.returncode, 1, bad.stdout + bad.stderr)
+        self.assertIn(lens + ":2:", bad.stderr)
+
     # --- what works ----------------------------------------------------------------------------
 
     def test_unsupported_features_warn_once_each(self):

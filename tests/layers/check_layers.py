@@ -26,7 +26,8 @@ SOURCE_SUFFIXES = {".c", ".cc", ".cpp", ".h", ".hpp"}
 # projection, pixel filter and defaults to plugins. The others use the same words in another sense.
 ALLOWED_PLUGIN_NAMES = {
     "core/render/shot_plan.cpp": {"perspective", "orthographic", "thinlens", "gaussian", "box",
-                                  "blackman_harris", "path",
+                                  "blackman_harris", "path", "pov_fisheye", "pov_ultra_wide_angle",
+                                  "pov_omnimax", "pov_panoramic", "pov_cylinder", "pov_spherical",
                                   # kModelPlugins: the projections scenes name (Cycles' panoramas)
                                   "equirectangular", "fisheye_equidistant", "fisheye_equisolid",
                                   "mirrorball", "fisheye_polynomial", "central_cylindrical",

@@ -52,6 +52,8 @@ constexpr double kMaxBlurDiameterError = 0.03;
 constexpr double kMatchRadiusPx = 2.0;
 constexpr double kSphereRadiusPx = 5.0;  // in the image, about
 constexpr uint32_t kFilmbackSpp = 256, kFilmbackBlurSpp = 1024;
+// The projection types' shots, many and in CI: their centroids' noise floor stays below 0.02 px.
+constexpr uint32_t kFilmbackProjectionSpp = 128;
 
 struct Op {
   // kShear: shear.pov's `matrix <1,0,0, 0,1,-s, 0,0,1, 0,0,0>`, z -= s y, with s = v.x
@@ -59,21 +61,45 @@ struct Op {
   Vec3d v;
 };
 
+// A marker of a projection type's shot: a sphere seen at POV-Ray's image point (x0, y0)
+// (x0 = x / W - 1/2 right, y0 = 1/2 - y / H up), making `images` blobs (2 where a seam cuts it or
+// a wide angle shows it twice).
+struct Marker {
+  double x0, y0;
+  int images = 1;
+};
+
+// Markers at every (x0, y0) of xs x ys, then `extra` ones.
+std::vector<Marker> grid(std::initializer_list<double> xs, std::initializer_list<double> ys,
+                         std::initializer_list<Marker> extra = {}) {
+  std::vector<Marker> out;
+  for (const double y0 : ys)
+    for (const double x0 : xs)
+      out.push_back({x0, y0});
+  out.insert(out.end(), extra.begin(), extra.end());
+  return out;
+}
+
 // One camera statement, given once: written as SDL for POV-Ray and built as the CameraStatement
 // the SDL evaluator would produce from it.
 struct Shot {
   const char* name;
   uint32_t width = 160, height = 120;
   bool has_camera = true;  // false: no camera statement, POV-Ray's default camera
-  bool orthographic = false;
+  pov::CameraType type = pov::CameraType::kPerspective;
+  int cylinder = 0;  // `cylinder 1` to `cylinder 4`
   std::optional<Vec3d> location{}, look_at{}, direction{}, right{}, up{}, sky{}, focal_point{};
-  std::optional<double> angle{};
+  std::optional<double> angle{}, angle_v{};  // angle_v: spherical's `angle H, V`
   double aperture = 0;
   int blur_samples = 0;
   std::vector<Op> transforms{};     // in the order written
   bool skewed = false;              // right not perpendicular to up: a warning and a stated error
   const char* right_sdl = nullptr;  // how the .pov writes right, if not as the number
+  // Projection types: where the markers are; those POV-Ray does not trace all round are dropped.
+  std::vector<Marker> markers{};
 };
+
+using pov::CameraType;
 
 const Shot kShots[] = {
     {.name = "default_camera", .has_camera = false},
@@ -137,17 +163,17 @@ const Shot kShots[] = {
      .up = Vec3d{0, 0, 1},
      .sky = Vec3d{0, 0, 1}},
     {.name = "orthographic_auto",
-     .orthographic = true,
+     .type = CameraType::kOrthographic,
      .location = Vec3d{1, 2, -10},
      .look_at = Vec3d{0, 0, 0}},
     {.name = "orthographic_right_up",
-     .orthographic = true,
+     .type = CameraType::kOrthographic,
      .location = Vec3d{0, 3, -10},
      .look_at = Vec3d{0, 0, 0},
      .right = Vec3d{8, 0, 0},
      .up = Vec3d{0, 6, 0}},
     {.name = "orthographic_angle",
-     .orthographic = true,
+     .type = CameraType::kOrthographic,
      .location = Vec3d{0, 0, -10},
      .look_at = Vec3d{0, 0, 0},
      .angle = 40},
@@ -163,6 +189,100 @@ const Shot kShots[] = {
      .direction = Vec3d{0, 0, 3},
      .aperture = 0.07,
      .blur_samples = 1024},
+    // POV-Ray's other projections (plugins/cameras/pov_*): markers all over the frame, at the
+    // rim of a fisheye, the poles and the seam of a spherical camera.
+    {.name = "fisheye_180",
+     .type = CameraType::kFisheye,
+     .location = Vec3d{0, 1, -2},
+     .look_at = Vec3d{0, 0.5, 3},
+     .angle = 180,
+     .markers = grid({-0.3, -0.15, 0, 0.15, 0.3}, {-0.3, -0.1, 0.1, 0.3},
+                     {{0.33, 0.12}, {-0.12, -0.42}, {-0.34, 0.1}, {0.05, 0.44}})},
+    {.name = "fisheye_360_square",  // the rim looks straight back
+     .width = 120,
+     .height = 120,
+     .type = CameraType::kFisheye,
+     .location = Vec3d{0, 0, 0},
+     .look_at = Vec3d{1, 0, 3},
+     .right = Vec3d{1, 0, 0},
+     .angle = 360,
+     .markers = grid({-0.3, -0.1, 0.1, 0.3}, {-0.3, -0.1, 0.1, 0.3},
+                     {{0.43, 0.1}, {-0.1, 0.43}, {-0.43, -0.05}})},
+    {.name = "ultra_wide_angle_200",
+     .type = CameraType::kUltraWideAngle,
+     .location = Vec3d{0, 0, -1},
+     .look_at = Vec3d{0, 0, 0},
+     .angle = 200,
+     .markers = grid({-0.42, -0.21, 0, 0.21, 0.42}, {-0.36, -0.12, 0.12, 0.36})},
+    {.name = "omnimax",
+     .type = CameraType::kOmnimax,
+     .location = Vec3d{0, 0, 0},
+     .look_at = Vec3d{0, 1, 4},
+     .markers = grid({-0.36, -0.18, 0, 0.18, 0.36}, {-0.3, -0.1, 0.1, 0.3, 0.45})},
+    {.name = "panoramic",
+     .type = CameraType::kPanoramic,
+     .location = Vec3d{0, 0, 0},
+     .look_at = Vec3d{0, 0, 1},
+     .markers = grid({-0.45, -0.3, -0.15, 0, 0.15, 0.3, 0.45}, {-0.2, 0, 0.2},
+                     {{-0.3, 0.4}, {0.05, 0.4}, {0.35, 0.4}, {-0.4, -0.42}, {0.3, -0.42}})},
+    {.name = "cylinder_1",
+     .type = CameraType::kCylinder,
+     .cylinder = 1,
+     .location = Vec3d{0, 1, 0},
+     .look_at = Vec3d{1, 1, 2},
+     .angle = 270,
+     .markers = grid({-0.42, -0.21, 0, 0.21, 0.42}, {-0.35, 0, 0.35})},
+    {.name = "cylinder_2",
+     .width = 120,
+     .height = 160,
+     .type = CameraType::kCylinder,
+     .cylinder = 2,
+     .location = Vec3d{0, 0, -1},
+     .right = Vec3d{0.75, 0, 0},
+     .angle = 150,
+     .markers = grid({-0.3, 0, 0.3}, {-0.42, -0.21, 0, 0.21, 0.42})},
+    {.name = "cylinder_3",
+     .type = CameraType::kCylinder,
+     .cylinder = 3,
+     .location = Vec3d{0, 0, 0},
+     .up = Vec3d{0, 3, 0},
+     .angle = 180,
+     .markers = grid({-0.4, -0.2, 0, 0.2, 0.4}, {-0.35, 0, 0.35})},
+    {.name = "cylinder_4",
+     .type = CameraType::kCylinder,
+     .cylinder = 4,
+     .location = Vec3d{0.5, 0, 0},
+     .right = Vec3d{4, 0, 0},
+     .angle = 100,
+     .markers = grid({-0.4, -0.2, 0, 0.2, 0.4}, {-0.35, 0, 0.35})},
+    {.name = "spherical_poles_seam",  // 360 x 180: markers at latitude +-77 and astride the seam
+     .width = 160,
+     .height = 80,
+     .type = CameraType::kSpherical,
+     .location = Vec3d{0, 0, 0},
+     .markers = grid({-0.375, -0.125, 0.125, 0.375}, {-0.25, 0, 0.25},
+                     {{0.1, 0.43}, {-0.2, -0.43}, {0.5, 0.1, 2}})},
+    {.name = "spherical_posed",  // angle H, V; look_at with a tilted sky, then a rotation
+     .type = CameraType::kSpherical,
+     .location = Vec3d{1, 2, -3},
+     .look_at = Vec3d{0, 1, 0},
+     .sky = Vec3d{0.3, 1, 0},
+     .angle = 120,
+     .angle_v = 80,
+     .transforms = {{Op::kRotate, {0, 20, 10}}},
+     .markers = grid({-0.4, -0.2, 0, 0.2, 0.4}, {-0.35, 0, 0.35})},
+    {.name = "spherical_400",  // more than a turn: what is behind shows at both sides
+     .type = CameraType::kSpherical,
+     .location = Vec3d{0, 0, 0},
+     .angle = 400,
+     .angle_v = 180,
+     .markers = grid({-0.3, -0.1, 0.1, 0.3}, {-0.3, 0, 0.3}, {{0.45, 0.15, 2}})},
+    {.name = "spherical_mirrored",  // right -x without look_at: turns the other way round
+     .type = CameraType::kSpherical,
+     .location = Vec3d{0, 0, 0},
+     .right = Vec3d{-1.33, 0, 0},
+     .angle = 240,
+     .markers = grid({-0.4, -0.2, 0.2, 0.4}, {-0.3, 0, 0.3}, {{0.1, 0.42}, {-0.3, -0.44}})},
 };
 
 // gtest names the case by this rather than by the struct's bytes.
@@ -212,7 +332,9 @@ std::string sdl_of(const Op& op) {
 
 pov::CameraStatement statement(const Shot& shot) {
   pov::CameraStatement s;
-  s.type = shot.orthographic ? pov::CameraType::kOrthographic : pov::CameraType::kPerspective;
+  s.type = shot.type;
+  s.cylinder_type = shot.cylinder;
+  s.angle_v_deg = shot.angle_v;
   s.location = shot.location.value_or(s.location);
   s.direction = shot.direction.value_or(s.direction);
   s.right = shot.right.value_or(s.right);
@@ -231,11 +353,16 @@ pov::CameraStatement statement(const Shot& shot) {
   return s;
 }
 
+std::string type_sdl(const Shot& shot) {
+  const std::string keyword = pov::keyword_of(shot.type);
+  return shot.type == CameraType::kCylinder ? keyword + " " + std::to_string(shot.cylinder)
+                                            : keyword;
+}
+
 // The camera block with its keywords in an order unlike POV-Ray's evaluation order (transforms
 // first, look_at before location, angle after look_at): the fixed order must not care.
 std::string camera_sdl(const Shot& shot) {
-  std::string out = "camera {\n  ";
-  out += shot.orthographic ? "orthographic\n" : "perspective\n";
+  std::string out = "camera {\n  " + type_sdl(shot) + "\n";
   for (const Op& op : shot.transforms)
     out += "  " + sdl_of(op) + "\n";
   if (shot.focal_point) out += "  focal_point " + vec(*shot.focal_point) + "\n";
@@ -244,7 +371,9 @@ std::string camera_sdl(const Shot& shot) {
     out += "  blur_samples " + std::to_string(shot.blur_samples) + ", " +
            std::to_string(shot.blur_samples) + "\n";
   if (shot.look_at) out += "  look_at " + vec(*shot.look_at) + "\n";
-  if (shot.angle) out += "  angle " + number(*shot.angle) + "\n";
+  if (shot.angle)
+    out += "  angle " + number(*shot.angle) + (shot.angle_v ? ", " + number(*shot.angle_v) : "") +
+           "\n";
   if (shot.location) out += "  location " + vec(*shot.location) + "\n";
   if (shot.sky) out += "  sky " + vec(*shot.sky) + "\n";
   if (shot.up) out += "  up " + vec(*shot.up) + "\n";
@@ -256,11 +385,49 @@ std::string camera_sdl(const Shot& shot) {
 struct Sphere {
   Vec3d centre;  // POV-Ray's space
   double radius;
+  int images = 1;  // blobs it makes
 };
+
+bool is_projection_type(CameraType type) {
+  return type != CameraType::kPerspective && type != CameraType::kOrthographic;
+}
+
+constexpr double kMarkerRadiusPx = 4.0;  // projection types' markers, about
+
+// A projection type's markers: a sphere at distance 4 to 7 along POV-Ray's ray through each
+// marker's image point, sized kMarkerRadiusPx by the larger footprint of a pixel there (the
+// spacing of the rays half a pixel either side, across and up). A marker whose surroundings POV-Ray
+// does not all trace (near a fisheye's rim, omnimax's edge) is dropped.
+std::vector<Sphere> markers_for(const Shot& shot, const pov::PovCameraVectors& c) {
+  const uint32_t w = shot.width, h = shot.height;
+  std::vector<Sphere> out;
+  int k = 0;
+  for (const Marker& m : shot.markers) {
+    const double x = (m.x0 + 0.5) * w, y = (0.5 - m.y0) * h;
+    const double distance = 4 + (k++ % 4);
+    const auto at = [&](double dx, double dy) {
+      const WorldRay r = pov_ray(c, x + dx, y + dy, w, h);
+      return r.weight > 0 ? std::optional(r.origin + r.direction * distance) : std::nullopt;
+    };
+    const auto centre = at(0, 0), left = at(-0.5, 0), right = at(0.5, 0), up = at(0, -0.5),
+               down = at(0, 0.5);
+    if (!centre || !left || !right || !up || !down) continue;
+    const double radius = kMarkerRadiusPx * std::max(length(*right - *left), length(*down - *up));
+    const double reach = radius / std::min(length(*right - *left), length(*down - *up)) + 3;
+    bool traced = true;
+    for (const auto& [dx, dy] : {std::pair{-1, -1}, {-1, 1}, {1, -1}, {1, 1}, {0, 1}, {1, 0}})
+      traced = traced && at(dx * reach, dy * reach).has_value();
+    // world_from_pov, a mirror, is its own inverse
+    if (traced) out.push_back({pov::world_from_pov(*centre), radius, m.images});
+  }
+  return out;
+}
 
 // Nine spheres on a 3 x 3 grid of the image, at depths 5, 7 and 10 along the view, each about
 // kSphereRadiusPx in radius; placed by POV-Ray's own ray model from the evaluated vectors.
-std::vector<Sphere> spheres_for(const pov::PovCameraVectors& c, uint32_t width, uint32_t height) {
+std::vector<Sphere> spheres_for(const Shot& shot, const pov::PovCameraVectors& c) {
+  if (is_projection_type(c.type)) return markers_for(shot, c);
+  const uint32_t width = shot.width, height = shot.height;
   const double depths[] = {5, 7, 10};
   const double px = std::min(length(c.right) / width, length(c.up) / height);
   std::vector<Sphere> out;
@@ -269,7 +436,7 @@ std::vector<Sphere> spheres_for(const pov::PovCameraVectors& c, uint32_t width, 
     for (const double x0 : {-0.3, 0.0, 0.3}) {
       const double depth = depths[k++ % 3];
       const Vec3d across = c.right * x0 + c.up * y0;
-      if (c.type == pov::CameraType::kOrthographic) {
+      if (c.type == CameraType::kOrthographic) {
         out.push_back({c.location + across + normalize(c.direction) * depth, kSphereRadiusPx * px});
       } else {
         const double t = depth / length(c.direction);
@@ -290,8 +457,9 @@ std::string scene_sdl(const Shot& shot, const std::vector<Sphere>& spheres) {
   return out;
 }
 
-// Whether the ray meets any sphere (world space) in front of its origin.
+// Whether the ray (a traced one) meets any sphere (world space) in front of its origin.
 bool hits_any(const WorldRay& ray, const std::vector<Sphere>& spheres) {
+  if (ray.weight <= 0) return false;
   for (const Sphere& s : spheres) {
     const Vec3d oc = pov::world_from_pov(s.centre) - ray.origin;
     const double along = dot(oc, ray.direction);
@@ -394,7 +562,22 @@ struct Checks {
   double max_centroid_px = kMaxCentroidErrorPx;  // and areas within kMaxAreaError
   bool blur = false;                             // blur diameters within kMaxBlurDiameterError
   double pov_shift_px = 0;  // of POV-Ray's image, right and down: taken off its centroids
+  uint32_t spp = 0;         // the candidate's samples per pixel, for its noise floor; 0: noise-free
 };
+
+// The noise floor of a render's blob centroid: the standard deviation of its distance from where
+// the blob would be without noise, were each pixel's coverage p the mean of `spp` independent
+// 0-or-1 samples (variance p (1 - p) / spp; stratified samples do better, so this bounds it):
+// sigma^2 = sum over pixels of |pixel - centroid|^2 var(pixel) / flux^2.
+double centroid_noise_px(const Blob& blob, uint32_t spp) {
+  double variance = 0;
+  for (const BlobPixel& q : blob.pixels) {
+    const double p = std::clamp(q.value / 3, 0.0, 1.0);
+    const double dx = q.x + 0.5 - blob.x_px, dy = q.y + 0.5 - blob.y_px;
+    variance += (dx * dx + dy * dy) * 9 * p * (1 - p) / spp;  // R+G+B: 3 times the coverage
+  }
+  return std::sqrt(variance) / blob.flux;
+}
 
 // POV-Ray's focal blur draws each sample's offset in the pixel as (2i + 1) / 32 - 1/2 + (j - 1/2)
 // / 16 with j from its JitterTable, which spans [-1/2, 1/2] (tracepixel.cpp
@@ -405,19 +588,19 @@ constexpr double kPovFocalBlurShiftPx = 1.0 / 32;
 
 // Each sphere's blob in `candidate` against POV-Ray's at the same place; prints a table.
 void compare_blobs(const char* title, const Image& povray, const Image& candidate,
-                   size_t sphere_count, const Checks& checks) {
+                   size_t blob_count, const Checks& checks) {
   SCOPED_TRACE(title);
   ASSERT_EQ(povray.width, candidate.width);
   ASSERT_EQ(povray.height, candidate.height);
   const std::vector<Blob> pov_blobs = find_blobs(povray, 0.0);
   const std::vector<Blob> blobs = find_blobs(candidate, 0.0);
-  ASSERT_EQ(blobs.size(), sphere_count) << "every sphere is in view, apart";
-  EXPECT_EQ(pov_blobs.size(), sphere_count) << "blobs in POV-Ray's render";
+  ASSERT_EQ(blobs.size(), blob_count) << "every sphere is in view, apart";
+  EXPECT_EQ(pov_blobs.size(), blob_count) << "blobs in POV-Ray's render";
 
-  std::printf("%s\n%6s %9s %9s %8s %8s %8s %8s %8s", title, "sphere", "pov_x", "pov_y", "dx_px",
-              "dy_px", "|d|_px", "area_px", "area");
+  std::printf("%s\n%6s %9s %9s %8s %8s %8s %8s %8s %8s", title, "sphere", "pov_x", "pov_y", "dx_px",
+              "dy_px", "|d|_px", "noise_px", "area_px", "area");
   std::printf(checks.blur ? " %8s %8s\n" : "\n", "blur_px", "blur");
-  double worst_px = 0, worst_area = 0, worst_blur = 0;
+  double worst_px = 0, worst_area = 0, worst_blur = 0, worst_noise = 0;
   for (size_t i = 0; i < blobs.size(); ++i) {
     const Blob& b = blobs[i];
     const Blob* p = blob_near(pov_blobs, b.x_px, b.y_px);
@@ -431,8 +614,10 @@ void compare_blobs(const char* title, const Image& povray, const Image& candidat
     const double area = area_px(b) / area_px(*p);
     worst_px = std::max(worst_px, d);
     worst_area = std::max(worst_area, std::abs(area - 1));
-    std::printf("%6zu %9.4f %9.4f %+8.4f %+8.4f %8.4f %8.2f %8.4f", i, pov_x, pov_y, dx, dy, d,
-                area_px(*p), area);
+    const double noise = checks.spp ? centroid_noise_px(b, checks.spp) : 0;
+    worst_noise = std::max(worst_noise, noise);
+    std::printf("%6zu %9.4f %9.4f %+8.4f %+8.4f %8.4f %8.4f %8.2f %8.4f", i, pov_x, pov_y, dx, dy,
+                d, noise, area_px(*p), area);
     EXPECT_LT(d, checks.max_centroid_px) << "sphere " << i << ": centroids differ";
     EXPECT_NEAR(area, 1.0, kMaxAreaError) << "sphere " << i << ": area / POV-Ray's";
     if (checks.blur) {
@@ -447,7 +632,8 @@ void compare_blobs(const char* title, const Image& povray, const Image& candidat
       std::printf("\n");
     }
   }
-  std::printf("%s: worst centroid %.4f px, worst area %.2f %%", title, worst_px, 100 * worst_area);
+  std::printf("%s: worst centroid %.4f px (noise floor up to %.4f px), worst area %.2f %%", title,
+              worst_px, worst_noise, 100 * worst_area);
   std::printf(checks.blur ? ", worst blur diameter %.2f %%\n" : "\n", 100 * worst_blur);
 }
 
@@ -467,7 +653,12 @@ Prepared prepare(const Shot& shot, const std::string& folder) {
   const pov::CameraStatement s = statement(shot);  // POV-Ray's defaults without a camera
   Diagnostics diagnostics;
   const pov::PovCameraVectors vectors = pov::evaluate_camera(s, diagnostics);
-  p.spheres = spheres_for(vectors, shot.width, shot.height);
+  p.spheres = spheres_for(shot, vectors);
+  if (is_projection_type(shot.type)) {
+    std::printf("Shot %s: %zu of %zu markers traced all round\n", shot.name, p.spheres.size(),
+                shot.markers.size());
+    EXPECT_GE(p.spheres.size(), 12u) << "markers all over the frame";
+  }
   {
     std::ofstream out(p.work / "scene.pov");
     out << scene_sdl(shot, p.spheres);
@@ -484,6 +675,10 @@ Prepared prepare(const Shot& shot, const std::string& folder) {
   const pov::PovCameraVectors read =
       pov::evaluate_camera(scene.camera.value_or(pov::CameraStatement()), diagnostics);
   EXPECT_EQ(read.type, vectors.type);
+  EXPECT_EQ(read.cylinder_type, vectors.cylinder_type);
+  EXPECT_EQ(read.angle_deg, vectors.angle_deg);
+  EXPECT_EQ(read.angle_h_deg, vectors.angle_h_deg);
+  EXPECT_EQ(read.angle_v_deg, vectors.angle_v_deg);
   for (const auto& [a, b] : {std::pair{read.location, vectors.location},
                              {read.direction, vectors.direction},
                              {read.right, vectors.right},
@@ -540,28 +735,97 @@ TEST_P(PovCameraShot, SpheresLandOnPovRaysPixels) {
   if (!povray) GTEST_SKIP() << kNoPovray;
   const Shot& shot = GetParam();
   const Prepared p = prepare(shot, shot.name);
-  const size_t n = p.spheres.size();
-  const Image image = filmback_render(p.work / "scene.pov", shot.width, shot.height,
-                                      p.checks.blur ? kFilmbackBlurSpp : kFilmbackSpp);
+  size_t n = 0;  // blobs
+  for (const Sphere& sphere : p.spheres)
+    n += size_t(sphere.images);
+  Checks rendered = p.checks;
+  rendered.spp = p.checks.blur                   ? kFilmbackBlurSpp
+                 : is_projection_type(shot.type) ? kFilmbackProjectionSpp
+                                                 : kFilmbackSpp;
+  const Image image = filmback_render(p.work / "scene.pov", shot.width, shot.height, rendered.spp);
   write_images(image, {p.work / "filmback.exr"}, {});
   if (p.checks.blur) {
     // POV-Ray jitters the ray within the pixel and over the lens: the model averages random ones.
     const Image reference = povray_render(*povray, p.work, shot, false);
     compare_blobs("(a) focal blur, thin lens over 1024 random pixel and lens points", reference,
                   lens_render(p.camera, p.spheres, shot.width, shot.height, 1024), n, p.checks);
-    compare_blobs("(b) filmback, focal blur", reference, image, n, p.checks);
+    compare_blobs("(b) filmback, focal blur", reference, image, n, rendered);
     return;
   }
   const Image reference = povray_render(*povray, p.work, shot, true);
   compare_blobs("(a) anti-aliased: pixel centre and an 8 x 8 grid", reference,
                 supersampled_render(p.camera, p.spheres, shot.width, shot.height), n, p.checks);
-  compare_blobs("(b) filmback against POV-Ray anti-aliased", reference, image, n, p.checks);
+  compare_blobs("(b) filmback against POV-Ray anti-aliased", reference, image, n, rendered);
 }
 
 INSTANTIATE_TEST_SUITE_P(Povray, PovCameraShot, testing::ValuesIn(kShots),
                          [](const testing::TestParamInfo<Shot>& info) {
                            return std::string(info.param.name);
                          });
+
+// Where POV-Ray traces no ray (outside a fisheye's and omnimax's circle, below omnimax's floor)
+// its pixel is black whatever the background; filmback's too, and finite. POV-Ray renders one ray
+// per pixel centre (-A) on a coloured background; filmback 16 samples a pixel. A pixel whose
+// centre and corners POV-Ray's formula all leaves untraced must be 0 in both; one they all trace
+// must be the background in both (POV-Ray's 16-bit PNG: within 1e-4).
+TEST(PovProjection, UntracedPixelsAreBlackAsPovRays) {
+  const std::optional<fs::path> povray = find_on_path("povray");
+  if (!povray) GTEST_SKIP() << kNoPovray;
+  constexpr uint32_t kWidth = 48, kHeight = 36;
+  const float background[3] = {1.f, 0.5f, 0.25f};
+  for (const char* type : {"fisheye angle 200", "omnimax"}) {
+    SCOPED_TRACE(type);
+    const fs::path work =
+        fs::path(FILMBACK_POV_WORK_DIR) / "untraced" / std::string(type).substr(0, 7);
+    fs::remove_all(work);
+    fs::create_directories(work);
+    {
+      std::ofstream out(work / "scene.pov");
+      out << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\nbackground { rgb <1, 0.5, "
+             "0.25> }\ncamera { "
+          << type << " location <0, 0, 0> look_at <0, 1, 3> }\n";
+    }
+    run_logged("cd " + quoted(work) + " && " + quoted(*povray) +
+                   " +Iscene.pov +Opovray.png +FN16 File_Gamma=1.0 -D -V -A +W" +
+                   std::to_string(kWidth) + " +H" + std::to_string(kHeight),
+               work / "povray.log");
+    const Image pov_image = read_image(work / "povray.png");
+    const Image image = filmback_render(work / "scene.pov", kWidth, kHeight, 16);
+    Diagnostics diagnostics;
+    pov::EvaluateOptions options;
+    options.scene_file = work / "scene.pov";
+    options.image_width = kWidth;
+    options.image_height = kHeight;
+    const pov::PovCameraVectors camera =
+        pov::evaluate_camera(*pov::evaluate_pov(options).camera, diagnostics);
+    int untraced = 0, traced = 0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+      for (uint32_t x = 0; x < kWidth; ++x) {
+        int hits = 0;
+        for (const auto& [dx, dy] :
+             {std::pair{0.5, 0.5}, {0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}})
+          hits += pov_ray(camera, x + dx, y + dy, kWidth, kHeight).weight > 0;
+        for (size_t c = 0; c < 3; ++c) {
+          const float ours = image.pixels[(size_t(y) * kWidth + x) * 3 + c];
+          const float theirs = pov_image.pixels[(size_t(y) * kWidth + x) * 3 + c];
+          ASSERT_TRUE(std::isfinite(ours)) << "pixel " << x << ", " << y;
+          if (hits == 0) {
+            EXPECT_EQ(ours, 0.f) << "pixel " << x << ", " << y;
+            EXPECT_EQ(theirs, 0.f) << "pixel " << x << ", " << y;
+          } else if (hits == 5) {
+            EXPECT_NEAR(ours, background[c], 1e-5) << "pixel " << x << ", " << y;
+            EXPECT_NEAR(theirs, background[c], 1e-4) << "pixel " << x << ", " << y;
+          }
+        }
+        untraced += hits == 0;
+        traced += hits == 5;
+      }
+    std::printf("%s: %d pixels untraced, %d traced all over, of %u\n", type, untraced, traced,
+                kWidth * kHeight);
+    EXPECT_GT(untraced, 100);
+    EXPECT_GT(traced, 500);
+  }
+}
 
 }  // namespace
 }  // namespace fb::test

@@ -19,10 +19,14 @@ Transform pov_rotate(Vec3d degrees);
 
 struct WorldRay {
   Vec3d origin, direction;  // direction normalised
+  double weight = 1;        // 0: no ray (POV-Ray traces none; a camera plugin's weight 0)
 };
 
-// The pinhole (or orthographic) ray through raster point (x_px, y_px) of a W x H image, pixel
-// centres at i + 0.5, y down: x0 = x / W - 1/2, y0 = 1/2 - y / H (POV-Ray's pixel centres).
+// POV-Ray's ray through raster point (x_px, y_px) of a W x H image, pixel centres at i + 0.5,
+// y down: x0 = x / W - 1/2, y0 = 1/2 - y / H (POV-Ray's pixel centres), for every camera type
+// but mesh_camera, written from CreateCameraRay in POV-Ray's own space (the spherical camera's
+// turns by its axis-rotation matrix) and mirrored into filmback's world at the end. Weight 0
+// where POV-Ray traces no ray (outside a fisheye's circle, omnimax's floor).
 WorldRay pov_ray(const pov::PovCameraVectors& camera, double x_px, double y_px, uint32_t width_px,
                  uint32_t height_px);
 

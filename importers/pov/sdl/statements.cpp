@@ -60,7 +60,9 @@ CameraStatement Parser::parse_camera(const Tok& keyword) {
     } else if (w == "sky") {
       c.sky = parse_vector();
     } else if (w == "angle") {
+      c.angle_where = location_of(tok);
       c.angle_deg = parse_float();
+      c.angle_v_deg.reset();  // a later `angle H` alone gives V = H / 2 again
       if (accept(",")) c.angle_v_deg = parse_float();
     } else if (w == "focal_point") {
       c.focal_point = parse_vector();
