@@ -12,6 +12,7 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_camera_source.h"
 #include "importers/gltf/gltf_json.h"
+#include "importers/gltf/gltf_lens_distortion.h"
 
 namespace fb::gltf {
 namespace {
@@ -263,6 +264,9 @@ SceneCamera read_camera(const tinygltf::Model& model, const tinygltf::Node& node
               camera.origin(V::kClipNear).text() + ")");
   if (!sources.empty() && g.type == "perspective")
     agree_with_yfov(g, cpath, file, decided, core, camera, diagnostics);
+  if (const tinygltf::Value* ext = extension(g, "FILMBACK_blender"))
+    camera.lens_distortion =
+        read_lens_distortion(Fields(*ext, cpath + ".extensions.FILMBACK_blender", file));
   return camera;
 }
 
