@@ -47,13 +47,15 @@ std::vector<NamedNumber> read_lens_distortion(const Fields& blender) {
   const auto model = std::find_if(kModels.begin(), kModels.end(),
                                   [&](const ModelCoefficients& m) { return m.model == *word; });
   if (model == kModels.end())
-    d.fail("model", "'" + *word + "' is not a distortion model (expected polynomial, division, "
-                                  "nuke or brown)");
+    d.fail("model", "'" + *word +
+                        "' is not a distortion model (expected polynomial, division, "
+                        "nuke or brown)");
   std::string names;
   for (std::string_view n : model->names)
     names.append(names.empty() ? "" : ", ").append(n);
   for (const char* name : kAllCoefficients) {
-    const bool has = std::find(model->names.begin(), model->names.end(), name) != model->names.end();
+    const bool has =
+        std::find(model->names.begin(), model->names.end(), name) != model->names.end();
     if (!has && d.has(name))
       d.fail(name, "the " + *word + " model has no " + name + " (expected only " + names + ")");
     if (has)
@@ -70,7 +72,8 @@ std::vector<NamedNumber> read_lens_distortion(const Fields& blender) {
   // Blender keeps the focal length in pixels; its panel shows millimetres as
   // f_px * sensor width / clip width (MovieTrackingCamera's focal_mm).
   if (std::optional<double> px = d.number("focal_length_px", 1e-6, kMaxFocalPx)) {
-    if (d.has("focal_length_mm")) d.fail("focal_length_mm", "give focal_length_px or _mm, not both");
+    if (d.has("focal_length_mm"))
+      d.fail("focal_length_mm", "give focal_length_px or _mm, not both");
     add("clip_focal_length_px", *px, "focal_length_px");
   } else {
     const std::optional<double> mm = d.number("focal_length_mm", 1e-6, 1e6);

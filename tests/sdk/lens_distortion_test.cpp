@@ -99,8 +99,8 @@ TEST(LensDistortion, ForwardMapsAreLibmvsEquations) {
   p = clip();
   p.brown_k = {-0.1, 0.03, -0.004, 0.0005};
   p.brown_p = {0.002, -0.0015};
-  const double radial = 1 - 0.1 * r2 + 0.03 * r2 * r2 - 0.004 * std::pow(r2, 3) +
-                        0.0005 * std::pow(r2, 4);
+  const double radial =
+      1 - 0.1 * r2 + 0.03 * r2 * r2 - 0.004 * std::pow(r2, 3) + 0.0005 * std::pow(r2, 4);
   d = *LensDistortion(p).distort(undistorted);
   EXPECT_NEAR(d.x, px + f * (x * radial + 0.002 * (r2 + 2 * x * x) + 2 * -0.0015 * x * y), 1e-9);
   EXPECT_NEAR(d.y, py + f * (y * radial + -0.0015 * (r2 + 2 * y * y) + 2 * 0.002 * x * y), 1e-9);

@@ -48,34 +48,34 @@ struct LensDistortionParams {
 // (put FB_LENS_DISTORTION_PARAMS at the end of a plugin's schema; read it with
 // lens_distortion_params). A model is chosen by giving its coefficients: those of two models
 // at once are refused.
-#define FB_LENS_DISTORTION_PARAMS                                                                 \
-  {"polynomial_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "polynomial model's K1"},        \
-      {"polynomial_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "polynomial model's K2"},    \
-      {"polynomial_k3", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "polynomial model's K3"},    \
-      {"division_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "divisions model's K1"},       \
-      {"division_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "divisions model's K2"},       \
-      {"nuke_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Nuke model's K1"},                \
-      {"nuke_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Nuke model's K2"},                \
-      {"brown_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K1"},              \
-      {"brown_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K2"},              \
-      {"brown_k3", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K3"},              \
-      {"brown_k4", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K4"},              \
-      {"brown_p1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's P1 (tangential)"}, \
-      {"brown_p2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's P2 (tangential)"}, \
-      {"clip_width_px", FB_PARAM_FLOAT, "0", "px", nullptr, 0, 1e6,                               \
-       "width of the tracked clip (needed with a distortion)"},                                             \
-      {"clip_height_px", FB_PARAM_FLOAT, "0", "px", nullptr, 0, 1e6,                              \
-       "height of the tracked clip (needed with a distortion)"},                                            \
-      {"clip_focal_length_px", FB_PARAM_FLOAT, "0", "px", nullptr, 0, 1e9,                        \
-       "the solved focal length in the clip's pixels (needed with a distortion)"},                \
-      {"clip_principal_x_px", FB_PARAM_FLOAT, "0", "px", nullptr, -1e7, 1e7,                      \
-       "optical centre from the clip's left edge"},                                               \
-      {"clip_principal_y_px", FB_PARAM_FLOAT, "0", "px", nullptr, -1e7, 1e7,                      \
-       "optical centre from the clip's bottom edge"},                                             \
-  {                                                                                               \
-    "clip_pixel_aspect", FB_PARAM_FLOAT, "1", "", nullptr, 1e-3, 1e3,                             \
-        "pixel aspect ratio of the clip (width / height)"                                         \
-  }
+// clang-format off
+#define FB_LENS_DISTORTION_PARAMS                                                                \
+  {"polynomial_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "polynomial model's K1"},       \
+  {"polynomial_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "polynomial model's K2"},       \
+  {"polynomial_k3", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "polynomial model's K3"},       \
+  {"division_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "divisions model's K1"},          \
+  {"division_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "divisions model's K2"},          \
+  {"nuke_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Nuke model's K1"},                   \
+  {"nuke_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Nuke model's K2"},                   \
+  {"brown_k1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K1"},                 \
+  {"brown_k2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K2"},                 \
+  {"brown_k3", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K3"},                 \
+  {"brown_k4", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's K4"},                 \
+  {"brown_p1", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's P1 (tangential)"},    \
+  {"brown_p2", FB_PARAM_FLOAT, "0", "", nullptr, -1e6, 1e6, "Brown model's P2 (tangential)"},    \
+  {"clip_width_px", FB_PARAM_FLOAT, "0", "px", nullptr, 0, 1e6,                                  \
+   "width of the tracked clip (needed with a distortion)"},                                      \
+  {"clip_height_px", FB_PARAM_FLOAT, "0", "px", nullptr, 0, 1e6,                                 \
+   "height of the tracked clip (needed with a distortion)"},                                     \
+  {"clip_focal_length_px", FB_PARAM_FLOAT, "0", "px", nullptr, 0, 1e9,                           \
+   "the solved focal length in the clip's pixels (needed with a distortion)"},                   \
+  {"clip_principal_x_px", FB_PARAM_FLOAT, "0", "px", nullptr, -1e7, 1e7,                         \
+   "optical centre from the clip's left edge"},                                                  \
+  {"clip_principal_y_px", FB_PARAM_FLOAT, "0", "px", nullptr, -1e7, 1e7,                         \
+   "optical centre from the clip's bottom edge"},                                                \
+  {"clip_pixel_aspect", FB_PARAM_FLOAT, "1", "", nullptr, 1e-3, 1e3,                             \
+   "pixel aspect ratio of the clip (width / height)"}
+// clang-format on
 
 namespace distortion_detail {
 
@@ -240,7 +240,8 @@ class LensDistortion {
                        (distorted.y - principal_.y) / nuke_half_size_px_};
       if (!(std::hypot(q.x, q.y) < domain_)) return std::nullopt;
       const Vec2d u = division_.apply(q);
-      return Vec2d{principal_.x + u.x * nuke_half_size_px_, principal_.y + u.y * nuke_half_size_px_};
+      return Vec2d{principal_.x + u.x * nuke_half_size_px_,
+                   principal_.y + u.y * nuke_half_size_px_};
     }
     const Vec2d target = {(distorted.x - principal_.x) / f, (distorted.y - principal_.y) / f};
     const std::optional<Vec2d> n = model_ == DistortionModel::kDivision
