@@ -74,8 +74,9 @@ TEST(GltfLensDistortion, TheModelsCoefficientsAndTheClipBecomeRequiredPluginNumb
   EXPECT_EQ(numbers.at("clip_focal_length_px").value, 199.1);
   EXPECT_EQ(numbers.at("clip_principal_y_px").value, 77.5);
   EXPECT_EQ(numbers.at("clip_pixel_aspect").value, 1);
-  EXPECT_EQ(numbers.at("polynomial_k2").origin.text(), std::string(kAt) + ".k2");
-  EXPECT_EQ(numbers.at("clip_height_px").origin.text(), std::string(kAt) + ".clip_size_px[1]");
+  EXPECT_TRUE(numbers.at("polynomial_k2").origin.text().ends_with(std::string(kAt) + ".k2"));
+  EXPECT_TRUE(
+      numbers.at("clip_height_px").origin.text().ends_with(std::string(kAt) + ".clip_size_px[1]"));
   for (const auto& [key, n] : numbers)
     EXPECT_TRUE(n.required) << key;
 }

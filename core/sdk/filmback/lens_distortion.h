@@ -220,8 +220,9 @@ class LensDistortion {
     // aspect (tracking_cameraIntrinscisOptionsFromTracking); Nuke normalizes by half the larger
     // side of that image (libmv's InvertNukeDistortionModel).
     principal_ = {p.principal_px.x, p.principal_px.y / p.pixel_aspect};
-    nuke_half_size_px_ =
-        0.5 * std::max(p.clip_width_px, std::floor(p.clip_height_px / p.pixel_aspect));
+    unit_px_ = model_ == DistortionModel::kNuke
+                   ? 0.5 * std::max(p.clip_width_px, std::floor(p.clip_height_px / p.pixel_aspect))
+                   : p.focal_length_px;
   }
 
   DistortionModel model() const { return model_; }
@@ -230,45 +231,16 @@ class LensDistortion {
   // The undistorted image position of a distorted one, both in the clip's pixels (y already
   // divided by the pixel aspect, as libmv sees them); none where the model has no inverse.
   std::optional<Vec2d> undistort(Vec2d distorted) const {
-    using namespace distortion_detail;
     if (identity()) return distorted;
-    const double f = p_.focal_length_px;
-    if (model_ == DistortionModel::kNuke) {
-      // Nuke's model maps distorted to undistorted in closed form: x_u = x_d / (1 + k1 r_d^2 +
-      // k2 r_d^4), in units of half the image's larger side.
-      const Vec2d q = {(distorted.x - principal_.x) / nuke_half_size_px_,
-                       (distorted.y - principal_.y) / nuke_half_size_px_};
-      if (!(std::hypot(q.x, q.y) < domain_)) return std::nullopt;
-      const Vec2d u = division_.apply(q);
-      return Vec2d{principal_.x + u.x * nuke_half_size_px_,
-                   principal_.y + u.y * nuke_half_size_px_};
-    }
-    const Vec2d target = {(distorted.x - principal_.x) / f, (distorted.y - principal_.y) / f};
-    const std::optional<Vec2d> n = model_ == DistortionModel::kDivision
-                                       ? solve(division_, target, target, domain_)
-                                       : solve(radial_, target, target, domain_);
-    if (!n) return std::nullopt;
-    return Vec2d{principal_.x + n->x * f, principal_.y + n->y * f};
+    // Nuke's model maps distorted to undistorted in closed form; the others the other way.
+    return in_model_units(distorted, /*solve=*/model_ != DistortionModel::kNuke);
   }
 
   // The distorted image position of an undistorted one (the model's own direction; Nuke's by
   // Newton), for tests and tools; none where the model folds.
   std::optional<Vec2d> distort(Vec2d undistorted) const {
-    using namespace distortion_detail;
     if (identity()) return undistorted;
-    const double f = p_.focal_length_px;
-    if (model_ == DistortionModel::kNuke) {
-      const Vec2d target = {(undistorted.x - principal_.x) / nuke_half_size_px_,
-                            (undistorted.y - principal_.y) / nuke_half_size_px_};
-      const std::optional<Vec2d> q = solve(division_, target, target, domain_);
-      if (!q) return std::nullopt;
-      return Vec2d{principal_.x + q->x * nuke_half_size_px_,
-                   principal_.y + q->y * nuke_half_size_px_};
-    }
-    const Vec2d n = {(undistorted.x - principal_.x) / f, (undistorted.y - principal_.y) / f};
-    if (!(std::hypot(n.x, n.y) < domain_)) return std::nullopt;
-    const Vec2d d = model_ == DistortionModel::kDivision ? division_.apply(n) : radial_.apply(n);
-    return Vec2d{principal_.x + d.x * f, principal_.y + d.y * f};
+    return in_model_units(undistorted, /*solve=*/model_ == DistortionModel::kNuke);
   }
 
   // The render's raster position (x right, y down, origin top-left, continuous) whose pinhole ray
@@ -285,13 +257,29 @@ class LensDistortion {
   }
 
  private:
+  // The model's closed-form map (or, with `solve`, its inverse by Newton's iteration) of an image
+  // position, in the model's units about the optical centre: focal lengths, or for Nuke half the
+  // image's larger side (libmv's InvertNukeDistortionModel).
+  std::optional<Vec2d> in_model_units(Vec2d image, bool solve) const {
+    const Vec2d p = {(image.x - principal_.x) / unit_px_, (image.y - principal_.y) / unit_px_};
+    const bool radial = model_ == DistortionModel::kPolynomial || model_ == DistortionModel::kBrown;
+    std::optional<Vec2d> q;
+    if (solve)
+      q = radial ? distortion_detail::solve(radial_, p, p, domain_)
+                 : distortion_detail::solve(division_, p, p, domain_);
+    else if (std::hypot(p.x, p.y) < domain_)
+      q = radial ? radial_.apply(p) : division_.apply(p);
+    if (!q) return std::nullopt;
+    return Vec2d{principal_.x + q->x * unit_px_, principal_.y + q->y * unit_px_};
+  }
+
   LensDistortionParams p_;
   DistortionModel model_ = DistortionModel::kNone;
   distortion_detail::Radial radial_;
   distortion_detail::Division division_;
   double domain_ = distortion_detail::kMaxRadius;
   Vec2d principal_{};
-  double nuke_half_size_px_ = 1;
+  double unit_px_ = 1;  // the model's unit of length in the clip's pixels
 };
 
 // The distortion parameters of a schema holding FB_LENS_DISTORTION_PARAMS, from create()'s
