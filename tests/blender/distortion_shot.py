@@ -31,6 +31,9 @@ class Distortion:
     model: str  # MovieTrackingCamera.distortion_model
     coefficients: dict  # MovieTrackingCamera property -> value
     principal_px: tuple  # in the clip's pixels, from its bottom-left corner
+    # The camera names the clip by a Camera Solver constraint (the scene has no active clip)
+    # instead of the clip being the scene's active clip: the add-on's two ways to find it.
+    by_constraint: bool = False
 
 
 # Small markers (2.5-3.5 px) inside the frame's middle 80 %, where every model keeps them on the
@@ -57,7 +60,7 @@ DISTORTIONS = {
     "nuke": Distortion("NUKE", {"nuke_k1": 0.08, "nuke_k2": 0.01}, (129.0, 79.0)),
     "brown": Distortion("BROWN", {"brown_k1": -0.1, "brown_k2": 0.02, "brown_k3": -0.002,
                                   "brown_k4": 0.0002, "brown_p1": 0.004, "brown_p2": -0.003},
-                        (127.5, 81.5)),
+                        (127.5, 81.5), by_constraint=True),
 }
 
 
@@ -121,7 +124,13 @@ def main():
                for marker in SHOT.markers]
     clip = write_clip(out_dir, SHOT.width_px * CLIP_SCALE, SHOT.height_px * CLIP_SCALE)
     solve_camera(clip, camera, distortion)
-    scene.active_clip = clip
+    if distortion.by_constraint:
+        # With no reconstruction the constraint leaves the camera where it is.
+        constraint = camera.constraints.new("CAMERA_SOLVER")
+        constraint.use_active_clip = False
+        constraint.clip = clip
+    else:
+        scene.active_clip = clip
     bpy.context.view_layer.update()
 
     w, h = SHOT.width_px, SHOT.height_px
