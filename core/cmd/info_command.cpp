@@ -1,9 +1,11 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "core/cmd/commands.h"
+#include "core/render/plugin_choice_loader.h"
 #include "core/render/shot_plan.h"
 #include "core/scene/camera.h"
 #include "importers/import_scene.h"
@@ -164,6 +166,23 @@ std::pair<const char*, const char*> light_quantity(LightType t) {
   }
 }
 
+// What the planned camera plugin derives from its values (fb_camera_api::describe): a panorama's
+// field of view, a lens' focal length and pupil. Loading it also proves the plan renders.
+void print_camera_description(const ShotPlan& plan) {
+  try {
+    const PluginLoader loader(PluginLoader::default_search_dirs());
+    const std::string lines = load_camera(loader, plan)->describe();
+    if (lines.empty()) return;
+    std::cout << "  camera model " << plan.camera_model.name << " says:\n";
+    std::istringstream in(lines);
+    for (std::string line; std::getline(in, line);)
+      std::cout << "    " << line << '\n';
+  } catch (const std::runtime_error& e) {  // a plugin missing or refusing the shot's values
+    std::cout << "  camera model " << plan.camera_model.name << " cannot start: " << e.what()
+              << '\n';
+  }
+}
+
 }  // namespace
 
 // What `filmback render` chooses with no other option: the shot plan (core/render/shot_plan.h),
@@ -185,6 +204,7 @@ void print_plan(const Scene& scene, const std::optional<std::string>& camera) {
         std::cout << "    " << n.key << format(" = %.17g", n.value) << "  from " << n.origin.text()
                   << '\n';
     }
+    print_camera_description(plan);
   } catch (const std::runtime_error& e) {  // InputError or UsageError: the scene as it stands
     std::cout << ": cannot render: " << e.what() << '\n';
   }

@@ -32,6 +32,10 @@ struct Layout {
 // published header's (tests/sdk/abi_frozen/filmback/plugin_abi.h, before issue 14), and
 // tests/sdk/abi_growth_test.cpp checks it against that header's own sizeof. A growth appends a
 // layout here.
+inline constexpr Layout kCameraApiLayouts[] = {
+    {padded_size(offsetof(fb_camera_api, describe), alignof(fb_camera_api)),
+     uint32_t(offsetof(fb_camera_api, describe))},
+    {sizeof(fb_camera_api), sizeof(fb_camera_api)}};
 inline constexpr Layout kIntegratorApiLayouts[] = {
     {padded_size(offsetof(fb_integrator_api, scene_size), alignof(fb_integrator_api)),
      uint32_t(offsetof(fb_integrator_api, scene_size))},
@@ -50,13 +54,13 @@ constexpr bool sizes_grow(const Layout (&layouts)[N]) {
     if (layouts[i].size <= layouts[i - 1].size) return false;
   return true;
 }
-static_assert(sizes_grow(kIntegratorApiLayouts) && sizes_grow(kHitLayouts) &&
-                  sizes_grow(kSceneApiLayouts),
+static_assert(sizes_grow(kCameraApiLayouts) && sizes_grow(kIntegratorApiLayouts) &&
+                  sizes_grow(kHitLayouts) && sizes_grow(kSceneApiLayouts),
               "a growth of the plugin ABI must change the struct's sizeof");
 
 struct FirstLayout {
   static constexpr uint32_t plugin = sizeof(fb_plugin);
-  static constexpr uint32_t camera_api = sizeof(fb_camera_api);
+  static constexpr uint32_t camera_api = kCameraApiLayouts[0].size;
   static constexpr uint32_t filter_api = sizeof(fb_filter_api);
   static constexpr uint32_t integrator_api = kIntegratorApiLayouts[0].size;
   static constexpr uint32_t hit = kHitLayouts[0].size;

@@ -48,7 +48,8 @@ std::string read_function_table(const void* api, PluginDescriptor& d) {
   switch (d.plugin.kind) {
     case FB_KIND_CAMERA:
       problem = check_size(what.c_str(), size, FirstLayout::camera_api, sizeof(fb_camera_api));
-      if (problem.empty()) d.camera = read_covered(api, size, fb_camera_api{});
+      if (problem.empty())
+        d.camera = read_covered(api, fields_end(kCameraApiLayouts, size), fb_camera_api{});
       return problem;
     case FB_KIND_FILTER:
       problem = check_size(what.c_str(), size, FirstLayout::filter_api, sizeof(fb_filter_api));

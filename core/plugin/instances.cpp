@@ -24,6 +24,15 @@ CameraInstance::CameraInstance(std::shared_ptr<const PluginLibrary> library,
   needs_ = api_.needs(instance());
 }
 
+std::string CameraInstance::describe() const {
+  if (!api_.describe) return {};
+  char text[4096] = "";
+  const PluginCrashGuard guard(library().file(), "describe()");
+  api_.describe(instance(), text, sizeof text);
+  text[sizeof text - 1] = '\0';  // whatever the plugin wrote, the host reads a terminated text
+  return text;
+}
+
 FilterInstance::FilterInstance(std::shared_ptr<const PluginLibrary> library,
                                const BoundParams& params)
     : PluginInstance(library, library->api<fb_filter_api>().destroy,

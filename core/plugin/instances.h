@@ -50,6 +50,9 @@ class CameraInstance : public PluginInstance {
   CameraInstance(std::shared_ptr<const PluginLibrary> library, const BoundParams& params,
                  const fb_camera_setup& setup);
   uint32_t needs() const { return needs_; }
+  // What the camera derives from its values, as lines for `filmback info`; empty when it says
+  // nothing (or was built before fb_camera_api::describe).
+  std::string describe() const;
   void generate_rays(std::span<const fb_camera_sample> samples, fb_camera_ray* rays) const {
     api_.generate_rays(instance(), samples.data(), samples.size(), rays);
   }

@@ -64,6 +64,19 @@ TEST(OrthographicCamera, RaysAreParallelAndSpacedByTheOrthoScale) {
   EXPECT_EQ(left.direction[2], -1.f);
 }
 
+// What `filmback info` prints of a thin lens (fb_camera_api::describe): 50 mm at f/2 is 25 mm
+// across; focused at 1 m, 1/f' = 1/1000 + 1/50 gives f' = 47.619 mm.
+TEST(ThinLensCamera, DescribesItsApertureAndEffectiveFocalLength) {
+  auto library = test::loader().load(FB_KIND_CAMERA, "thinlens");
+  const BoundParams params(library->descriptor(), {{"fstop", "2"}, {"focus_distance_m", "1"}});
+  const CameraInstance camera(library, params, make_camera_setup(PhysicalCamera{}, 10, 10));
+  const std::string text = camera.describe();
+  EXPECT_NE(text.find("aperture diameter: 25 mm (f/2)"), std::string::npos) << text;
+  EXPECT_NE(text.find("effective focal length: 47.619 mm"), std::string::npos) << text;
+  EXPECT_EQ(make_camera("perspective", make_camera_setup(PhysicalCamera{}, 10, 10))->describe(),
+            "");
+}
+
 TEST(CameraPlugins, RefuseTheOtherProjection) {
   PhysicalCamera physical;
   physical.projection = FB_PROJECTION_ORTHOGRAPHIC;

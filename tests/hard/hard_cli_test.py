@@ -63,6 +63,19 @@ class HardCliTest(cli_test.CliTest):
                 ("inf_emission.gltf", "materials[0]", "must be finite and non-negative")]:
             self.assert_input_error(SCENES / file, path, what)
 
+    def test_a_malformed_lens_file_is_bad_input(self):
+        """The realistic camera's lens file (plugins/cameras/realistic) is untrusted: a bad number
+        is named by file, line and column, exit 1, nothing written."""
+        lens = self.dir / "bad_lens.dat"
+        lens.write_text("# a singlet\n50 6 1.5 20\n-80 6x 1 20\n0 0 0 10\n")
+        start = time.monotonic()
+        result = self.render(SCENES / "aperture_f182.gltf", "-q", "--camera-model",
+                             "realistic:lens=%s" % lens)
+        self.assert_error(result, cli_test.INPUT, "", "camera 'realistic' refused to start: ",
+                          "%s:3:5: expected a number (thickness, mm)" % lens)
+        report("malformed lens file, CLI", 0, 0, "exit 1, file:line:column and what",
+               time.monotonic() - start)
+
     def test_splat_with_a_filter_under_half_a_pixel_is_bad_usage(self):
         self.assert_usage_error(SCENES / "filter_edge.gltf",
                                 ["--reconstruction", "splat", "--filter", "box:radius=0.01", "-q"],

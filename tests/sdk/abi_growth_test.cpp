@@ -58,12 +58,13 @@ TEST(AbiGrowth, FirstLayoutIsTheFrozenHeader) {
   EXPECT_GT(sizeof(fb_hit), frozen.hit);
   EXPECT_GT(sizeof(fb_scene_api), frozen.scene_api);
   EXPECT_GT(sizeof(fb_integrator_api), frozen.integrator_api);
+  EXPECT_GT(sizeof(fb_camera_api), frozen.camera_api);
   // Data the plugin only reads grows too; a camera reads the prefix it knows.
   EXPECT_GE(sizeof(fb_camera_setup), frozen.camera_setup);
 }
 
 // The loader keeps what the frozen integrator declared, and the fields its table lacks
-// (scene_size, scene_api_size) take the first layout's values.
+// (scene_size, scene_api_size; a camera's describe) take the first layout's values.
 TEST(AbiGrowth, FrozenIntegratorLoadsWithTheSizesItKnows) {
   const frozen_sizes frozen = frozen_layout_sizes();
   const auto library = PluginLoader({kFrozenPlugins}).load(FB_KIND_INTEGRATOR, "frozendepth");
@@ -73,6 +74,10 @@ TEST(AbiGrowth, FrozenIntegratorLoadsWithTheSizesItKnows) {
   EXPECT_EQ(api.scene_size, frozen.scene);
   EXPECT_EQ(api.scene_api_size, frozen.scene_api);
   EXPECT_NE(api.radiance, nullptr);
+  // The frozen camera's table ends before `describe`, which reads as absent.
+  const auto camera = PluginLoader({kFrozenPlugins}).load(FB_KIND_CAMERA, "frozenpinhole");
+  EXPECT_EQ(camera->api<fb_camera_api>().struct_size, frozen.camera_api);
+  EXPECT_EQ(camera->api<fb_camera_api>().describe, nullptr);
   for (const auto& [kind, name] :
        {std::pair{FB_KIND_CAMERA, "frozenpinhole"}, std::pair{FB_KIND_FILTER, "frozenbox"}})
     EXPECT_NO_THROW(PluginLoader({kFrozenPlugins}).load(kind, name)) << name;

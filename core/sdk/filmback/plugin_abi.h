@@ -174,6 +174,10 @@ typedef struct fb_camera_api {
   /* One call per batch (a tile's worth) keeps the indirection off the per-ray path. */
   void (*generate_rays)(const void* instance, const fb_camera_sample* samples, size_t count,
                         fb_camera_ray* rays);
+  /* Appended after the first published layout (Growth): what the camera derives from its values,
+     for `filmback info`, as lines "name: value unit" ("effective focal length: 50.02 mm"), written
+     NUL-terminated into text[0..capacity), cut to fit. NULL when it has nothing to add. */
+  void (*describe)(const void* instance, char* text, size_t capacity);
 } fb_camera_api;
 
 /* ------------------------------------------------------------------------------------ filter */

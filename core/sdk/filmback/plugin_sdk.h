@@ -2,6 +2,7 @@
 // filmback's, it only includes headers (docs/plugins.md).
 #pragma once
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <exception>
@@ -136,8 +137,23 @@ inline const fb_hit* first_hits(const fb_scene& scene, fb_trace_context* context
 //   Camera(const fb_value* params, const fb_camera_setup& setup);
 //   uint32_t needs() const;
 //   void generate(const fb_camera_sample& sample, fb_camera_ray& ray) const;
+//   std::string describe() const;               (optional: lines for `filmback info`)
 template <typename Camera>
 constexpr fb_camera_api camera_api() {
+  using Describe = void (*)(const void*, char*, size_t);
+  Describe describe = nullptr;
+  if constexpr (requires(const Camera& c) { std::string(c.describe()); })
+    describe = [](const void* self, char* text, size_t capacity) {
+      if (capacity == 0) return;
+      text[0] = '\0';
+      try {  // no exception crosses the C boundary; a failed description is an empty one
+        const std::string lines = static_cast<const Camera*>(self)->describe();
+        const size_t n = std::min(lines.size(), capacity - 1);
+        lines.copy(text, n);
+        text[n] = '\0';
+      } catch (...) {
+      }
+    };
   return {sizeof(fb_camera_api),
           [](const fb_value* params, const fb_camera_setup* setup, void** instance,
              fb_error_buffer error) {
@@ -149,7 +165,8 @@ constexpr fb_camera_api camera_api() {
             const auto& camera = *static_cast<const Camera*>(self);
             for (size_t i = 0; i < count; ++i)
               camera.generate(samples[i], rays[i]);
-          }};
+          },
+          describe};
 }
 
 //   Filter(const fb_value* params);

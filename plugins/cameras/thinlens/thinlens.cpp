@@ -27,6 +27,7 @@
 #include <filmback/sampling.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace {
@@ -82,6 +83,8 @@ class ThinLens {
         blades_(uint32_t(kBlades(values))),
         rotation_(float(kRotation(values))),
         inverse_ratio_(float(1 / kRatio(values))),
+        focal_mm_(s.focal_length_mm),
+        fstop_(kFstop(values)),
         distortion_(fb::lens_distortion_params(kParams, values)),
         width_px_(s.image_width_px),
         height_px_(s.image_height_px) {
@@ -102,6 +105,19 @@ class ThinLens {
   }
 
   uint32_t needs() const { return FB_CAMERA_NEEDS_LENS; }
+
+  // The aperture as a length, and the focal length the lens really has when the image distance
+  // stays f while it focuses at D (1/f' = 1/D + 1/f; docs/camera-model.md).
+  std::string describe() const {
+    char text[256];
+    int n = std::snprintf(text, sizeof text, "aperture diameter: %.6g mm (f/%.6g)\n",
+                          focal_mm_ / fstop_, fstop_);
+    if (!std::isinf(focus_m_))
+      std::snprintf(text + n, sizeof text - size_t(n),
+                    "effective focal length: %.6g mm (focused at %.6g m; image distance %.6g mm)\n",
+                    focal_mm_ * focus_m_ * 1e3 / (focus_m_ * 1e3 + focal_mm_), focus_m_, focal_mm_);
+    return text;
+  }
 
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
     fb::Vec2d film{s.film_x, s.film_y};
@@ -147,6 +163,7 @@ class ThinLens {
   double radius_m_, focus_m_;
   uint32_t blades_;
   float rotation_, inverse_ratio_;
+  double focal_mm_, fstop_;
   float exposure_ = 0.f;  // 0: the simple sensor
   fb::LensDistortion distortion_;
   double width_px_, height_px_;
@@ -154,7 +171,7 @@ class ThinLens {
 
 constexpr fb_camera_api kApi = fb::camera_api<ThinLens>();
 constexpr fb_plugin kPlugin = fb::describe(
-    "thinlens", "1.2.0",
+    "thinlens", "1.3.0",
     "Thin lens with Blender's f-number, focus distance, blades, rotation, anamorphic ratio and "
     "a tracked clip's lens distortion",
     kParams, kApi);
