@@ -13,6 +13,7 @@
 #include "importers/gltf/gltf_camera_panorama.h"
 #include "importers/gltf/gltf_camera_source.h"
 #include "importers/gltf/gltf_json.h"
+#include "importers/gltf/gltf_lens_distortion.h"
 
 namespace fb::gltf {
 namespace {
@@ -272,6 +273,9 @@ SceneCamera read_camera(const tinygltf::Model& model, const tinygltf::Node& node
   }
   if (!sources.empty() && g.type == "perspective")
     agree_with_yfov(g, cpath, file, decided, core, camera, diagnostics);
+  if (const tinygltf::Value* ext = extension(g, "FILMBACK_blender"))
+    camera.lens_distortion =
+        read_lens_distortion(Fields(*ext, cpath + ".extensions.FILMBACK_blender", file));
   return camera;
 }
 

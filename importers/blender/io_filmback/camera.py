@@ -36,7 +36,49 @@ def camera_extension(obj, scene, frame):
         per_frame = focus_per_frame(obj, scene)
         if per_frame is not None:
             out["focus_distance_per_frame_m"] = per_frame
+    distortion = lens_distortion(obj, scene)
+    if distortion is not None:
+        out["lens_distortion"] = distortion
     return out
+
+
+# Each tracking distortion model's coefficients: MovieTrackingCamera's property per name written.
+DISTORTION_COEFFICIENTS = {
+    "POLYNOMIAL": {"k1": "k1", "k2": "k2", "k3": "k3"},
+    "DIVISION": {"k1": "division_k1", "k2": "division_k2"},
+    "NUKE": {"k1": "nuke_k1", "k2": "nuke_k2"},
+    "BROWN": {"k1": "brown_k1", "k2": "brown_k2", "k3": "brown_k3", "k4": "brown_k4",
+              "p1": "brown_p1", "p2": "brown_p2"},
+}
+
+
+def camera_clip(obj, scene):
+    """The movie clip whose solved camera this camera is: its Camera Solver constraint's (or the
+    scene's active clip when the constraint says so), else the scene's active clip."""
+    for constraint in obj.constraints:
+        if constraint.type == "CAMERA_SOLVER" and constraint.enabled:
+            return scene.active_clip if constraint.use_active_clip else constraint.clip
+    return scene.active_clip
+
+
+def lens_distortion(obj, scene):
+    """The clip's solved intrinsics in Blender 3.4's units (focal length and optical centre in the
+    clip's pixels, the centre from its bottom-left corner), when its distortion is not the
+    identity; None otherwise (docs/blender.md, "Lens distortion")."""
+    clip = camera_clip(obj, scene)
+    if clip is None or obj.data.type != "PERSP":
+        return None
+    tracking = clip.tracking.camera
+    names = DISTORTION_COEFFICIENTS[tracking.distortion_model]
+    coefficients = {key: getattr(tracking, prop) for key, prop in names.items()}
+    if not any(coefficients.values()):
+        return None
+    width, height = clip.size
+    return {"model": tracking.distortion_model.lower(), **coefficients,
+            "clip_size_px": [width, height],
+            "focal_length_px": tracking.focal_length_pixels,
+            "principal_px": list(tracking.principal),
+            "pixel_aspect": tracking.pixel_aspect}
 
 
 def ext_camera_physical(cam):
