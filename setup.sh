@@ -80,7 +80,9 @@ if [ "$mode" = test ]; then
     sampled_out+='|Shots/BlenderPrincipled\.MatchesCycles/(roughness_0_2|roughness_0_5|roughness_0_9|'
     sampled_out+='anisotropic|'
     sampled_out+='nodes|sphere_light)'
+    sampled_out+='|Against/BlenderPanorama\.MarkersAndCircleMatchCycles/(fisheye_equidistant|mirrorball|fisheye_polynomial)'
     sampled_out+='|BlenderMaterials\.(AlphaCutout|EmissiveTexture)MatchesCycles|BlenderAlbedo\..*'
+    sampled_out+='|Against/BlenderDistortion\.MarkersLandWhereTheMovieDistortionNodePutsThem/(division|nuke)'
     sampled_out+='|Shots/PovConvert\.ValidatesAndRendersAsThePovWithinNoise/(mirrored_camera|lights|'
     sampled_out+='sample_debug|sample_filtfun|sample_laser|sample_macro1))( |$)'
   fi

@@ -47,6 +47,20 @@ void print_origins(const SceneCamera& camera) {
               << '\n';
 }
 
+const char* projection_name(uint32_t projection) {
+  return projection == FB_PROJECTION_ORTHOGRAPHIC ? "orthographic"
+         : projection == FB_PROJECTION_PANORAMIC  ? "panoramic"
+                                                  : "perspective";
+}
+
+// A projection of the scene's own (docs/camera-model.md, "Panoramic cameras"): its kind and each
+// value exactly, with where it came from; the plugin's defaults (Blender's) fill the others.
+void print_model(const CameraModel& model) {
+  std::cout << "    projection " << model.kind << " (" << model.origin.text() << ")\n";
+  for (const NamedNumber& n : model.numbers)
+    std::cout << format("      %s=%.17g (%s)\n", n.key.c_str(), n.value, n.origin.text().c_str());
+}
+
 void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
   const PhysicalCamera& c = camera.physical;
   const auto [width, height] =
@@ -57,8 +71,18 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
   const char* fitted =
       sensor_fit_name(q.horizontal_fit ? FB_SENSOR_FIT_HORIZONTAL : FB_SENSOR_FIT_VERTICAL);
   std::cout << "  " << camera.name << "  [" << camera.source << "]  "
-            << (ortho ? "orthographic" : "perspective") << '\n';
-  if (ortho) {
+            << (camera.model ? camera.model->kind : projection_name(c.projection)) << '\n';
+  if (camera.model) {
+    // The lens and sensor as the scene has them (Cycles' equisolid and polynomial fisheyes use the
+    // sensor, an aperture the focal length); the field of view is the projection's own, which its
+    // plugin derives under the plan.
+    std::cout << format(
+        "    focal length %.3f mm, sensor %.2f x %.2f mm, fit %s (%s at %ux%u), shift %.4g, %.4g\n",
+        c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm, sensor_fit_name(c.sensor_fit),
+        fitted, width, height, c.shift_x, c.shift_y);
+    print_model(*camera.model);
+    std::cout << "    field of view: the projection's, as its camera model says under the plan\n";
+  } else if (ortho) {
     std::cout << format("    ortho scale %.6g m, sensor fit %s (%s at %ux%u)\n", c.ortho_scale_m,
                         sensor_fit_name(c.sensor_fit), fitted, width, height);
   } else {
@@ -86,7 +110,7 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
                                 .c_str()
                           : "round",
         c.aperture_ratio);
-  else if (!ortho)
+  else if (!ortho && !camera.model)
     std::cout << "    pinhole (no aperture: everything in focus)\n";
   std::cout << format(
       "    clip %.6g m to %s, at %s m\n", c.clip_near_m,
@@ -100,7 +124,7 @@ void print_camera(const SceneCamera& camera, const ShotSettings& shot) {
                             track->first_frame + double(n - 1), n);
   // Every value exactly as imported (%.17g round-trips a double), under the names of the
   // FILMBACK_blender extension, for scripts: docs/blender.md, "Cameras".
-  std::cout << "    exact: projection=" << (ortho ? "orthographic" : "perspective")
+  std::cout << "    exact: projection=" << projection_name(c.projection)
             << format(" focal_length_mm=%.17g sensor_width_mm=%.17g sensor_height_mm=%.17g",
                       c.focal_length_mm, c.sensor_width_mm, c.sensor_height_mm)
             << " sensor_fit=" << sensor_fit_name(c.sensor_fit)

@@ -39,6 +39,9 @@ std::unique_ptr<Instance> instantiate(const PluginLoader& loader, uint32_t kind,
     fail(choice, e.what());
   }
   for (const NamedNumber& n : choice.numbers) {
+    if (n.required && !declares(plugin, n.key))
+      fail(choice, "it has no parameter '" + n.key + "' for the shot's " + n.origin.text() +
+                       " (a lens distortion renders with perspective or thinlens)");
     if (choice.typed_key(n.key) || !declares(plugin, n.key)) continue;
     if (std::string expected = params->set_number(plugin, n.key, n.value); !expected.empty())
       n.origin.fail("the plugin " + choice.name + "'s parameter '" + n.key +

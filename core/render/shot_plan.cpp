@@ -106,6 +106,7 @@ std::vector<NamedNumber> lens_numbers(const SceneCamera& camera) {
   add("aperture_blades", c.aperture_blades, CameraValue::kApertureBlades);
   add("aperture_rotation_rad", c.aperture_rotation_rad, CameraValue::kApertureRotation);
   add("aperture_ratio", c.aperture_ratio, CameraValue::kApertureRatio);
+  numbers.insert(numbers.end(), camera.lens_distortion.begin(), camera.lens_distortion.end());
   return numbers;
 }
 
@@ -165,14 +166,14 @@ PluginChoice choose_camera_model(const std::optional<std::string>& typed, const 
     if (sensor.model == FB_SENSOR_PHYSICAL)
       throw UsageError(
           "--sensor-model physical: an orthographic camera has no aperture to expose through");
-    return {"orthographic", {}, {}, camera.origin(CameraValue::kOrthoScale)};
+    return {"orthographic", {}, camera.lens_distortion, camera.origin(CameraValue::kOrthoScale)};
   }
   if (sensor.model == FB_SENSOR_PHYSICAL && !c.has_aperture())
     throw UsageError("--sensor-model physical needs an aperture: give --fstop (the shot has none)");
   if (camera.model) return model_plugin(*camera.model, camera_numbers(camera));
   if (c.has_aperture())
     return {"thinlens", {}, lens_numbers(camera), camera.origin(CameraValue::kFstop)};
-  return {"perspective", {}, {}, camera.origin(CameraValue::kFstop)};
+  return {"perspective", {}, camera.lens_distortion, camera.origin(CameraValue::kFstop)};
 }
 
 PluginChoice choose_integrator(const std::optional<std::string>& typed) {

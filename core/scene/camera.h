@@ -114,6 +114,9 @@ struct SceneCamera {
   std::optional<double> intended_aspect;  // width / height the shot was made for
   std::optional<LensTrack> lens_track;    // replaces the values it tracks at the shot's frame
   std::optional<CameraModel> model;       // when physical.projection is FB_PROJECTION_PANORAMIC
+  // A tracked clip's lens distortion as the projective cameras' parameters (each required;
+  // filmback/lens_distortion.h); empty: none.
+  std::vector<NamedNumber> lens_distortion;
   CameraOrigins origins;                  // where each value of `physical` came from
   const ValueOrigin& origin(CameraValue v) const { return origins[size_t(v)]; }
 };

@@ -32,6 +32,9 @@ struct NamedNumber {
   std::string key;
   double value = 0;
   ValueOrigin origin;  // the scene value (file and JSON path) or option it came from
+  // The plugin must declare it: a value that changes where things land (a tracked lens
+  // distortion) is never dropped by a plugin without the parameter.
+  bool required = false;
 };
 
 }  // namespace fb

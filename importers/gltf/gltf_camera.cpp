@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "core/util/error.h"
+#include "importers/gltf/gltf_camera_panorama.h"
 #include "importers/gltf/gltf_camera_source.h"
 #include "importers/gltf/gltf_json.h"
+#include "importers/gltf/gltf_lens_distortion.h"
 
 namespace fb::gltf {
 namespace {
@@ -265,8 +267,19 @@ SceneCamera read_camera(const tinygltf::Model& model, const tinygltf::Node& node
     camera.origin(V::kClipFar)
         .fail("expected clip_far_m > clip_near_m (" + number_text(phys.clip_near_m) + " m at " +
               camera.origin(V::kClipNear).text() + ")");
+  if (const tinygltf::Value* ext = extension(g, "FILMBACK_blender")) {
+    // A panorama's core camera is a perspective stand-in for other viewers: no yfov to agree with.
+    camera.model = read_panorama(*ext, cpath + ".extensions.FILMBACK_blender", file);
+    if (camera.model) {
+      camera.physical.projection = FB_PROJECTION_PANORAMIC;
+      return camera;
+    }
+  }
   if (!sources.empty() && g.type == "perspective")
     agree_with_yfov(g, cpath, file, decided, core, camera, diagnostics);
+  if (const tinygltf::Value* ext = extension(g, "FILMBACK_blender"))
+    camera.lens_distortion =
+        read_lens_distortion(Fields(*ext, cpath + ".extensions.FILMBACK_blender", file));
   return camera;
 }
 

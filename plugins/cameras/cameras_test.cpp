@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <filmback/camera_projection.h>
+#include <filmback/lens_distortion.h>
 
 #include "core/plugin/instances.h"
 #include "core/scene/camera.h"
@@ -80,6 +81,48 @@ TEST(CameraPlugins, RefuseTheOtherProjection) {
   PhysicalCamera physical;
   physical.projection = FB_PROJECTION_ORTHOGRAPHIC;
   EXPECT_THROW(make_camera("perspective", make_camera_setup(physical, 10, 10)), std::runtime_error);
+}
+
+// A tracked clip's distortion (filmback/lens_distortion.h): both projective cameras aim each film
+// position's ray through its undistorted position, and a position beyond the model's fold is
+// black (weight 0) along a finite ray. k1 = -0.5 folds at a normalized radius of 0.544: the
+// corners of this 128x80 frame (r = 0.76 through f = 199 px on the 256x160 clip) are beyond it.
+TEST(CameraPlugins, ApplyATrackedLensDistortionBeforeTheirProjection) {
+  PhysicalCamera physical;
+  physical.focal_length_mm = 28;
+  const fb_camera_setup setup = make_camera_setup(physical, 128, 80);
+  const ViewPlane v = view_plane(setup);
+  const std::vector<std::pair<std::string, std::string>> distortion = {
+      {"polynomial_k1", "-0.5"},      {"clip_width_px", "256"},
+      {"clip_height_px", "160"},      {"clip_focal_length_px", "199.1"},
+      {"clip_principal_x_px", "131"}, {"clip_principal_y_px", "77.5"}};
+  LensDistortionParams params;
+  params.polynomial_k = {-0.5, 0, 0};
+  params.clip_width_px = 256;
+  params.clip_height_px = 160;
+  params.focal_length_px = 199.1;
+  params.principal_px = {131, 77.5};
+  const LensDistortion lens(params);
+  for (const char* name : {"perspective", "thinlens"}) {
+    SCOPED_TRACE(name);
+    auto settings = distortion;
+    if (std::string(name) == "thinlens") settings.push_back({"fstop", "1e6"});  // a pinhole's rays
+    auto library = test::loader().load(FB_KIND_CAMERA, name);
+    const CameraInstance camera(library, BoundParams(library->descriptor(), settings), setup);
+    for (auto [x, y] : {std::pair{20.f, 15.f}, {100.5f, 70.25f}, {110.f, 20.f}}) {
+      const fb_camera_ray ray = generate(camera, x, y);
+      const Vec2d expected = *lens.undistorted_film({x, y}, 128, 80);
+      const double dx = ray.direction[0], dy = ray.direction[1], dz = ray.direction[2];
+      EXPECT_NEAR(v.cx + v.fx * dx / -dz, expected.x, 2e-4);
+      EXPECT_NEAR(v.cy - v.fy * dy / -dz, expected.y, 2e-4);
+      EXPECT_GT(std::hypot(expected.x - x, expected.y - y), 0.05);  // the distortion moves it
+      EXPECT_EQ(ray.weight, 1.f);
+    }
+    const fb_camera_ray corner = generate(camera, 0.5f, 0.5f);
+    EXPECT_EQ(corner.weight, 0.f);
+    for (float c : corner.direction)
+      EXPECT_TRUE(std::isfinite(c));
+  }
 }
 
 }  // namespace

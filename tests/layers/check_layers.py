@@ -27,7 +27,11 @@ SOURCE_SUFFIXES = {".c", ".cc", ".cpp", ".h", ".hpp"}
 ALLOWED_PLUGIN_NAMES = {
     "core/render/shot_plan.cpp": {"perspective", "orthographic", "thinlens", "gaussian", "box",
                                   "blackman_harris", "path", "pov_fisheye", "pov_ultra_wide_angle",
-                                  "pov_omnimax", "pov_panoramic", "pov_cylinder", "pov_spherical"},
+                                  "pov_omnimax", "pov_panoramic", "pov_cylinder", "pov_spherical",
+                                  # kModelPlugins: the projections scenes name (Cycles' panoramas)
+                                  "equirectangular", "fisheye_equidistant", "fisheye_equisolid",
+                                  "mirrorball", "fisheye_polynomial", "central_cylindrical",
+                                  "equiangular_cubemap_face"},
     "core/render/shutter.cpp": {"box"},  # the box shutter curve, not the box filter
     "core/cmd/info_command.cpp": {"perspective", "orthographic"},  # the projection it prints
 }

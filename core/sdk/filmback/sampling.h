@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <numbers>
 #include <vector>
@@ -44,6 +45,30 @@ inline Vec2f sample_uniform_triangle(Vec2f u) {
     b0 = u.x - b1;
   }
   return {b0, b1};
+}
+
+// Uniform point in the regular polygon with `blades` corners on the unit circle at angles
+// rotation + (2k + 1) pi / blades, as Cycles places them (regular_polygon_sample in Cycles'
+// kernel/sample/mapping.h): rotation 0 puts an edge, not a corner, across +x. A wedge chosen by
+// u.x, then a uniform point in its triangle.
+inline Vec2f sample_regular_polygon(Vec2f u, uint32_t blades, float rotation) {
+  constexpr float kPi = std::numbers::pi_v<float>;
+  const float wedge_f = u.x * float(blades);
+  const uint32_t wedge = std::min(uint32_t(wedge_f), blades - 1);
+  const float ux = wedge_f - float(wedge);  // the remaining bits of u.x, uniform in [0,1)
+  const float a0 = rotation + kPi * float(2 * wedge + 1) / float(blades);
+  const float a1 = a0 + 2.f * kPi / float(blades);
+  const Vec2f b = sample_uniform_triangle({ux, u.y});  // weights of the two corners
+  return {b.y * std::cos(a0) + (1.f - b.x - b.y) * std::cos(a1),
+          b.y * std::sin(a0) + (1.f - b.x - b.y) * std::sin(a1)};
+}
+
+// A point of Blender's aperture of unit radius (Cycles' camera_sample_aperture): the disk, or the
+// regular polygon of `blades` >= 3 blades, its x divided by the anamorphic ratio.
+inline Vec2f sample_aperture(Vec2f u, uint32_t blades, float rotation, float inverse_ratio) {
+  Vec2f lens = blades ? sample_regular_polygon(u, blades, rotation) : sample_concentric_disk(u);
+  lens.x *= inverse_ratio;
+  return lens;
 }
 
 // Veach's power heuristic (beta = 2) for two strategies with one sample each, written as

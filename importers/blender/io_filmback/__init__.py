@@ -94,6 +94,9 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
 
         from . import camera, lights, subdivision
         data = {}
+        if blender_object.type == "CAMERA" and gltf2_node.camera is None and \
+                blender_object.data.type == "PANO" and export_settings.get("gltf_cameras"):
+            gltf2_node.camera = camera.panoramic_gltf_camera(blender_object, bpy.context.scene)
         if blender_object.type == "CAMERA" and gltf2_node.camera is not None:
             ours = camera.camera_extension(blender_object, bpy.context.scene, self.frame)
             self._add(gltf2_node.camera, EXTENSION, ours)

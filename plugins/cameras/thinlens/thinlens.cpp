@@ -17,7 +17,12 @@
 // Sensor: SIMPLE weighs every ray 1 (Cycles' pixel values). PHYSICAL weighs it with the camera
 // equation H = L t (pi / 4N^2) cos^4(theta) (ISO 12232), times ISO/100 and the aperture's area
 // relative to the round one, theta being the chief ray's angle to the axis.
+//
+// A tracked clip's lens distortion (filmback/lens_distortion.h) moves each film position to the
+// undistorted one before all this, so the bokeh is the undistorted image's, distorted with it as
+// the Movie Distortion node would; a position the model cannot undistort has weight 0.
 #include <filmback/camera_projection.h>
+#include <filmback/lens_distortion.h>
 #include <filmback/plugin_sdk.h>
 #include <filmback/sampling.h>
 
@@ -30,21 +35,6 @@ namespace {
 using fb::Vec2f;
 
 constexpr double kPi = std::numbers::pi;
-
-// Uniform point in the regular polygon with `blades` corners on the unit circle at angles
-// rotation + (2k + 1) pi / blades, as Cycles places them (regular_polygon_sample in Cycles'
-// kernel/sample/mapping.h): rotation 0 puts an edge, not a corner, across +x. A wedge chosen by
-// u.x, then a uniform point in its triangle.
-Vec2f sample_polygon(Vec2f u, uint32_t blades, float rotation) {
-  const float wedge_f = u.x * float(blades);
-  const uint32_t wedge = std::min(uint32_t(wedge_f), blades - 1);
-  const float ux = wedge_f - float(wedge);  // the remaining bits of u.x, uniform in [0,1)
-  const float a0 = rotation + float(kPi) * float(2 * wedge + 1) / float(blades);
-  const float a1 = a0 + 2.f * float(kPi) / float(blades);
-  const Vec2f b = fb::sample_uniform_triangle({ux, u.y});  // weights of the two corners
-  return {b.y * std::cos(a0) + (1.f - b.x - b.y) * std::cos(a1),
-          b.y * std::sin(a0) + (1.f - b.x - b.y) * std::sin(a1)};
-}
 
 // Blender's names and units (Camera > Depth of Field); the bounds are the ones Blender and
 // fb_camera_setup's readers accept. A focus distance bounded by infinity admits "inf".
@@ -59,6 +49,7 @@ constexpr fb_param_desc kParams[] = {
      "rotation of the blades"},
     {"aperture_ratio", FB_PARAM_FLOAT, "1", "", nullptr, 1e-2, 1e2,
      "anamorphic bokeh: the aperture's x is divided by it"},
+    FB_LENS_DISTORTION_PARAMS,
 };
 constexpr auto kFstop = fb::param<double>(kParams, "fstop");
 constexpr auto kFocusDistance = fb::param<double>(kParams, "focus_distance_m");
@@ -78,7 +69,10 @@ class ThinLens {
         rotation_(float(kRotation(values))),
         inverse_ratio_(float(1 / kRatio(values))),
         focal_mm_(s.focal_length_mm),
-        fstop_(kFstop(values)) {
+        fstop_(kFstop(values)),
+        distortion_(fb::lens_distortion_params(kParams, values)),
+        width_px_(s.image_width_px),
+        height_px_(s.image_height_px) {
     if (s.projection != FB_PROJECTION_PERSPECTIVE)
       throw std::invalid_argument("a thin lens needs a perspective projection");
     if (blades_ == 1 || blades_ == 2)
@@ -111,12 +105,18 @@ class ThinLens {
   }
 
   void generate(const fb_camera_sample& s, fb_camera_ray& ray) const {
+    fb::Vec2d film{s.film_x, s.film_y};
+    bool undistorted = true;
+    if (!distortion_.identity()) {
+      const std::optional<fb::Vec2d> u = distortion_.undistorted_film(film, width_px_, height_px_);
+      undistorted = u.has_value();
+      if (u) film = *u;
+    }
     // The pinhole ray's direction at unit depth, and where it meets the focus plane.
-    const double x = (s.film_x - plane_.cx) / plane_.fx;
-    const double y = -(s.film_y - plane_.cy) / plane_.fy;
-    Vec2f lens = blades_ ? sample_polygon({s.lens_u, s.lens_v}, blades_, rotation_)
-                         : fb::sample_concentric_disk({s.lens_u, s.lens_v});
-    lens.x *= inverse_ratio_;
+    const double x = (film.x - plane_.cx) / plane_.fx;
+    const double y = -(film.y - plane_.cy) / plane_.fy;
+    const Vec2f lens =
+        fb::sample_aperture({s.lens_u, s.lens_v}, blades_, rotation_, inverse_ratio_);
     const double lx = lens.x * radius_m_, ly = lens.y * radius_m_;
     // Towards the focus point (x D_f, y D_f, -D_f); at infinite focus, parallel to the chief ray.
     const bool infinite = std::isinf(focus_m_);
@@ -138,6 +138,7 @@ class ThinLens {
     } else {
       ray.weight = 1.f;
     }
+    if (!undistorted) ray.weight = 0.f;  // beyond the model's fold: black
   }
 
  private:
@@ -148,12 +149,15 @@ class ThinLens {
   float rotation_, inverse_ratio_;
   double focal_mm_, fstop_;
   float exposure_ = 0.f;  // 0: the simple sensor
+  fb::LensDistortion distortion_;
+  double width_px_, height_px_;
 };
 
 constexpr fb_camera_api kApi = fb::camera_api<ThinLens>();
 constexpr fb_plugin kPlugin = fb::describe(
-    "thinlens", "1.2.0",
-    "Thin lens with Blender's f-number, focus distance, blades, rotation and anamorphic ratio",
+    "thinlens", "1.3.0",
+    "Thin lens with Blender's f-number, focus distance, blades, rotation, anamorphic ratio and "
+    "a tracked clip's lens distortion",
     kParams, kApi);
 
 }  // namespace
