@@ -173,8 +173,8 @@ std::array<const CameraSource*, kCameraValueCount> take_sources_whole(
     if (!s || !s->lens_track || !s->lens_track->tracks(v)) continue;
     if (!camera.lens_track) camera.lens_track = LensTrack{s->lens_track->first_frame, {}};
     camera.lens_track->values[size_t(v)] = s->lens_track->values[size_t(v)];
-    camera.origins[size_t(v)] = ValueOrigin::from_file(
-        file, s->track_path + "." + camera_value_name(v), "at the rendered frame");
+    camera.origins[size_t(v)] =
+        ValueOrigin::from_file(file, s->track_paths[size_t(v)], "at the rendered frame");
   }
   return decided;
 }

@@ -12,6 +12,7 @@ namespace {
 // Frames of a lens track, at most: a bound on what a file allocates.
 constexpr size_t kMaxTrackFrames = 100000;
 constexpr const char* kPerFrame = "per_frame";
+constexpr const char* kFocusPerFrame = "focus_distance_per_frame_m";  // before per_frame
 constexpr double kMinTrackFstop = 1e-6;
 
 // Each number Blender's camera carries, with the range a file may give it (Blender's RNA ranges,
@@ -35,11 +36,27 @@ uint32_t sensor_fit(const Fields& f, const std::string& word) {
   return *named;
 }
 
+// The focus track of files the add-on wrote before per_frame (issues 14-15):
+// focus_distance_per_frame_m: {"first_frame": F, "values": [m, ...]}, read so that they keep it.
+std::optional<LensTrack> read_focus_only_track(const Fields& camera) {
+  if (!camera.has(kFocusPerFrame)) return std::nullopt;
+  const Fields f = camera.object(kFocusPerFrame);
+  const auto first = f.whole("first_frame", -1e9, 1e9);
+  auto values = f.numbers("values", kMaxTrackFrames, 1e-6, 1e18);
+  if (!first || !values || values->empty())
+    throw_input(f.file(), f.path(),
+                "expected first_frame and a non-empty array 'values' of distances in metres");
+  LensTrack track;
+  track.first_frame = *first;
+  track.values[size_t(CameraValue::kFocusDistance)] = std::move(*values);
+  return track;
+}
+
 // per_frame: {"first_frame": F, "focal_length_mm": [...], "focus_distance_m": [...], "fstop":
 // [...], "shift_x": [...], "shift_y": [...]}, each list optional, each value in its scalar's
 // range (an f-number here, never 0: a pinhole cannot be interpolated).
 std::optional<LensTrack> read_lens_track(const Fields& camera) {
-  if (!camera.has(kPerFrame)) return std::nullopt;
+  if (!camera.has(kPerFrame)) return read_focus_only_track(camera);
   if (camera.type(kPerFrame) != Fields::Type::kObject)
     camera.fail(kPerFrame,
                 "expected an object {\"first_frame\": F, \"focal_length_mm\": [...], ...}");
@@ -100,7 +117,11 @@ CameraSource read_blender_camera_fields(const Fields& f, const char* name) {
   if (blades == 1 || blades == 2) f.fail("aperture_blades", "expected 0 (round) or 3 to 64 blades");
   named(CameraValue::kApertureBlades, blades);
   s.lens_track = read_lens_track(f);
-  s.track_path = f.path() + "." + kPerFrame;
+  for (CameraValue v : LensTrack::kTracked)
+    s.track_paths[size_t(v)] = f.path() + "." + kPerFrame + "." + camera_value_name(v);
+  if (!f.has(kPerFrame))
+    s.track_paths[size_t(CameraValue::kFocusDistance)] =
+        f.path() + "." + kFocusPerFrame + ".values";
   return s;
 }
 

@@ -22,7 +22,7 @@ struct CameraSource {
   std::array<std::optional<double>, kCameraValueCount> values;  // what it names
   std::array<std::string, kCameraValueCount> paths;             // the JSON path of each
   std::optional<LensTrack> lens_track;                          // per_frame
-  std::string track_path;
+  std::array<std::string, kCameraValueCount> track_paths;       // JSON path of each tracked list
 
   bool names_any() const;
 };

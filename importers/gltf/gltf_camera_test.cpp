@@ -255,6 +255,24 @@ TEST(GltfCamera, LensTrackIsInterpolatedBetweenFramesAndHeldBeyond) {
             "cameras[0].extensions.FILMBACK_blender.per_frame.shift_y");
 }
 
+// Files the add-on wrote before per_frame keep their focus track.
+TEST(GltfCamera, TheFocusTrackBeforePerFrameIsStillRead) {
+  Diagnostics d;
+  const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
+      "focus_distance_m": 3, "focus_distance_per_frame_m": {"first_frame": 10, "values": [2, 4]}}})"),
+                             d);
+  const SceneCamera& camera = scene.cameras.at(0);
+  const LensTrack& t = camera.lens_track.value();
+  EXPECT_EQ(t.at(CameraValue::kFocusDistance, 10.5), 3);
+  EXPECT_FALSE(t.tracks(CameraValue::kFocalLength));
+  EXPECT_EQ(camera.origin(CameraValue::kFocusDistance).path,
+            "cameras[0].extensions.FILMBACK_blender.focus_distance_per_frame_m.values");
+  EXPECT_NE(error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"focus_distance_per_frame_m":
+      {"first_frame": 1, "values": [2, "x"]}}})"))
+                .find("focus_distance_per_frame_m.values[1]: expected a number"),
+            std::string::npos);
+}
+
 TEST(GltfCamera, HostileLensTracksAreErrorsNamingTheJsonPath) {
   const auto error = [](const std::string& per_frame) {
     return error_of(
