@@ -82,6 +82,7 @@ if [ "$mode" = test ]; then
     sampled_out+='nodes|sphere_light)'
     sampled_out+='|Against/BlenderPanorama\.MarkersAndCircleMatchCycles/(fisheye_equidistant|mirrorball|fisheye_polynomial)'
     sampled_out+='|BlenderMaterials\.(AlphaCutout|EmissiveTexture)MatchesCycles|BlenderAlbedo\..*'
+    sampled_out+='|BlenderMotion\..*|PovGeometryRender\..*'
     sampled_out+='|Against/BlenderDistortion\.MarkersLandWhereTheMovieDistortionNodePutsThem/(division|nuke)'
     sampled_out+='|Shots/PovConvert\.ValidatesAndRendersAsThePovWithinNoise/(mirrored_camera|lights|'
     sampled_out+='sample_debug|sample_filtfun|sample_laser|sample_macro1))( |$)'
