@@ -117,7 +117,7 @@ struct SceneCamera {
   // A tracked clip's lens distortion as the projective cameras' parameters (each required;
   // filmback/lens_distortion.h); empty: none.
   std::vector<NamedNumber> lens_distortion;
-  CameraOrigins origins;                  // where each value of `physical` came from
+  CameraOrigins origins;  // where each value of `physical` came from
   const ValueOrigin& origin(CameraValue v) const { return origins[size_t(v)]; }
 };
 
