@@ -82,19 +82,22 @@ if [ "$mode" = test ]; then
   }
   if [ "$all_shots" = no ]; then
     sample_out 'Shots/BlenderRadiometry\.MatchesCycles/' '"hdr_world"' '"spread"' '"spot_radius"' \
-      '"point_glossy"'
+      '"point_glossy"' '"point_spot"' '"sun_glossy"' '"disk_ellipse"'
     sample_out 'Against/BlenderShot\.MarkersMatchCycles/' bokeh_anamorphic bokeh_hexagon \
-      landscape_auto portrait_auto tele_600mm vertical_fit wide_12mm
+      landscape_auto portrait_auto tele_600mm vertical_fit wide_12mm far_from_origin \
+      portrait_vertical_shift
     sample_out 'Shots/BlenderPrincipled\.MatchesCycles/' roughness_0_2 roughness_0_5 roughness_0_9 \
-      anisotropic nodes sphere_light
+      anisotropic nodes sphere_light layers disk_light
     sample_out 'Against/BlenderPanorama\.MarkersAndCircleMatchCycles/' fisheye_equidistant \
       mirrorball fisheye_polynomial
-    sample_out 'BlenderMaterials\.' AlphaCutoutMatchesCycles EmissiveTextureMatchesCycles
+    sample_out 'BlenderMaterials\.' AlphaCutoutMatchesCycles EmissiveTextureMatchesCycles \
+      TexturedGroundAndGlossySpheresMatchCycles
+    sample_out 'BlenderSubdiv\.' SubdividedObjectMatchesCycles
     sample_out '' 'BlenderAlbedo\..*' 'BlenderMotion\..*' 'PovGeometryRender\..*'
     sample_out 'Against/BlenderDistortion\.MarkersLandWhereTheMovieDistortionNodePutsThem/' \
       division nuke
     sample_out 'Shots/PovConvert\.ValidatesAndRendersAsThePovWithinNoise/' mirrored_camera lights \
-      sample_debug sample_filtfun sample_laser sample_macro1
+      sample_debug sample_filtfun sample_laser sample_macro1 patterns
   fi
   sampled_out='^$'
   [ ${#sampled_names[@]} -eq 0 ] || sampled_out="^($(IFS='|'; echo "${sampled_names[*]}"))( |\$)"
