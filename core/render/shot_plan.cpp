@@ -118,34 +118,30 @@ std::vector<NamedNumber> camera_numbers(const SceneCamera& camera) {
   return numbers;
 }
 
-// Projections a scene names (CameraModel::kind) and the camera plugins that render them
-// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones.
-struct ModelPlugin {
-  std::string_view kind, plugin;
-};
-constexpr ModelPlugin kModelPlugins[] = {
-    {"equirectangular", "equirectangular"},
-    {"fisheye_equidistant", "fisheye_equidistant"},
-    {"fisheye_equisolid", "fisheye_equisolid"},
-    {"mirrorball", "mirrorball"},
-    {"fisheye_polynomial", "fisheye_polynomial"},
-    {"central_cylindrical", "central_cylindrical"},
-    {"equiangular_cubemap_face", "equiangular_cubemap_face"},
+// Projections a scene names (CameraModel::kind), each rendered by the camera plugin of its name
+// (docs/camera-model.md): Cycles 3.4's panorama types and Blender's later ones, and POV-Ray's.
+constexpr std::string_view kModelPlugins[] = {
+    "equirectangular",
+    "fisheye_equidistant",
+    "fisheye_equisolid",
+    "mirrorball",
+    "fisheye_polynomial",
+    "central_cylindrical",
+    "equiangular_cubemap_face",
     // POV-Ray 3.7's camera types (importers/pov/pov_camera.cpp)
-    {"pov_fisheye", "pov_fisheye"},
-    {"pov_ultra_wide_angle", "pov_ultra_wide_angle"},
-    {"pov_omnimax", "pov_omnimax"},
-    {"pov_panoramic", "pov_panoramic"},
-    {"pov_cylinder", "pov_cylinder"},
-    {"pov_spherical", "pov_spherical"},
+    "pov_fisheye",
+    "pov_ultra_wide_angle",
+    "pov_omnimax",
+    "pov_panoramic",
+    "pov_cylinder",
+    "pov_spherical",
 };
 
 PluginChoice model_plugin(const CameraModel& model, std::vector<NamedNumber> numbers) {
   std::string kinds;
-  for (const ModelPlugin& row : kModelPlugins) {
-    if (row.kind == model.kind)
-      return {std::string(row.plugin), {}, std::move(numbers), model.origin};
-    kinds.append(kinds.empty() ? "" : ", ").append(row.kind);
+  for (std::string_view plugin : kModelPlugins) {
+    if (plugin == model.kind) return {model.kind, {}, std::move(numbers), model.origin};
+    kinds.append(kinds.empty() ? "" : ", ").append(plugin);
   }
   model.origin.fail("no camera plugin renders the projection '" + model.kind +
                     "'; expected one of " + kinds);

@@ -43,12 +43,6 @@ const char* const kShots[] = {
     "bokeh_anamorphic",
 };
 
-const Blob* blob_at(const std::vector<Blob>& blobs, double x_px, double y_px) {
-  for (const Blob& blob : blobs)
-    if (std::hypot(blob.x_px - x_px, blob.y_px - y_px) < kMatchRadiusPx) return &blob;
-  return nullptr;
-}
-
 // Angles of an n-fold symmetric shape are equal modulo 2 pi / n.
 double angle_difference(double a, double b, unsigned n) {
   return std::remainder(a - b, 2 * std::numbers::pi / n);
@@ -114,8 +108,8 @@ TEST_P(BlenderShot, MarkersMatchCycles) {
   for (const Record& marker : r.markers) {
     const std::string& id = marker.text("name");
     const double x = marker.number("image_x_px"), y = marker.number("image_y_px");
-    const Blob* c = blob_at(cycles_blobs, x, y);
-    const Blob* f = blob_at(filmback_blobs, x, y);
+    const Blob* c = nearest_blob(cycles_blobs, x, y, kMatchRadiusPx);
+    const Blob* f = nearest_blob(filmback_blobs, x, y, kMatchRadiusPx);
     if (!c || !f) {
       ADD_FAILURE() << id << ": no " << (c ? "filmback" : "Cycles") << " blob within "
                     << kMatchRadiusPx << " px of the marker's image centre (" << x << ", " << y

@@ -35,17 +35,6 @@ constexpr double kBlobThreshold = 1e-3;
 // One per entry of DISTORTIONS in distortion_shot.py.
 const char* const kModels[] = {"polynomial", "division", "nuke", "brown"};
 
-const Blob* nearest(const std::vector<Blob>& blobs, double x_px, double y_px, double within_px) {
-  const Blob* best = nullptr;
-  double best_d = within_px;
-  for (const Blob& blob : blobs)
-    if (const double d = std::hypot(blob.x_px - x_px, blob.y_px - y_px); d < best_d) {
-      best = &blob;
-      best_d = d;
-    }
-  return best;
-}
-
 class BlenderDistortion : public testing::TestWithParam<const char*> {};
 
 TEST_P(BlenderDistortion, MarkersLandWhereTheMovieDistortionNodePutsThem) {
@@ -75,12 +64,12 @@ TEST_P(BlenderDistortion, MarkersLandWhereTheMovieDistortionNodePutsThem) {
     const std::string& id = marker.text("name");
     // The undistorted projection; the distorted blob is the Cycles blob nearest to it.
     const double ux = marker.number("blender_x_px"), uy = marker.number("blender_y_px");
-    const Blob* c = nearest(cycles, ux, uy, 10.0);
+    const Blob* c = nearest_blob(cycles, ux, uy, 10.0);
     if (!c) {
       ADD_FAILURE() << id << ": no Cycles blob within 10 px of (" << ux << ", " << uy << ")";
       continue;
     }
-    const Blob* f = nearest(filmback, c->x_px, c->y_px, kMatchRadiusPx);
+    const Blob* f = nearest_blob(filmback, c->x_px, c->y_px, kMatchRadiusPx);
     if (!f) {
       ADD_FAILURE() << id << ": no filmback blob within " << kMatchRadiusPx
                     << " px of the distorted Cycles blob at (" << c->x_px << ", " << c->y_px << ")";

@@ -31,16 +31,6 @@ constexpr double kMaxScanPredictionErrorPx = 0.5;
 constexpr double kMatchRadiusPx = 3.0;  // markers are > 15 px apart
 constexpr double kBlobThreshold = 0.0;  // black world: anything brighter is a marker
 
-const Blob* blob_near(const std::vector<Blob>& blobs, double x_px, double y_px) {
-  const Blob* nearest = nullptr;
-  for (const Blob& blob : blobs)
-    if (std::hypot(blob.x_px - x_px, blob.y_px - y_px) < kMatchRadiusPx &&
-        (!nearest || std::hypot(blob.x_px - x_px, blob.y_px - y_px) <
-                         std::hypot(nearest->x_px - x_px, nearest->y_px - y_px)))
-      nearest = &blob;
-  return nearest;
-}
-
 double rms_radius_px(const Blob& blob) {
   const Spread s = spread(blob);
   return std::sqrt(s.xx + s.yy);
@@ -94,10 +84,10 @@ TEST(BlenderLensMotion, RollingShutterMatchesCycles) {
     const auto [tx, ty] = scanned_at(x0, y0, vx, vy, d, height, true);
     const auto [bx, by] = scanned_at(x0, y0, vx, vy, d, height, false);
     const std::string name = m.text("name");
-    const Blob* cy = blob_near(cycles, tx, ty);
+    const Blob* cy = nearest_blob(cycles, tx, ty, kMatchRadiusPx);
     ASSERT_NE(cy, nullptr) << name << ": no Cycles blob near the top-first scan's (" << tx << ", "
                            << ty << ")";
-    const Blob* fb = blob_near(filmback, cy->x_px, cy->y_px);
+    const Blob* fb = nearest_blob(filmback, cy->x_px, cy->y_px, kMatchRadiusPx);
     ASSERT_NE(fb, nullptr) << name << ": no filmback blob near Cycles'";
     const double error = std::hypot(fb->x_px - cy->x_px, fb->y_px - cy->y_px);
     std::printf("%-12s | %8.3f %8.3f | %8.3f %8.3f | %8.3f %8.3f | %8.3f %8.3f | %7.4f\n",
@@ -125,9 +115,9 @@ TEST(BlenderLensMotion, ZoomRackFocusAndShiftMatchCycles) {
   for (const Record& m : r.markers) {
     const double x0 = m.number("frame_x_px"), y0 = m.number("frame_y_px");
     const std::string name = m.text("name");
-    const Blob* cy = blob_near(cycles, x0, y0);
+    const Blob* cy = nearest_blob(cycles, x0, y0, kMatchRadiusPx);
     ASSERT_NE(cy, nullptr) << name << ": no Cycles blob near (" << x0 << ", " << y0 << ")";
-    const Blob* fb = blob_near(filmback, cy->x_px, cy->y_px);
+    const Blob* fb = nearest_blob(filmback, cy->x_px, cy->y_px, kMatchRadiusPx);
     ASSERT_NE(fb, nullptr) << name << ": no filmback blob near Cycles'";
     const double error = std::hypot(fb->x_px - cy->x_px, fb->y_px - cy->y_px);
     const double cy_rms = rms_radius_px(*cy), fb_rms = rms_radius_px(*fb);

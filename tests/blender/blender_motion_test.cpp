@@ -49,12 +49,6 @@ Streak measure(const Blob& blob, double ux, double uy) {
   return {blob.x_px, blob.y_px, std::sqrt(std::max(0.0, 12 * difference))};
 }
 
-const Blob* blob_near(const std::vector<Blob>& blobs, double x_px, double y_px) {
-  for (const Blob& blob : blobs)
-    if (std::hypot(blob.x_px - x_px, blob.y_px - y_px) < kMatchRadiusPx) return &blob;
-  return nullptr;
-}
-
 TEST(BlenderMotion, StreaksMatchTheAnalyticTravelAndCycles) {
   const std::optional<std::filesystem::path> blender = find_blender();
   if (!blender)
@@ -86,8 +80,8 @@ TEST(BlenderMotion, StreaksMatchTheAnalyticTravelAndCycles) {
     const double cycles_x = m.number("cycles_centroid_x_px");
     const double cycles_y = m.number("cycles_centroid_y_px");
     const double c = r.shot.number("cycles_shutter_fraction");
-    const Blob* fb = blob_near(filmback_blobs, exact_x, exact_y);
-    const Blob* cy = blob_near(cycles_blobs, cycles_x, cycles_y);
+    const Blob* fb = nearest_blob(filmback_blobs, exact_x, exact_y, kMatchRadiusPx);
+    const Blob* cy = nearest_blob(cycles_blobs, cycles_x, cycles_y, kMatchRadiusPx);
     const std::string name = m.text("name");
     ASSERT_NE(fb, nullptr) << name << ": no filmback blob near (" << exact_x << ", " << exact_y
                            << ")";

@@ -56,15 +56,6 @@ bool on_edge(const Image& image, uint32_t x, uint32_t y) {
   return any_lit && any_dark;
 }
 
-const Blob* blob_at(const std::vector<Blob>& blobs, double x_px, double y_px) {
-  const Blob* best = nullptr;
-  double best_px = kMatchRadiusPx;
-  for (const Blob& blob : blobs)
-    if (const double d = std::hypot(blob.x_px - x_px, blob.y_px - y_px); d < best_px)
-      best = &blob, best_px = d;
-  return best;
-}
-
 class BlenderPanorama : public testing::TestWithParam<const char*> {};
 
 TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
@@ -120,8 +111,8 @@ TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
   for (const Record& marker : r.markers) {
     const std::string& id = marker.text("name");
     const double x = marker.number("image_x_px"), y = marker.number("image_y_px");
-    const Blob* c = blob_at(cycles_blobs, x, y);
-    const Blob* f = blob_at(filmback_blobs, x, y);
+    const Blob* c = nearest_blob(cycles_blobs, x, y, kMatchRadiusPx);
+    const Blob* f = nearest_blob(filmback_blobs, x, y, kMatchRadiusPx);
     if (!c || !f) {
       ADD_FAILURE() << id << ": no " << (c ? "filmback" : "Cycles") << " blob within "
                     << kMatchRadiusPx << " px of where the projection images it (" << x << ", " << y

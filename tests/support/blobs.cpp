@@ -68,6 +68,16 @@ std::vector<Blob> find_blobs(const Image& image, double threshold) {
   return blobs;
 }
 
+const Blob* nearest_blob(const std::vector<Blob>& blobs, double x_px, double y_px,
+                         double within_px) {
+  const Blob* best = nullptr;
+  double best_px = within_px;
+  for (const Blob& blob : blobs)
+    if (const double d = std::hypot(blob.x_px - x_px, blob.y_px - y_px); d < best_px)
+      best = &blob, best_px = d;
+  return best;
+}
+
 Spread spread(const Blob& blob) {
   Spread s;
   for (const BlobPixel& p : blob.pixels) {

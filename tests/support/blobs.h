@@ -26,6 +26,10 @@ struct Blob {
 // pixel. Channels are found by name; throws std::runtime_error if R, G or B is missing.
 std::vector<Blob> find_blobs(const Image& image, double threshold);
 
+// The blob whose centroid is nearest to (x_px, y_px) and closer than within_px; nullptr if none.
+const Blob* nearest_blob(const std::vector<Blob>& blobs, double x_px, double y_px,
+                         double within_px);
+
 // Flux-weighted central second moments, px^2: <(x - x̄)^2> and <(y - ȳ)^2>.
 struct Spread {
   double xx = 0, yy = 0;

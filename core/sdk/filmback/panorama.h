@@ -262,12 +262,7 @@ inline constexpr fb_param_desc kLensParams[] = {
      "aperture as an f-number N: radius f / 2N with f the shot's focal length; inf: a pinhole"},
     {"focus_distance_m", FB_PARAM_FLOAT, "inf", "m", nullptr, 1e-6, HUGE_VAL,
      "distance of the sphere in focus along each ray; inf: focused at infinity"},
-    {"aperture_blades", FB_PARAM_INT, "0", "", nullptr, 0, 64,
-     "0: a round aperture; else a regular polygon of at least 3 blades"},
-    {"aperture_rotation_rad", FB_PARAM_FLOAT, "0", "rad", nullptr, -1e3, 1e3,
-     "rotation of the blades"},
-    {"aperture_ratio", FB_PARAM_FLOAT, "1", "", nullptr, 1e-2, 1e2,
-     "anamorphic bokeh: the aperture's x is divided by it"},
+    FB_APERTURE_SHAPE_PARAMS,
 };
 constexpr size_t kLensParamCount = std::size(kLensParams);
 

@@ -71,6 +71,18 @@ inline Vec2f sample_aperture(Vec2f u, uint32_t blades, float rotation, float inv
   return lens;
 }
 
+// The schema entries (fb_param_desc, plugin_abi.h) of the aperture's shape sample_aperture takes,
+// under Blender's names and ranges: every camera with Blender's depth of field declares them.
+// clang-format off
+#define FB_APERTURE_SHAPE_PARAMS                                                                  \
+  {"aperture_blades", FB_PARAM_INT, "0", "", nullptr, 0, 64,                                      \
+   "0: a round aperture; else a regular polygon of at least 3 blades"},                           \
+  {"aperture_rotation_rad", FB_PARAM_FLOAT, "0", "rad", nullptr, -1e3, 1e3,                      \
+   "rotation of the blades"},                                                                     \
+  {"aperture_ratio", FB_PARAM_FLOAT, "1", "", nullptr, 1e-2, 1e2,                                 \
+   "anamorphic bokeh: the aperture's x is divided by it"}
+// clang-format on
+
 // Veach's power heuristic (beta = 2) for two strategies with one sample each, written as
 // 1 / (1 + (b/a)^2) so that large pdfs (grazing angles, tiny emitters) cannot overflow to inf/inf.
 inline float power_heuristic(float pdf_a, float pdf_b) {
