@@ -85,12 +85,12 @@ TEST(SolidCsgCases, IdenticalSetsGiveTheFirstChildsSurface) {
 }
 
 TEST(SolidCsgCases, GrazingRaysGiveTheLimitOrNothing) {
-  // Tangent to a ball inside a union with a box below it: the ball adds no hit, the box does.
-  const RenderSolid solid(csg(SolidKind::kUnion, {ball({0, 0, 0}, 1, 1), slab_box(2, 3, 1, 2)}),
+  // Tangent to a ball inside a union with a box beyond it: the ball adds no hit, the box does.
+  const RenderSolid solid(csg(SolidKind::kUnion, {ball({0, 0, 0}, 1, 1), slab_box(2, 3, 2, 2)}),
                           Transform(), kReach);
-  expect_hit(solid, {-5, 1, 0}, kPlusX, {2, 2, kMinusX}, "tangent to the ball, along the box top");
+  expect_hit(solid, {-5, 1, 0}, kPlusX, {2, 2, kMinusX}, "tangent to the ball");
   // Along the plane of the box's top face: the box's side is entered at its edge.
-  const auto along_top = solid.first_hit({1.5, 0, 1}, kPlusX, 0);
+  const auto along_top = solid.first_hit({1.5, 0, 2}, kPlusX, 0);
   ASSERT_TRUE(along_top);
   EXPECT_EQ(along_top->position.x, 2);
   EXPECT_EQ(along_top->normal.x, -1);
@@ -122,7 +122,7 @@ TEST(SolidCsgCases, NestedDifferencesAndIntersections) {
   expect_hit(solid, {-1.55, 0, 0}, kMinusX, {-1.75, 4, kMinusX}, "leaving through E");
   for (double x : {-1.6, -0.3})
     EXPECT_TRUE(solid.contains({x, 0, 0})) << x;
-  for (double x : {-1.8, -1, 0, 1})
+  for (double x : {-1.8, -1.0, 0.0, 1.0})
     EXPECT_FALSE(solid.contains({x, 0, 0})) << x;
 }
 
