@@ -225,8 +225,11 @@ TEST(SolidCsgCases, ATreeBeyondTheIntersectorsBufferIsRefusedAtLoad) {
   // A chain of unions, each adding a ball to the last: the scratch each level keeps grows with
   // its depth, past 2^20 spans at about a thousand levels.
   Solid chain = ball({0, 0, 0}, 1, 0);
-  for (int i = 1; i < 1200; ++i)
-    chain = csg(SolidKind::kUnion, {std::move(chain), ball({double(i), 0, 0}, 1, 0)});
+  for (int i = 1; i < 1200; ++i) {
+    Solid next = csg(SolidKind::kUnion, {ball({double(i), 0, 0}, 1, 0)});
+    next.children.insert(next.children.begin(), std::move(chain));  // no copy of the chain
+    chain = std::move(next);
+  }
   chain.name = "hostile.pov:3:1";
   try {
     RenderSolid solid(chain, Transform(), kReach);
