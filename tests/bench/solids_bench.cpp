@@ -13,7 +13,6 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -28,6 +27,7 @@
 #include "core/tessellate/tessellate.h"
 #include "core/util/diagnostics.h"
 #include "core/util/error.h"
+#include "tests/bench/bench_flags.h"
 
 namespace fb::bench {
 namespace {
@@ -148,15 +148,6 @@ class MedianReporter : public benchmark::ConsoleReporter {
  private:
   std::map<std::string, double> samples_per_s_;
 };
-
-bool parse_flag(std::string_view arg, std::string_view name, uint32_t& value) {
-  if (!arg.starts_with(name)) return false;
-  arg.remove_prefix(name.size());
-  const auto [end, error] = std::from_chars(arg.data(), arg.data() + arg.size(), value);
-  if (error != std::errc() || end != arg.data() + arg.size() || value == 0)
-    throw UsageError("bad value in '" + std::string(name) + std::string(arg) + "'");
-  return true;
-}
 
 int run(int argc, char** argv) {
   std::vector<char*> args{argv[0]};
