@@ -242,6 +242,18 @@ CLI::App* add_bench_command(CLI::App& app, fb::BenchCommand& bench) {
                    "cycles: render the Blender shots with Cycles too (blender on PATH)")
       ->check(CLI::IsMember({"cycles"}));
   bench_cmd
+      ->add_option("--seeds", bench.seeds,
+                   "measured renders per configuration and sample count, seeds --seed, --seed + "
+                   "1, ...: the report keeps the median error and its spread (default 1)")
+      ->check(CLI::Range(1u, 64u));
+  bench_cmd
+      ->add_option("--adaptive", bench.adaptive_thresholds,
+                   "adaptive sampling thresholds, comma-separated, 0 for off: each a configuration "
+                   "of filmback and, with --against cycles, of Cycles (default 0)")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::Range(0.0, 1.0));
+  bench_cmd
       ->add_option("--seed", bench.seed,
                    "seed of the measured renders; references use seed+1 and seed+2 (default 0)")
       ->check(CLI::Range(uint64_t(0), uint64_t(2147483645)));  // Cycles' seed is an int

@@ -320,10 +320,9 @@ std::string RenderJob::plan() const {
   out << "filmback: camera '" << c.camera << "' (" << c.camera_source << ") through "
       << c.camera_model << " (" << c.lens << "), " << plan_.width_px << "x" << plan_.height_px
       << ", " << plan_.samples_per_pixel << " spp (" << c.sampler << adaptive_text(plan_)
-      << "), filter " << c.filter
-      << " (" << c.reconstruction << "), integrator " << c.integrator << "; " << c.time << "; "
-      << c.triangles << " triangles, " << c.lights << " lights, " << c.emissive_triangles
-      << " emissive triangles";
+      << "), filter " << c.filter << " (" << c.reconstruction << "), integrator " << c.integrator
+      << "; " << c.time << "; " << c.triangles << " triangles, " << c.lights << " lights, "
+      << c.emissive_triangles << " emissive triangles";
   if (!c.subdivision.empty()) out << "; " << c.subdivision;
   out << "; " << c.materials;
   return out.str();

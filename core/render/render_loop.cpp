@@ -192,9 +192,9 @@ class TileRenderer {
 
   const RenderInputs& in_;
   Film& film_;
-  SplatTiles* splats_;         // null: importance sampling, every sample in its own pixel
+  SplatTiles* splats_;           // null: importance sampling, every sample in its own pixel
   ConvergenceMap* convergence_;  // null: no adaptive sampling
-  float margin_x_, margin_y_;  // of the sample domain around the film (splatting only)
+  float margin_x_, margin_y_;    // of the sample domain around the film (splatting only)
   Sampler sampler_;
   Rotation rotation_;
   size_t channels_;
@@ -324,7 +324,8 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
               if (convergence) {  // converged pixels keep the count they stopped at
                 for (uint32_t y = y0; y < y1; ++y)
                   for (uint32_t x = x0; x < x1; ++x)
-                    if (!convergence->converged(x, y)) film.set_sample_count(x, y, x + 1, y + 1, reached);
+                    if (!convergence->converged(x, y))
+                      film.set_sample_count(x, y, x + 1, y + 1, reached);
               } else {
                 record_count(tile, reached);
               }

@@ -246,8 +246,9 @@ void plan_adaptive(const ShotSettings& shot, const RenderOptions& options, ShotP
   request = {kDefaultAdaptiveThreshold, 0};
   if (shot.adaptive) {
     const ShotAdaptiveSampling& a = *shot.adaptive;
-    request.threshold =
-        !a.use ? 0 : a.threshold > 0 ? a.threshold : std::max(0.001, 1.0 / plan.samples_per_pixel);
+    request.threshold = !a.use            ? 0
+                        : a.threshold > 0 ? a.threshold
+                                          : std::max(0.001, 1.0 / plan.samples_per_pixel);
     request.min_samples = a.min_samples;
   }
   if (options.adaptive_threshold) request.threshold = *options.adaptive_threshold;

@@ -101,7 +101,7 @@ struct ShotPlan {
   uint32_t width_px = 0, height_px = 0, samples_per_pixel = 0;
   std::optional<AdaptiveSettings> adaptive;  // none: every pixel takes every sample
   AdaptiveRequest adaptive_request;          // what it was derived from, for the plan line
-  double pixel_aspect = 1;  // pixel width / height
+  double pixel_aspect = 1;                   // pixel width / height
   double frame = 0, fps = kDefaultFps;
   Vec2d shutter_s;  // open, close, relative to the frame's time
   ShotTimes times;  // the shutter and the frame's time on the scene's timeline, s

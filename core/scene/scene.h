@@ -150,8 +150,8 @@ struct PixelFilterSetting {
 
 // Cycles' Sampling > Adaptive Sampling as a shot names it (docs/blender.md).
 struct ShotAdaptiveSampling {
-  bool use = false;          // use_adaptive_sampling
-  double threshold = 0;      // adaptive_threshold; 0 with `use`: Cycles' automatic max(0.001, 1/spp)
+  bool use = false;      // use_adaptive_sampling
+  double threshold = 0;  // adaptive_threshold; 0 with `use`: Cycles' automatic max(0.001, 1/spp)
   uint32_t min_samples = 0;  // adaptive_min_samples; 0: automatic
 };
 

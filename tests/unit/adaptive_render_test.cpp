@@ -115,14 +115,17 @@ TEST(AdaptiveSampling, ConvergedPixelsStopAndMinimumSamplesAreHonoured) {
   for (uint32_t y = 0; y < 24; ++y) {
     // Deep inside the emissive half (away from the noisy half's reach of one pixel): converged
     // at the first check.
-    for (uint32_t x = 0; x < 15; ++x) EXPECT_EQ(r.counts[y * 36 + x], first_check) << x << "," << y;
-    for (uint32_t x = 0; x < 36; ++x) EXPECT_GE(r.counts[y * 36 + x], first_check);
+    for (uint32_t x = 0; x < 15; ++x)
+      EXPECT_EQ(r.counts[y * 36 + x], first_check) << x << "," << y;
+    for (uint32_t x = 0; x < 36; ++x)
+      EXPECT_GE(r.counts[y * 36 + x], first_check);
   }
   const uint32_t most = *std::max_element(r.counts.begin(), r.counts.end());
   EXPECT_EQ(most, spp) << "the lamp's noisy pixels should take every sample";
   EXPECT_LT(r.samples, uint64_t(36) * 24 * spp * 3 / 4);
   for (uint32_t y = 0; y < 24; ++y)
-    for (uint32_t x = 0; x < 18; ++x) ASSERT_NEAR(r.image.at(x, y, 1), 1.0f, 1e-6f);
+    for (uint32_t x = 0; x < 18; ++x)
+      ASSERT_NEAR(r.image.at(x, y, 1), 1.0f, 1e-6f);
 }
 
 // The image mean of an adaptive render against the mean of two independent full renders: within
