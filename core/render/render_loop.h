@@ -46,7 +46,7 @@ struct RenderInputs {
   const ZoomInShutter* zoom = nullptr;
   // Adaptive sampling (core/film/adaptive_sampling.h): none, every pixel takes every sample.
   // Importance reconstruction only: a splatted sample reaches several pixels.
-  std::optional<AdaptiveSettings> adaptive;
+  std::optional<AdaptiveSettings> adaptive = std::nullopt;
   double exposure = 1;  // the gain the image gets (Cycles' Film > Exposure): the error sees it
 };
 
