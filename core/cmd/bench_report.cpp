@@ -153,10 +153,10 @@ void write_fits(std::ostringstream& md, const std::vector<ConfigurationFit>& fit
   for (const ConfigurationFit& fit : fits) {
     const TimeToError t = time_to_error(fit, target.rmse);
     const RenderRow& last = *fit.rows.back();
-    md << "| " << (fit.renderer == "cycles" ? "**Cycles**" : fit.configuration) << " | "
-       << fit.fitted << " of " << fit.rows.size() << " | " << rate(fit.by_render_s) << " | "
-       << rate(fit.by_spp) << " | " << format("%.4g", last.measured(reference)->error.rmse) << " ("
-       << last.spp << " spp) | " << seconds(t.render_s) << " | " << seconds(t.total_s)
+    md << "| " << (fit.renderer == "cycles" ? "**" + fit.configuration + "**" : fit.configuration)
+       << " | " << fit.fitted << " of " << fit.rows.size() << " | " << rate(fit.by_render_s)
+       << " | " << rate(fit.by_spp) << " | " << format("%.4g", last.measured(reference)->error.rmse)
+       << " (" << last.spp << " spp) | " << seconds(t.render_s) << " | " << seconds(t.total_s)
        << (t.extrapolated ? " (extrapolated)" : "") << " |\n";
   }
 }

@@ -167,6 +167,27 @@ TEST(AdaptiveSampling, ImageIsBitIdenticalForAnyThreadCount) {
   EXPECT_EQ(counts[0], counts[1]);
 }
 
+// The command line's values replace the shot's; a shot with adaptive sampling on and threshold 0
+// gets Cycles' automatic max(0.001, 1 / spp).
+TEST(AdaptiveSampling, ShotSettingsAndOptionsChooseIt) {
+  Scene scene = half_noisy_scene();
+  RenderOptions options;
+  options.samples_per_pixel = 256;
+  EXPECT_FALSE(plan_shot(scene, options).adaptive) << "off unless asked";
+  scene.settings.adaptive = ShotAdaptiveSampling{true, 0, 0};
+  const ShotPlan automatic = plan_shot(scene, options);
+  ASSERT_TRUE(automatic.adaptive);
+  EXPECT_DOUBLE_EQ(automatic.adaptive_request.threshold, 1.0 / 256);
+  EXPECT_EQ(automatic.adaptive->min_samples, uint32_t(std::ceil(16 / std::pow(1.0 / 256, 0.3))));
+  options.adaptive_min_samples = 100;
+  EXPECT_EQ(plan_shot(scene, options).adaptive->min_samples, 100u);
+  options.adaptive_threshold = 0;
+  EXPECT_FALSE(plan_shot(scene, options).adaptive) << "--adaptive-threshold 0 turns it off";
+  scene.settings.adaptive->use = false;
+  options.adaptive_threshold.reset();
+  EXPECT_FALSE(plan_shot(scene, options).adaptive);
+}
+
 TEST(AdaptiveSampling, SplatReconstructionIsRefused) {
   const Scene scene = half_noisy_scene();
   RenderOptions options;
