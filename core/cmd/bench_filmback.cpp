@@ -21,13 +21,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-template <typename T>
-T median(std::vector<T> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n == 0 ? T() : n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
 // Short renders are timed again, up to this many runs or this much time, and the median kept:
 // a single run of a few milliseconds says more about the machine's other jobs than the render.
 constexpr uint32_t kMostRuns = 5;

@@ -6,12 +6,6 @@
 namespace fb {
 namespace {
 
-double median_of(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
 // The lower median's position and the lowest and highest value of `rmse`.
 struct Ranked {
   size_t median;
@@ -27,6 +21,12 @@ Ranked rank(const std::vector<double>& rmse) {
 }
 
 }  // namespace
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n == 0 ? 0 : n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
 
 std::string configuration_name(const std::string& base, double adaptive_threshold) {
   if (adaptive_threshold <= 0) return base;
@@ -49,9 +49,9 @@ RenderRow combine_seeds(const std::vector<RenderRow>& rows) {
   out.own = rows[by_own.median].own;
   out.rmse_spread = by_own.spread;
   out.dropped = rows[by_own.median].dropped;
-  out.render_s = median_of(render_s), out.total_s = median_of(total_s);
-  out.samples_per_s = median_of(samples_per_s);
-  if (rays_per_s.size() == rows.size()) out.rays_per_s = median_of(rays_per_s);
+  out.render_s = median(render_s), out.total_s = median(total_s);
+  out.samples_per_s = median(samples_per_s);
+  if (rays_per_s.size() == rows.size()) out.rays_per_s = median(rays_per_s);
   if (out.cycles_reference) {
     std::vector<double> against_cycles;
     for (const RenderRow& r : rows)

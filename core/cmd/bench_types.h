@@ -23,9 +23,6 @@ struct BenchConfiguration {
   double adaptive_threshold = 0;      // 0: off (docs/sampling.md, "Adaptive sampling")
 };
 
-// "sobol, gaussian" or "sobol, gaussian, adaptive 0.01"; "cycles" or "cycles, adaptive 0.01".
-std::string configuration_name(const std::string& base, double adaptive_threshold);
-
 struct BenchSettings {
   std::vector<uint32_t> spp;  // ascending, distinct
   std::vector<std::optional<std::string>> filters;
