@@ -130,12 +130,15 @@ TEST(AdaptiveSampling, ConvergedPixelsStopAndMinimumSamplesAreHonoured) {
 
 // The image mean of an adaptive render against the mean of two independent full renders: within
 // 4 sigma of the noise of both, the noise measured per pixel from the full renders' difference
-// (a pixel's variance per sample is (I1 - I2)^2 / 2 * N, divided by its own count).
+// (a pixel's variance per sample is (I1 - I2)^2 / 2 * N, divided by its own count). With Cycles'
+// automatic minimum (64 samples here). A much lower minimum is biased on this scene: a pixel at
+// the lamp's edge whose first samples all miss the lamp has I = A and stops dark (minimum 16:
+// the mean 2.4 % low over 8 seeds; automatic: 0.3 % low, within the noise; docs/sampling.md).
 TEST(AdaptiveSampling, ImageMeanStaysUnbiasedWithinNoise) {
   const Scene scene = half_noisy_scene();
-  const uint32_t spp = 128;
+  const uint32_t spp = 256;
   const Rendered full[2] = {render(scene, spp, 1, 0), render(scene, spp, 2, 0)};
-  const Rendered adaptive = render(scene, spp, 3, 0.02, 16);
+  const Rendered adaptive = render(scene, spp, 3, 0.02);
   ASSERT_LT(adaptive.samples, full[0].samples * 3 / 4) << "the threshold should stop pixels";
   const size_t pixels = full[0].counts.size();
   double variance_full = 0, variance_adaptive = 0;
