@@ -29,12 +29,41 @@ struct RenderGeometry::Mesh {
   size_t vertex_count = 0;  // per step
 };
 
+// One placement of an instanced mesh (a prototype): render_from_object at each motion step, as a
+// flattened copy would be transformed, and the normals' transforms with them.
+struct RenderGeometry::Instance {
+  uint32_t prototype = 0;
+  std::vector<Transform> render_from_object;  // evenly spaced over the open shutter when several
+  std::vector<Transform> normal_from_object;
+  // A mirroring transform: corners 1 and 2 swap (and Embree's u and v with them), as a flattened
+  // copy swaps its indices, so the front face and the barycentrics come out the same.
+  bool mirrored = false;
+};
+
+// A triangle as a hit rebuilds it, in render space: corners in front-face order, at the ray's time
+// (`p`, with the magnitudes that bound their rounding, and vertex normals `n`) and at the first
+// motion step (`rest`, where textures are evaluated).
+struct RenderGeometry::HitTriangle {
+  const Mesh* mesh = nullptr;          // texture coordinates, material, emitters
+  const Instance* instance = nullptr;  // null when flattened: the mesh is in render space
+  uint32_t primitive = 0;
+  uint32_t corner[3] = {};  // vertex indices in `mesh`
+  Vec3f p[3], magnitude[3], n[3], rest[3];
+  bool moving = false;
+  // Instanced: how far Embree's float transform of the ray may move the surface it meets from
+  // these corners (fill_hit adds it to the position's error).
+  Vec3f transform_magnitude;
+};
+
 struct RenderGeometry::Embree {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<RTCScene> prototypes;  // one per RenderGeometry::prototypes_ element
   std::string error;
   ~Embree() {
     if (scene) rtcReleaseScene(scene);
+    for (RTCScene prototype : prototypes)
+      rtcReleaseScene(prototype);
     if (device) rtcReleaseDevice(device);
   }
 };
@@ -65,9 +94,36 @@ constexpr float gamma(int n) {
   return (n * u) / (1 - n * u);
 }
 
+// |A| |p| + |t| per row for the affine map x -> A x + t: what bounds the rounding of its image of p
+// (pbrt 4e §6.8.6, transforming points).
+Vec3d transform_magnitude(const Transform& m, Vec3d p) {
+  const auto row = [&](int r) {
+    return std::abs(m(r, 0) * p.x) + std::abs(m(r, 1) * p.y) + std::abs(m(r, 2) * p.z) +
+           std::abs(m(r, 3));
+  };
+  return {row(0), row(1), row(2)};
+}
+
+// A unit normal (or tangent) through `transform`; zero when it degenerates.
+Vec3f unit_through(const Transform& transform, Vec3d v) {
+  const Vec3d m = transform.vector(v);
+  const double len = length(m);
+  return Vec3f(len > 0 ? m / len : Vec3d{});
+}
+
 // Embree (Debian builds keep its assertions) aborts the process on a ray with a NaN or a component
 // beyond FLT_LARGE (1.8e18); plugins must not be able to do that, so such rays are misses.
 constexpr double kLargestCoordinate = 1e18;
+
+// A vertex of a mesh placed by render_from_object, refused beyond Embree's reach.
+Vec3d placed(const Transform& render_from_object, Vec3f p, const MeshInstance& instance,
+             const TriangleMesh& source) {
+  const Vec3d q = render_from_object.point(Vec3d(p));
+  if (!(max_component(abs(q)) <= kLargestCoordinate))
+    throw InputError("instance '" + instance.node + "' of mesh '" + source.name +
+                     "': a vertex lies beyond 1e18 m of the camera (scales multiply too far)");
+  return q;
+}
 
 bool traceable(const fb_ray& ray) {
   for (int i = 0; i < 3; ++i)
@@ -174,27 +230,19 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
   mesh.positions.reserve(source.positions.size() * mesh.step_count + 1);
   for (const Transform& render_from_object : render_from_object_steps) {
     for (const Vec3f& p : source.positions) {
-      const Vec3d q = render_from_object.point(Vec3d(p));
-      if (!(max_component(abs(q)) <= kLargestCoordinate))
-        throw InputError("instance '" + instance.node + "' of mesh '" + source.name +
-                         "': a vertex lies beyond 1e18 m of the camera (scales multiply too far)");
+      const Vec3d q = placed(render_from_object, p, instance, source);
       bounds_.extend(q);
       mesh.positions.emplace_back(q);
     }
     const Transform normal_transform = render_from_object.normal_transform();
-    for (const Vec3f& n : source.normals) {
-      const Vec3d m = normal_transform.vector(Vec3d(n));
-      const double len = length(m);
-      mesh.normals.emplace_back(len > 0 ? m / len : Vec3d{});
-    }
+    for (const Vec3f& n : source.normals)
+      mesh.normals.push_back(unit_through(normal_transform, Vec3d(n)));
   }
   mesh.positions.emplace_back();
   mesh.texturing.texcoords = source.texturing.texcoords;
   const Transform& first = render_from_object_steps.front();
   for (const auto& t : source.texturing.tangents) {
-    const Vec3d m = first.vector(Vec3d{t[0], t[1], t[2]});
-    const double len = length(m);
-    const Vec3f u(len > 0 ? m / len : Vec3d{});
+    const Vec3f u = unit_through(first, Vec3d{t[0], t[1], t[2]});
     mesh.texturing.tangents.push_back({u.x, u.y, u.z, t[3]});
   }
   const Transform normal_from_object = first.normal_transform();  // Cycles: a normal's transform
@@ -210,11 +258,16 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
 }
 
 RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_world,
-                               const ShotTimes& times, const MotionTolerance& tolerance)
+                               const ShotTimes& times, const MotionTolerance& tolerance,
+                               Instancing instancing)
     : shader_(std::make_unique<SurfaceShader>(scene, render_from_world.inverse())),
       embree_(std::make_unique<Embree>()) {
   open_embree();
-  meshes_.reserve(scene.instances.size());  // alpha filters keep pointers to their mesh
+  const std::vector<bool> instanced = instanced_meshes(scene, instancing);
+  // Alpha filters keep pointers to their mesh: neither vector may reallocate.
+  meshes_.reserve(scene.instances.size());
+  prototypes_.reserve(scene.meshes.size());
+  prototype_of_mesh_.assign(scene.meshes.size(), FB_NONE);
   if (times.shutter_open()) {
     open_s_ = float(times.open_s - times.frame_s);
     inverse_duration_ = float(1 / (times.close_s - times.open_s));
@@ -223,17 +276,22 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
     if (scene.meshes[instance.mesh].indices.empty()) continue;
     const bool moving =
         times.shutter_open() && scene.moves(instance.node_index, times.open_s, times.close_s);
-    Mesh mesh = build_mesh(
-        scene, instance,
+    std::vector<Transform> steps =
         moving
             ? motion_steps(scene, instance, render_from_world, times, tolerance)
-            : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())});
+            : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())};
     moving_instances_ += moving;
-    most_motion_steps_ = std::max(most_motion_steps_, mesh.step_count);
+    most_motion_steps_ = std::max(most_motion_steps_, uint32_t(steps.size()));
+    if (instanced[instance.mesh]) {
+      add_instance(scene, instance, std::move(steps));
+      continue;
+    }
+    Mesh mesh = build_mesh(scene, instance, steps);
     if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
     attach_mesh(std::move(mesh));
   }
   attach_solids(scene, render_from_world);
+  attach_instances();
   rtcCommitScene(embree_->scene);
   if (!embree_->error.empty())
     throw InputError("Embree could not build the scene: " + embree_->error);
@@ -302,6 +360,81 @@ void RenderGeometry::attach_mesh(Mesh mesh) {
       std::move(mesh));  // vector storage moves with it: the shared pointers stay valid
 }
 
+uint32_t RenderGeometry::prototype_of(const Scene& scene, uint32_t mesh_index) {
+  if (prototype_of_mesh_[mesh_index] != FB_NONE) return prototype_of_mesh_[mesh_index];
+  const TriangleMesh& source = scene.meshes[mesh_index];
+  Mesh& mesh = prototypes_.emplace_back();
+  mesh.material = source.material;
+  mesh.vertex_count = source.positions.size();
+  mesh.positions.reserve(source.positions.size() + 1);  // Embree reads 16 bytes past the last
+  mesh.positions.assign(source.positions.begin(), source.positions.end());
+  mesh.positions.emplace_back();
+  mesh.normals = source.normals;
+  mesh.texturing = source.texturing;
+  mesh.indices = source.indices;
+  RTCScene prototype = embree_->prototypes.emplace_back(rtcNewScene(embree_->device));
+  rtcSetSceneFlags(prototype, RTC_SCENE_FLAG_ROBUST);  // as the top-level scene: watertight
+  RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                             mesh.positions.data(), 0, sizeof(Vec3f), mesh.vertex_count);
+  rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                             mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.indices.size() / 3);
+  if (shader_->has_alpha(mesh.material)) {
+    // Coverage is decided in object space (its hash from Embree's object-space ray): as random,
+    // though not the same draws as a flattened copy's.
+    mesh.shader = shader_.get();
+    rtcSetGeometryUserData(geometry, &mesh);
+    rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(prototype, geometry, 0);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(prototype);
+  return prototype_of_mesh_[mesh_index] = uint32_t(prototypes_.size() - 1);
+}
+
+// An instance of its mesh's prototype; its bounds are those of the mesh's box at every step (the
+// box's corners placed, rather than every vertex: 10,000 copies of a large mesh would cost as
+// much to bound as to flatten).
+void RenderGeometry::add_instance(const Scene& scene, const MeshInstance& placement,
+                                  std::vector<Transform> render_from_object_steps) {
+  const TriangleMesh& source = scene.meshes[placement.mesh];
+  Instance& instance = instances_.emplace_back();
+  instance.prototype = prototype_of(scene, placement.mesh);
+  instance.mirrored = render_from_object_steps.front().determinant3x3() < 0;
+  const std::vector<Vec3d> corners = box_corners(source.positions);
+  for (const Transform& render_from_object : render_from_object_steps) {
+    for (const Vec3d& c : corners)
+      bounds_.extend(placed(render_from_object, Vec3f(c), placement, source));
+    instance.normal_from_object.push_back(render_from_object.normal_transform());
+  }
+  instance.render_from_object = std::move(render_from_object_steps);
+  triangle_count_ += source.triangle_count();
+}
+
+// The instances as Embree instance geometry, after the solids, each transform at each motion step
+// (Embree interpolates the matrices linearly, as a flattened copy's vertices are).
+void RenderGeometry::attach_instances() {
+  const size_t first_id = meshes_.size() + solids_.size();
+  for (size_t k = 0; k < instances_.size(); ++k) {
+    const Instance& instance = instances_[k];
+    RTCGeometry geometry = rtcNewGeometry(embree_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geometry, embree_->prototypes[instance.prototype]);
+    rtcSetGeometryTimeStepCount(geometry, unsigned(instance.render_from_object.size()));
+    for (size_t step = 0; step < instance.render_from_object.size(); ++step) {
+      float row_major[12];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c)
+          row_major[4 * r + c] = float(instance.render_from_object[step](r, c));
+      rtcSetGeometryTransform(geometry, unsigned(step), RTC_FORMAT_FLOAT3X4_ROW_MAJOR, row_major);
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(embree_->scene, geometry, unsigned(first_id + k));
+    rtcReleaseGeometry(geometry);
+  }
+}
+
 // The analytic solids as Embree user geometry, after the meshes; the unbounded ones reach as far
 // as solid_reach says.
 void RenderGeometry::attach_solids(const Scene& scene, const Transform& render_from_world) {
@@ -324,18 +457,26 @@ void RenderGeometry::attach_solids(const Scene& scene, const Transform& render_f
 }
 
 size_t RenderGeometry::count_own_bytes() const {
-  size_t bytes = bytes_of(meshes_) + bytes_of(emitters_);
-  for (const Mesh& mesh : meshes_) {
-    bytes += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.indices) +
-             bytes_of(mesh.texturing.tangents) + bytes_of(mesh.texturing.radial_tangents);
-    for (const auto& texcoords : mesh.texturing.texcoords)
-      bytes += bytes_of(texcoords);
-  }
+  size_t bytes = bytes_of(meshes_) + bytes_of(emitters_) + bytes_of(prototypes_) +
+                 bytes_of(prototype_of_mesh_) + bytes_of(instances_);
+  for (const auto* meshes : {&meshes_, &prototypes_})
+    for (const Mesh& mesh : *meshes) {
+      bytes += bytes_of(mesh.positions) + bytes_of(mesh.normals) + bytes_of(mesh.indices) +
+               bytes_of(mesh.texturing.tangents) + bytes_of(mesh.texturing.radial_tangents);
+      for (const auto& texcoords : mesh.texturing.texcoords)
+        bytes += bytes_of(texcoords);
+    }
+  for (const Instance& instance : instances_)
+    bytes += bytes_of(instance.render_from_object) + bytes_of(instance.normal_from_object);
   return bytes;
 }
 
 RenderGeometry::~RenderGeometry() {
   live_bytes_total.fetch_sub(int64_t(own_bytes_), std::memory_order_relaxed);
+}
+
+size_t RenderGeometry::instanced_count() const {
+  return instances_.size();
 }
 
 size_t RenderGeometry::live_bytes() {
@@ -354,11 +495,24 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* are
   const float time = embree_time(ray.time_s);
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  const HitRequest request{ray, arena, false};
-  if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, request, hit);
-  fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, request,
-           hit);
+  return fill_embree_hit(rh, {ray, arena, false}, hit);
+}
+
+bool RenderGeometry::fill_embree_hit(const RTCRayHit& found, const HitRequest& request,
+                                     fb_hit& hit) const {
+  const RTCHit& h = found.hit;
+  if (h.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    const Instance& instance = instances_[h.instID[0] - meshes_.size() - solids_.size()];
+    // A mirrored instance's corners 1 and 2 are swapped: so are their barycentrics.
+    const float u = instance.mirrored ? h.v : h.u, v = instance.mirrored ? h.u : h.v;
+    fill_hit(instanced_triangle(instance, h.primID, found.ray.time), u, v, found.ray.tfar, request,
+             hit);
+    return true;
+  }
+  if (h.geomID >= meshes_.size()) return fill_solid_hit(h.geomID, request, hit);
+  fill_hit(flat_triangle(meshes_[h.geomID], h.primID, found.ray.time), h.u, h.v, found.ray.tfar,
+           request, hit);
   return true;
 }
 
@@ -372,48 +526,124 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // Embree packs the stream into packets
   rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
-  for (size_t i = 0; i < count; ++i) {
-    const RTCRayHit& rh = stream[i];
-    const HitRequest request{rays[i], arena, true};
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-      hits[i].t = HUGE_VALF;
-    else if (rh.hit.geomID >= meshes_.size()) {
-      if (!fill_solid_hit(rh.hit.geomID, request, hits[i])) hits[i].t = HUGE_VALF;
-    } else
-      fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, rh.ray.time,
-               request, hits[i]);
-  }
+  for (size_t i = 0; i < count; ++i)
+    if (!fill_embree_hit(stream[i], {rays[i], arena, true}, hits[i])) hits[i].t = HUGE_VALF;
 }
 
-SurfacePoint RenderGeometry::surface_point(const Mesh& mesh, uint32_t primitive, float u, float v) {
-  const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
+RenderGeometry::HitTriangle RenderGeometry::flat_triangle(const Mesh& mesh, uint32_t primitive,
+                                                          float time) {
+  HitTriangle tri;
+  tri.mesh = &mesh;
+  tri.primitive = primitive;
+  const uint32_t* corner = &mesh.indices[3 * size_t(primitive)];
+  // The corners where Embree met them: at a motion step, or interpolated between two as Embree
+  // does (lerp of the steps around the ray's time). Each corner's magnitude bounds its rounding.
+  tri.moving = mesh.step_count > 1;
+  float f = 0.f;
+  const size_t first =
+      tri.moving ? time_segment(time, mesh.step_count - 1, f) * mesh.vertex_count : 0;
+  const size_t next = tri.moving ? first + mesh.vertex_count : 0;
+  for (int i = 0; i < 3; ++i) {
+    tri.corner[i] = corner[i];
+    tri.rest[i] = mesh.positions[corner[i]];
+    const Vec3f a = mesh.positions[first + corner[i]];
+    if (!tri.moving) {
+      tri.p[i] = a, tri.magnitude[i] = abs(a);
+      if (!mesh.normals.empty()) tri.n[i] = mesh.normals[corner[i]];
+      continue;
+    }
+    const Vec3f c = mesh.positions[next + corner[i]];
+    tri.p[i] = a * (1.f - f) + c * f;
+    tri.magnitude[i] = abs(a) + abs(c);
+    if (!mesh.normals.empty())
+      tri.n[i] = mesh.normals[first + corner[i]] * (1.f - f) + mesh.normals[next + corner[i]] * f;
+  }
+  return tri;
+}
+
+// The prototype's corners placed as build_mesh places a flattened copy's vertices (each step's
+// render_from_object in double, rounded once to float) and interpolated between steps as
+// flat_triangle does, so that a hit rebuilds the same triangle either way.
+RenderGeometry::HitTriangle RenderGeometry::instanced_triangle(const Instance& instance,
+                                                               uint32_t primitive,
+                                                               float time) const {
+  const Mesh& mesh = prototypes_[instance.prototype];
+  HitTriangle tri;
+  tri.mesh = &mesh;
+  tri.instance = &instance;
+  tri.primitive = primitive;
+  const uint32_t* corner = &mesh.indices[3 * size_t(primitive)];
+  const uint32_t steps = uint32_t(instance.render_from_object.size());
+  tri.moving = steps > 1;
+  float f = 0.f;
+  const uint32_t first = tri.moving ? time_segment(time, steps - 1, f) : 0;
+  const uint32_t next = tri.moving ? first + 1 : 0;
+  Vec3d reach{};
+  for (int i = 0; i < 3; ++i) {
+    const uint32_t c = corner[instance.mirrored && i > 0 ? 3 - i : i];
+    tri.corner[i] = c;
+    const Vec3d object(mesh.positions[c]);
+    const Vec3f a(instance.render_from_object[first].point(object));
+    tri.rest[i] = first == 0 ? a : Vec3f(instance.render_from_object[0].point(object));
+    reach = max(reach, transform_magnitude(instance.render_from_object[first], object));
+    const Vec3f na = mesh.normals.empty()
+                         ? Vec3f{}
+                         : unit_through(instance.normal_from_object[first], Vec3d(mesh.normals[c]));
+    if (!tri.moving) {
+      tri.p[i] = a, tri.magnitude[i] = abs(a), tri.n[i] = na;
+      continue;
+    }
+    const Vec3f b(instance.render_from_object[next].point(object));
+    reach = max(reach, transform_magnitude(instance.render_from_object[next], object));
+    tri.p[i] = a * (1.f - f) + b * f;
+    tri.magnitude[i] = abs(a) + abs(b);
+    if (!mesh.normals.empty())
+      tri.n[i] = na * (1.f - f) +
+                 unit_through(instance.normal_from_object[next], Vec3d(mesh.normals[c])) * f;
+  }
+  tri.transform_magnitude = Vec3f(reach);
+  return tri;
+}
+
+SurfacePoint RenderGeometry::surface_point(const HitTriangle& tri, float u, float v) {
   const float b[3] = {1.f - u - v, u, v};
   SurfacePoint point;
   // At the first motion step: solid textures on moving meshes are not supported (only POV-Ray
   // scenes have them, and nothing moves there). From the first corner along the edges, so that a
   // coordinate all three corners share comes out exact: a plane at y = -1 tessellated from a
   // POV-Ray scene must give its checker y = -1, not -1 - 1 ulp (the barycentric sum rounds).
-  const Vec3f p0 = mesh.positions[tri[0]];
-  point.position = p0 + (mesh.positions[tri[1]] - p0) * u + (mesh.positions[tri[2]] - p0) * v;
-  const VertexTextureData& data = mesh.texturing;
+  const Vec3f p0 = tri.rest[0];
+  point.position = p0 + (tri.rest[1] - p0) * u + (tri.rest[2] - p0) * v;
+  const VertexTextureData& data = tri.mesh->texturing;
+  const uint32_t* c = tri.corner;
   for (uint32_t set = 0; set < VertexTextureData::kSets && !data.texcoords[set].empty(); ++set) {
     const std::vector<Vec2f>& uv = data.texcoords[set];
-    point.uv[set] = uv[tri[0]] * b[0] + uv[tri[1]] * b[1] + uv[tri[2]] * b[2];
+    point.uv[set] = uv[c[0]] * b[0] + uv[c[1]] * b[1] + uv[c[2]] * b[2];
     point.uv_sets = set + 1;
   }
+  // An instance's tangents are in object space: each corner's is placed as build_mesh places a
+  // flattened copy's (render_from_object at the first step, then normalised; radial tangents by
+  // the normals' transform) before they are interpolated.
+  const Instance* instance = tri.instance;
   if (!data.tangents.empty()) {
     Vec3f t{};
     for (int i = 0; i < 3; ++i) {
-      const auto& c = data.tangents[tri[i]];
-      t += Vec3f{c[0], c[1], c[2]} * b[i];
+      const auto& tangent = data.tangents[c[i]];
+      const Vec3f corner{tangent[0], tangent[1], tangent[2]};
+      t +=
+          (instance ? unit_through(instance->render_from_object[0], Vec3d(corner)) : corner) * b[i];
     }
     point.tangent = t;
-    point.bitangent_sign = data.tangents[tri[0]][3] < 0.f ? -1.f : 1.f;
+    point.bitangent_sign = data.tangents[c[0]][3] < 0.f ? -1.f : 1.f;
   }
-  if (!data.radial_tangents.empty())
-    point.radial_tangent = data.radial_tangents[tri[0]] * b[0] +
-                           data.radial_tangents[tri[1]] * b[1] +
-                           data.radial_tangents[tri[2]] * b[2];
+  if (!data.radial_tangents.empty()) {
+    Vec3f r[3];
+    for (int i = 0; i < 3; ++i) {
+      r[i] = data.radial_tangents[c[i]];
+      if (instance) r[i] = Vec3f(instance->normal_from_object[0].vector(Vec3d(r[i])));
+    }
+    point.radial_tangent = r[0] * b[0] + r[1] * b[1] + r[2] * b[2];
+  }
   return point;
 }
 
@@ -430,14 +660,16 @@ void RenderGeometry::alpha_filter(const RTCFilterFunctionNArguments* args) {
                                    bits(v) << 32 | bits(RTCRayN_dir_x(args->ray, args->N, i)),
                                    bits(RTCRayN_dir_y(args->ray, args->N, i)) << 32 |
                                        bits(RTCRayN_dir_z(args->ray, args->N, i)));
-    if (!mesh.shader->covers(mesh.material, surface_point(mesh, primitive, u, v), hash))
+    if (!mesh.shader->covers(mesh.material,
+                             surface_point(flat_triangle(mesh, primitive, 0.f), u, v), hash))
       args->valid[i] = 0;
   }
 }
 
 Rgb RenderGeometry::emission_at(const EmissiveTriangle& emitter, float u, float v) const {
-  return shader_->emission(emitter.material,
-                           surface_point(meshes_[emitter.mesh], emitter.primitive, u, v));
+  return shader_->emission(
+      emitter.material,
+      surface_point(flat_triangle(meshes_[emitter.mesh], emitter.primitive, 0.f), u, v));
 }
 
 namespace {
@@ -464,45 +696,30 @@ Vec3f lifted_onto_smooth_surface(Vec3f position, const Vec3f p[3], const Vec3f n
 
 }  // namespace
 
-void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t,
-                              float time, const HitRequest& request, fb_hit& hit) const {
-  const uint32_t* tri = &mesh.indices[3 * size_t(primitive)];
+void RenderGeometry::fill_hit(const HitTriangle& tri, float u, float v, float t,
+                              const HitRequest& request, fb_hit& hit) const {
+  const Mesh& mesh = *tri.mesh;
   const float b[3] = {1.f - u - v, u, v};
-  // The corners where Embree met them: at a motion step, or interpolated between two as Embree
-  // does (lerp of the steps around the ray's time). Each corner's magnitude bounds its rounding.
-  Vec3f p[3], magnitude[3], n[3];
-  const bool moving = mesh.step_count > 1;
-  float f = 0.f;
-  const size_t first = moving ? time_segment(time, mesh.step_count - 1, f) * mesh.vertex_count : 0;
-  const size_t next = moving ? first + mesh.vertex_count : 0;
-  for (int i = 0; i < 3; ++i) {
-    const Vec3f a = mesh.positions[first + tri[i]];
-    if (!moving) {
-      p[i] = a, magnitude[i] = abs(a);
-      if (!mesh.normals.empty()) n[i] = mesh.normals[tri[i]];
-      continue;
-    }
-    const Vec3f c = mesh.positions[next + tri[i]];
-    p[i] = a * (1.f - f) + c * f;
-    magnitude[i] = abs(a) + abs(c);
-    if (!mesh.normals.empty())
-      n[i] = mesh.normals[first + tri[i]] * (1.f - f) + mesh.normals[next + tri[i]] * f;
-  }
+  const Vec3f* p = tri.p;
   // Re-interpolating from the vertices puts the point on the triangle's plane up to rounding,
   // bounded by gamma(7) times the magnitudes summed (pbrt 4e §6.8.4); between motion steps, our
   // corners and Embree's each round a lerp too: gamma(7) more.
   const Vec3f position = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
   const Vec3f shadow =
-      mesh.normals.empty() ? position : lifted_onto_smooth_surface(position, p, n, b);
+      mesh.normals.empty() ? position : lifted_onto_smooth_surface(position, p, tri.n, b);
   // The lifted point carries the position's error and one rounding more: one bound for both.
-  const Vec3f error = (magnitude[0] * std::abs(b[0]) + magnitude[1] * std::abs(b[1]) +
-                       magnitude[2] * std::abs(b[2])) *
-                          gamma(moving ? 14 : 7) +
-                      abs(shadow) * gamma(1);
+  Vec3f error = (tri.magnitude[0] * std::abs(b[0]) + tri.magnitude[1] * std::abs(b[1]) +
+                 tri.magnitude[2] * std::abs(b[2])) *
+                    gamma(tri.moving ? 14 : 7) +
+                abs(shadow) * gamma(1);
+  // An instance's surface, as Embree meets it, is the object-space triangle seen through the float
+  // matrix and its float inverse applied to the ray (Embree 3's instance intersector): each a few
+  // roundings of terms as large as |A| |p| + |t| (pbrt 4e §6.8.6), which gamma(16) covers.
+  if (tri.instance) error += tri.transform_magnitude * gamma(16);
   const Vec3f ng = normalize(cross(p[1] - p[0], p[2] - p[0]));
   Vec3f ns = ng;
   if (!mesh.normals.empty()) {
-    const Vec3f interpolated = n[0] * b[0] + n[1] * b[1] + n[2] * b[2];
+    const Vec3f interpolated = tri.n[0] * b[0] + tri.n[1] * b[1] + tri.n[2] * b[2];
     const float len = length(interpolated);
     if (len > 0.f) ns = interpolated / len;
     if (dot(ns, ng) < 0.f) ns = -ns;
@@ -514,8 +731,8 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   ng.store(hit.geometric_normal);
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
-  hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
-  shade(mesh.material, surface_point(mesh, primitive, u, v), request, hit);
+  hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + tri.primitive;
+  shade(mesh.material, surface_point(tri, u, v), request, hit);
 }
 
 bool RenderGeometry::fill_solid_hit(unsigned id, const HitRequest& request, fb_hit& hit) const {

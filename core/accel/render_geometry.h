@@ -1,9 +1,12 @@
 // The scene's triangles in render space (world translated so the camera is at the origin, then
-// narrowed to float), with an Embree 3 BVH over them. Instances are flattened: every triangle
-// is stored once per instance, which keeps traversal single-level and fastest
-// (docs/architecture.md). An instance that moves while the shutter is open is stored at several
-// evenly spaced times and intersected at the ray's time through Embree's vertex motion blur;
-// everything else is stored once, at the frame's time (docs/camera-model.md, "Time and motion").
+// narrowed to float), with an Embree 3 BVH over them. A mesh used once is flattened: its triangles
+// are stored in render space, which keeps traversal single-level. A mesh several instances use is
+// stored once in object space with its own BVH, and each instance is an Embree instance of it
+// (core/accel/instancing.h says which; docs/architecture.md, "Instances"); its hits are rebuilt
+// in render space with the same arithmetic as a flattened copy's. An instance that moves while the
+// shutter is open is stored at several evenly spaced times (its vertices, or its transform when
+// instanced) and intersected at the ray's time through Embree's motion blur; everything else is
+// stored once, at the frame's time (docs/camera-model.md, "Time and motion").
 // Analytic solids (Scene::solids) are Embree user geometry intersected exactly, at the frame's
 // time (core/accel/solid_intersect.h).
 #pragma once
@@ -14,12 +17,14 @@
 #include <filmback/plugin_abi.h>
 #include <filmback/vec.h>
 
+#include "core/accel/instancing.h"
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
 #include "core/shading/surface_arena.h"
 #include "core/texture/surface_shader.h"
 
 struct RTCFilterFunctionNArguments;  // <embree3/rtcore.h>
+struct RTCRayHit;
 
 namespace fb {
 
@@ -48,7 +53,7 @@ class RenderGeometry {
  public:
   // `scene` must outlive the geometry: the surface shader reads its materials at every hit.
   RenderGeometry(const Scene& scene, const Transform& render_from_world, const ShotTimes& times,
-                 const MotionTolerance& tolerance);
+                 const MotionTolerance& tolerance, Instancing instancing = Instancing::kRepeated);
   ~RenderGeometry();
   RenderGeometry(const RenderGeometry&) = delete;
   RenderGeometry& operator=(const RenderGeometry&) = delete;
@@ -66,7 +71,8 @@ class RenderGeometry {
   Rgb emission_at(const EmissiveTriangle& emitter, float u, float v) const;
   Vec3f bounds_centre() const { return centre_; }
   float bounds_radius() const { return radius_; }
-  size_t triangle_count() const { return triangle_count_; }
+  size_t triangle_count() const { return triangle_count_; }  // rendered: each instance's copy
+  size_t instanced_count() const;                            // instances traced as Embree instances
   size_t moving_instance_count() const { return moving_instances_; }
   uint32_t most_motion_steps() const { return most_motion_steps_; }  // 1 when nothing moves
 
@@ -78,6 +84,8 @@ class RenderGeometry {
 
  private:
   struct Mesh;
+  struct Instance;
+  struct HitTriangle;
   // What a hit record is filled for: the ray, where its surface goes (none: no surface), and
   // whether it is a camera ray (Cycles samples closures defensively there, ShadingFrame).
   struct HitRequest {
@@ -85,11 +93,17 @@ class RenderGeometry {
     SurfaceArena* arena;
     bool camera;
   };
-  // The hit record for barycentrics (u, v) at distance t on triangle `primitive` of `mesh`, at
-  // Embree's normalised time.
-  void fill_hit(const Mesh& mesh, uint32_t primitive, float u, float v, float t, float time,
-                const HitRequest& request, fb_hit& hit) const;
-  static SurfacePoint surface_point(const Mesh& mesh, uint32_t primitive, float u, float v);
+  // The hit record of what Embree found (a flattened triangle, an instanced one or a solid);
+  // false if there is none.
+  bool fill_embree_hit(const RTCRayHit& found, const HitRequest& request, fb_hit& hit) const;
+  // Triangle `primitive` of a flattened mesh, or of an instance, in render space at Embree's
+  // normalised time.
+  static HitTriangle flat_triangle(const Mesh& mesh, uint32_t primitive, float time);
+  HitTriangle instanced_triangle(const Instance& instance, uint32_t primitive, float time) const;
+  // The hit record for barycentrics (u, v) at distance t on `triangle`.
+  void fill_hit(const HitTriangle& triangle, float u, float v, float t, const HitRequest& request,
+                fb_hit& hit) const;
+  static SurfacePoint surface_point(const HitTriangle& triangle, float u, float v);
   // The hit record of a ray Embree found ending on solid geometry `id`; false if it does not.
   bool fill_solid_hit(unsigned id, const HitRequest& request, fb_hit& hit) const;
   // The material's textures at `point` into the hit's surface fields, and its surface from the
@@ -101,6 +115,11 @@ class RenderGeometry {
   float embree_time(float time_s) const;
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
                   const std::vector<Transform>& render_from_object_steps);
+  // The object-space copy of scene mesh `mesh` with its own Embree scene, made at its first use.
+  uint32_t prototype_of(const Scene& scene, uint32_t mesh);
+  void add_instance(const Scene& scene, const MeshInstance& instance,
+                    std::vector<Transform> render_from_object_steps);
+  void attach_instances();
   // The constructor's steps: the Embree device and scene; the emitters of an emissive mesh; a mesh
   // and the solids into the Embree scene; and the bytes this object holds (live_bytes()).
   void open_embree();
@@ -108,9 +127,12 @@ class RenderGeometry {
   void attach_mesh(Mesh mesh);
   void attach_solids(const Scene& scene, const Transform& render_from_world);
   size_t count_own_bytes() const;
-  std::unique_ptr<SurfaceShader> shader_;   // materials' textures, evaluated at each hit
-  std::vector<Mesh> meshes_;                // indexed by Embree geometry ID
-  std::vector<RenderSolid> solids_;         // Embree geometry IDs from meshes_.size() on
+  std::unique_ptr<SurfaceShader> shader_;    // materials' textures, evaluated at each hit
+  std::vector<Mesh> meshes_;                 // indexed by Embree geometry ID
+  std::vector<RenderSolid> solids_;          // Embree geometry IDs from meshes_.size() on
+  std::vector<Mesh> prototypes_;             // object space; geometry 0 of their own Embree scene
+  std::vector<uint32_t> prototype_of_mesh_;  // per scene mesh; FB_NONE until made
+  std::vector<Instance> instances_;  // Embree geometry IDs from meshes_.size() + solids_.size()
   std::vector<EmbreeSolid> embree_solids_;  // what Embree's callbacks see of each solid
   std::vector<EmissiveTriangle> emitters_;
   Bounds3d bounds_;  // of every vertex at every motion step
