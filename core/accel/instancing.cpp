@@ -10,10 +10,9 @@ std::vector<bool> instanced_meshes(const Scene& scene, Instancing policy) {
     uses[instance.mesh] = std::min<uint32_t>(uses[instance.mesh] + 1, 2);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];
+    if (mesh.indices.empty() || uses[m] < (policy == Instancing::kAlways ? 1 : 2)) continue;
     const Material& material = scene.materials[mesh.material];
-    const bool can = !mesh.indices.empty() && !(max_component(material.emission) > 0.f) &&
-                     !material.base_color_pattern;
-    instanced[m] = can && (policy == Instancing::kAlways ? uses[m] >= 1 : uses[m] >= 2);
+    instanced[m] = !(max_component(material.emission) > 0.f) && !material.base_color_pattern;
   }
   return instanced;
 }

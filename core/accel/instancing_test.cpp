@@ -9,6 +9,7 @@
 
 #include "core/accel/render_geometry.h"
 #include "core/math/random.h"
+#include "core/render/memory_estimate.h"
 #include "importers/gltf/gltf_importer.h"
 #include "tests/support/gltf_builder.h"
 
@@ -165,6 +166,31 @@ TEST(Instancing, RaysLeavingAnInstancedHitDoNotFindItAgain) {
     ++checked;
   }
   EXPECT_GT(checked, n * n / 8);
+}
+
+// The memory estimate's cost of an instance (kBytesPerInstance) bounds what one holds: 10,000
+// instances of a quad against 5,000, so that the quad's own copy cancels.
+TEST(Instancing, EachInstanceHoldsNoMoreThanTheEstimateCounts) {
+  const auto bytes_for = [](size_t count) {
+    Scene scene;
+    TriangleMesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    scene.meshes.push_back(quad);
+    scene.materials.push_back({});
+    for (size_t i = 0; i < count; ++i) {
+      MeshInstance instance;
+      instance.world_from_object = Transform::translate({double(i % 100), double(i / 100), -5});
+      scene.instances.push_back(instance);
+    }
+    const size_t before = RenderGeometry::live_bytes();
+    const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
+    EXPECT_EQ(geometry.instanced_count(), count);
+    return double(RenderGeometry::live_bytes() - before);
+  };
+  const double per_instance = (bytes_for(10000) - bytes_for(5000)) / 5000;
+  EXPECT_GT(per_instance, 256);  // its transform and normal transform at least
+  EXPECT_LE(per_instance, kBytesPerInstance);
 }
 
 }  // namespace

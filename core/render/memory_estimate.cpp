@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "core/accel/instancing.h"
 #include "core/subdiv/face_varying.h"
 #include "core/util/error.h"
 
@@ -29,7 +30,7 @@ uint64_t default_memory_limit_bytes() {
 
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
-                               double triangles, double texturing_bytes) {
+                               const GeometryCounts& geometry) {
   const double pixels = double(width) * height, c = double(channels);
   MemoryEstimate e;
   // core/film/film.h: a double sum per channel, a double weight and a 32-bit count per pixel; the
@@ -41,7 +42,8 @@ MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
     const double grown = 1.0 + 2.0 * splat_margin_px / kTileSize;
     e.splat_bytes = pixels * grown * grown * (c + 1) * sizeof(double);
   }
-  e.geometry_bytes = triangles * kBytesPerTriangle + texturing_bytes;
+  e.geometry_bytes = geometry.triangles * kBytesPerTriangle +
+                     geometry.instances * kBytesPerInstance + geometry.texturing_bytes;
   return e;
 }
 
@@ -56,13 +58,32 @@ double bytes_of(const VertexTextureData& t) {
 
 }  // namespace
 
-double texturing_bytes(const Scene& scene) {
-  double bytes = 0;
-  for (const TriangleMesh& mesh : scene.meshes)
-    bytes += bytes_of(mesh.texturing);
-  for (const MeshInstance& instance : scene.instances)
-    bytes += bytes_of(scene.meshes[instance.mesh].texturing);
-  return bytes;
+GeometryCounts& GeometryCounts::operator+=(const GeometryCounts& more) {
+  triangles += more.triangles;
+  instances += more.instances;
+  texturing_bytes += more.texturing_bytes;
+  return *this;
+}
+
+GeometryCounts geometry_counts(const Scene& scene) {
+  const std::vector<bool> instanced = instanced_meshes(scene, Instancing::kRepeated);
+  GeometryCounts counts;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    counts.texturing_bytes += bytes_of(scene.meshes[m].texturing);
+    if (!instanced[m]) continue;  // the render's one object-space copy
+    counts.triangles += double(scene.meshes[m].triangle_count());
+    counts.texturing_bytes += bytes_of(scene.meshes[m].texturing);
+  }
+  for (const MeshInstance& instance : scene.instances) {
+    const TriangleMesh& mesh = scene.meshes[instance.mesh];
+    if (instanced[instance.mesh]) {
+      counts.instances += 1;
+    } else {
+      counts.triangles += double(mesh.triangle_count());
+      counts.texturing_bytes += bytes_of(mesh.texturing);
+    }
+  }
+  return counts;
 }
 
 double refined_texturing_bytes(const SubdivisionSurface& surface) {

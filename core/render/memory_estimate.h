@@ -15,23 +15,37 @@ namespace fb {
 // Half of this machine's physical memory: the default --memory-limit.
 uint64_t default_memory_limit_bytes();
 
+// Bytes an instance traced as an Embree instance holds at most: RenderGeometry's record (its
+// transforms and their normal transforms, 256 bytes per motion step), Embree's instance object and
+// its share of the top-level BVH. Measured: 606 bytes through RenderGeometry::live_bytes(), and
+// 430-760 bytes of resident memory per instance over 200,000 (docs/benchmarks.md, "Instances").
+constexpr double kBytesPerInstance = 1024;
+
+// What the render stores of a scene's meshes (core/accel/instancing.h): the render-space
+// triangles of each flattened instance plus one copy of each instanced mesh; the instances traced
+// as instances; and the texture coordinates and tangents in the scene and in the render's copies.
+struct GeometryCounts {
+  double triangles = 0;
+  double instances = 0;
+  double texturing_bytes = 0;
+  GeometryCounts& operator+=(const GeometryCounts& more);
+};
+
+GeometryCounts geometry_counts(const Scene& scene);
+
 struct MemoryEstimate {
   double film_bytes = 0;      // sums, weights and counts; the resolved image and one copy of it
   double splat_bytes = 0;     // --reconstruction splat: the tiles' own sums
-  double geometry_bytes = 0;  // render-space triangles, their texture coordinates, Embree's BVH
+  double geometry_bytes = 0;  // stored triangles, their texture coordinates, Embree's BVHs,
+                              // instances
   double total() const { return film_bytes + splat_bytes + geometry_bytes; }
 };
 
-// For a film of width x height pixels with `channels` channels, `triangles` flattened triangles
-// with `texturing_bytes` of texture coordinates and tangents and, when splatting, a filter
-// reaching `splat_margin_px` pixels beyond each tile of 16 x 16.
+// For a film of width x height pixels with `channels` channels, the geometry `geometry` counts
+// and, when splatting, a filter reaching `splat_margin_px` pixels beyond each tile of 16 x 16.
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
-                               double triangles, double texturing_bytes = 0);
-
-// The texture coordinates and tangents of `scene`'s meshes: in the scene, and again in every
-// instance's render-space copy (core/accel/render_geometry.cpp).
-double texturing_bytes(const Scene& scene);
+                               const GeometryCounts& geometry);
 
 // Triangles that refining `surface` to its render level makes (--subdiv render), known from the
 // cage before any refinement: a level-0 surface is its cage triangulated (n - 2 per n-gon); each

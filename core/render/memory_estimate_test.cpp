@@ -22,12 +22,12 @@ TEST(MemoryEstimate, ParsesSizesInPowersOf1024) {
 // Each term counted as core/film/film.h and splat_tiles.h allocate it.
 TEST(MemoryEstimate, CountsFilmSplatTilesAndGeometry) {
   const MemoryEstimate importance =
-      estimate_memory(100, 50, 3, Reconstruction::kImportance, 2, 1000);
+      estimate_memory(100, 50, 3, Reconstruction::kImportance, 2, {1000, 0, 0});
   // per pixel: 4 double sums and weight, a 32-bit count, 3 + 4 floats of resolved images
   EXPECT_EQ(importance.film_bytes, 5000.0 * (4 * 8 + 4 + 7 * 4));
   EXPECT_EQ(importance.splat_bytes, 0);
   EXPECT_EQ(importance.geometry_bytes, 1000.0 * 120);
-  const MemoryEstimate splat = estimate_memory(100, 50, 3, Reconstruction::kSplat, 2, 0);
+  const MemoryEstimate splat = estimate_memory(100, 50, 3, Reconstruction::kSplat, 2, {});
   EXPECT_EQ(splat.splat_bytes, 5000.0 * 1.25 * 1.25 * 4 * 8);  // 16 px tiles grown by 2 px a side
   EXPECT_EQ(splat.total(), splat.film_bytes + splat.splat_bytes);
 }
@@ -64,10 +64,47 @@ TEST(MemoryEstimate, CountsTextureCoordinatesAndTangents) {
     instance.mesh = mesh;
     scene.instances.push_back(instance);
   }
-  EXPECT_EQ(texturing_bytes(scene), 3 * 4 * (8 + 16));
-  const MemoryEstimate e =
-      estimate_memory(10, 10, 3, Reconstruction::kImportance, 0, 2, texturing_bytes(scene));
+  EXPECT_EQ(geometry_counts(scene).texturing_bytes, 3 * 4 * (8 + 16));
+  const MemoryEstimate e = estimate_memory(10, 10, 3, Reconstruction::kImportance, 0,
+                                           {2, 0, geometry_counts(scene).texturing_bytes});
   EXPECT_EQ(e.geometry_bytes, 2 * 120 + 288);
+}
+
+// A mesh several instances use is stored once (core/accel/instancing.h): its triangles and
+// texturing once in the render, plus a record per instance; a mesh used once is flattened.
+TEST(MemoryEstimate, CountsAnInstancedMeshOnceAndEachOfItsInstances) {
+  Scene scene;
+  scene.materials.push_back({});
+  TriangleMesh quad;
+  quad.positions.resize(4);
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  quad.texturing.texcoords[0].resize(4);
+  scene.meshes = {quad, quad};
+  for (const uint32_t mesh : {0u, 0u, 0u, 1u}) {
+    MeshInstance instance;
+    instance.mesh = mesh;
+    scene.instances.push_back(instance);
+  }
+  const GeometryCounts counts = geometry_counts(scene);
+  EXPECT_EQ(counts.triangles, 2 + 2);  // mesh 0's one copy, mesh 1's one flattened instance
+  EXPECT_EQ(counts.instances, 3);
+  EXPECT_EQ(counts.texturing_bytes, 4 * 32);  // each mesh in the scene and in the render
+}
+
+// Issue 17's forest: 10,000 copies of a 100,000-triangle tree (10^9 triangles flattened) fits
+// with a 1920 x 1080 film in 2 GiB, where flattened it needed 120 GB.
+TEST(MemoryEstimate, TenThousandCopiesOfAHundredThousandTrianglesFitInTwoGibibytes) {
+  Scene scene;
+  scene.materials.push_back({});
+  TriangleMesh tree;
+  tree.positions.resize(50000);
+  tree.indices.resize(300000);
+  scene.meshes = {tree};
+  scene.instances.assign(10000, MeshInstance{});
+  const MemoryEstimate e =
+      estimate_memory(1920, 1080, 3, Reconstruction::kImportance, 0, geometry_counts(scene));
+  EXPECT_LT(e.total(), 0x1p31);
+  EXPECT_EQ(e.geometry_bytes, 1e5 * 120 + 1e4 * kBytesPerInstance);
 }
 
 // A refined surface's texture coordinates, before it is refined: about a vertex per two
@@ -96,7 +133,8 @@ TEST(MemoryEstimate, RefinedTextureCoordinatesFollowFromTheCage) {
 }
 
 TEST(MemoryEstimate, RefusesOverTheLimitNamingBothNumbers) {
-  const MemoryEstimate e = estimate_memory(4096, 4096, 3, Reconstruction::kImportance, 0, 1e6);
+  const MemoryEstimate e =
+      estimate_memory(4096, 4096, 3, Reconstruction::kImportance, 0, {1e6, 0, 0});
   EXPECT_NO_THROW(check_memory(e, uint64_t(e.total()) + 1, "--memory-limit", "s.gltf"));
   try {
     check_memory(e, 1ull << 30, "--memory-limit", "s.gltf");

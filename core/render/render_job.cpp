@@ -149,12 +149,10 @@ void RenderJob::build_geometry() {
   const Scene* geometry_scene = &scene_;
   if (options_.subdiv == SubdivMode::kRender && !scene_.subdivision_surfaces.empty()) {
     // Refining is itself the allocation to bound: its count is known from the cages.
-    double triangles = double(scene_.triangle_count()), texturing = texturing_bytes(scene_);
-    for (const SubdivisionSurface& surface : scene_.subdivision_surfaces) {
-      triangles += refined_triangles(surface);
-      texturing += refined_texturing_bytes(surface);
-    }
-    check_memory_budget(triangles, texturing);
+    GeometryCounts counts = geometry_counts(scene_);
+    for (const SubdivisionSurface& surface : scene_.subdivision_surfaces)
+      counts += {refined_triangles(surface), 0, refined_texturing_bytes(surface)};
+    check_memory_budget(counts);
   }
   if (!scene_.subdivision_surfaces.empty()) {
     p.refined = std::make_unique<Scene>(scene_);
@@ -165,7 +163,7 @@ void RenderJob::build_geometry() {
     p.subdiv_summary = std::move(report.summary);
     geometry_scene = p.refined.get();
   }
-  check_memory_budget(double(geometry_scene->triangle_count()), texturing_bytes(*geometry_scene));
+  check_memory_budget(geometry_counts(*geometry_scene));
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, plan_.times,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
@@ -196,13 +194,13 @@ void RenderJob::make_scene_table() {
 RenderJob::~RenderJob() = default;
 
 // The film, splat tiles and flattened geometry, against the limit, before any of them exists.
-void RenderJob::check_memory_budget(double triangles, double texturing) const {
+void RenderJob::check_memory_budget(const GeometryCounts& geometry) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
   const MemoryEstimate estimate = estimate_memory(
       plan_.width_px, plan_.height_px, p.integrator->channels().size(), options_.reconstruction,
-      SplatTiles::reach(std::max(radius[0], radius[1])), triangles, texturing);
+      SplatTiles::reach(std::max(radius[0], radius[1])), geometry);
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else

@@ -21,6 +21,8 @@
 
 namespace fb {
 
+struct GeometryCounts;  // core/render/memory_estimate.h
+
 // What a RenderJob chose and why, as its plan line says it (docs/cli.md, "--stats-json").
 struct RenderChoices {
   std::string camera, camera_source;  // the scene camera and where it came from
@@ -69,7 +71,7 @@ class RenderJob {
   void choose_time_samples();  // sets time_reason_ and the time plugins_ need
   void make_scene_table();     // what the integrator sees of the scene
   // The film's, and these triangles' with their texture coordinates and tangents.
-  void check_memory_budget(double triangles, double texturing) const;
+  void check_memory_budget(const GeometryCounts& geometry) const;
   const Scene& scene_;
   RenderOptions options_;
   ShotPlan plan_;
