@@ -14,6 +14,7 @@
 #include "importers/gltf/gltf_animation.h"
 #include "importers/gltf/gltf_camera.h"
 #include "importers/gltf/gltf_file.h"
+#include "importers/gltf/gltf_instancing.h"
 #include "importers/gltf/gltf_json.h"
 #include "importers/gltf/gltf_lights.h"
 #include "importers/gltf/gltf_materials.h"
@@ -61,7 +62,8 @@ class Importer {
     static const std::set<std::string> kSupported = {
         "EXT_camera_physical",   "KHR_lights_punctual",    "KHR_materials_emissive_strength",
         "KHR_materials_ior",     "KHR_materials_specular", "KHR_materials_transmission",
-        "KHR_texture_transform", "FILMBACK_blender",       "FILMBACK_povray",
+        "KHR_texture_transform", "FILMBACK_blender",       "EXT_mesh_gpu_instancing",
+        "FILMBACK_povray",
     };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
@@ -209,6 +211,18 @@ class Importer {
       throw_input(name_, path + ".mesh",
                   out_of_range("mesh", node.mesh, model_.meshes.size(), "meshes"));
     const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+    // The node's own placement, or one per EXT_mesh_gpu_instancing instance in the node's space.
+    std::vector<Transform> placements{world};
+    if (auto node_from_instance =
+            gltf::read_gpu_instances(model_, node, path, name_, scene_.instances.size())) {
+      placements.clear();
+      for (const Transform& t : *node_from_instance)
+        placements.push_back(world * t);
+    }
+    // Bounded before it is made: a few thousand primitives drawn by a few thousand nodes would
+    // otherwise make 10^7 instances from a file of kilobytes.
+    gltf::check_instance_count(scene_.instances.size(), placements.size() * mesh.primitives.size(),
+                               name_, path + ".mesh");
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const auto key = std::pair{node.mesh, p};
       auto cached = primitive_meshes_.find(key);
@@ -224,8 +238,9 @@ class Importer {
         cached = primitive_meshes_.emplace(key, index).first;
       }
       if (cached->second)
-        scene_.instances.push_back(
-            {*cached->second, world, node.name.empty() ? path : node.name, scene_node});
+        for (const Transform& placement : placements)
+          scene_.instances.push_back(
+              {*cached->second, placement, node.name.empty() ? path : node.name, scene_node});
     }
   }
 
