@@ -180,13 +180,13 @@ std::vector<Vec3d> box_corners(const std::vector<Vec3f>& positions) {
 // ...) for which linear interpolation between consecutive steps follows the true motion within
 // the tolerance at a quarter, half and three quarters of every step, up to Embree's 129 steps.
 std::vector<Transform> motion_steps(const Scene& scene, const MeshInstance& instance,
+                                    const std::vector<Vec3d>& corners,
                                     const Transform& render_from_world, const ShotTimes& times,
                                     const MotionTolerance& tolerance) {
   const auto at = [&](double s) {
     return render_from_world *
            scene.world_from_object(instance, times.open_s + s * (times.close_s - times.open_s));
   };
-  const std::vector<Vec3d> corners = box_corners(scene.meshes[instance.mesh].positions);
   for (uint32_t segments = 1;; segments *= 2) {
     std::vector<Transform> steps;
     for (uint32_t k = 0; k <= segments; ++k)
@@ -268,6 +268,13 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   meshes_.reserve(scene.instances.size());
   prototypes_.reserve(scene.meshes.size());
   prototype_of_mesh_.assign(scene.meshes.size(), FB_NONE);
+  // Each mesh's object-space box corners, found at its first use: 10,000 instances of one mesh
+  // must not scan its vertices 10,000 times.
+  std::vector<std::vector<Vec3d>> corners(scene.meshes.size());
+  const auto corners_of = [&](uint32_t mesh) -> const std::vector<Vec3d>& {
+    if (corners[mesh].empty()) corners[mesh] = box_corners(scene.meshes[mesh].positions);
+    return corners[mesh];
+  };
   if (times.shutter_open()) {
     open_s_ = float(times.open_s - times.frame_s);
     inverse_duration_ = float(1 / (times.close_s - times.open_s));
@@ -278,12 +285,13 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
         times.shutter_open() && scene.moves(instance.node_index, times.open_s, times.close_s);
     std::vector<Transform> steps =
         moving
-            ? motion_steps(scene, instance, render_from_world, times, tolerance)
+            ? motion_steps(scene, instance, corners_of(instance.mesh), render_from_world, times,
+                           tolerance)
             : std::vector{render_from_world * scene.world_from_object(instance, times.still_s())};
     moving_instances_ += moving;
     most_motion_steps_ = std::max(most_motion_steps_, uint32_t(steps.size()));
     if (instanced[instance.mesh]) {
-      add_instance(scene, instance, std::move(steps));
+      add_instance(scene, instance, corners_of(instance.mesh), std::move(steps));
       continue;
     }
     Mesh mesh = build_mesh(scene, instance, steps);
@@ -398,12 +406,12 @@ uint32_t RenderGeometry::prototype_of(const Scene& scene, uint32_t mesh_index) {
 // box's corners placed, rather than every vertex: 10,000 copies of a large mesh would cost as
 // much to bound as to flatten).
 void RenderGeometry::add_instance(const Scene& scene, const MeshInstance& placement,
+                                  const std::vector<Vec3d>& corners,
                                   std::vector<Transform> render_from_object_steps) {
   const TriangleMesh& source = scene.meshes[placement.mesh];
   Instance& instance = instances_.emplace_back();
   instance.prototype = prototype_of(scene, placement.mesh);
   instance.mirrored = render_from_object_steps.front().determinant3x3() < 0;
-  const std::vector<Vec3d> corners = box_corners(source.positions);
   for (const Transform& render_from_object : render_from_object_steps) {
     for (const Vec3d& c : corners)
       bounds_.extend(placed(render_from_object, Vec3f(c), placement, source));

@@ -117,7 +117,9 @@ class RenderGeometry {
                   const std::vector<Transform>& render_from_object_steps);
   // The object-space copy of scene mesh `mesh` with its own Embree scene, made at its first use.
   uint32_t prototype_of(const Scene& scene, uint32_t mesh);
+  // `corners`: the mesh's object-space box corners.
   void add_instance(const Scene& scene, const MeshInstance& instance,
+                    const std::vector<Vec3d>& corners,
                     std::vector<Transform> render_from_object_steps);
   void attach_instances();
   // The constructor's steps: the Embree device and scene; the emitters of an emissive mesh; a mesh
