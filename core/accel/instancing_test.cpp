@@ -10,7 +10,7 @@
 #include "core/accel/render_geometry.h"
 #include "core/math/random.h"
 #include "core/render/memory_estimate.h"
-#include "tests/support/instanced_scene.h"
+#include "support/instanced_scene.h"
 
 namespace fb {
 namespace {

@@ -9,7 +9,8 @@
 
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
-#include "tests/support/gltf_builder.h"
+#include "support/gltf_builder.h"
+#include "support/import_error.h"
 
 namespace fb {
 namespace {
@@ -54,16 +55,6 @@ std::filesystem::path instanced_file(const std::vector<Vec3f>& translations, siz
   return file;
 }
 
-std::string import_error(const std::filesystem::path& file) {
-  Diagnostics diagnostics;
-  try {
-    import_gltf(file, diagnostics);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(GltfInstancing, EachTranslationPlacesTheNodesMeshOnce) {
   const std::vector<Vec3f> translations = {{0, 0, 0}, {2, 0, 0}, {0, 0, -3}};
   Diagnostics diagnostics;
@@ -83,7 +74,7 @@ TEST(GltfInstancing, EachTranslationPlacesTheNodesMeshOnce) {
 // 10^9 instances declared by a file of a few hundred bytes: refused before anything is read or
 // allocated, naming the attribute.
 TEST(GltfInstancing, ABillionInstancesAreRefusedNamingTheAttribute) {
-  const std::string error = import_error(instanced_file({{0, 0, 0}}, 1000000000));
+  const std::string error = test::import_error(instanced_file({{0, 0, 0}}, 1000000000));
   EXPECT_NE(error.find("nodes[0].extensions.EXT_mesh_gpu_instancing.attributes.TRANSLATION"),
             std::string::npos)
       << error;
@@ -94,7 +85,8 @@ TEST(GltfInstancing, ABillionInstancesAreRefusedNamingTheAttribute) {
 // 3000 primitives drawn 1500 times (4.5 million instances, past 2^22) by a file of 100 KB: refused
 // at the node's mesh before a single instance is made.
 TEST(GltfInstancing, PrimitivesTimesInstancesAreBoundedToo) {
-  const std::string error = import_error(instanced_file(std::vector<Vec3f>(1500), 1500, 3000));
+  const std::string error =
+      test::import_error(instanced_file(std::vector<Vec3f>(1500), 1500, 3000));
   EXPECT_NE(error.find("nodes[0].mesh"), std::string::npos) << error;
   EXPECT_NE(error.find("4500000 more"), std::string::npos) << error;
 }
@@ -110,7 +102,7 @@ TEST(GltfInstancing, AttributesOfDifferentCountsAreRefused) {
   const std::string from = R"("TRANSLATION":1)";
   json.replace(json.find(from), from.size(), R"("TRANSLATION":1,"SCALE":0)");
   std::ofstream(file) << json;
-  const std::string error = import_error(file);
+  const std::string error = test::import_error(file);
   EXPECT_NE(error.find("EXT_mesh_gpu_instancing.attributes.SCALE"), std::string::npos) << error;
   EXPECT_NE(error.find("3 instances, expected 2"), std::string::npos) << error;
 }

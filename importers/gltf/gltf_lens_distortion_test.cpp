@@ -14,6 +14,7 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 #include "support/plugins.h"
 
 namespace fb {
@@ -50,16 +51,6 @@ std::map<std::string, NamedNumber> numbers_of(const SceneCamera& camera) {
   for (const NamedNumber& n : camera.lens_distortion)
     out[n.key] = n;
   return out;
-}
-
-std::string error_of(const std::filesystem::path& file) {
-  Diagnostics diagnostics;
-  try {
-    import_gltf(file, diagnostics);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(GltfLensDistortion, TheModelsCoefficientsAndTheClipBecomeRequiredPluginNumbers) {
@@ -126,10 +117,11 @@ TEST(GltfLensDistortion, HostileValuesAreRefusedNamingTheMember) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.members);
-    const std::string error = error_of(write_gltf("{" + c.members + "}"));
+    const std::string error = test::import_error(write_gltf("{" + c.members + "}"));
     EXPECT_NE(error.find(std::string(kAt) + c.at + ":"), std::string::npos) << error;
   }
-  EXPECT_NE(error_of(write_gltf("[1, 2]")).find(std::string(kAt) + ":"), std::string::npos);
+  EXPECT_NE(test::import_error(write_gltf("[1, 2]")).find(std::string(kAt) + ":"),
+            std::string::npos);
 }
 
 ShotPlan plan_of(const std::filesystem::path& file, const RenderOptions& options = {}) {

@@ -16,6 +16,7 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 #include "support/png.h"
 
 namespace fb {
@@ -339,16 +340,6 @@ std::filesystem::path textured_quad(const std::string& image_uri, int texcoord =
   return file;
 }
 
-std::string import_error(const std::filesystem::path& file) {
-  Diagnostics diagnostics;
-  try {
-    import_gltf(file, diagnostics);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
-
 // The whole way from a .gltf: a data-URI PNG kept encoded by the importer, TEXCOORD_0 read, the
 // image decoded by the shader and looked up where the quad's corner maps.
 TEST(GltfMaterials, DataUriImageAndTexcoordsReachTheShader) {
@@ -366,13 +357,13 @@ TEST(GltfMaterials, DataUriImageAndTexcoordsReachTheShader) {
 }
 
 TEST(GltfMaterials, ImagesOutsideTheScenesFolderAndMissingTexcoordsAreErrors) {
-  const std::string outside = import_error(textured_quad("../outside.png"));
+  const std::string outside = test::import_error(textured_quad("../outside.png"));
   EXPECT_NE(outside.find("quad.gltf: images[0].uri: '../outside.png' refers outside the scene's "
                          "folder"),
             std::string::npos)
       << outside;
   const std::string uri = "data:image/png;base64," + base64(two_texels());
-  const std::string missing = import_error(textured_quad(uri, 1));
+  const std::string missing = test::import_error(textured_quad(uri, 1));
   EXPECT_NE(missing.find("quad.gltf: meshes[0].primitives[0].attributes: material 'materials[0]' "
                          "reads TEXCOORD_1, which the primitive does not have"),
             std::string::npos)

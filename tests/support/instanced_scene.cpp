@@ -1,10 +1,10 @@
-#include "tests/support/instanced_scene.h"
+#include "support/instanced_scene.h"
 
 #include <array>
 #include <cmath>
 
 #include "importers/gltf/gltf_importer.h"
-#include "tests/support/gltf_builder.h"
+#include "support/gltf_builder.h"
 
 namespace fb::test {
 namespace {

@@ -1,0 +1,19 @@
+#include "support/import_error.h"
+
+#include "core/util/diagnostics.h"
+#include "core/util/error.h"
+#include "importers/gltf/gltf_importer.h"
+
+namespace fb::test {
+
+std::string import_error(const std::filesystem::path& file) {
+  Diagnostics diagnostics;
+  try {
+    import_gltf(file, diagnostics);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace fb::test
