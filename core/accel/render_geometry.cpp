@@ -347,7 +347,8 @@ float RenderGeometry::embree_time(float time_s) const {
   return t >= 0.f ? std::min(t, 1.f) : 0.f;  // NaN too: Embree wants a time in [0, 1]
 }
 
-bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const {
+bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena,
+                               const FootprintSource& footprint) const {
   if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -355,7 +356,7 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* are
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  const HitRequest request{ray, arena, false};
+  const HitRequest request{ray, arena, false, footprint};
   if (rh.hit.geomID >= meshes_.size()) return fill_solid_hit(rh.hit.geomID, request, hit);
   fill_hit(meshes_[rh.hit.geomID], rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, time, request,
            hit);
@@ -363,7 +364,8 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* are
 }
 
 void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits,
-                                        SurfaceArena* arena) const {
+                                        SurfaceArena* arena,
+                                        const FootprintSource& footprints) const {
   thread_local std::vector<RTCRayHit> stream;
   stream.resize(count);
   for (size_t i = 0; i < count; ++i)
@@ -374,7 +376,7 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
   for (size_t i = 0; i < count; ++i) {
     const RTCRayHit& rh = stream[i];
-    const HitRequest request{rays[i], arena, true};
+    const HitRequest request{rays[i], arena, true, footprints.at(i)};
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       hits[i].t = HUGE_VALF;
     else if (rh.hit.geomID >= meshes_.size()) {
@@ -515,7 +517,13 @@ void RenderGeometry::fill_hit(const Mesh& mesh, uint32_t primitive, float u, flo
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
   hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + primitive;
-  shade(mesh.material, surface_point(mesh, primitive, u, v), request, hit);
+  SurfacePoint point = surface_point(mesh, primitive, u, v);
+  Vec3f dp_dx, dp_dy;
+  if (point.uv_sets > 0 &&
+      position_differentials(request.footprint, Vec3f(request.ray.origin),
+                             Vec3f(request.ray.direction), position, ng, dp_dx, dp_dy))
+    set_texture_differentials(p, tri, mesh.texturing, dp_dx, dp_dy, point);
+  shade(mesh.material, point, request, hit);
 }
 
 bool RenderGeometry::fill_solid_hit(unsigned id, const HitRequest& request, fb_hit& hit) const {

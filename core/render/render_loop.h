@@ -42,6 +42,10 @@ struct RenderInputs {
   // A zoom while the shutter is open: each raster position scaled for its ray's time before the
   // camera plugin maps it (core/render/zoom_in_shutter.h). Only with time samples.
   const ZoomInShutter* zoom = nullptr;
+  // Texture lookups filtered by each ray's footprint (core/texture/ray_footprint.h): the camera
+  // is asked for each ray's neighbours one pixel right and down, at twice the camera's cost, so
+  // only scenes with image textures turn it on. Off: the finest level, as before.
+  bool texture_footprint = false;
 };
 
 struct RenderStats {

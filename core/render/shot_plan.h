@@ -59,6 +59,9 @@ struct RenderOptions {
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
   bool show_progress = true;
+  // Texture lookups filtered by each ray's footprint (docs/architecture.md, "Texture
+  // filtering"); false reads every texture at its finest level, as before issue 17.
+  bool texture_footprint = true;
   // What the render may hold at its peak (core/render/memory_estimate.h); none: half of the
   // machine's memory.
   std::optional<uint64_t> memory_limit_bytes;

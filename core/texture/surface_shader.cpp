@@ -43,10 +43,7 @@ SolidColour SurfaceShader::solid_colour(const SolidPattern& pattern,
 
 std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfacePoint& point,
                                            bool srgb) const {
-  const Vec2f st = texture_position(point, ref.texcoord, ref.uv_transform);
-  TextureLookup lookup;
-  lookup.image = ref.image;
-  lookup.s = st.x, lookup.t = st.y;
+  TextureLookup lookup(ref.image, texture_position(point, ref.texcoord, ref.uv_transform));
   lookup.wrap_s = ref.wrap_s;
   lookup.wrap_t = ref.wrap_t;
   lookup.srgb = srgb;

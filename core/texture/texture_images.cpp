@@ -18,6 +18,14 @@ namespace {
 // than a film-resolution texture needs. The TextureSystem's cache bounds what is held in memory.
 constexpr double kMaxPixels = double(1u << 28);
 
+constexpr float kCacheMegabytes = 256.f;  // OpenImageIO's default, explicit (see below)
+
+// The longest footprint OpenImageIO filters along before it reads a coarser level instead (over-
+// blurring rather than aliasing, TextureOpt::conservative_filter). 16 probes: a ground seen at 4
+// degrees, the grazing part of a shot receding to the horizon, is still sharp across; its default
+// of 32 doubles the cost of those lookups for what a pixel filter cannot tell apart.
+constexpr int kMaxAnisotropy = 16;
+
 OIIO::TextureOpt::Wrap oiio_wrap(TextureWrap w) {
   switch (w) {
     case TextureWrap::kClamp:
@@ -85,9 +93,14 @@ TextureImages::TextureImages(const Scene& scene, const std::vector<bool>& used)
   Impl& tx = *impl_;
   tx.cache = OIIO::ImageCache::create(/*shared=*/false);
   tx.system = OIIO::TextureSystem::create(/*shared=*/false, tx.cache);
-  // Untiled images (PNG, JPEG) are tiled and mip-mapped in the cache as they are read.
+  // Untiled images (PNG, JPEG) are tiled and mip-mapped in the cache as they are read: automip
+  // builds a coarser level only when a lookup's footprint asks for it, so a magnified texture
+  // costs no more than before. The tile cache keeps OpenImageIO's default of 256 MB, said here
+  // because it bounds the memory every image of a scene takes together (the textures of a
+  // film-resolution shot fit; more is re-read from the file, not held).
   tx.system->attribute("autotile", 64);
   tx.system->attribute("automip", 1);
+  tx.system->attribute("max_memory_MB", kCacheMegabytes);
   // glTF colours with alpha are straight (unassociated), as PNG stores them: keep them so.
   tx.system->attribute("unassociatedalpha", 1);
   tx.images.resize(scene.images.size());
@@ -140,12 +153,13 @@ std::array<float, 4> TextureImages::rgba(const TextureLookup& l) const {
   opt.twrap = oiio_wrap(l.wrap_t);
   opt.interpmode = oiio_interpolation(l.interpolation);
   opt.fill = 1.f;  // a missing alpha channel is opaque
-  // No ray differentials yet: zero derivatives read the finest level. Pixel supersampling does
-  // the filtering (docs/blender.md, "Materials").
+  opt.anisotropic = kMaxAnisotropy;
+  // The footprint (core/texture/ray_footprint.h) picks the MIP level and the anisotropic filter;
+  // zero derivatives read the finest level.
   std::array<float, 4> rgba{1.f, 1.f, 1.f, 1.f};
   OIIO::TextureSystem* ts = impl_->system;
-  ts->texture(image.handle, ts->get_perthread_info(), opt, l.s, l.t, 0.f, 0.f, 0.f, 0.f,
-              std::min(image.channels, 4), rgba.data());
+  ts->texture(image.handle, ts->get_perthread_info(), opt, l.s, l.t, l.ds_dx, l.dt_dx, l.ds_dy,
+              l.dt_dy, std::min(image.channels, 4), rgba.data());
   if (image.channels <= 2) {  // grey, grey + alpha
     const float alpha = image.channels == 2 ? rgba[1] : 1.f;
     rgba = {rgba[0], rgba[0], rgba[0], alpha};

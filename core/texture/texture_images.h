@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/scene/scene.h"
+#include "core/texture/surface_point.h"
 
 namespace fb {
 
@@ -15,9 +16,23 @@ struct TextureLookup {
   uint32_t image = kNoImage;
   float s = 0.f,
         t = 0.f;  // texture position: (0, 0) the image's top-left corner, (1, 1) bottom-right
+  // The footprint: the change of (s, t) per raster pixel along x and y. Zero reads the finest
+  // level; otherwise OpenImageIO picks the MIP level and filters anisotropically over it.
+  float ds_dx = 0.f, dt_dx = 0.f, ds_dy = 0.f, dt_dy = 0.f;
   TextureWrap wrap_s = TextureWrap::kRepeat, wrap_t = TextureWrap::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
   bool srgb = false;  // decode the colour channels from sRGB
+
+  TextureLookup() = default;
+  // At `position` (core/texture/surface_point.h), with its footprint.
+  TextureLookup(uint32_t image_index, const TexturePosition& position)
+      : image(image_index),
+        s(position.st.x),
+        t(position.st.y),
+        ds_dx(position.dst_dx.x),
+        dt_dx(position.dst_dx.y),
+        ds_dy(position.dst_dy.x),
+        dt_dy(position.dst_dy.y) {}
 };
 
 class TextureImages {
