@@ -1,12 +1,15 @@
 #include "core/texture/texture_images.h"
 
 #include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/util/error.h"
 
@@ -79,75 +82,149 @@ struct TextureImages::Impl {
     OIIO::TextureSystem::TextureHandle* handle = nullptr;
     int channels = 0;
   };
-  std::vector<Image> images;
-  std::vector<std::unique_ptr<OIIO::Filesystem::IOMemReader>> readers;  // outlive the cache
+  std::vector<std::array<Image, 2>> images;  // per scene image: read linear [0], from sRGB [1]
+  // The MIP-mapped textures (tiled OpenEXR in memory) and their readers, which outlive the cache.
+  std::vector<std::unique_ptr<std::vector<unsigned char>>> textures;
+  std::vector<std::unique_ptr<OIIO::Filesystem::IOMemReader>> readers;
   ~Impl() {
     if (system) OIIO::TextureSystem::destroy(system);
     if (cache) OIIO::ImageCache::destroy(cache);
   }
 };
 
-TextureImages::TextureImages(const Scene& scene, const std::vector<bool>& used)
+namespace {
+
+// Opens a scene image for reading, from its file or its embedded bytes; refuses one too large.
+std::unique_ptr<OIIO::ImageInput> open_image(
+    const Scene& scene, const TextureImage& image,
+    std::unique_ptr<OIIO::Filesystem::IOMemReader>& reader) {
+  OIIO::ImageSpec config;
+  std::string name = image.file.string();
+  if (image.file.empty()) {
+    const std::string ext = embedded_extension(image.bytes);
+    if (ext.empty())
+      throw InputError(scene.file.string() + ": " + image.name +
+                       ": embedded image is neither PNG nor JPEG (the formats glTF allows)");
+    reader =
+        std::make_unique<OIIO::Filesystem::IOMemReader>(image.bytes.data(), image.bytes.size());
+    name = "filmback-embedded." + ext;
+    void* proxy = reader.get();
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  }
+  auto in = OIIO::ImageInput::open(name, &config);
+  if (!in)
+    throw InputError(scene.file.string() + ": " + image.name + ": cannot " +
+                     (image.file.empty() ? "decode the embedded image" : "read " + name) + ": " +
+                     OIIO::geterror());
+  check_size(scene, image, in->spec());
+  return in;
+}
+
+// The image's first four channels as half floats, the colour channels (all but a last alpha)
+// decoded from sRGB when `srgb`: MIP levels must average light, not its encoding, or a minified
+// black-and-white checker turns the grey of sRGB 0.5 (0.21) instead of 0.5. Read in bands of rows,
+// so that only the half-float copy is held whole.
+OIIO::ImageBuf linear_image(const Scene& scene, const TextureImage& image, OIIO::ImageInput& in,
+                            bool srgb) {
+  const OIIO::ImageSpec& spec = in.spec();
+  const int channels = std::min(spec.nchannels, 4);
+  const int colour = channels == 2 || channels == 4 ? channels - 1 : channels;
+  OIIO::ImageBuf out(OIIO::ImageSpec(spec.width, spec.height, channels, OIIO::TypeHalf));
+  constexpr int kBand = 64;
+  std::vector<float> rows(size_t(spec.width) * kBand * channels);
+  for (int y0 = 0; y0 < spec.height; y0 += kBand) {
+    const int y1 = std::min(y0 + kBand, spec.height);
+    if (!in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, 0, 0, channels, OIIO::TypeFloat,
+                           rows.data()))
+      throw InputError(scene.file.string() + ": " + image.name +
+                       ": cannot decode its pixels: " + in.geterror());
+    if (srgb)
+      for (size_t i = 0; i < size_t(spec.width) * (y1 - y0); ++i)
+        for (int c = 0; c < colour; ++c)
+          rows[i * channels + c] = srgb_to_linear(rows[i * channels + c]);
+    out.set_pixels(OIIO::ROI(0, spec.width, y0, y1, 0, 1, 0, channels), OIIO::TypeFloat,
+                   rows.data());
+  }
+  return out;
+}
+
+// A tiled, MIP-mapped OpenEXR of `level0` in memory, each level box-filtered from the one above
+// (as OpenImageIO's maketx does), down to one pixel (OpenEXR's MIPMAP_LEVELS, ROUND_DOWN).
+std::vector<unsigned char> mip_mapped_exr(OIIO::ImageBuf level) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  OIIO::ImageSpec spec = level.spec();
+  spec.tile_width = spec.tile_height = 64;
+  spec.attribute("textureformat", "Plain Texture");  // what makes OpenEXR's output keep levels
+  spec.attribute("compression", "none");             // read back often: no decoding cost
+  void* p = &proxy;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
+  auto out = OIIO::ImageOutput::create("filmback-texture.exr");
+  bool ok = out && out->open("filmback-texture.exr", spec) && level.write(out.get());
+  for (int w = spec.width, h = spec.height; ok && (w > 1 || h > 1);) {
+    w = std::max(1, w / 2), h = std::max(1, h / 2);
+    OIIO::ImageBuf next(OIIO::ImageSpec(w, h, spec.nchannels, OIIO::TypeHalf));
+    OIIO::ImageSpec level_spec = spec;
+    level_spec.width = level_spec.full_width = w;
+    level_spec.height = level_spec.full_height = h;
+    ok = OIIO::ImageBufAlgo::resize(next, level, "box") &&
+         out->open("filmback-texture.exr", level_spec, OIIO::ImageOutput::AppendMIPLevel) &&
+         next.write(out.get());
+    level.swap(next);
+  }
+  ok = ok && out->close();
+  if (!ok) throw std::runtime_error("cannot build a texture's MIP levels: " + OIIO::geterror());
+  return bytes;
+}
+
+}  // namespace
+
+TextureImages::TextureImages(const Scene& scene, const std::vector<uint8_t>& uses)
     : impl_(std::make_unique<Impl>()) {
-  if (std::find(used.begin(), used.end(), true) == used.end()) return;
+  if (std::all_of(uses.begin(), uses.end(), [](uint8_t u) { return u == 0; })) return;
   Impl& tx = *impl_;
   tx.cache = OIIO::ImageCache::create(/*shared=*/false);
   tx.system = OIIO::TextureSystem::create(/*shared=*/false, tx.cache);
-  // Untiled images (PNG, JPEG) are tiled and mip-mapped in the cache as they are read: automip
-  // builds a coarser level only when a lookup's footprint asks for it, so a magnified texture
-  // costs no more than before. The tile cache keeps OpenImageIO's default of 256 MB, said here
-  // because it bounds the memory every image of a scene takes together (the textures of a
-  // film-resolution shot fit; more is re-read from the file, not held).
-  tx.system->attribute("autotile", 64);
-  tx.system->attribute("automip", 1);
+  // Every image is decoded here into a tiled, MIP-mapped texture of linear half floats held in
+  // memory (mip_mapped_exr), rather than left to OpenImageIO's automip, which averages the sRGB
+  // encoding and, with autotile, read past its tiles in OpenImageIO 2.4 when footprints reached
+  // the coarse levels. The tile cache keeps OpenImageIO's default of 256 MB, said here because it
+  // bounds what is decoded from those textures at once.
   tx.system->attribute("max_memory_MB", kCacheMegabytes);
   // glTF colours with alpha are straight (unassociated), as PNG stores them: keep them so.
   tx.system->attribute("unassociatedalpha", 1);
   tx.images.resize(scene.images.size());
   for (size_t i = 0; i < scene.images.size(); ++i) {
-    if (!used[i]) continue;
-    const TextureImage& image = scene.images[i];
-    OIIO::ImageSpec config;
-    std::string name = image.file.string();
-    if (image.file.empty()) {
-      const std::string ext = embedded_extension(image.bytes);
-      if (ext.empty())
-        throw InputError(scene.file.string() + ": " + image.name +
-                         ": embedded image is neither PNG nor JPEG (the formats glTF allows)");
-      tx.readers.push_back(
-          std::make_unique<OIIO::Filesystem::IOMemReader>(image.bytes.data(), image.bytes.size()));
-      name = "filmback-embedded-" + std::to_string(i) + "." + ext;
+    for (const bool srgb : {false, true}) {
+      if (!(uses[i] & (srgb ? kReadFromSrgb : kReadLinear))) continue;
+      const TextureImage& image = scene.images[i];
+      std::unique_ptr<OIIO::Filesystem::IOMemReader> source;
+      const auto in = open_image(scene, image, source);
+      tx.textures.push_back(std::make_unique<std::vector<unsigned char>>(
+          mip_mapped_exr(linear_image(scene, image, *in, srgb))));
+      tx.readers.push_back(std::make_unique<OIIO::Filesystem::IOMemReader>(
+          tx.textures.back()->data(), tx.textures.back()->size()));
+      const std::string name =
+          "filmback-texture-" + std::to_string(i) + (srgb ? "-srgb" : "-linear") + ".exr";
+      OIIO::ImageSpec config;
       void* proxy = tx.readers.back().get();
       config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-      auto in = OIIO::ImageInput::open(name, &config);
-      if (!in)
-        throw InputError(scene.file.string() + ": " + image.name +
-                         ": cannot decode the embedded image: " + OIIO::geterror());
-      check_size(scene, image, in->spec());
-      in->close();
-      tx.readers.back()->seek(0);
       tx.system->imagecache()->add_file(OIIO::ustring(name), nullptr, &config);
-    } else {
-      auto in = OIIO::ImageInput::open(name);
-      if (!in)
-        throw InputError(scene.file.string() + ": " + image.name + ": cannot read " + name + ": " +
-                         OIIO::geterror());
-      check_size(scene, image, in->spec());
+      Impl::Image& out = tx.images[i][srgb];
+      out.handle = tx.system->get_texture_handle(OIIO::ustring(name));
+      if (!out.handle ||
+          !tx.system->get_texture_info(out.handle, nullptr, 0, OIIO::ustring("channels"),
+                                       OIIO::TypeInt, &out.channels))
+        throw InputError(scene.file.string() + ": " + image.name +
+                         ": cannot open it as a texture: " + tx.system->geterror());
     }
-    Impl::Image& out = tx.images[i];
-    out.handle = tx.system->get_texture_handle(OIIO::ustring(name));
-    if (!out.handle ||
-        !tx.system->get_texture_info(out.handle, nullptr, 0, OIIO::ustring("channels"),
-                                     OIIO::TypeInt, &out.channels))
-      throw InputError(scene.file.string() + ": " + image.name +
-                       ": cannot open it as a texture: " + tx.system->geterror());
   }
 }
 
 TextureImages::~TextureImages() = default;
 
 std::array<float, 4> TextureImages::rgba(const TextureLookup& l) const {
-  const Impl::Image& image = impl_->images[l.image];
+  const Impl::Image& image = impl_->images[l.image][l.srgb];
   OIIO::TextureOpt opt;
   opt.swrap = oiio_wrap(l.wrap_s);
   opt.twrap = oiio_wrap(l.wrap_t);
@@ -164,9 +241,6 @@ std::array<float, 4> TextureImages::rgba(const TextureLookup& l) const {
     const float alpha = image.channels == 2 ? rgba[1] : 1.f;
     rgba = {rgba[0], rgba[0], rgba[0], alpha};
   }
-  if (l.srgb)
-    for (int c = 0; c < 3; ++c)
-      rgba[c] = srgb_to_linear(rgba[c]);
   return rgba;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -21,7 +22,7 @@ struct TextureLookup {
   float ds_dx = 0.f, dt_dx = 0.f, ds_dy = 0.f, dt_dy = 0.f;
   TextureWrap wrap_s = TextureWrap::kRepeat, wrap_t = TextureWrap::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
-  bool srgb = false;  // decode the colour channels from sRGB
+  bool srgb = false;  // decode the colour channels from sRGB (the image must be opened so)
 
   TextureLookup() = default;
   // At `position` (core/texture/surface_point.h), with its footprint.
@@ -37,9 +38,13 @@ struct TextureLookup {
 
 class TextureImages {
  public:
-  // Opens every image of `scene` that `used` marks; an image that cannot be read or is too large
-  // is an InputError naming it.
-  TextureImages(const Scene& scene, const std::vector<bool>& used);
+  // How a material reads an image (bits of `uses`): its values as they are, or its colour
+  // channels decoded from sRGB. Each way is its own MIP-mapped texture, filtered in linear values.
+  static constexpr uint8_t kReadLinear = 1, kReadFromSrgb = 2;
+  // Opens every image of `scene` that `uses` marks (one entry per image: kReadLinear and/or
+  // kReadFromSrgb, or 0); an image that cannot be read or is too large is an InputError naming
+  // it.
+  TextureImages(const Scene& scene, const std::vector<uint8_t>& uses);
   ~TextureImages();
   TextureImages(const TextureImages&) = delete;
   TextureImages& operator=(const TextureImages&) = delete;

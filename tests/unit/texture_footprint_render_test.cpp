@@ -1,0 +1,119 @@
+// Texture lookups filtered by the ray's footprint (core/texture/ray_footprint.h), in whole renders
+// of a checkered ground receding to the horizon and of a close-up of a coarse texture. The checker
+// is the surface's emission, and the path tracer shows emitters only (max_depth 0): the only noise
+// is the texture's integral over each pixel, and the reference is that integral, supersampled at
+// the finest level.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/render/render_job.h"
+#include "importers/gltf/gltf_importer.h"
+#include "support/gltf_builder.h"
+#include "support/plugins.h"
+#include "support/png.h"
+
+namespace fb {
+namespace {
+
+using test::GltfBuilder;
+
+constexpr uint32_t kWidth = 64, kHeight = 40;
+
+// A black-and-white checker of `size` x `size` texels in checks of `check` texels.
+std::vector<unsigned char> checker_png(int size, int check) {
+  std::vector<unsigned char> rgba;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const unsigned char v = ((x / check + y / check) % 2) ? 255 : 0;
+      rgba.insert(rgba.end(), {v, v, v, 255});
+    }
+  return test::png(size, size, rgba);
+}
+
+// A rectangle with corners a, b, c, d (counter-clockwise seen from its front), textured with the
+// checker at (u, v) = (x, z) or (x, y) m per tile: `ground` picks the first.
+Scene textured_quad(const std::vector<Vec3f>& corners, bool ground, int texels, int check) {
+  GltfBuilder gltf;
+  GltfBuilder::Node quad;
+  quad.mesh = gltf.mesh(corners, {0, 1, 2, 0, 2, 3}, gltf.material({0, 0, 0}, {1, 1, 1}));
+  gltf.node(quad);
+  GltfBuilder::Node camera;  // at the origin, looking down -z
+  camera.camera = gltf.perspective_camera(0.5, double(kWidth) / kHeight, 0.05, 1000);
+  gltf.node(camera);
+  Diagnostics diagnostics;
+  Scene scene = import_gltf(gltf.write(test::scratch_dir() / "quad.gltf"), diagnostics);
+  TriangleMesh& mesh = scene.meshes.at(0);
+  mesh.texturing.texcoords[0].clear();
+  for (const Vec3f& p : mesh.positions)
+    mesh.texturing.texcoords[0].push_back({p.x, ground ? p.z : p.y});
+  scene.images.push_back({"images[0]", {}, checker_png(texels, check)});
+  scene.materials.at(mesh.material).textures.emissive.image = 0;
+  return scene;
+}
+
+std::vector<float> render(const Scene& scene, uint32_t spp, bool footprint, uint64_t seed) {
+  RenderOptions options;
+  options.width = kWidth;
+  options.height = kHeight;
+  options.samples_per_pixel = spp;
+  options.integrator = "path:max_depth=0";
+  options.filter = "box";
+  options.seed = seed;
+  options.texture_footprint = footprint;
+  options.show_progress = false;
+  const RenderResult result = RenderJob(scene, options, test::loader()).run();
+  std::vector<float> red;
+  for (uint32_t y = 0; y < kHeight; ++y)
+    for (uint32_t x = 0; x < kWidth; ++x)
+      red.push_back(result.image.at(x, y, 0));
+  return red;
+}
+
+double rms_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    sum += (double(a[i]) - b[i]) * (a[i] - b[i]);
+  return std::sqrt(sum / a.size());
+}
+
+// A ground 1 m below the camera out to 200 m, one 64-texel tile of 8-texel checks per metre: all
+// but the nearest rows see many checks per pixel. At 1 and 4 samples a pixel, the finest level
+// aliases (each sample sees one check: black or white) while the footprint's MIP levels give each
+// sample nearly the pixel's mean, so the footprint's error against the reference must be well
+// below the finest level's.
+TEST(TextureFootprint, MinifiedGroundHasLessErrorThanTheFinestLevel) {
+  const Scene scene = textured_quad(
+      {{-100.f, -1.f, -0.2f}, {100.f, -1.f, -0.2f}, {100.f, -1.f, -200.f}, {-100.f, -1.f, -200.f}},
+      true, 64, 8);
+  const std::vector<float> reference = render(scene, 1024, false, 7);
+  // The reference's own noise: another 1024-spp render against it, over sqrt(2).
+  const double reference_noise =
+      rms_difference(reference, render(scene, 1024, false, 8)) / std::sqrt(2.0);
+  for (const uint32_t spp : {1u, 4u}) {
+    const double finest = rms_difference(render(scene, spp, false, 1), reference);
+    const double filtered = rms_difference(render(scene, spp, true, 1), reference);
+    std::printf("%u spp: RMS error finest %.4f, footprint %.4f (reference noise %.4f)\n", spp,
+                finest, filtered, reference_noise);
+    EXPECT_LT(filtered, 0.5 * finest) << spp << " spp";
+  }
+}
+
+// A coarse 8 x 8 checker (1-texel checks), one tile per metre on a wall 0.5 m ahead: a texel
+// covers about 20 pixels, so the footprint is far below a texel and OpenImageIO reads the finest
+// level as before. The two renders (same samples) may differ only by the few texels' edges the
+// filter smooths, far less than the noise between two seeds of the unfiltered render.
+TEST(TextureFootprint, MagnifiedTextureIsUnchanged) {
+  const Scene scene = textured_quad(
+      {{-5.f, -5.f, -0.5f}, {5.f, -5.f, -0.5f}, {5.f, 5.f, -0.5f}, {-5.f, 5.f, -0.5f}}, false, 8,
+      1);
+  const std::vector<float> finest = render(scene, 4, false, 1);
+  const double difference = rms_difference(render(scene, 4, true, 1), finest);
+  const double noise = rms_difference(render(scene, 4, false, 2), finest);
+  std::printf("magnified: RMS footprint - finest %.5f, seed-to-seed %.5f\n", difference, noise);
+  EXPECT_LT(difference, 0.25 * noise);
+}
+
+}  // namespace
+}  // namespace fb
