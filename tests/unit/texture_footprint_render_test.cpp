@@ -9,49 +9,16 @@
 #include <vector>
 
 #include "core/render/render_job.h"
-#include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
 #include "support/plugins.h"
-#include "support/png.h"
+#include "support/textured_quad.h"
 
 namespace fb {
 namespace {
 
-using test::GltfBuilder;
+using test::textured_quad;
 
 constexpr uint32_t kWidth = 64, kHeight = 40;
-
-// A black-and-white checker of `size` x `size` texels in checks of `check` texels.
-std::vector<unsigned char> checker_png(int size, int check) {
-  std::vector<unsigned char> rgba;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      const unsigned char v = ((x / check + y / check) % 2) ? 255 : 0;
-      rgba.insert(rgba.end(), {v, v, v, 255});
-    }
-  return test::png(size, size, rgba);
-}
-
-// A rectangle with corners a, b, c, d (counter-clockwise seen from its front), textured with the
-// checker at (u, v) = (x, z) or (x, y) m per tile: `ground` picks the first.
-Scene textured_quad(const std::vector<Vec3f>& corners, bool ground, int texels, int check) {
-  GltfBuilder gltf;
-  GltfBuilder::Node quad;
-  quad.mesh = gltf.mesh(corners, {0, 1, 2, 0, 2, 3}, gltf.material({0, 0, 0}, {1, 1, 1}));
-  gltf.node(quad);
-  GltfBuilder::Node camera;  // at the origin, looking down -z
-  camera.camera = gltf.perspective_camera(0.5, double(kWidth) / kHeight, 0.05, 1000);
-  gltf.node(camera);
-  Diagnostics diagnostics;
-  Scene scene = import_gltf(gltf.write(test::scratch_dir() / "quad.gltf"), diagnostics);
-  TriangleMesh& mesh = scene.meshes.at(0);
-  mesh.texturing.texcoords[0].clear();
-  for (const Vec3f& p : mesh.positions)
-    mesh.texturing.texcoords[0].push_back({p.x, ground ? p.z : p.y});
-  scene.images.push_back({"images[0]", {}, checker_png(texels, check)});
-  scene.materials.at(mesh.material).textures.emissive.image = 0;
-  return scene;
-}
 
 std::vector<float> render(const Scene& scene, uint32_t spp, bool footprint, uint64_t seed) {
   RenderOptions options;
@@ -86,7 +53,7 @@ double rms_difference(const std::vector<float>& a, const std::vector<float>& b) 
 TEST(TextureFootprint, MinifiedGroundHasLessErrorThanTheFinestLevel) {
   const Scene scene = textured_quad(
       {{-100.f, -1.f, -0.2f}, {100.f, -1.f, -0.2f}, {100.f, -1.f, -200.f}, {-100.f, -1.f, -200.f}},
-      true, 64, 8);
+      true, 1.f, 64, 8, double(kWidth) / kHeight, test::scratch_dir() / "ground.gltf");
   const std::vector<float> reference = render(scene, 1024, false, 7);
   // The reference's own noise: another 1024-spp render against it, over sqrt(2).
   const double reference_noise =
@@ -106,8 +73,8 @@ TEST(TextureFootprint, MinifiedGroundHasLessErrorThanTheFinestLevel) {
 // filter smooths, far less than the noise between two seeds of the unfiltered render.
 TEST(TextureFootprint, MagnifiedTextureIsUnchanged) {
   const Scene scene = textured_quad(
-      {{-5.f, -5.f, -0.5f}, {5.f, -5.f, -0.5f}, {5.f, 5.f, -0.5f}, {-5.f, 5.f, -0.5f}}, false, 8,
-      1);
+      {{-5.f, -5.f, -0.5f}, {5.f, -5.f, -0.5f}, {5.f, 5.f, -0.5f}, {-5.f, 5.f, -0.5f}}, false, 1.f,
+      8, 1, double(kWidth) / kHeight, test::scratch_dir() / "wall.gltf");
   const std::vector<float> finest = render(scene, 4, false, 1);
   const double difference = rms_difference(render(scene, 4, true, 1), finest);
   const double noise = rms_difference(render(scene, 4, false, 2), finest);
