@@ -6,6 +6,7 @@
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +87,19 @@ struct TextureImages::Impl {
   // The MIP-mapped textures (tiled OpenEXR in memory) and their readers, which outlive the cache.
   std::vector<std::unique_ptr<std::vector<unsigned char>>> textures;
   std::vector<std::unique_ptr<OIIO::Filesystem::IOMemReader>> readers;
+  // Each thread's lookup state (its micro-cache of tiles), made by this system and destroyed with
+  // it. OpenImageIO's own per-thread records (get_perthread_info) outlive a private cache in the
+  // render loop's long-lived TBB workers, and released tiles into a destroyed cache: a crash in
+  // OpenImageIO 2.4 (decr_tiles) when jobs with textures ran one after another.
+  mutable tbb::enumerable_thread_specific<OIIO::TextureSystem::Perthread*> thread_info{nullptr};
+  OIIO::TextureSystem::Perthread* this_thread() const {
+    OIIO::TextureSystem::Perthread*& info = thread_info.local();
+    if (!info) info = system->create_thread_info();
+    return info;
+  }
   ~Impl() {
+    for (OIIO::TextureSystem::Perthread* info : thread_info)
+      if (info) system->destroy_thread_info(info);
     if (system) OIIO::TextureSystem::destroy(system);
     if (cache) OIIO::ImageCache::destroy(cache);
   }
@@ -235,8 +248,8 @@ std::array<float, 4> TextureImages::rgba(const TextureLookup& l) const {
   // zero derivatives read the finest level.
   std::array<float, 4> rgba{1.f, 1.f, 1.f, 1.f};
   OIIO::TextureSystem* ts = impl_->system;
-  ts->texture(image.handle, ts->get_perthread_info(), opt, l.s, l.t, l.ds_dx, l.dt_dx, l.ds_dy,
-              l.dt_dy, std::min(image.channels, 4), rgba.data());
+  ts->texture(image.handle, impl_->this_thread(), opt, l.s, l.t, l.ds_dx, l.dt_dx, l.ds_dy, l.dt_dy,
+              std::min(image.channels, 4), rgba.data());
   if (image.channels <= 2) {  // grey, grey + alpha
     const float alpha = image.channels == 2 ? rgba[1] : 1.f;
     rgba = {rgba[0], rgba[0], rgba[0], alpha};
