@@ -25,10 +25,11 @@ constexpr double kMaxPixels = double(1u << 28);
 constexpr float kCacheMegabytes = 256.f;  // OpenImageIO's default, explicit (see below)
 
 // The longest footprint OpenImageIO filters along before it reads a coarser level instead (over-
-// blurring rather than aliasing, TextureOpt::conservative_filter). 16 probes: a ground seen at 4
-// degrees, the grazing part of a shot receding to the horizon, is still sharp across; its default
-// of 32 doubles the cost of those lookups for what a pixel filter cannot tell apart.
-constexpr int kMaxAnisotropy = 16;
+// blurring rather than aliasing, TextureOpt::conservative_filter). Chosen by measurement on the
+// receding ground of tests/bench/texture_filtering_bench.cpp at 4 spp (docs/benchmarks.md,
+// "Texture filtering"): 4 probes had the error of 8 and 16 (0.0387 against 0.0386) in half their
+// time; 2 probes and isotropic trilinear filtering were cheaper but blurred more (0.049, 0.050).
+constexpr int kMaxAnisotropy = 4;
 
 OIIO::TextureOpt::Wrap oiio_wrap(TextureWrap w) {
   switch (w) {
