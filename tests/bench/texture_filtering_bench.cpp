@@ -31,16 +31,8 @@ struct Settings {
 };
 
 RenderOptions options(const Settings& settings, uint32_t spp, bool footprint, uint64_t seed) {
-  RenderOptions o;
-  o.width = settings.width_px;
-  o.height = settings.width_px * 5 / 8;
-  o.samples_per_pixel = spp;
-  o.integrator = "path:max_depth=0";
-  o.filter = "box";
-  o.seed = seed;
-  o.texture_footprint = footprint;
-  o.show_progress = false;
-  return o;
+  return test::texture_render_options(settings.width_px, settings.width_px * 5 / 8, spp, footprint,
+                                      seed);
 }
 
 double rms_difference(const Image& a, const Image& b) {

@@ -37,4 +37,18 @@ Scene textured_quad(const std::vector<Vec3f>& corners, bool ground, float metres
   return scene;
 }
 
+RenderOptions texture_render_options(uint32_t width, uint32_t height, uint32_t spp, bool footprint,
+                                     uint64_t seed) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.samples_per_pixel = spp;
+  options.integrator = "path:max_depth=0";
+  options.filter = "box";
+  options.seed = seed;
+  options.texture_footprint = footprint;
+  options.show_progress = false;
+  return options;
+}
+
 }  // namespace fb::test

@@ -8,6 +8,7 @@
 
 #include <filmback/vec.h>
 
+#include "core/render/shot_plan.h"
 #include "core/scene/scene.h"
 
 namespace fb::test {
@@ -23,5 +24,10 @@ std::vector<unsigned char> checker_png(int size, int check);
 Scene textured_quad(const std::vector<Vec3f>& corners, bool ground, float metres_per_tile,
                     int texels, int check, double aspect_ratio,
                     const std::filesystem::path& gltf_file);
+
+// How such a quad is rendered: the emitted texture alone (path tracer at max_depth 0), box
+// filter, no progress; textures filtered by the ray's footprint or read at the finest level.
+RenderOptions texture_render_options(uint32_t width, uint32_t height, uint32_t spp, bool footprint,
+                                     uint64_t seed);
 
 }  // namespace fb::test

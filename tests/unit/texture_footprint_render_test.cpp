@@ -21,16 +21,10 @@ using test::textured_quad;
 constexpr uint32_t kWidth = 64, kHeight = 40;
 
 std::vector<float> render(const Scene& scene, uint32_t spp, bool footprint, uint64_t seed) {
-  RenderOptions options;
-  options.width = kWidth;
-  options.height = kHeight;
-  options.samples_per_pixel = spp;
-  options.integrator = "path:max_depth=0";
-  options.filter = "box";
-  options.seed = seed;
-  options.texture_footprint = footprint;
-  options.show_progress = false;
-  const RenderResult result = RenderJob(scene, options, test::loader()).run();
+  const RenderResult result =
+      RenderJob(scene, test::texture_render_options(kWidth, kHeight, spp, footprint, seed),
+                test::loader())
+          .run();
   std::vector<float> red;
   for (uint32_t y = 0; y < kHeight; ++y)
     for (uint32_t x = 0; x < kWidth; ++x)
