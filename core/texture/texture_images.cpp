@@ -113,6 +113,9 @@ std::unique_ptr<OIIO::ImageInput> open_image(
     const Scene& scene, const TextureImage& image,
     std::unique_ptr<OIIO::Filesystem::IOMemReader>& reader) {
   OIIO::ImageSpec config;
+  // glTF colours with alpha are straight (unassociated), as PNG stores them: read them so, not
+  // multiplied by alpha as OpenImageIO's readers otherwise return them.
+  config.attribute("oiio:UnassociatedAlpha", 1);
   std::string name = image.file.string();
   if (image.file.empty()) {
     const std::string ext = embedded_extension(image.bytes);
@@ -205,8 +208,6 @@ TextureImages::TextureImages(const Scene& scene, const std::vector<uint8_t>& use
   // the coarse levels. The tile cache keeps OpenImageIO's default of 256 MB, said here because it
   // bounds what is decoded from those textures at once.
   tx.system->attribute("max_memory_MB", kCacheMegabytes);
-  // glTF colours with alpha are straight (unassociated), as PNG stores them: keep them so.
-  tx.system->attribute("unassociatedalpha", 1);
   tx.images.resize(scene.images.size());
   for (size_t i = 0; i < scene.images.size(); ++i) {
     for (const bool srgb : {false, true}) {
