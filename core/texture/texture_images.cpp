@@ -84,7 +84,15 @@ struct TextureImages::Impl {
     OIIO::TextureSystem::TextureHandle* handle = nullptr;
     int channels = 0;
   };
-  std::vector<std::array<Image, 2>> images;  // per scene image: read linear [0], from sRGB [1]
+  // Per scene image: its MIP-mapped textures, read as stored [0] or from sRGB [1] (levels
+  // averaged in linear light); for one read from sRGB, also the file as stored, whose finest level
+  // magnified lookups read as Cycles does; and its size in texels.
+  struct Entry {
+    std::array<Image, 2> mip;
+    Image stored;
+    float width = 0.f, height = 0.f;
+  };
+  std::vector<Entry> images;
   // The MIP-mapped textures (tiled OpenEXR in memory) and their readers, which outlive the cache.
   std::vector<std::unique_ptr<std::vector<unsigned char>>> textures;
   std::vector<std::unique_ptr<OIIO::Filesystem::IOMemReader>> readers;
@@ -208,30 +216,52 @@ TextureImages::TextureImages(const Scene& scene, const std::vector<uint8_t>& use
   // the coarse levels. The tile cache keeps OpenImageIO's default of 256 MB, said here because it
   // bounds what is decoded from those textures at once.
   tx.system->attribute("max_memory_MB", kCacheMegabytes);
+  // Stored images (PNG, JPEG), read at their finest level only, are tiled in the cache as they are
+  // read; glTF colours with alpha are straight (unassociated), as PNG stores them: keep them so.
+  tx.system->attribute("autotile", 64);
+  tx.system->attribute("unassociatedalpha", 1);
+  const auto open_texture = [&](const TextureImage& image, const std::string& name,
+                                OIIO::Filesystem::IOMemReader* reader, Impl::Image& out) {
+    if (reader) {
+      OIIO::ImageSpec config;
+      void* proxy = reader;
+      config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+      tx.system->imagecache()->add_file(OIIO::ustring(name), nullptr, &config);
+    }
+    out.handle = tx.system->get_texture_handle(OIIO::ustring(name));
+    if (!out.handle ||
+        !tx.system->get_texture_info(out.handle, nullptr, 0, OIIO::ustring("channels"),
+                                     OIIO::TypeInt, &out.channels))
+      throw InputError(scene.file.string() + ": " + image.name +
+                       ": cannot open it as a texture: " + tx.system->geterror());
+  };
   tx.images.resize(scene.images.size());
   for (size_t i = 0; i < scene.images.size(); ++i) {
+    const TextureImage& image = scene.images[i];
+    Impl::Entry& entry = tx.images[i];
     for (const bool srgb : {false, true}) {
       if (!(uses[i] & (srgb ? kReadFromSrgb : kReadLinear))) continue;
-      const TextureImage& image = scene.images[i];
       std::unique_ptr<OIIO::Filesystem::IOMemReader> source;
       const auto in = open_image(scene, image, source);
+      entry.width = float(in->spec().width), entry.height = float(in->spec().height);
       tx.textures.push_back(std::make_unique<std::vector<unsigned char>>(
           mip_mapped_exr(linear_image(scene, image, *in, srgb))));
       tx.readers.push_back(std::make_unique<OIIO::Filesystem::IOMemReader>(
           tx.textures.back()->data(), tx.textures.back()->size()));
-      const std::string name =
-          "filmback-texture-" + std::to_string(i) + (srgb ? "-srgb" : "-linear") + ".exr";
-      OIIO::ImageSpec config;
-      void* proxy = tx.readers.back().get();
-      config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-      tx.system->imagecache()->add_file(OIIO::ustring(name), nullptr, &config);
-      Impl::Image& out = tx.images[i][srgb];
-      out.handle = tx.system->get_texture_handle(OIIO::ustring(name));
-      if (!out.handle ||
-          !tx.system->get_texture_info(out.handle, nullptr, 0, OIIO::ustring("channels"),
-                                       OIIO::TypeInt, &out.channels))
-        throw InputError(scene.file.string() + ": " + image.name +
-                         ": cannot open it as a texture: " + tx.system->geterror());
+      open_texture(image,
+                   "filmback-texture-" + std::to_string(i) + (srgb ? "-srgb" : "-linear") + ".exr",
+                   tx.readers.back().get(), entry.mip[srgb]);
+      if (!srgb) continue;
+      in->close();
+      if (source) {
+        source->seek(0);
+        tx.readers.push_back(std::move(source));
+        open_texture(
+            image, "filmback-embedded-" + std::to_string(i) + "." + embedded_extension(image.bytes),
+            tx.readers.back().get(), entry.stored);
+      } else {
+        open_texture(image, image.file.string(), nullptr, entry.stored);
+      }
     }
   }
 }
@@ -239,7 +269,15 @@ TextureImages::TextureImages(const Scene& scene, const std::vector<uint8_t>& use
 TextureImages::~TextureImages() = default;
 
 std::array<float, 4> TextureImages::rgba(const TextureLookup& l) const {
-  const Impl::Image& image = impl_->images[l.image][l.srgb];
+  const Impl::Entry& entry = impl_->images[l.image];
+  // A footprint within one texel (or none) reads the finest level: an image read from sRGB then
+  // from its stored values, interpolated before they are decoded as Cycles interpolates them
+  // (svm_node_tex_image), so that a magnified texture renders as before and as Cycles renders
+  // it. A wider footprint filters the levels made in linear light.
+  const float texels = std::max(std::hypot(l.ds_dx * entry.width, l.dt_dx * entry.height),
+                                std::hypot(l.ds_dy * entry.width, l.dt_dy * entry.height));
+  const bool stored = l.srgb && !(texels > 1.f);
+  const Impl::Image& image = stored ? entry.stored : entry.mip[l.srgb];
   OIIO::TextureOpt opt;
   opt.swrap = oiio_wrap(l.wrap_s);
   opt.twrap = oiio_wrap(l.wrap_t);
@@ -250,12 +288,19 @@ std::array<float, 4> TextureImages::rgba(const TextureLookup& l) const {
   // zero derivatives read the finest level.
   std::array<float, 4> rgba{1.f, 1.f, 1.f, 1.f};
   OIIO::TextureSystem* ts = impl_->system;
-  ts->texture(image.handle, impl_->this_thread(), opt, l.s, l.t, l.ds_dx, l.dt_dx, l.ds_dy, l.dt_dy,
-              std::min(image.channels, 4), rgba.data());
+  if (stored)
+    ts->texture(image.handle, impl_->this_thread(), opt, l.s, l.t, 0.f, 0.f, 0.f, 0.f,
+                std::min(image.channels, 4), rgba.data());
+  else
+    ts->texture(image.handle, impl_->this_thread(), opt, l.s, l.t, l.ds_dx, l.dt_dx, l.ds_dy,
+                l.dt_dy, std::min(image.channels, 4), rgba.data());
   if (image.channels <= 2) {  // grey, grey + alpha
     const float alpha = image.channels == 2 ? rgba[1] : 1.f;
     rgba = {rgba[0], rgba[0], rgba[0], alpha};
   }
+  if (stored)
+    for (int c = 0; c < 3; ++c)
+      rgba[c] = srgb_to_linear(rgba[c]);
   return rgba;
 }
 
