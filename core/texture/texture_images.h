@@ -1,6 +1,8 @@
-// The images a scene's materials read, opened through OpenImageIO's TextureSystem (tiled, cached,
-// mip-mapped on demand), and one lookup: RGBA at a texture position. Shared by glTF's materials
-// (core/texture/surface_shader.cpp) and Blender's shader graphs (core/texture/graph_shader.cpp).
+// The images a scene's materials read, as MIP-mapped textures of OpenImageIO's TextureSystem
+// (levels averaged in linear light, tiled, cached), and one lookup: RGBA at a texture position,
+// filtered over the ray's footprint (docs/architecture.md, "Texture filtering"). Shared by glTF's
+// materials (core/texture/surface_shader.cpp) and Blender's shader graphs
+// (core/texture/graph_shader.cpp).
 #pragma once
 
 #include <array>
