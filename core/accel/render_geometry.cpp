@@ -496,14 +496,15 @@ float RenderGeometry::embree_time(float time_s) const {
   return t >= 0.f ? std::min(t, 1.f) : 0.f;  // NaN too: Embree wants a time in [0, 1]
 }
 
-bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena) const {
+bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena,
+                               const FootprintSource& footprint) const {
   if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   const float time = embree_time(ray.time_s);
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
-  return fill_embree_hit(rh, {ray, arena, false}, hit);
+  return fill_embree_hit(rh, {ray, arena, false, footprint}, hit);
 }
 
 bool RenderGeometry::fill_embree_hit(const RTCRayHit& found, const HitRequest& request,
@@ -525,7 +526,8 @@ bool RenderGeometry::fill_embree_hit(const RTCRayHit& found, const HitRequest& r
 }
 
 void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits,
-                                        SurfaceArena* arena) const {
+                                        SurfaceArena* arena,
+                                        const FootprintSource& footprints) const {
   thread_local std::vector<RTCRayHit> stream;
   stream.resize(count);
   for (size_t i = 0; i < count; ++i)
@@ -535,7 +537,8 @@ void RenderGeometry::intersect_coherent(const fb_ray* rays, size_t count, fb_hit
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // Embree packs the stream into packets
   rtcIntersect1M(embree_->scene, &context, stream.data(), unsigned(count), sizeof(RTCRayHit));
   for (size_t i = 0; i < count; ++i)
-    if (!fill_embree_hit(stream[i], {rays[i], arena, true}, hits[i])) hits[i].t = HUGE_VALF;
+    if (!fill_embree_hit(stream[i], {rays[i], arena, true, footprints.at(i)}, hits[i]))
+      hits[i].t = HUGE_VALF;
 }
 
 RenderGeometry::HitTriangle RenderGeometry::flat_triangle(const Mesh& mesh, uint32_t primitive,
@@ -740,7 +743,13 @@ void RenderGeometry::fill_hit(const HitTriangle& tri, float u, float v, float t,
   ns.store(hit.shading_normal);
   hit.material = mesh.material;
   hit.emitter = mesh.first_emitter == FB_NONE ? FB_NONE : mesh.first_emitter + tri.primitive;
-  shade(mesh.material, surface_point(tri, u, v), request, hit);
+  SurfacePoint point = surface_point(tri, u, v);
+  Vec3f dp_dx, dp_dy;
+  if (point.uv_sets > 0 &&
+      position_differentials(request.footprint, Vec3f(request.ray.origin),
+                             Vec3f(request.ray.direction), position, ng, dp_dx, dp_dy))
+    set_texture_differentials(p, tri.corner, mesh.texturing, dp_dx, dp_dy, point);
+  shade(mesh.material, point, request, hit);
 }
 
 bool RenderGeometry::fill_solid_hit(unsigned id, const HitRequest& request, fb_hit& hit) const {

@@ -21,6 +21,7 @@
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
 #include "core/shading/surface_arena.h"
+#include "core/texture/ray_footprint.h"
 #include "core/texture/surface_shader.h"
 
 struct RTCFilterFunctionNArguments;  // <embree3/rtcore.h>
@@ -59,10 +60,15 @@ class RenderGeometry {
   RenderGeometry& operator=(const RenderGeometry&) = delete;
 
   // With an arena, each hit gets its surface (fb_hit.surface) from it; without, none (nullptr).
-  bool intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena = nullptr) const;
-  // Embree's ray stream with the coherent flag; a miss gets hit.t = +infinity.
+  // Textures are read over the ray's footprint (core/texture/ray_footprint.h); none: at their
+  // finest level.
+  bool intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* arena = nullptr,
+                 const FootprintSource& footprint = {}) const;
+  // Embree's ray stream with the coherent flag; a miss gets hit.t = +infinity. The footprint's
+  // differentials, when it has them, are one per ray.
   void intersect_coherent(const fb_ray* rays, size_t count, fb_hit* hits,
-                          SurfaceArena* arena = nullptr) const;
+                          SurfaceArena* arena = nullptr,
+                          const FootprintSource& footprints = {}) const;
   bool occluded(const fb_ray& ray) const;
 
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_; }
@@ -86,12 +92,14 @@ class RenderGeometry {
   struct Mesh;
   struct Instance;
   struct HitTriangle;
-  // What a hit record is filled for: the ray, where its surface goes (none: no surface), and
-  // whether it is a camera ray (Cycles samples closures defensively there, ShadingFrame).
+  // What a hit record is filled for: the ray, where its surface goes (none: no surface),
+  // whether it is a camera ray (Cycles samples closures defensively there, ShadingFrame), and
+  // what its footprint is computed from.
   struct HitRequest {
     const fb_ray& ray;
     SurfaceArena* arena;
     bool camera;
+    FootprintSource footprint;
   };
   // The hit record of what Embree found (a flattened triangle, an instanced one or a solid);
   // false if there is none.

@@ -353,6 +353,7 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
   inputs.exposure = scene_.settings.film_exposure;
   inputs.camera_path = p.camera_path.get();
   if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
+  inputs.texture_footprint = options_.texture_footprint && !scene_.images.empty();
   std::optional<Progress> progress;
   if (options_.show_progress)
     progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,

@@ -10,6 +10,8 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -43,13 +45,16 @@ struct TileWork {
   std::vector<fb_filter_sample> filter_samples;
   std::vector<fb_camera_sample> camera_samples;
   std::vector<fb_camera_ray> camera_rays;
+  // With texture footprints: each sample's neighbours one pixel right (2 i) and down (2 i + 1).
+  std::vector<fb_camera_sample> neighbour_samples;
+  std::vector<fb_camera_ray> neighbour_rays;
   std::vector<fb_ray> rays;
   std::vector<float> values;
   fb_trace_context context;
 
   // What plugins write starts zeroed in every tile, as in a fresh buffer, so that a plugin that
   // leaves a value unwritten cannot pass one tile's data to the next one on its thread.
-  void reset(size_t samples, size_t channels) {
+  void reset(size_t samples, size_t channels, bool footprint) {
     px.resize(samples), py.resize(samples);
     filter_seed.resize(samples), lens_seed.resize(samples), time_seed.resize(samples);
     filter_u.resize(2 * samples);
@@ -59,8 +64,44 @@ struct TileWork {
     rays.resize(samples);
     values.assign(samples * channels, 0.f);
     context.paths.resize(samples);
+    neighbour_samples.resize(footprint ? 2 * samples : 0);
+    neighbour_rays.assign(footprint ? 2 * samples : 0, {});
+    context.differentials.resize(footprint ? samples : 0);
+    context.camera_rays = rays.data();
   }
 };
+
+// The camera's narrowest pixel (pbrt-v4 CameraBase::FindMinimumDifferentials, on a coarser
+// grid): the least distance between neighbouring rays' origins and between their unit
+// directions, over a 16 x 16 grid of raster positions through the lens centre, at the frame's
+// time. For the footprint of rays that carry no differentials.
+PixelSpread narrowest_pixel(const CameraInstance& camera, float width_px, float height_px) {
+  constexpr int kGrid = 16;
+  std::vector<fb_camera_sample> samples;
+  samples.reserve(3 * kGrid * kGrid);
+  for (int gy = 0; gy < kGrid; ++gy)
+    for (int gx = 0; gx < kGrid; ++gx) {
+      const float x = (gx + 0.5f) / kGrid * width_px, y = (gy + 0.5f) / kGrid * height_px;
+      for (const Vec2f d : {Vec2f{0.f, 0.f}, Vec2f{1.f, 0.f}, Vec2f{0.f, 1.f}})
+        samples.push_back({x + d.x, y + d.y, 0.5f, 0.5f, 0.f});
+    }
+  std::vector<fb_camera_ray> rays(samples.size());
+  camera.generate_rays(samples, rays.data());
+  PixelSpread spread{HUGE_VALF, HUGE_VALF};
+  for (size_t i = 0; i < rays.size(); i += 3) {
+    if (!(rays[i].weight > 0.f)) continue;
+    for (size_t n = i + 1; n < i + 3; ++n) {
+      if (!(rays[n].weight > 0.f)) continue;
+      spread.origin_m =
+          std::min(spread.origin_m, length(Vec3f(rays[n].origin) - Vec3f(rays[i].origin)));
+      spread.direction_rad = std::min(
+          spread.direction_rad,
+          length(normalize(Vec3f(rays[n].direction)) - normalize(Vec3f(rays[i].direction))));
+    }
+  }
+  return std::isfinite(spread.origin_m) && std::isfinite(spread.direction_rad) ? spread
+                                                                               : PixelSpread{};
+}
 
 class TileRenderer {
  public:
@@ -75,7 +116,12 @@ class TileRenderer {
         sampler_(in.sampler, in.seed, in.samples_per_pixel, domain.x, domain.y),
         rotation_(in.render_from_camera),
         channels_(in.integrator.channels().size()),
-        needs_(in.camera.needs()) {}
+        needs_(in.camera.needs()) {
+    if (!in.texture_footprint) return;
+    footprint_.spread = narrowest_pixel(in.camera, float(domain.x) - 2.f * margin_x_,
+                                        float(domain.y) - 2.f * margin_y_);
+    footprint_.scale = footprint_scale(in.samples_per_pixel);
+  }
 
   // Samples [first, last) of every pixel of the tile that has not converged, in sample order;
   // after each sample index, stops when `stop()` says so (so a started tile always moves on).
@@ -83,7 +129,7 @@ class TileRenderer {
   template <typename Stop>
   uint32_t render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t first,
                        uint32_t last, const Stop& stop, TileWork& w, RenderStats& stats) const {
-    w.reset(size_t(x1 - x0) * (y1 - y0), channels_);
+    w.reset(size_t(x1 - x0) * (y1 - y0), channels_, in_.texture_footprint);
     // 4x4 blocks, so that consecutive camera rays (Embree's packets of up to 16) cover a square.
     size_t n = 0;
     for (uint32_t by = y0; by < y1; by += 4)
@@ -92,7 +138,7 @@ class TileRenderer {
           for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x)
             if (!convergence_ || !convergence_->converged(x, y)) w.px[n] = x, w.py[n++] = y;
     if (n == 0) return last;  // every pixel converged: nothing left to sample
-    w.reset(n, channels_);
+    w.reset(n, channels_, in_.texture_footprint);
     for (size_t i = 0; i < n; ++i) {
       w.filter_seed[i] = sampler_.seed(w.px[i], w.py[i], kFilterDimension);
       if (needs_ & FB_CAMERA_NEEDS_LENS)
@@ -105,6 +151,7 @@ class TileRenderer {
     context.sampler = &sampler_;
     context.hit_size = in_.integrator.hit_size();
     context.rays_traced = 0;
+    context.footprint = footprint_;
     SplatTiles::Tile* splat_tile = splats_ ? &splats_->tile(x0, y0) : nullptr;
 
     uint32_t s = first;
@@ -135,27 +182,33 @@ class TileRenderer {
           c.lens_u = u.x;
           c.lens_v = u.y;
         }
+        // Ray differentials: the same lens sample and time one raster pixel right and down.
+        fb_camera_sample* neighbours =
+            in_.texture_footprint ? &w.neighbour_samples[2 * i] : nullptr;
+        if (neighbours) {
+          neighbours[0] = neighbours[1] = c;
+          neighbours[0].film_x += 1.f;
+          neighbours[1].film_y += 1.f;
+        }
         if (in_.time.curve) {  // the shutter integral: only when something moves while it is open
           // A rolling shutter's row is the pixel's, as Cycles' (not the filtered position's).
           const double fraction =
               in_.time.fraction(sampler_.get_1d(w.time_seed[i], s), float(w.py[i]) - margin_y_);
           c.time_s = in_.time.time_s(fraction);
           if (in_.zoom) in_.zoom->apply(fraction, c.film_x, c.film_y);
+          if (neighbours)
+            for (int k = 0; k < 2; ++k) {
+              neighbours[k].time_s = c.time_s;
+              if (in_.zoom) in_.zoom->apply(fraction, neighbours[k].film_x, neighbours[k].film_y);
+            }
         }
       }
       in_.camera.generate_rays(w.camera_samples, w.camera_rays.data());
+      if (in_.texture_footprint)
+        in_.camera.generate_rays(w.neighbour_samples, w.neighbour_rays.data());
       for (size_t i = 0; i < n; ++i) {
-        const fb_camera_ray& c = w.camera_rays[i];
-        fb_ray& r = w.rays[i];
-        if (in_.camera_path) {
-          in_.camera_path->place(c, w.camera_samples[i].time_s, r);
-        } else {
-          rotation_.apply(c.origin, r.origin);  // the camera sits at the render-space origin
-          rotation_.apply(c.direction, r.direction);
-        }
-        r.t_min = c.t_min;
-        r.t_max = c.weight > 0.f ? c.t_max : -1.f;  // an empty interval: the integrator sees a miss
-        r.time_s = w.camera_samples[i].time_s;
+        place(w.camera_rays[i], w.camera_samples[i].time_s, w.rays[i]);
+        if (in_.texture_footprint) w.context.differentials[i] = differential(w, i);
       }
       context.surfaces.reset();  // the previous call's hits are done with
       in_.integrator.radiance(in_.scene, &context, w.rays, w.values.data());
@@ -190,6 +243,38 @@ class TileRenderer {
             float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y};
   }
 
+  // Camera ray `c` in render space, leaving at `time_s`.
+  void place(const fb_camera_ray& c, float time_s, fb_ray& r) const {
+    if (in_.camera_path) {
+      in_.camera_path->place(c, time_s, r);
+    } else {
+      rotation_.apply(c.origin, r.origin);  // the camera sits at the render-space origin
+      rotation_.apply(c.direction, r.direction);
+    }
+    r.t_min = c.t_min;
+    r.t_max = c.weight > 0.f ? c.t_max : -1.f;  // an empty interval: the integrator sees a miss
+    r.time_s = time_s;
+  }
+
+  // Sample i's ray differential from its neighbours' rays. A neighbour the camera cannot make (past
+  // a fisheye's circle) leaves it NaN, which position_differentials refuses: that ray's footprint
+  // falls back to the camera's spread.
+  RayDifferential differential(const TileWork& w, size_t i) const {
+    const fb_ray& r = w.rays[i];
+    fb_ray neighbour[2];
+    for (int k = 0; k < 2; ++k) {
+      const fb_camera_ray& c = w.neighbour_rays[2 * i + k];
+      if (!(c.weight > 0.f)) {
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        return {{nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}};
+      }
+      place(c, r.time_s, neighbour[k]);
+    }
+    const auto offset = [](const float a[3], const float b[3]) { return Vec3f(a) - Vec3f(b); };
+    return {offset(neighbour[0].origin, r.origin), offset(neighbour[0].direction, r.direction),
+            offset(neighbour[1].origin, r.origin), offset(neighbour[1].direction, r.direction)};
+  }
+
   const RenderInputs& in_;
   Film& film_;
   SplatTiles* splats_;           // null: importance sampling, every sample in its own pixel
@@ -199,6 +284,7 @@ class TileRenderer {
   Rotation rotation_;
   size_t channels_;
   uint32_t needs_;
+  FootprintSource footprint_;  // the camera's spread and the supersampling scale, when on
 };
 
 // Pixel (x, y) of the sample domain is film pixel (x - margin, y - margin): splatting draws

@@ -48,6 +48,10 @@ struct RenderInputs {
   // Importance reconstruction only: a splatted sample reaches several pixels.
   std::optional<AdaptiveSettings> adaptive = std::nullopt;
   double exposure = 1;  // the gain the image gets (Cycles' Film > Exposure): the error sees it
+  // Texture lookups filtered by each ray's footprint (core/texture/ray_footprint.h): the camera
+  // is asked for each ray's neighbours one pixel right and down, at twice the camera's cost, so
+  // only scenes with image textures turn it on. Off: the finest level, as before.
+  bool texture_footprint = false;
 };
 
 struct RenderStats {

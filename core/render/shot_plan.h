@@ -64,6 +64,9 @@ struct RenderOptions {
   std::optional<double> adaptive_threshold;
   std::optional<uint32_t> adaptive_min_samples;
   bool show_progress = true;
+  // Texture lookups filtered by each ray's footprint (docs/architecture.md, "Texture
+  // filtering"); false reads every texture at its finest level, as before issue 17.
+  bool texture_footprint = true;
   // What the render may hold at its peak (core/render/memory_estimate.h); none: half of the
   // machine's memory.
   std::optional<uint64_t> memory_limit_bytes;

@@ -12,21 +12,25 @@ namespace {
 // into a record of its own size and copies the part the plugin knows, with the plugin's stride.
 int intersect(fb_trace_context* c, const fb_ray* ray, fb_hit* hit) {
   ++c->rays_traced;
-  if (c->hit_size == sizeof(fb_hit)) return c->geometry->intersect(*ray, *hit, &c->surfaces);
+  if (c->hit_size == sizeof(fb_hit))
+    return c->geometry->intersect(*ray, *hit, &c->surfaces, c->footprint);
   fb_hit full{};
-  const bool found = c->geometry->intersect(*ray, full, &c->surfaces);
+  const bool found = c->geometry->intersect(*ray, full, &c->surfaces, c->footprint);
   std::memcpy(hit, &full, c->hit_size);
   return found ? 1 : 0;
 }
 
 void intersect_batch(fb_trace_context* c, const fb_ray* rays, size_t count, fb_hit* hits) {
   c->rays_traced += count;
+  FootprintSource footprints = c->footprint;
+  if (rays == c->camera_rays && count == c->differentials.size())
+    footprints.differential = c->differentials.data();
   if (c->hit_size == sizeof(fb_hit)) {
-    c->geometry->intersect_coherent(rays, count, hits, &c->surfaces);
+    c->geometry->intersect_coherent(rays, count, hits, &c->surfaces, footprints);
     return;
   }
   c->full_hits.assign(count, fb_hit{});
-  c->geometry->intersect_coherent(rays, count, c->full_hits.data(), &c->surfaces);
+  c->geometry->intersect_coherent(rays, count, c->full_hits.data(), &c->surfaces, footprints);
   auto* out = reinterpret_cast<unsigned char*>(hits);
   for (size_t i = 0; i < count; ++i)
     std::memcpy(out + i * c->hit_size, &c->full_hits[i], c->hit_size);
@@ -95,10 +99,9 @@ uint32_t lights_crossed(fb_trace_context* c, const fb_ray* ray, float t_end,
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
-  static const fb_scene_api api{sizeof(fb_scene_api), intersect,    intersect_batch,
-                                occluded,             sample_light, light_pdf,
-                                next_samples,         background,   bsdf_eval,
-                                bsdf_sample,          lights_crossed};
+  static const fb_scene_api api{
+      sizeof(fb_scene_api), intersect,  intersect_batch, occluded,    sample_light,  light_pdf,
+      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed};
   return api;
 }
 

@@ -11,6 +11,7 @@
 #include "core/render/light_sampler.h"
 #include "core/render/sampler.h"
 #include "core/shading/surface_arena.h"
+#include "core/texture/ray_footprint.h"
 
 struct fb_trace_context {
   const fb::RenderGeometry* geometry = nullptr;
@@ -22,6 +23,13 @@ struct fb_trace_context {
   // an older header, whose records the host writes and reads no further (plugin_abi.h, "Growth").
   uint32_t hit_size = sizeof(fb_hit);
   std::vector<fb_hit> full_hits;  // a batch traced at this host's size, for such an integrator
+  // Texture footprints (core/texture/ray_footprint.h). The render loop's batch of camera rays
+  // (known by its address, which integrators pass on to intersect_batch) has one differential
+  // per ray; every other ray, and all of them when `differentials` is empty, the camera's
+  // spread. `footprint.differential` stays null: the spread and the scale are what it holds.
+  const fb_ray* camera_rays = nullptr;
+  std::vector<fb::RayDifferential> differentials;
+  fb::FootprintSource footprint;
   uint64_t rays_traced = 0;
 };
 

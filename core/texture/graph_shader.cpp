@@ -49,10 +49,7 @@ constexpr int kMaxDepth = 1024;
 
 std::array<float, 4> GraphShader::texel(uint32_t index, const SurfacePoint& point) const {
   const ImageTextureNode& t = graph_.textures[index];
-  const Vec2f st = texture_position(point, t.uv_slot, t.uv_transform);
-  TextureLookup lookup;
-  lookup.image = t.image;
-  lookup.s = st.x, lookup.t = st.y;
+  TextureLookup lookup(t.image, texture_position(point, t.uv_slot, t.uv_transform));
   lookup.wrap_s = lookup.wrap_t = t.wrap;
   lookup.interpolation = t.interpolation;
   lookup.srgb = t.srgb;

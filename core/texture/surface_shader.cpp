@@ -10,17 +10,24 @@ namespace fb {
 
 namespace {
 
-std::vector<bool> images_used(const Scene& scene) {
-  std::vector<bool> used(scene.images.size(), false);
+// How each image is read (TextureImages::kReadLinear, kReadFromSrgb): colours and emission from
+// sRGB (glTF 2.0 §3.9.2), the rest as stored; a shader graph's texture as its node says.
+std::vector<uint8_t> image_uses(const Scene& scene) {
+  std::vector<uint8_t> uses(scene.images.size(), 0);
+  const auto mark = [&uses](const TextureRef& t, bool srgb) {
+    if (t.present())
+      uses.at(t.image) |= srgb ? TextureImages::kReadFromSrgb : TextureImages::kReadLinear;
+  };
   for (const Material& m : scene.materials) {
-    for (const TextureRef* t : {&m.textures.base_color, &m.textures.metallic_roughness,
-                                &m.textures.normal, &m.textures.emissive})
-      if (t->present()) used.at(t->image) = true;
+    mark(m.textures.base_color, true);
+    mark(m.textures.emissive, true);
+    mark(m.textures.metallic_roughness, false);
+    mark(m.textures.normal, false);
     if (m.shader_graph)
       for (const ImageTextureNode& t : m.shader_graph->textures)
-        used.at(t.image) = true;
+        uses.at(t.image) |= t.srgb ? TextureImages::kReadFromSrgb : TextureImages::kReadLinear;
   }
-  return used;
+  return uses;
 }
 
 }  // namespace
@@ -28,7 +35,7 @@ std::vector<bool> images_used(const Scene& scene) {
 SurfaceShader::SurfaceShader(const Scene& scene, const Transform& world_from_render)
     : materials_(scene.materials),
       world_from_render_(world_from_render),
-      images_(scene, images_used(scene)) {
+      images_(scene, image_uses(scene)) {
   for (const Material& m : materials_)
     if (m.shader_graph)
       graphs_.emplace_back(std::in_place, *m.shader_graph, images_);
@@ -43,10 +50,7 @@ SolidColour SurfaceShader::solid_colour(const SolidPattern& pattern,
 
 std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfacePoint& point,
                                            bool srgb) const {
-  const Vec2f st = texture_position(point, ref.texcoord, ref.uv_transform);
-  TextureLookup lookup;
-  lookup.image = ref.image;
-  lookup.s = st.x, lookup.t = st.y;
+  TextureLookup lookup(ref.image, texture_position(point, ref.texcoord, ref.uv_transform));
   lookup.wrap_s = ref.wrap_s;
   lookup.wrap_t = ref.wrap_t;
   lookup.srgb = srgb;
