@@ -66,9 +66,11 @@ struct RenderControl {
 constexpr uint32_t kTileSize = 16;
 
 // Renders into `film` on the calling thread's TBB arena, in passes of doubling sample counts over
-// all tiles. A film that already holds samples (a resumed checkpoint: Film::sample_count per
-// tile) is continued from there; each pixel's samples are still summed in sample order, so the
-// image is bit-identical to an uninterrupted render. `progress` counts pixel samples.
+// all tiles when `control` can stop the render (a cancel flag or checkpoints), else in one pass
+// (each tile's samples in a row, while its part of the scene is in the core's cache). A film that
+// already holds samples (a resumed checkpoint: Film::sample_count per tile) is continued from
+// there; each pixel's samples are still summed in sample order, so the image is bit-identical to an
+// uninterrupted render. `progress` counts pixel samples.
 RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
                          Progress* progress);
 
