@@ -3,9 +3,10 @@
 // Anonymous pages read as zero until first written (mmap(2)), so a film needs no zeroing pass of
 // its own: each page is zeroed by the kernel when the thread that renders its tile first writes
 // it, in parallel and while it is in that core's cache. Transparent huge pages are asked for
-// (madvise(MADV_HUGEPAGE); this machine's THP mode is "madvise"), so that a 1024 x 1024 film takes
-// about 50 page faults instead of about 24,000: a fault costs about 2.5 us in a KVM guest, which
-// at 1 spp weighed as much as tracing the image (docs/benchmarks.md, "Primary rays").
+// (madvise(MADV_HUGEPAGE): honoured in the kernel's THP modes "madvise" and "always"), so that a
+// 1024 x 1024 film takes about 50 page faults instead of about 24,000: a fault costs about 2.5 us
+// in a KVM guest, which at 1 spp weighed as much as tracing the image (docs/benchmarks.md, "Primary
+// rays").
 #pragma once
 
 #include <cstddef>
