@@ -115,7 +115,7 @@ if [ "$mode" = test ]; then
   release=$!
   [ -f build-sanitize/CMakeCache.txt ] ||
     CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Release \
-      -DFILMBACK_FUZZ=ON
+      -DFILMBACK_FUZZ=ON -DFILMBACK_UNIT_TEST_SHARDS=4
   cmake --build build-sanitize -j 2 || status=1
   # OpenImageIO 2.4's TextureSystem::destroy deletes its implementation through the base class
   # with a sized delete, which AddressSanitizer reports inside that library, not filmback.
