@@ -6,10 +6,10 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/film/zeroed_pages.h"
 #include "core/image/image.h"
 
 namespace fb {
@@ -55,12 +55,12 @@ class Film {
  private:
   uint32_t width_, height_;
   std::vector<std::string> channels_;
-  // Per pixel and channel, and per pixel; double keeps high sample counts exact. Allocated
-  // uninitialised and zeroed in parallel: at 1 spp, touching ~100 MB from one thread would
-  // cost as much as tracing the image.
-  std::unique_ptr<double[]> sums_;
-  std::unique_ptr<double[]> weights_;
-  std::unique_ptr<uint32_t[]> counts_;
+  // Per pixel and channel, and per pixel; double keeps high sample counts exact. Zeroed by the
+  // kernel where the tile that owns a page first writes it (zeroed_pages.h): at 1 spp, zeroing
+  // ~100 MB before the render, even in parallel, cost as much as tracing the image.
+  ZeroedArray<double> sums_;
+  ZeroedArray<double> weights_;
+  ZeroedArray<uint32_t> counts_;
 };
 
 }  // namespace fb

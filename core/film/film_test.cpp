@@ -49,5 +49,27 @@ TEST(Film, ImagesAreStoredTopRowFirst) {
   EXPECT_EQ(image.pixels[(1 * 3 + 2) * 4 + 3], 7.f);
 }
 
+// The film's state comes from the kernel zeroed (zeroed_pages.h) instead of a zeroing pass: a
+// fresh film must read as zero everywhere, in a small film and in one whose arrays are large
+// enough to sit on huge pages (here 24 MB of sums), up to their last element.
+TEST(Film, AFreshFilmIsZeroEverywhere) {
+  for (const uint32_t side : {3u, 1000u}) {
+    Film film(side, side, {"R", "G", "B"});
+    const size_t pixels = film.pixel_count();
+    size_t nonzero = 0;
+    for (size_t i = 0; i < pixels; ++i) {
+      nonzero += film.weights()[i] != 0.0 || film.sample_counts()[i] != 0;
+      for (size_t c = 0; c < 3; ++c)
+        nonzero += film.sums()[i * 3 + c] != 0.0;
+    }
+    EXPECT_EQ(nonzero, 0u) << side;
+    const float v[3] = {1, 2, 3};
+    EXPECT_TRUE(film.add(side - 1, side - 1, v, 2.f));
+    const Image image = film.resolve();
+    EXPECT_EQ(image.at(side - 1, side - 1, 2), 3.f);
+    EXPECT_EQ(image.at(0, 0, 0), 0.f);
+  }
+}
+
 }  // namespace
 }  // namespace fb

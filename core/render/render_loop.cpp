@@ -303,13 +303,18 @@ uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height)
 }
 
 // The sample counts at which passes end: doubling, so that an interrupted render has every pixel
-// sampled about equally often, and each pass over a tile stays short. Adaptive sampling also ends
-// a pass at every count where its convergence check is due.
-std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel,
+// sampled about equally often, and each pass over a tile stays short. A render nothing can stop
+// takes no doubling passes: each visit of a tile reloads the geometry its rays meet from memory,
+// which cost about 0.7 of a sample per extra pass per tile on a 1 M-triangle scene, a third of the
+// 8-spp throughput (docs/benchmarks.md, "Issue 17"); the image is the same either way, since every
+// pixel's samples are summed in sample order. Adaptive sampling also ends a pass at every count
+// where its convergence check is due, stoppable or not.
+std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel, const RenderControl& control,
                                 const std::optional<AdaptiveSettings>& adaptive) {
   std::vector<uint32_t> ends;
-  for (uint32_t end = 1; end < samples_per_pixel; end *= 2)
-    ends.push_back(end);
+  if (control.cancel || control.checkpoint)
+    for (uint32_t end = 1; end < samples_per_pixel; end *= 2)
+      ends.push_back(end);
   if (adaptive)
     for (uint32_t end = kAdaptiveStep; end < samples_per_pixel; end += kAdaptiveStep)
       if (adaptive_check_due(*adaptive, end)) ends.push_back(end);
@@ -388,7 +393,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
       progress->advance(uint64_t(done[tile]) * (x1 - x0) * (y1 - y0));
     }
   RenderStats stats;
-  for (const uint32_t end : pass_ends(inputs.samples_per_pixel, inputs.adaptive)) {
+  for (const uint32_t end : pass_ends(inputs.samples_per_pixel, control, inputs.adaptive)) {
     for (;;) {  // until every tile has reached `end`, saving the film whenever a checkpoint is due
       pause = false;
       tbb::parallel_for(

@@ -76,12 +76,13 @@ struct RenderControl {
 constexpr uint32_t kTileSize = 16;
 
 // Renders into `film` on the calling thread's TBB arena, in passes of doubling sample counts over
-// all tiles (with adaptive sampling: after its minimum, passes of kAdaptiveStep samples, each
-// followed by the convergence check; pixels that converged take no more samples and keep their
-// own count in the film). A film that already holds samples (a resumed checkpoint:
-// Film::sample_count per tile) is continued from there; each pixel's samples are still summed in
-// sample order, so the image is bit-identical to an uninterrupted render. `progress` counts pixel
-// samples.
+// all tiles when `control` can stop the render (a cancel flag or checkpoints), else each tile's
+// samples in a row, while its part of the scene is in the core's cache (with adaptive sampling:
+// after its minimum, passes of kAdaptiveStep samples, each followed by the convergence check;
+// pixels that converged take no more samples and keep their own count in the film). A film that
+// already holds samples (a resumed checkpoint: Film::sample_count per tile) is continued from
+// there; each pixel's samples are still summed in sample order, so the image is bit-identical to
+// an uninterrupted render. `progress` counts pixel samples.
 RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
                          Progress* progress);
 

@@ -4,7 +4,13 @@
 // the same number of rays and hits, and filmback's depth AOV equal to Embree's hit distance
 // times cos(theta) per pixel. The ratio of the medians is printed last (docs/benchmarks.md).
 //
-//   primary_rays_bench [--res=PX] [--segments=N] [--threads=T] [google benchmark flags]
+//   primary_rays_bench [--res=PX] [--segments=N] [--threads=T] [--spp=N]
+//                      [--fail-below-1spp=PERCENT] [--fail-below=PERCENT] [google benchmark flags]
+//
+// The --fail-below flags make it a guard (ctest bench.primary_rays_guard): exit status 1 when a
+// 1-spp case's (or an --spp case's) process-CPU ratio of run() to Embree is under PERCENT / 100.
+// The thresholds are set far below the spread measured on the loaded 2-core machine
+// (docs/benchmarks.md, "The guard").
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
@@ -33,7 +39,9 @@ struct Settings {
   uint32_t resolution_px = 1024;  // square image
   uint32_t segments = 1024;       // sphere: segments^2 triangles; terrain: about as many
   uint32_t threads = 2;
-  uint32_t samples_per_pixel = 8;  // the second set of cases; the first is always 1 spp
+  uint32_t samples_per_pixel = 8;        // the second set of cases; the first is always 1 spp
+  uint32_t fail_below_percent_1spp = 0;  // 0: report only
+  uint32_t fail_below_percent = 0;       // the --spp cases; 0: report only
 };
 
 struct Case {
@@ -189,7 +197,9 @@ Settings parse_settings(int& argc, char** argv) {
     const std::string_view arg = argv[i];
     if (!parse_flag(arg, "--res=", s.resolution_px) &&
         !parse_flag(arg, "--segments=", s.segments) && !parse_flag(arg, "--threads=", s.threads) &&
-        !parse_flag(arg, "--spp=", s.samples_per_pixel))
+        !parse_flag(arg, "--spp=", s.samples_per_pixel) &&
+        !parse_flag(arg, "--fail-below-1spp=", s.fail_below_percent_1spp) &&
+        !parse_flag(arg, "--fail-below=", s.fail_below_percent))
       argv[kept++] = argv[i];
   }
   argc = kept;
@@ -245,6 +255,7 @@ int run(int argc, char** argv) {
   benchmark::Shutdown();
 
   const auto& rates = reporter.rates();
+  bool fast_enough = true;
   for (const auto& c : cases) {
     const auto ours = rates.find(c->name + "/filmback"), theirs = rates.find(c->name + "/embree");
     if (ours == rates.end() || theirs == rates.end()) continue;  // filtered out
@@ -257,8 +268,18 @@ int run(int argc, char** argv) {
         c->name.c_str(), e.per_wall_s * 1e-6, e.per_cpu_s * 1e-6, f.per_wall_s * 1e-6,
         f.per_wall_s / e.per_wall_s, f.per_cpu_s * 1e-6, f.per_cpu_s / e.per_cpu_s,
         f.loop_per_wall_s * 1e-6, f.loop_per_wall_s / e.per_wall_s);
+    // Process CPU time, not wall time: a thread that waits for a core while other tests run
+    // accrues none, so the ratio moves far less than the wall ratio on a shared machine.
+    const double cpu_ratio = f.per_cpu_s / e.per_cpu_s;
+    const uint32_t guard_percent =
+        c->samples_per_pixel == 1 ? settings.fail_below_percent_1spp : settings.fail_below_percent;
+    if (guard_percent && cpu_ratio * 100 < guard_percent) {
+      std::printf("%s: run() at %.3f of Embree's rays per CPU second, below the guard's %.2f\n",
+                  c->name.c_str(), cpu_ratio, guard_percent / 100.0);
+      fast_enough = false;
+    }
   }
-  return 0;
+  return fast_enough ? 0 : 1;
 }
 
 }  // namespace

@@ -112,6 +112,29 @@ TEST(Interrupt, CheckpointsTakenOnTheWayChangeNothing) {
   EXPECT_EQ(again.image.pixels, whole.image.pixels);
 }
 
+// A render nothing can stop takes one pass over each tile (render_loop.h); one that a signal could
+// stop takes the doubling passes. The sums are formed in the same order either way: the images
+// must be bit-identical, with importance sampling and with splatting (whose tiles' sums reach
+// their neighbours' pixels).
+TEST(Interrupt, OnePassAndDoublingPassesGiveTheSameImage) {
+  const Scene scene = lit_floor();
+  for (const Reconstruction reconstruction :
+       {Reconstruction::kImportance, Reconstruction::kSplat}) {
+    RenderOptions o = options(11);  // passes end at 1, 2, 4, 8 and 11
+    o.reconstruction = reconstruction;
+    o.filter = "gaussian";
+    const RenderJob job(scene, o, test::loader());
+    const RenderResult one_pass = job.run();
+    const std::atomic<bool> never{false};
+    RenderControl control;
+    control.cancel = &never;
+    Film film = job.make_film();
+    const RenderResult passes = job.run(film, control);
+    EXPECT_EQ(passes.stats.samples, one_pass.stats.samples);
+    EXPECT_EQ(passes.image.pixels, one_pass.image.pixels) << reconstruction_name(reconstruction);
+  }
+}
+
 TEST(Interrupt, CheckpointsOfAnotherRenderOrAnImpossibleStateAreRefused) {
   const Scene scene = lit_floor();
   const RenderJob job(scene, options(8), test::loader());
