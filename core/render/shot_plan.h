@@ -16,6 +16,7 @@
 #include <filmback/vec.h>
 
 #include "core/film/film.h"
+#include "core/render/light_choice.h"
 #include "core/render/sampler.h"
 #include "core/render/shutter.h"
 #include "core/render/zoom_in_shutter.h"
@@ -58,6 +59,7 @@ struct RenderOptions {
   SamplerKind sampler = kDefaultSampler;                        // docs/sampling.md
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
+  LightSelection light_selection = LightSelection::kAuto;       // --light-sampler (docs/cli.md)
   bool show_progress = true;
   // What the render may hold at its peak (core/render/memory_estimate.h); none: half of the
   // machine's memory.
