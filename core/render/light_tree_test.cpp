@@ -11,6 +11,7 @@
 
 #include "core/render/light_choice.h"
 #include "core/render/light_sampler.h"
+#include "tests/support/chi_square.h"
 
 namespace fb {
 namespace {
@@ -76,9 +77,8 @@ TEST(LightTree, ProbabilitiesSumToOneAndMatchTheChoice) {
 }
 
 // The frequencies with which random u choose each light match its probability: Pearson's
-// chi-square over the lights with an expected count of at least 5, against the 99.99th
-// percentile of its distribution (Wilson-Hilferty), so a correct tree fails 1 time in 10^4 seeds
-// (and this seed is fixed).
+// chi-square (tests/support/chi_square.h), failing a correct tree once in 10^3 seeds (this seed is
+// fixed).
 TEST(LightTree, ChoiceFrequenciesPassChiSquare) {
   std::vector<double> power;
   const std::vector<LightBounds> bounds = scattered_lights(power);
@@ -87,27 +87,20 @@ TEST(LightTree, ChoiceFrequenciesPassChiSquare) {
   std::uniform_real_distribution<float> unit(0.f, 1.f);
   constexpr int kSamples = 200000;
   for (Vec3f p : kPoints) {
-    std::vector<int> count(bounds.size(), 0);
-    int chosen = 0;
+    std::vector<double> observed(bounds.size() + 1, 0), expected(bounds.size() + 1, 0);
     for (int k = 0; k < kSamples; ++k) {
       uint32_t light;
       float pmf;
-      if (choice.choose(p, unit(rng), light, pmf)) ++count[light], ++chosen;
+      ++observed[choice.choose(p, unit(rng), light, pmf) ? light : bounds.size()];
     }
-    double chi2 = 0, total_pmf = 0;
-    int bins = 0;
+    double total = 0;
     for (uint32_t i = 0; i < bounds.size(); ++i)
-      total_pmf += choice.pmf(p, i);
-    for (uint32_t i = 0; i < bounds.size(); ++i) {
-      const double expected = kSamples * double(choice.pmf(p, i));
-      if (expected < 5) continue;
-      chi2 += (count[i] - expected) * (count[i] - expected) / expected;
-      ++bins;
-    }
-    EXPECT_NEAR(double(chosen) / kSamples, total_pmf, 5 * std::sqrt(total_pmf / kSamples));
-    const double dof = bins - 1, z = 3.719;  // the standard normal's 99.99th percentile
-    const double limit = dof * std::pow(1 - 2 / (9 * dof) + z * std::sqrt(2 / (9 * dof)), 3);
-    EXPECT_LT(chi2, limit) << bins << " lights at " << p.x << ", " << p.y << ", " << p.z;
+      total += expected[i] = kSamples * double(choice.pmf(p, i));
+    expected.back() = kSamples - total;  // the cells that find no light
+    const test::ChiSquare chi2 = test::chi_square(observed, expected);
+    EXPECT_GT(chi2.dof, 20);
+    EXPECT_LT(chi2.statistic, chi2.limit())
+        << chi2.dof << " degrees of freedom at " << p.x << ", " << p.y << ", " << p.z;
   }
 }
 
