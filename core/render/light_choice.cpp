@@ -22,15 +22,16 @@ LightChoice::LightChoice(const std::vector<double>& power, const std::vector<Lig
   std::vector<LightBounds> tree_bounds(power.size());
   for (size_t i = 0; i < power.size(); ++i) {
     if (!(power[i] > 0)) continue;
+    double own = power[i];
     if (tree && !bounds[i].empty()) {
       tree_bounds[i] = bounds[i];
-      tree_power += power[i];
-      light_entry_[i] = kTreeEntry;
-      continue;
+      tree_power += (1 - kPowerShare) * power[i];
+      own = kPowerShare * power[i];
     }
+    if (!(own > 0)) continue;
     light_entry_[i] = uint32_t(entry_light_.size());
     entry_light_.push_back(uint32_t(i));
-    entry_power.push_back(power[i]);
+    entry_power.push_back(own);
   }
   if (tree_power > 0) {
     // The tree as one entry, with the power of its lights, beside the lights without a place.
@@ -86,26 +87,26 @@ bool LightChoice::choose(Vec3f p, float u, uint32_t& light, float& pmf) const {
   const size_t entry =
       size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
       1;
-  const uint32_t first = first_cell_[entry], cells = first_cell_[entry + 1] - first;
-  uint32_t chosen_cells = cells;
   if (entry_light_[entry] == kTreeEntry) {
-    if (!tree_.choose(p, first, cells, cell, light, chosen_cells)) return false;
+    const uint32_t first = first_cell_[entry];
+    uint32_t cells;
+    if (!tree_.choose(p, first, kCells - first, cell, light, cells)) return false;
   } else {
     light = entry_light_[entry];
   }
-  pmf = float(chosen_cells) / float(kCells);  // exact: both below 2^24 + 1
+  pmf = this->pmf(p, light);
   return true;
 }
 
 float LightChoice::pmf(Vec3f p, uint32_t light) const {
   if (empty() || light >= light_entry_.size()) return 0.f;
   const uint32_t entry = light_entry_[light];
-  if (entry == kNotChosen) return 0.f;
-  if (entry == kTreeEntry) {
-    const uint32_t first = first_cell_[entry_light_.size() - 1];
-    return float(tree_.cells_of(p, first, kCells - first, light)) / float(kCells);
+  uint32_t cells = entry == kNotChosen ? 0 : first_cell_[entry + 1] - first_cell_[entry];
+  if (uses_tree()) {
+    const uint32_t first = first_cell_[entry_light_.size() - 1];  // the tree's entry is the last
+    cells += tree_.cells_of(p, first, kCells - first, light);
   }
-  return float(first_cell_[entry + 1] - first_cell_[entry]) / float(kCells);
+  return float(cells) / float(kCells);  // exact: at most 2^24
 }
 
 }  // namespace fb

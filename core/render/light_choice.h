@@ -26,8 +26,13 @@ enum class LightSelection {
 class LightChoice {
  public:
   // The tree's threshold, chosen by measurement (docs/benchmarks.md, "Light sampling").
-  static constexpr size_t kTreeFromLights = 2;
+  static constexpr size_t kTreeFromLights = 8;
   static constexpr uint32_t kCells = 1u << 24;
+  // With the tree, the share of a light's choices still made by power wherever the point is (a
+  // defensive mixture, Hesterberg 1995): the tree's estimate can be far too low for a light near
+  // the point in a node whose centre is far, and the mixture bounds the weight a sample can take
+  // to 1 / kPowerShare of power sampling's.
+  static constexpr double kPowerShare = 0.1;
 
   LightChoice() = default;
   // Per light: its estimated power (0: never chosen) and its bounds (empty for a light without a
@@ -42,11 +47,11 @@ class LightChoice {
   float pmf(Vec3f p, uint32_t light) const;
 
  private:
-  static constexpr uint32_t kNotChosen = UINT32_MAX, kTreeEntry = UINT32_MAX - 1;
+  static constexpr uint32_t kNotChosen = UINT32_MAX, kTreeEntry = UINT32_MAX;
   // Cells per entry: a whole number of the 2^24, at least one for each that carries power.
   void build_cells(const std::vector<double>& power);
   std::vector<uint32_t> entry_light_;  // per entry: its light, or kTreeEntry
-  std::vector<uint32_t> light_entry_;  // per light: its entry, kTreeEntry or kNotChosen
+  std::vector<uint32_t> light_entry_;  // per light: its own entry, or kNotChosen
   std::vector<uint32_t> first_cell_;   // per entry, and the total (2^24) at the end
   LightTree tree_{{}};
 };

@@ -62,7 +62,7 @@ double closed_form_mean(const Scene& scene) {
       for (const Light& light : scene.lights) {
         const Vec3d d = scene.world_from_light(light, 0).point({0, 0, 0}) - p;
         const double d2 = dot(d, d);
-        sum += light.intensity.g * (d.z / std::sqrt(d2)) / (d2 + light.radius_m * light.radius_m);
+        sum += light.intensity.y * (d.z / std::sqrt(d2)) / (d2 + light.radius_m * light.radius_m);
       }
     }
   return kAlbedo / std::numbers::pi * sum / (kGrid * kGrid);
