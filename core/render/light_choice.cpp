@@ -87,14 +87,18 @@ bool LightChoice::choose(Vec3f p, float u, uint32_t& light, float& pmf) const {
   const size_t entry =
       size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
       1;
-  if (entry_light_[entry] == kTreeEntry) {
-    const uint32_t first = first_cell_[entry];
-    uint32_t cells;
-    if (!tree_.choose(p, first, kCells - first, cell, light, cells)) return false;
-  } else {
+  if (entry_light_[entry] != kTreeEntry) {
     light = entry_light_[entry];
+    pmf = this->pmf(p, light);  // its own cells and the tree's, if it is in the tree
+    return true;
   }
-  pmf = this->pmf(p, light);
+  const uint32_t first = first_cell_[entry];
+  uint32_t cells;
+  if (!tree_.choose(p, first, kCells - first, cell, light, cells)) return false;
+  // Its cells in the tree from this point, and its own by power (pmf() without a second descent).
+  const uint32_t own = light_entry_[light];
+  if (own != kNotChosen) cells += first_cell_[own + 1] - first_cell_[own];
+  pmf = float(cells) / float(kCells);
   return true;
 }
 
