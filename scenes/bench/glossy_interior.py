@@ -41,18 +41,27 @@ def lamp(name, kind, energy_w, location, colour=(1.0, 0.9, 0.75), radius_m=None,
         obj.rotation_euler = rotation
 
 
-def build():
-    scene = bpy.context.scene
+def dim_room(scene, floor, back_wall=None):
+    """interior.py's room and camera under an almost black world, Cycles set as filmback: the
+    floor and back wall of the given materials (the back wall plaster if None), the rest plaster."""
     common.cycles_like_filmback(scene)
     common.world(scene, (0.5, 0.5, 0.5), 0.01)
-
     plaster = common.principled("Plaster", (0.75, 0.72, 0.66), 0.9)
-    interior.wall("Floor", (6.0, 6.0), (0, 0, 0), (0, 0, 0),
-                  common.principled("GlossyFloor", (0.30, 0.18, 0.10), 0.12))
+    interior.wall("Floor", (6.0, 6.0), (0, 0, 0), (0, 0, 0), floor)
     interior.wall("Ceiling", (6.0, 6.0), (0, 0, 2.8), (math.pi, 0, 0), plaster)
-    interior.wall("BackWall", (6.0, 2.8), (0, 3.0, 1.4), (math.pi / 2, 0, 0),
-                  common.principled("Tiles", (0.55, 0.60, 0.62), 0.2))
+    interior.wall("BackWall", (6.0, 2.8), (0, 3.0, 1.4), (math.pi / 2, 0, 0), back_wall or plaster)
     interior.wall("LeftWall", (6.0, 2.8), (-3.0, 0, 1.4), (math.pi / 2, 0, math.pi / 2), plaster)
+    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+    camera.data.lens = 24.0
+    scene.collection.objects.link(camera)
+    common.look_at(camera, (1.8, -3.2, 1.6), (-0.4, 1.6, 0.8))
+    scene.camera = camera
+
+
+def build():
+    scene = bpy.context.scene
+    dim_room(scene, common.principled("GlossyFloor", (0.30, 0.18, 0.10), 0.12),
+             common.principled("Tiles", (0.55, 0.60, 0.62), 0.2))
 
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=0.45,
                                          location=(-0.9, 1.0, 0.45))
@@ -87,12 +96,6 @@ def build():
     lamp("Panel", "AREA", 20.0, (0.4, 2.2, 2.75), shape="SQUARE", size=0.25)
     lamp("Strip", "AREA", 15.0, (-2.9, 1.0, 1.6), shape="RECTANGLE", size=0.4, size_y=0.1,
          rotation=(0, -math.pi / 2, 0))  # shines along +X
-
-    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    camera.data.lens = 24.0
-    scene.collection.objects.link(camera)
-    common.look_at(camera, (1.8, -3.2, 1.6), (-0.4, 1.6, 0.8))
-    scene.camera = camera
 
 
 if __name__ == "__main__":

@@ -19,21 +19,13 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import interior  # noqa: E402  (wall)
+import glossy_interior  # noqa: E402  (dim_room)
 import sunlit_objects as common  # noqa: E402  (materials, world, Cycles settings, look_at)
 
 
 def build():
     scene = bpy.context.scene
-    common.cycles_like_filmback(scene)
-    common.world(scene, (0.5, 0.5, 0.5), 0.01)
-
-    plaster = common.principled("Plaster", (0.75, 0.72, 0.66), 0.9)
-    interior.wall("Floor", (6.0, 6.0), (0, 0, 0), (0, 0, 0),
-                  common.principled("Floor", (0.42, 0.27, 0.15), 0.3))
-    interior.wall("Ceiling", (6.0, 6.0), (0, 0, 2.8), (math.pi, 0, 0), plaster)
-    interior.wall("BackWall", (6.0, 2.8), (0, 3.0, 1.4), (math.pi / 2, 0, 0), plaster)
-    interior.wall("LeftWall", (6.0, 2.8), (-3.0, 0, 1.4), (math.pi / 2, 0, math.pi / 2), plaster)
+    glossy_interior.dim_room(scene, common.principled("Floor", (0.42, 0.27, 0.15), 0.3))
 
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=0.45,
                                          location=(-0.9, 1.0, 0.45))
@@ -52,12 +44,6 @@ def build():
         lamp = bpy.data.objects.new(f"Lamp{i}", light)
         scene.collection.objects.link(lamp)
         lamp.location = (rng.uniform(-2.8, 2.8), rng.uniform(-2.8, 2.8), rng.uniform(0.4, 2.6))
-
-    camera = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
-    camera.data.lens = 24.0
-    scene.collection.objects.link(camera)
-    common.look_at(camera, (1.8, -3.2, 1.6), (-0.4, 1.6, 0.8))
-    scene.camera = camera
 
 
 if __name__ == "__main__":
