@@ -42,7 +42,9 @@ Vec3d direction(RTCRayN* rays, unsigned n, unsigned i) {
 }
 
 // The hit record keeps only t and the normal: the renderer intersects the solid again for the
-// rest (first_covered_hit is deterministic), which costs one solve per ray that ends here.
+// rest (first_covered_hit is deterministic), which costs one solve per ray that ends here. The
+// search stops at the ray's tfar: a solid behind the nearest hit so far costs only the culling of
+// its tree's boxes.
 void solid_intersect(const RTCIntersectFunctionNArguments* args) {
   const EmbreeSolid& solid = user_solid(args->geometryUserPtr);
   const unsigned n = args->N;
@@ -51,7 +53,7 @@ void solid_intersect(const RTCIntersectFunctionNArguments* args) {
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
     const auto hit = first_covered_hit(solid, origin(rays, n, i), direction(rays, n, i),
-                                       RTCRayN_tnear(rays, n, i));
+                                       RTCRayN_tnear(rays, n, i), RTCRayN_tfar(rays, n, i));
     if (!hit) continue;
     const float t = float(hit->t);
     if (!(t < RTCRayN_tfar(rays, n, i))) continue;
@@ -72,8 +74,9 @@ void solid_occluded(const RTCOccludedFunctionNArguments* args) {
   const unsigned n = args->N;
   for (unsigned i = 0; i < n; ++i) {
     if (args->valid[i] != -1) continue;
-    const auto hit = first_covered_hit(solid, origin(args->ray, n, i), direction(args->ray, n, i),
-                                       RTCRayN_tnear(args->ray, n, i));
+    const auto hit =
+        first_covered_hit(solid, origin(args->ray, n, i), direction(args->ray, n, i),
+                          RTCRayN_tnear(args->ray, n, i), RTCRayN_tfar(args->ray, n, i));
     if (hit && float(hit->t) < RTCRayN_tfar(args->ray, n, i))
       RTCRayN_tfar(args->ray, n, i) = -INFINITY;
   }
@@ -82,9 +85,9 @@ void solid_occluded(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 
 std::optional<SolidHit> first_covered_hit(const EmbreeSolid& s, Vec3d origin, Vec3d direction,
-                                          double t_min) {
+                                          double t_min, double t_max) {
   const auto bits = [](double v) { return uint64_t(std::bit_cast<uint32_t>(float(v))); };
-  std::optional<SolidHit> hit = s.solid->first_hit(origin, direction, t_min);
+  std::optional<SolidHit> hit = s.solid->first_hit(origin, direction, t_min, t_max);
   for (int skipped = 0; hit && skipped < kMaxSkippedSurfaces; ++skipped) {
     if (!s.shader->has_alpha(hit->material)) return hit;
     SurfacePoint point;
@@ -93,7 +96,7 @@ std::optional<SolidHit> first_covered_hit(const EmbreeSolid& s, Vec3d origin, Ve
                                    bits(hit->position.z) << 32 | bits(direction.x),
                                    bits(direction.y) << 32 | bits(direction.z));
     if (s.shader->covers(hit->material, point, hash)) return hit;
-    hit = s.solid->first_hit(origin, direction, hit->t);
+    hit = s.solid->first_hit(origin, direction, hit->t, t_max);
   }
   return hit;
 }

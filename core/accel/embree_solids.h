@@ -2,6 +2,7 @@
 // RenderSolid::first_hit intersects them exactly.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "core/accel/solid_intersect.h"
@@ -19,12 +20,13 @@ struct EmbreeSolid {
   const SurfaceShader* shader;
 };
 
-// The first hit after t_min that the hit material covers (SurfaceShader::covers, with a hash of
-// the hit position and the ray's direction), skipping the surfaces a partly transparent material
-// lets the ray through as Embree's filter skips them on meshes. Deterministic: the renderer
-// intersects again to fill a hit record.
+// The first hit in (t_min, t_max) that the hit material covers (SurfaceShader::covers, with a
+// hash of the hit position and the ray's direction), skipping the surfaces a partly transparent
+// material lets the ray through as Embree's filter skips them on meshes. Deterministic, and a hit
+// before t_max is the one t_max = infinity gives: the renderer intersects again, uncut, to fill
+// a hit record.
 std::optional<SolidHit> first_covered_hit(const EmbreeSolid& solid, Vec3d origin, Vec3d direction,
-                                          double t_min);
+                                          double t_min, double t_max = HUGE_VAL);
 
 // Attaches `solid` as geometry `id`: one user primitive whose bounds are the solid's bounds(),
 // widened to the floats around them.

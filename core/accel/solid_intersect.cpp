@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <string>
 #include <utility>
 
 #include "core/math/polynomial.h"
@@ -22,6 +24,10 @@ struct RenderSolid::Node {
   Polynomial3 polynomial;        // kPolynomial, in object space
   Bounds3d window;               // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;          // farthest corner of a bounded primitive from the render origin
+  // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
+  size_t max_spans = 0;        // spans of this node's set along a ray, at most
+  size_t max_child_spans = 0;  // of any child's (set operations)
+  size_t workspace = 0;        // scratch spans node_spans needs beside its output
   std::vector<Node> children;
 };
 
@@ -47,17 +53,25 @@ struct Boundary {
 struct Span {
   Boundary in, out;
 };
-using Spans = std::vector<Span>;
+
+// The spans a ray's intersection works in live in one buffer sized from the tree (Node::
+// max_spans, ::workspace): on the stack up to this many, which covers every tree a scene writes
+// by hand (48 bytes a span: 12 KiB), else in a per-thread buffer grown once to the largest tree.
+constexpr size_t kStackSpans = 256;
+// A tree needing more than this is refused at load (48 MiB a thread): only a hostile or
+// generated scene nests CSG that deep.
+constexpr size_t kMaxSpans = size_t(1) << 20;
 
 Boundary on(const Node& leaf, double t, uint8_t part = 0, bool surface = true) {
   return {t, &leaf, part, surface && leaf.surface, false};
 }
 
-// Appends [in, out] clipped to the window [lo, hi]; what the window cuts is no surface.
-void push(Spans& spans, Boundary in, Boundary out, double lo, double hi) {
+// Appends [in, out] clipped to the window [lo, hi] to spans[0, count); what the window cuts is
+// no surface.
+void push(Span* spans, int& count, Boundary in, Boundary out, double lo, double hi) {
   if (!(in.t >= lo)) in = {lo};
   if (!(out.t <= hi)) out = {hi};
-  if (in.t < out.t) spans.push_back({in, out});
+  if (in.t < out.t) spans[count++] = {in, out};
 }
 
 // The ray's parameter range inside an axis-aligned box, within [lo, hi]; false if it misses.
@@ -76,44 +90,49 @@ bool clip_to_box(const Bounds3d& box, const Ray& r, double& lo, double& hi) {
 }
 
 // ---- Set operations on sorted, disjoint spans ------------------------------------------------
+// Each writes at most the count its bound in build() allows: n spans have n + 1 gaps, a union
+// at most n + m spans, an intersection n + m - 1 (each step of the sweep ends one input span).
 
-void complement(Spans& spans, double lo, double hi) {
-  Spans gaps;
+// The gaps of spans[0, n) within [lo, hi], written back over them (through `scratch`).
+int complement(Span* spans, int n, double lo, double hi, Span* scratch) {
+  int gaps = 0;
   Boundary from{lo};
-  for (Span s : spans) {
+  for (int i = 0; i < n; ++i) {
+    Span s = spans[i];
     s.in.flipped = !s.in.flipped, s.out.flipped = !s.out.flipped;
-    if (from.t < s.in.t) gaps.push_back({from, s.in});
+    if (from.t < s.in.t) scratch[gaps++] = {from, s.in};
     from = s.out;
   }
-  if (from.t < hi) gaps.push_back({from, Boundary{hi}});
-  spans = std::move(gaps);
+  if (from.t < hi) scratch[gaps++] = {from, Boundary{hi}};
+  std::copy_n(scratch, gaps, spans);
+  return gaps;
 }
 
-Spans intersection(const Spans& a, const Spans& b) {
-  Spans out;
-  for (size_t i = 0, j = 0; i < a.size() && j < b.size();) {
+int intersection(const Span* a, int na, const Span* b, int nb, Span* out) {
+  int n = 0;
+  for (int i = 0, j = 0; i < na && j < nb;) {
     const Boundary& in = a[i].in.t >= b[j].in.t ? a[i].in : b[j].in;
     const bool a_ends_first = a[i].out.t <= b[j].out.t;
     const Boundary& end = a_ends_first ? a[i].out : b[j].out;
-    if (in.t < end.t) out.push_back({in, end});
+    if (in.t < end.t) out[n++] = {in, end};
     a_ends_first ? ++i : ++j;
   }
-  return out;
+  return n;
 }
 
-Spans united(const Spans& a, const Spans& b) {
-  Spans merged;
-  std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(merged),
-             [](const Span& x, const Span& y) { return x.in.t < y.in.t; });
-  Spans out;
-  for (const Span& s : merged) {
-    if (!out.empty() && s.in.t <= out.back().out.t) {
-      if (s.out.t > out.back().out.t) out.back().out = s.out;
+// Merges by entry (the first list's span first on a tie, as std::merge) and joins spans that
+// overlap or touch.
+int united(const Span* a, int na, const Span* b, int nb, Span* out) {
+  int n = 0;
+  for (int i = 0, j = 0; i < na || j < nb;) {
+    const Span& s = j == nb || (i < na && !(b[j].in.t < a[i].in.t)) ? a[i++] : b[j++];
+    if (n > 0 && s.in.t <= out[n - 1].out.t) {
+      if (s.out.t > out[n - 1].out.t) out[n - 1].out = s.out;
     } else {
-      out.push_back(s);
+      out[n++] = s;
     }
   }
-  return out;
+  return n;
 }
 
 // ---- Primitives, in object space -------------------------------------------------------------
@@ -125,7 +144,7 @@ double nearest_to_origin(const Ray& r) {
   return -dot(r.o, r.d) / dot(r.d, r.d);
 }
 
-void sphere_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+void sphere_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
   const double a = dot(r.d, r.d);
   if (!(a > 0)) return;
   const double t0 = nearest_to_origin(r);
@@ -133,10 +152,10 @@ void sphere_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& o
   const double h2 = (1 - dot(c, c)) / a;
   if (!(h2 > 0)) return;
   const double h = std::sqrt(h2);
-  push(out, on(leaf, t0 - h), on(leaf, t0 + h), lo, hi);
+  push(out, n, on(leaf, t0 - h), on(leaf, t0 + h), lo, hi);
 }
 
-void box_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+void box_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
   Boundary in{-kInf}, exit{kInf};
   for (int a = 0; a < 3; ++a) {
     if (r.d[a] == 0) {
@@ -149,13 +168,13 @@ void box_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out)
     if (t_in > in.t) in = on(leaf, t_in, uint8_t(2 * a + (up ? 0 : 1)));
     if (t_out < exit.t) exit = on(leaf, t_out, uint8_t(2 * a + (up ? 1 : 0)));
   }
-  if (in.t < exit.t) push(out, in, exit, lo, hi);
+  if (in.t < exit.t) push(out, n, in, exit, lo, hi);
 }
 
 // z <= 0; a disc's surface is only the annulus of its plane.
-void half_space_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+void half_space_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
   if (r.d.z == 0) {
-    if (r.o.z <= 0) push(out, {lo}, {hi}, lo, hi);
+    if (r.o.z <= 0) push(out, n, {lo}, {hi}, lo, hi);
     return;
   }
   const double t = -r.o.z / r.d.z;
@@ -165,14 +184,14 @@ void half_space_spans(const Node& leaf, const Ray& r, double lo, double hi, Span
     surface = r2 <= 1 && r2 >= leaf.radius1 * leaf.radius1;
   }
   if (r.d.z > 0)
-    push(out, {-kInf}, on(leaf, t, 0, surface), lo, hi);
+    push(out, n, {-kInf}, on(leaf, t, 0, surface), lo, hi);
   else
-    push(out, on(leaf, t, 0, surface), {kInf}, lo, hi);
+    push(out, n, on(leaf, t, 0, surface), {kInf}, lo, hi);
 }
 
 // x^2 + y^2 <= r(z)^2 between the planes z = 0 and z = 1: the quadric's spans (A s^2 + 2 B s +
 // C <= 0, one span, two rays, all or nothing) intersected with the slab's.
-void cone_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+void cone_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
   const bool cylinder = leaf.kind == SolidKind::kCylinder;
   const double r0 = cylinder ? 1 : leaf.radius0, k = cylinder ? 0 : leaf.radius1 - leaf.radius0;
   if (!(dot(r.d, r.d) > 0)) return;
@@ -182,14 +201,15 @@ void cone_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out
   const double A = d.x * d.x + d.y * d.y - k * k * d.z * d.z;
   const double B = c.x * d.x + c.y * d.y - rz * k * d.z;
   const double C = c.x * c.x + c.y * c.y - rz * rz;
-  Spans quadric;
+  Span quadric[2];
+  int quadric_count = 0;
   const auto side = [&](double s) { return on(leaf, t0 + s, 0); };
   if (A == 0) {
     if (B == 0) {
-      if (C <= 0) quadric.push_back({{-kInf}, {kInf}});
+      if (C <= 0) quadric[quadric_count++] = {{-kInf}, {kInf}};
     } else {
       const double s = -C / (2 * B);
-      quadric.push_back(B > 0 ? Span{{-kInf}, side(s)} : Span{side(s), {kInf}});
+      quadric[quadric_count++] = B > 0 ? Span{{-kInf}, side(s)} : Span{side(s), {kInf}};
     }
   } else {
     const double disc = B * B - A * C;
@@ -197,36 +217,40 @@ void cone_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out
       const double q = -(B + std::copysign(std::sqrt(disc), B));
       const double s1 = std::min(q / A, C / q), s2 = std::max(q / A, C / q);
       if (A > 0) {
-        quadric.push_back({side(s1), side(s2)});
+        quadric[quadric_count++] = {side(s1), side(s2)};
       } else {
-        quadric.push_back({{-kInf}, side(s1)});
-        quadric.push_back({side(s2), {kInf}});
+        quadric[quadric_count++] = {{-kInf}, side(s1)};
+        quadric[quadric_count++] = {side(s2), {kInf}};
       }
     } else if (A < 0) {
-      quadric.push_back({{-kInf}, {kInf}});
+      quadric[quadric_count++] = {{-kInf}, {kInf}};
     }
   }
-  Spans slab;
+  Span slab[1];
+  int slab_count = 0;
   const bool caps = !leaf.open;
   if (d.z == 0) {
-    if (c.z >= 0 && c.z <= 1) slab.push_back({{-kInf}, {kInf}});
+    if (c.z >= 0 && c.z <= 1) slab[slab_count++] = {{-kInf}, {kInf}};
   } else {
     const double s_base = -c.z / d.z, s_cap = (1 - c.z) / d.z;
     const Boundary base = on(leaf, t0 + s_base, 1, caps), cap = on(leaf, t0 + s_cap, 2, caps);
-    slab.push_back(d.z > 0 ? Span{base, cap} : Span{cap, base});
+    slab[slab_count++] = d.z > 0 ? Span{base, cap} : Span{cap, base};
   }
-  for (const Span& s : intersection(quadric, slab))
-    push(out, s.in, s.out, lo, hi);
+  Span both[2];
+  const int count = intersection(quadric, quadric_count, slab, slab_count, both);
+  for (int i = 0; i < count; ++i)
+    push(out, n, both[i].in, both[i].out, lo, hi);
 }
 
 // (|p|^2 + 1 - r^2)^2 - 4 (x^2 + y^2) <= 0, a quartic in s along the re-centred ray, solved
-// within the torus's box.
-void torus_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& out) {
+// within the torus's box. The roots are searched from lo on whatever `hi` is, so that a ray cut
+// short at Embree's tfar finds the very roots the renderer's second, uncut intersection finds.
+void torus_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
   const double minor = leaf.radius1;
   if (!(dot(r.d, r.d) > 0)) return;
   const double t0 = nearest_to_origin(r);
   const Ray c{r.o + r.d * t0, r.d};
-  double s_lo = lo - t0, s_hi = hi - t0;
+  double s_lo = lo - t0, s_hi = kInf;
   // The box a little wider than the torus, so that no root sits on the ends of the search.
   const double R = 1.001 * (1 + minor), Z = 1.001 * minor;
   if (!clip_to_box({{-R, -R, -Z}, {R, R, Z}}, c, s_lo, s_hi)) return;
@@ -242,17 +266,18 @@ void torus_spans(const Node& leaf, const Ray& r, double lo, double hi, Spans& ou
     const double s_end = i < count ? roots[i] : s_hi;
     const Boundary end = i < count ? on(leaf, t0 + s_end) : Boundary{t0 + s_hi};
     const double mid = 0.5 * ((from.t - t0) + s_end);
-    if (evaluate_polynomial(coefficients, 4, mid) <= 0) push(out, from, end, lo, hi);
+    if (evaluate_polynomial(coefficients, 4, mid) <= 0) push(out, n, from, end, lo, hi);
     from = end;
   }
 }
 
 // p(s) <= 0 along the re-centred ray, roots searched where the ray crosses the window (the
-// scene's reach): past it the set goes on, bounded by no surface.
+// scene's reach): past it the set goes on, bounded by no surface. As for the torus, the search
+// does not depend on `hi`.
 void polynomial_spans(const Node& leaf, const Ray& render_ray, const Ray& r, double lo, double hi,
-                      Spans& out) {
+                      Span* out, int& n) {
   if (!(dot(r.d, r.d) > 0)) return;
-  double w_lo = lo, w_hi = hi;
+  double w_lo = lo, w_hi = kInf;
   if (!clip_to_box(leaf.window, render_ray, w_lo, w_hi)) return;
   const double t0 = nearest_to_origin(r);
   double c[kMaxPolynomialDegree + 1];
@@ -268,57 +293,102 @@ void polynomial_spans(const Node& leaf, const Ray& render_ray, const Ray& r, dou
     const double s_end = i < count ? roots[i] : s_hi;
     const Boundary end = i < count ? on(leaf, t0 + s_end) : Boundary{w_hi};
     const double mid = 0.5 * ((from.t - t0) + s_end);
-    if (evaluate_polynomial(c, degree, mid) <= 0) push(out, from, end, lo, hi);
+    if (evaluate_polynomial(c, degree, mid) <= 0) push(out, n, from, end, lo, hi);
     from = end;
   }
 }
 
-void primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Spans& out) {
+// The primitive's spans (at most primitive_max_spans) into out; returns their count.
+int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out) {
   const Ray r{leaf.object_from_render.point(render_ray.o),
               leaf.object_from_render.vector(render_ray.d)};
+  int n = 0;
   switch (leaf.kind) {
     case SolidKind::kSphere:
-      return sphere_spans(leaf, r, lo, hi, out);
+      sphere_spans(leaf, r, lo, hi, out, n);
+      break;
     case SolidKind::kBox:
-      return box_spans(leaf, r, lo, hi, out);
+      box_spans(leaf, r, lo, hi, out, n);
+      break;
     case SolidKind::kHalfSpace:
     case SolidKind::kDisc:
-      return half_space_spans(leaf, r, lo, hi, out);
+      half_space_spans(leaf, r, lo, hi, out, n);
+      break;
     case SolidKind::kCylinder:
     case SolidKind::kCone:
-      return cone_spans(leaf, r, lo, hi, out);
+      cone_spans(leaf, r, lo, hi, out, n);
+      break;
     case SolidKind::kTorus:
-      return torus_spans(leaf, r, lo, hi, out);
+      torus_spans(leaf, r, lo, hi, out, n);
+      break;
     case SolidKind::kPolynomial:
-      return polynomial_spans(leaf, render_ray, r, lo, hi, out);
+      polynomial_spans(leaf, render_ray, r, lo, hi, out, n);
+      break;
     default:
-      return;
+      break;
+  }
+  return n;
+}
+
+// The most spans primitive_spans gives: a quadric's two spans within the cone's slab; one per
+// interval between the up to four roots of a torus or polynomial.
+size_t primitive_max_spans(SolidKind kind) {
+  switch (kind) {
+    case SolidKind::kCylinder:
+    case SolidKind::kCone:
+      return 2;
+    case SolidKind::kTorus:
+    case SolidKind::kPolynomial:
+      return kMaxPolynomialDegree + 1;
+    default:
+      return 1;
   }
 }
 
-// The node's set along the ray within [lo, hi].
-void node_spans(const Node& node, const Ray& r, double lo, double hi, Spans& out) {
-  out.clear();
-  double box_lo = lo, box_hi = hi;
-  if (clip_to_box(node.bounds, r, box_lo, box_hi)) {
-    if (node.kind == SolidKind::kUnion) {
-      Spans child;
-      for (const Node& c : node.children) {
-        node_spans(c, r, lo, hi, child);
-        out = united(out, child);
-      }
-    } else if (node.kind == SolidKind::kIntersection) {
-      Spans child;
-      for (size_t i = 0; i < node.children.size(); ++i) {
-        node_spans(node.children[i], r, lo, hi, i == 0 ? out : child);
-        if (i > 0) out = intersection(out, child);
-        if (out.empty()) break;
-      }
-    } else {
-      primitive_spans(node, r, lo, hi, out);
+int node_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, Span* scratch);
+
+// A set operation's spans into out. Its scratch holds a child's spans, the combination being
+// built, and below them the children's own scratch.
+int children_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, Span* scratch) {
+  Span* const child = scratch;
+  Span* const combined = child + node.max_child_spans;
+  Span* const below = combined + node.max_spans;
+  int n = 0;
+  if (node.kind == SolidKind::kUnion) {
+    for (const Node& c : node.children) {
+      const int m = node_spans(c, r, lo, hi, child, below);
+      if (m == 0) continue;  // the union so far is already joined
+      n = united(out, n, child, m, combined);
+      std::copy_n(combined, n, out);
     }
+    return n;
   }
-  if (node.inverse) complement(out, lo, hi);
+  for (size_t i = 0; i < node.children.size(); ++i) {
+    if (i == 0) {
+      n = node_spans(node.children[0], r, lo, hi, out, below);
+    } else {
+      const int m = node_spans(node.children[i], r, lo, hi, child, below);
+      n = intersection(out, n, child, m, combined);
+      std::copy_n(combined, n, out);
+    }
+    if (n == 0) break;
+  }
+  return n;
+}
+
+// The node's set along the ray within [lo, hi]: at most node.max_spans spans into out, using
+// node.workspace spans of scratch. Returns their count. A node whose box the ray misses within
+// the window is empty there; its box is tested on a window a little past `hi`, so that rounding
+// never culls a surface just short of it.
+int node_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, Span* scratch) {
+  int n = 0;
+  double box_lo = lo, box_hi = hi + std::abs(hi) * 1e-9;
+  if (clip_to_box(node.bounds, r, box_lo, box_hi)) {
+    n = node.kind < SolidKind::kUnion ? primitive_spans(node, r, lo, hi, out)
+                                      : children_spans(node, r, lo, hi, out, scratch);
+  }
+  if (node.inverse) n = complement(out, n, lo, hi, scratch);
+  return n;
 }
 
 // The primitive's outward gradient at object-space point p on surface `part`.
@@ -349,6 +419,32 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
   }
 }
 
+// What node_spans can need for the node, from its children's needs (counts saturate at
+// kMaxSpans + 1: a hostile tree must not wrap them around).
+void budget_spans(Node& node) {
+  const auto capped = [](size_t v) { return std::min(v, kMaxSpans + 1); };
+  size_t spans = 0, child_workspace = 0;
+  if (node.kind < SolidKind::kUnion) {
+    spans = primitive_max_spans(node.kind);
+  } else {
+    for (size_t i = 0; i < node.children.size(); ++i) {
+      const Node& c = node.children[i];
+      node.max_child_spans = std::max(node.max_child_spans, c.max_spans);
+      child_workspace = std::max(child_workspace, c.workspace);
+      if (node.kind == SolidKind::kUnion)
+        spans = capped(spans + c.max_spans);
+      else
+        spans = i == 0 ? c.max_spans : spans + std::max(c.max_spans, size_t(1)) - 1;
+    }
+  }
+  // The combination is built to the size before the complement, whose gap more fits in the
+  // workspace it then reuses.
+  node.max_spans = capped(spans + (node.inverse ? 1 : 0));
+  const size_t children =
+      node.children.empty() ? 0 : capped(node.max_child_spans + node.max_spans + child_workspace);
+  node.workspace = std::max(children, node.inverse ? node.max_spans : 0);
+}
+
 Node build(const Solid& solid, const Transform& render_from_world, const Bounds3d& reach,
            bool surface) {
   Node node;
@@ -373,7 +469,23 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   }
   for (const Solid& child : solid.children)
     node.children.push_back(build(child, render_from_world, reach, node.surface));
+  budget_spans(node);
   return node;
+}
+
+// Calls f with a buffer of `spans` spans: on the stack when they fit, else a per-thread buffer
+// that grows to the largest tree met and then stays (no allocation per ray after the first).
+template <class F>
+auto with_spans(size_t spans, F f) {
+  if (spans <= kStackSpans) {
+    // Raw bytes, not Span[]: constructing 256 spans per ray would cost more than using them. A
+    // Span is an aggregate, whose objects the storage holds implicitly (C++20, P0593).
+    alignas(Span) std::byte stack[kStackSpans * sizeof(Span)];
+    return f(reinterpret_cast<Span*>(stack));
+  }
+  thread_local std::vector<Span> heap;
+  if (heap.size() < spans) heap.resize(spans);
+  return f(heap.data());
 }
 
 }  // namespace
@@ -381,6 +493,13 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
 RenderSolid::RenderSolid(const Solid& solid, const Transform& render_from_world,
                          const Bounds3d& reach) {
   root_.push_back(build(solid, render_from_world, reach, true));
+  const Node& root = root_.front();
+  spans_ = root.max_spans + root.workspace;
+  if (spans_ > kMaxSpans)
+    throw InputError("solid '" + solid.name + "': its CSG tree can give a ray " +
+                     (spans_ > kMaxSpans + 1 ? "more than " : "") + std::to_string(spans_) +
+                     " spans to combine, more than the " + std::to_string(kMaxSpans) +
+                     " the intersector holds; split its unions into separate objects");
   const Bounds3d set = solid_bounds(solid, render_from_world);
   bounded_ = set.finite();
   bounds_ = {max(set.lo, reach.lo), min(set.hi, reach.hi)};
@@ -389,24 +508,21 @@ RenderSolid::RenderSolid(const Solid& solid, const Transform& render_from_world,
 RenderSolid::~RenderSolid() = default;
 RenderSolid::RenderSolid(RenderSolid&&) noexcept = default;
 
-std::optional<SolidHit> RenderSolid::first_hit(Vec3d origin, Vec3d direction, double t_min) const {
+std::optional<SolidHit> RenderSolid::first_hit(Vec3d origin, Vec3d direction, double t_min,
+                                               double t_max) const {
   const Ray r{origin, direction};
-  double lo = t_min, hi = kInf;
+  double lo = t_min, hi = t_max + std::abs(t_max) * 1e-9;
   if (!clip_to_box(bounds_, r, lo, hi)) return std::nullopt;
-  // The window is [t_min, infinity): cutting it at the bounds' exit would cut the surfaces that
-  // touch the bounds there.
-  lo = t_min, hi = kInf;
-  thread_local Spans spans;
-  node_spans(root_.front(), r, lo, hi, spans);
-  const Boundary* hit = nullptr;
-  for (const Span& s : spans) {
-    for (const Boundary* b : {&s.in, &s.out})
-      if (b->surface && b->t > t_min) {
-        hit = b;
-        break;
-      }
-    if (hit) break;
-  }
+  // The window is [t_min, t_max): cutting it at the bounds' exit would cut the surfaces that
+  // touch the bounds there. Every boundary before t_max is the one an uncut window gives.
+  const std::optional<Boundary> hit = with_spans(spans_, [&](Span* spans) {
+    const int n =
+        node_spans(root_.front(), r, t_min, t_max, spans, spans + root_.front().max_spans);
+    for (int i = 0; i < n; ++i)
+      for (const Boundary* b : {&spans[i].in, &spans[i].out})
+        if (b->surface && b->t > t_min && b->t < t_max) return std::optional<Boundary>(*b);
+    return std::optional<Boundary>();
+  });
   if (!hit) return std::nullopt;
   const Node& leaf = *hit->leaf;
   SolidHit result;
@@ -431,11 +547,12 @@ bool RenderSolid::contains(Vec3d point) const {
   // of them holds t = 0. The direction is irrational to the axes, so the line does not run along
   // a box's face or a plane.
   const Ray r{point, {0.5477225575051661, 0.7745966692414834, 0.3162277660168379}};
-  thread_local Spans spans;
-  node_spans(root_.front(), r, -kInf, kInf, spans);
-  for (const Span& s : spans)
-    if (s.in.t <= 0 && s.out.t >= 0) return true;
-  return false;
+  return with_spans(spans_, [&](Span* spans) {
+    const int n = node_spans(root_.front(), r, -kInf, kInf, spans, spans + root_.front().max_spans);
+    for (int i = 0; i < n; ++i)
+      if (spans[i].in.t <= 0 && spans[i].out.t >= 0) return true;
+    return false;
+  });
 }
 
 }  // namespace fb

@@ -11,28 +11,17 @@
 #include <filmback/geometry.h>
 
 #include "core/math/polynomial.h"
+#include "support/solid_builders.h"
 
 namespace fb {
 namespace {
 
 const Bounds3d kReach{{-1e7, -1e7, -1e7}, {1e7, 1e7, 1e7}};
 
-Solid primitive(SolidKind kind, const Transform& world_from_object = Transform(),
-                uint32_t material = 0) {
-  Solid s;
-  s.kind = kind;
-  s.name = "test";
-  s.world_from_object = world_from_object;
-  s.material = material;
-  return s;
-}
-
-Solid csg(SolidKind kind, std::vector<Solid> children) {
-  Solid s;
-  s.kind = kind;
-  s.children = std::move(children);
-  return s;
-}
+using test::ball;
+using test::csg;
+using test::inverted;
+using test::primitive;
 
 std::optional<SolidHit> trace(const Solid& solid, Vec3d o, Vec3d d, double t_min = 0) {
   return RenderSolid(solid, Transform(), kReach).first_hit(o, d, t_min);
@@ -321,12 +310,6 @@ TEST(SolidIntersect, TinySphereFarAwayKeepsItsPrecision) {
 }
 
 // ---- CSG --------------------------------------------------------------------------------------
-
-Solid ball(Vec3d centre, double radius, uint32_t material) {
-  return primitive(SolidKind::kSphere,
-                   Transform::translate(centre) * Transform::scale({radius, radius, radius}),
-                   material);
-}
 
 TEST(SolidCsg, TruthTableAlongALine) {
   // A = [-1, 1] and B = [0.5, 1.5] on the x axis; rays from both ends give both boundaries.

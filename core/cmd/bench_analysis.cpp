@@ -64,14 +64,20 @@ TargetError default_target(const std::vector<ConfigurationFit>& fits, std::optio
   return target;
 }
 
-const RenderRow* cycles_reference_render(const std::vector<ConfigurationFit>& fits) {
+std::vector<const RenderRow*> cycles_goal_renders(const std::vector<ConfigurationFit>& fits) {
+  std::vector<const RenderRow*> out;
   for (const ConfigurationFit& fit : fits) {
     if (fit.renderer != "cycles") continue;
-    for (const RenderRow* row : fit.rows)
-      if (row->spp == kCyclesGoalSpp) return row;
-    return fit.rows.back();
+    const auto goal = std::find_if(fit.rows.begin(), fit.rows.end(),
+                                   [](const RenderRow* row) { return row->spp == kCyclesGoalSpp; });
+    out.push_back(goal != fit.rows.end() ? *goal : fit.rows.back());
   }
-  return nullptr;
+  return out;
+}
+
+const RenderRow* cycles_reference_render(const std::vector<ConfigurationFit>& fits) {
+  const std::vector<const RenderRow*> rows = cycles_goal_renders(fits);
+  return rows.empty() ? nullptr : rows.front();
 }
 
 namespace {

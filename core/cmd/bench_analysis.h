@@ -46,7 +46,11 @@ TargetError default_target(const std::vector<ConfigurationFit>& fits, std::optio
 
 // Cycles' render the goal names: 256 spp, else Cycles' highest count measured. Its error
 // is the same against either reference (Cycles' own is Cycles' reference).
+// The first Cycles configuration's (adaptive sampling off, unless --adaptive lists a threshold
+// first).
 const RenderRow* cycles_reference_render(const std::vector<ConfigurationFit>& fits);
+// That render of every Cycles configuration, in order.
+std::vector<const RenderRow*> cycles_goal_renders(const std::vector<ConfigurationFit>& fits);
 constexpr uint32_t kCyclesGoalSpp = 256;
 
 struct TimeToError {

@@ -43,9 +43,15 @@ BenchSettings settings_from(const BenchCommand& c) {
       samplers.push_back(kind);
   }
   if (samplers.empty()) samplers.push_back(kDefaultSampler);
+  for (const double t : c.adaptive_thresholds)
+    if (std::find(s.adaptive_thresholds.begin(), s.adaptive_thresholds.end(), t) ==
+        s.adaptive_thresholds.end())
+      s.adaptive_thresholds.push_back(t);
+  if (s.adaptive_thresholds.empty()) s.adaptive_thresholds.push_back(0);
   for (size_t f = 0; f < s.filters.size(); ++f)
     for (SamplerKind kind : samplers)
-      s.configurations.push_back({kind, s.filters[f], f});
+      for (const double threshold : s.adaptive_thresholds)
+        s.configurations.push_back({kind, s.filters[f], f, threshold});
   if (!c.resolution.empty()) s.resolution = parse_resolution(c.resolution);
   s.reference_spp =
       c.reference_spp.value_or(std::min(kReferenceSppFactor * s.spp.back(), kMostSpp));
@@ -53,6 +59,7 @@ BenchSettings settings_from(const BenchCommand& c) {
     throw UsageError("--reference-spp " + std::to_string(s.reference_spp) +
                      ": expected an even count (the reference is two renders of half of it)");
   s.seed = c.seed;
+  s.seeds = c.seeds;
   s.threads = c.threads;
   s.against_cycles = c.against == "cycles";
   s.import = c.import;

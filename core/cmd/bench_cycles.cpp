@@ -8,6 +8,7 @@
 
 #include "core/cmd/bench_metrics.h"
 #include "core/cmd/bench_process.h"
+#include "core/cmd/bench_seeds.h"
 #include "core/image/image_io.h"
 #include "core/util/error.h"
 #include "core/util/parse_number.h"
@@ -43,15 +44,16 @@ struct CyclesRender {
   double render_s = 0;   // bpy.ops.render.render() within it: sync, BVH, sampling
 };
 
-// One Blender process rendering shot.blend at `spp` with Cycles' seed `seed` into work/NAME.exr.
+// One Blender process rendering shot.blend at `spp` with Cycles' seed `seed` into work/NAME.exr,
+// with Cycles' adaptive sampling at `adaptive_threshold` (0: off; its minimum automatic).
 CyclesRender render_cycles(const BlenderShot& shot, uint32_t spp, uint64_t seed,
-                           const std::string& name) {
+                           double adaptive_threshold, const std::string& name) {
   CyclesRender r;
   const fs::path exr = shot.work / (name + ".exr");
   r.process_s =
       run_blender({shot.blend.string(), "--python-exit-code", "1", "--python",
                    bench_script("cycles_render.py").string(), "--", exr.string(),
-                   std::to_string(spp), std::to_string(seed)},
+                   std::to_string(spp), std::to_string(seed), number_text(adaptive_threshold)},
                   shot.work / (name + ".log"), "Cycles at " + std::to_string(spp) + " spp");
   const fs::path seconds_file = exr.string() + ".render_s";
   const std::string seconds = read_text(seconds_file);
@@ -92,19 +94,20 @@ CyclesBench::CyclesBench(const std::string& name, const BlenderShot& shot,
     : name_(name), shot_(shot), settings_(settings) {
   note_.settings = shot.cycles_settings;
   const uint32_t half = settings.reference_spp / 2;
+  const uint64_t reference_seed = settings.seed + settings.seeds;  // after the measured ones
   Image halves[2];
   for (int h = 0; h < 2; ++h) {
     std::cout << "bench: " << name << ": Cycles reference, half " << h + 1 << " of 2 at " << half
               << " spp" << std::endl;
-    halves[h] = render_cycles(shot, half, settings.seed + 1 + h,
+    halves[h] = render_cycles(shot, half, reference_seed + h, 0,
                               "cycles_reference_" + std::to_string(h + 1))
                     .image;
   }
   reference_ = average_halves(halves[0], halves[1]);
   reference_note_ = {"cycles", "the shot's",
                      "Cycles, 2 x " + std::to_string(half) + " spp (seeds " +
-                         std::to_string(settings.seed + 1) + " and " +
-                         std::to_string(settings.seed + 2) + ")",
+                         std::to_string(reference_seed) + " and " +
+                         std::to_string(reference_seed + 1) + ")",
                      reference_.noise};
   const std::optional<size_t> shot_filter = filmback.shot_filter();
   if (!shot_filter) return;
@@ -116,24 +119,39 @@ CyclesBench::CyclesBench(const std::string& name, const BlenderShot& shot,
 }
 
 void CyclesBench::render(uint32_t spp) {
-  const CyclesRender r =
-      render_cycles(shot_, spp, settings_.seed, "cycles_" + std::to_string(spp) + "spp");
+  for (const double threshold : settings_.adaptive_thresholds) {
+    std::vector<RenderRow> rows;
+    for (uint32_t k = 0; k < settings_.seeds; ++k)
+      rows.push_back(measure(spp, settings_.seed + k, threshold));
+    rows_.push_back(combine_seeds(rows));
+  }
+}
+
+RenderRow CyclesBench::measure(uint32_t spp, uint64_t seed, double adaptive_threshold) {
+  const std::string name =
+      "cycles_" + std::to_string(spp) + "spp_seed" + std::to_string(seed) +
+      (adaptive_threshold > 0 ? "_adaptive" + number_text(adaptive_threshold) : std::string());
+  const CyclesRender r = render_cycles(shot_, spp, seed, adaptive_threshold, name);
   RenderRow row;
-  row.renderer = row.configuration = "cycles";
+  row.renderer = "cycles";
+  row.configuration = configuration_name("cycles", adaptive_threshold);
   row.sampler = row.filter = "the shot's";
   row.spp = spp;
   row.render_s = r.render_s;
   row.total_s = r.process_s;
+  // Pixel samples asked for: with adaptive sampling Cycles takes fewer, and does not say how many.
   row.samples_per_s = double(r.image.width) * r.image.height * spp / r.render_s;
   // Cycles' own reference is Cycles' reference: both measures are the same.
   row.own = {image_error(r.image, reference_.image), reference_.noise.rmse};
   row.cycles_reference = row.own;
-  char line[256];
+  char line[320];
   std::snprintf(line, sizeof line,
-                "bench: %s: cycles at %u spp: %.3f s render, %.3f s process, RMSE %.4g",
-                name_.c_str(), spp, row.render_s, row.total_s, row.own.error.rmse);
+                "bench: %s: %s at %u spp, seed %llu: %.3f s render, %.3f s process, RMSE %.4g",
+                name_.c_str(), row.configuration.c_str(), spp,
+                static_cast<unsigned long long>(seed), row.render_s, row.total_s,
+                row.own.error.rmse);
   std::cout << line << std::endl;
-  rows_.push_back(std::move(row));
+  return row;
 }
 
 void CyclesBench::add_to(SceneReport& report) {

@@ -27,7 +27,8 @@ struct BlenderShot {
 };
 
 // Builds or opens `source` in Blender, sets the resolution (when given: else the shot's), Cycles
-// on the CPU with `threads` (0: all), adaptive sampling and denoising off, and writes
+// on the CPU with `threads` (0: all), adaptive sampling (each render sets its own) and denoising
+// off, and writes
 // work/shot.blend and work/shot.gltf.
 BlenderShot prepare_blender_shot(const std::filesystem::path& source,
                                  const std::filesystem::path& work,
@@ -42,7 +43,7 @@ class CyclesBench {
   CyclesBench(const std::string& name, const BlenderShot& shot, const BenchSettings& settings,
               const FilmbackBench& filmback);
 
-  // Cycles at `spp` with seed settings.seed: one row.
+  // Cycles at `spp`: one row per adaptive threshold (0: off), each the median over the seeds.
   void render(uint32_t spp);
 
   // Cycles' rows, its reference and the comparison, into `report`.
@@ -53,6 +54,8 @@ class CyclesBench {
   const ReferenceNote& reference_note() const { return reference_note_; }
 
  private:
+  RenderRow measure(uint32_t spp, uint64_t seed, double adaptive_threshold);
+
   std::string name_;
   const BlenderShot& shot_;
   const BenchSettings& settings_;

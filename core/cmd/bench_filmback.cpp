@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "core/accel/render_geometry.h"
+#include "core/cmd/bench_seeds.h"
 #include "core/image/image_io.h"
 #include "core/util/error.h"
 #include "importers/import_scene.h"
@@ -18,13 +19,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-template <typename T>
-T median(std::vector<T> values) {
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n == 0 ? T() : n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
 // Short renders are timed again, up to this many runs or this much time, and the median kept:
@@ -74,8 +68,8 @@ FilmbackBench::FilmbackBench(const std::string& name, const fs::path& scene_file
 }
 
 RenderOptions FilmbackBench::options(uint32_t spp, SamplerKind sampler,
-                                     const std::optional<std::string>& filter,
-                                     uint64_t seed) const {
+                                     const std::optional<std::string>& filter, uint64_t seed,
+                                     double adaptive_threshold) const {
   RenderOptions o;
   if (settings_.resolution) o.width = settings_.resolution->first;
   if (settings_.resolution) o.height = settings_.resolution->second;
@@ -83,6 +77,7 @@ RenderOptions FilmbackBench::options(uint32_t spp, SamplerKind sampler,
   o.sampler = sampler;
   o.filter = filter;
   o.seed = seed;
+  o.adaptive_threshold = adaptive_threshold;
   o.show_progress = false;
   return o;
 }
@@ -125,24 +120,25 @@ void FilmbackBench::make_references(const std::optional<fs::path>& reference_fil
     if (reference_file) {
       references_.push_back(
           {colour_channels(read_image(*reference_file), reference_file->string()), {}, {}});
-      check_size(references_.back().image, *reference_file,
-                 RenderJob(scene_, options(1, kDefaultSampler, filter, settings_.seed), loader_));
+      check_size(
+          references_.back().image, *reference_file,
+          RenderJob(scene_, options(1, kDefaultSampler, filter, settings_.seed, 0), loader_));
       note.source = reference_file->string();
     } else {
       const uint32_t half = settings_.reference_spp / 2;
+      const uint64_t reference_seed = settings_.seed + settings_.seeds;  // after the measured ones
       Image halves[2];
       for (int h = 0; h < 2; ++h) {
         std::cout << "bench: " << name_ << ": reference (" << note.filter << "), half " << h + 1
                   << " of 2 at " << half << " spp" << std::endl;
-        const Timed t = run(options(half, kDefaultSampler, filter, settings_.seed + 1 + h), false);
+        const Timed t = run(options(half, kDefaultSampler, filter, reference_seed + h, 0), false);
         halves[h] = colour_channels(t.result.image, name_);
       }
       AveragedReference averaged = average_halves(halves[0], halves[1]);
       note.noise = averaged.noise;
       note.source = "filmback, 2 x " + std::to_string(half) + " spp (" +
-                    sampler_name(kDefaultSampler) + ", seeds " +
-                    std::to_string(settings_.seed + 1) + " and " +
-                    std::to_string(settings_.seed + 2) + ")";
+                    sampler_name(kDefaultSampler) + ", seeds " + std::to_string(reference_seed) +
+                    " and " + std::to_string(reference_seed + 1) + ")";
       write_images(averaged.image, {work / ("reference_filter" + std::to_string(f) + ".exr")}, {});
       references_.push_back(std::move(averaged));
     }
@@ -159,40 +155,47 @@ void FilmbackBench::measure_against_cycles(const AveragedReference& cycles,
 
 void FilmbackBench::render(uint32_t spp) {
   for (const BenchConfiguration& c : settings_.configurations) {
-    const Timed t = run(options(spp, c.sampler, c.filter, settings_.seed), true);
-    const Image image = colour_channels(t.result.image, name_);
-    report_.width = image.width, report_.height = image.height;
-    report_.memory.film_bytes = film_bytes(t.result.image);
-    RenderRow row;
-    row.renderer = "filmback";
-    row.sampler = sampler_name(c.sampler);
-    row.filter = filter_text(c.filter);
-    row.configuration = row.sampler + ", " + row.filter;
-    row.spp = spp;
-    row.runs = t.runs;
-    row.render_s = t.render_s;
-    row.total_s = report_.import_s + t.build_s + t.render_s;
-    row.samples_per_s = double(t.result.stats.samples) / t.render_s;
-    row.rays_per_s = double(t.result.stats.rays) / t.render_s;
-    row.own.error = image_error(image, references_[c.filter_index].image);
-    if (const auto& noise = report_.references[c.filter_index].noise)
-      row.own.reference_noise = noise->rmse;
-    if (cycles_reference_ && shot_filter_ == c.filter_index &&
-        cycles_reference_->image.width == image.width &&
-        cycles_reference_->image.height == image.height)
-      row.cycles_reference = {image_error(image, cycles_reference_->image),
-                              cycles_reference_noise_};
-    row.dropped = t.result.stats.dropped_samples;
-    char line[320];
-    const int n = std::snprintf(
-        line, sizeof line, "bench: %s: %s at %u spp: %.3f s (%u runs), RMSE %.4g", name_.c_str(),
-        row.configuration.c_str(), spp, row.render_s, row.runs, row.own.error.rmse);
-    if (row.cycles_reference && n > 0 && size_t(n) < sizeof line)
-      std::snprintf(line + n, sizeof line - n, " (%.4g against Cycles' reference)",
-                    row.cycles_reference->error.rmse);
-    std::cout << line << std::endl;
-    report_.rows.push_back(std::move(row));
+    std::vector<RenderRow> rows;
+    for (uint32_t k = 0; k < settings_.seeds; ++k)
+      rows.push_back(measure(c, spp, settings_.seed + k));
+    report_.rows.push_back(combine_seeds(rows));
   }
+}
+
+RenderRow FilmbackBench::measure(const BenchConfiguration& c, uint32_t spp, uint64_t seed) {
+  const Timed t = run(options(spp, c.sampler, c.filter, seed, c.adaptive_threshold), true);
+  const Image image = colour_channels(t.result.image, name_);
+  report_.width = image.width, report_.height = image.height;
+  report_.memory.film_bytes = film_bytes(t.result.image);
+  RenderRow row;
+  row.renderer = "filmback";
+  row.sampler = sampler_name(c.sampler);
+  row.filter = filter_text(c.filter);
+  row.configuration = configuration_name(row.sampler + ", " + row.filter, c.adaptive_threshold);
+  row.spp = spp;
+  row.runs = t.runs;
+  row.render_s = t.render_s;
+  row.total_s = report_.import_s + t.build_s + t.render_s;
+  row.samples_per_s = double(t.result.stats.samples) / t.render_s;
+  row.rays_per_s = double(t.result.stats.rays) / t.render_s;
+  row.own.error = image_error(image, references_[c.filter_index].image);
+  if (const auto& noise = report_.references[c.filter_index].noise)
+    row.own.reference_noise = noise->rmse;
+  if (cycles_reference_ && shot_filter_ == c.filter_index &&
+      cycles_reference_->image.width == image.width &&
+      cycles_reference_->image.height == image.height)
+    row.cycles_reference = {image_error(image, cycles_reference_->image), cycles_reference_noise_};
+  row.dropped = t.result.stats.dropped_samples;
+  char line[320];
+  const int n = std::snprintf(
+      line, sizeof line, "bench: %s: %s at %u spp, seed %llu: %.3f s (%u runs), RMSE %.4g",
+      name_.c_str(), row.configuration.c_str(), spp, static_cast<unsigned long long>(seed),
+      row.render_s, row.runs, row.own.error.rmse);
+  if (row.cycles_reference && n > 0 && size_t(n) < sizeof line)
+    std::snprintf(line + n, sizeof line - n, " (%.4g against Cycles' reference)",
+                  row.cycles_reference->error.rmse);
+  std::cout << line << std::endl;
+  return row;
 }
 
 SceneReport FilmbackBench::finish() {

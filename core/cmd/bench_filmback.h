@@ -45,8 +45,10 @@ class FilmbackBench {
 
  private:
   struct Timed;
+  // `adaptive_threshold` replaces the shot's (0: off), so that every row says what it measured.
   RenderOptions options(uint32_t spp, SamplerKind sampler, const std::optional<std::string>& filter,
-                        uint64_t seed) const;
+                        uint64_t seed, double adaptive_threshold) const;
+  RenderRow measure(const BenchConfiguration& c, uint32_t spp, uint64_t seed);
   // The filter a job with `filter` renders with, as RenderJob chooses it (render_job.h).
   std::string filter_text(const std::optional<std::string>& filter) const;
   // A measured render is timed again while short, and its job's plan line kept for the report.

@@ -153,10 +153,10 @@ void write_fits(std::ostringstream& md, const std::vector<ConfigurationFit>& fit
   for (const ConfigurationFit& fit : fits) {
     const TimeToError t = time_to_error(fit, target.rmse);
     const RenderRow& last = *fit.rows.back();
-    md << "| " << (fit.renderer == "cycles" ? "**Cycles**" : fit.configuration) << " | "
-       << fit.fitted << " of " << fit.rows.size() << " | " << rate(fit.by_render_s) << " | "
-       << rate(fit.by_spp) << " | " << format("%.4g", last.measured(reference)->error.rmse) << " ("
-       << last.spp << " spp) | " << seconds(t.render_s) << " | " << seconds(t.total_s)
+    md << "| " << (fit.renderer == "cycles" ? "**" + fit.configuration + "**" : fit.configuration)
+       << " | " << fit.fitted << " of " << fit.rows.size() << " | " << rate(fit.by_render_s)
+       << " | " << rate(fit.by_spp) << " | " << format("%.4g", last.measured(reference)->error.rmse)
+       << " (" << last.spp << " spp) | " << seconds(t.render_s) << " | " << seconds(t.total_s)
        << (t.extrapolated ? " (extrapolated)" : "") << " |\n";
   }
 }
@@ -173,9 +173,9 @@ void write_cycles_ratio(std::ostringstream& md, const std::vector<ConfigurationF
           "filmback rendered Blender's materials as Cycles does, kept for continuity: each "
           "renderer's error is against its own reference, so a difference of the models does not "
           "count. ";
-  md << "Cycles at " << cycles.spp << " spp: RMSE " << format("%.4g", goal.rmse) << ", relMSE "
-     << format("%.4g", goal.relmse) << " (render " << format("%.3g", cycles.render_s)
-     << " s, whole process " << format("%.3g", cycles.total_s)
+  md << "**" << cycles.configuration << "** at " << cycles.spp << " spp: RMSE "
+     << format("%.4g", goal.rmse) << ", relMSE " << format("%.4g", goal.relmse) << " (render "
+     << format("%.3g", cycles.render_s) << " s, whole process " << format("%.3g", cycles.total_s)
      << " s). RMSE is absolute, so it favours the darker image";
   if (note && note->agreement)
     md << " (filmback / Cycles mean " << format("%.3f", note->agreement->comparison.mean_ratio)
@@ -221,10 +221,16 @@ std::string renders_csv(const std::vector<SceneReport>& scenes) {
                               "cycles_ref_rmse",
                               "cycles_ref_relmse",
                               "cycles_ref_max_abs_error",
-                              "cycles_ref_noise_rmse"});
+                              "cycles_ref_noise_rmse",
+                              "seeds",
+                              "rmse_lowest",
+                              "rmse_highest",
+                              "cycles_ref_rmse_lowest",
+                              "cycles_ref_rmse_highest"});
   for (const SceneReport& scene : scenes)
     for (const RenderRow& r : scene.rows) {
       const std::optional<MeasuredError>& c = r.cycles_reference;
+      const std::optional<std::pair<double, double>>& s = r.cycles_reference_rmse_spread;
       out += csv_line({scene.name,
                        r.renderer,
                        r.configuration,
@@ -244,7 +250,12 @@ std::string renders_csv(const std::vector<SceneReport>& scenes) {
                        c ? g6(c->error.rmse) : "",
                        c ? g6(c->error.relmse) : "",
                        c ? g6(c->error.max_abs) : "",
-                       c ? optional_g6(c->reference_noise) : ""});
+                       c ? optional_g6(c->reference_noise) : "",
+                       std::to_string(r.seeds),
+                       g6(r.rmse_spread.first),
+                       g6(r.rmse_spread.second),
+                       s ? g6(s->first) : "",
+                       s ? g6(s->second) : ""});
     }
   return out;
 }
@@ -378,7 +389,8 @@ std::string summary_markdown(const std::vector<SceneReport>& scenes, const Bench
     write_references(md, scene);
     write_memory(md, scene);
     write_fits(md, fits, default_target(fits, context.target_error), primary);
-    if (const RenderRow* cycles = cycles_reference_render(fits)) {
+    // One table per Cycles configuration (adaptive sampling off, and on at each --adaptive).
+    for (const RenderRow* cycles : cycles_goal_renders(fits)) {
       write_cycles_ratio(md, fits, *cycles, scene.cycles, primary);
       if (primary != ReferenceKind::kOwn)
         write_cycles_ratio(md, fit_configurations(scene, ReferenceKind::kOwn), *cycles,

@@ -20,15 +20,18 @@ struct BenchConfiguration {
   SamplerKind sampler;
   std::optional<std::string> filter;  // none: the scene's (the shot's, else the default)
   size_t filter_index;                // into BenchSettings::filters
+  double adaptive_threshold = 0;      // 0: off (docs/sampling.md, "Adaptive sampling")
 };
 
 struct BenchSettings {
   std::vector<uint32_t> spp;  // ascending, distinct
   std::vector<std::optional<std::string>> filters;
-  std::vector<BenchConfiguration> configurations;  // samplers x filters
+  std::vector<BenchConfiguration> configurations;  // samplers x filters x adaptive thresholds
+  std::vector<double> adaptive_thresholds;         // distinct, in order; 0: off
   std::optional<std::pair<uint32_t, uint32_t>> resolution;
   uint32_t reference_spp = 0;  // both halves together
-  uint64_t seed = 0;           // measured renders; the reference's halves take seed + 1 and + 2
+  uint64_t seed = 0;           // measured renders take seed .. seed + seeds - 1
+  uint32_t seeds = 1;          // the reference's halves take seed + seeds and seed + seeds + 1
   unsigned threads = 0;        // 0: all cores
   bool against_cycles = false;
   ImportOptions import;
@@ -64,6 +67,11 @@ struct RenderRow {
   // configurations that render with the shot's pixel filter (the one Cycles uses).
   std::optional<MeasuredError> cycles_reference;
   std::optional<uint64_t> dropped;  // non-finite samples; filmback only
+  // Several seeds (--seeds): each error above is the median seed's (by that error's RMSE), the
+  // times the medians over seeds, and these the lowest and highest RMSE over the seeds.
+  uint32_t seeds = 1;
+  std::pair<double, double> rmse_spread{0, 0};
+  std::optional<std::pair<double, double>> cycles_reference_rmse_spread;
 
   // The error against `kind`'s reference, or none.
   const MeasuredError* measured(ReferenceKind kind) const {

@@ -66,7 +66,9 @@ struct BenchCommand {
   std::optional<double> target_error;
   std::string against;  // "cycles", or empty
   uint64_t seed = 0;
-  unsigned threads = 0;  // 0: all cores
+  uint32_t seeds = 1;                       // measured renders per point: seed, seed + 1, ...
+  std::vector<double> adaptive_thresholds;  // none: adaptive sampling off (0) only
+  unsigned threads = 0;                     // 0: all cores
   ImportOptions import;
   std::string command_line;  // as typed, for the report
 };

@@ -46,6 +46,16 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
       ->check(CLI::IsMember({"importance", "splat"}));
   render_cmd->add_option("--integrator", render.options.integrator,
                          "integrator NAME[:k=v,...] (default path)");
+  render_cmd
+      ->add_option("--adaptive-threshold", render.options.adaptive_threshold,
+                   "adaptive sampling's noise threshold, as Cycles' (0: off; default: the "
+                   "shot's, else off; docs/sampling.md)")
+      ->check(CLI::Range(0.0, 1.0));
+  render_cmd
+      ->add_option("--adaptive-min-samples", render.options.adaptive_min_samples,
+                   "samples every pixel takes before adaptive sampling may stop it (0: Cycles' "
+                   "automatic ceil(16 / threshold^0.3); default: the shot's, else 0)")
+      ->check(CLI::Range(0u, 1000000u));
   render_cmd->add_option("--background", render.background,
                          "uniform background radiance: one value or r,g,b (W/sr/m^2)");
 }
@@ -238,6 +248,18 @@ CLI::App* add_bench_command(CLI::App& app, fb::BenchCommand& bench) {
       ->add_option("--against", bench.against,
                    "cycles: render the Blender shots with Cycles too (blender on PATH)")
       ->check(CLI::IsMember({"cycles"}));
+  bench_cmd
+      ->add_option("--seeds", bench.seeds,
+                   "measured renders per configuration and sample count, seeds --seed, --seed + "
+                   "1, ...: the report keeps the median error and its spread (default 1)")
+      ->check(CLI::Range(1u, 64u));
+  bench_cmd
+      ->add_option("--adaptive", bench.adaptive_thresholds,
+                   "adaptive sampling thresholds, comma-separated, 0 for off: each a configuration "
+                   "of filmback and, with --against cycles, of Cycles (default 0)")
+      ->delimiter(',')
+      ->allow_extra_args(false)
+      ->check(CLI::Range(0.0, 1.0));
   bench_cmd
       ->add_option("--seed", bench.seed,
                    "seed of the measured renders; references use seed+1 and seed+2 (default 0)")

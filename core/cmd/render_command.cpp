@@ -429,6 +429,10 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
   report_plan(job, c, report);
 
   Checkpoints& checkpoints = choices.checkpoints;
+  if (checkpoints.enabled && job.shot_plan().adaptive)
+    throw UsageError(
+        "--checkpoint-every/--resume: not with adaptive sampling (which pixels have converged is "
+        "not saved); give --adaptive-threshold 0");
   if (checkpoints.enabled) checkpoints.key = checkpoint_key(job, c);
   Film film = open_film(job, c.resume, checkpoints, report);
   interrupts.arm();

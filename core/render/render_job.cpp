@@ -98,6 +98,13 @@ void check_splat_reach(const FilterInstance& filter, const std::string& text,
                    "--reconstruction importance");
 }
 
+// ", adaptive: threshold 0.01, at least 64 samples" (the threshold as typed, Cycles' units).
+std::string adaptive_text(const ShotPlan& plan) {
+  if (!plan.adaptive) return "";
+  return ", adaptive: threshold " + number_text(plan.adaptive_request.threshold) + ", at least " +
+         std::to_string(plan.adaptive->min_samples) + " samples";
+}
+
 std::string describe_lens(const PhysicalCamera& camera, uint32_t needs) {
   if (!(needs & FB_CAMERA_NEEDS_LENS))
     return camera.projection == FB_PROJECTION_ORTHOGRAPHIC
@@ -313,10 +320,10 @@ std::string RenderJob::plan() const {
   std::ostringstream out;
   out << "filmback: camera '" << c.camera << "' (" << c.camera_source << ") through "
       << c.camera_model << " (" << c.lens << "), " << plan_.width_px << "x" << plan_.height_px
-      << ", " << plan_.samples_per_pixel << " spp (" << c.sampler << "), filter " << c.filter
-      << " (" << c.reconstruction << "), integrator " << c.integrator << "; " << c.time << "; "
-      << c.triangles << " triangles, " << c.lights << " lights, " << c.emissive_triangles
-      << " emissive triangles";
+      << ", " << plan_.samples_per_pixel << " spp (" << c.sampler << adaptive_text(plan_)
+      << "), filter " << c.filter << " (" << c.reconstruction << "), integrator " << c.integrator
+      << "; " << c.time << "; " << c.triangles << " triangles, " << c.lights << " lights, "
+      << c.emissive_triangles << " emissive triangles";
   if (!c.subdivision.empty()) out << "; " << c.subdivision;
   out << "; " << c.materials;
   return out.str();
@@ -345,6 +352,8 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
                       options_.seed,
                       options_.reconstruction};
   inputs.time = p.time;
+  inputs.adaptive = plan_.adaptive;
+  inputs.exposure = scene_.settings.film_exposure;
   inputs.camera_path = p.camera_path.get();
   if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
   std::optional<Progress> progress;

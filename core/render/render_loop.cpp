@@ -64,10 +64,12 @@ struct TileWork {
 
 class TileRenderer {
  public:
-  TileRenderer(const RenderInputs& in, Film& film, SplatTiles* splats, Vec2<uint32_t> domain)
+  TileRenderer(const RenderInputs& in, Film& film, SplatTiles* splats, ConvergenceMap* convergence,
+               Vec2<uint32_t> domain)
       : in_(in),
         film_(film),
         splats_(splats),
+        convergence_(convergence),
         margin_x_(splats ? float(splats->margin(0)) : 0.f),
         margin_y_(splats ? float(splats->margin(1)) : 0.f),
         sampler_(in.sampler, in.seed, in.samples_per_pixel, domain.x, domain.y),
@@ -75,21 +77,23 @@ class TileRenderer {
         channels_(in.integrator.channels().size()),
         needs_(in.camera.needs()) {}
 
-  // Samples [first, last) of every pixel of the tile, in sample order; after each sample index,
-  // stops when `stop()` says so (so a started tile always moves on). Returns the index reached.
+  // Samples [first, last) of every pixel of the tile that has not converged, in sample order;
+  // after each sample index, stops when `stop()` says so (so a started tile always moves on).
+  // Returns the index reached.
   template <typename Stop>
   uint32_t render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t first,
                        uint32_t last, const Stop& stop, TileWork& w, RenderStats& stats) const {
-    const size_t n = size_t(x1 - x0) * (y1 - y0);
-    w.reset(n, channels_);
+    w.reset(size_t(x1 - x0) * (y1 - y0), channels_);
     // 4x4 blocks, so that consecutive camera rays (Embree's packets of up to 16) cover a square.
-    size_t i = 0;
+    size_t n = 0;
     for (uint32_t by = y0; by < y1; by += 4)
       for (uint32_t bx = x0; bx < x1; bx += 4)
         for (uint32_t y = by; y < std::min(by + 4, y1); ++y)
-          for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x, ++i)
-            w.px[i] = x, w.py[i] = y;
-    for (i = 0; i < n; ++i) {
+          for (uint32_t x = bx; x < std::min(bx + 4, x1); ++x)
+            if (!convergence_ || !convergence_->converged(x, y)) w.px[n] = x, w.py[n++] = y;
+    if (n == 0) return last;  // every pixel converged: nothing left to sample
+    w.reset(n, channels_);
+    for (size_t i = 0; i < n; ++i) {
       w.filter_seed[i] = sampler_.seed(w.px[i], w.py[i], kFilterDimension);
       if (needs_ & FB_CAMERA_NEEDS_LENS)
         w.lens_seed[i] = sampler_.seed(w.px[i], w.py[i], kLensDimension);
@@ -169,6 +173,8 @@ class TileRenderer {
         const bool kept = splat_tile ? splats_->splat(*splat_tile, at.x, at.y, v)
                                      : film_.add(w.px[i], w.py[i], v, w.filter_samples[i].weight);
         if (!kept) ++stats.dropped_samples;
+        if (kept && convergence_)
+          convergence_->add(w.px[i], w.py[i], s, v, w.filter_samples[i].weight);
       }
       stats.samples += n;
       if (++s < last && stop()) break;
@@ -186,8 +192,9 @@ class TileRenderer {
 
   const RenderInputs& in_;
   Film& film_;
-  SplatTiles* splats_;         // null: importance sampling, every sample in its own pixel
-  float margin_x_, margin_y_;  // of the sample domain around the film (splatting only)
+  SplatTiles* splats_;           // null: importance sampling, every sample in its own pixel
+  ConvergenceMap* convergence_;  // null: no adaptive sampling
+  float margin_x_, margin_y_;    // of the sample domain around the film (splatting only)
   Sampler sampler_;
   Rotation rotation_;
   size_t channels_;
@@ -210,12 +217,19 @@ uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height)
 }
 
 // The sample counts at which passes end: doubling, so that an interrupted render has every pixel
-// sampled about equally often, and each pass over a tile stays short.
-std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel) {
+// sampled about equally often, and each pass over a tile stays short. Adaptive sampling also ends
+// a pass at every count where its convergence check is due.
+std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel,
+                                const std::optional<AdaptiveSettings>& adaptive) {
   std::vector<uint32_t> ends;
   for (uint32_t end = 1; end < samples_per_pixel; end *= 2)
     ends.push_back(end);
+  if (adaptive)
+    for (uint32_t end = kAdaptiveStep; end < samples_per_pixel; end += kAdaptiveStep)
+      if (adaptive_check_due(*adaptive, end)) ends.push_back(end);
   ends.push_back(samples_per_pixel);
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
   return ends;
 }
 
@@ -260,7 +274,11 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
       const auto box = tile_box(tile);
       done[tile] = std::min(film.sample_count(box[0], box[1]), inputs.samples_per_pixel);
     }
-  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr, domain);
+  std::optional<ConvergenceMap> convergence;
+  if (inputs.adaptive)
+    convergence.emplace(film.width(), film.height(), *inputs.adaptive, inputs.exposure);
+  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr,
+                              convergence ? &*convergence : nullptr, domain);
   tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
   std::atomic<bool> pause{false};  // a checkpoint is due: tiles stop, the film is saved, go on
@@ -284,7 +302,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
       progress->advance(uint64_t(done[tile]) * (x1 - x0) * (y1 - y0));
     }
   RenderStats stats;
-  for (const uint32_t end : pass_ends(inputs.samples_per_pixel)) {
+  for (const uint32_t end : pass_ends(inputs.samples_per_pixel, inputs.adaptive)) {
     for (;;) {  // until every tile has reached `end`, saving the film whenever a checkpoint is due
       pause = false;
       tbb::parallel_for(
@@ -303,7 +321,14 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
               if (progress)
                 progress->advance(uint64_t(reached - done[tile]) * (x1 - x0) * (y1 - y0));
               done[tile] = reached;
-              record_count(tile, reached);
+              if (convergence) {  // converged pixels keep the count they stopped at
+                for (uint32_t y = y0; y < y1; ++y)
+                  for (uint32_t x = x0; x < x1; ++x)
+                    if (!convergence->converged(x, y))
+                      film.set_sample_count(x, y, x + 1, y + 1, reached);
+              } else {
+                record_count(tile, reached);
+              }
               samples += local.samples;
               rays += local.rays;
               dropped += local.dropped_samples;
@@ -322,6 +347,11 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
       break;
     }
     if (stats.interrupted) break;
+    if (convergence && end < inputs.samples_per_pixel && adaptive_check_due(*inputs.adaptive, end))
+      convergence->update(film, [&](uint32_t, uint32_t) {
+        // The samples it will not take count as done, so that progress ends at 100 %.
+        if (progress) progress->advance(inputs.samples_per_pixel - end);
+      });
   }
   if (splats) splats->add_to(film);
   stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -8,10 +8,12 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include <filmback/plugin_abi.h>
 
 #include "core/accel/render_geometry.h"
+#include "core/film/adaptive_sampling.h"
 #include "core/film/film.h"
 #include "core/math/transform.h"
 #include "core/plugin/instances.h"
@@ -42,6 +44,10 @@ struct RenderInputs {
   // A zoom while the shutter is open: each raster position scaled for its ray's time before the
   // camera plugin maps it (core/render/zoom_in_shutter.h). Only with time samples.
   const ZoomInShutter* zoom = nullptr;
+  // Adaptive sampling (core/film/adaptive_sampling.h): none, every pixel takes every sample.
+  // Importance reconstruction only: a splatted sample reaches several pixels.
+  std::optional<AdaptiveSettings> adaptive = std::nullopt;
+  double exposure = 1;  // the gain the image gets (Cycles' Film > Exposure): the error sees it
 };
 
 struct RenderStats {
@@ -66,9 +72,12 @@ struct RenderControl {
 constexpr uint32_t kTileSize = 16;
 
 // Renders into `film` on the calling thread's TBB arena, in passes of doubling sample counts over
-// all tiles. A film that already holds samples (a resumed checkpoint: Film::sample_count per
-// tile) is continued from there; each pixel's samples are still summed in sample order, so the
-// image is bit-identical to an uninterrupted render. `progress` counts pixel samples.
+// all tiles (with adaptive sampling: after its minimum, passes of kAdaptiveStep samples, each
+// followed by the convergence check; pixels that converged take no more samples and keep their
+// own count in the film). A film that already holds samples (a resumed checkpoint:
+// Film::sample_count per tile) is continued from there; each pixel's samples are still summed in
+// sample order, so the image is bit-identical to an uninterrupted render. `progress` counts pixel
+// samples.
 RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
                          Progress* progress);
 

@@ -237,6 +237,31 @@ SceneCamera plan_camera(const Scene& scene, const RenderOptions& options, const 
   return camera;
 }
 
+// Adaptive sampling: the command line's values, else the shot's (Cycles' use_adaptive_sampling,
+// adaptive_threshold, adaptive_min_samples), else kDefaultAdaptiveThreshold. A shot's threshold
+// of 0 with adaptive sampling on is Cycles' automatic one, max(0.001, 1 / samples)
+// (intern/cycles/scene/integrator.cpp).
+void plan_adaptive(const ShotSettings& shot, const RenderOptions& options, ShotPlan& plan) {
+  AdaptiveRequest& request = plan.adaptive_request;
+  request = {kDefaultAdaptiveThreshold, 0};
+  if (shot.adaptive) {
+    const ShotAdaptiveSampling& a = *shot.adaptive;
+    request.threshold = !a.use            ? 0
+                        : a.threshold > 0 ? a.threshold
+                                          : std::max(0.001, 1.0 / plan.samples_per_pixel);
+    request.min_samples = a.min_samples;
+  }
+  if (options.adaptive_threshold) request.threshold = *options.adaptive_threshold;
+  if (options.adaptive_min_samples) request.min_samples = *options.adaptive_min_samples;
+  plan.adaptive = adaptive_settings(request);
+  if (plan.adaptive && options.reconstruction == Reconstruction::kSplat)
+    throw UsageError(std::string(options.adaptive_threshold ? "--adaptive-threshold"
+                                                            : "the shot's adaptive sampling") +
+                     " with --reconstruction splat: a splatted sample reaches several pixels, so "
+                     "no pixel can stop alone; use --reconstruction importance, or "
+                     "--adaptive-threshold 0");
+}
+
 void plan_image(const ShotSettings& shot, const RenderOptions& options, ShotPlan& plan) {
   if (options.width.has_value() != options.height.has_value())
     throw UsageError("--res: give both width and height");
@@ -245,6 +270,7 @@ void plan_image(const ShotSettings& shot, const RenderOptions& options, ShotPlan
       : shot.width_px ? std::pair{*shot.width_px, *shot.height_px}
                       : default_resolution(plan.camera);
   plan.samples_per_pixel = options.samples_per_pixel.value_or(kDefaultSamplesPerPixel);
+  plan_adaptive(shot, options, plan);
   plan.pixel_aspect = shot.pixel_aspect.value_or(1.0);
   // A physical sensor integrates over the open shutter; an instantaneous one reports per second.
   const double open_s = plan.shutter_s.y - plan.shutter_s.x;

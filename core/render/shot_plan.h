@@ -15,6 +15,7 @@
 
 #include <filmback/vec.h>
 
+#include "core/film/adaptive_sampling.h"
 #include "core/film/film.h"
 #include "core/render/light_choice.h"
 #include "core/render/sampler.h"
@@ -60,6 +61,10 @@ struct RenderOptions {
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
   LightSelection light_selection = LightSelection::kAuto;       // --light-sampler (docs/cli.md)
+  // --adaptive-threshold (0: off) and --adaptive-min-samples (0: automatic); each replaces the
+  // shot's (docs/sampling.md, "Adaptive sampling").
+  std::optional<double> adaptive_threshold;
+  std::optional<uint32_t> adaptive_min_samples;
   bool show_progress = true;
   // What the render may hold at its peak (core/render/memory_estimate.h); none: half of the
   // machine's memory.
@@ -69,6 +74,9 @@ struct RenderOptions {
 // Documented defaults (docs/cli.md).
 constexpr uint32_t kDefaultLongSidePx = 1280;
 constexpr uint32_t kDefaultSamplesPerPixel = 64;
+// Adaptive sampling when neither the command line nor the shot says (docs/benchmarks.md,
+// "Adaptive sampling", measured the choice): off.
+constexpr double kDefaultAdaptiveThreshold = 0;
 constexpr double kDefaultFps = 24;  // Blender's; matters only when the frame is not 0
 
 // One plugin as the plan chose it.
@@ -93,7 +101,9 @@ struct PluginChoice {
 struct ShotPlan {
   SceneCamera camera;  // posed at the still time, its lens track evaluated, options applied
   uint32_t width_px = 0, height_px = 0, samples_per_pixel = 0;
-  double pixel_aspect = 1;  // pixel width / height
+  std::optional<AdaptiveSettings> adaptive;  // none: every pixel takes every sample
+  AdaptiveRequest adaptive_request;          // what it was derived from, for the plan line
+  double pixel_aspect = 1;                   // pixel width / height
   double frame = 0, fps = kDefaultFps;
   Vec2d shutter_s;  // open, close, relative to the frame's time
   ShotTimes times;  // the shutter and the frame's time on the scene's timeline, s

@@ -148,6 +148,13 @@ struct PixelFilterSetting {
   ValueOrigin origin;     // the scene file and the JSON path of the object that names it
 };
 
+// Cycles' Sampling > Adaptive Sampling as a shot names it (docs/blender.md).
+struct ShotAdaptiveSampling {
+  bool use = false;      // use_adaptive_sampling
+  double threshold = 0;  // adaptive_threshold; 0 with `use`: Cycles' automatic max(0.001, 1/spp)
+  uint32_t min_samples = 0;  // adaptive_min_samples; 0: automatic
+};
+
 struct ShotSettings {
   std::optional<uint32_t> width_px, height_px;
   std::optional<double> fps;
@@ -158,6 +165,7 @@ struct ShotSettings {
   std::optional<double> pixel_aspect;  // pixel width / height
   std::optional<PixelFilterSetting> filter;  // the shot's pixel filter
   double film_exposure = 1.0;                // linear gain on the image (Cycles' Film > Exposure)
+  std::optional<ShotAdaptiveSampling> adaptive;  // none: the file does not say
   // Cycles' rolling shutter (rolling_shutter_type TOP): its duration, a share of the shutter in
   // [0, 1] (docs/camera-model.md, "Rolling shutter"); none: a global shutter.
   std::optional<double> rolling_shutter_duration;

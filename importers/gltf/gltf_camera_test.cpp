@@ -337,6 +337,30 @@ TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
   EXPECT_EQ(d.count(), 0u);
 }
 
+// Cycles' Sampling > Adaptive Sampling, as the add-on exports it; a threshold outside Blender's
+// [0, 1] is refused naming the key.
+TEST(GltfShot, AdaptiveSamplingIsCyclesSettings) {
+  Diagnostics d;
+  const auto settings = [&](const std::string& members) {
+    return import(write_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"), d)
+        .settings;
+  };
+  const ShotSettings s = settings(
+      R"("use_adaptive_sampling": true, "adaptive_threshold": 0.02, "adaptive_min_samples": 32)");
+  ASSERT_TRUE(s.adaptive);
+  EXPECT_TRUE(s.adaptive->use);
+  EXPECT_EQ(s.adaptive->threshold, 0.02);
+  EXPECT_EQ(s.adaptive->min_samples, 32u);
+  EXPECT_FALSE(settings(R"("use_adaptive_sampling": false)").adaptive->use);
+  EXPECT_FALSE(settings(R"("film_exposure": 1)").adaptive);  // older exports: not said
+  try {
+    settings(R"("use_adaptive_sampling": true, "adaptive_threshold": 2)");
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("adaptive_threshold"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GltfShot, RollingShutterIsCyclesTopToBottomWithinTheShutter) {
   Diagnostics d;
   const auto settings = [&](const std::string& members) {

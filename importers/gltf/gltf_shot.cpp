@@ -11,6 +11,8 @@ namespace {
 
 // Samples of a shutter curve, at most: a bound on what a file allocates.
 constexpr size_t kMaxCurveSamples = 4096;
+// Blender's largest Adaptive Sampling > Min Samples (rna_cycles: adaptive_min_samples).
+constexpr double kMostAdaptiveMinSamples = 4096;
 
 // Cycles' Film > Pixel Filter, typed: the render maps it to a filter plugin (docs/filters.md,
 // "Against Blender").
@@ -91,6 +93,10 @@ ShotSettings read_shot_settings(const Fields& f) {
   read_rolling_shutter(f, s);
   if (f.has("filter_type") || f.has("filter_width_px")) s.filter = cycles_filter(f);
   s.film_exposure = f.number("film_exposure", 0, 1e6).value_or(1.0);
+  if (const auto use = f.flag("use_adaptive_sampling"))
+    s.adaptive = ShotAdaptiveSampling{
+        *use, f.number("adaptive_threshold", 0, 1).value_or(0.0),
+        uint32_t(f.whole("adaptive_min_samples", 0, kMostAdaptiveMinSamples).value_or(0))};
   read_view_settings(f, s);
   return s;
 }

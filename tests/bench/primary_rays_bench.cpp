@@ -9,7 +9,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +22,7 @@
 #include "core/plugin/loader.h"
 #include "core/render/render_job.h"
 #include "core/util/error.h"
+#include "tests/bench/bench_flags.h"
 #include "tests/bench/bench_scenes.h"
 #include "tests/bench/embree_baseline.h"
 
@@ -180,15 +180,6 @@ class RatioReporter : public benchmark::ConsoleReporter {
  private:
   std::map<std::string, Rates> rates_;
 };
-
-bool parse_flag(std::string_view arg, std::string_view name, uint32_t& value) {
-  if (!arg.starts_with(name)) return false;
-  arg.remove_prefix(name.size());
-  const auto [end, error] = std::from_chars(arg.data(), arg.data() + arg.size(), value);
-  if (error != std::errc() || end != arg.data() + arg.size() || value == 0)
-    throw UsageError("bad value in '" + std::string(name) + std::string(arg) + "'");
-  return true;
-}
 
 // Keeps in argv what is not ours, for benchmark::ReportUnrecognizedArguments.
 Settings parse_settings(int& argc, char** argv) {

@@ -534,6 +534,16 @@ class CliTest(unittest.TestCase):
                              "--filter", "lanczos")
         self.assert_rendered(result, "image.exr")
 
+    def test_adaptive_sampling_refuses_checkpoints_and_splatting(self):
+        scene = self.scene(triangle_scene())
+        adaptive = TINY + ["--adaptive-threshold", "0.01"]
+        self.assert_usage_error(scene, adaptive + ["--checkpoint-every", "5s"],
+                                "--checkpoint-every/--resume: ", "adaptive sampling",
+                                "--adaptive-threshold 0")
+        self.assert_usage_error(scene, adaptive + ["--reconstruction", "splat"],
+                                "--adaptive-threshold with --reconstruction splat: ",
+                                "--reconstruction importance")
+
     def test_unknown_integrator(self):
         scene = self.scene(triangle_scene())
         self.assert_usage_error(scene, TINY + ["--integrator", "bdpt"], "", "integrator", "'bdpt'")

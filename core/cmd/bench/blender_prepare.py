@@ -6,7 +6,7 @@
 SOURCE is the .blend Blender opened, or a bpy script that builds the shot in the empty file it
 runs in (run as __main__). Sets what the benchmark needs and nothing else: the resolution (at
 100 %; "shot" keeps the shot's), Cycles on the CPU with THREADS threads (0: all), adaptive
-sampling, denoising and the time limit off. Light paths, clamping, the pixel filter and the
+sampling (cycles_render.py sets it per render), denoising and the time limit off. Light paths, clamping, the pixel filter and the
 sampling pattern stay the shot's, and are written as one line to WORKDIR/cycles_settings.txt for
 the report. Saves WORKDIR/shot.blend (what Cycles renders) and exports WORKDIR/shot.gltf through
 filmback's add-on (what filmback renders).
@@ -52,7 +52,8 @@ def settings_line(scene):
             f"{c.transmission_bounces}), clamp direct {c.sample_clamp_direct:g} indirect "
             f"{c.sample_clamp_indirect:g}, filter glossy {c.blur_glossy:g}, light threshold "
             f"{c.light_sampling_threshold:g}, caustics reflective {c.caustics_reflective} "
-            f"refractive {c.caustics_refractive}, adaptive sampling off, denoising off")
+            f"refractive {c.caustics_refractive}, adaptive sampling as each render sets it (bench --adaptive), "
+            f"denoising off")
 
 
 def main():

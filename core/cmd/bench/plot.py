@@ -78,8 +78,10 @@ def plot_measure(row_axes, measure, rows, fits, info):
                                (row_axes[1], "total_s", "total time (s)")):
         floors = {}
         for index, ((renderer, configuration), points) in enumerate(by_configuration.items()):
-            colour = "black" if renderer == "cycles" else colours[index % len(colours)]
-            name = "Cycles" if renderer == "cycles" else configuration
+            # Cycles in black, grey when it samples adaptively (bench --adaptive).
+            cycles_colour = "black" if configuration == "cycles" else "grey"
+            colour = cycles_colour if renderer == "cycles" else colours[index % len(colours)]
+            name = configuration.replace("cycles", "Cycles") if renderer == "cycles" else configuration
             xs = [float(p[x_key]) for p in points]
             ys = [float(p[prefix + "rmse"]) for p in points]
             axis.plot(xs, ys, "o-", color=colour, label=name, markersize=3,
