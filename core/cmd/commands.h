@@ -19,8 +19,9 @@ struct RenderCommand {
   std::string background;  // "r,g,b" or one grey value
   // How samples become pixels: "importance" or "splat" (docs/filters.md).
   std::string reconstruction = "importance";
-  std::string subdiv = "render";  // or "adaptive" (docs/cli.md)
-  std::string sampler;            // a SamplerKind's name; empty: the default
+  std::string subdiv = "render";       // or "adaptive" (docs/cli.md)
+  std::string sampler;                 // a SamplerKind's name; empty: the default
+  std::string light_sampler = "auto";  // "auto", "tree" or "power" (docs/cli.md)
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
   std::string shutter, rolling_shutter, frame, fps, sensor_model, iso;

@@ -125,6 +125,13 @@ void add_run_options(CLI::App* render_cmd, fb::RenderCommand& render) {
   render_cmd->add_option("--seed", render.options.seed, "sampler seed (default 0)");
   render_cmd->add_option("--sampler", render.sampler,
                          "independent, stratified, sobol (default) or zsobol (docs/sampling.md)");
+  render_cmd
+      ->add_option("--light-sampler", render.light_sampler,
+                   "how next-event estimation picks a light: tree (a light BVH, by what each "
+                   "brings to the point), power, or auto (default: the tree from " +
+                       std::to_string(fb::LightChoice::kTreeFromLights) +
+                       " lights with a place on; docs/sampling.md)")
+      ->check(CLI::IsMember({"auto", "tree", "power"}));
   render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
   render_cmd->add_option("--checkpoint-every", render.checkpoint_every,
                          "save a resumable checkpoint this often, e.g. 30s, 5m, 2h");

@@ -264,6 +264,8 @@ CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
   if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
   if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");
+  if (c.light_sampler == "tree") c.options.light_selection = LightSelection::kTree;
+  if (c.light_sampler == "power") c.options.light_selection = LightSelection::kPower;
   c.options.show_progress = !c.quiet;
   Checkpoints& checkpoints = choices.checkpoints;
   checkpoints.enabled = !c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty();

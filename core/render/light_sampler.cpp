@@ -59,16 +59,79 @@ float pov_fade(float distance, float fade_distance, float fade_power) {
   return std::pow(distance, -fade_power);
 }
 
+// A box of half-extents `half` about `centre`, for the light tree.
+LightBounds box_around(Vec3f centre, Vec3f half, float intensity) {
+  LightBounds b;
+  b.lo = centre - half;
+  b.hi = centre + half;
+  b.intensity = intensity;
+  return b;
+}
+
+// Where a lamp is and where it shines (pbrt 4e §12.6.3: a point light's cone is the whole sphere,
+// theta_o = pi; a spot's is its cone; an area light's its normal, theta_o = 0; light leaves up to
+// theta_e = pi/2 past them). A spot's cone only needs to hold its light within pi/2 of its edge
+// for the tree to stay unbiased, so a POV-Ray spotlight without a radius cone (which lights the
+// whole hemisphere) is given the hemisphere.
+LightBounds lamp_bounds(const Light& light, Vec3f position, Vec3f axis, float cos_inner,
+                        float cos_outer, const Transform& render_from_light) {
+  const float intensity = luminance(light.intensity);
+  float reach = light.radius_m > 0 ? float(light.radius_m) : 0.f;
+  if (light.area_size1 * light.area_size2 > 1)  // POV-Ray's grid, maybe turned to face the point
+    reach = 0.5f * float(length(render_from_light.vector(light.area_axis1)) +
+                         length(render_from_light.vector(light.area_axis2)));
+  LightBounds b = box_around(position, {reach, reach, reach}, intensity);
+  b.axis = axis;
+  switch (light.type) {
+    case LightType::kPoint:
+      b.cos_theta_o = -1.f;
+      break;
+    case LightType::kSpot:
+      b.cos_theta_o = light.spot_falloff == SpotFalloff::kPov && !(cos_inner > 0.f)
+                          ? 0.f
+                          : std::clamp(cos_outer, -1.f, 1.f);
+      break;
+    case LightType::kArea: {
+      const Vec3f half_u = Vec3f(normalize(render_from_light.vector({1, 0, 0}))) *
+                           float(0.5 * light.size_x_m),
+                  half_v = Vec3f(normalize(render_from_light.vector({0, 1, 0}))) *
+                           float(0.5 * light.size_y_m);
+      b = box_around(position, abs(half_u) + abs(half_v),
+                     float(light.size_x_m * light.size_y_m) * intensity);
+      b.axis = axis;
+      b.cos_theta_o = 1.f;
+      break;
+    }
+    case LightType::kDirectional:
+      return {};  // no place: beside the tree
+  }
+  return b;
+}
+
+// An emissive triangle's bounds: its vertices' box, its normal, and its intensity along the
+// normal, L A.
+LightBounds triangle_bounds(const EmissiveTriangle& e, const Material& m) {
+  LightBounds b;
+  b.lo = min(e.p0, min(e.p1, e.p2));
+  b.hi = max(e.p0, max(e.p1, e.p2));
+  b.intensity = e.moving ? 0.f : luminance(m.emission) * e.area;
+  b.axis = e.normal;
+  b.cos_theta_o = 1.f;
+  b.two_sided = m.double_sided;
+  return b;
+}
+
 }  // namespace
 
 LightSampler::LightSampler(const Scene& scene, const Transform& render_from_world,
                            const RenderGeometry& geometry, double frame_s,
-                           std::optional<Rgb> background_override)
+                           std::optional<Rgb> background_override, LightSelection selection)
     : emitters_(geometry.emitters()),
       geometry_(geometry),
       background_(background_override.value_or(scene.background)),
       materials_(scene.materials) {
   std::vector<double> power;
+  std::vector<LightBounds> bounds;  // per light; empty for the sun and the world
   const double scene_radius = std::max(geometry.bounds_radius(), 1e-3f);
   for (const Light& light : scene.lights) {
     const Transform render_from_light = render_from_world * scene.world_from_light(light, frame_s);
@@ -121,6 +184,8 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
         break;
       }
     }
+    bounds.push_back(lamp_bounds(light, lamp.position, lamp.axis, lamp.cos_inner, lamp.cos_outer,
+                                 render_from_light));
     if (!std::holds_alternative<std::monostate>(lamp.size))
       sized_.push_back(uint32_t(lamps_.size()));
     lamps_.push_back(lamp);
@@ -141,64 +206,21 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
     // finds it where the ray's time put it.
     power.push_back(e.moving ? 0.0
                              : kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
+    bounds.push_back(triangle_bounds(e, m));
   }
   if (scene.environment && !background_override) {
     environment_.emplace(*scene.environment);
     // As a sun's: the irradiance pi L of a uniform world as bright, over the scene's disk.
     power.push_back(kPi * scene_radius * scene_radius * kPi * environment_->mean_luminance());
+    bounds.emplace_back();
   }
-  build_selection(power);
-}
-
-// Sample values are multiples of 2^-24 (plugin_abi.h), so a choice by u is exact only on that
-// grid: each light gets a whole number of the 2^24 cells, at least one if it carries any power,
-// and its probability is exactly its share of cells. A light with a smaller share than one cell
-// would otherwise be chosen never, or at the wrong rate, depending on its place in the list.
-void LightSampler::build_selection(const std::vector<double>& power) {
-  constexpr uint32_t kCells = kSelectionCells;
-  double total = 0;
-  size_t lit = 0;
-  for (double p : power)
-    if (p > 0) total += p, ++lit;
-  if (!(total > 0) || !std::isfinite(total)) return;  // no light carries energy: never sampled
-  if (lit > kCells)
-    throw InputError("the scene has " + std::to_string(lit) +
-                     " emitting lights and triangles, more than the " + std::to_string(kCells) +
-                     " that light selection can tell apart");
-  std::vector<uint32_t> cells(power.size(), 0);
-  int64_t assigned = 0;
-  for (size_t i = 0; i < power.size(); ++i)
-    if (power[i] > 0)
-      assigned += cells[i] =
-          std::max<uint32_t>(1, uint32_t(std::llround(power[i] / total * kCells)));
-  // Settle rounding on the lights with the most cells, never taking one below a single cell.
-  std::vector<size_t> order(power.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cells[a] > cells[b]; });
-  for (size_t k = 0; assigned != kCells; k = (k + 1) % order.size()) {
-    uint32_t& c = cells[order[k]];
-    if (assigned < kCells) {
-      c += uint32_t(kCells - assigned);
-      assigned = kCells;
-    } else if (c > 1) {
-      const uint32_t take = uint32_t(std::min<int64_t>(assigned - kCells, c - 1));
-      c -= take;
-      assigned -= take;
-    }
-  }
-  first_cell_.assign(1, 0);
-  for (uint32_t c : cells) {
-    first_cell_.push_back(first_cell_.back() + c);
-    pmf_.push_back(float(c) / float(kCells));
-  }
+  choice_ = LightChoice(power, bounds, selection);
 }
 
 bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out) const {
-  if (pmf_.empty()) return false;
-  const uint32_t cell = std::min(uint32_t(u[0] * float(kSelectionCells)), kSelectionCells - 1);
-  const size_t index =
-      size_t(std::upper_bound(first_cell_.begin(), first_cell_.end(), cell) - first_cell_.begin()) -
-      1;
+  uint32_t index;
+  float pmf;
+  if (!choice_.choose(position, u[0], index, pmf)) return false;
   bool ok;
   if (index < lamps_.size()) {
     const Lamp& lamp = lamps_[index];
@@ -226,7 +248,7 @@ bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out
       out.is_delta = 0;
     }
   }
-  out.pdf *= pmf_[index];
+  out.pdf *= pmf;
   return ok;
 }
 
@@ -348,14 +370,15 @@ bool LightSampler::sample_triangle(uint32_t index, Vec3f position, const float u
 }
 
 float LightSampler::pdf(Vec3f position, const fb_hit& hit) const {
-  if (hit.emitter == FB_NONE || pmf_.empty()) return 0.f;
+  if (hit.emitter == FB_NONE || choice_.empty()) return 0.f;
   const EmissiveTriangle& e = emitters_[hit.emitter];
   const Vec3f d = Vec3f(hit.position) - position;
   const float distance2 = dot(d, d);
   float cos_light = -dot(e.normal, d) / std::sqrt(distance2);
   if (materials_[e.material].double_sided) cos_light = std::abs(cos_light);
   if (!(cos_light > 0.f) || !(e.area > 0.f)) return 0.f;
-  return pmf_[lamps_.size() + hit.emitter] * distance2 / (cos_light * e.area);
+  return choice_.pmf(position, uint32_t(lamps_.size() + hit.emitter)) * distance2 /
+         (cos_light * e.area);
 }
 
 Rgb LightSampler::background(Vec3f w, float& pdf) const {
@@ -363,7 +386,8 @@ Rgb LightSampler::background(Vec3f w, float& pdf) const {
     pdf = 0.f;
     return background_;
   }
-  pdf = pmf_.empty() ? 0.f : pmf_.back() * environment_->pdf(w);
+  // The world has no place: its choice does not depend on the shading point.
+  pdf = choice_.pmf({}, uint32_t(lamps_.size() + emitters_.size())) * environment_->pdf(w);
   return environment_->radiance(w);
 }
 
@@ -385,7 +409,9 @@ uint32_t LightSampler::crossed(const fb_ray& ray, float t_end, fb_light_crossing
       crossings[k] = crossings[k - 1];
     fb_light_crossing& c = crossings[at];
     L.store(c.radiance);
-    c.pdf = point.pdf * (pmf_.empty() ? 0.f : pmf_[index]);
+    // The ray leaves from the shading point lifted off its surface by a few ulps
+    // (offset_ray_origin), which the tree's estimate does not notice.
+    c.pdf = point.pdf * choice_.pmf(Vec3f(ray.origin), index);
     c.t = point.distance;
     count = std::min(count + 1, capacity);
   }

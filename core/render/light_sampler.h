@@ -1,7 +1,8 @@
-// Next-event estimation's half of the lights: picks a light in proportion to its estimated power
-// (lamps, emissive triangles and the world alike) and a point on it (pbrt 4e §12.6, power
-// sampling). Lamps are the scene's Lights: delta lights (a point or spot without a radius, a sun
-// without an angle, POV-Ray's lights) are reached by light sampling only; lights with a size
+// Next-event estimation's half of the lights: picks a light (lamps, emissive triangles and the
+// world alike) by its estimated power or, among lights with a place, by a light tree's estimate of
+// what each brings to the shading point (core/render/light_choice.h), and a point on it. Lamps are
+// the scene's Lights: delta lights (a point or spot without a radius, a sun without an angle,
+// POV-Ray's lights) are reached by light sampling only; lights with a size
 // (core/render/sized_lights.h: a point or spot light's disk, a sun's cone, an area light) are
 // sampled by solid angle as Cycles 3.4 samples them and are also found by BSDF-sampled rays through
 // crossed(), with the same density, for multiple importance sampling (docs/blender.md, "Lights and
@@ -18,6 +19,7 @@
 #include "core/accel/render_geometry.h"
 #include "core/math/transform.h"
 #include "core/render/environment.h"
+#include "core/render/light_choice.h"
 #include "core/render/sized_lights.h"
 #include "core/scene/scene.h"
 
@@ -31,7 +33,8 @@ class LightSampler {
   // `background_override` (the command line's) replaces both.
   LightSampler(const Scene& scene, const Transform& render_from_world,
                const RenderGeometry& geometry, double frame_s,
-               std::optional<Rgb> background_override = {});
+               std::optional<Rgb> background_override = {},
+               LightSelection selection = LightSelection::kAuto);
   bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
   float pdf(Vec3f position, const fb_hit& emitter_hit) const;
   // Radiance of the world arriving from direction -w (w: the escaping ray's direction), and the
@@ -45,6 +48,7 @@ class LightSampler {
                    uint32_t capacity) const;
   size_t lamp_count() const { return lamps_.size(); }
   size_t emissive_triangle_count() const { return emitters_.size(); }
+  bool uses_tree() const { return choice_.uses_tree(); }
 
  private:
   struct Lamp {
@@ -84,10 +88,7 @@ class LightSampler {
   std::optional<EnvironmentLight> environment_;    // the last light index, when present
   Rgb background_;                                 // uniform world, when no environment
   const std::vector<Material>& materials_;
-  static constexpr uint32_t kSelectionCells = 1u << 24;
-  void build_selection(const std::vector<double>& power);
-  std::vector<float> pmf_;            // per light: its cells / 2^24, exactly
-  std::vector<uint32_t> first_cell_;  // per light, and the total at the end
+  LightChoice choice_;
 };
 
 }  // namespace fb

@@ -167,7 +167,8 @@ void RenderJob::build_geometry() {
   p.geometry = std::make_unique<RenderGeometry>(*geometry_scene, p.render_from_world, plan_.times,
                                                 motion_tolerance(setup));
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
-                                            plan_.times.still_s(), options_.background);
+                                            plan_.times.still_s(), options_.background,
+                                            options_.light_selection);
 }
 
 // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").

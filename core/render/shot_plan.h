@@ -17,6 +17,7 @@
 
 #include "core/film/adaptive_sampling.h"
 #include "core/film/film.h"
+#include "core/render/light_choice.h"
 #include "core/render/sampler.h"
 #include "core/render/shutter.h"
 #include "core/render/zoom_in_shutter.h"
@@ -59,6 +60,7 @@ struct RenderOptions {
   SamplerKind sampler = kDefaultSampler;                        // docs/sampling.md
   Reconstruction reconstruction = Reconstruction::kImportance;  // docs/filters.md
   SubdivMode subdiv = SubdivMode::kRender;                      // --subdiv (docs/cli.md)
+  LightSelection light_selection = LightSelection::kAuto;       // --light-sampler (docs/cli.md)
   // --adaptive-threshold (0: off) and --adaptive-min-samples (0: automatic); each replaces the
   // shot's (docs/sampling.md, "Adaptive sampling").
   std::optional<double> adaptive_threshold;
