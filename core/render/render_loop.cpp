@@ -129,7 +129,9 @@ class TileRenderer {
   template <typename Stop>
   uint32_t render_tile(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t first,
                        uint32_t last, const Stop& stop, TileWork& w, RenderStats& stats) const {
-    w.reset(size_t(x1 - x0) * (y1 - y0), channels_, in_.texture_footprint);
+    // The pixels first (room for the whole tile), then the per-sample buffers for those kept.
+    const size_t tile_pixels = size_t(x1 - x0) * (y1 - y0);
+    w.px.resize(tile_pixels), w.py.resize(tile_pixels);
     // 4x4 blocks, so that consecutive camera rays (Embree's packets of up to 16) cover a square.
     size_t n = 0;
     for (uint32_t by = y0; by < y1; by += 4)
