@@ -1,0 +1,189 @@
+#include "core/cmd/tile_plan_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "core/cmd/bench_process.h"
+#include "core/cmd/tile_plan_file.h"
+#include "core/film/partial_film.h"
+#include "core/render/render_loop.h"
+#include "core/render/tile_partition.h"
+#include "core/util/error.h"
+
+namespace fb {
+namespace fs = std::filesystem;
+namespace {
+
+// Options of `render` the pre-pass replaces or must not inherit, and whether each takes a value.
+struct Dropped {
+  const char* name;
+  bool takes_value;
+};
+constexpr Dropped kDropped[] = {
+    {"--spp", true},        {"-o", true},          {"--output", true},
+    {"--stats-json", true}, {"-q", false},         {"--quiet", false},
+    {"--checkpoint", true}, {"--checkpoint-every", true}, {"--resume", false},
+    {"--tile", true},       {"--crop", true},      {"--tile-plan", true},
+    {"--frames", true},
+};
+
+// The frame a `--frames A-B[:STEP]` range starts at, as typed ("-3-5" starts at -3).
+std::string first_frame(const std::string& range) {
+  const size_t dash = range.find('-', range.empty() || range[0] != '-' ? 0 : 1);
+  return range.substr(0, dash);
+}
+
+// Per render tile, the seconds the pre-pass's report (`render --stats-json`) recorded.
+TileCosts costs_from_report(const fs::path& report) {
+  std::ifstream stream(report);
+  nlohmann::json json;
+  try {
+    stream >> json;
+  } catch (const nlohmann::json::exception& e) {
+    throw_input(report.string(), "", std::string("the pre-pass's report is not JSON: ") + e.what());
+  }
+  const auto& tiles = json.at("tiles");
+  TileCosts costs{json.at("image").at("width").get<uint32_t>(),
+                  json.at("image").at("height").get<uint32_t>(), tiles.at("size").get<uint32_t>(),
+                  tiles.at("seconds").get<std::vector<double>>()};
+  return costs;
+}
+
+// Per render tile, the seconds the parts of an earlier render (a previous frame) took: a tile two
+// parts rendered (crops not on tile lines) counts the mean of their times.
+TileCosts costs_from_parts(const std::vector<fs::path>& parts) {
+  TileCosts costs;
+  std::vector<uint32_t> seen;
+  for (const fs::path& file : parts) {
+    const PartialFilmHeader h = read_partial_film_header(file);
+    if (costs.tile_size_px == 0) {
+      costs = {h.width, h.height, kTileSize, {}};
+      costs.cost.assign(size_t(costs.tiles_x()) * costs.tiles_y(), 0.0);
+      seen.assign(costs.cost.size(), 0);
+    } else if (h.width != costs.width_px || h.height != costs.height_px) {
+      throw_input(file.string(), "", "a part of a " + std::to_string(h.width) + "x" +
+                                         std::to_string(h.height) + " frame among parts of " +
+                                         std::to_string(costs.width_px) + "x" +
+                                         std::to_string(costs.height_px));
+    }
+    if (h.tile_seconds.size() != h.tiles.area())
+      throw_input(file.string(), "", "its tile times do not match its tiles");
+    size_t i = 0;
+    for (uint32_t ty = h.tiles.y0; ty < h.tiles.y1; ++ty)
+      for (uint32_t tx = h.tiles.x0; tx < h.tiles.x1; ++tx, ++i) {
+        const size_t t = size_t(ty) * costs.tiles_x() + tx;
+        costs.cost[t] += h.tile_seconds[i];
+        ++seen[t];
+      }
+  }
+  for (size_t t = 0; t < costs.cost.size(); ++t) {
+    if (seen[t] == 0)
+      throw InputError("tile-plan: --previous: no part covers the tile at pixel (" +
+                       std::to_string(t % costs.tiles_x() * kTileSize) + ", " +
+                       std::to_string(t / costs.tiles_x() * kTileSize) + ")");
+    costs.cost[t] /= seen[t];
+  }
+  return costs;
+}
+
+TileCosts costs_from_pre_pass(const TilePlanCommand& c) {
+  const fs::path program = this_program();
+  if (program.empty()) throw InputError("tile-plan: cannot find filmback's own executable");
+  char pattern[] = "/tmp/filmback-tile-plan-XXXXXX";
+  if (!mkdtemp(pattern)) throw InputError("tile-plan: cannot create a temporary folder in /tmp");
+  const fs::path folder = pattern;
+  struct RemoveFolder {
+    fs::path f;
+    ~RemoveFolder() {
+      std::error_code ec;
+      fs::remove_all(f, ec);
+    }
+  } remove{folder};
+  std::vector<std::string> argv = {program.string()};
+  const auto args = pre_pass_arguments(c.scene, c.render_arguments, c.pre_pass_spp,
+                                       folder / "pre_pass.exr", folder / "pre_pass.json");
+  argv.insert(argv.end(), args.begin(), args.end());
+  const fs::path log = folder / "pre_pass.log";
+  const ProgramRun run = run_program(argv, log);
+  if (run.exit_status != 0) {
+    std::ifstream text(log);
+    std::cerr << text.rdbuf();
+    throw InputError("tile-plan: the pre-pass render of '" + c.scene.string() + "' failed (exit " +
+                     std::to_string(run.exit_status) + ")");
+  }
+  return costs_from_report(folder / "pre_pass.json");
+}
+
+}  // namespace
+
+std::vector<std::string> pre_pass_arguments(const fs::path& scene,
+                                            const std::vector<std::string>& render_arguments,
+                                            uint32_t spp, const fs::path& image,
+                                            const fs::path& report) {
+  std::vector<std::string> out = {"render", scene.string()};
+  std::string frames;
+  for (size_t i = 0; i < render_arguments.size(); ++i) {
+    const std::string& arg = render_arguments[i];
+    const Dropped* dropped = nullptr;
+    std::string value;
+    bool value_inline = false;
+    for (const Dropped& d : kDropped) {
+      const std::string name = d.name;
+      const bool is_short = name.size() == 2;
+      if (arg == name) dropped = &d;
+      else if (d.takes_value && arg.rfind(name + "=", 0) == 0)
+        dropped = &d, value = arg.substr(name.size() + 1), value_inline = true;
+      else if (d.takes_value && is_short && arg.size() > 2 && arg.rfind(name, 0) == 0)
+        dropped = &d, value = arg.substr(2), value_inline = true;
+      if (dropped) break;
+    }
+    if (!dropped) {
+      out.push_back(arg);
+      continue;
+    }
+    if (dropped->takes_value && !value_inline && i + 1 < render_arguments.size())
+      value = render_arguments[++i];
+    if (std::string(dropped->name) == "--frames") frames = value;
+  }
+  // A frame range plans its first frame: the parts of every frame share the plan.
+  if (!frames.empty()) out.insert(out.end(), {"--frame", first_frame(frames)});
+  out.insert(out.end(), {"--spp", std::to_string(spp), "-q", "-o", image.string(), "--stats-json",
+                         report.string()});
+  return out;
+}
+
+int run_tile_plan(TilePlanCommand& c) {
+  if (c.output.extension() != ".json")
+    throw UsageError("tile-plan: output '" + c.output.string() + "': expected a .json file name");
+  const TileCosts costs = c.previous.empty() ? costs_from_pre_pass(c) : costs_from_parts(c.previous);
+  const uint64_t tiles = uint64_t(costs.tiles_x()) * costs.tiles_y();
+  if (c.parts > tiles)
+    throw UsageError("tile-plan: --tiles " + std::to_string(c.parts) + ": the " +
+                     std::to_string(costs.width_px) + "x" + std::to_string(costs.height_px) +
+                     " frame has only " + std::to_string(tiles) + " tiles of " +
+                     std::to_string(costs.tile_size_px) + " px");
+  const std::vector<PlannedPart> planned = partition_tiles(costs, c.parts);
+  TilePlan plan{costs.width_px, costs.height_px, {}};
+  for (const PlannedPart& p : planned) plan.parts.push_back({p.crop, p.estimated_cost});
+  write_tile_plan(plan, c.output);
+
+  // What the plan buys: the same costs over the parts of a split by area.
+  TileCosts area = costs;
+  std::fill(area.cost.begin(), area.cost.end(), 0.0);
+  std::vector<PlannedPart> by_area = partition_tiles(area, c.parts);
+  for (PlannedPart& p : by_area) p.estimated_cost = estimated_cost(costs, p.crop);
+  std::printf("filmback: wrote %s: %u parts of %ux%u; the costliest part %.3f x the mean (%.3f x "
+              "split by area), from %s\n",
+              c.output.string().c_str(), c.parts, costs.width_px, costs.height_px,
+              imbalance(planned), imbalance(by_area),
+              c.previous.empty() ? "a pre-pass" : "the previous parts' tile times");
+  return 0;
+}
+
+}  // namespace fb
