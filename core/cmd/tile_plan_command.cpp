@@ -26,10 +26,9 @@ struct Dropped {
   bool takes_value;
 };
 constexpr Dropped kDropped[] = {
-    {"--spp", true},        {"-o", true},          {"--output", true},
-    {"--stats-json", true}, {"-q", false},         {"--quiet", false},
-    {"--checkpoint", true}, {"--checkpoint-every", true}, {"--resume", false},
-    {"--tile", true},       {"--crop", true},      {"--tile-plan", true},
+    {"--spp", true},     {"-o", true},       {"--output", true},     {"--stats-json", true},
+    {"-q", false},       {"--quiet", false}, {"--checkpoint", true}, {"--checkpoint-every", true},
+    {"--resume", false}, {"--tile", true},   {"--crop", true},       {"--tile-plan", true},
     {"--frames", true},
 };
 
@@ -67,10 +66,10 @@ TileCosts costs_from_parts(const std::vector<fs::path>& parts) {
       costs.cost.assign(size_t(costs.tiles_x()) * costs.tiles_y(), 0.0);
       seen.assign(costs.cost.size(), 0);
     } else if (h.width != costs.width_px || h.height != costs.height_px) {
-      throw_input(file.string(), "", "a part of a " + std::to_string(h.width) + "x" +
-                                         std::to_string(h.height) + " frame among parts of " +
-                                         std::to_string(costs.width_px) + "x" +
-                                         std::to_string(costs.height_px));
+      throw_input(file.string(), "",
+                  "a part of a " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                      " frame among parts of " + std::to_string(costs.width_px) + "x" +
+                      std::to_string(costs.height_px));
     }
     if (h.tile_seconds.size() != h.tiles.area())
       throw_input(file.string(), "", "its tile times do not match its tiles");
@@ -136,7 +135,8 @@ std::vector<std::string> pre_pass_arguments(const fs::path& scene,
     for (const Dropped& d : kDropped) {
       const std::string name = d.name;
       const bool is_short = name.size() == 2;
-      if (arg == name) dropped = &d;
+      if (arg == name)
+        dropped = &d;
       else if (d.takes_value && arg.rfind(name + "=", 0) == 0)
         dropped = &d, value = arg.substr(name.size() + 1), value_inline = true;
       else if (d.takes_value && is_short && arg.size() > 2 && arg.rfind(name, 0) == 0)
@@ -161,7 +161,8 @@ std::vector<std::string> pre_pass_arguments(const fs::path& scene,
 int run_tile_plan(TilePlanCommand& c) {
   if (c.output.extension() != ".json")
     throw UsageError("tile-plan: output '" + c.output.string() + "': expected a .json file name");
-  const TileCosts costs = c.previous.empty() ? costs_from_pre_pass(c) : costs_from_parts(c.previous);
+  const TileCosts costs =
+      c.previous.empty() ? costs_from_pre_pass(c) : costs_from_parts(c.previous);
   const uint64_t tiles = uint64_t(costs.tiles_x()) * costs.tiles_y();
   if (c.parts > tiles)
     throw UsageError("tile-plan: --tiles " + std::to_string(c.parts) + ": the " +
@@ -170,19 +171,21 @@ int run_tile_plan(TilePlanCommand& c) {
                      std::to_string(costs.tile_size_px) + " px");
   const std::vector<PlannedPart> planned = partition_tiles(costs, c.parts);
   TilePlan plan{costs.width_px, costs.height_px, {}};
-  for (const PlannedPart& p : planned) plan.parts.push_back({p.crop, p.estimated_cost});
+  for (const PlannedPart& p : planned)
+    plan.parts.push_back({p.crop, p.estimated_cost});
   write_tile_plan(plan, c.output);
 
   // What the plan buys: the same costs over the parts of a split by area.
   TileCosts area = costs;
   std::fill(area.cost.begin(), area.cost.end(), 0.0);
   std::vector<PlannedPart> by_area = partition_tiles(area, c.parts);
-  for (PlannedPart& p : by_area) p.estimated_cost = estimated_cost(costs, p.crop);
-  std::printf("filmback: wrote %s: %u parts of %ux%u; the costliest part %.3f x the mean (%.3f x "
-              "split by area), from %s\n",
-              c.output.string().c_str(), c.parts, costs.width_px, costs.height_px,
-              imbalance(planned), imbalance(by_area),
-              c.previous.empty() ? "a pre-pass" : "the previous parts' tile times");
+  for (PlannedPart& p : by_area)
+    p.estimated_cost = estimated_cost(costs, p.crop);
+  std::printf(
+      "filmback: wrote %s: %u parts of %ux%u; the costliest part %.3f x the mean (%.3f x "
+      "split by area), from %s\n",
+      c.output.string().c_str(), c.parts, costs.width_px, costs.height_px, imbalance(planned),
+      imbalance(by_area), c.previous.empty() ? "a pre-pass" : "the previous parts' tile times");
   return 0;
 }
 

@@ -31,19 +31,26 @@ class Splitter {
       out.push_back({pixels(r), cost(r)});
       return;
     }
-    // The cut and the parts each side gets that make the larger per-part share smallest: each
-    // side's cost over its parts is the best its own split can do. Longer axis first, so that a
-    // tie keeps parts compact.
+    // The cut and the parts each side gets that make the larger of the two sides' best possible
+    // part smallest: a side's parts cost at least its cost over their number, and at least its
+    // costliest tile, which no split divides. Longer axis first, so that a tie keeps parts compact.
     const double total = cost(r);
     struct Cut {
       int axis = -1;
       uint32_t at = 0, first_parts = 0;
-      double share = INFINITY;
+      double bound = INFINITY, share = INFINITY;  // share: the larger cost per part, a tie-break
     } best;
     const int longer = r.extent(0) >= r.extent(1) ? 0 : 1;
     for (int axis : {longer, 1 - longer}) {
       const uint32_t begin = axis == 0 ? r.x0 : r.y0, end = axis == 0 ? r.x1 : r.y1;
       const uint64_t line_cells = r.extent(1 - axis);
+      // The costliest tile of the lines before and after each cut.
+      const std::vector<double> line_max = costliest_tile_per_line(r, axis);
+      std::vector<double> max_before(line_max.size() + 1, 0.0), max_after(line_max.size() + 1, 0.0);
+      for (size_t i = 0; i < line_max.size(); ++i)
+        max_before[i + 1] = std::max(max_before[i], line_max[i]);
+      for (size_t i = line_max.size(); i-- > 0;)
+        max_after[i] = std::max(max_after[i + 1], line_max[i]);
       for (uint32_t at = begin + 1; at < end; ++at) {
         const TileRegion first = side(r, axis, begin, at);
         const uint64_t first_cells = uint64_t(at - begin) * line_cells,
@@ -57,7 +64,9 @@ class Splitter {
         for (double guess : {std::floor(proportional), std::ceil(proportional)}) {
           const uint32_t n1 = uint32_t(std::clamp<double>(guess, double(fewest), double(most)));
           const double share = std::max(first_cost / n1, second_cost / (parts - n1));
-          if (share < best.share) best = {axis, at, n1, share};
+          const double bound = std::max({share, max_before[at - begin], max_after[at - begin]});
+          if (bound < best.bound || (bound == best.bound && share < best.share))
+            best = {axis, at, n1, bound, share};
         }
       }
     }
@@ -76,6 +85,16 @@ class Splitter {
   double tile_cost(uint32_t x, uint32_t y, bool by_area) const {
     if (!by_area) return costs_.cost[size_t(y) * nx_ + x];
     return double(pixels({x, y, x + 1, y + 1}).area());
+  }
+  // Per line of `r` across `axis` (columns for x, rows for y), its costliest tile.
+  std::vector<double> costliest_tile_per_line(const TileRegion& r, int axis) const {
+    std::vector<double> out(r.extent(axis), 0.0);
+    for (uint32_t y = r.y0; y < r.y1; ++y)
+      for (uint32_t x = r.x0; x < r.x1; ++x) {
+        double& m = out[axis == 0 ? x - r.x0 : y - r.y0];
+        m = std::max(m, cost({x, y, x + 1, y + 1}));
+      }
+    return out;
   }
   static TileRegion side(const TileRegion& r, int axis, uint32_t from, uint32_t to) {
     return axis == 0 ? TileRegion{from, r.y0, to, r.y1} : TileRegion{r.x0, from, r.x1, to};
@@ -115,7 +134,8 @@ std::vector<PlannedPart> partition_tiles(const TileCosts& costs, uint32_t parts)
   const Splitter splitter(costs, total == 0);
   splitter.split({0, 0, costs.tiles_x(), costs.tiles_y()}, parts, out);
   if (total == 0)  // split by area: the parts cost nothing
-    for (PlannedPart& p : out) p.estimated_cost = 0;
+    for (PlannedPart& p : out)
+      p.estimated_cost = 0;
   return out;
 }
 
@@ -130,7 +150,8 @@ double estimated_cost(const TileCosts& costs, const PixelRect& rect) {
 
 double imbalance(const std::vector<PlannedPart>& parts) {
   double sum = 0, largest = 0;
-  for (const PlannedPart& p : parts) sum += p.estimated_cost, largest = std::max(largest, p.estimated_cost);
+  for (const PlannedPart& p : parts)
+    sum += p.estimated_cost, largest = std::max(largest, p.estimated_cost);
   return sum > 0 ? largest * parts.size() / sum : 1.0;
 }
 
