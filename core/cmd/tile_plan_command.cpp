@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -41,17 +42,27 @@ std::string first_frame(const std::string& range) {
 // Per render tile, the seconds the pre-pass's report (`render --stats-json`) recorded.
 TileCosts costs_from_report(const fs::path& report) {
   std::ifstream stream(report);
-  nlohmann::json json;
+  if (!stream) throw_input(report.string(), "", "cannot be read");
   try {
+    nlohmann::json json;
     stream >> json;
+    const auto& tiles = json.at("tiles");
+    TileCosts costs{json.at("image").at("width").get<uint32_t>(),
+                    json.at("image").at("height").get<uint32_t>(),
+                    tiles.at("size").get<uint32_t>(), tiles.at("seconds").get<std::vector<double>>()};
+    if (costs.tile_size_px == 0 || costs.width_px == 0 || costs.height_px == 0 ||
+        costs.cost.size() != uint64_t(costs.tiles_x()) * costs.tiles_y())
+      throw_input(report.string(), "tiles", "per-tile seconds that do not match the image's tiles");
+    for (size_t i = 0; i < costs.cost.size(); ++i)
+      if (!(costs.cost[i] >= 0) || !std::isfinite(costs.cost[i]))
+        throw_input(report.string(), "tiles.seconds[" + std::to_string(i) + "]",
+                    "expected a finite number of seconds >= 0");
+    return costs;
   } catch (const nlohmann::json::exception& e) {
-    throw_input(report.string(), "", std::string("the pre-pass's report is not JSON: ") + e.what());
+    throw_input(report.string(), "",
+                std::string("expected a render's --stats-json report with per-tile seconds (") +
+                    e.what() + ")");
   }
-  const auto& tiles = json.at("tiles");
-  TileCosts costs{json.at("image").at("width").get<uint32_t>(),
-                  json.at("image").at("height").get<uint32_t>(), tiles.at("size").get<uint32_t>(),
-                  tiles.at("seconds").get<std::vector<double>>()};
-  return costs;
 }
 
 // Per render tile, the seconds the parts of an earlier render (a previous frame) took: a tile two
