@@ -15,8 +15,7 @@ namespace {
 std::optional<int64_t> take_integer(std::string_view& text) {
   int64_t value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || value < -kMaxFrameNumber || value > kMaxFrameNumber)
-    return std::nullopt;
+  if (ec != std::errc() || value < -kMaxFrameNumber || value > kMaxFrameNumber) return std::nullopt;
   text.remove_prefix(size_t(end - text.data()));
   return value;
 }
@@ -30,7 +29,8 @@ std::pair<size_t, size_t> last_run(const std::string& path) {
       begin = end = 0;
     } else if (path[i] == '#') {
       begin = i;
-      while (i < path.size() && path[i] == '#') ++i;
+      while (i < path.size() && path[i] == '#')
+        ++i;
       end = i--;
     }
   }
