@@ -1,0 +1,217 @@
+"""Frame sequences (docs/cli.md, "Frame sequences"), end to end through the built `filmback`:
+`render --frames A-B[:STEP]` renders each frame as `render --frame N` does (bit-identical), into
+output patterns whose run of '#' is the frame number; a re-run skips the frames that are done and
+touches none of their files; --overwrite renders them again; a signal stops the sequence after
+the frame it interrupted, whose checkpoint --resume continues; bad ranges and patterns are usage
+errors that write nothing.
+
+Run: frames_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case
+names (CMake registers one CTest test per case from it).
+"""
+
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+from pathlib import Path
+
+import case_main
+from gltf_files import FLOAT, triangle_scene
+
+FILMBACK = None  # set by configure()
+SCRATCH = None
+USAGE = 2
+# The triangle's node moves along x from X0 at t = 0 to X1 at t = T1, 6 m in front of the camera
+# (yfov 0.8, square): at 24 fps frames 1, 2 and 3 put it at x = -0.2, 0.2 and 0.6 m.
+X0, X1, T1, DEPTH_M, FPS = -0.6, 0.6, 0.125, 6.0, 24.0
+SIDE_PX = 32
+TINY = ["--res", "%dx%d" % (SIDE_PX, SIDE_PX), "--spp", "16", "-q"]
+
+
+def moving_triangle_scene():
+    """tests/cli/gltf_files.py's triangle, emitting 1 W/sr/m^2 on a black base, its node moving
+    linearly (glTF LINEAR sampler) from x = X0 to X1 over [0, T1] s."""
+    g = triangle_scene()
+    g.doc["nodes"][0]["translation"] = [X0, 0.0, -DEPTH_M]
+    g.doc["materials"] = [{"emissiveFactor": [1.0, 1.0, 1.0],
+                           "pbrMetallicRoughness": {"baseColorFactor": [0.0, 0.0, 0.0, 1.0]}}]
+    g.doc["meshes"][0]["primitives"][0]["material"] = 0
+    times = g.view(struct.pack("<2f", 0.0, T1))
+    values = g.view(struct.pack("<6f", X0, 0.0, -DEPTH_M, X1, 0.0, -DEPTH_M))
+    g.doc["animations"] = [{
+        "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+        "samplers": [{"input": g.accessor(times, FLOAT, "SCALAR", 2),
+                      "output": g.accessor(values, FLOAT, "VEC3", 2), "interpolation": "LINEAR"}]}]
+    return g
+
+
+def expected_centroid_px(frame):
+    """Where the triangle's centroid (x, -1/3 m) projects at `frame`, in pixels from the top-left
+    corner: a pinhole maps the plane z = -DEPTH_M by a similarity, so the image's centroid is the
+    projected centroid, u = W/2 (1 + x / (d tan(yfov/2))), v = H/2 (1 - y / (d tan(yfov/2)))."""
+    x = X0 + (X1 - X0) * (frame / FPS) / T1
+    half_width_m = DEPTH_M * math.tan(0.4)
+    return (SIDE_PX / 2 * (1 + x / half_width_m), SIDE_PX / 2 * (1 + (1 / 3) / half_width_m))
+
+
+def red_centroid_px(path):
+    """The red channel's centroid, pixel (i, j) standing for the point (i + 0.5, j + 0.5), read
+    with oiiotool's --dumpdata (one line per pixel: "Pixel (x, y): r g b ...")."""
+    text = subprocess.run(["oiiotool", str(path), "--dumpdata"], capture_output=True, text=True,
+                          check=True).stdout
+    total = su = sv = 0.0
+    for x, y, red in re.findall(r"Pixel \((\d+), (\d+)\): (\S+)", text):
+        value = float(red)
+        total += value
+        su += value * (int(x) + 0.5)
+        sv += value * (int(y) + 0.5)
+    return su / total, sv / total
+
+
+def identical(a, b):
+    """Every pixel value equal (idiff with zero tolerance): bit-identical images."""
+    result = subprocess.run(["idiff", "-fail", "0", "-warn", "0", str(a), str(b)],
+                            capture_output=True, text=True)
+    return result.returncode == 0
+
+
+class FramesTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
+        self.addCleanup(shutil.rmtree, self.dir, True)
+        self.scene = moving_triangle_scene().write(self.dir / "moving.gltf")
+
+    def run_cli(self, *args):
+        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
+        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
+                              env=env, cwd=self.dir, timeout=600)
+
+    def render(self, *args):
+        result = self.run_cli("render", self.scene, *args)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        return result
+
+    def test_each_frame_is_its_single_frame_render(self):
+        self.render("--frames", "1-3", "-o", "f.####.exr", "--stats-json", "stats.json", *TINY)
+        centroids = []
+        for frame in (1, 2, 3):
+            self.render("--frame", frame, "-o", "single.exr", *TINY)
+            sequence_frame = self.dir / ("f.%04d.exr" % frame)
+            self.assertTrue(identical(sequence_frame, self.dir / "single.exr"), frame)
+            # The object is where its animation puts it at the frame: 2.5 px apart.
+            u, v = red_centroid_px(sequence_frame)
+            eu, ev = expected_centroid_px(frame)
+            self.assertAlmostEqual(u, eu, delta=0.15, msg="frame %d" % frame)
+            self.assertAlmostEqual(v, ev, delta=0.15, msg="frame %d" % frame)
+            centroids.append(u)
+        self.assertGreater(centroids[1] - centroids[0], 2.0)
+        self.assertGreater(centroids[2] - centroids[1], 2.0)
+        report = json.loads((self.dir / "stats.json").read_text())
+        self.assertEqual((report["frames"], report["status"], report["exit_status"]),
+                         ("1-3", "complete", 0))
+        self.assertEqual([(r["frame"], r["status"], r["outputs"]) for r in report["frame_reports"]],
+                         [(n, "complete", ["f.%04d.exr" % n]) for n in (1, 2, 3)])
+        # The glTF file is read once: the later frames have no import stage.
+        self.assertEqual(["import" in r["timings_s"] for r in report["frame_reports"]],
+                         [True, False, False])
+        self.assertEqual(sorted(os.listdir(self.dir)),
+                         ["f.0001.exr", "f.0002.exr", "f.0003.exr", "moving.gltf", "single.exr",
+                          "stats.json"])
+
+    def test_a_rerun_skips_done_frames_and_overwrite_renders_them(self):
+        outputs = ["-o", "s.##.exr", "-o", "s.##.png"]
+        self.render("--frames", "1-5:2", *outputs, *TINY)
+        files = [self.dir / ("s.%02d.%s" % (n, ext)) for n in (1, 3, 5) for ext in ("exr", "png")]
+        before = {f: os.stat(f) for f in files}
+        (self.dir / "s.03.png").unlink()  # frame 3 is no longer done
+        result = self.render("--frames", "1-5:2", *outputs, "--stats-json", "stats.json", *TINY)
+        for n in (1, 5):
+            self.assertIn("filmback: frame %d: skipped, s.%02d.exr, s.%02d.png exist" % (n, n, n),
+                          result.stderr)
+        self.assertNotIn("frame 3: skipped", result.stderr)
+        after = {f: os.stat(f) for f in files}
+        for f in files:
+            same = (after[f].st_mtime_ns, after[f].st_ino) == (before[f].st_mtime_ns,
+                                                               before[f].st_ino)
+            self.assertEqual(same, "s.03." not in f.name, f.name)
+        report = json.loads((self.dir / "stats.json").read_text())
+        self.assertEqual([r["status"] for r in report["frame_reports"]],
+                         ["skipped", "complete", "skipped"])
+        # --overwrite: every file written anew (a new file renamed over the old one).
+        self.render("--frames", "1-5:2", *outputs, "--overwrite", *TINY)
+        for f in files:
+            self.assertNotEqual(os.stat(f).st_ino, after[f].st_ino, f.name)
+
+    def test_negative_frames_are_named_as_blender_names_them(self):
+        self.render("--frames", "-1-0", "-o", "n.###.exr", *TINY)
+        self.assertTrue((self.dir / "n.-001.exr").is_file())
+        self.assertTrue((self.dir / "n.000.exr").is_file())
+
+    def test_a_signal_stops_the_sequence_and_resume_continues_the_frame(self):
+        # Hundreds of ms per frame here, so the signal most likely stops frame 1; whichever frame
+        # k it stops, the checks below hold for k.
+        render = ["--res", "32x32", "--spp", "1024", "--checkpoint-every", "1h"]
+        sequence = ["--frames", "1-3", "-o", "f.#.exr", *render]
+        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
+        process = subprocess.Popen([FILMBACK, "render", str(self.scene), *sequence],
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                   env=env, cwd=self.dir)
+        self.addCleanup(lambda: process.poll() is None and process.kill())
+        self.assertTrue(process.stdout.readline().startswith("filmback: camera"))  # frame 1 runs
+        time.sleep(0.2)
+        process.send_signal(signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=120)
+        self.assertEqual(process.returncode, 128 + signal.SIGINT, "no frame was interrupted")
+        k = 1 + stdout.count("filmback: camera")  # the plan lines of the frames that started
+        # The frame it stopped is saved with its checkpoint; the next one never started.
+        self.assertTrue((self.dir / ("f.%d.checkpoint.exr" % k)).is_file(), stderr)
+        self.assertEqual(sorted(p.name for p in self.dir.glob("f.?.exr")),
+                         ["f.%d.exr" % n for n in range(1, k + 1)])
+        # A partial image is no done frame: the re-run continues frame k, renders the later ones.
+        resumed = self.run_cli("render", self.scene, *sequence, "--resume", "-q",
+                               "--stats-json", "stats.json")
+        self.assertEqual(resumed.returncode, 0, resumed.stderr)
+        report = json.loads((self.dir / "stats.json").read_text())
+        self.assertEqual([(r["status"], r.get("checkpoint", {}).get("resumed"))
+                          for r in report["frame_reports"]],
+                         [("skipped", None)] * (k - 1) + [("complete", True)] +
+                         [("complete", False)] * (3 - k))
+        self.assertEqual(list(self.dir.glob("*.checkpoint.exr")), [])
+        self.render("--frame", k, "-o", "single.exr", *render, "-q")
+        self.assertTrue(identical(self.dir / ("f.%d.exr" % k), self.dir / "single.exr"))
+
+    def test_bad_ranges_and_patterns_are_usage_errors_writing_nothing(self):
+        cases = [
+            (["--frames", "5-3", "-o", "f.#.exr"], "--frames '5-3': expected A <= B"),
+            (["--frames", "1-10:0", "-o", "f.#.exr"], "--frames '1-10:0': expected a STEP of 1"),
+            (["--frames", "a-b", "-o", "f.#.exr"], "--frames 'a-b': expected A-B[:STEP] or N"),
+            (["--frames", "1-2", "-o", "f.#.exr", "-o", "f.png"],
+             "output 'f.png': expected a run of '#' in the file name with --frames"),
+            (["--frames", "1-2", "-o", "f.#.exr", "--checkpoint", "c.exr"],
+             "--checkpoint 'c.exr': expected a run of '#'"),
+            (["-o", "f.####.exr"], "output 'f.####.exr': '#' stands for the frame number"),
+            (["--frame", "3", "--frames", "1-2", "-o", "f.#.exr"], "--frame"),
+        ]
+        for args, message in cases:
+            result = self.run_cli("render", self.scene, *args, *TINY)
+            self.assertEqual(result.returncode, USAGE, args)
+            self.assertIn(message, result.stderr, args)
+            self.assertEqual(sorted(os.listdir(self.dir)), ["moving.gltf"], args)
+
+
+def configure(args):
+    global FILMBACK, SCRATCH
+    FILMBACK = str(Path(args.filmback).resolve())
+    SCRATCH = Path(args.scratch).resolve()
+
+
+if __name__ == "__main__":
+    sys.exit(case_main.main(FramesTest, __doc__, configure))
