@@ -155,6 +155,27 @@ class FramesTest(unittest.TestCase):
         self.assertTrue((self.dir / "n.-001.exr").is_file())
         self.assertTrue((self.dir / "n.000.exr").is_file())
 
+    def test_pov_ray_scenes_are_read_again_for_each_frame_number(self):
+        # The sphere's place is frame_number's: frames 0 and 1 differ, and each is its --frame
+        # render, which reads the scene with that frame_number.
+        scene = self.dir / "moving.pov"
+        scene.write_text("camera { location <0, 0, -5> look_at <0, 0, 0> }\n"
+                         "light_source { <0, 5, -5> color rgb 1 }\n"
+                         "sphere { <frame_number - 0.5, 0, 0>, 0.5 pigment { color rgb 1 } }\n")
+
+        def render(*args):
+            return self.run_cli("render", scene, *args, *TINY)
+        result = render("--frames", "0-1", "-o", "p.#.exr", "--stats-json", "stats.json")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        for frame in (0, 1):
+            result = render("--frame", frame, "-o", "single.exr")
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertTrue(identical(self.dir / ("p.%d.exr" % frame), self.dir / "single.exr"))
+        self.assertFalse(identical(self.dir / "p.0.exr", self.dir / "p.1.exr"))
+        report = json.loads((self.dir / "stats.json").read_text())
+        self.assertEqual(["import" in r["timings_s"] for r in report["frame_reports"]],
+                         [True, True])
+
     def test_a_signal_stops_the_sequence_and_resume_continues_the_frame(self):
         # Hundreds of ms per frame here, so the signal most likely stops frame 1; whichever frame
         # k it stops, the checks below hold for k.
