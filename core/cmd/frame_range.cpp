@@ -47,9 +47,11 @@ std::vector<int64_t> FrameRange::frames() const {
 }
 
 std::string FrameRange::text() const {
-  if (first == last) return std::to_string(first);
-  return std::to_string(first) + "-" + std::to_string(last) +
-         (step == 1 ? "" : ":" + std::to_string(step));
+  std::string text = std::to_string(first);
+  if (first == last) return text;
+  text.append("-").append(std::to_string(last));
+  if (step != 1) text.append(":").append(std::to_string(step));
+  return text;
 }
 
 FrameRange parse_frame_range(const std::string& text, const char* option) {

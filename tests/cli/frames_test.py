@@ -177,36 +177,44 @@ class FramesTest(unittest.TestCase):
                          [True, True])
 
     def test_a_signal_stops_the_sequence_and_resume_continues_the_frame(self):
-        # Hundreds of ms per frame here, so the signal most likely stops frame 1; whichever frame
-        # k it stops, the checks below hold for k.
-        render = ["--res", "32x32", "--spp", "1024", "--checkpoint-every", "1h"]
+        # The signal comes once a frame has written a checkpoint: that frame, k, holds samples
+        # (unless it ended just then and frame k + 1 had none yet: then k + 1 writes nothing).
+        render = ["--res", "32x32", "--spp", "1024", "--checkpoint-every", "0.05s", "-q"]
         sequence = ["--frames", "1-3", "-o", "f.#.exr", *render]
         env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        process = subprocess.Popen([FILMBACK, "render", str(self.scene), *sequence],
+        process = subprocess.Popen([FILMBACK, "render", str(self.scene), *sequence,
+                                    "--stats-json", "interrupted.json"],
                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                    env=env, cwd=self.dir)
         self.addCleanup(lambda: process.poll() is None and process.kill())
-        self.assertTrue(process.stdout.readline().startswith("filmback: camera"))  # frame 1 runs
-        time.sleep(0.2)
+        deadline = time.monotonic() + 60
+        while not list(self.dir.glob("f.*.checkpoint.exr")) and process.poll() is None:
+            self.assertLess(time.monotonic(), deadline, "no checkpoint written")
+            time.sleep(0.01)
         process.send_signal(signal.SIGINT)
-        stdout, stderr = process.communicate(timeout=120)
+        _, stderr = process.communicate(timeout=120)
         self.assertEqual(process.returncode, 128 + signal.SIGINT, "no frame was interrupted")
-        k = 1 + stdout.count("filmback: camera")  # the plan lines of the frames that started
-        # The frame it stopped is saved with its checkpoint; the next one never started.
-        self.assertTrue((self.dir / ("f.%d.checkpoint.exr" % k)).is_file(), stderr)
+        report = json.loads((self.dir / "interrupted.json").read_text())
+        self.assertEqual(report["status"], "interrupted")
+        k = len(report["frame_reports"])  # the frames that started; the next one never did
+        self.assertEqual([r["status"] for r in report["frame_reports"]],
+                         ["complete"] * (k - 1) + ["interrupted"])
+        # The frame it stopped is saved with its checkpoint, or has nothing when no sample was.
+        partial = (self.dir / ("f.%d.exr" % k)).exists()
+        self.assertEqual((self.dir / ("f.%d.checkpoint.exr" % k)).exists(), partial, stderr)
         self.assertEqual(sorted(p.name for p in self.dir.glob("f.?.exr")),
-                         ["f.%d.exr" % n for n in range(1, k + 1)])
+                         ["f.%d.exr" % n for n in range(1, k + partial)])
         # A partial image is no done frame: the re-run continues frame k, renders the later ones.
-        resumed = self.run_cli("render", self.scene, *sequence, "--resume", "-q",
+        resumed = self.run_cli("render", self.scene, *sequence, "--resume",
                                "--stats-json", "stats.json")
         self.assertEqual(resumed.returncode, 0, resumed.stderr)
         report = json.loads((self.dir / "stats.json").read_text())
         self.assertEqual([(r["status"], r.get("checkpoint", {}).get("resumed"))
                           for r in report["frame_reports"]],
-                         [("skipped", None)] * (k - 1) + [("complete", True)] +
+                         [("skipped", None)] * (k - 1) + [("complete", partial)] +
                          [("complete", False)] * (3 - k))
         self.assertEqual(list(self.dir.glob("*.checkpoint.exr")), [])
-        self.render("--frame", k, "-o", "single.exr", *render, "-q")
+        self.render("--frame", k, "-o", "single.exr", *render)
         self.assertTrue(identical(self.dir / ("f.%d.exr" % k), self.dir / "single.exr"))
 
     def test_bad_ranges_and_patterns_are_usage_errors_writing_nothing(self):
