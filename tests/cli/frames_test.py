@@ -222,6 +222,7 @@ class FramesTest(unittest.TestCase):
                          [True])
 
     def test_bad_ranges_and_patterns_are_usage_errors_writing_nothing(self):
+        # More bad ranges are unit-tested (FrameRange.BadRangesAreUsageErrorsSayingWhy).
         cases = [
             (["--frames", "5-3", "-o", "f.#.exr"], "--frames '5-3': expected A <= B"),
             (["--frames", "1-10:0", "-o", "f.#.exr"], "--frames '1-10:0': expected a STEP of 1"),
