@@ -460,8 +460,9 @@ const Scene& frame_scene(RenderSession& s, RenderReport& report) {
     Diagnostics diagnostics;
     s.scene.emplace(read_scene(s.c, diagnostics, report));
     s.view.emplace(output_view(s.c, s.choices.view_overrides, *s.scene, diagnostics));
+    // Once per sequence: a frame read again prints its warnings only when they changed.
+    if (diagnostics.messages() != s.warnings) diagnostics.print(std::cerr);
     s.warnings = diagnostics.messages();
-    diagnostics.print(std::cerr);
   }
   report.warnings = s.warnings;
   return *s.scene;
