@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <optional>
 
@@ -499,11 +500,9 @@ int render_frame(RenderSession& s, const std::vector<std::filesystem::path>& out
   return report.exit_status;
 }
 
-int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
+int render(RenderCommand& c, RenderReport& report) {
   RenderSession session(c, report);
-  const int status = render_frame(session, c.outputs, c.resume, report);
-  report.total_s = seconds_since(start);
-  return status;
+  return render_frame(session, c.outputs, c.resume, report);
 }
 
 // --frames: each frame as `render --frame N` renders it, into the outputs' patterns filled with
@@ -525,16 +524,13 @@ int render_frames(RenderCommand& c, SequenceReport& report) {
   return run_frame_sequence(sequence, session.interrupts, render_one, report);
 }
 
-int run_frames(RenderCommand& c) {
-  const auto start = Clock::now();
-  SequenceReport report;
-  report.scene = c.scene;
-  const auto write_report = [&] {
-    report.total_s = seconds_since(start);
-    if (!c.stats_json.empty()) write_sequence_report(report, c.stats_json);
-  };
+// Runs `run` for its exit status and writes the --stats-json report (a RenderReport or a
+// SequenceReport) after it, also when it fails: then with the error, which goes on.
+template <class Report>
+int run_with_report(Report& report, const std::function<int()>& run,
+                    const std::function<void()>& write_report) {
   try {
-    report.exit_status = render_frames(c, report);
+    report.exit_status = run();
   } catch (const std::exception& e) {
     report.exit_status = dynamic_cast<const UsageError*>(&e) ? 2 : 1;
     report.error = e.what();
@@ -544,7 +540,6 @@ int run_frames(RenderCommand& c) {
     }
     throw;
   }
-  report.status = report.exit_status == 0 ? "complete" : "interrupted";
   write_report();
   return report.exit_status;
 }
@@ -552,28 +547,28 @@ int run_frames(RenderCommand& c) {
 }  // namespace
 
 int run_render(RenderCommand& c) {
-  if (!c.frames.empty()) return run_frames(c);
   const auto start = Clock::now();
+  if (!c.frames.empty()) {
+    SequenceReport report;
+    report.scene = c.scene;
+    return run_with_report(
+        report, [&] { return render_frames(c, report); },
+        [&] {
+          report.total_s = seconds_since(start);
+          if (report.error.empty())
+            report.status = report.exit_status == 0 ? "complete" : "interrupted";
+          if (!c.stats_json.empty()) write_sequence_report(report, c.stats_json);
+        });
+  }
   RenderReport report;
   report.scene = c.scene;
   report.outputs = c.outputs;
-  const auto write_report = [&] {
-    if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
-  };
-  try {
-    report.exit_status = render(c, report, start);
-  } catch (const std::exception& e) {
-    report.exit_status = dynamic_cast<const UsageError*>(&e) ? 2 : 1;
-    report.error = e.what();
-    report.total_s = seconds_since(start);
-    try {
-      write_report();
-    } catch (const std::exception&) {  // the render's own error is the one to report
-    }
-    throw;
-  }
-  write_report();
-  return report.exit_status;
+  return run_with_report(
+      report, [&] { return render(c, report); },
+      [&] {
+        report.total_s = seconds_since(start);
+        if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
+      });
 }
 
 }  // namespace fb
