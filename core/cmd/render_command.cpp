@@ -512,6 +512,10 @@ int render_frames(RenderCommand& c, SequenceReport& report) {
   RenderSession session(c, options_report);
   const FrameSequence sequence{*session.choices.frames, c.outputs, options_report.checkpoint,
                                c.overwrite};
+  // Two patterns may name one file from some frame on (shot.#.exr and shot.##.exr from 10): the
+  // widest numbers, at the range's ends, show it before any frame is rendered.
+  for (const int64_t frame : {sequence.range.first, sequence.range.last})
+    check_outputs(frame_files(frame, c.outputs, {}).outputs);
   const auto render_one = [&](const FrameFiles& files, RenderReport& frame) {
     const auto start = Clock::now();
     c.options.frame = double(files.frame);

@@ -232,6 +232,8 @@ class FramesTest(unittest.TestCase):
             (["--frames", "1-2", "-o", "f.#.exr", "--checkpoint", "c.exr"],
              "--checkpoint 'c.exr': expected a run of '#'"),
             (["-o", "f.####.exr"], "output 'f.####.exr': '#' stands for the frame number"),
+            (["--frames", "9-10", "-o", "f.#.exr", "-o", "f.##.exr"],
+             "output 'f.10.exr': the same file as output 'f.10.exr'"),
         ]
         for args, message in cases:
             result = self.run_cli("render", self.scene, *args, *TINY)
