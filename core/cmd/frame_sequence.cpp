@@ -39,8 +39,8 @@ int run_frame_sequence(const FrameSequence& sequence, const InterruptGuard& inte
                        const FrameRenderer& render_frame, SequenceReport& report) {
   report.frames = sequence.range.text();
   for (size_t i = 0; i < sequence.range.count(); ++i) {
-    // A signal between two frames (while the last one's files were written, or the next one's
-    // scene read) ends the sequence before the next frame starts.
+    // A signal after the last frame's render loop (while its files were written) ends the
+    // sequence here; one while the next frame's scene is read stops that frame before a sample.
     if (interrupts.requested()) return 128 + interrupts.signal_number();
     const FrameFiles files =
         frame_files(sequence.range.at(i), sequence.output_patterns, sequence.checkpoint_pattern);
@@ -61,7 +61,7 @@ int run_frame_sequence(const FrameSequence& sequence, const InterruptGuard& inte
       frame.error = e.what();
       frame.exit_status = dynamic_cast<const UsageError*>(&e) ? 2 : 1;
       std::cerr << "filmback: frame " << files.frame << " of " << report.frames
-                << " failed; the frames before it are written\n";
+                << " failed; the frames before it are done\n";
       throw;
     }
     if (status != 0) return status;
