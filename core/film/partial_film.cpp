@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/film/film_state_exr.h"
+#include "core/film/part_coverage.h"
 #include "core/util/error.h"
 #include "core/util/parse_number.h"
 #include "core/util/temporary_file.h"
@@ -125,6 +126,47 @@ SplatLayout splat_layout(const SplatTiles::TileList& tiles) {
   return layout;
 }
 
+// What differs between part `h` and the first part `first` that decides the image; empty: nothing.
+std::string difference(const PartialFilmHeader& h, const PartialFilmHeader& first) {
+  if (h.render_key != first.render_key)
+    return "the scene file or the render's settings (spp, seed, sampler, filter, camera...)";
+  if (h.width != first.width || h.height != first.height) return "the frame's size";
+  if (h.reconstruction != first.reconstruction || h.splat_tile_count != first.splat_tile_count)
+    return "the reconstruction";
+  if (h.channels != first.channels || h.samples_per_pixel != first.samples_per_pixel)
+    return "the film's channels or samples per pixel";
+  const ViewSettings &a = h.view, &b = first.view;
+  if (h.film_exposure != first.film_exposure || a.display_device != b.display_device ||
+      a.view_transform != b.view_transform || a.look != b.look ||
+      a.exposure_stops != b.exposure_stops || a.gamma != b.gamma ||
+      a.dither_intensity != b.dither_intensity)
+    return "the view settings or exposure";
+  return "";
+}
+
+// Every part of the same render, and together the frame, or an InputError naming the file.
+void check_parts(const std::vector<fs::path>& files, const std::vector<PartialFilmHeader>& parts) {
+  for (size_t i = 1; i < parts.size(); ++i)
+    if (const std::string what = difference(parts[i], parts[0]); !what.empty())
+      throw_input(files[i].string(), "",
+                  "a part of another render than '" + files[0].string() + "' (" + what +
+                      " differ); nothing written");
+  std::vector<PixelRect> crops;
+  for (const PartialFilmHeader& p : parts)
+    crops.push_back(p.crop);
+  const std::optional<CoverageProblem> problem =
+      check_coverage(crops, parts[0].width, parts[0].height);
+  if (!problem) return;
+  if (problem->kind == CoverageProblem::Kind::kGap)
+    throw InputError("merge: no part covers pixels " + problem->where.text() +
+                     " of the " + std::to_string(parts[0].width) + "x" +
+                     std::to_string(parts[0].height) + " frame (a missing part?); nothing written");
+  throw_input(files[problem->part].string(), "",
+              "its crop " + crops[problem->part].text() + " overlaps the crop " +
+                  crops[problem->other].text() + " of '" + files[problem->other].string() +
+                  "' (at pixels " + problem->where.text() + "); nothing written");
+}
+
 }  // namespace
 
 void write_partial_film(const fs::path& file, const PartialFilmHeader& h, const Film& film,
@@ -161,6 +203,8 @@ void write_partial_film(const fs::path& file, const PartialFilmHeader& h, const 
   std::vector<uint32_t> tile_pixels;
   if (splat) {
     tiles_spec.channelnames = film_state_channels(film.channels(), false);
+    // OpenEXR's parts of one file share the display window.
+    tiles_spec.full_width = spec.full_width, tiles_spec.full_height = spec.full_height;
     tiles_spec.attribute("compression", "zip");
     tile_pixels.assign(size_t(layout.width) * layout.rows * stride, 0);
     std::string table;
@@ -295,6 +339,29 @@ void read_partial_film(const fs::path& file, const PartialFilmHeader& h, Film& f
       }
     splat_tiles[tile] = std::move(t);
   }
+}
+
+Film merge_partial_films(const std::vector<fs::path>& files,
+                         const std::vector<PartialFilmHeader>& parts) {
+  check_parts(files, parts);
+  const PartialFilmHeader& first = parts[0];
+  Film film(first.width, first.height, first.channels);
+  SplatTiles::TileList splat_tiles(first.splat_tile_count);
+  for (size_t i = 0; i < parts.size(); ++i)
+    read_partial_film(files[i], parts[i], film, splat_tiles);
+  if (first.reconstruction == Reconstruction::kSplat) {
+    // The crops' own sums only held their parts' tiles: the film is the tiles' sums, added in
+    // the whole frame's tile order into an empty film.
+    for (size_t tile = 0; tile < splat_tiles.size(); ++tile)
+      if (!splat_tiles[tile])
+        throw InputError("merge: no part holds splat tile " + std::to_string(tile) +
+                         " (a truncated part?); nothing written");
+    std::fill_n(film.sums(), film.pixel_count() * film.channels().size(), 0.0);
+    std::fill_n(film.weights(), film.pixel_count(), 0.0);
+    SplatTiles::add_splat_tiles(splat_tiles, film);
+    film.set_sample_count(0, 0, film.width(), film.height(), first.samples_per_pixel);
+  }
+  return film;
 }
 
 }  // namespace fb

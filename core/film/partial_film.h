@@ -64,4 +64,12 @@ PartialFilmHeader read_partial_film_header(const std::filesystem::path& file);
 void read_partial_film(const std::filesystem::path& file, const PartialFilmHeader& header,
                        Film& film, SplatTiles::TileList& splat_tiles);
 
+// The whole frame's film from every part of one render (`files[i]` read into `headers[i]`):
+// refuses (InputError naming the file) parts of another render (key, size, settings), parts that
+// overlap, a frame they leave uncovered (naming the pixels), truncated or corrupt data. With
+// splatting, the tiles' sums are added in the whole frame's tile order into an empty film, as
+// SplatTiles::add_to does in a whole render.
+Film merge_partial_films(const std::vector<std::filesystem::path>& files,
+                         const std::vector<PartialFilmHeader>& headers);
+
 }  // namespace fb
