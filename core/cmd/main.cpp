@@ -154,7 +154,8 @@ CLI::App* add_merge_command(CLI::App& app, fb::MergeCommand& merge) {
   CLI::App* merge_cmd = app.add_subcommand(
       "merge", "the partial films of a render's parts into its images (as render writes them)");
   merge_cmd->add_option("parts", merge.parts, "partial films (render --tile/--crop)")->required();
-  merge_cmd->add_option("-o,--output", merge.outputs, "output image, .exr, .png or .jpg (repeatable)")
+  merge_cmd
+      ->add_option("-o,--output", merge.outputs, "output image, .exr, .png or .jpg (repeatable)")
       ->required();
   merge_cmd->add_option("--ocio-config", merge.ocio_config,
                         "OpenColorIO config for 8-bit outputs' view (as render's)");

@@ -44,8 +44,8 @@ int run_merge(const MergeCommand& command) {
     parts.push_back(read_partial_film_header(file));
   const PartialFilmHeader& first = parts[0];
   Diagnostics diagnostics;
-  const OutputView view = output_view(first.view, {command.parts[0].string(), ""},
-                                      command.outputs, command.ocio_config, diagnostics);
+  const OutputView view = output_view(first.view, {command.parts[0].string(), ""}, command.outputs,
+                                      command.ocio_config, diagnostics);
   diagnostics.print(std::cerr);
 
   const Film film = merge_partial_films(command.parts, parts);

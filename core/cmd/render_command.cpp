@@ -286,11 +286,20 @@ std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
   std::string typed;
   for (const auto& [name, value] :
        {std::pair<const char*, const std::string&>{"focal-length", c.focal_length},
-        {"fstop", c.fstop}, {"focus-distance", c.focus_distance}, {"sensor", c.sensor},
-        {"sensor-fit", c.sensor_fit}, {"shift", c.shift}, {"shutter", c.shutter},
-        {"rolling-shutter", c.rolling_shutter}, {"frame", c.frame}, {"fps", c.fps},
-        {"sensor-model", c.sensor_model}, {"iso", c.iso}, {"background", c.background},
-        {"subdiv", c.subdiv}, {"light-sampler", c.light_sampler}})
+        {"fstop", c.fstop},
+        {"focus-distance", c.focus_distance},
+        {"sensor", c.sensor},
+        {"sensor-fit", c.sensor_fit},
+        {"shift", c.shift},
+        {"shutter", c.shutter},
+        {"rolling-shutter", c.rolling_shutter},
+        {"frame", c.frame},
+        {"fps", c.fps},
+        {"sensor-model", c.sensor_model},
+        {"iso", c.iso},
+        {"background", c.background},
+        {"subdiv", c.subdiv},
+        {"light-sampler", c.light_sampler}})
     if (!value.empty()) typed += std::string("; --") + name + " " + value;
   return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
          content_hash(c.scene) + typed;
@@ -430,8 +439,7 @@ int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
         "beyond the part); give --adaptive-threshold 0");
   if (crop) checkpoints.region = whole_tiles_around(*crop, job.width(), job.height());
   if (checkpoints.enabled)
-    checkpoints.key =
-        checkpoint_key(job, c) + (crop ? "; part " + crop->text() : std::string());
+    checkpoints.key = checkpoint_key(job, c) + (crop ? "; part " + crop->text() : std::string());
   Film film = open_film(job, c.resume, checkpoints, report);
   SplatTiles::TileList splat_tiles;
   interrupts.arm();

@@ -54,7 +54,9 @@ void check_part_request(const PartRequest& r) {
 
 PixelRect equal_area_part(uint32_t index, uint32_t count, uint32_t width, uint32_t height) {
   const uint64_t rows = (height + 15) / 16;
-  const auto row = [&](uint64_t i) { return uint32_t(std::min<uint64_t>(16 * (i * rows / count), height)); };
+  const auto row = [&](uint64_t i) {
+    return uint32_t(std::min<uint64_t>(16 * (i * rows / count), height));
+  };
   return {0, row(index), width, row(index + 1)};
 }
 
@@ -73,8 +75,8 @@ std::optional<PixelRect> part_crop(const PartRequest& r, uint32_t width, uint32_
     const TilePlan plan = read_tile_plan(r.tile_plan);
     if (plan.width != width || plan.height != height)
       throw_input(r.tile_plan.string(), "",
-                  "a plan for a " + std::to_string(plan.width) + "x" +
-                      std::to_string(plan.height) + " frame, the render's is " + frame);
+                  "a plan for a " + std::to_string(plan.width) + "x" + std::to_string(plan.height) +
+                      " frame, the render's is " + frame);
     if (plan.parts.size() != v[1])
       throw_input(r.tile_plan.string(), "parts",
                   "has " + std::to_string(plan.parts.size()) + " parts, --tile '" + r.tile +

@@ -14,8 +14,8 @@ namespace fb {
 
 // As typed; all empty: the whole frame.
 struct PartRequest {
-  std::string tile;                  // "I/N"
-  std::string crop;                  // "X0,Y0,X1,Y1"
+  std::string tile;                 // "I/N"
+  std::string crop;                 // "X0,Y0,X1,Y1"
   std::filesystem::path tile_plan;  // with --tile: take the plan's part I
   bool any() const { return !tile.empty() || !crop.empty(); }
 };

@@ -48,8 +48,8 @@ void check_plan(const TilePlan& plan, const fs::path& file) {
   }
 }
 
-uint32_t pixels_at(const json& value, const fs::path& file, const std::string& where,
-                   uint64_t lo, uint64_t hi) {
+uint32_t pixels_at(const json& value, const fs::path& file, const std::string& where, uint64_t lo,
+                   uint64_t hi) {
   if (!value.is_number_unsigned() || value.get<uint64_t>() < lo || value.get<uint64_t>() > hi)
     throw_input(file.string(), where,
                 "expected an integer from " + std::to_string(lo) + " to " + std::to_string(hi));
@@ -94,8 +94,7 @@ TilePlan read_tile_plan(const fs::path& file) {
     const json seconds = part.value("estimated_seconds", json());
     if (!seconds.is_number() || !(seconds.get<double>() >= 0) ||
         !(seconds.get<double>() < std::numeric_limits<double>::infinity()))
-      throw_input(file.string(), where + ".estimated_seconds",
-                  "expected a number of seconds >= 0");
+      throw_input(file.string(), where + ".estimated_seconds", "expected a number of seconds >= 0");
     p.estimated_seconds = seconds.get<double>();
     plan.parts.push_back(p);
   }
@@ -105,8 +104,11 @@ TilePlan read_tile_plan(const fs::path& file) {
 
 void write_tile_plan(const TilePlan& plan, const fs::path& file) {
   check_plan(plan, file);
-  json doc = {{"format", kFormat}, {"version", kVersion}, {"width", plan.width},
-              {"height", plan.height}, {"parts", json::array()}};
+  json doc = {{"format", kFormat},
+              {"version", kVersion},
+              {"width", plan.width},
+              {"height", plan.height},
+              {"parts", json::array()}};
   for (const TilePlan::Part& p : plan.parts)
     doc["parts"].push_back({{"crop", {p.crop.x0, p.crop.y0, p.crop.x1, p.crop.y1}},
                             {"estimated_seconds", p.estimated_seconds}});

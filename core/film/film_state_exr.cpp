@@ -25,7 +25,9 @@ void split(double v, uint32_t* out) {
   out[1] = uint32_t(bits);
 }
 
-double join(uint32_t hi, uint32_t lo) { return std::bit_cast<double>(uint64_t(hi) << 32 | lo); }
+double join(uint32_t hi, uint32_t lo) {
+  return std::bit_cast<double>(uint64_t(hi) << 32 | lo);
+}
 
 }  // namespace
 
@@ -93,8 +95,7 @@ std::string decode_film_state(OIIO::ImageInput& in, const PixelRect& region, Fil
   if (spec.x < 0 || spec.y < 0 || !(window == region))
     return "it holds pixels " + window.text() + ", expected " + region.text();
   std::vector<int> index;
-  if (std::string why =
-          channel_positions(spec, film_state_channels(film.channels(), true), index);
+  if (std::string why = channel_positions(spec, film_state_channels(film.channels(), true), index);
       !why.empty())
     return why;
   const size_t n = film.channels().size(), stride = size_t(spec.nchannels);

@@ -1,6 +1,7 @@
-// The film's raw state in an OpenEXR image, exactly: per pixel and channel the sum of w v, per pixel
-// the sum of w (each double as its two 32-bit halves in UINT channels) and the sample count. One
-// encoding for checkpoints (checkpoint.h), partial films and their splat tiles (partial_film.h).
+// The film's raw state in an OpenEXR image, exactly: per pixel and channel the sum of w v, per
+// pixel the sum of w (each double as its two 32-bit halves in UINT channels) and the sample count.
+// One encoding for checkpoints (checkpoint.h), partial films and their splat tiles
+// (partial_film.h).
 #pragma once
 
 #include <OpenImageIO/imageio.h>

@@ -31,16 +31,16 @@ std::optional<CoverageProblem> check_coverage(const std::vector<PixelRect>& part
       for (size_t cx = cell(xs, p.x0); cx < cell(xs, p.x1); ++cx) {
         uint32_t& o = owner[cy * cells_x + cx];
         if (o != 0)
-          return CoverageProblem{CoverageProblem::Kind::kOverlap, i, o - 1,
-                                 {xs[cx], ys[cy], xs[cx + 1], ys[cy + 1]}};
+          return CoverageProblem{
+              CoverageProblem::Kind::kOverlap, i, o - 1, {xs[cx], ys[cy], xs[cx + 1], ys[cy + 1]}};
         o = uint32_t(i + 1);
       }
   }
   for (size_t c = 0; c < owner.size(); ++c)
     if (owner[c] == 0) {
       const size_t cx = c % cells_x, cy = c / cells_x;
-      return CoverageProblem{CoverageProblem::Kind::kGap, 0, 0,
-                             {xs[cx], ys[cy], xs[cx + 1], ys[cy + 1]}};
+      return CoverageProblem{
+          CoverageProblem::Kind::kGap, 0, 0, {xs[cx], ys[cy], xs[cx + 1], ys[cy + 1]}};
     }
   return std::nullopt;
 }

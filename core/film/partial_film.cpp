@@ -23,7 +23,9 @@ constexpr const char* kPrefix = "filmback/part/";
 constexpr const char* kMetadata = "filmback/part/metadata/";
 constexpr uint32_t kTile = 16;  // the film tiles whose seconds are recorded (render_loop.h)
 
-std::string attr(const char* name) { return std::string(kPrefix) + name; }
+std::string attr(const char* name) {
+  return std::string(kPrefix) + name;
+}
 
 // Doubles as text that reads back to the same bits.
 std::string exact_text(double v) {
@@ -158,9 +160,9 @@ void check_parts(const std::vector<fs::path>& files, const std::vector<PartialFi
       check_coverage(crops, parts[0].width, parts[0].height);
   if (!problem) return;
   if (problem->kind == CoverageProblem::Kind::kGap)
-    throw InputError("merge: no part covers pixels " + problem->where.text() +
-                     " of the " + std::to_string(parts[0].width) + "x" +
-                     std::to_string(parts[0].height) + " frame (a missing part?); nothing written");
+    throw InputError("merge: no part covers pixels " + problem->where.text() + " of the " +
+                     std::to_string(parts[0].width) + "x" + std::to_string(parts[0].height) +
+                     " frame (a missing part?); nothing written");
   throw_input(files[problem->part].string(), "",
               "its crop " + crops[problem->part].text() + " overlaps the crop " +
                   crops[problem->other].text() + " of '" + files[problem->other].string() +
@@ -243,10 +245,12 @@ PartialFilmHeader read_partial_film_header(const fs::path& file) {
   if (!in) fail(file, "", "cannot be read as a partial film: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   if (spec.get_int_attribute(attr("version")) != kVersion)
-    fail(file, "", "not a filmback partial film (version " + std::to_string(kVersion) +
-                       "), as `filmback render --tile/--crop` writes");
+    fail(file, "",
+         "not a filmback partial film (version " + std::to_string(kVersion) +
+             "), as `filmback render --tile/--crop` writes");
   PartialFilmHeader h;
-  h.width = uint32_t(std::max(spec.full_width, 0)), h.height = uint32_t(std::max(spec.full_height, 0));
+  h.width = uint32_t(std::max(spec.full_width, 0)),
+  h.height = uint32_t(std::max(spec.full_height, 0));
   if (spec.x < 0 || spec.y < 0 || spec.full_x != 0 || spec.full_y != 0 || h.width == 0 ||
       h.height == 0)
     fail(file, "", "its data or display window is not a part of a frame");
@@ -327,7 +331,8 @@ void read_partial_film(const fs::path& file, const PartialFilmHeader& h, Film& f
         t->x1 - t->x0 > uint32_t(spec.width) || row + (t->y1 - t->y0) > uint32_t(spec.height))
       corrupt("its splat tile table does not match its tiles' sums");
     if (splat_tiles[tile])
-      fail(file, "", "splat tile " + std::to_string(tile) + " is also another part's: the parts overlap");
+      fail(file, "",
+           "splat tile " + std::to_string(tile) + " is also another part's: the parts overlap");
     const size_t pixel_count = size_t(t->x1 - t->x0) * (t->y1 - t->y0);
     t->sums.resize(pixel_count * n), t->weights.resize(pixel_count);
     for (uint32_t y = t->y0; y < t->y1; ++y, ++row)

@@ -1,5 +1,5 @@
-// A rectangle of film pixels, [x0, x1) x [y0, y1), top-left origin: a part of a render (docs/cli.md,
-// "Parts of a render"), a checkpoint's region, a splat tile's reach.
+// A rectangle of film pixels, [x0, x1) x [y0, y1), top-left origin: a part of a render
+// (docs/cli.md, "Parts of a render"), a checkpoint's region, a splat tile's reach.
 #pragma once
 
 #include <algorithm>
@@ -28,6 +28,8 @@ struct PixelRect {
 };
 
 // The whole frame of a width x height film.
-inline PixelRect whole_frame(uint32_t width, uint32_t height) { return {0, 0, width, height}; }
+inline PixelRect whole_frame(uint32_t width, uint32_t height) {
+  return {0, 0, width, height};
+}
 
 }  // namespace fb

@@ -65,7 +65,8 @@ class RenderJob {
   Film make_film() const;
   // Renders into `film`, continuing from the samples it already holds (docs/cli.md, "Interrupts
   // and checkpoints"), and resolves it.
-  RenderResult run(Film& film, const RenderControl& control = {}, const RenderPart& part = {}) const;
+  RenderResult run(Film& film, const RenderControl& control = {},
+                   const RenderPart& part = {}) const;
   RenderResult run() const;
   ImageMetadata metadata(const RenderResult& result) const;
 

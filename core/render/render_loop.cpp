@@ -456,8 +456,8 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
             _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
             _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
             for (uint64_t tile = range.begin(); tile != range.end(); ++tile) {
-              if (done[tile] >= end || !grid.taken(tile) ||
-                  pause.load(std::memory_order_relaxed) || cancelled())
+              if (done[tile] >= end || !grid.taken(tile) || pause.load(std::memory_order_relaxed) ||
+                  cancelled())
                 continue;
               const auto [x0, y0, x1, y1] = tile_box(tile);
               RenderStats local;

@@ -36,7 +36,7 @@ const Scene& default_scene() {
 std::vector<PixelRect> parts_of(int count) {
   if (count == 1) return {{0, 0, kWidth, kHeight}};
   if (count == 3) return {{0, 0, 23, 17}, {23, 0, kWidth, 17}, {0, 17, kWidth, kHeight}};
-  return {{0, 0, 9, 20},   {9, 0, 40, 7},   {9, 7, 40, 20},  {40, 0, kWidth, 20},
+  return {{0, 0, 9, 20},   {9, 0, 40, 7},        {9, 7, 40, 20},  {40, 0, kWidth, 20},
           {0, 20, 31, 21}, {31, 20, kWidth, 33}, {0, 21, 31, 45}, {31, 33, kWidth, kHeight}};
 }
 
