@@ -6,6 +6,8 @@
 
 #include <atomic>
 #include <cstring>
+#include <fstream>
+#include <functional>
 
 #include "core/film/checkpoint.h"
 #include "core/film/part_coverage.h"
@@ -53,8 +55,9 @@ PartialFilmHeader header(const RenderJob& job, const RenderResult& result, const
   return h;
 }
 
-// Renders `crops` as parts into partial films under `folder` and merges them.
-Image merged(const RenderJob& job, const std::vector<PixelRect>& crops, const fs::path& folder) {
+// Renders `crops` as parts into partial films under `folder`.
+std::vector<fs::path> write_parts(const RenderJob& job, const std::vector<PixelRect>& crops,
+                                  const fs::path& folder) {
   std::vector<fs::path> files;
   for (size_t i = 0; i < crops.size(); ++i) {
     Film film = job.make_film();
@@ -63,10 +66,19 @@ Image merged(const RenderJob& job, const std::vector<PixelRect>& crops, const fs
     files.push_back(folder / ("part" + std::to_string(i) + ".exr"));
     write_partial_film(files.back(), header(job, result, crops[i], tiles.size()), film, tiles);
   }
+  return files;
+}
+
+std::vector<PartialFilmHeader> headers_of(const std::vector<fs::path>& files) {
   std::vector<PartialFilmHeader> headers;
   for (const fs::path& file : files)
     headers.push_back(read_partial_film_header(file));
-  return merge_partial_films(files, headers).resolve();
+  return headers;
+}
+
+Image merged(const RenderJob& job, const std::vector<PixelRect>& crops, const fs::path& folder) {
+  const std::vector<fs::path> files = write_parts(job, crops, folder);
+  return merge_partial_films(files, headers_of(files)).resolve();
 }
 
 bool same_bits(const Image& a, const Image& b) {
@@ -100,6 +112,48 @@ TEST(PartialFilm, MergedPartsAreTheWholeRenderBitForBit) {
                        ", " + std::to_string(count) + " parts");
           EXPECT_TRUE(same_bits(merged(job, parts_of(count), folder), whole));
         }
+}
+
+// merge_partial_films' message for `files` (with `edit` applied to their headers), or "".
+std::string refusal(const std::vector<fs::path>& files,
+                    const std::function<void(std::vector<PartialFilmHeader>&)>& edit = {}) {
+  try {
+    std::vector<PartialFilmHeader> headers = headers_of(files);
+    if (edit) edit(headers);
+    merge_partial_films(files, headers);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PartialFilm, MergeRefusesWhatIsNotOneRender) {
+  const fs::path folder = test::scratch_dir() / "partial_film_refusals";
+  fs::create_directories(folder);
+  RenderOptions o;
+  o.width = kWidth, o.height = kHeight, o.samples_per_pixel = 2, o.filter = "gaussian";
+  o.reconstruction = Reconstruction::kSplat, o.show_progress = false;
+  const RenderJob job(default_scene(), o, test::loader());
+  const std::vector<fs::path> f = write_parts(job, parts_of(3), folder);
+  EXPECT_EQ(refusal(f), "");
+  const auto says = [](const std::string& message, const std::string& part) {
+    EXPECT_NE(message.find(part), std::string::npos) << message;
+  };
+  says(refusal(f, [](auto& h) { h[2].render_key = "another seed"; }),
+       f[2].string() + ": a part of another render than '" + f[0].string());
+  says(refusal(f, [](auto& h) { h[1].view.exposure_stops = 1; }), "the view settings");
+  says(refusal({f[0], f[1], f[2], f[1]}),
+       f[1].string() + ": its crop 23,0,70,17 overlaps the crop 23,0,70,17");
+  says(refusal({f[0], f[2]}), "no part covers pixels 23,0,70,17");
+  for (const double kept : {0.4, 0.8}) {  // into the film state, into the splat tiles
+    const std::string data = [&] {
+      std::ifstream in(f[1], std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    }();
+    const fs::path cut = folder / "cut.exr";
+    std::ofstream(cut, std::ios::binary) << data.substr(0, size_t(double(data.size()) * kept));
+    says(refusal({f[0], cut, f[2]}), cut.string() + ": ");
+  }
 }
 
 TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
