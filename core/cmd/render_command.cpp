@@ -293,7 +293,6 @@ std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
         {"shift", c.shift},
         {"shutter", c.shutter},
         {"rolling-shutter", c.rolling_shutter},
-        {"frame", c.frame},
         {"fps", c.fps},
         {"sensor-model", c.sensor_model},
         {"iso", c.iso},
@@ -301,6 +300,12 @@ std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
         {"subdiv", c.subdiv},
         {"light-sampler", c.light_sampler}})
     if (!value.empty()) typed += std::string("; --") + name + " " + value;
+  // The frame as rendered (--frame's, or each frame's of a sequence), exactly.
+  if (c.options.frame) {
+    char frame[40];
+    std::snprintf(frame, sizeof frame, "; frame %.17g", *c.options.frame);
+    typed += frame;
+  }
   return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
          content_hash(c.scene) + typed;
 }
