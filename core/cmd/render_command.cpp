@@ -12,6 +12,7 @@
 
 #include "core/cmd/commands.h"
 #include "core/cmd/frame_sequence.h"
+#include "core/cmd/image_outputs.h"
 #include "core/cmd/interrupts.h"
 #include "core/cmd/render_report.h"
 #include "core/film/checkpoint.h"
@@ -149,21 +150,6 @@ std::pair<ViewSettings, ViewSettingsOrigin> view_settings(const RenderCommand& c
   return {v, origin};
 }
 
-// What an 8-bit output of this render applies (Blender's would), in the EXR's metadata too
-// (docs/conventions.md, "Images"); nothing for a shot that names no view and changes nothing.
-void add_view_metadata(const ViewSettings& v, ImageMetadata& m) {
-  const ViewSettings defaults;
-  if (!v.names_view() && v.exposure_stops == 0 && v.gamma == 1 && v.dither_intensity == 0 &&
-      v.look == defaults.look && v.display_device == defaults.display_device)
-    return;
-  m.strings.insert(m.strings.end(), {{"filmback/display_device", v.display_device},
-                                     {"filmback/view_transform", v.view_transform},
-                                     {"filmback/look", v.look}});
-  m.floats.insert(m.floats.end(), {{"filmback/exposure_stops", float(v.exposure_stops)},
-                                   {"filmback/gamma", float(v.gamma)},
-                                   {"filmback/dither_intensity", float(v.dither_intensity)}});
-}
-
 }  // namespace
 
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text) {
@@ -217,24 +203,6 @@ std::string content_hash(const std::filesystem::path& file) {
   return text;
 }
 
-void check_outputs(const std::vector<std::filesystem::path>& outputs) {
-  for (size_t i = 0; i < outputs.size(); ++i) {
-    const std::filesystem::path& out = outputs[i];
-    image_format_for(out);
-    for (size_t j = 0; j < i; ++j)
-      if (std::filesystem::weakly_canonical(outputs[j]) == std::filesystem::weakly_canonical(out))
-        throw UsageError("output '" + out.string() + "': the same file as output '" +
-                         outputs[j].string() + "'");
-    const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
-    if (!std::filesystem::is_directory(folder))
-      throw UsageError("output '" + out.string() + "': the folder '" + folder.string() +
-                       "' does not exist");
-    // Checked before rendering: failing at the second write would leave the first output behind.
-    if (std::filesystem::is_directory(out))
-      throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");
-  }
-}
-
 // Checkpoints of this render (docs/cli.md, "Interrupts and checkpoints"); the file is
 // report.checkpoint.
 struct Checkpoints {
@@ -243,6 +211,7 @@ struct Checkpoints {
   // Everything that decides the samples, so that a checkpoint of another render is refused; set
   // once the job is made.
   std::string key;
+  std::optional<PixelRect> region;  // a part's: the whole tiles it renders; none: the frame
 };
 
 // What the command line asks beyond RenderOptions: the 8-bit view's numbers, the checkpoints and
@@ -278,6 +247,10 @@ CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
     throw UsageError("--frame and --frames: expected one of them (--frames N renders frame N)");
   check_frame_patterns(c, choices.frames.has_value());
   check_outputs(c.outputs);
+  check_part_request(c.part);
+  if (c.part.any() &&
+      (c.outputs.size() != 1 || image_format_for(c.outputs.front()) != ImageFormat::kExr))
+    throw UsageError("--tile/--crop: expected one output, a .exr file (the partial film)");
   if (!c.resolution.empty()) {
     const auto [width, height] = parse_resolution(c.resolution);
     c.options.width = width, c.options.height = height;
@@ -316,28 +289,11 @@ Scene read_scene(RenderCommand& c, Diagnostics& diagnostics, RenderReport& repor
   return scene;
 }
 
-// How the outputs show the render: the shot's view settings with the command line's, and the
-// display transform of 8-bit outputs.
-struct OutputView {
-  ViewSettings view;
-  bool eight_bit = false;    // some output is a PNG or JPEG
-  DisplayTransform display;  // made only when eight_bit
-  // What the outputs apply, for the EXR's metadata too.
-  const ViewSettings& applied() const { return eight_bit ? display.settings() : view; }
-};
-
+// How the outputs show the render: the shot's view settings with the command line's.
 OutputView output_view(const RenderCommand& c, const ViewOverrides& overrides, const Scene& scene,
                        Diagnostics& diagnostics) {
-  OutputView out;
   const auto [view, view_origin] = view_settings(c, overrides, scene);
-  out.view = view;
-  out.eight_bit = std::any_of(c.outputs.begin(), c.outputs.end(), [](const auto& output) {
-    return is_8_bit(image_format_for(output));
-  });
-  // Made before the render, so that a bad config or name fails at once: only 8-bit outputs need it.
-  if (out.eight_bit)
-    out.display = DisplayTransform::create(view, view_origin, c.ocio_config, diagnostics);
-  return out;
+  return fb::output_view(view, view_origin, c.outputs, c.ocio_config, diagnostics);
 }
 
 // The job's choices into the report, and its plan line unless quiet.
@@ -349,9 +305,58 @@ void report_plan(const RenderJob& job, const RenderCommand& c, RenderReport& rep
   if (!c.quiet) std::cout << job.plan() << std::endl;
 }
 
+// The plan line names the choices; what was typed for the camera, shutter and frame is added as
+// typed, since some of it only shows in the rays (a focal length, a frame's camera position).
 std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
+  std::string typed;
+  for (const auto& [name, value] :
+       {std::pair<const char*, const std::string&>{"focal-length", c.focal_length},
+        {"fstop", c.fstop},
+        {"focus-distance", c.focus_distance},
+        {"sensor", c.sensor},
+        {"sensor-fit", c.sensor_fit},
+        {"shift", c.shift},
+        {"shutter", c.shutter},
+        {"rolling-shutter", c.rolling_shutter},
+        {"fps", c.fps},
+        {"sensor-model", c.sensor_model},
+        {"iso", c.iso},
+        {"background", c.background},
+        {"subdiv", c.subdiv},
+        {"light-sampler", c.light_sampler}})
+    if (!value.empty()) typed += std::string("; --") + name + " " + value;
+  // The frame as rendered (--frame's, or each frame's of a sequence), exactly.
+  if (c.options.frame) {
+    char frame[40];
+    std::snprintf(frame, sizeof frame, "; frame %.17g", *c.options.frame);
+    typed += frame;
+  }
   return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
-         content_hash(c.scene);
+         content_hash(c.scene) + typed;
+}
+
+// A part (--tile/--crop) writes its partial film instead of an image (docs/cli.md, "Parts of a
+// render"); an interrupted part writes none, only its checkpoint when asked for.
+void write_part(const RenderJob& job, const RenderResult& result, const Film& film,
+                const SplatTiles::TileList& splat_tiles, const PixelRect& crop,
+                const OutputView& view, const RenderCommand& c, const Scene& scene,
+                const std::filesystem::path& output, const Checkpoints& checkpoints,
+                RenderReport& report) {
+  const auto stage = Clock::now();
+  if (result.stats.interrupted) {
+    if (checkpoints.enabled) {
+      write_checkpoint(film, checkpoints.key, report.checkpoint, checkpoints.region);
+      ++report.checkpoints_written;
+    }
+    std::cerr << "filmback: the part was interrupted: no partial film written\n";
+  } else {
+    PartialFilmHeader header = partial_film_header(job, result, crop, checkpoint_key(job, c),
+                                                   view.view, scene.settings.film_exposure);
+    header.splat_tile_count = splat_tiles.size();
+    write_partial_film(output, header, film, splat_tiles);
+    if (checkpoints.enabled) std::filesystem::remove(report.checkpoint);
+  }
+  report.write_s = seconds_since(stage);
 }
 
 // The job's empty film, or with --resume the film the checkpoint holds.
@@ -362,7 +367,8 @@ Film open_film(const RenderJob& job, bool resume, const Checkpoints& checkpoints
     if (!std::filesystem::exists(report.checkpoint))
       throw InputError("--resume: no checkpoint '" + report.checkpoint.string() +
                        "' (--checkpoint-every writes one)");
-    read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film);
+    read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film,
+                    checkpoints.region);
     report.resumed = true;
   }
   return film;
@@ -376,7 +382,7 @@ RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints
   if (checkpoints.every != Clock::duration::zero()) {
     control.checkpoint_every = checkpoints.every;
     control.checkpoint = [&checkpoints, &report](const Film& f) {
-      write_checkpoint(f, checkpoints.key, report.checkpoint);
+      write_checkpoint(f, checkpoints.key, report.checkpoint, checkpoints.region);
       ++report.checkpoints_written;
     };
   }
@@ -384,9 +390,10 @@ RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints
 }
 
 RenderResult run_job(const RenderJob& job, Film& film, const RenderControl& control,
-                     const InterruptGuard& interrupts, RenderReport& report) {
+                     const RenderPart& part, const InterruptGuard& interrupts,
+                     RenderReport& report) {
   const auto stage = Clock::now();
-  RenderResult result = job.run(film, control);
+  RenderResult result = job.run(film, control, part);
   report.render_s = seconds_since(stage);
   if (result.stats.interrupted) {
     report.signal = interrupts.signal_number();
@@ -403,12 +410,10 @@ void write_outputs(const RenderJob& job, const RenderResult& result, const Film&
                    const OutputView& view, const std::vector<std::filesystem::path>& outputs,
                    const Checkpoints& checkpoints, RenderReport& report) {
   const auto stage = Clock::now();
-  ImageMetadata metadata = job.metadata(result);
-  add_view_metadata(view.applied(), metadata);
-  write_images(result.image, outputs, metadata, view.display);
+  fb::write_outputs(result.image, job.metadata(result), view, outputs);
   const bool interrupted = result.stats.interrupted;
   if (interrupted && checkpoints.enabled) {
-    write_checkpoint(film, checkpoints.key, report.checkpoint);
+    write_checkpoint(film, checkpoints.key, report.checkpoint, checkpoints.region);
     ++report.checkpoints_written;
   }
   if (!interrupted && checkpoints.enabled) std::filesystem::remove(report.checkpoint);
@@ -484,13 +489,25 @@ int render_frame(RenderSession& s, const std::vector<std::filesystem::path>& out
     throw UsageError(
         "--checkpoint-every/--resume: not with adaptive sampling (which pixels have converged is "
         "not saved); give --adaptive-threshold 0");
-  if (checkpoints.enabled) checkpoints.key = checkpoint_key(job, s.c);
+  const std::optional<PixelRect> crop = part_crop(s.c.part, job.width(), job.height());
+  if (crop && job.shot_plan().adaptive)
+    throw UsageError(
+        "--tile/--crop: not with adaptive sampling (a pixel's convergence depends on pixels "
+        "beyond the part); give --adaptive-threshold 0");
+  if (crop) checkpoints.region = whole_tiles_around(*crop, job.width(), job.height());
+  if (checkpoints.enabled)
+    checkpoints.key = checkpoint_key(job, s.c) + (crop ? "; part " + crop->text() : std::string());
   Film film = open_film(job, resume, checkpoints, report);
+  SplatTiles::TileList splat_tiles;
   s.interrupts.arm();
   const RenderResult result =
-      run_job(job, film, render_control(s.interrupts, checkpoints, report), s.interrupts, report);
+      run_job(job, film, render_control(s.interrupts, checkpoints, report),
+              RenderPart{crop, crop ? &splat_tiles : nullptr}, s.interrupts, report);
   const bool interrupted = result.stats.interrupted;
-  if (interrupted && result.most_samples == 0)
+  if (crop)
+    write_part(job, result, film, splat_tiles, *crop, *s.view, s.c, scene, outputs.front(),
+               checkpoints, report);
+  else if (interrupted && result.most_samples == 0)
     std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
   else
     write_outputs(job, result, film, *s.view, outputs, checkpoints, report);
