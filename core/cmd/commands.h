@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cmd/render_part.h"
 #include "core/render/render_job.h"
 #include "importers/import_scene.h"
 
@@ -39,6 +40,11 @@ struct RenderCommand {
   std::filesystem::path checkpoint;
   bool resume = false;
   std::filesystem::path stats_json;
+  // A frame sequence (docs/cli.md, "Frame sequences"): "A-B[:STEP]" or "N" as typed; empty: one
+  // frame. `overwrite`: render again the frames whose outputs are all there.
+  std::string frames;
+  bool overwrite = false;
+  PartRequest part;  // --tile/--crop/--tile-plan: one part of the frame, a partial film
   RenderOptions options;
   ImportOptions import;  // its resolution is filled from --res by run_render
 };
@@ -77,6 +83,12 @@ struct BenchCommand {
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text);
 
 int run_render(RenderCommand& command);
+// `filmback merge PARTS... -o OUT...` (docs/cli.md, "Parts of a render").
+struct MergeCommand {
+  std::vector<std::filesystem::path> parts, outputs;
+  std::filesystem::path ocio_config;
+};
+int run_merge(const MergeCommand& command);
 // `camera`: list only that camera (a UsageError naming the cameras there are when absent);
 // `camera_model`: plan with that camera plugin, as --camera-model of render.
 int run_info(const std::filesystem::path& scene, const ImportOptions& options,

@@ -84,6 +84,11 @@ void add_physical_camera_options(CLI::App* render_cmd, fb::RenderCommand& render
                            "shutter in [0, 1] (Cycles' duration), or none (default: the shot's)");
   camera_group->add_option("--frame", render.frame,
                            "frame to render, time = frame / fps (default: the scene's, else 0)");
+  camera_group
+      ->add_option("--frames", render.frames,
+                   "render frames A to B (every STEP-th), or frame N: A-B[:STEP] or N; each -o "
+                   "holds a run of # for the frame number (shot.####.exr)")
+      ->excludes("--frame");
   camera_group->add_option("--fps", render.fps,
                            "frames per second of the animation (default: the scene's, else 24)");
   camera_group->add_option("--sensor-model", render.sensor_model,
@@ -141,6 +146,27 @@ void add_run_options(CLI::App* render_cmd, fb::RenderCommand& render) {
                        "continue from the checkpoint: the same image as an uninterrupted render");
   render_cmd->add_option("--stats-json", render.stats_json,
                          "write timings, counts, warnings and the chosen models as JSON");
+  render_cmd->add_flag("--overwrite", render.overwrite,
+                       "--frames: render again the frames whose outputs all exist (default: skip)");
+  CLI::Option_group* part_group = render_cmd->add_option_group(
+      "Parts of a render", "one part of the frame into a partial film for `filmback merge`");
+  part_group->add_option("--tile", render.part.tile,
+                         "I/N: part I (from 0) of N (bands of 16-pixel tile rows, or the plan's)");
+  part_group->add_option("--crop", render.part.crop, "X0,Y0,X1,Y1: these pixels (X1, Y1 excluded)");
+  part_group->add_option("--tile-plan", render.part.tile_plan,
+                         "with --tile: the plan's part I (filmback tile-plan)");
+}
+
+CLI::App* add_merge_command(CLI::App& app, fb::MergeCommand& merge) {
+  CLI::App* merge_cmd = app.add_subcommand(
+      "merge", "the partial films of a render's parts into its images (as render writes them)");
+  merge_cmd->add_option("parts", merge.parts, "partial films (render --tile/--crop)")->required();
+  merge_cmd
+      ->add_option("-o,--output", merge.outputs, "output image, .exr, .png or .jpg (repeatable)")
+      ->required();
+  merge_cmd->add_option("--ocio-config", merge.ocio_config,
+                        "OpenColorIO config for 8-bit outputs' view (as render's)");
+  return merge_cmd;
 }
 
 CLI::App* add_render_command(CLI::App& app, fb::RenderCommand& render) {
@@ -327,9 +353,11 @@ int main(int argc, char** argv) {
   InfoCommand info;
   fb::ConvertCommand convert;
   fb::BenchCommand bench;
+  fb::MergeCommand merge;
   // In the order `filmback --help` lists them (a braced list is evaluated left to right).
   const Subcommand subcommands[] = {
       {add_render_command(app, render), [&] { return fb::run_render(render); }},
+      {add_merge_command(app, merge), [&] { return fb::run_merge(merge); }},
       {add_info_command(app, info), [&] { return run_info_command(info); }},
       {add_convert_command(app, convert), [&] { return fb::run_convert(convert); }},
       {app.add_subcommand("plugins", "list every plugin found, with its parameters"),

@@ -6,10 +6,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <optional>
 
 #include "core/cmd/commands.h"
+#include "core/cmd/frame_sequence.h"
+#include "core/cmd/image_outputs.h"
 #include "core/cmd/interrupts.h"
 #include "core/cmd/render_report.h"
 #include "core/film/checkpoint.h"
@@ -147,21 +150,6 @@ std::pair<ViewSettings, ViewSettingsOrigin> view_settings(const RenderCommand& c
   return {v, origin};
 }
 
-// What an 8-bit output of this render applies (Blender's would), in the EXR's metadata too
-// (docs/conventions.md, "Images"); nothing for a shot that names no view and changes nothing.
-void add_view_metadata(const ViewSettings& v, ImageMetadata& m) {
-  const ViewSettings defaults;
-  if (!v.names_view() && v.exposure_stops == 0 && v.gamma == 1 && v.dither_intensity == 0 &&
-      v.look == defaults.look && v.display_device == defaults.display_device)
-    return;
-  m.strings.insert(m.strings.end(), {{"filmback/display_device", v.display_device},
-                                     {"filmback/view_transform", v.view_transform},
-                                     {"filmback/look", v.look}});
-  m.floats.insert(m.floats.end(), {{"filmback/exposure_stops", float(v.exposure_stops)},
-                                   {"filmback/gamma", float(v.gamma)},
-                                   {"filmback/dither_intensity", float(v.dither_intensity)}});
-}
-
 }  // namespace
 
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text) {
@@ -215,24 +203,6 @@ std::string content_hash(const std::filesystem::path& file) {
   return text;
 }
 
-void check_outputs(const std::vector<std::filesystem::path>& outputs) {
-  for (size_t i = 0; i < outputs.size(); ++i) {
-    const std::filesystem::path& out = outputs[i];
-    image_format_for(out);
-    for (size_t j = 0; j < i; ++j)
-      if (std::filesystem::weakly_canonical(outputs[j]) == std::filesystem::weakly_canonical(out))
-        throw UsageError("output '" + out.string() + "': the same file as output '" +
-                         outputs[j].string() + "'");
-    const std::filesystem::path folder = out.has_parent_path() ? out.parent_path() : ".";
-    if (!std::filesystem::is_directory(folder))
-      throw UsageError("output '" + out.string() + "': the folder '" + folder.string() +
-                       "' does not exist");
-    // Checked before rendering: failing at the second write would leave the first output behind.
-    if (std::filesystem::is_directory(out))
-      throw UsageError("output '" + out.string() + "': is a folder, expected an image file name");
-  }
-}
-
 // Checkpoints of this render (docs/cli.md, "Interrupts and checkpoints"); the file is
 // report.checkpoint.
 struct Checkpoints {
@@ -241,23 +211,51 @@ struct Checkpoints {
   // Everything that decides the samples, so that a checkpoint of another render is refused; set
   // once the job is made.
   std::string key;
+  std::optional<PixelRect> region;  // a part's: the whole tiles it renders; none: the frame
 };
 
-// What the command line asks beyond RenderOptions: the 8-bit view's numbers and the checkpoints.
+// What the command line asks beyond RenderOptions: the 8-bit view's numbers, the checkpoints and
+// the frames.
 struct CommandChoices {
   ViewOverrides view_overrides;
   Checkpoints checkpoints;
+  std::optional<FrameRange> frames;  // --frames; its patterns are c.outputs and c.checkpoint
 };
+
+// With --frames every output and the checkpoint are frame patterns; without, a '#' there would be
+// a frame pattern that no frame fills (Blender always fills it): give --frames N.
+void check_frame_patterns(const RenderCommand& c, bool frames) {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
+  for (const std::filesystem::path& output : c.outputs)
+    files.push_back({output, "output"});
+  if (!c.checkpoint.empty()) files.push_back({c.checkpoint, "--checkpoint"});
+  for (const auto& [file, what] : files) {
+    if (frames)
+      require_frame_pattern(file, what);
+    else if (is_frame_pattern(file))
+      throw UsageError(what + " '" + file.string() +
+                       "': '#' stands for the frame number (shot.####.exr -> shot.0012.exr); "
+                       "expected --frames N or --frames A-B to render frames into it");
+  }
+}
 
 // Every option checked, and put into c.options, before the scene is read: a typo fails at once.
 CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
+  CommandChoices choices;
+  if (!c.frames.empty()) choices.frames = parse_frame_range(c.frames);
+  if (choices.frames && !c.frame.empty())
+    throw UsageError("--frame and --frames: expected one of them (--frames N renders frame N)");
+  check_frame_patterns(c, choices.frames.has_value());
   check_outputs(c.outputs);
+  check_part_request(c.part);
+  if (c.part.any() &&
+      (c.outputs.size() != 1 || image_format_for(c.outputs.front()) != ImageFormat::kExr))
+    throw UsageError("--tile/--crop: expected one output, a .exr file (the partial film)");
   if (!c.resolution.empty()) {
     const auto [width, height] = parse_resolution(c.resolution);
     c.options.width = width, c.options.height = height;
   }
   parse_physical(c, c.options);
-  CommandChoices choices;
   choices.view_overrides = parse_view_overrides(c);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (!c.memory_limit.empty()) c.options.memory_limit_bytes = parse_memory_size(c.memory_limit);
@@ -291,28 +289,11 @@ Scene read_scene(RenderCommand& c, Diagnostics& diagnostics, RenderReport& repor
   return scene;
 }
 
-// How the outputs show the render: the shot's view settings with the command line's, and the
-// display transform of 8-bit outputs.
-struct OutputView {
-  ViewSettings view;
-  bool eight_bit = false;    // some output is a PNG or JPEG
-  DisplayTransform display;  // made only when eight_bit
-  // What the outputs apply, for the EXR's metadata too.
-  const ViewSettings& applied() const { return eight_bit ? display.settings() : view; }
-};
-
+// How the outputs show the render: the shot's view settings with the command line's.
 OutputView output_view(const RenderCommand& c, const ViewOverrides& overrides, const Scene& scene,
                        Diagnostics& diagnostics) {
-  OutputView out;
   const auto [view, view_origin] = view_settings(c, overrides, scene);
-  out.view = view;
-  out.eight_bit = std::any_of(c.outputs.begin(), c.outputs.end(), [](const auto& output) {
-    return is_8_bit(image_format_for(output));
-  });
-  // Made before the render, so that a bad config or name fails at once: only 8-bit outputs need it.
-  if (out.eight_bit)
-    out.display = DisplayTransform::create(view, view_origin, c.ocio_config, diagnostics);
-  return out;
+  return fb::output_view(view, view_origin, c.outputs, c.ocio_config, diagnostics);
 }
 
 // The job's choices into the report, and its plan line unless quiet.
@@ -324,9 +305,58 @@ void report_plan(const RenderJob& job, const RenderCommand& c, RenderReport& rep
   if (!c.quiet) std::cout << job.plan() << std::endl;
 }
 
+// The plan line names the choices; what was typed for the camera, shutter and frame is added as
+// typed, since some of it only shows in the rays (a focal length, a frame's camera position).
 std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
+  std::string typed;
+  for (const auto& [name, value] :
+       {std::pair<const char*, const std::string&>{"focal-length", c.focal_length},
+        {"fstop", c.fstop},
+        {"focus-distance", c.focus_distance},
+        {"sensor", c.sensor},
+        {"sensor-fit", c.sensor_fit},
+        {"shift", c.shift},
+        {"shutter", c.shutter},
+        {"rolling-shutter", c.rolling_shutter},
+        {"fps", c.fps},
+        {"sensor-model", c.sensor_model},
+        {"iso", c.iso},
+        {"background", c.background},
+        {"subdiv", c.subdiv},
+        {"light-sampler", c.light_sampler}})
+    if (!value.empty()) typed += std::string("; --") + name + " " + value;
+  // The frame as rendered (--frame's, or each frame's of a sequence), exactly.
+  if (c.options.frame) {
+    char frame[40];
+    std::snprintf(frame, sizeof frame, "; frame %.17g", *c.options.frame);
+    typed += frame;
+  }
   return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
-         content_hash(c.scene);
+         content_hash(c.scene) + typed;
+}
+
+// A part (--tile/--crop) writes its partial film instead of an image (docs/cli.md, "Parts of a
+// render"); an interrupted part writes none, only its checkpoint when asked for.
+void write_part(const RenderJob& job, const RenderResult& result, const Film& film,
+                const SplatTiles::TileList& splat_tiles, const PixelRect& crop,
+                const OutputView& view, const RenderCommand& c, const Scene& scene,
+                const std::filesystem::path& output, const Checkpoints& checkpoints,
+                RenderReport& report) {
+  const auto stage = Clock::now();
+  if (result.stats.interrupted) {
+    if (checkpoints.enabled) {
+      write_checkpoint(film, checkpoints.key, report.checkpoint, checkpoints.region);
+      ++report.checkpoints_written;
+    }
+    std::cerr << "filmback: the part was interrupted: no partial film written\n";
+  } else {
+    PartialFilmHeader header = partial_film_header(job, result, crop, checkpoint_key(job, c),
+                                                   view.view, scene.settings.film_exposure);
+    header.splat_tile_count = splat_tiles.size();
+    write_partial_film(output, header, film, splat_tiles);
+    if (checkpoints.enabled) std::filesystem::remove(report.checkpoint);
+  }
+  report.write_s = seconds_since(stage);
 }
 
 // The job's empty film, or with --resume the film the checkpoint holds.
@@ -337,7 +367,8 @@ Film open_film(const RenderJob& job, bool resume, const Checkpoints& checkpoints
     if (!std::filesystem::exists(report.checkpoint))
       throw InputError("--resume: no checkpoint '" + report.checkpoint.string() +
                        "' (--checkpoint-every writes one)");
-    read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film);
+    read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film,
+                    checkpoints.region);
     report.resumed = true;
   }
   return film;
@@ -351,7 +382,7 @@ RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints
   if (checkpoints.every != Clock::duration::zero()) {
     control.checkpoint_every = checkpoints.every;
     control.checkpoint = [&checkpoints, &report](const Film& f) {
-      write_checkpoint(f, checkpoints.key, report.checkpoint);
+      write_checkpoint(f, checkpoints.key, report.checkpoint, checkpoints.region);
       ++report.checkpoints_written;
     };
   }
@@ -359,9 +390,10 @@ RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints
 }
 
 RenderResult run_job(const RenderJob& job, Film& film, const RenderControl& control,
-                     const InterruptGuard& interrupts, RenderReport& report) {
+                     const RenderPart& part, const InterruptGuard& interrupts,
+                     RenderReport& report) {
   const auto stage = Clock::now();
-  RenderResult result = job.run(film, control);
+  RenderResult result = job.run(film, control, part);
   report.render_s = seconds_since(stage);
   if (result.stats.interrupted) {
     report.signal = interrupts.signal_number();
@@ -378,12 +410,10 @@ void write_outputs(const RenderJob& job, const RenderResult& result, const Film&
                    const OutputView& view, const std::vector<std::filesystem::path>& outputs,
                    const Checkpoints& checkpoints, RenderReport& report) {
   const auto stage = Clock::now();
-  ImageMetadata metadata = job.metadata(result);
-  add_view_metadata(view.applied(), metadata);
-  write_images(result.image, outputs, metadata, view.display);
+  fb::write_outputs(result.image, job.metadata(result), view, outputs);
   const bool interrupted = result.stats.interrupted;
   if (interrupted && checkpoints.enabled) {
-    write_checkpoint(film, checkpoints.key, report.checkpoint);
+    write_checkpoint(film, checkpoints.key, report.checkpoint, checkpoints.region);
     ++report.checkpoints_written;
   }
   if (!interrupted && checkpoints.enabled) std::filesystem::remove(report.checkpoint);
@@ -411,60 +441,120 @@ void print_summary(const RenderJob& job, const RenderResult& result,
   std::cout << line << std::endl;
 }
 
-int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
-  InterruptGuard interrupts;  // until the render runs, a signal ends the process at once
-  CommandChoices choices = parse_options(c, report);
-  Diagnostics diagnostics;
-  const Scene scene = read_scene(c, diagnostics, report);
-  const OutputView view = output_view(c, choices.view_overrides, scene, diagnostics);
-  report.warnings = diagnostics.messages();
-  diagnostics.print(std::cerr);
-
+// What the frames of a render share (one frame without --frames): the checked options, threads,
+// plugins and interrupts, and the scene with how the outputs show it, read at the first frame
+// rendered and again for each frame only when reading depends on it (import_reads_frame).
+struct RenderSession {
+  RenderSession(RenderCommand& command, RenderReport& report)
+      : c(command), choices(parse_options(command, report)) {
+    if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
+  }
+  RenderCommand& c;
+  InterruptGuard interrupts;  // until a render runs, a signal ends the process at once
+  CommandChoices choices;
   std::optional<tbb::global_control> threads;
-  if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
-  const PluginLoader loader(PluginLoader::default_search_dirs());
-  const auto stage = Clock::now();
-  const RenderJob job(scene, c.options, loader);
-  report.setup_s = seconds_since(stage);
-  report_plan(job, c, report);
+  const PluginLoader loader{PluginLoader::default_search_dirs()};
+  std::optional<Scene> scene;
+  std::optional<OutputView> view;
+  std::vector<std::string> warnings;  // the scene's and view's
+};
 
-  Checkpoints& checkpoints = choices.checkpoints;
+// The scene as this frame reads it: read when first needed, or again if its frame changes it.
+const Scene& frame_scene(RenderSession& s, RenderReport& report) {
+  if (!s.scene || import_reads_frame(s.c.scene)) {
+    s.view.reset(), s.scene.reset();
+    Diagnostics diagnostics;
+    s.scene.emplace(read_scene(s.c, diagnostics, report));
+    s.view.emplace(output_view(s.c, s.choices.view_overrides, *s.scene, diagnostics));
+    // Once per sequence: a frame read again prints its warnings only when they changed.
+    if (diagnostics.messages() != s.warnings) diagnostics.print(std::cerr);
+    s.warnings = diagnostics.messages();
+  }
+  report.warnings = s.warnings;
+  return *s.scene;
+}
+
+// One frame into `outputs`: the frame c.options.frame names, with report.checkpoint its
+// checkpoint; continued from the checkpoint when `resume`.
+int render_frame(RenderSession& s, const std::vector<std::filesystem::path>& outputs, bool resume,
+                 RenderReport& report) {
+  const Scene& scene = frame_scene(s, report);
+  const auto stage = Clock::now();
+  const RenderJob job(scene, s.c.options, s.loader);
+  report.setup_s = seconds_since(stage);
+  report_plan(job, s.c, report);
+
+  Checkpoints& checkpoints = s.choices.checkpoints;
   if (checkpoints.enabled && job.shot_plan().adaptive)
     throw UsageError(
         "--checkpoint-every/--resume: not with adaptive sampling (which pixels have converged is "
         "not saved); give --adaptive-threshold 0");
-  if (checkpoints.enabled) checkpoints.key = checkpoint_key(job, c);
-  Film film = open_film(job, c.resume, checkpoints, report);
-  interrupts.arm();
+  const std::optional<PixelRect> crop = part_crop(s.c.part, job.width(), job.height());
+  if (crop && job.shot_plan().adaptive)
+    throw UsageError(
+        "--tile/--crop: not with adaptive sampling (a pixel's convergence depends on pixels "
+        "beyond the part); give --adaptive-threshold 0");
+  if (crop) checkpoints.region = whole_tiles_around(*crop, job.width(), job.height());
+  if (checkpoints.enabled)
+    checkpoints.key = checkpoint_key(job, s.c) + (crop ? "; part " + crop->text() : std::string());
+  Film film = open_film(job, resume, checkpoints, report);
+  SplatTiles::TileList splat_tiles;
+  s.interrupts.arm();
   const RenderResult result =
-      run_job(job, film, render_control(interrupts, checkpoints, report), interrupts, report);
+      run_job(job, film, render_control(s.interrupts, checkpoints, report),
+              RenderPart{crop, crop ? &splat_tiles : nullptr}, s.interrupts, report);
   const bool interrupted = result.stats.interrupted;
-  if (interrupted && result.most_samples == 0)
+  if (crop)
+    write_part(job, result, film, splat_tiles, *crop, *s.view, s.c, scene, outputs.front(),
+               checkpoints, report);
+  else if (interrupted && result.most_samples == 0)
     std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
   else
-    write_outputs(job, result, film, view, c.outputs, checkpoints, report);
-  print_summary(job, result, interrupts, checkpoints);
-  report.total_s = seconds_since(start);
+    write_outputs(job, result, film, *s.view, outputs, checkpoints, report);
+  print_summary(job, result, s.interrupts, checkpoints);
   report.status = interrupted ? "interrupted" : "complete";
-  return interrupted ? 128 + interrupts.signal_number() : 0;
+  report.exit_status = interrupted ? 128 + s.interrupts.signal_number() : 0;
+  return report.exit_status;
 }
 
-}  // namespace
+int render(RenderCommand& c, RenderReport& report) {
+  RenderSession session(c, report);
+  return render_frame(session, c.outputs, c.resume, report);
+}
 
-int run_render(RenderCommand& c) {
-  const auto start = Clock::now();
-  RenderReport report;
-  report.scene = c.scene;
-  report.outputs = c.outputs;
-  const auto write_report = [&] {
-    if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
+// --frames: each frame as `render --frame N` renders it, into the outputs' patterns filled with
+// N; with --resume, a frame that has a checkpoint continues from it, the others start afresh.
+int render_frames(RenderCommand& c, SequenceReport& report) {
+  RenderReport options_report;  // what parse_options derives: the checkpoint's pattern
+  RenderSession session(c, options_report);
+  const FrameSequence sequence{*session.choices.frames, c.outputs, options_report.checkpoint,
+                               c.overwrite};
+  // Two patterns may name one file from some frame on (shot.#.exr and shot.##.exr from 10): the
+  // widest numbers, at the range's ends, show it before any frame is rendered.
+  for (const int64_t frame : {sequence.range.first, sequence.range.last})
+    check_outputs(frame_files(frame, c.outputs, {}).outputs);
+  const auto render_one = [&](const FrameFiles& files, RenderReport& frame) {
+    const auto start = Clock::now();
+    c.options.frame = double(files.frame);
+    frame.checkpoint = files.checkpoint;
+    const bool resume = c.resume && std::filesystem::exists(files.checkpoint);
+    const int status = render_frame(session, files.outputs, resume, frame);
+    frame.total_s = seconds_since(start);
+    return status;
   };
+  return run_frame_sequence(sequence, session.interrupts, render_one, report);
+}
+
+// Runs `run` for its exit status and writes the --stats-json report (a RenderReport or a
+// SequenceReport) after it, also when it fails: then with the error, which goes on.
+template <class Report>
+int run_with_report(Report& report, const std::function<int()>& run,
+                    const std::function<void()>& write_report) {
   try {
-    report.exit_status = render(c, report, start);
+    report.exit_status = run();
   } catch (const std::exception& e) {
     report.exit_status = dynamic_cast<const UsageError*>(&e) ? 2 : 1;
     report.error = e.what();
-    report.total_s = seconds_since(start);
     try {
       write_report();
     } catch (const std::exception&) {  // the render's own error is the one to report
@@ -473,6 +563,33 @@ int run_render(RenderCommand& c) {
   }
   write_report();
   return report.exit_status;
+}
+
+}  // namespace
+
+int run_render(RenderCommand& c) {
+  const auto start = Clock::now();
+  if (!c.frames.empty()) {
+    SequenceReport report;
+    report.scene = c.scene;
+    return run_with_report(
+        report, [&] { return render_frames(c, report); },
+        [&] {
+          report.total_s = seconds_since(start);
+          if (report.error.empty())
+            report.status = report.exit_status == 0 ? "complete" : "interrupted";
+          if (!c.stats_json.empty()) write_sequence_report(report, c.stats_json);
+        });
+  }
+  RenderReport report;
+  report.scene = c.scene;
+  report.outputs = c.outputs;
+  return run_with_report(
+      report, [&] { return render(c, report); },
+      [&] {
+        report.total_s = seconds_since(start);
+        if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
+      });
 }
 
 }  // namespace fb

@@ -8,21 +8,26 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "core/film/film.h"
+#include "core/film/pixel_rect.h"
 
 namespace fb {
 
 // Written through a temporary file and renamed, so an interrupted write never replaces a good
-// checkpoint with a broken one. Throws InputError naming the file.
-void write_checkpoint(const Film& film, const std::string& key, const std::filesystem::path& file);
+// checkpoint with a broken one. Throws InputError naming the file. A part of a render (docs/cli.md,
+// "Parts of a render") saves only `region`, the tiles it renders.
+void write_checkpoint(const Film& film, const std::string& key, const std::filesystem::path& file,
+                      const std::optional<PixelRect>& region = std::nullopt);
 
 // Loads `file` into `film`, which must have the checkpoint's size and channels. Throws InputError
 // naming the file when it cannot be read, is not a filmback checkpoint, has another key, or its
 // state is not one a render of `samples_per_pixel` in tiles of `tile_size` can have left (sample
-// counts differing within a tile or above the target, non-finite sums).
+// counts differing within a tile or above the target, non-finite sums), or holds another region.
 void read_checkpoint(const std::filesystem::path& file, const std::string& key,
-                     uint32_t samples_per_pixel, uint32_t tile_size, Film& film);
+                     uint32_t samples_per_pixel, uint32_t tile_size, Film& film,
+                     const std::optional<PixelRect>& region = std::nullopt);
 
 }  // namespace fb

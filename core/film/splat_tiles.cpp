@@ -8,14 +8,6 @@
 
 namespace fb {
 
-// The film pixels a tile's samples reach, clipped to the film: [x0, x1) x [y0, y1).
-struct SplatTiles::Tile {
-  uint32_t x0, y0, x1, y1;
-  std::vector<double> sums;     // per pixel and channel: sum h L
-  std::vector<double> weights;  // per pixel: sum h
-  size_t index(uint32_t x, uint32_t y) const { return size_t(y - y0) * (x1 - x0) + (x - x0); }
-};
-
 SplatTiles::SplatTiles(uint32_t width, uint32_t height, uint32_t tile_size, size_t channels,
                        const FilterInstance& filter)
     : width_(width), height_(height), tile_size_(tile_size), channels_(channels), filter_(filter) {
@@ -71,14 +63,15 @@ bool SplatTiles::splat(Tile& tile, float film_x, float film_y, const float* valu
   return true;
 }
 
-void SplatTiles::add_to(Film& film) const {
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, height_), [&](const auto& rows) {
+void SplatTiles::add_splat_tiles(const TileList& tiles, Film& film) {
+  const size_t channels = film.channels().size();
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, film.height()), [&](const auto& rows) {
     for (uint32_t y = rows.begin(); y != rows.end(); ++y)
-      for (const std::unique_ptr<Tile>& t : tiles_) {  // in tile order
+      for (const std::unique_ptr<Tile>& t : tiles) {  // in tile order
         if (!t || y < t->y0 || y >= t->y1) continue;
         for (uint32_t x = t->x0; x < t->x1; ++x) {
           const size_t pixel = t->index(x, y);
-          film.add_sums(x, y, &t->sums[pixel * channels_], t->weights[pixel]);
+          film.add_sums(x, y, &t->sums[pixel * channels], t->weights[pixel]);
         }
       }
   });

@@ -39,7 +39,17 @@ class SplatTiles {
   // the lowest of which, for x in pixel p, is ceil(p - 0.5 - r) = p - floor(r + 0.5).
   static uint32_t reach(float radius_px) { return uint32_t(std::floor(radius_px + 0.5f)); }
 
-  struct Tile;
+  // The film pixels a tile's samples reach, clipped to the film: [x0, x1) x [y0, y1).
+  struct Tile {
+    uint32_t x0, y0, x1, y1;
+    std::vector<double> sums;     // per pixel and channel: sum h L
+    std::vector<double> weights;  // per pixel: sum h
+    size_t index(uint32_t x, uint32_t y) const { return size_t(y - y0) * (x1 - x0) + (x - x0); }
+  };
+  // Per tile of the sample domain, in tile order (row by row): its buffer, or null when none of
+  // its samples was taken (a part of a render takes only its own tiles').
+  using TileList = std::vector<std::unique_ptr<Tile>>;
+
   // The buffer of the tile whose first pixel is (x0, y0) in the sample domain; allocated by the
   // thread that renders it.
   Tile& tile(uint32_t x0, uint32_t y0);
@@ -47,7 +57,15 @@ class SplatTiles {
   // is dropped (returns false) so that no NaN or Inf reaches the image, as in Film::add.
   bool splat(Tile& tile, float film_x, float film_y, const float* values) const;
   // Adds every tile's sums into `film`, each pixel's in tile order.
-  void add_to(Film& film) const;
+  void add_to(Film& film) const { add_splat_tiles(tiles_, film); }
+  // The tiles' buffers, for a partial film (core/film/partial_film.h); the object is empty after.
+  TileList release_tiles() { return std::move(tiles_); }
+  uint32_t tiles_x() const { return tiles_x_; }
+  size_t tile_count() const { return tiles_.size(); }
+
+  // Adds the sums of `tiles` (in tile order, as above) into `film`, each pixel's in tile order:
+  // add_to, and `filmback merge` with the tiles of every part (docs/cli.md, "merge").
+  static void add_splat_tiles(const TileList& tiles, Film& film);
 
  private:
   uint32_t width_, height_, tile_size_, tiles_x_;
@@ -55,7 +73,7 @@ class SplatTiles {
   const FilterInstance& filter_;
   float radius_[2];
   uint32_t margin_[2];  // pixels beyond a tile that its samples can reach
-  std::vector<std::unique_ptr<Tile>> tiles_;
+  TileList tiles_;
 };
 
 }  // namespace fb

@@ -336,7 +336,15 @@ RenderResult RenderJob::run() const {
   return run(film);
 }
 
-RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
+void apply_film_exposure(Image& image, double gain) {
+  if (gain == 1.0) return;
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
+    for (size_t c = 0; c < 3; ++c)
+      image.pixels[i * image.channels.size() + c] *= float(gain);
+}
+
+RenderResult RenderJob::run(Film& film, const RenderControl& control,
+                            const RenderPart& part) const {
   const Plugins& p = *plugins_;
   RenderInputs inputs{*p.camera,
                       *p.filter,
@@ -355,23 +363,27 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control) const {
   inputs.camera_path = p.camera_path.get();
   if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
   inputs.texture_footprint = options_.texture_footprint && !scene_.images.empty();
+  inputs.crop = part.crop;
   std::optional<Progress> progress;
   if (options_.show_progress)
     progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,
                      stderr_is_terminal());
   RenderResult result;
-  result.stats = render_image(inputs, film, control, progress ? &*progress : nullptr);
+  result.stats =
+      render_image(inputs, film, control, progress ? &*progress : nullptr, part.splat_tiles);
   progress.reset();
   result.image = film.resolve();
   Image& image = result.image;
-  // Cycles' Film > Exposure: a gain on the rendered radiance, colour channels only.
-  if (const double gain = scene_.settings.film_exposure; gain != 1.0)
-    for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
-      for (size_t c = 0; c < 3; ++c)
-        image.pixels[i * image.channels.size() + c] *= float(gain);
+  apply_film_exposure(image, scene_.settings.film_exposure);
   const uint32_t* counts = film.sample_counts();
-  const auto [fewest, most] = std::minmax_element(counts, counts + film.pixel_count());
-  result.fewest_samples = *fewest, result.most_samples = *most;
+  // Over the pixels rendered: a part's crop, or the whole frame.
+  const PixelRect rendered = part.crop.value_or(whole_frame(film.width(), film.height()));
+  result.fewest_samples = UINT32_MAX, result.most_samples = 0;
+  for (uint32_t y = rendered.y0; y < rendered.y1; ++y)
+    for (uint32_t x = rendered.x0; x < rendered.x1; ++x) {
+      result.fewest_samples = std::min(result.fewest_samples, film.sample_count(x, y));
+      result.most_samples = std::max(result.most_samples, film.sample_count(x, y));
+    }
   if (result.stats.interrupted) {  // say per pixel how far it got
     const size_t n = image.channels.size();
     std::vector<float> pixels(film.pixel_count() * (n + 1));

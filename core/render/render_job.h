@@ -40,6 +40,17 @@ struct RenderResult {
   uint32_t fewest_samples = 0, most_samples = 0;  // over the pixels
 };
 
+// Cycles' Film > Exposure: a gain on the rendered radiance, colour channels only. What a render
+// and `filmback merge` apply to the resolved film.
+void apply_film_exposure(Image& image, double gain);
+
+// A part of the render (docs/cli.md, "Parts of a render"): only `crop` is rendered
+// (RenderInputs::crop); with splatting, `splat_tiles` receives the tiles' buffers (render_image).
+struct RenderPart {
+  std::optional<PixelRect> crop;
+  SplatTiles::TileList* splat_tiles = nullptr;
+};
+
 class RenderJob {
  public:
   RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader);
@@ -54,7 +65,8 @@ class RenderJob {
   Film make_film() const;
   // Renders into `film`, continuing from the samples it already holds (docs/cli.md, "Interrupts
   // and checkpoints"), and resolves it.
-  RenderResult run(Film& film, const RenderControl& control = {}) const;
+  RenderResult run(Film& film, const RenderControl& control = {},
+                   const RenderPart& part = {}) const;
   RenderResult run() const;
   ImageMetadata metadata(const RenderResult& result) const;
 
@@ -63,6 +75,7 @@ class RenderJob {
   uint32_t width() const { return plan_.width_px; }
   uint32_t height() const { return plan_.height_px; }
   uint32_t samples_per_pixel() const { return plan_.samples_per_pixel; }
+  Reconstruction reconstruction() const { return options_.reconstruction; }
 
  private:
   struct Plugins;

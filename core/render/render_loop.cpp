@@ -298,11 +298,54 @@ Vec2<uint32_t> sample_domain(const RenderInputs& inputs, uint32_t width, uint32_
   return {width + 2 * SplatTiles::reach(radius[0]), height + 2 * SplatTiles::reach(radius[1])};
 }
 
-uint64_t tile_count(const RenderInputs& inputs, uint32_t width, uint32_t height) {
-  const Vec2<uint32_t> domain = sample_domain(inputs, width, height);
-  return uint64_t((domain.x + kTileSize - 1) / kTileSize) *
-         ((domain.y + kTileSize - 1) / kTileSize);
-}
+// The tiles of the sample domain, row by row, and which of them a part takes (RenderInputs::crop).
+class TileGrid {
+ public:
+  TileGrid(const RenderInputs& inputs, uint32_t width, uint32_t height)
+      : width_(width),
+        height_(height),
+        domain_(sample_domain(inputs, width, height)),
+        margin_x_((domain_.x - width) / 2),
+        margin_y_((domain_.y - height) / 2),
+        tiles_x_((domain_.x + kTileSize - 1) / kTileSize),
+        tiles_(uint64_t(tiles_x_) * ((domain_.y + kTileSize - 1) / kTileSize)),
+        crop_(inputs.crop),
+        splat_(inputs.reconstruction == Reconstruction::kSplat) {}
+
+  uint64_t size() const { return tiles_; }
+  uint32_t margin_x() const { return margin_x_; }
+  uint32_t margin_y() const { return margin_y_; }
+  Vec2<uint32_t> domain() const { return domain_; }
+  // The tile's pixels in the sample domain.
+  std::array<uint32_t, 4> box(uint64_t tile) const {
+    const uint32_t x0 = uint32_t(tile % tiles_x_) * kTileSize,
+                   y0 = uint32_t(tile / tiles_x_) * kTileSize;
+    return {x0, y0, std::min(x0 + kTileSize, domain_.x), std::min(y0 + kTileSize, domain_.y)};
+  }
+  // The film pixel a tile is filed under: its first, clamped to the film.
+  Vec2<uint32_t> anchor(uint64_t tile) const {
+    const auto [x0, y0, x1, y1] = box(tile);
+    return {std::min(std::max(x0, margin_x_) - margin_x_, width_ - 1),
+            std::min(std::max(y0, margin_y_) - margin_y_, height_ - 1)};
+  }
+  bool taken(uint64_t tile) const {
+    if (!crop_) return true;
+    if (splat_) {
+      const Vec2<uint32_t> a = anchor(tile);
+      return crop_->contains(a.x, a.y);
+    }
+    const auto [x0, y0, x1, y1] = box(tile);
+    return crop_->intersects({x0, y0, x1, y1});
+  }
+
+ private:
+  uint32_t width_, height_;
+  Vec2<uint32_t> domain_;
+  uint32_t margin_x_, margin_y_, tiles_x_;
+  uint64_t tiles_;
+  std::optional<PixelRect> crop_;
+  bool splat_;
+};
 
 // The sample counts at which passes end: doubling, so that an interrupted render has every pixel
 // sampled about equally often, and each pass over a tile stays short. A render nothing can stop
@@ -329,28 +372,35 @@ std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel, const RenderControl&
 }  // namespace
 
 uint64_t sample_count(const RenderInputs& inputs, uint32_t width, uint32_t height) {
-  const Vec2<uint32_t> domain = sample_domain(inputs, width, height);
-  return uint64_t(domain.x) * domain.y * inputs.samples_per_pixel;
+  const TileGrid grid(inputs, width, height);
+  uint64_t pixels = 0;
+  for (uint64_t tile = 0; tile < grid.size(); ++tile)
+    if (grid.taken(tile)) {
+      const auto [x0, y0, x1, y1] = grid.box(tile);
+      pixels += uint64_t(x1 - x0) * (y1 - y0);
+    }
+  return pixels * inputs.samples_per_pixel;
+}
+
+PixelRect whole_tiles_around(const PixelRect& crop, uint32_t width, uint32_t height) {
+  return {crop.x0 - crop.x0 % kTileSize, crop.y0 - crop.y0 % kTileSize,
+          std::min((crop.x1 + kTileSize - 1) / kTileSize * kTileSize, width),
+          std::min((crop.y1 + kTileSize - 1) / kTileSize * kTileSize, height)};
 }
 
 RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
-                         Progress* progress) {
+                         Progress* progress, SplatTiles::TileList* splat_tiles) {
   using Clock = std::chrono::steady_clock;
   std::optional<SplatTiles> splats;
   if (inputs.reconstruction == Reconstruction::kSplat)
     splats.emplace(film.width(), film.height(), kTileSize, inputs.integrator.channels().size(),
                    inputs.filter);
-  const Vec2<uint32_t> domain = sample_domain(inputs, film.width(), film.height());
-  const uint32_t margin_x = (domain.x - film.width()) / 2,
-                 margin_y = (domain.y - film.height()) / 2;
-  const uint32_t tiles_x = (domain.x + kTileSize - 1) / kTileSize;
-  const uint64_t tiles = tile_count(inputs, film.width(), film.height());
-  const auto tile_box = [&](uint64_t tile) {
-    const uint32_t x0 = uint32_t(tile % tiles_x) * kTileSize,
-                   y0 = uint32_t(tile / tiles_x) * kTileSize;
-    return std::array<uint32_t, 4>{x0, y0, std::min(x0 + kTileSize, domain.x),
-                                   std::min(y0 + kTileSize, domain.y)};
-  };
+  const TileGrid grid(inputs, film.width(), film.height());
+  const Vec2<uint32_t> domain = grid.domain();
+  const uint32_t margin_x = grid.margin_x(), margin_y = grid.margin_y();
+  const uint64_t tiles = grid.size();
+  const auto tile_box = [&](uint64_t tile) { return grid.box(tile); };
+  std::vector<double> seconds(tiles, 0.0);  // per tile of the sample domain
   // The film pixels a tile of the sample domain covers (all of them when importance sampling).
   const auto record_count = [&](uint64_t tile, uint32_t count) {
     const auto [x0, y0, x1, y1] = tile_box(tile);
@@ -391,6 +441,7 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
   };
   if (progress)
     for (uint64_t tile = 0; tile < tiles; ++tile) {
+      if (!grid.taken(tile)) continue;
       const auto [x0, y0, x1, y1] = tile_box(tile);
       progress->advance(uint64_t(done[tile]) * (x1 - x0) * (y1 - y0));
     }
@@ -405,12 +456,15 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
             _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
             _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
             for (uint64_t tile = range.begin(); tile != range.end(); ++tile) {
-              if (done[tile] >= end || pause.load(std::memory_order_relaxed) || cancelled())
+              if (done[tile] >= end || !grid.taken(tile) || pause.load(std::memory_order_relaxed) ||
+                  cancelled())
                 continue;
               const auto [x0, y0, x1, y1] = tile_box(tile);
               RenderStats local;
+              const auto tile_start = Clock::now();
               const uint32_t reached =
                   renderer.render_tile(x0, y0, x1, y1, done[tile], end, stop, work.local(), local);
+              seconds[tile] += std::chrono::duration<double>(Clock::now() - tile_start).count();
               if (progress)
                 progress->advance(uint64_t(reached - done[tile]) * (x1 - x0) * (y1 - y0));
               done[tile] = reached;
@@ -447,6 +501,14 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
       });
   }
   if (splats) splats->add_to(film);
+  if (splats && splat_tiles) *splat_tiles = splats->release_tiles();
+  const uint32_t film_tiles_x = (film.width() + kTileSize - 1) / kTileSize;
+  stats.tile_seconds.assign(size_t(film_tiles_x) * ((film.height() + kTileSize - 1) / kTileSize),
+                            0.0);
+  for (uint64_t tile = 0; tile < tiles; ++tile) {
+    const Vec2<uint32_t> a = grid.anchor(tile);
+    stats.tile_seconds[size_t(a.y / kTileSize) * film_tiles_x + a.x / kTileSize] += seconds[tile];
+  }
   stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stats.samples = samples;
   stats.rays = rays;

@@ -15,6 +15,8 @@
 #include "core/accel/render_geometry.h"
 #include "core/film/adaptive_sampling.h"
 #include "core/film/film.h"
+#include "core/film/pixel_rect.h"
+#include "core/film/splat_tiles.h"
 #include "core/math/transform.h"
 #include "core/plugin/instances.h"
 #include "core/render/light_sampler.h"
@@ -52,6 +54,13 @@ struct RenderInputs {
   // is asked for each ray's neighbours one pixel right and down, at twice the camera's cost, so
   // only scenes with image textures turn it on. Off: the finest level, as before.
   bool texture_footprint = false;
+  // A part of the render (docs/cli.md, "Parts of a render"): only the tiles it needs are sampled,
+  // each pixel with exactly the samples of the whole render (the sampler is seeded per pixel of
+  // the whole sample domain). Importance: every tile that meets the crop (whole tiles, so that
+  // each ray batch is the whole render's). Splatting: every tile of the sample domain whose first
+  // film pixel (clamped to the film) lies in the crop, so that the parts of a frame share out its
+  // tiles. None: the whole frame.
+  std::optional<PixelRect> crop = std::nullopt;
 };
 
 struct RenderStats {
@@ -60,6 +69,10 @@ struct RenderStats {
   uint64_t rays = 0;
   uint64_t dropped_samples = 0;  // non-finite values kept out of the film
   bool interrupted = false;      // RenderControl::cancel stopped it: pixels may lack samples
+  // Per 16x16 tile of the film, row by row: the seconds spent sampling it, for cost-balanced parts
+  // (docs/distributed.md). Splatting: a sample-domain tile's time goes to the film tile of its
+  // first film pixel, clamped to the film.
+  std::vector<double> tile_seconds;
 };
 
 // What may stop or pause a render from outside (docs/cli.md, "Interrupts and checkpoints").
@@ -83,11 +96,17 @@ constexpr uint32_t kTileSize = 16;
 // already holds samples (a resumed checkpoint: Film::sample_count per tile) is continued from
 // there; each pixel's samples are still summed in sample order, so the image is bit-identical to
 // an uninterrupted render. `progress` counts pixel samples.
+// With splatting and `splat_tiles`, the tiles' buffers are handed over there after they are added
+// to the film (a part of a render keeps them: core/film/partial_film.h).
 RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
-                         Progress* progress);
+                         Progress* progress, SplatTiles::TileList* splat_tiles = nullptr);
 
 // Pixel samples of a render: the sample domain's pixels (the film, and around it the filter's reach
-// when splatting) times the samples per pixel.
+// when splatting) that inputs.crop takes, times the samples per pixel.
 uint64_t sample_count(const RenderInputs& inputs, uint32_t width, uint32_t height);
+
+// The pixels a part's importance-sampled render writes: `crop` grown to whole tiles, within the
+// film; what its checkpoint holds.
+PixelRect whole_tiles_around(const PixelRect& crop, uint32_t width, uint32_t height);
 
 }  // namespace fb

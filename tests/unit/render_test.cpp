@@ -100,6 +100,47 @@ TEST(Render, PointLightOverLambertianFloorMatchesTheInverseSquareLaw) {
   }
 }
 
+// A closed box of Lambertian walls of albedo a, each emitting L_e, seen from inside: the radiance
+// is uniform, L = L_e (1 + a + ... + a^M) after at most M bounces (the rendering equation's
+// Neumann series with a constant field). Russian roulette ends paths from the first bounce on
+// (path's default, Cycles' rule), so this checks that it leaves the mean unbiased, against
+// the noise of the image mean (the pixels' spread over sqrt(pixels)).
+TEST(Render, RussianRouletteKeepsAnInterreflectingBoxAtTheNeumannSeries) {
+  GltfBuilder gltf;
+  const float albedo = 0.5f, emission = 2.f;
+  const int material = gltf.material({albedo, albedo, albedo}, {emission, emission, emission});
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {-1.f, 1.f}) {
+      std::vector<Vec3f> face;
+      for (const Vec3f& q : square(1, side))  // the square at z = side, turned onto `axis`
+        face.push_back(axis == 2 ? q : axis == 0 ? Vec3f{q.z, q.x, q.y} : Vec3f{q.y, q.z, q.x});
+      GltfBuilder::Node wall;
+      wall.mesh = gltf.mesh(face, kSquare, material);
+      gltf.node(wall);
+    }
+  GltfBuilder::Node camera;
+  camera.camera = gltf.perspective_camera(1.2, 1.0, 0.01, 10);
+  gltf.node(camera);
+  const Scene scene = import(gltf, "closed_box.gltf");
+  const int max_depth = 6;
+  RenderOptions options;
+  options.width = options.height = 16;
+  options.samples_per_pixel = 64;
+  options.integrator = "path:max_depth=" + std::to_string(max_depth);
+  const RenderResult result = render(scene, options);
+  double sum = 0, squares = 0;
+  const double n = 16.0 * 16.0;
+  for (uint32_t y = 0; y < 16; ++y)
+    for (uint32_t x = 0; x < 16; ++x) {
+      const double v = result.image.at(x, y, 1);
+      sum += v, squares += v * v;
+    }
+  const double mean = sum / n, error_of_mean = std::sqrt((squares / n - mean * mean) / (n - 1));
+  const double expected = emission * (1 - std::pow(albedo, max_depth + 1)) / (1 - albedo);
+  EXPECT_LT(error_of_mean, 0.01 * expected);  // the test can tell a 5 % bias
+  EXPECT_NEAR(mean, expected, 4 * error_of_mean) << "error of the mean " << error_of_mean;
+}
+
 TEST(Render, ImageIsBitIdenticalForAnyThreadCount) {
   GltfBuilder gltf;
   GltfBuilder::Node floor, lamp, light;

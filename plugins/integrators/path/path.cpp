@@ -4,9 +4,10 @@
 // renders them); light comes from punctual lights, lights with a size (which rays pass through),
 // emissive triangles and the world (uniform, or an environment image that light sampling also
 // picks). Emission found by BSDF sampling and by light sampling is combined with the power
-// heuristic; delta lights are reached by light sampling only. Russian roulette after `rr_depth` bounces keeps it unbiased. `clamp`, off by
-// default, scales each sample's radiance down so that its largest component is at most the clamp
-// (pbrt 4e's RGBFilm maxComponentValue): fireflies are bounded at the price of a bias.
+// heuristic; delta lights are reached by light sampling only. Russian roulette from bounce
+// `rr_depth` on (Cycles' rule, below) keeps it unbiased. `clamp`, off by default, scales each
+// sample's radiance down so that its largest component is at most the clamp (pbrt 4e's RGBFilm
+// maxComponentValue): fireflies are bounded at the price of a bias.
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
 #include <filmback/sampling.h>
@@ -24,8 +25,8 @@ constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this shor
 constexpr fb_param_desc kParams[] = {
     {"max_depth", FB_PARAM_INT, "8", "", nullptr, 0, 1024,
      "most bounces a path takes (0: emitters only, 1: direct light)"},
-    {"rr_depth", FB_PARAM_INT, "3", "", nullptr, 1, 1024,
-     "bounces before Russian roulette may end a path"},
+    {"rr_depth", FB_PARAM_INT, "1", "", nullptr, 1, 1024,
+     "bounces before Russian roulette may end a path (1: from the first bounce, as Cycles)"},
     {"clamp", FB_PARAM_FLOAT, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL,
      "largest component a sample's radiance may have (scaled down to it: biased); 0 is off"},
 };
@@ -89,14 +90,13 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
   for (int depth = 0;; ++depth) {
     const bool found = depth == 0 ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
     // Cycles' lights are not seen by the camera; BSDF-sampled rays find those with a size.
-    if (depth > 0) L += beta * lights_on_the_way(api, ctx, ray, found ? hit.t : HUGE_VALF,
-                                                 bsdf_pdf, delta);
+    if (depth > 0)
+      L += beta * lights_on_the_way(api, ctx, ray, found ? hit.t : HUGE_VALF, bsdf_pdf, delta);
     if (!found) {
       float le[3], world_pdf = 0.f;
       api.background(ctx, ray.direction, le, &world_pdf);
-      const float weight = depth == 0 || delta || world_pdf == 0.f
-                               ? 1.f
-                               : fb::power_heuristic(bsdf_pdf, world_pdf);
+      const float weight =
+          depth == 0 || delta || world_pdf == 0.f ? 1.f : fb::power_heuristic(bsdf_pdf, world_pdf);
       L += beta * Rgb(le) * weight;
       break;
     }
@@ -161,9 +161,13 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     p.store(previous);
 
     if (depth + 1 >= rr_depth_) {
+      // Cycles 3.4's rule (kernel/integrator/path_state.h, path_state_continuation_probability):
+      // continue with probability min(1, sqrt(max throughput)). A survivor's throughput grows to
+      // sqrt(beta) rather than to 1 as with min(1, beta), so a deep path that then finds a small
+      // bright lamp brings a spike about 1 / sqrt(beta) times smaller; unbiased either way.
       float r;
       api.next_samples(ctx, path, &r, 1);
-      const float survive = std::min(1.f, fb::max_component(beta));
+      const float survive = std::min(1.f, std::sqrt(fb::max_component(beta)));
       if (r >= survive) break;
       beta *= 1.f / survive;
     }
