@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/cmd/bench_process.h"
+#include "core/cmd/pre_pass_arguments.h"
+#include "core/cmd/render_part.h"
 #include "core/cmd/tile_plan_file.h"
 #include "core/film/partial_film.h"
 #include "core/render/render_loop.h"
@@ -21,24 +23,6 @@ namespace fb {
 namespace fs = std::filesystem;
 namespace {
 
-// Options of `render` the pre-pass replaces or must not inherit, and whether each takes a value.
-struct Dropped {
-  const char* name;
-  bool takes_value;
-};
-constexpr Dropped kDropped[] = {
-    {"--spp", true},     {"-o", true},       {"--output", true},     {"--stats-json", true},
-    {"-q", false},       {"--quiet", false}, {"--checkpoint", true}, {"--checkpoint-every", true},
-    {"--resume", false}, {"--tile", true},   {"--crop", true},       {"--tile-plan", true},
-    {"--frames", true},
-};
-
-// The frame a `--frames A-B[:STEP]` range starts at, as typed ("-3-5" starts at -3).
-std::string first_frame(const std::string& range) {
-  const size_t dash = range.find('-', range.empty() || range[0] != '-' ? 0 : 1);
-  return range.substr(0, dash);
-}
-
 // Per render tile, the seconds the pre-pass's report (`render --stats-json`) recorded.
 TileCosts costs_from_report(const fs::path& report) {
   std::ifstream stream(report);
@@ -48,8 +32,8 @@ TileCosts costs_from_report(const fs::path& report) {
     stream >> json;
     const auto& tiles = json.at("tiles");
     TileCosts costs{json.at("image").at("width").get<uint32_t>(),
-                    json.at("image").at("height").get<uint32_t>(),
-                    tiles.at("size").get<uint32_t>(), tiles.at("seconds").get<std::vector<double>>()};
+                    json.at("image").at("height").get<uint32_t>(), tiles.at("size").get<uint32_t>(),
+                    tiles.at("seconds").get<std::vector<double>>()};
     if (costs.tile_size_px == 0 || costs.width_px == 0 || costs.height_px == 0 ||
         costs.cost.size() != uint64_t(costs.tiles_x()) * costs.tiles_y())
       throw_input(report.string(), "tiles", "per-tile seconds that do not match the image's tiles");
@@ -58,6 +42,11 @@ TileCosts costs_from_report(const fs::path& report) {
         throw_input(report.string(), "tiles.seconds[" + std::to_string(i) + "]",
                     "expected a finite number of seconds >= 0");
     return costs;
+  } catch (const nlohmann::json::parse_error& e) {
+    // Not e.what(): it quotes the bytes it read, which in a binary file are not text.
+    throw_input(
+        report.string(), "",
+        "expected a render's --stats-json report; not JSON (byte " + std::to_string(e.byte) + ")");
   } catch (const nlohmann::json::exception& e) {
     throw_input(report.string(), "",
                 std::string("expected a render's --stats-json report with per-tile seconds (") +
@@ -132,48 +121,14 @@ TileCosts costs_from_pre_pass(const TilePlanCommand& c) {
 
 }  // namespace
 
-std::vector<std::string> pre_pass_arguments(const fs::path& scene,
-                                            const std::vector<std::string>& render_arguments,
-                                            uint32_t spp, const fs::path& image,
-                                            const fs::path& report) {
-  std::vector<std::string> out = {"render", scene.string()};
-  std::string frames;
-  for (size_t i = 0; i < render_arguments.size(); ++i) {
-    const std::string& arg = render_arguments[i];
-    const Dropped* dropped = nullptr;
-    std::string value;
-    bool value_inline = false;
-    for (const Dropped& d : kDropped) {
-      const std::string name = d.name;
-      const bool is_short = name.size() == 2;
-      if (arg == name)
-        dropped = &d;
-      else if (d.takes_value && arg.rfind(name + "=", 0) == 0)
-        dropped = &d, value = arg.substr(name.size() + 1), value_inline = true;
-      else if (d.takes_value && is_short && arg.size() > 2 && arg.rfind(name, 0) == 0)
-        dropped = &d, value = arg.substr(2), value_inline = true;
-      if (dropped) break;
-    }
-    if (!dropped) {
-      out.push_back(arg);
-      continue;
-    }
-    if (dropped->takes_value && !value_inline && i + 1 < render_arguments.size())
-      value = render_arguments[++i];
-    if (std::string(dropped->name) == "--frames") frames = value;
-  }
-  // A frame range plans its first frame: the parts of every frame share the plan.
-  if (!frames.empty()) out.insert(out.end(), {"--frame", first_frame(frames)});
-  out.insert(out.end(), {"--spp", std::to_string(spp), "-q", "-o", image.string(), "--stats-json",
-                         report.string()});
-  return out;
-}
-
 int run_tile_plan(TilePlanCommand& c) {
   if (c.output.extension() != ".json")
     throw UsageError("tile-plan: output '" + c.output.string() + "': expected a .json file name");
-  const TileCosts costs =
-      c.previous.empty() ? costs_from_pre_pass(c) : costs_from_parts(c.previous);
+  if (!c.previous.empty() && !c.report.empty())
+    throw UsageError("tile-plan: --previous and --report are two sources of costs: give one");
+  const TileCosts costs = !c.previous.empty() ? costs_from_parts(c.previous)
+                          : !c.report.empty() ? costs_from_report(c.report)
+                                              : costs_from_pre_pass(c);
   const uint64_t tiles = uint64_t(costs.tiles_x()) * costs.tiles_y();
   if (c.parts > tiles)
     throw UsageError("tile-plan: --tiles " + std::to_string(c.parts) + ": the " +
@@ -186,17 +141,21 @@ int run_tile_plan(TilePlanCommand& c) {
     plan.parts.push_back({p.crop, p.estimated_cost});
   write_tile_plan(plan, c.output);
 
-  // What the plan buys: the same costs over the parts of a split by area.
-  TileCosts area = costs;
-  std::fill(area.cost.begin(), area.cost.end(), 0.0);
-  std::vector<PlannedPart> by_area = partition_tiles(area, c.parts);
-  for (PlannedPart& p : by_area)
-    p.estimated_cost = estimated_cost(costs, p.crop);
+  // What the plan buys: the same costs over the parts `--tile I/N` takes without a plan.
+  const uint32_t bands = std::min(c.parts, costs.tiles_y());
+  std::vector<PlannedPart> by_area;
+  for (uint32_t i = 0; i < bands; ++i) {
+    const PixelRect band = equal_area_part(i, bands, costs.width_px, costs.height_px);
+    by_area.push_back({band, estimated_cost(costs, band)});
+  }
+  const char* source = !c.previous.empty() ? "the previous parts' tile times"
+                       : !c.report.empty() ? "the report's tile times"
+                                           : "a pre-pass";
   std::printf(
-      "filmback: wrote %s: %u parts of %ux%u; the costliest part %.3f x the mean (%.3f x "
-      "split by area), from %s\n",
-      c.output.string().c_str(), c.parts, costs.width_px, costs.height_px, imbalance(planned),
-      imbalance(by_area), c.previous.empty() ? "a pre-pass" : "the previous parts' tile times");
+      "filmback: wrote %s: %u parts of %ux%u from %s; the costliest part %.3f x the "
+      "mean (%u bands of tile rows without a plan: %.3f x)\n",
+      c.output.string().c_str(), c.parts, costs.width_px, costs.height_px, source,
+      imbalance(planned), bands, imbalance(by_area));
   return 0;
 }
 

@@ -15,7 +15,7 @@ namespace fb {
 struct TilePlanCommand {
   std::filesystem::path scene;
   uint32_t parts = 0;
-  std::filesystem::path output;                 // the plan, .json
+  std::filesystem::path output;  // the plan, .json
   // Where the costs come from: the partial films of an earlier frame, or the --stats-json report
   // of an earlier render (its per-tile seconds); neither: a pre-pass.
   std::vector<std::filesystem::path> previous;
@@ -25,14 +25,5 @@ struct TilePlanCommand {
 };
 
 int run_tile_plan(TilePlanCommand& command);
-
-// The arguments of the pre-pass render: `render_arguments` without the options the pre-pass sets
-// itself or must not inherit (sample count, outputs, report, progress, checkpoints, parts,
-// frames), then those set to `spp`, `image` and `report`. Options are dropped in every form
-// CLI11 takes: `--spp 4`, `--spp=4`, `-o x`, `-ox`.
-std::vector<std::string> pre_pass_arguments(const std::filesystem::path& scene,
-                                            const std::vector<std::string>& render_arguments,
-                                            uint32_t spp, const std::filesystem::path& image,
-                                            const std::filesystem::path& report);
 
 }  // namespace fb
