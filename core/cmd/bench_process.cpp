@@ -56,11 +56,17 @@ std::string describe_failure(const ProgramRun& run, const std::string& what, con
          "); its output is in " + log.string();
 }
 
-fs::path bench_script(const std::string& name) {
+fs::path this_program() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path() : exe;
+}
+
+fs::path bench_script(const std::string& name) {
+  std::error_code ec;
+  const fs::path exe = this_program();
   fs::path script = exe.parent_path().parent_path() / "share/filmback/bench" / name;
-  if (ec || !fs::is_regular_file(script, ec))
+  if (exe.empty() || !fs::is_regular_file(script, ec))
     script = fs::path(FILMBACK_INSTALL_SHARE_DIR) / "bench" / name;
   if (!fs::is_regular_file(script, ec))
     throw_input(script.string(), "", "a script of filmback bench is missing (reinstall filmback)");

@@ -22,6 +22,10 @@ ProgramRun run_program(const std::vector<std::string>& argv, const std::filesyst
 std::string describe_failure(const ProgramRun& run, const std::string& what,
                              const std::filesystem::path& log);
 
+// This process's executable (/proc/self/exe), for commands that run filmback itself; empty if
+// the kernel does not say.
+std::filesystem::path this_program();
+
 // A script of `filmback bench` (share/filmback/bench/ beside the executable's folder, as the build
 // tree mirrors the install tree, else the installed one): InputError naming it when absent.
 std::filesystem::path bench_script(const std::string& name);

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "core/cmd/commands.h"
+#include "core/cmd/tile_plan_command.h"
 #include "core/util/error.h"
 
 namespace {
@@ -167,6 +168,27 @@ CLI::App* add_merge_command(CLI::App& app, fb::MergeCommand& merge) {
   merge_cmd->add_option("--ocio-config", merge.ocio_config,
                         "OpenColorIO config for 8-bit outputs' view (as render's)");
   return merge_cmd;
+}
+
+CLI::App* add_tile_plan_command(CLI::App& app, fb::TilePlanCommand& plan) {
+  CLI::App* plan_cmd = app.add_subcommand(
+      "tile-plan", "split a frame into parts of near-equal cost for render --tile I/N --tile-plan");
+  plan_cmd->add_option("scene", plan.scene, "scene file, as render takes it")->required();
+  plan_cmd->add_option("--tiles", plan.parts, "parts (1 to 1024)")
+      ->required()
+      ->check(CLI::Range(1u, 1024u));
+  plan_cmd->add_option("-o,--output", plan.output, "the plan, .json")->required();
+  plan_cmd->add_option("--previous", plan.previous,
+                       "costs from the partial films of an earlier frame (its tile seconds)");
+  plan_cmd->add_option("--report", plan.report,
+                       "costs from an earlier render's --stats-json (its tile seconds)");
+  plan_cmd
+      ->add_option("--pre-pass-spp", plan.pre_pass_spp,
+                   "samples per pixel of the pre-pass that measures the costs (default 1)")
+      ->check(CLI::Range(1u, 1024u));
+  plan_cmd->add_option("render-options", plan.render_arguments,
+                       "after --: the render's options (the pre-pass renders with them)");
+  return plan_cmd;
 }
 
 CLI::App* add_render_command(CLI::App& app, fb::RenderCommand& render) {
@@ -354,10 +376,12 @@ int main(int argc, char** argv) {
   fb::ConvertCommand convert;
   fb::BenchCommand bench;
   fb::MergeCommand merge;
+  fb::TilePlanCommand tile_plan;
   // In the order `filmback --help` lists them (a braced list is evaluated left to right).
   const Subcommand subcommands[] = {
       {add_render_command(app, render), [&] { return fb::run_render(render); }},
       {add_merge_command(app, merge), [&] { return fb::run_merge(merge); }},
+      {add_tile_plan_command(app, tile_plan), [&] { return fb::run_tile_plan(tile_plan); }},
       {add_info_command(app, info), [&] { return run_info_command(info); }},
       {add_convert_command(app, convert), [&] { return fb::run_convert(convert); }},
       {app.add_subcommand("plugins", "list every plugin found, with its parameters"),

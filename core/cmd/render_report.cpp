@@ -51,6 +51,12 @@ json report_json(const RenderReport& r) {
                      {"non_finite_samples_dropped", r.stats->dropped_samples},
                      {"fewest_samples_in_a_pixel", r.fewest_samples},
                      {"most_samples_in_a_pixel", r.most_samples}};
+  if (r.stats && !r.stats->tile_seconds.empty() && r.width > 0)
+    // Per 16x16 film tile, row by row: what `filmback tile-plan --report` balances parts by.
+    out["tiles"] = {{"size", kTileSize},
+                    {"columns", (r.width + kTileSize - 1) / kTileSize},
+                    {"rows", (r.height + kTileSize - 1) / kTileSize},
+                    {"seconds", r.stats->tile_seconds}};
   if (r.signal != 0)
     out["interrupt"] = {{"signal", r.signal}, {"stop_latency_s", r.stop_latency_s}};
   if (!r.checkpoint.empty())

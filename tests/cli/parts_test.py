@@ -1,5 +1,5 @@
 """Parts of a render (docs/cli.md, "Parts of a render"), end to end through the built `filmback`:
-`render --tile I/N --tile-plan` writes partial films that `merge` turns into the whole render's EXR
+`render --tile I/N --tile-plan` writes partial films (plans from `filmback tile-plan` too) that `merge` turns into the whole render's EXR
 and PNG, pixel for pixel (idiff with zero tolerance); merge refuses a part of another scene, a
 missing part and a truncated file (exit 1, the file or the uncovered pixels named, no output
 written); bad --tile/--crop are usage errors (exit 2); a part interrupted by SIGINT resumes from its
@@ -54,7 +54,7 @@ class PartsTest(unittest.TestCase):
                          [], "an output or temporary file was left")
 
     def test_tiles_of_a_plan_merge_into_the_whole_render(self):
-        self.render("-o", "whole.exr", "-o", "whole.png", *RENDER)
+        self.render("-o", "whole.exr", "-o", "whole.png", "--stats-json", "whole.json", *RENDER)
         # A plan's uneven parts (as `filmback tile-plan` writes them), cut off the tile grid.
         plan = {"format": "filmback-tile-plan", "version": 1, "width": 70, "height": 72,
                 "parts": [{"crop": [0, 37, 70, 72], "estimated_seconds": 1.5},
@@ -70,6 +70,25 @@ class PartsTest(unittest.TestCase):
             same, why = images_identical(self.dir / f"whole.{extension}",
                                          self.dir / f"merged.{extension}")
             self.assertTrue(same, why)
+        # `filmback tile-plan` from the whole render's tile times and from the parts' (a previous
+        # frame's): three parts that tile the frame; a file that is no report is refused.
+        for source in (["--report", "whole.json"], ["--previous", "plan0.exr", "plan1.exr"]):
+            result = self.run_cli("tile-plan", SCENE, "--tiles", "3", "-o", "three.json", *source)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assert_tiles_frame(json.loads((self.dir / "three.json").read_text()), 70, 72, 3)
+        self.assert_refused(1, "whole.png", "tile-plan", SCENE, "--tiles", "2", "-o",
+                            "out.json", "--report", "whole.png")
+
+    def assert_tiles_frame(self, plan, width, height, parts):
+        self.assertEqual((plan["width"], plan["height"], len(plan["parts"])), (width, height, parts))
+        owners = [[0] * width for _ in range(height)]
+        for part in plan["parts"]:
+            x0, y0, x1, y1 = part["crop"]
+            self.assertGreater(part["estimated_seconds"], 0)
+            for y in range(y0, y1):
+                for x in range(x0, x1):
+                    owners[y][x] += 1
+        self.assertTrue(all(o == 1 for row in owners for o in row), "parts overlap or leave gaps")
 
     def test_merge_refuses_what_is_not_one_render(self):
         # Bands of tile rows: rows 0-31 and 32-71. The other refusals (seed, overlap, a corrupt
