@@ -17,8 +17,10 @@ namespace {
 
 std::string quoted_list(const std::vector<std::string>& words) {
   std::string out;
-  for (const std::string& w : words)
-    out += (out.empty() ? "" : " ") + shell_quoted(w);
+  for (const std::string& w : words) {
+    if (!out.empty()) out += ' ';
+    out += shell_quoted(w);
+  }
   return out;
 }
 
@@ -135,7 +137,8 @@ void write_job_folder(const SlurmJob& job, const SbatchSettings& settings, const
                       const std::string& description) {
   check_job_dir_free(job.dir);
   std::error_code ec;
-  const fs::path temporary = job.dir.parent_path() / ("." + job.dir.filename().string() + ".tmp");
+  const fs::path temporary =
+      job.dir.parent_path() / (std::string(".") + job.dir.filename().string() + ".tmp");
   fs::remove_all(temporary, ec);
   if (!fs::create_directories(temporary / "tasks", ec) ||
       !fs::create_directory(temporary / "merges", ec) ||

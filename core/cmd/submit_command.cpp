@@ -160,9 +160,9 @@ int run_submit(SubmitCommand& c) {
   // The plan is made before the folder, so that a failing pre-pass leaves no folder behind.
   fs::path plan;
   const fs::path made_plan =
-      job.dir.parent_path() / ("." + job.dir.filename().string() + ".plan.json");
+      job.dir.parent_path() / (std::string(".") + job.dir.filename().string() + ".plan.json");
   const fs::path plan_log =
-      job.dir.parent_path() / ("." + job.dir.filename().string() + ".plan.log");
+      job.dir.parent_path() / (std::string(".") + job.dir.filename().string() + ".plan.log");
   if (with_plan && c.tile_plan == "auto") {
     std::cerr << "submit: filmback tile-plan (a low-cost pre-pass of the first frame)\n";
     make_tile_plan(c, job, settings.filmback, made_plan, plan_log);

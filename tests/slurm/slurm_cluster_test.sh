@@ -1,0 +1,222 @@
+#!/usr/bin/env bash
+# `filmback submit` on a real one-node Slurm cluster (docs/distributed.md, docs/testing.md): starts
+# slurmctld and slurmd on free loopback ports with a configuration in a folder of its own
+# (shared/notes/slurm.md, sections 1 and 4), submits one frame of a small shot twice at once as an
+# 8-tile array plus a merge, and compares each merged EXR with a one-process render of the frame,
+# bit for bit. In the second job one task's render is killed (SIGKILL) once its checkpoint exists:
+# the task must requeue itself, resume from the checkpoint (its log says so), and the merge must
+# still be bit-identical. The daemons are stopped by pid at the end, also on failure, after
+# scancel. Exit 77 (CTest's skip) only when Slurm's daemons are not installed.
+#
+# Usage: slurm_cluster_test.sh FILMBACK SCENE SCRATCH
+# Until `render --tile` and `merge` are in the build, the tasks run tests/slurm/standin_filmback.sh
+# (whole-frame parts): said on stdout.
+set -euo pipefail
+FILMBACK=$(realpath "$1")
+SCENE=$(realpath "$2")
+SCRATCH=$3
+HERE=$(cd "$(dirname "$0")" && pwd)
+PYTHON=/usr/bin/python3  # Debian's, with OpenImageIO and numpy
+TIMEOUT_S=${TIMEOUT_S:-100}
+for program in slurmctld slurmd sbatch squeue scontrol scancel sinfo; do
+  if ! command -v $program >/dev/null; then
+    echo "skipped: $program is not installed (./setup.sh test installs slurmctld, slurmd and slurm-client)"
+    exit 77
+  fi
+done
+
+mkdir -p "$SCRATCH"
+W=$(mktemp -d "$SCRATCH/slurm.XXXXXX")
+mkdir -p "$W"/{etc,state/ctld,state/d,log,run,out}
+export SLURM_CONF="$W/etc/slurm.conf"
+T0=$(date +%s%N)
+log() { printf '[%6.1fs] %s\n' "$(( ($(date +%s%N) - T0) / 1000000 ))e-3" "$*"; }
+
+# Two free loopback ports: bound to port 0 and released (another program could take one in the
+# moment between; slurmctld then fails to start and the test says so).
+read -r CTLD_PORT SLURMD_PORT < <("$PYTHON" -c '
+import socket
+s = [socket.socket() for _ in range(2)]
+for x in s: x.bind(("127.0.0.1", 0))
+print(*[x.getsockname()[1] for x in s])')
+ME=$(id -un)
+cat >"$SLURM_CONF" <<CONF
+# One-node cluster on loopback for filmback's test (shared/notes/slurm.md): no munge (auth/none
+# trusts any uid: loopback and throwaway only), no accounting; requeued jobs wait cred_expire s.
+ClusterName=filmback-test
+SlurmctldHost=localhost
+SlurmctldPort=$CTLD_PORT
+SlurmdPort=$SLURMD_PORT
+SlurmUser=$ME
+SlurmdUser=$ME
+AuthType=auth/none
+CredType=cred/none
+AuthInfo=cred_expire=10
+StateSaveLocation=$W/state/ctld
+SlurmdSpoolDir=$W/state/d
+SlurmctldPidFile=$W/run/slurmctld.pid
+SlurmdPidFile=$W/run/slurmd.pid
+SlurmctldLogFile=$W/log/slurmctld.log
+SlurmdLogFile=$W/log/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+SwitchType=switch/none
+MpiDefault=none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/filetxt
+JobCompLoc=$W/log/jobcomp.txt
+SchedulerType=sched/backfill
+SchedulerParameters=batch_sched_delay=0,bf_interval=5,sched_interval=5
+MailProg=/bin/true
+MinJobAge=3600
+SelectType=select/cons_tres
+SelectTypeParameters=CR_Core
+ReturnToService=2
+NodeName=localhost NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=1000 State=UNKNOWN
+PartitionName=filmback Nodes=localhost Default=YES MaxTime=INFINITE State=UP
+CONF
+
+CTLD_PID= SLURMD_PID=
+stop_pid() {  # TERM, up to 10 s, then KILL: only the pid this shell started, and waited for
+  local pid=$1
+  [ -n "$pid" ] || return 0
+  kill -TERM "$pid" 2>/dev/null || return 0
+  for _ in $(seq 100); do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid" 2>/dev/null || true; return 0; }
+    sleep 0.1
+  done
+  echo "pid $pid ignored SIGTERM: SIGKILL" >&2
+  kill -KILL "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+}
+cleanup() {
+  local status=$?
+  set +e
+  if [ -n "$CTLD_PID" ] && kill -0 "$CTLD_PID" 2>/dev/null; then
+    # Jobs first: a job's slurmstepd outlives slurmd (shared/notes/slurm.md, section 4).
+    scancel --quiet --partition=filmback 2>/dev/null
+    for _ in $(seq 50); do
+      [ -z "$(squeue -h -o %i 2>/dev/null)" ] && break
+      sleep 0.2
+    done
+  fi
+  stop_pid "$SLURMD_PID"
+  stop_pid "$CTLD_PID"
+  log "daemons stopped"
+  if [ $status -ne 0 ]; then
+    squeue -t all 2>/dev/null
+    tail -n 20 "$W"/log/slurmctld.log "$W"/log/jobcomp.txt "$W"/out/*/logs/*.log 2>/dev/null
+    echo "FAILED; the test's folder is kept: $W"
+  else
+    rm -rf "$W"
+  fi
+  exit $status
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# The shot: small, one frame, checkpoints allowed (no adaptive sampling, importance reconstruction).
+# A task renders for about a second on one core (2026-11-28, this 2-core machine): long enough
+# for the killed task to have written a checkpoint (every 0.05 s) and still be running.
+FRAME=3
+SPP=384
+TASK_FILMBACK=$FILMBACK
+PLAN=auto
+has_command() { "$FILMBACK" --help | grep -q "^  $1 "; }
+if ! has_command merge; then
+  echo "filmback merge is not in this build: the tasks run the stand-in tests/slurm/standin_filmback.sh"
+  export FILMBACK_REAL=$FILMBACK
+  TASK_FILMBACK=$HERE/standin_filmback.sh
+  PLAN=none
+  SPP=48  # the stand-in's parts are whole frames: 8 times a tile's work
+fi
+has_command tile-plan || PLAN=none
+RENDER_OPTIONS=(--res 96x64 --spp $SPP --adaptive-threshold 0 --seed 7)
+
+log "one-process render of frame $FRAME"
+"$FILMBACK" render "$SCENE" "${RENDER_OPTIONS[@]}" --frame $FRAME --quiet -o "$W/out/reference.exr"
+
+log "starting slurmctld (port $CTLD_PORT) and slurmd (port $SLURMD_PORT)"
+slurmctld -D -i -f "$SLURM_CONF" >"$W/log/slurmctld.stdout" 2>&1 &
+CTLD_PID=$!
+slurmd -D -N localhost -f "$SLURM_CONF" >"$W/log/slurmd.stdout" 2>&1 &
+SLURMD_PID=$!
+for _ in $(seq 120); do
+  [ "$(sinfo -h -n localhost -o %T 2>/dev/null)" = idle ] && break
+  kill -0 "$CTLD_PID" 2>/dev/null && kill -0 "$SLURMD_PID" 2>/dev/null ||
+    fail "a Slurm daemon exited (logs in $W/log)"
+  sleep 0.25
+done
+[ "$(sinfo -h -n localhost -o %T)" = idle ] || fail "the node is not idle after 30 s"
+log "cluster up: slurmctld $CTLD_PID, slurmd $SLURMD_PID"
+
+submit() {  # NAME [options]: the merge array's job id on stdout
+  local name=$1
+  shift
+  "$FILMBACK" submit "$SCENE" --tiles 8 --frames $FRAME -o "$W/out/$name.####.exr" \
+    --filmback "$TASK_FILMBACK" --tile-plan $PLAN --name "$name" "$@" "${RENDER_OPTIONS[@]}" \
+    >"$W/out/$name.submit.txt"
+  sed -n 's/^merge array \([0-9]*\):.*/\1/p' "$W/out/$name.submit.txt"
+}
+MERGE_WHOLE=$(submit whole)
+MERGE_KILLED=$(submit killed --checkpoint-every 0.05s --retries 2)
+[ -n "$MERGE_WHOLE" ] && [ -n "$MERGE_KILLED" ] || fail "submit printed no merge job id"
+log "submitted: merges $MERGE_WHOLE (whole) and $MERGE_KILLED (one task killed)"
+
+# The killed job's tile 3: SIGKILL its render once its first checkpoint is written. The render is
+# killed by pid: the process of this filmback executable whose command line writes the part (the
+# part's path is in this test's own folder).
+JOB=$W/out/killed.filmback-job
+PART=$JOB/parts/f000$FRAME.t3.exr
+CHECKPOINT=$JOB/parts/f000$FRAME.t3.checkpoint.exr
+render_pid() {
+  local pid
+  for pid in $(pgrep -f -- " render .* -o $PART "); do
+    [ "$(readlink "/proc/$pid/exe" 2>/dev/null)" = "$FILMBACK" ] && { echo "$pid"; return; }
+  done
+}
+deadline=$(($(date +%s) + TIMEOUT_S))
+killed=
+while [ -z "$killed" ]; do
+  [ "$(date +%s)" -lt "$deadline" ] || fail "tile 3's checkpoint never appeared"
+  [ -s "$PART" ] && fail "tile 3 finished before its checkpoint was seen: make its render longer"
+  if [ -f "$CHECKPOINT" ]; then
+    pid=$(render_pid)
+    if [ -n "$pid" ]; then
+      kill -KILL "$pid" && killed=$pid
+    fi
+  fi
+  sleep 0.02
+done
+log "tile 3 of the killed job: render pid $killed killed with its checkpoint written"
+
+wait_for() {  # JOB_ID: its final state
+  local state
+  while :; do
+    state=$(squeue -h -t all -j "$1" -o %T 2>/dev/null | sort -u | paste -sd, -)
+    case $state in
+      COMPLETED | FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY) echo "$state"; return ;;
+    esac
+    [ "$(date +%s)" -lt "$deadline" ] || { echo "timeout:$state"; return; }
+    sleep 0.5
+  done
+}
+STATE_WHOLE=$(wait_for "$MERGE_WHOLE")
+STATE_KILLED=$(wait_for "$MERGE_KILLED")
+log "merges: whole $STATE_WHOLE, killed $STATE_KILLED"
+[ "$STATE_WHOLE" = COMPLETED ] || fail "the merge of the whole job ended $STATE_WHOLE"
+[ "$STATE_KILLED" = COMPLETED ] || fail "the merge of the killed job ended $STATE_KILLED"
+
+"$PYTHON" "$HERE/compare_exr.py" "$W/out/reference.exr" "$W/out/whole.000$FRAME.exr" ||
+  fail "the merged frame differs from the one-process render"
+"$PYTHON" "$HERE/compare_exr.py" "$W/out/reference.exr" "$W/out/killed.000$FRAME.exr" ||
+  fail "the merged frame of the job with a killed task differs from the one-process render"
+TILE_LOG=$JOB/logs/f000$FRAME.t3.log
+grep -q "try 2 of 3" "$TILE_LOG" || fail "tile 3 was not tried a second time ($TILE_LOG)"
+grep -q "^resuming from checkpoint $CHECKPOINT" "$TILE_LOG" ||
+  fail "tile 3's second try did not resume from its checkpoint ($TILE_LOG)"
+grep -q "^resuming from checkpoint" "$JOB/logs/f000$FRAME.t0.log" && fail "tile 0 resumed, but it was never killed"
+log "OK: both merges bit-identical to the one-process render; the killed task resumed from its checkpoint"
