@@ -39,11 +39,14 @@ uint64_t slurm_max_array_size() {
   return std::max<uint64_t>(1, std::stoull(match[1].str()));
 }
 
-void run_submit_script(const fs::path& job_dir) {
+void check_sbatch_on_path() {
   if (!program_on_path("sbatch"))
     throw InputError(
-        "submit: sbatch is not on PATH (is Slurm's client installed here?); the job folder " +
-        job_dir.string() + " is written: run its submit.sh where sbatch is, or use --dry-run");
+        "submit: sbatch is not on PATH (is Slurm's client installed here?); --dry-run writes the "
+        "job folder without submitting, and its submit.sh submits it where sbatch is");
+}
+
+void run_submit_script(const fs::path& job_dir) {
   const fs::path log = job_dir / "logs" / "submit.log";
   const ProgramRun run = run_program({"bash", (job_dir / "submit.sh").string()}, log);
   std::cout << file_text(log);

@@ -11,8 +11,11 @@ namespace fb {
 // default, 1001, when scontrol is not there or does not say.
 uint64_t slurm_max_array_size();
 
+// InputError when sbatch is not on PATH, suggesting --dry-run.
+void check_sbatch_on_path();
+
 // Runs `job_dir`/submit.sh, its output (the job ids) to stdout and to logs/submit.log. InputError
-// when sbatch is not on PATH (suggesting --dry-run) or submit.sh fails.
+// when it fails.
 void run_submit_script(const std::filesystem::path& job_dir);
 
 }  // namespace fb

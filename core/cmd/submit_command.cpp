@@ -75,7 +75,10 @@ fs::path this_executable() {
 
 void check_inputs(const SubmitCommand& c) {
   std::error_code ec;
-  if (!fs::is_regular_file(c.scene, ec)) throw_input(c.scene.string(), "", "no such scene file");
+  if (!fs::is_regular_file(c.scene, ec))
+    throw_input(c.scene.string(), "",
+                "no such scene file (the scene comes before the render options: filmback submit "
+                "SCENE --tiles N -o OUT [render options])");
   for (const fs::path& out : c.outputs) {
     const fs::path folder = out.has_parent_path() ? out.parent_path() : ".";
     if (!fs::is_directory(folder, ec))
@@ -143,6 +146,7 @@ std::string job_description(const SubmitCommand& c, const SlurmJob& job,
 
 int run_submit(SubmitCommand& c) {
   check_inputs(c);
+  if (!c.dry_run) check_sbatch_on_path();
   SbatchSettings settings;
   settings.filmback = fs::absolute(c.filmback.empty() ? this_executable() : c.filmback);
   settings.working_dir = fs::current_path();
