@@ -24,10 +24,11 @@ packages=(g++ cmake ninja-build pkg-config
 # a second compiler for an out-of-tree plugin against the installed SDK, and with its sanitizer and
 # libFuzzer runtimes (libclang-rt-14-dev) the compiler of the sanitized build and the fuzz harnesses;
 # strace, which shows that a render makes no network system call; Slurm's controller, node daemon
-# and client for `filmback submit`'s one-node-cluster test (tests/slurm/, docs/distributed.md).
+# and client for `filmback submit`'s one-node-cluster test (tests/slurm/, docs/distributed.md), and
+# OpenImageIO's Python module, with which that test compares EXR files bit for bit.
 [ "$mode" = test ] && packages+=(blender povray povray-includes povray-examples
                                  python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev strace
-                                 slurmctld slurmd slurm-client)
+                                 slurmctld slurmd slurm-client python3-openimageio)
 # npm only when the machine has none: a Node.js from another Debian source (nodesource's `nodejs`,
 # which ships its own npm) conflicts with Debian's `npm` package.
 [ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(npm)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `filmback submit` on a real one-node Slurm cluster (docs/distributed.md, docs/testing.md): starts
 # slurmctld and slurmd on free loopback ports with a configuration in a folder of its own
-# (shared/notes/slurm.md, sections 1 and 4), submits one frame of a small shot twice at once as an
+# (one_node_cluster.sh), submits one frame of a small shot twice at once as an
 # 8-tile array plus a merge, and compares each merged EXR with a one-process render of the frame,
 # bit for bit. In the second job one task's render is killed (SIGKILL) once its checkpoint exists:
 # the task must requeue itself, resume from the checkpoint (its log says so), and the merge must
@@ -27,86 +27,19 @@ done
 
 mkdir -p "$SCRATCH"
 W=$(mktemp -d "$SCRATCH/slurm.XXXXXX")
-mkdir -p "$W"/{etc,state/ctld,state/d,log,run,out}
-export SLURM_CONF="$W/etc/slurm.conf"
+mkdir -p "$W/out"
 T0=$(date +%s%N)
 log() { printf '[%6.1fs] %s\n' "$(( ($(date +%s%N) - T0) / 1000000 ))e-3" "$*"; }
 
-# Two free loopback ports: bound to port 0 and released (another program could take one in the
-# moment between; slurmctld then fails to start and the test says so).
-read -r CTLD_PORT SLURMD_PORT < <("$PYTHON" -c '
-import socket
-s = [socket.socket() for _ in range(2)]
-for x in s: x.bind(("127.0.0.1", 0))
-print(*[x.getsockname()[1] for x in s])')
-ME=$(id -un)
-cat >"$SLURM_CONF" <<CONF
-# One-node cluster on loopback for filmback's test (shared/notes/slurm.md): no munge (auth/none
-# trusts any uid: loopback and throwaway only), no accounting; requeued jobs wait cred_expire s.
-ClusterName=filmback-test
-SlurmctldHost=localhost
-SlurmctldPort=$CTLD_PORT
-SlurmdPort=$SLURMD_PORT
-SlurmUser=$ME
-SlurmdUser=$ME
-AuthType=auth/none
-CredType=cred/none
-AuthInfo=cred_expire=10
-StateSaveLocation=$W/state/ctld
-SlurmdSpoolDir=$W/state/d
-SlurmctldPidFile=$W/run/slurmctld.pid
-SlurmdPidFile=$W/run/slurmd.pid
-SlurmctldLogFile=$W/log/slurmctld.log
-SlurmdLogFile=$W/log/slurmd.log
-ProctrackType=proctrack/linuxproc
-TaskPlugin=task/none
-SwitchType=switch/none
-MpiDefault=none
-JobAcctGatherType=jobacct_gather/none
-AccountingStorageType=accounting_storage/none
-JobCompType=jobcomp/filetxt
-JobCompLoc=$W/log/jobcomp.txt
-SchedulerType=sched/backfill
-SchedulerParameters=batch_sched_delay=0,bf_interval=5,sched_interval=5
-MailProg=/bin/true
-MinJobAge=3600
-SelectType=select/cons_tres
-SelectTypeParameters=CR_Core
-ReturnToService=2
-NodeName=localhost NodeAddr=127.0.0.1 CPUs=$(nproc) RealMemory=1000 State=UNKNOWN
-PartitionName=filmback Nodes=localhost Default=YES MaxTime=INFINITE State=UP
-CONF
-
-CTLD_PID= SLURMD_PID=
-stop_pid() {  # TERM, up to 10 s, then KILL: only the pid this shell started, and waited for
-  local pid=$1
-  [ -n "$pid" ] || return 0
-  kill -TERM "$pid" 2>/dev/null || return 0
-  for _ in $(seq 100); do
-    kill -0 "$pid" 2>/dev/null || { wait "$pid" 2>/dev/null || true; return 0; }
-    sleep 0.1
-  done
-  echo "pid $pid ignored SIGTERM: SIGKILL" >&2
-  kill -KILL "$pid" 2>/dev/null || true
-  wait "$pid" 2>/dev/null || true
-}
+source "$HERE/one_node_cluster.sh"
 cleanup() {
   local status=$?
   set +e
-  if [ -n "$CTLD_PID" ] && kill -0 "$CTLD_PID" 2>/dev/null; then
-    # Jobs first: a job's slurmstepd outlives slurmd (shared/notes/slurm.md, section 4).
-    scancel --quiet --partition=filmback 2>/dev/null
-    for _ in $(seq 50); do
-      [ -z "$(squeue -h -o %i 2>/dev/null)" ] && break
-      sleep 0.2
-    done
-  fi
-  stop_pid "$SLURMD_PID"
-  stop_pid "$CTLD_PID"
+  cluster_stop
   log "daemons stopped"
   if [ $status -ne 0 ]; then
     squeue -t all 2>/dev/null
-    tail -n 20 "$W"/log/slurmctld.log "$W"/log/jobcomp.txt "$W"/out/*/logs/*.log 2>/dev/null
+    tail -n 20 "$W"/cluster/log/slurmctld.log "$W"/cluster/log/jobcomp.txt "$W"/out/*/logs/*.log 2>/dev/null
     echo "FAILED; the test's folder is kept: $W"
   else
     rm -rf "$W"
@@ -139,19 +72,9 @@ RENDER_OPTIONS=(--res 96x64 --spp $SPP --adaptive-threshold 0 --seed 7)
 log "one-process render of frame $FRAME"
 "$FILMBACK" render "$SCENE" "${RENDER_OPTIONS[@]}" --frame $FRAME --quiet -o "$W/out/reference.exr"
 
-log "starting slurmctld (port $CTLD_PORT) and slurmd (port $SLURMD_PORT)"
-slurmctld -D -i -f "$SLURM_CONF" >"$W/log/slurmctld.stdout" 2>&1 &
-CTLD_PID=$!
-slurmd -D -N localhost -f "$SLURM_CONF" >"$W/log/slurmd.stdout" 2>&1 &
-SLURMD_PID=$!
-for _ in $(seq 120); do
-  [ "$(sinfo -h -n localhost -o %T 2>/dev/null)" = idle ] && break
-  kill -0 "$CTLD_PID" 2>/dev/null && kill -0 "$SLURMD_PID" 2>/dev/null ||
-    fail "a Slurm daemon exited (logs in $W/log)"
-  sleep 0.25
-done
-[ "$(sinfo -h -n localhost -o %T)" = idle ] || fail "the node is not idle after 30 s"
-log "cluster up: slurmctld $CTLD_PID, slurmd $SLURMD_PID"
+log "starting a one-node Slurm cluster"
+cluster_start "$W/cluster" || fail "the cluster did not come up"
+log "cluster up: slurmctld $CTLD_PID on port $CTLD_PORT, slurmd $SLURMD_PID on port $SLURMD_PORT"
 
 submit() {  # NAME [options]: the merge array's job id on stdout
   local name=$1
@@ -193,19 +116,8 @@ while [ -z "$killed" ]; do
 done
 log "tile 3 of the killed job: render pid $killed killed with its checkpoint written"
 
-wait_for() {  # JOB_ID: its final state
-  local state
-  while :; do
-    state=$(squeue -h -t all -j "$1" -o %T 2>/dev/null | sort -u | paste -sd, -)
-    case $state in
-      COMPLETED | FAILED | CANCELLED | TIMEOUT | NODE_FAIL | OUT_OF_MEMORY) echo "$state"; return ;;
-    esac
-    [ "$(date +%s)" -lt "$deadline" ] || { echo "timeout:$state"; return; }
-    sleep 0.5
-  done
-}
-STATE_WHOLE=$(wait_for "$MERGE_WHOLE")
-STATE_KILLED=$(wait_for "$MERGE_KILLED")
+STATE_WHOLE=$(job_final_state "$MERGE_WHOLE" $deadline)
+STATE_KILLED=$(job_final_state "$MERGE_KILLED" $deadline)
 log "merges: whole $STATE_WHOLE, killed $STATE_KILLED"
 [ "$STATE_WHOLE" = COMPLETED ] || fail "the merge of the whole job ended $STATE_WHOLE"
 [ "$STATE_KILLED" = COMPLETED ] || fail "the merge of the killed job ended $STATE_KILLED"
