@@ -5,6 +5,8 @@
 # ($FILMBACK_REAL) into the part, with its checkpoints; `merge PARTS... -o OUT...` checks that every
 # part is there and writes the first one to each output. The Slurm mechanics (arrays, requeue,
 # resume from a checkpoint, the merge's dependency) are the real ones; only the split is not.
+# STANDIN_SPP_DIVISOR=D (measure_overhead.sh): a part renders the frame at 1/D of --spp, a tile's
+# sample count with a tile's fixed costs (start, scene, BVH), as a proxy of a tile's time.
 set -euo pipefail
 real=${FILMBACK_REAL:?the real filmback}
 command=$1
@@ -14,6 +16,7 @@ if [ "$command" = render ]; then
   while [ $# -gt 0 ]; do
     case $1 in
       --tile | --tile-plan) shift 2 ;;
+      --spp) args+=(--spp $(($2 / ${STANDIN_SPP_DIVISOR:-1}))); shift 2 ;;
       *) args+=("$1"); shift ;;
     esac
   done
