@@ -50,14 +50,20 @@ std::string tame(const std::string& text) {
   return out.empty() ? "render" : out;
 }
 
+// `value` with at least `digits` digits: printf's "%.*lld".
+std::string padded(int64_t value, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*lld", digits, static_cast<long long>(value));
+  return text;
+}
+
 std::string frame_text(int64_t frame) {
-  return with_frame_number("f####", frame);
+  return "f" + padded(frame, 4);
 }
 
 // "f0012.t3" (tile digits as many as the last tile's): the stem of a task's part and log.
 std::string task_stem(std::optional<int64_t> frame, uint32_t tile, uint32_t tiles) {
-  const std::string tile_digits(std::to_string(tiles - 1).size(), '#');
-  const std::string tile_text = "t" + with_frame_number(tile_digits, tile);
+  const std::string tile_text = "t" + padded(tile, int(std::to_string(tiles - 1).size()));
   return frame ? frame_text(*frame) + "." + tile_text : tile_text;
 }
 

@@ -25,10 +25,12 @@ TEST(SubmitFrames, RangesStepsAndSingleFrames) {
 
 TEST(SubmitFrames, RunsOfHashesBecomeTheZeroPaddedFrame) {
   EXPECT_EQ(with_frame_number("shot.####.exr", 12), "shot.0012.exr");
-  EXPECT_EQ(with_frame_number("a#b##", 7), "a7b07");
-  EXPECT_EQ(with_frame_number("####", -5), "-0005");  // printf's "%.*d", as Blender
+  EXPECT_EQ(with_frame_number("a#b##", 7), "a#b07");                // the last run only, as Blender
+  EXPECT_EQ(with_frame_number("f##/shot.exr", 7), "f##/shot.exr");  // a folder's '#' stays
+  EXPECT_EQ(with_frame_number("####", -5), "-0005");                // printf's "%.*d", as Blender
   EXPECT_EQ(with_frame_number("##", 12345), "12345");
   EXPECT_FALSE(has_frame_pattern("shot.exr"));
+  EXPECT_FALSE(has_frame_pattern("take#1/shot.exr"));
 }
 
 TEST(SlurmJob, TheJobFolderSitsNextToTheFirstOutput) {

@@ -50,25 +50,18 @@ std::vector<int64_t> parse_frame_numbers(const std::string& text, const char* op
 }
 
 bool has_frame_pattern(const std::string& pattern) {
-  return pattern.find('#') != std::string::npos;
+  const size_t name = pattern.rfind('/');
+  return pattern.find('#', name == std::string::npos ? 0 : name + 1) != std::string::npos;
 }
 
 std::string with_frame_number(const std::string& pattern, int64_t frame) {
-  std::string out;
-  for (size_t i = 0; i < pattern.size();) {
-    if (pattern[i] != '#') {
-      out += pattern[i++];
-      continue;
-    }
-    const size_t run_end = pattern.find_first_not_of('#', i);
-    const size_t run = (run_end == std::string::npos ? pattern.size() : run_end) - i;
-    const int digits = int(std::min<size_t>(run, 40));  // int64_t has at most 19 digits
-    char number[48];
-    std::snprintf(number, sizeof number, "%.*lld", digits, static_cast<long long>(frame));
-    out += number;
-    i += run;
-  }
-  return out;
+  if (!has_frame_pattern(pattern)) return pattern;
+  const size_t run_end = pattern.rfind('#') + 1;
+  const size_t run_begin = pattern.find_last_not_of('#', run_end - 1) + 1;  // npos + 1 == 0
+  const int digits = int(std::min<size_t>(run_end - run_begin, 40));        // int64_t: 19 digits
+  char number[48];
+  std::snprintf(number, sizeof number, "%.*lld", digits, static_cast<long long>(frame));
+  return pattern.substr(0, run_begin) + number + pattern.substr(run_end);
 }
 
 }  // namespace fb

@@ -13,11 +13,12 @@ namespace fb {
 // frames as "-5--2"): UsageError naming `option` otherwise.
 std::vector<int64_t> parse_frame_numbers(const std::string& text, const char* option);
 
-// Whether `pattern` holds a run of '#'.
+// Whether the file name (the path's last component) holds a run of '#'.
 bool has_frame_pattern(const std::string& pattern);
 
-// Every run of '#' replaced by `frame`, zero-padded to the run's length: "shot.####.exr", 12 ->
-// "shot.0012.exr"; -5 -> "shot.-0005.exr" (Blender's BLI_path_frame: printf's "%.*d").
+// The last run of '#' in the file name replaced by `frame`, zero-padded to the run's length:
+// "shot.####.exr", 12 -> "shot.0012.exr"; -5 -> "shot.-0005.exr" (Blender's BLI_path_frame:
+// printf's "%.*d"). Unchanged when the file name holds no '#'.
 std::string with_frame_number(const std::string& pattern, int64_t frame);
 
 }  // namespace fb
