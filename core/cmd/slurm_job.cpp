@@ -50,20 +50,20 @@ std::string tame(const std::string& text) {
   return out.empty() ? "render" : out;
 }
 
-// `value` with at least `digits` digits: printf's "%.*lld".
-std::string padded(int64_t value, int digits) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*lld", digits, static_cast<long long>(value));
+// `prefix` and `value` with at least `digits` digits: printf's "%s%.*lld".
+std::string padded(const char* prefix, int64_t value, int digits) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%s%.*lld", prefix, digits, static_cast<long long>(value));
   return text;
 }
 
 std::string frame_text(int64_t frame) {
-  return "f" + padded(frame, 4);
+  return padded("f", frame, 4);
 }
 
 // "f0012.t3" (tile digits as many as the last tile's): the stem of a task's part and log.
 std::string task_stem(std::optional<int64_t> frame, uint32_t tile, uint32_t tiles) {
-  const std::string tile_text = "t" + padded(tile, int(std::to_string(tiles - 1).size()));
+  const std::string tile_text = padded("t", tile, int(std::to_string(tiles - 1).size()));
   return frame ? frame_text(*frame) + "." + tile_text : tile_text;
 }
 
@@ -84,8 +84,8 @@ fs::path default_job_dir(const fs::path& first_output) {
 std::string task_name(const std::string& name, std::optional<int64_t> frame,
                       std::optional<uint32_t> tile, uint32_t tiles) {
   std::string out = "fb:" + name;
-  if (frame) out += ":" + frame_text(*frame);
-  if (tile) out += ":t" + std::to_string(*tile) + "/" + std::to_string(tiles);
+  if (frame) out += ':' + frame_text(*frame);
+  if (tile) out += padded(":t", *tile, 1) + "/" + std::to_string(tiles);
   return out;
 }
 
