@@ -53,9 +53,10 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 # The shot: small, one frame, checkpoints allowed (no adaptive sampling, importance reconstruction).
 # A task renders for about a second on one core (2026-11-28, this 2-core machine): long enough
-# for the killed task to have written a checkpoint (every 0.05 s) and still be running.
+# for the killed task to have written a checkpoint (every 0.05 s) and still be running. 8 rows of
+# 16-pixel tiles, so that 8 parts of equal area exist without a plan.
 FRAME=3
-SPP=384
+SPP=192
 TASK_FILMBACK=$FILMBACK
 PLAN=auto
 has_command() { "$FILMBACK" --help | grep -q "^  $1 "; }
@@ -64,10 +65,10 @@ if ! has_command merge; then
   export FILMBACK_REAL=$FILMBACK
   TASK_FILMBACK=$HERE/standin_filmback.sh
   PLAN=none
-  SPP=48  # the stand-in's parts are whole frames: 8 times a tile's work
+  SPP=24  # the stand-in's parts are whole frames: 8 times a tile's work
 fi
 has_command tile-plan || PLAN=none
-RENDER_OPTIONS=(--res 96x64 --spp $SPP --adaptive-threshold 0 --seed 7)
+RENDER_OPTIONS=(--res 96x128 --spp $SPP --adaptive-threshold 0 --seed 7)
 
 log "one-process render of frame $FRAME"
 "$FILMBACK" render "$SCENE" "${RENDER_OPTIONS[@]}" --frame $FRAME --quiet -o "$W/out/reference.exr"
@@ -95,6 +96,7 @@ log "submitted: merges $MERGE_WHOLE (whole) and $MERGE_KILLED (one task killed)"
 JOB=$W/out/killed.filmback-job
 PART=$JOB/parts/f000$FRAME.t3.exr
 CHECKPOINT=$JOB/parts/f000$FRAME.t3.checkpoint.exr
+TILE_LOG=$JOB/logs/f000$FRAME.t3.log
 render_pid() {
   local pid
   for pid in $(pgrep -f -- " render .* -o $PART "); do
@@ -106,6 +108,7 @@ killed=
 while [ -z "$killed" ]; do
   [ "$(date +%s)" -lt "$deadline" ] || fail "tile 3's checkpoint never appeared"
   [ -s "$PART" ] && fail "tile 3 finished before its checkpoint was seen: make its render longer"
+  grep -qs "render failed" "$TILE_LOG" && fail "tile 3 failed by itself ($TILE_LOG)"
   if [ -f "$CHECKPOINT" ]; then
     pid=$(render_pid)
     if [ -n "$pid" ]; then
@@ -126,7 +129,6 @@ log "merges: whole $STATE_WHOLE, killed $STATE_KILLED"
   fail "the merged frame differs from the one-process render"
 "$PYTHON" "$HERE/compare_exr.py" "$W/out/reference.exr" "$W/out/killed.000$FRAME.exr" ||
   fail "the merged frame of the job with a killed task differs from the one-process render"
-TILE_LOG=$JOB/logs/f000$FRAME.t3.log
 grep -q "try 2 of 3" "$TILE_LOG" || fail "tile 3 was not tried a second time ($TILE_LOG)"
 grep -q "^resuming from checkpoint $CHECKPOINT" "$TILE_LOG" ||
   fail "tile 3's second try did not resume from its checkpoint ($TILE_LOG)"
