@@ -85,8 +85,9 @@ submit() {  # NAME [options]: the merge array's job id on stdout
     >"$W/out/$name.submit.txt"
   sed -n 's/^merge array \([0-9]*\):.*/\1/p' "$W/out/$name.submit.txt"
 }
-MERGE_WHOLE=$(submit whole)
+# The killed job first: its tile 3 starts early, and its requeue's wait overlaps the other job.
 MERGE_KILLED=$(submit killed --checkpoint-every 0.05s --retries 2)
+MERGE_WHOLE=$(submit whole)
 [ -n "$MERGE_WHOLE" ] && [ -n "$MERGE_KILLED" ] || fail "submit printed no merge job id"
 log "submitted: merges $MERGE_WHOLE (whole) and $MERGE_KILLED (one task killed)"
 
