@@ -9,7 +9,8 @@ index=$(($2 + SLURM_ARRAY_TASK_ID))
 source "$job_dir/job.env"                                    # FILMBACK
 source "$(printf '%s/merges/%06d.sh' "$job_dir" "$index")"  # name, log, parts, outputs
 exec >>"$log" 2>&1
-scontrol update JobId="$SLURM_JOB_ID" JobName="$name" Comment="filmback ${name#fb:}" \
+scontrol update JobId="${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" JobName="$name" \
+  Comment="filmback ${name#fb:}" \
   >/dev/null 2>&1 || true
 echo "$(date -u +%FT%TZ) $name: job ${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID} ($SLURM_JOB_ID) on $(hostname)"
 missing=0

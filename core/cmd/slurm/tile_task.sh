@@ -12,8 +12,9 @@ source "$job_dir/job.env"                                   # FILMBACK, RETRIES,
 source "$(printf '%s/tasks/%06d.sh' "$job_dir" "$index")"  # name, part, checkpoint, log, render_args
 exec >>"$log" 2>&1
 try=${SLURM_RESTART_COUNT:-0}
-# Array elements share the array's name until they run: a running task names itself.
-scontrol update JobId="$SLURM_JOB_ID" JobName="$name" \
+# Array elements share the array's name until they run: a running task names itself. It names
+# itself as ARRAY_INDEX: the element that holds the array's own job id would rename them all.
+scontrol update JobId="${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" JobName="$name" \
   Comment="filmback ${name#fb:} try $((try + 1))" >/dev/null 2>&1 || true
 echo "$(date -u +%FT%TZ) $name: try $((try + 1)) of $((RETRIES + 1)), job ${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID} ($SLURM_JOB_ID) on $(hostname)"
 if [ -s "$part" ]; then
@@ -38,7 +39,9 @@ echo "$(date -u +%FT%TZ) $name: filmback render failed (exit status $status)"
 if [ $status -ne 2 ] && [ "$try" -lt "$RETRIES" ]; then
   echo "requeueing (retry $((try + 1)) of $RETRIES)"
   # The requeue ends this script; the sleep only keeps it from exiting (and so failing) first.
-  scontrol requeue "$SLURM_JOB_ID" && sleep 600
+  # ARRAY_INDEX, not SLURM_JOB_ID: the element that holds the array's own job id (the last one,
+  # usually) would requeue the whole array.
+  scontrol requeue "${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" && sleep 600
   echo "scontrol requeue failed: not retried"
 fi
 exit $status
