@@ -30,6 +30,8 @@ threads=()
 [ "$THREADS_FROM_SLURM" = 1 ] && threads=(--threads "${SLURM_CPUS_PER_TASK:-1}")
 "$FILMBACK" render "${render_args[@]}" "${threads[@]}" "${resume[@]}"
 status=$?
+echo "processor time, user and system (this script's line, then the render's):"
+times
 if [ $status -eq 0 ]; then
   echo "$(date -u +%FT%TZ) $name: done"
   exit 0
