@@ -18,6 +18,8 @@ SCRATCH=$3
 HERE=$(cd "$(dirname "$0")" && pwd)
 PYTHON=/usr/bin/python3  # Debian's, with OpenImageIO and numpy
 TIMEOUT_S=${TIMEOUT_S:-100}
+# Debian installs the daemons in /usr/sbin, which a user's PATH may lack.
+export PATH=$PATH:/usr/sbin:/sbin
 for program in slurmctld slurmd sbatch squeue scontrol scancel sinfo; do
   if ! command -v $program >/dev/null; then
     echo "skipped: $program is not installed (./setup.sh test installs slurmctld, slurmd and slurm-client)"
