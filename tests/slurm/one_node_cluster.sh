@@ -7,6 +7,8 @@
 # No munge: auth/none trusts any uid, so only on loopback and for throwaway use.
 
 CTLD_PID= SLURMD_PID=
+# Debian installs the daemons in /usr/sbin, which a user's PATH may lack.
+export PATH=$PATH:/usr/sbin:/sbin
 
 cluster_start() {
   local dir=$1 ports

@@ -18,8 +18,7 @@ SCRATCH=$3
 HERE=$(cd "$(dirname "$0")" && pwd)
 PYTHON=/usr/bin/python3  # Debian's, with OpenImageIO and numpy
 TIMEOUT_S=${TIMEOUT_S:-100}
-# Debian installs the daemons in /usr/sbin, which a user's PATH may lack.
-export PATH=$PATH:/usr/sbin:/sbin
+source "$HERE/one_node_cluster.sh"
 for program in slurmctld slurmd sbatch squeue scontrol scancel sinfo; do
   if ! command -v $program >/dev/null; then
     echo "skipped: $program is not installed (./setup.sh test installs slurmctld, slurmd and slurm-client)"
@@ -33,7 +32,6 @@ mkdir -p "$W/out"
 T0=$(date +%s%N)
 log() { printf '[%6.1fs] %s\n' "$(( ($(date +%s%N) - T0) / 1000000 ))e-3" "$*"; }
 
-source "$HERE/one_node_cluster.sh"
 cleanup() {
   local status=$?
   set +e
