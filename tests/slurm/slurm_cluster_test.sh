@@ -81,12 +81,21 @@ submit() {  # NAME [options]: the merge array's job id on stdout
   local name=$1
   shift
   "$FILMBACK" submit "$SCENE" --tiles 8 --frames $FRAME -o "$W/out/$name.####.exr" \
-    --filmback "$TASK_FILMBACK" --tile-plan $PLAN --name "$name" "$@" "${RENDER_OPTIONS[@]}" \
+    --filmback "$TASK_FILMBACK" --tile-plan "$PLAN" --name "$name" "$@" "${RENDER_OPTIONS[@]}" \
     >"$W/out/$name.submit.txt"
   sed -n 's/^merge array \([0-9]*\):.*/\1/p' "$W/out/$name.submit.txt"
 }
-# The killed job first, so that its requeue's wait overlaps the other job.
-MERGE_KILLED=$(submit killed --checkpoint-every 0.05s --retries 2)
+# The killed job first, so that its requeue's wait overlaps the other job. Its parts are bands of
+# 16 rows from a plan whose last part is the 4th band, where the shot's objects are: the last task
+# (the one that holds the array's own job id) renders for a while, long enough to be killed.
+PLAN_FILE=$W/out/bands.json
+/usr/bin/python3 -c '
+import json, sys
+bands = [0, 1, 2, 4, 5, 6, 7, 3]
+parts = [{"crop": [0, 16 * b, 96, 16 * b + 16], "estimated_seconds": 1.0} for b in bands]
+json.dump({"format": "filmback-tile-plan", "version": 1, "width": 96, "height": 128,
+           "parts": parts}, open(sys.argv[1], "w"))' "$PLAN_FILE"
+MERGE_KILLED=$(PLAN=$PLAN_FILE submit killed --checkpoint-every 0.05s --retries 2)
 MERGE_WHOLE=$(submit whole)
 [ -n "$MERGE_WHOLE" ] && [ -n "$MERGE_KILLED" ] || fail "submit printed no merge job id"
 log "submitted: merges $MERGE_WHOLE (whole) and $MERGE_KILLED (one task killed)"
