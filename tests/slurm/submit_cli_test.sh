@@ -32,7 +32,7 @@ expect 2 "'--tile' is set by submit" "$FILMBACK" submit "$SCENE" --tiles 8 -o "$
 expect 2 "--tiles" "$FILMBACK" submit "$SCENE" --tiles 0 -o "$OUT" --dry-run
 expect 1 "no such scene file" "$FILMBACK" submit "$W/none.gltf" --tiles 8 -o "$OUT" --dry-run
 expect 1 "sbatch is not on PATH" env PATH=/nonexistent "$FILMBACK" submit "$SCENE" --tiles 8 -o "$OUT"
-expect 1 "--dry-run" env PATH=/nonexistent "$FILMBACK" submit "$SCENE" --tiles 8 -o "$OUT"
+grep -qF -- "--dry-run writes the job folder" "$W/out.txt" || fail "no --dry-run suggested"
 
 # A dry run: 2 frames x 8 tiles in arrays of at most 5: 4 tile arrays, 1 merge array after all 4.
 "$FILMBACK" submit "$SCENE" --tiles 8 --frames 4-6:2 -o "$OUT" --tile-plan none --dry-run \
