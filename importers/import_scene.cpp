@@ -6,6 +6,10 @@
 
 namespace fb {
 
+bool import_reads_frame(const std::filesystem::path& file) {
+  return file.extension() == ".pov";
+}
+
 Scene import_scene(const std::filesystem::path& file, const ImportOptions& options,
                    Diagnostics& diagnostics) {
   const std::string ext = file.extension().string();

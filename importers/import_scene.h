@@ -27,6 +27,11 @@ struct ImportOptions {
   pov::EvaluateLimits pov_limits;
 };
 
+// Whether what the file holds depends on ImportOptions::frame, so that each frame of a sequence
+// reads it again: POV-Ray scenes (their program reads frame_number). A glTF file is the same at
+// every frame (its animation is evaluated by the render at the frame's time).
+bool import_reads_frame(const std::filesystem::path& file);
+
 // Throws UsageError for an unknown extension, InputError for a file that cannot be read.
 Scene import_scene(const std::filesystem::path& file, const ImportOptions& options,
                    Diagnostics& diagnostics);

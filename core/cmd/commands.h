@@ -39,6 +39,10 @@ struct RenderCommand {
   std::filesystem::path checkpoint;
   bool resume = false;
   std::filesystem::path stats_json;
+  // A frame sequence (docs/cli.md, "Frame sequences"): "A-B[:STEP]" or "N" as typed; empty: one
+  // frame. `overwrite`: render again the frames whose outputs are all there.
+  std::string frames;
+  bool overwrite = false;
   RenderOptions options;
   ImportOptions import;  // its resolution is filled from --res by run_render
 };

@@ -85,6 +85,11 @@ void add_physical_camera_options(CLI::App* render_cmd, fb::RenderCommand& render
                            "shutter in [0, 1] (Cycles' duration), or none (default: the shot's)");
   camera_group->add_option("--frame", render.frame,
                            "frame to render, time = frame / fps (default: the scene's, else 0)");
+  camera_group
+      ->add_option("--frames", render.frames,
+                   "render frames A to B (every STEP-th), or frame N: A-B[:STEP] or N; each -o "
+                   "holds a run of # for the frame number (shot.####.exr)")
+      ->excludes("--frame");
   camera_group->add_option("--fps", render.fps,
                            "frames per second of the animation (default: the scene's, else 24)");
   camera_group->add_option("--sensor-model", render.sensor_model,
@@ -142,6 +147,8 @@ void add_run_options(CLI::App* render_cmd, fb::RenderCommand& render) {
                        "continue from the checkpoint: the same image as an uninterrupted render");
   render_cmd->add_option("--stats-json", render.stats_json,
                          "write timings, counts, warnings and the chosen models as JSON");
+  render_cmd->add_flag("--overwrite", render.overwrite,
+                       "--frames: render again the frames whose outputs all exist (default: skip)");
 }
 
 CLI::App* add_render_command(CLI::App& app, fb::RenderCommand& render) {

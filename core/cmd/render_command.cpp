@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <optional>
 
 #include "core/cmd/commands.h"
+#include "core/cmd/frame_sequence.h"
 #include "core/cmd/interrupts.h"
 #include "core/cmd/render_report.h"
 #include "core/film/checkpoint.h"
@@ -243,21 +245,44 @@ struct Checkpoints {
   std::string key;
 };
 
-// What the command line asks beyond RenderOptions: the 8-bit view's numbers and the checkpoints.
+// What the command line asks beyond RenderOptions: the 8-bit view's numbers, the checkpoints and
+// the frames.
 struct CommandChoices {
   ViewOverrides view_overrides;
   Checkpoints checkpoints;
+  std::optional<FrameRange> frames;  // --frames; its patterns are c.outputs and c.checkpoint
 };
+
+// With --frames every output and the checkpoint are frame patterns; without, a '#' there would be
+// a frame pattern that no frame fills (Blender always fills it): give --frames N.
+void check_frame_patterns(const RenderCommand& c, bool frames) {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
+  for (const std::filesystem::path& output : c.outputs)
+    files.push_back({output, "output"});
+  if (!c.checkpoint.empty()) files.push_back({c.checkpoint, "--checkpoint"});
+  for (const auto& [file, what] : files) {
+    if (frames)
+      require_frame_pattern(file, what);
+    else if (is_frame_pattern(file))
+      throw UsageError(what + " '" + file.string() +
+                       "': '#' stands for the frame number (shot.####.exr -> shot.0012.exr); "
+                       "expected --frames N or --frames A-B to render frames into it");
+  }
+}
 
 // Every option checked, and put into c.options, before the scene is read: a typo fails at once.
 CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
+  CommandChoices choices;
+  if (!c.frames.empty()) choices.frames = parse_frame_range(c.frames);
+  if (choices.frames && !c.frame.empty())
+    throw UsageError("--frame and --frames: expected one of them (--frames N renders frame N)");
+  check_frame_patterns(c, choices.frames.has_value());
   check_outputs(c.outputs);
   if (!c.resolution.empty()) {
     const auto [width, height] = parse_resolution(c.resolution);
     c.options.width = width, c.options.height = height;
   }
   parse_physical(c, c.options);
-  CommandChoices choices;
   choices.view_overrides = parse_view_overrides(c);
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (!c.memory_limit.empty()) c.options.memory_limit_bytes = parse_memory_size(c.memory_limit);
@@ -411,60 +436,108 @@ void print_summary(const RenderJob& job, const RenderResult& result,
   std::cout << line << std::endl;
 }
 
-int render(RenderCommand& c, RenderReport& report, Clock::time_point start) {
-  InterruptGuard interrupts;  // until the render runs, a signal ends the process at once
-  CommandChoices choices = parse_options(c, report);
-  Diagnostics diagnostics;
-  const Scene scene = read_scene(c, diagnostics, report);
-  const OutputView view = output_view(c, choices.view_overrides, scene, diagnostics);
-  report.warnings = diagnostics.messages();
-  diagnostics.print(std::cerr);
-
+// What the frames of a render share (one frame without --frames): the checked options, threads,
+// plugins and interrupts, and the scene with how the outputs show it, read at the first frame
+// rendered and again for each frame only when reading depends on it (import_reads_frame).
+struct RenderSession {
+  RenderSession(RenderCommand& command, RenderReport& report)
+      : c(command), choices(parse_options(command, report)) {
+    if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
+  }
+  RenderCommand& c;
+  InterruptGuard interrupts;  // until a render runs, a signal ends the process at once
+  CommandChoices choices;
   std::optional<tbb::global_control> threads;
-  if (c.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
-  const PluginLoader loader(PluginLoader::default_search_dirs());
-  const auto stage = Clock::now();
-  const RenderJob job(scene, c.options, loader);
-  report.setup_s = seconds_since(stage);
-  report_plan(job, c, report);
+  const PluginLoader loader{PluginLoader::default_search_dirs()};
+  std::optional<Scene> scene;
+  std::optional<OutputView> view;
+  std::vector<std::string> warnings;  // the scene's and view's
+};
 
-  Checkpoints& checkpoints = choices.checkpoints;
+// The scene as this frame reads it: read when first needed, or again if its frame changes it.
+const Scene& frame_scene(RenderSession& s, RenderReport& report) {
+  if (!s.scene || import_reads_frame(s.c.scene)) {
+    s.view.reset(), s.scene.reset();
+    Diagnostics diagnostics;
+    s.scene.emplace(read_scene(s.c, diagnostics, report));
+    s.view.emplace(output_view(s.c, s.choices.view_overrides, *s.scene, diagnostics));
+    // Once per sequence: a frame read again prints its warnings only when they changed.
+    if (diagnostics.messages() != s.warnings) diagnostics.print(std::cerr);
+    s.warnings = diagnostics.messages();
+  }
+  report.warnings = s.warnings;
+  return *s.scene;
+}
+
+// One frame into `outputs`: the frame c.options.frame names, with report.checkpoint its
+// checkpoint; continued from the checkpoint when `resume`.
+int render_frame(RenderSession& s, const std::vector<std::filesystem::path>& outputs, bool resume,
+                 RenderReport& report) {
+  const Scene& scene = frame_scene(s, report);
+  const auto stage = Clock::now();
+  const RenderJob job(scene, s.c.options, s.loader);
+  report.setup_s = seconds_since(stage);
+  report_plan(job, s.c, report);
+
+  Checkpoints& checkpoints = s.choices.checkpoints;
   if (checkpoints.enabled && job.shot_plan().adaptive)
     throw UsageError(
         "--checkpoint-every/--resume: not with adaptive sampling (which pixels have converged is "
         "not saved); give --adaptive-threshold 0");
-  if (checkpoints.enabled) checkpoints.key = checkpoint_key(job, c);
-  Film film = open_film(job, c.resume, checkpoints, report);
-  interrupts.arm();
+  if (checkpoints.enabled) checkpoints.key = checkpoint_key(job, s.c);
+  Film film = open_film(job, resume, checkpoints, report);
+  s.interrupts.arm();
   const RenderResult result =
-      run_job(job, film, render_control(interrupts, checkpoints, report), interrupts, report);
+      run_job(job, film, render_control(s.interrupts, checkpoints, report), s.interrupts, report);
   const bool interrupted = result.stats.interrupted;
   if (interrupted && result.most_samples == 0)
     std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
   else
-    write_outputs(job, result, film, view, c.outputs, checkpoints, report);
-  print_summary(job, result, interrupts, checkpoints);
-  report.total_s = seconds_since(start);
+    write_outputs(job, result, film, *s.view, outputs, checkpoints, report);
+  print_summary(job, result, s.interrupts, checkpoints);
   report.status = interrupted ? "interrupted" : "complete";
-  return interrupted ? 128 + interrupts.signal_number() : 0;
+  report.exit_status = interrupted ? 128 + s.interrupts.signal_number() : 0;
+  return report.exit_status;
 }
 
-}  // namespace
+int render(RenderCommand& c, RenderReport& report) {
+  RenderSession session(c, report);
+  return render_frame(session, c.outputs, c.resume, report);
+}
 
-int run_render(RenderCommand& c) {
-  const auto start = Clock::now();
-  RenderReport report;
-  report.scene = c.scene;
-  report.outputs = c.outputs;
-  const auto write_report = [&] {
-    if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
+// --frames: each frame as `render --frame N` renders it, into the outputs' patterns filled with
+// N; with --resume, a frame that has a checkpoint continues from it, the others start afresh.
+int render_frames(RenderCommand& c, SequenceReport& report) {
+  RenderReport options_report;  // what parse_options derives: the checkpoint's pattern
+  RenderSession session(c, options_report);
+  const FrameSequence sequence{*session.choices.frames, c.outputs, options_report.checkpoint,
+                               c.overwrite};
+  // Two patterns may name one file from some frame on (shot.#.exr and shot.##.exr from 10): the
+  // widest numbers, at the range's ends, show it before any frame is rendered.
+  for (const int64_t frame : {sequence.range.first, sequence.range.last})
+    check_outputs(frame_files(frame, c.outputs, {}).outputs);
+  const auto render_one = [&](const FrameFiles& files, RenderReport& frame) {
+    const auto start = Clock::now();
+    c.options.frame = double(files.frame);
+    frame.checkpoint = files.checkpoint;
+    const bool resume = c.resume && std::filesystem::exists(files.checkpoint);
+    const int status = render_frame(session, files.outputs, resume, frame);
+    frame.total_s = seconds_since(start);
+    return status;
   };
+  return run_frame_sequence(sequence, session.interrupts, render_one, report);
+}
+
+// Runs `run` for its exit status and writes the --stats-json report (a RenderReport or a
+// SequenceReport) after it, also when it fails: then with the error, which goes on.
+template <class Report>
+int run_with_report(Report& report, const std::function<int()>& run,
+                    const std::function<void()>& write_report) {
   try {
-    report.exit_status = render(c, report, start);
+    report.exit_status = run();
   } catch (const std::exception& e) {
     report.exit_status = dynamic_cast<const UsageError*>(&e) ? 2 : 1;
     report.error = e.what();
-    report.total_s = seconds_since(start);
     try {
       write_report();
     } catch (const std::exception&) {  // the render's own error is the one to report
@@ -473,6 +546,33 @@ int run_render(RenderCommand& c) {
   }
   write_report();
   return report.exit_status;
+}
+
+}  // namespace
+
+int run_render(RenderCommand& c) {
+  const auto start = Clock::now();
+  if (!c.frames.empty()) {
+    SequenceReport report;
+    report.scene = c.scene;
+    return run_with_report(
+        report, [&] { return render_frames(c, report); },
+        [&] {
+          report.total_s = seconds_since(start);
+          if (report.error.empty())
+            report.status = report.exit_status == 0 ? "complete" : "interrupted";
+          if (!c.stats_json.empty()) write_sequence_report(report, c.stats_json);
+        });
+  }
+  RenderReport report;
+  report.scene = c.scene;
+  report.outputs = c.outputs;
+  return run_with_report(
+      report, [&] { return render(c, report); },
+      [&] {
+        report.total_s = seconds_since(start);
+        if (!c.stats_json.empty()) write_render_report(report, c.stats_json);
+      });
 }
 
 }  // namespace fb

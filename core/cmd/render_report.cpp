@@ -7,12 +7,16 @@
 
 namespace fb {
 
-void write_render_report(const RenderReport& r, const std::filesystem::path& file) {
-  using nlohmann::json;
+namespace {
+
+using nlohmann::json;
+
+json report_json(const RenderReport& r) {
   json out = {
       {"filmback_version", FILMBACK_VERSION}, {"scene", r.scene.string()}, {"status", r.status},
       {"exit_status", r.exit_status},         {"outputs", json::array()},  {"warnings", r.warnings},
       {"timings_s", {{"total", r.total_s}}}};
+  if (r.frame) out["frame"] = *r.frame;
   for (const auto& output : r.outputs)
     out["outputs"].push_back(output.string());
   if (!r.error.empty()) out["error"] = r.error;
@@ -53,6 +57,10 @@ void write_render_report(const RenderReport& r, const std::filesystem::path& fil
     out["checkpoint"] = {{"file", r.checkpoint.string()},
                          {"resumed", r.resumed},
                          {"written", r.checkpoints_written}};
+  return out;
+}
+
+void write_json(const json& out, const std::filesystem::path& file) {
   const std::string text = out.dump(2) + "\n";
   write_atomically(file, [&](const std::filesystem::path& temporary) {
     std::ofstream stream(temporary, std::ios::binary);
@@ -60,6 +68,28 @@ void write_render_report(const RenderReport& r, const std::filesystem::path& fil
     stream.close();
     return stream ? std::string() : std::string("write failed");
   });
+}
+
+}  // namespace
+
+void write_render_report(const RenderReport& r, const std::filesystem::path& file) {
+  write_json(report_json(r), file);
+}
+
+// The sequence's own fields, then one object per frame reached, each as a single render's report
+// (with its "frame"): a skipped frame's has its outputs and status only.
+void write_sequence_report(const SequenceReport& r, const std::filesystem::path& file) {
+  json out = {{"filmback_version", FILMBACK_VERSION},
+              {"scene", r.scene.string()},
+              {"frames", r.frames},
+              {"status", r.status},
+              {"exit_status", r.exit_status},
+              {"timings_s", {{"total", r.total_s}}},
+              {"frame_reports", json::array()}};
+  if (!r.error.empty()) out["error"] = r.error;
+  for (const RenderReport& frame : r.frame_reports)
+    out["frame_reports"].push_back(report_json(frame));
+  write_json(out, file);
 }
 
 }  // namespace fb

@@ -3,6 +3,7 @@
 // warning, and how it ended. Written also when the render fails or is interrupted.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,8 +15,10 @@ namespace fb {
 
 struct RenderReport {
   std::filesystem::path scene;
+  std::optional<int64_t> frame;  // of a frame sequence (--frames)
   std::vector<std::filesystem::path> outputs;
-  std::string status = "error";  // "complete", "interrupted" or "error"
+  // "complete", "interrupted" or "error"; in a sequence also "skipped" (its outputs existed)
+  std::string status = "error";
   int exit_status = 1;
   std::string error;  // the message, when status is "error"
   std::optional<RenderChoices> choices;
@@ -34,7 +37,20 @@ struct RenderReport {
   double stop_latency_s = 0;  // from the signal to the render loop's return
 };
 
+// `filmback render --frames`: the sequence as a whole and one report per frame reached, in order.
+struct SequenceReport {
+  std::filesystem::path scene;
+  std::string frames;  // the range, as FrameRange::text() gives it
+  std::string status =
+      "error";  // "complete" (every frame rendered or skipped), "interrupted", "error"
+  int exit_status = 1;
+  std::string error;
+  double total_s = 0;
+  std::vector<RenderReport> frame_reports;
+};
+
 // Throws InputError naming the file if it cannot be written (through a temporary, as images).
 void write_render_report(const RenderReport& report, const std::filesystem::path& file);
+void write_sequence_report(const SequenceReport& report, const std::filesystem::path& file);
 
 }  // namespace fb

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cstdio>
 
-#include "core/cmd/submit_frames.h"
+#include "core/cmd/frame_range.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -101,13 +101,10 @@ SlurmJob plan_slurm_job(const SubmitCommand& c, bool with_plan, uint64_t max_arr
   std::vector<std::optional<int64_t>> frames{std::nullopt};
   if (!c.frames.empty()) {
     frames.clear();
-    for (int64_t f : parse_frame_numbers(c.frames, "--frames"))
+    for (int64_t f : parse_frame_range(c.frames, "--frames").frames())
       frames.emplace_back(f);
     for (const fs::path& out : c.outputs)
-      if (!has_frame_pattern(out.string()))
-        throw UsageError("output '" + out.string() +
-                         "': with --frames every output needs a run of '#' for the frame number "
-                         "(e.g. shot.####.exr)");
+      require_frame_pattern(out, "output");
   }
   const uint64_t task_count = uint64_t(frames.size()) * c.tiles;
   if (task_count > kMaxTileTasks)
@@ -128,8 +125,7 @@ SlurmJob plan_slurm_job(const SubmitCommand& c, bool with_plan, uint64_t max_arr
     merge.name = task_name(job.name, frame, std::nullopt, c.tiles) + ":merge";
     merge.log = job.dir / "logs" / ((frame ? frame_text(*frame) + "." : "") + "merge.log");
     for (const fs::path& out : c.outputs)
-      merge.outputs.push_back(
-          absolute_path(frame ? with_frame_number(out.string(), *frame) : out.string()));
+      merge.outputs.push_back(absolute_path(frame ? frame_path(out, *frame) : out));
     for (uint32_t tile = 0; tile < c.tiles; ++tile) {
       TileTask task;
       task.frame = frame;

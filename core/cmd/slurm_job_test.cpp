@@ -1,4 +1,4 @@
-// `filmback submit`'s tasks as data (core/cmd/slurm_job.h) and its frames (submit_frames.h).
+// `filmback submit`'s tasks as data (core/cmd/slurm_job.h).
 #include "core/cmd/slurm_job.h"
 
 #include <gtest/gtest.h>
@@ -6,32 +6,12 @@
 #include <algorithm>
 #include <set>
 
-#include "core/cmd/submit_frames.h"
 #include "core/util/error.h"
 
 namespace fb {
 namespace {
 
 namespace fs = std::filesystem;
-
-TEST(SubmitFrames, RangesStepsAndSingleFrames) {
-  EXPECT_EQ(parse_frame_numbers("1-10:3", "--frames"), (std::vector<int64_t>{1, 4, 7, 10}));
-  EXPECT_EQ(parse_frame_numbers("1-9:3", "--frames"), (std::vector<int64_t>{1, 4, 7}));
-  EXPECT_EQ(parse_frame_numbers("5", "--frames"), (std::vector<int64_t>{5}));
-  EXPECT_EQ(parse_frame_numbers("-3--1", "--frames"), (std::vector<int64_t>{-3, -2, -1}));
-  for (const char* bad : {"5-3", "1-10:0", "a-b", "1-", "", "1-100000000", "1-5:x", "1-5:-1"})
-    EXPECT_THROW(parse_frame_numbers(bad, "--frames"), UsageError) << bad;
-}
-
-TEST(SubmitFrames, RunsOfHashesBecomeTheZeroPaddedFrame) {
-  EXPECT_EQ(with_frame_number("shot.####.exr", 12), "shot.0012.exr");
-  EXPECT_EQ(with_frame_number("a#b##", 7), "a#b07");                // the last run only, as Blender
-  EXPECT_EQ(with_frame_number("f##/shot.exr", 7), "f##/shot.exr");  // a folder's '#' stays
-  EXPECT_EQ(with_frame_number("####", -5), "-0005");                // printf's "%.*d", as Blender
-  EXPECT_EQ(with_frame_number("##", 12345), "12345");
-  EXPECT_FALSE(has_frame_pattern("shot.exr"));
-  EXPECT_FALSE(has_frame_pattern("take#1/shot.exr"));
-}
 
 TEST(SlurmJob, TheJobFolderSitsNextToTheFirstOutput) {
   EXPECT_EQ(default_job_dir("renders/shot.####.exr"), fs::path("renders/shot.filmback-job"));

@@ -130,6 +130,17 @@ void write_images(const Image& image, const std::vector<fs::path>& files,
   }
 }
 
+bool is_finished_image(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) {
+    OIIO::geterror();  // read, so that OIIO's error does not show up in a later message
+    return false;
+  }
+  return in->spec().get_int_attribute("filmback/interrupted", 0) == 0;
+}
+
 Image read_image(const fs::path& file, size_t max_pixels) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in)

@@ -40,6 +40,11 @@ ImageFormat image_format_for(const std::filesystem::path& file);
 void write_images(const Image& image, const std::vector<std::filesystem::path>& files,
                   const ImageMetadata& metadata, const DisplayTransform& display = {});
 
+// Whether `file` is a whole image of a finished render: its header opens, and it does not carry
+// the mark of an interrupted render ("filmback/interrupted", which EXR keeps; PNG and JPEG keep no
+// integer metadata, so an interrupted 8-bit image passes). False for a missing or unreadable file.
+bool is_finished_image(const std::filesystem::path& file);
+
 // Throws InputError naming the file, also when it holds more than `max_pixels` pixels.
 Image read_image(const std::filesystem::path& file, size_t max_pixels = SIZE_MAX);
 
