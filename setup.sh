@@ -23,9 +23,12 @@ packages=(g++ cmake ninja-build pkg-config
 # and sample scenes), the test drivers' Python, matplotlib for `filmback bench`'s plots, and clang:
 # a second compiler for an out-of-tree plugin against the installed SDK, and with its sanitizer and
 # libFuzzer runtimes (libclang-rt-14-dev) the compiler of the sanitized build and the fuzz harnesses;
-# strace, which shows that a render makes no network system call.
+# strace, which shows that a render makes no network system call; Slurm's controller, node daemon
+# and client for `filmback submit`'s one-node-cluster test (tests/slurm/, docs/distributed.md), and
+# OpenImageIO's Python module, with which that test compares EXR files bit for bit.
 [ "$mode" = test ] && packages+=(blender povray povray-includes povray-examples
-                                 python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev strace)
+                                 python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev strace
+                                 slurmctld slurmd slurm-client python3-openimageio)
 # npm only when the machine has none: a Node.js from another Debian source (nodesource's `nodejs`,
 # which ships its own npm) conflicts with Debian's `npm` package.
 [ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(npm)
@@ -111,7 +114,7 @@ if [ "$mode" = test ]; then
   status=0
   mkdir -p build/logs
   ctest --test-dir build --output-on-failure -j 2 -E "$release_last|$sampled_out" \
-    -L 'blender|pov|bench|filters|hard|sdk|hostile|render' >build/logs/ctest.log 2>&1 &
+    -L 'blender|pov|bench|filters|hard|sdk|hostile|render|slurm' >build/logs/ctest.log 2>&1 &
   release=$!
   [ -f build-sanitize/CMakeCache.txt ] ||
     CC=clang CXX=clang++ cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Release \

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "core/cmd/commands.h"
+#include "core/cmd/submit_command.h"
 #include "core/cmd/tile_plan_command.h"
 #include "core/util/error.h"
 
@@ -377,6 +378,7 @@ int main(int argc, char** argv) {
   fb::BenchCommand bench;
   fb::MergeCommand merge;
   fb::TilePlanCommand tile_plan;
+  fb::SubmitCommand submit;
   // In the order `filmback --help` lists them (a braced list is evaluated left to right).
   const Subcommand subcommands[] = {
       {add_render_command(app, render), [&] { return fb::run_render(render); }},
@@ -391,6 +393,7 @@ int main(int argc, char** argv) {
          bench.command_line = command_line(argc, argv);
          return fb::run_bench(bench);
        }},
+      {fb::add_submit_command(app, submit), [&] { return fb::run_submit(submit); }},
   };
   if (const std::optional<int> status = parse_command_line(app, argc, argv)) return *status;
   for (const Subcommand& subcommand : subcommands)
