@@ -94,11 +94,12 @@ void check_inputs(const SubmitCommand& c) {
 // `filmback tile-plan` with the render options, for the first frame, into `plan`.
 void make_tile_plan(const SubmitCommand& c, const SlurmJob& job, const fs::path& filmback,
                     const fs::path& plan, const fs::path& log) {
-  std::vector<std::string> argv = {filmback.string(), "tile-plan", c.scene.string()};
+  std::vector<std::string> argv = {
+      filmback.string(),       "tile-plan", c.scene.string(), "--tiles",
+      std::to_string(c.tiles), "-o",        plan.string(),    "--"};
   argv.insert(argv.end(), c.render_args.begin(), c.render_args.end());
   if (job.tile_tasks.front().frame)
     argv.insert(argv.end(), {"--frame", std::to_string(*job.tile_tasks.front().frame)});
-  argv.insert(argv.end(), {"--tiles", std::to_string(c.tiles), "-o", plan.string()});
   const ProgramRun run = run_program(argv, log);
   if (run.exit_status != 0)
     throw InputError(describe_failure(run, "submit: --tile-plan auto: filmback tile-plan", log) +
