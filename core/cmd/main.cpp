@@ -174,7 +174,9 @@ CLI::App* add_merge_command(CLI::App& app, fb::MergeCommand& merge) {
 CLI::App* add_tile_plan_command(CLI::App& app, fb::TilePlanCommand& plan) {
   CLI::App* plan_cmd = app.add_subcommand(
       "tile-plan", "split a frame into parts of near-equal cost for render --tile I/N --tile-plan");
-  plan_cmd->add_option("scene", plan.scene, "scene file, as render takes it")->required();
+  plan_cmd->add_option("scene", plan.scene,
+                       "scene file, as render takes it (for the pre-pass; not with --report or "
+                       "--previous)");
   plan_cmd->add_option("--tiles", plan.parts, "parts (1 to 1024)")
       ->required()
       ->check(CLI::Range(1u, 1024u));

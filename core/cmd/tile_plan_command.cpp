@@ -126,6 +126,8 @@ int run_tile_plan(TilePlanCommand& c) {
     throw UsageError("tile-plan: output '" + c.output.string() + "': expected a .json file name");
   if (!c.previous.empty() && !c.report.empty())
     throw UsageError("tile-plan: --previous and --report are two sources of costs: give one");
+  if (c.previous.empty() && c.report.empty() && c.scene.empty())
+    throw UsageError("tile-plan: a scene for the pre-pass, or costs from --report or --previous");
   const TileCosts costs = !c.previous.empty() ? costs_from_parts(c.previous)
                           : !c.report.empty() ? costs_from_report(c.report)
                                               : costs_from_pre_pass(c);

@@ -73,7 +73,7 @@ class PartsTest(unittest.TestCase):
         # `filmback tile-plan` from the whole render's tile times and from the parts' (a previous
         # frame's): three parts that tile the frame; a file that is no report is refused.
         for source in (["--report", "whole.json"], ["--previous", "plan0.exr", "plan1.exr"]):
-            result = self.run_cli("tile-plan", SCENE, "--tiles", "3", "-o", "three.json", *source)
+            result = self.run_cli("tile-plan", "--tiles", "3", "-o", "three.json", *source)
             self.assertEqual(result.returncode, 0, result.stderr)
             self.assert_tiles_frame(json.loads((self.dir / "three.json").read_text()), 70, 72, 3)
         self.assert_refused(1, "whole.png", "tile-plan", SCENE, "--tiles", "2", "-o",
