@@ -6,7 +6,8 @@
 # Until `render --tile` and `merge` are in the build, each task renders the whole frame at 1/8 of
 # the samples through tests/slurm/standin_filmback.sh: a tile's samples and a tile's fixed costs
 # (process start, scene load, BVH build), which is what the overhead is made of ("proxy" rows).
-# Usage: measure_overhead.sh FILMBACK SCENE OUT.csv [render options]  (run on an idle machine)
+# Usage: [TILE_PLAN=auto|none|FILE] measure_overhead.sh FILMBACK SCENE OUT.csv [render options]
+# (run on an idle machine; TILE_PLAN is submit's --tile-plan, default auto)
 set -euo pipefail
 FILMBACK=$(realpath "$1")
 SCENE=$(realpath "$2")
@@ -35,7 +36,7 @@ fi
 cluster_start "$W/cluster"
 t=$(now)
 "$FILMBACK" submit "$SCENE" --tiles 8 -o "$W/cluster.exr" --filmback "$TASK_FILMBACK" \
-  --tile-plan none --cpus-per-task 1 "${OPTIONS[@]}" >"$W/submit.txt"
+  --tile-plan "${TILE_PLAN:-auto}" --cpus-per-task 1 "${OPTIONS[@]}" >"$W/submit.txt"
 merge=$(sed -n 's/^merge array \([0-9]*\):.*/\1/p' "$W/submit.txt")
 state=$(job_final_state "$merge" $(($(date +%s) + 3600)))
 cluster_s=$(echo "$(now) - $t" | bc)
