@@ -132,7 +132,7 @@ if [ "$mode" = test ]; then
   if [ $status -eq 0 ]; then
     nice -n 19 tests/fuzz/run_fuzzers.sh build-sanitize 30 >build-sanitize/logs/fuzz.log 2>&1 &
     fuzz=$!
-    ctest --test-dir build-sanitize --output-on-failure -j 2 -LE sdk -E "$release_only" \
+    ctest --test-dir build-sanitize --output-on-failure -j 2 -LE 'sdk|render' -E "$release_only" \
       >build-sanitize/logs/ctest.log 2>&1 || status=1
     wait $fuzz || status=1
     cat build-sanitize/logs/fuzz.log build-sanitize/logs/ctest.log

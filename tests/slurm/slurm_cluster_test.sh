@@ -95,8 +95,17 @@ bands = [0, 1, 2, 4, 5, 6, 7, 3]
 parts = [{"crop": [0, 16 * b, 96, 16 * b + 16], "estimated_seconds": 1.0} for b in bands]
 json.dump({"format": "filmback-tile-plan", "version": 1, "width": 96, "height": 128,
            "parts": parts}, open(sys.argv[1], "w"))' "$PLAN_FILE"
+# The other job's plan is made before either is submitted (as `--tile-plan auto` would make it):
+# its pre-pass takes seconds, in which the killed job's tasks would run past their checkpoints
+# before the watch below starts.
+WHOLE_PLAN=$PLAN
+if [ "$PLAN" = auto ]; then
+  WHOLE_PLAN=$W/out/whole_plan.json
+  "$FILMBACK" tile-plan "$SCENE" --tiles 8 -o "$WHOLE_PLAN" -- "${RENDER_OPTIONS[@]}" \
+    --frame $FRAME >/dev/null || fail "filmback tile-plan failed"
+fi
 MERGE_KILLED=$(PLAN=$PLAN_FILE submit killed --checkpoint-every 0.05s --retries 2)
-MERGE_WHOLE=$(submit whole)
+MERGE_WHOLE=$(PLAN=$WHOLE_PLAN submit whole)
 [ -n "$MERGE_WHOLE" ] && [ -n "$MERGE_KILLED" ] || fail "submit printed no merge job id"
 log "submitted: merges $MERGE_WHOLE (whole) and $MERGE_KILLED (one task killed)"
 
