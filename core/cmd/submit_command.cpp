@@ -67,9 +67,8 @@ CLI::App* add_submit_command(CLI::App& app, SubmitCommand& c) {
 namespace {
 
 fs::path this_executable() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) throw InputError("submit: cannot tell where this filmback is; give --filmback");
+  const fs::path exe = this_program();
+  if (exe.empty()) throw InputError("submit: cannot tell where this filmback is; give --filmback");
   return exe;
 }
 
