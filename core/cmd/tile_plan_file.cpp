@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 constexpr const char* kFormat = "filmback-tile-plan";
-constexpr int kVersion = 1;
+constexpr int kTilePlanVersion = 1;
 constexpr uint64_t kMaxSide = 32768;  // as --res
 constexpr uintmax_t kMaxBytes = 16 << 20;
 
@@ -70,8 +70,8 @@ TilePlan read_tile_plan(const fs::path& file) {
     throw_input(file.string(), "", "expected a JSON object (a filmback tile plan)");
   if (doc.value("format", json()) != kFormat)
     throw_input(file.string(), "format", std::string("expected \"") + kFormat + "\"");
-  if (doc.value("version", json()) != kVersion)
-    throw_input(file.string(), "version", "expected " + std::to_string(kVersion));
+  if (doc.value("version", json()) != kTilePlanVersion)
+    throw_input(file.string(), "version", "expected " + std::to_string(kTilePlanVersion));
   TilePlan plan;
   plan.width = pixels_at(doc.value("width", json()), file, "width", 1, kMaxSide);
   plan.height = pixels_at(doc.value("height", json()), file, "height", 1, kMaxSide);
@@ -105,7 +105,7 @@ TilePlan read_tile_plan(const fs::path& file) {
 void write_tile_plan(const TilePlan& plan, const fs::path& file) {
   check_plan(plan, file);
   json doc = {{"format", kFormat},
-              {"version", kVersion},
+              {"version", kTilePlanVersion},
               {"width", plan.width},
               {"height", plan.height},
               {"parts", json::array()}};

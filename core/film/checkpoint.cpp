@@ -13,7 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kVersion = 1;
+constexpr int kCheckpointVersion = 1;
 
 [[noreturn]] void fail(const fs::path& file, const std::string& why) {
   throw InputError(located(file.string(), "", "cannot resume from this checkpoint: " + why));
@@ -26,7 +26,7 @@ void write_checkpoint(const Film& film, const std::string& key, const fs::path& 
   const PixelRect saved = region.value_or(whole_frame(film.width(), film.height()));
   const std::vector<uint32_t> pixels = encode_film_state(film, saved);
   OIIO::ImageSpec spec = film_state_spec(film, saved);
-  spec.attribute("filmback/checkpoint_version", kVersion);
+  spec.attribute("filmback/checkpoint_version", kCheckpointVersion);
   spec.attribute("filmback/checkpoint_key", key);
   write_atomically(file, [&](const fs::path& temporary) -> std::string {
     auto out = OIIO::ImageOutput::create(file.string());
@@ -44,8 +44,9 @@ void read_checkpoint(const fs::path& file, const std::string& key, uint32_t samp
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) fail(file, OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.get_int_attribute("filmback/checkpoint_version") != kVersion)
-    fail(file, "it is not a filmback checkpoint (version " + std::to_string(kVersion) + ")");
+  if (spec.get_int_attribute("filmback/checkpoint_version") != kCheckpointVersion)
+    fail(file,
+         "it is not a filmback checkpoint (version " + std::to_string(kCheckpointVersion) + ")");
   if (spec.get_string_attribute("filmback/checkpoint_key") != key)
     fail(file,
          "it was written for another render (the scene file or the render's settings "

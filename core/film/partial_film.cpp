@@ -16,7 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kVersion = 1;
+constexpr int kPartialFilmVersion = 1;
 constexpr const char* kPrefix = "filmback/part/";
 // Metadata entries: kMetadata + a 4-digit position (OpenEXR sorts attributes by name) + a type
 // letter (f float, i int, s string, m matrix) + ":" + the entry's name.
@@ -91,8 +91,10 @@ ImageMetadata get_metadata(const OIIO::ImageSpec& spec) {
 
 std::string joined(const std::vector<double>& values) {
   std::string text;
-  for (const double v : values)
-    text += (text.empty() ? "" : " ") + exact_text(v);
+  for (const double v : values) {
+    if (!text.empty()) text += ' ';
+    text += exact_text(v);
+  }
   return text;
 }
 
@@ -174,7 +176,7 @@ void check_parts(const std::vector<fs::path>& files, const std::vector<PartialFi
 void write_partial_film(const fs::path& file, const PartialFilmHeader& h, const Film& film,
                         const SplatTiles::TileList& splat_tiles) {
   OIIO::ImageSpec spec = film_state_spec(film, h.crop);
-  spec.attribute(attr("version"), kVersion);
+  spec.attribute(attr("version"), kPartialFilmVersion);
   spec.attribute(attr("render_key"), h.render_key);
   std::string channel_order;
   for (const std::string& c : film.channels())
@@ -244,9 +246,9 @@ PartialFilmHeader read_partial_film_header(const fs::path& file) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) fail(file, "", "cannot be read as a partial film: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.get_int_attribute(attr("version")) != kVersion)
+  if (spec.get_int_attribute(attr("version")) != kPartialFilmVersion)
     fail(file, "",
-         "not a filmback partial film (version " + std::to_string(kVersion) +
+         "not a filmback partial film (version " + std::to_string(kPartialFilmVersion) +
              "), as `filmback render --tile/--crop` writes");
   PartialFilmHeader h;
   h.width = uint32_t(std::max(spec.full_width, 0)),

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
+
 namespace fb {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // The index i with cdf[i] <= u < cdf[i + 1] among `count` bins, and u's fraction within it.
 uint32_t find_bin(const double* cdf, uint32_t count, double u, double& fraction) {

@@ -6,12 +6,11 @@
 #include <numbers>
 
 #include "core/accel/render_geometry.h"
+#include "core/math/constants.h"
 #include "core/render/light_sampler.h"
 
 namespace fb {
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
 
 // A 16x8 sky of 0.5 with one texel of 40 at column 12, row 2 (from the top).
 EnvironmentMap hot_spot_map() {
@@ -36,7 +35,7 @@ TEST(EnvironmentLight, FollowsCyclesEquirectangularMapping) {
   for (uint32_t row = 0; row < 2; ++row)
     for (uint32_t column = 0; column < 4; ++column) {
       const float u = (column + 0.5f) / 4, v = (row + 0.5f) / 2;
-      const Vec3f w = blender_direction(v * kPi, (0.5f - u) * 2 * kPi);
+      const Vec3f w = blender_direction(v * kPiF, (0.5f - u) * 2 * kPiF);
       EXPECT_NEAR(light.radiance(w).x, float(row * 4 + column), 1e-4f)
           << "row " << row << " column " << column;
     }
@@ -61,11 +60,11 @@ TEST(EnvironmentLight, SampledPdfIsThePdfOfTheDirectionAndIntegratesToOne) {
   constexpr int kCells = 512;
   for (int i = 0; i < kCells; ++i)
     for (int j = 0; j < kCells; ++j) {
-      const float z = 1 - 2 * (i + 0.5f) / kCells, phi = 2 * kPi * (j + 0.5f) / kCells;
+      const float z = 1 - 2 * (i + 0.5f) / kCells, phi = 2 * kPiF * (j + 0.5f) / kCells;
       const float s = std::sqrt(1 - z * z);
       integral += light.pdf({s * std::cos(phi), z, s * std::sin(phi)});
     }
-  EXPECT_NEAR(integral * 4 * kPi / (double(kCells) * kCells), 1.0, 5e-3);
+  EXPECT_NEAR(integral * 4 * kPiF / (double(kCells) * kCells), 1.0, 5e-3);
 }
 
 // Through the light sampler, a uniform world image of radiance L gives a surface the irradiance
@@ -90,7 +89,7 @@ TEST(EnvironmentLight, UniformImageGivesPiLThroughTheLightSampler) {
       EXPECT_NEAR(pdf, s.pdf, 1e-3f * s.pdf);
       if (s.direction[1] > 0.f) sum += double(s.radiance[0]) * s.direction[1] / s.pdf;
     }
-  EXPECT_NEAR(sum / (kColumns * kRows), 2 * kPi, 1e-3 * 2 * kPi);
+  EXPECT_NEAR(sum / (kColumns * kRows), 2 * kPiF, 1e-3 * 2 * kPiF);
   // The command line's --background replaces the image.
   const LightSampler overridden(scene, Transform(), geometry, 0.0, Rgb(0.25f, 0.25f, 0.25f));
   float pdf = 1.f;

@@ -4,17 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
+#include "core/math/safe_math.h"
+
 namespace fb {
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
-
-float safe_sqrt(float x) {
-  return std::sqrt(std::max(0.f, x));
-}
-float safe_acos(float x) {
-  return std::acos(std::clamp(x, -1.f, 1.f));
-}
 
 // cos(max(0, a - b)) and sin(max(0, a - b)) from the sines and cosines of a and b (pbrt 4e
 // §12.6.3: the angles stay in [0, pi], so a > b is cos a < cos b).
@@ -40,10 +34,10 @@ struct Cone {
 Cone cone_union(Cone a, Cone b) {
   const float theta_a = safe_acos(a.cos_theta), theta_b = safe_acos(b.cos_theta);
   const float theta_d = safe_acos(dot(a.axis, b.axis));
-  if (std::min(theta_d + theta_b, kPi) <= theta_a) return a;
-  if (std::min(theta_d + theta_a, kPi) <= theta_b) return b;
+  if (std::min(theta_d + theta_b, kPiF) <= theta_a) return a;
+  if (std::min(theta_d + theta_a, kPiF) <= theta_b) return b;
   const float theta_o = 0.5f * (theta_a + theta_d + theta_b);
-  if (theta_o >= kPi) return {a.axis, -1.f};
+  if (theta_o >= kPiF) return {a.axis, -1.f};
   const Vec3f turn_axis = cross(a.axis, b.axis);
   if (!(dot(turn_axis, turn_axis) > 0.f)) return {a.axis, -1.f};
   const Vec3f axis = rotated(a.axis, normalize(turn_axis), theta_o - theta_a);
@@ -97,11 +91,11 @@ float importance(const LightBounds& bounds, Vec3f p) {
 
 float orientation_cost(const LightBounds& bounds, int axis_index) {
   const float theta_o = safe_acos(bounds.cos_theta_o), theta_e = safe_acos(bounds.cos_theta_e);
-  const float theta_w = std::min(theta_o + theta_e, kPi);
+  const float theta_w = std::min(theta_o + theta_e, kPiF);
   const float sin_theta_o = safe_sqrt(1.f - bounds.cos_theta_o * bounds.cos_theta_o);
   // The cosine-weighted solid angle of the directions light can leave in (pbrt 4e eq. 12.23).
-  const float m_omega = 2.f * kPi * (1.f - bounds.cos_theta_o) +
-                        0.5f * kPi *
+  const float m_omega = 2.f * kPiF * (1.f - bounds.cos_theta_o) +
+                        0.5f * kPiF *
                             (2.f * theta_w * sin_theta_o - std::cos(theta_o - 2.f * theta_w) -
                              2.f * theta_o * sin_theta_o + bounds.cos_theta_o);
   const Vec3f d = bounds.hi - bounds.lo;

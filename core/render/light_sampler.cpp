@@ -8,12 +8,11 @@
 #include <filmback/geometry.h>
 #include <filmback/sampling.h>
 
+#include "core/math/constants.h"
 #include "core/util/error.h"
 
 namespace fb {
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
 
 // KHR_lights_punctual's recommended spot falloff: a smooth ramp in cos(angle) between the cones.
 float gltf_spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
@@ -161,16 +160,16 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
                       lamp.area_size1 * lamp.area_size2 == 1 && light.radius_m > 0;
     switch (light.type) {
       case LightType::kPoint:
-        power.push_back(4 * kPi * lum);
+        power.push_back(4 * kPiF * lum);
         if (soft) lamp.size = FacingDisk(lamp.position, float(light.radius_m));
         break;
       case LightType::kSpot:
-        power.push_back(2 * kPi * (1 - 0.5 * (lamp.cos_inner + lamp.cos_outer)) * lum);
+        power.push_back(2 * kPiF * (1 - 0.5 * (lamp.cos_inner + lamp.cos_outer)) * lum);
         if (soft) lamp.size = FacingDisk(lamp.position, float(light.radius_m));
         break;
       case LightType::kDirectional:
         lamp.axis = -lamp.axis;  // towards the light
-        power.push_back(kPi * scene_radius * scene_radius * lum);
+        power.push_back(kPiF * scene_radius * scene_radius * lum);
         if (light.angle_rad > 0) lamp.size = SunDisk(lamp.axis, float(light.angle_rad));
         break;
       case LightType::kArea: {
@@ -179,7 +178,7 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
                              float(light.size_x_m), float(light.size_y_m),
                              light.area_shape == AreaShape::kEllipse, light.spread_rad);
         // The spread redistributes the light's power, pi A L, without changing it.
-        power.push_back(kPi * area.area() * lum);
+        power.push_back(kPiF * area.area() * lum);
         lamp.size = area;
         break;
       }
@@ -205,13 +204,13 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
     // Zero power: never chosen, so its light_pdf is 0 and BSDF sampling alone (MIS weight 1)
     // finds it where the ray's time put it.
     power.push_back(e.moving ? 0.0
-                             : kPi * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
+                             : kPiF * e.area * luminance(m.emission) * (m.double_sided ? 2 : 1));
     bounds.push_back(triangle_bounds(e, m));
   }
   if (scene.environment && !background_override) {
     environment_.emplace(*scene.environment);
     // As a sun's: the irradiance pi L of a uniform world as bright, over the scene's disk.
-    power.push_back(kPi * scene_radius * scene_radius * kPi * environment_->mean_luminance());
+    power.push_back(kPiF * scene_radius * scene_radius * kPiF * environment_->mean_luminance());
     bounds.emplace_back();
   }
   choice_ = LightChoice(power, bounds, selection);

@@ -7,12 +7,11 @@
 #include <filmback/geometry.h>
 #include <filmback/sampling.h>
 
+#include "core/math/constants.h"
 #include "core/render/spherical_rectangle.h"
 
 namespace fb {
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
 
 // The direction and distance from p to a light point q, and the cosine at q between the light's
 // normal there and q -> p (0 where q turns away from p).
@@ -28,7 +27,7 @@ float towards(Vec3f p, Vec3f q, Vec3f normal, SizedLightPoint& out) {
 }  // namespace
 
 FacingDisk::FacingDisk(Vec3f centre, float radius)
-    : centre_(centre), radius_(radius), inverse_area_(1.f / (kPi * radius * radius)) {}
+    : centre_(centre), radius_(radius), inverse_area_(1.f / (kPiF * radius * radius)) {}
 
 // q on the disk facing p (unit `facing`, from the centre towards p): the area pdf 1 / (pi r^2) in
 // solid angle, d^2 / (cos pi r^2), with cos the angle between the disk's normal and q -> p.
@@ -72,7 +71,7 @@ SunDisk::SunDisk(Vec3f towards_sun, float angle_rad)
     : towards_(towards_sun),
       tan_half_(std::tan(angle_rad / 2)),
       cos_half_(std::cos(angle_rad / 2)),
-      inverse_area_(1.f / (kPi * tan_half_ * tan_half_)) {}
+      inverse_area_(1.f / (kPiF * tan_half_ * tan_half_)) {}
 
 // A point at distance 1 / cos theta on the plane one unit away sees an area element dA as the
 // solid angle dA cos^3 theta, so the disk's uniform area pdf is 1 / (pi tan^2 cos^3) in solid
@@ -105,7 +104,7 @@ AreaLight::AreaLight(Vec3f centre, Vec3f axis_u, Vec3f axis_v, Vec3f normal, flo
       normal_(normal),
       half_u_(size_u / 2),
       half_v_(size_v / 2),
-      area_(size_u * size_v * (ellipse ? kPi / 4 : 1.f)),
+      area_(size_u * size_v * (ellipse ? kPiF / 4 : 1.f)),
       ellipse_(ellipse) {
   // Cycles' scene/light.cpp: spread limited to at least 1 degree; 180 degrees leaves the light
   // unrestricted. In double: tan h - h loses single precision's digits for small spreads.

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
+
 namespace fb {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 AnimationCurve curve(TrsPath path, Interpolation interpolation, std::vector<double> times,
                      std::vector<double> values) {

@@ -4,17 +4,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
+#include "core/math/safe_math.h"
 #include "core/shading/fresnel.h"
 #include "core/shading/hemisphere.h"
 
 namespace fb {
 namespace {
-
-constexpr float kPi = std::numbers::pi_v<float>;
-
-float safe_sqrt(float v) {
-  return std::sqrt(std::max(v, 0.f));
-}
 
 // Giles 2010, "Approximating the erfinv function" (GPU Computing Gems), single precision: the
 // inverse error function Cycles' fast_ierff approximates the same way.
@@ -50,7 +46,7 @@ float erf_inverse(float x) {
 // theta_i (Jakob 2014, with its two Newton steps), and G1 for that direction.
 Vec2f beckmann_slopes(float cos_i, float sin_i, Vec2f u, float& G1) {
   if (cos_i >= 0.99999f) {
-    const float r = std::sqrt(-std::log(std::max(u.x, 1e-30f))), phi = 2.f * kPi * u.y;
+    const float r = std::sqrt(-std::log(std::max(u.x, 1e-30f))), phi = 2.f * kPiF * u.y;
     G1 = 1.f;
     return {r * std::cos(phi), r * std::sin(phi)};
   }
@@ -80,7 +76,7 @@ Vec2f beckmann_slopes(float cos_i, float sin_i, Vec2f u, float& G1) {
 // distribution, and G1.
 Vec2f ggx_slopes(float cos_i, float sin_i, Vec2f u, float& G1) {
   if (cos_i >= 0.99999f) {
-    const float r = std::sqrt(u.x / (1.f - u.x)), phi = 2.f * kPi * u.y;
+    const float r = std::sqrt(u.x / (1.f - u.x)), phi = 2.f * kPiF * u.y;
     G1 = 1.f;
     return {r * std::cos(phi), r * std::sin(phi)};
   }
@@ -107,8 +103,8 @@ Vec2f ggx_slopes(float cos_i, float sin_i, Vec2f u, float& G1) {
             (v * (v * (v * 0.093073f + 0.309420f) - 1.f) + 0.597999f);
   for (int i = 0; i < 2; ++i) {
     const float z2 = 1.f + z * z;
-    const float cdf = (z / z2 + std::atan(z)) * (2.f / kPi);
-    const float density = 4.f / (kPi * z2 * z2);
+    const float cdf = (z / z2 + std::atan(z)) * (2.f / kPiF);
+    const float density = 4.f / (kPiF * z2 * z2);
     z = std::max(0.f, z - (cdf - v) / density);
   }
   return {slope_x, S * z * safe_sqrt(1.f + slope_x * slope_x)};
@@ -157,17 +153,17 @@ float beckmann_aniso_G1(float alpha_x, float alpha_y, float cos_n, float cos_phi
 
 float ggx_D(float alpha2, float cos_m) {
   const float c2 = cos_m * cos_m, tan2 = (1.f - c2) / c2;
-  return alpha2 / (kPi * c2 * c2 * (alpha2 + tan2) * (alpha2 + tan2));
+  return alpha2 / (kPiF * c2 * c2 * (alpha2 + tan2) * (alpha2 + tan2));
 }
 float beckmann_D(float alpha2, float cos_m) {
   const float c2 = cos_m * cos_m, tan2 = (1.f - c2) / c2;
-  return std::exp(-tan2 / alpha2) / (kPi * alpha2 * c2 * c2);
+  return std::exp(-tan2 / alpha2) / (kPiF * alpha2 * c2 * c2);
 }
 // Anisotropic D from the microfacet's slopes in the tangent frame.
 float aniso_D(const MicrofacetParams& p, Vec3f local_m) {
   const float sx = -local_m.x / (local_m.z * p.alpha_x), sy = -local_m.y / (local_m.z * p.alpha_y);
   const float c4 = local_m.z * local_m.z * local_m.z * local_m.z;
-  const float norm = kPi * p.alpha_x * p.alpha_y * c4;
+  const float norm = kPiF * p.alpha_x * p.alpha_y * c4;
   if (p.distribution == MicrofacetDistribution::kBeckmann)
     return std::exp(-sx * sx - sy * sy) / norm;
   const float len = 1.f + sx * sx + sy * sy;
@@ -178,7 +174,7 @@ float aniso_D(const MicrofacetParams& p, Vec3f local_m) {
 float gtr1_D(float cos_m, float alpha) {
   if (alpha >= 1.f) return kInvPi;
   const float a2 = alpha * alpha, t = 1.f + (a2 - 1.f) * cos_m * cos_m;
-  return (a2 - 1.f) / (kPi * std::log(a2) * t);
+  return (a2 - 1.f) / (kPiF * std::log(a2) * t);
 }
 
 // reflection_color plus the clearcoat's 0.25 clearcoat factor.

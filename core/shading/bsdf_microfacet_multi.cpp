@@ -6,18 +6,15 @@
 #include <cstdint>
 #include <numbers>
 
+#include "core/math/constants.h"
+#include "core/math/safe_math.h"
 #include "core/shading/fresnel.h"
 #include "core/shading/hemisphere.h"
 
 namespace fb {
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
 constexpr int kMaxOrder = 10;  // bounces of the walk
-
-float safe_sqrt(float v) {
-  return std::sqrt(std::max(v, 0.f));
-}
 
 // Cycles' LCG (kernel/sample/lcg.h lcg_step_float): x' = 1103515245 x + 12345 mod 2^32.
 struct Lcg {
@@ -50,12 +47,12 @@ struct Alpha {
 float D_ggx(Vec3f wm, float alpha) {
   const float z2 = wm.z * wm.z, a2 = alpha * alpha;
   const float tmp = (1.f - z2) + a2 * z2;
-  return a2 / std::max(kPi * tmp * tmp, 1e-7f);
+  return a2 / std::max(kPiF * tmp * tmp, 1e-7f);
 }
 float D_ggx_aniso(Vec3f wm, Alpha a) {
   const float sx = -wm.x / a.x, sy = -wm.y / a.y;
   const float tmp = wm.z * wm.z + sx * sx + sy * sy;
-  return 1.f / std::max(kPi * tmp * tmp * a.x * a.y, 1e-7f);
+  return 1.f / std::max(kPiF * tmp * tmp * a.x * a.y, 1e-7f);
 }
 float D_of(Vec3f wm, Alpha a) {
   return a.x == a.y ? D_ggx(wm, a.x) : D_ggx_aniso(wm, a);
@@ -64,7 +61,7 @@ float D_of(Vec3f wm, Alpha a) {
 // Slopes of unit-roughness GGX visible normals (the supplemental code of Heitz et al. 2016).
 Vec2f sample_p22_11(float cos_i, float rx, float ry) {
   if (cos_i > 0.9999f || std::abs(cos_i) < 1e-6f) {
-    const float r = std::sqrt(rx / std::max(1.f - rx, 1e-7f)), phi = 2.f * kPi * ry;
+    const float r = std::sqrt(rx / std::max(1.f - rx, 1e-7f)), phi = 2.f * kPiF * ry;
     return {r * std::cos(phi), r * std::sin(phi)};
   }
   const float sin_i = safe_sqrt(1.f - cos_i * cos_i), tan_i = sin_i / cos_i;

@@ -20,22 +20,20 @@
 #include <string>
 #include <vector>
 
+#include "core/math/constants.h"
 #include "core/shading/closure.h"
 #include "core/shading/surface.h"
 
 #include "tests/support/chi_square.h"
+#include "tests/support/sphere_quadrature.h"
 
 namespace fb {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using test::direction;
+using test::sphere_integral;
 
-Vec3f direction(double cos_theta, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
-  return Vec3f(Vec3d{s * std::cos(phi), s * std::sin(phi), cos_theta});
-}
-
-struct Case {
+struct ClosureCase {
   std::string name;
   std::function<void(Surface&)> make;  // adds the node whose closure `type` is tested
   ClosureType type;
@@ -53,8 +51,8 @@ PrincipledInputs principled(float roughness) {
   return p;
 }
 
-std::vector<Case> cases() {
-  std::vector<Case> out;
+std::vector<ClosureCase> closure_cases() {
+  std::vector<ClosureCase> out;
   out.push_back({"lambert", [](Surface& s) { s.add_diffuse(kWhite, 0.f, kZero, kWhite); },
                  ClosureType::kDiffuse, true, true, true});
   out.push_back({"oren-nayar", [](Surface& s) { s.add_diffuse(kWhite, 0.6f, kZero, kWhite); },
@@ -155,7 +153,7 @@ double pdf_of(const Lobe& l, Vec3f wi) {
   return microfacet_pair(l, wi) ? double(pdf) : 0.0;
 }
 
-Lobe lobe(const Case& k, double cos_o) {
+Lobe lobe(const ClosureCase& k, double cos_o) {
   Surface s;
   const Vec3f I = direction(cos_o, 0.4);
   s.begin({I, {0.f, 0.f, 1.f}, {0.f, 0.f, 1.f}, false});
@@ -167,26 +165,18 @@ Lobe lobe(const Case& k, double cos_o) {
   return {found ? *found : Closure{}, {I, {0.f, 0.f, 1.f}, {0.f, 0.f, 1.f}}};
 }
 
-// Midpoint quadrature over the sphere in (cos theta, phi).
-template <typename G>
-double sphere_integral(G g, int n = 1000) {
-  double sum = 0;
-  for (int i = 0; i < n; ++i) {
-    const double c = -1 + (i + 0.5) * 2.0 / n;
-    for (int j = 0; j < n; ++j)
-      sum += g(direction(c, (j + 0.5) * 2 * kPi / n));
-  }
-  return sum * (2.0 / n) * (2 * kPi / n);
-}
+// Quadrature fine enough for lobes of alpha >= 0.09 (roughness 0.3).
+constexpr int kClosureQuadratureSteps = 1000;
 
 TEST(ClosureLaws, PdfIntegratesToTheProbabilityOfASample) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0, 1);
-  for (const Case& k : cases()) {
+  for (const ClosureCase& k : closure_cases()) {
     for (double cos_o : {0.9, 0.4}) {
       const Lobe l = lobe(k, cos_o);
       SCOPED_TRACE(k.name + " cos_o " + std::to_string(cos_o));
-      const double mass = sphere_integral([&](Vec3f wi) { return pdf_of(l, wi); });
+      const double mass =
+          sphere_integral(kClosureQuadratureSteps, [&](Vec3f wi) { return pdf_of(l, wi); });
       // The multiscatter pdf is Cycles' approximation, not a density (it exceeds one for glass).
       if (k.consistent) {
         EXPECT_LE(mass, 1.0 + 3e-3);
@@ -211,7 +201,7 @@ TEST(ClosureLaws, PdfIntegratesToTheProbabilityOfASample) {
 TEST(ClosureLaws, SampleCarriesTheEvalAndPdfOfItsDirection) {
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u(0, 1);
-  for (const Case& k : cases()) {
+  for (const ClosureCase& k : closure_cases()) {
     if (!k.consistent) continue;
     const Lobe l = lobe(k, 0.6);
     for (int n = 0; n < 2000; ++n) {
@@ -231,7 +221,7 @@ TEST(ClosureLaws, SampleCarriesTheEvalAndPdfOfItsDirection) {
 // cells; cells expecting fewer than 5 samples are pooled. The threshold is the 1e-3 upper tail.
 TEST(ClosureLaws, SamplesFollowThePdf) {
   constexpr int kTheta = 20, kPhi = 40, kSamples = 300000;
-  for (const Case& k : cases()) {
+  for (const ClosureCase& k : closure_cases()) {
     if (!k.consistent) continue;
     const Lobe l = lobe(k, 0.6);
     std::vector<double> observed(kTheta * kPhi, 0), expected(kTheta * kPhi, 0);
@@ -265,12 +255,12 @@ TEST(ClosureLaws, SamplesFollowThePdf) {
 TEST(ClosureLaws, ReflectionIsReciprocal) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  for (const Case& k : cases()) {
+  for (const ClosureCase& k : closure_cases()) {
     if (!k.reciprocal) continue;
     for (int n = 0; n < 100; ++n) {
       const double ca = 0.05 + 0.95 * u(rng), cb = 0.05 + 0.95 * u(rng);
       const double pa = 2 * kPi * u(rng), pb = 2 * kPi * u(rng);
-      const Case& c = k;
+      const ClosureCase& c = k;
       // f(a -> b) = eval(I = a, omega_in = b) / cos b.
       const auto f = [&](double c_in, double p_in, double c_out, double p_out) {
         Surface s;
@@ -292,12 +282,14 @@ TEST(ClosureLaws, ReflectionIsReciprocal) {
 // lose only walks longer than ten bounces (Heitz et al. 2016, fig. 1: the white furnace is
 // within a percent of one).
 TEST(ClosureLaws, WhiteFurnace) {
-  const Lobe lambert = lobe(cases()[0], 0.5);
-  EXPECT_NEAR(sphere_integral([&](Vec3f wi) {
-                float pdf;
-                return double(closure_eval(lambert.closure, lambert.ctx, wi, pdf).x);
-              }),
-              1.0, 1e-4);
+  const Lobe lambert = lobe(closure_cases()[0], 0.5);
+  EXPECT_NEAR(
+      sphere_integral(kClosureQuadratureSteps,
+                      [&](Vec3f wi) {
+                        float pdf;
+                        return double(closure_eval(lambert.closure, lambert.ctx, wi, pdf).x);
+                      }),
+      1.0, 1e-4);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0, 1);
   for (Distribution d : {Distribution::kMultiGgx})

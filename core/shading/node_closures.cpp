@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/safe_math.h"
 #include "core/shading/bsdf_oren_nayar.h"
 #include "core/shading/bsdf_principled_sheen.h"
 #include "core/shading/fresnel.h"
@@ -21,10 +22,6 @@ float saturate(float v) {
 Rgb saturate(Rgb c) {
   return {saturate(c.x), saturate(c.y), saturate(c.z)};
 }
-float safe_sqrt(float v) {
-  return std::sqrt(std::max(v, 0.f));
-}
-
 // Rodrigues' rotation of v about the unit axis by `angle` radians (util/math.h
 // rotate_around_axis).
 Vec3f rotate_around_axis(Vec3f v, Vec3f axis, float angle) {

@@ -7,14 +7,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "core/shading/closure.h"
 #include "core/shading/fresnel.h"
 #include "core/shading/surface.h"
 
 namespace fb {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Vec3f direction(double cos_theta, double phi) {
   const double s = std::sqrt(1 - cos_theta * cos_theta);

@@ -5,13 +5,12 @@
 #include <numbers>
 #include <utility>
 
+#include "core/math/constants.h"
 #include "core/tessellate/tessellate_csg.h"
 
 namespace fb {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // The largest factor by which the linear part of `t` stretches a vector: the square root of
 // the largest eigenvalue of M^T M, by power iteration (M^T M is symmetric positive semi-definite,

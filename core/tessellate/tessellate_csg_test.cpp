@@ -175,11 +175,11 @@ Mesh world_mesh(const SolidTessellation& t) {
 // Directed edges, over positions welded where equal, that no triangle crosses the other way: 0
 // for a closed, consistently oriented surface. `unpaired` counts edges used other than once each
 // way (non-manifold).
-struct Closure {
+struct Openings {
   size_t open = 0, unpaired = 0;
   double open_length = 0;  // m
 };
-Closure closure(const Mesh& m) {
+Openings closure(const Mesh& m) {
   std::map<std::array<double, 3>, size_t> id;
   std::vector<size_t> welded(m.positions.size());
   for (size_t i = 0; i < m.positions.size(); ++i)
@@ -192,7 +192,7 @@ Closure closure(const Mesh& m) {
   for (const auto& t : m.triangles)
     for (int k = 0; k < 3; ++k)
       ++edges[{welded[t[size_t(k)]], welded[t[size_t((k + 1) % 3)]]}];
-  Closure c;
+  Openings c;
   for (const auto& [e, count] : edges) {
     const auto back = edges.find({e.second, e.first});
     const int reverse = back == edges.end() ? 0 : back->second;
@@ -298,7 +298,7 @@ TEST(TessellateCsg, HardCasesStayWithinTheToleranceOfTheExactSurface) {
     const Mesh m = world_mesh(t);
     ASSERT_FALSE(m.triangles.empty()) << c.solid.name;
     const double worst = largest_distance(c.solid, m);
-    const Closure cl = closure(m);
+    const Openings cl = closure(m);
     std::printf("%-22s %7zu triangles, farthest %.3g mm, %zu open edges (%.3g mm), %zu unpaired\n",
                 c.solid.name.c_str(), m.triangles.size(), worst * 1e3, cl.open,
                 cl.open_length * 1e3, cl.unpaired);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/shading/fresnel.h"
 #include "core/texture/surface_point.h"
 
 namespace fb {
@@ -16,10 +17,6 @@ constexpr float kWeightCutoff = 1e-5f;
 // float conversion uses (svm_node_convert, linear_rgb_to_gray).
 float luma(Vec3f c) {
   return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
-}
-
-float average(Rgb c) {
-  return (c.x + c.y + c.z) / 3.f;
 }
 
 // What a Principled BSDF leaves besides its closures: PrincipledBsdfNode::expand

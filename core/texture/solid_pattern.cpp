@@ -6,10 +6,11 @@
 #include <cstdint>
 #include <numbers>
 
+#include "core/math/constants.h"
+
 namespace fb {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // POV-Ray's EPSILON (source/core/configcore.h): nudges lattice patterns off exact cell borders.
 constexpr double kEpsilon = 1e-10;
 

@@ -32,7 +32,7 @@ const PanoramaKind kKinds[] = {
 };
 
 // Finite and far beyond any camera's value; each plugin's schema has the exact range.
-constexpr double kLargest = 1e9;
+constexpr double kLargestPanoramaValue = 1e9;
 
 std::string joined(const auto& words) {
   std::string text;
@@ -66,7 +66,7 @@ std::optional<CameraModel> read_panorama(const tinygltf::Value& blender_camera,
     if (std::find(kind->keys.begin(), kind->keys.end(), key) == kind->keys.end())
       f.fail(key.c_str(), "a " + *type + " panorama takes " +
                               (kind->keys.size() ? joined(kind->keys) : std::string("no values")));
-    const double x = *f.number(key.c_str(), -kLargest, kLargest);
+    const double x = *f.number(key.c_str(), -kLargestPanoramaValue, kLargestPanoramaValue);
     model.numbers.push_back({key, x, ValueOrigin::from_file(file, f.path() + "." + key)});
   }
   return model;

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/image/image_io.h"
+#include "core/math/constants.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_file.h"
 #include "importers/gltf/gltf_importer.h"
@@ -16,8 +17,6 @@
 
 namespace fb::gltf {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Blender stores angles in single precision: its 180 degrees is pi rounded up to a float, a little
 // above pi. Angles up to it are read, then limited to pi.

@@ -2,6 +2,7 @@
 // over KHR_lights_punctual, photometric values converted back, area lights, the uniform world, and
 // errors naming the file and JSON path.
 #include "importers/gltf/gltf_lights.h"
+#include "core/math/constants.h"
 
 #include <gtest/gtest.h>
 
@@ -19,8 +20,6 @@
 
 namespace fb {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // A file with one node (scaled by `scale`, which lights ignore and area lights take) carrying
 // `node_extensions`, an optional KHR light list, and scene extensions.

@@ -12,10 +12,10 @@ using tinygltf::Value;
 
 // The importer's bound on area-light grids (importers/pov/pov_appearance.cpp).
 constexpr double kMaxGrid = 4096;
-constexpr double kLargest = 1e12;
+constexpr double kLargestLightValue = 1e12;
 
 Vec3d read_axis(const Fields& f, const char* key) {
-  const auto v = f.numbers(key, 3, -kLargest, kLargest);
+  const auto v = f.numbers(key, 3, -kLargestLightValue, kLargestLightValue);
   if (!v || v->size() != 3)
     f.fail(key, "expected the axis as three numbers, m in the light's frame");
   return {(*v)[0], (*v)[1], (*v)[2]};
@@ -67,15 +67,19 @@ Light read_povray_light(const Fields& f) {
   const std::optional<Rgb> intensity = f.color("intensity");
   if (!intensity) f.fail("intensity", "expected [r, g, b]: W/sr (point, spot) or W/m^2 (parallel)");
   l.intensity = *intensity;
-  l.fade_distance_m = f.number("fade_distance_m", -kLargest, kLargest).value_or(0.0);
-  l.fade_power = f.number("fade_power", -kLargest, kLargest).value_or(0.0);
+  l.fade_distance_m =
+      f.number("fade_distance_m", -kLargestLightValue, kLargestLightValue).value_or(0.0);
+  l.fade_power = f.number("fade_power", -kLargestLightValue, kLargestLightValue).value_or(0.0);
   if (l.type == LightType::kSpot) {
     l.spot_falloff = SpotFalloff::kPov;
     // POV-Ray's defaults: radius 30 degrees, falloff 45, tightness 0. It takes their cosines,
     // so any angle is one (scenes write falloff 250).
-    l.spot_inner_angle_rad = f.number("spot_radius_rad", -kLargest, kLargest).value_or(kPi / 6);
-    l.spot_outer_angle_rad = f.number("spot_falloff_rad", -kLargest, kLargest).value_or(kPi / 4);
-    l.spot_tightness = f.number("spot_tightness", -kLargest, kLargest).value_or(0.0);
+    l.spot_inner_angle_rad =
+        f.number("spot_radius_rad", -kLargestLightValue, kLargestLightValue).value_or(kPi / 6);
+    l.spot_outer_angle_rad =
+        f.number("spot_falloff_rad", -kLargestLightValue, kLargestLightValue).value_or(kPi / 4);
+    l.spot_tightness =
+        f.number("spot_tightness", -kLargestLightValue, kLargestLightValue).value_or(0.0);
   }
   l.casts_shadows = !f.flag("shadowless").value_or(false);
   if (f.has("area_light")) {

@@ -25,7 +25,7 @@ constexpr std::pair<SolidWave, const char*> kWaves[] = {
 // three (hexagon).
 constexpr size_t kMaxMapEntries = 256, kMaxListEntries = 3;
 // Any number a scene may give a modifier, far beyond what makes a visible pattern.
-constexpr double kLargest = 1e12;
+constexpr double kLargestPatternValue = 1e12;
 
 template <typename E, size_t N>
 const char* name_of(const std::pair<E, const char*> (&table)[N], E value) {
@@ -65,7 +65,7 @@ SolidColour read_colour(const Fields& f, bool required) {
 }
 
 std::optional<Vec3d> read_vec3(const Fields& f, const char* key) {
-  const auto v = f.numbers(key, 3, -kLargest, kLargest);
+  const auto v = f.numbers(key, 3, -kLargestPatternValue, kLargestPatternValue);
   if (!v) return std::nullopt;
   if (v->size() != 3) f.fail(key, "expected three numbers");
   return Vec3d{(*v)[0], (*v)[1], (*v)[2]};
@@ -100,7 +100,8 @@ SolidPattern read(const Fields& f, int depth, size_t& count) {
   }
   for (const Fields& entry : f.objects("list", kMaxListEntries))
     p.list.push_back(read(entry, depth + 1, count));
-  if (const auto m = f.numbers("pattern_from_world", 16, -kLargest, kLargest)) {
+  if (const auto m =
+          f.numbers("pattern_from_world", 16, -kLargestPatternValue, kLargestPatternValue)) {
     if (m->size() != 16 || (*m)[3] != 0 || (*m)[7] != 0 || (*m)[11] != 0 || (*m)[15] != 1)
       f.fail("pattern_from_world",
              "expected an affine 4x4 matrix, 16 numbers column by column ending 0, 0, 0, 1");
@@ -110,18 +111,20 @@ SolidPattern read(const Fields& f, int depth, size_t& count) {
   }
   p.turbulence = read_vec3(f, "turbulence").value_or(p.turbulence);
   p.octaves = int(f.whole("octaves", -1e9, 1e9).value_or(p.octaves));
-  p.omega = f.number("omega", -kLargest, kLargest).value_or(p.omega);
-  p.lambda = f.number("lambda", -kLargest, kLargest).value_or(p.lambda);
-  p.frequency = f.number("frequency", -kLargest, kLargest).value_or(p.frequency);
-  p.phase = f.number("phase", -kLargest, kLargest).value_or(p.phase);
+  p.omega = f.number("omega", -kLargestPatternValue, kLargestPatternValue).value_or(p.omega);
+  p.lambda = f.number("lambda", -kLargestPatternValue, kLargestPatternValue).value_or(p.lambda);
+  p.frequency =
+      f.number("frequency", -kLargestPatternValue, kLargestPatternValue).value_or(p.frequency);
+  p.phase = f.number("phase", -kLargestPatternValue, kLargestPatternValue).value_or(p.phase);
   p.wave = value_of(kWaves, f, "wave", p.wave);
-  p.wave_exponent = f.number("wave_exponent", -kLargest, kLargest).value_or(p.wave_exponent);
+  p.wave_exponent = f.number("wave_exponent", -kLargestPatternValue, kLargestPatternValue)
+                        .value_or(p.wave_exponent);
   p.gradient = read_vec3(f, "gradient").value_or(p.gradient);
   p.brick_size = read_vec3(f, "brick_size").value_or(p.brick_size);
-  p.mortar = f.number("mortar", -kLargest, kLargest).value_or(p.mortar);
+  p.mortar = f.number("mortar", -kLargestPatternValue, kLargestPatternValue).value_or(p.mortar);
   p.spiral_arms = int(f.whole("spiral_arms", -1e9, 1e9).value_or(p.spiral_arms));
-  p.agate_turbulence =
-      f.number("agate_turbulence", -kLargest, kLargest).value_or(p.agate_turbulence);
+  p.agate_turbulence = f.number("agate_turbulence", -kLargestPatternValue, kLargestPatternValue)
+                           .value_or(p.agate_turbulence);
   return p;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/math/constants.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "importers/gltf/gltf_writer.h"
@@ -15,8 +16,6 @@
 
 namespace fb {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Scene round_trip(const Scene& scene, const std::string& name) {
   const std::filesystem::path file = test::scratch_dir() / name;

@@ -5,13 +5,12 @@
 #include <cstdio>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "core/texture/solid_pattern.h"
 #include "importers/pov/pov_space.h"
 
 namespace fb::pov {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Rgb decode(const Colour& c, double gamma) {
   const auto channel = [gamma](double v) { return float(std::pow(std::max(v, 0.0), gamma)); };

@@ -1,8 +1,8 @@
 #include "importers/pov/pov_appearance.h"
 
 #include <OpenImageIO/imageio.h>
-#include "core/shading/gltf_bsdf.h"
 #include <gtest/gtest.h>
+#include "core/shading/gltf_bsdf.h"
 
 #include <cmath>
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "core/render/environment.h"
 #include "core/render/light_sampler.h"
 #include "core/render/render_job.h"
@@ -22,8 +23,6 @@
 
 namespace fb::pov {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Texture plain_texture(Colour colour, double diffuse) {
   Texture t;
@@ -253,10 +252,9 @@ TEST(PovAppearance, SkySphereIsBakedIntoTheWorldOverTheBackground) {
 std::vector<float> povray_render(const std::filesystem::path& pov_file, int width, int height,
                                  std::string& why) {
   const std::filesystem::path png = std::filesystem::path(pov_file).replace_extension(".png");
-  const std::string command = "povray +W" + std::to_string(width) + " +H" +
-                              std::to_string(height) + " -D -A +FN16 File_Gamma=1.0 +I'" +
-                              pov_file.string() + "' +O'" + png.string() + "' > '" +
-                              pov_file.string() + ".log' 2>&1";
+  const std::string command = "povray +W" + std::to_string(width) + " +H" + std::to_string(height) +
+                              " -D -A +FN16 File_Gamma=1.0 +I'" + pov_file.string() + "' +O'" +
+                              png.string() + "' > '" + pov_file.string() + ".log' 2>&1";
   if (std::system(command.c_str()) != 0) {
     why = "failed: " + command;
     return {};

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
+
 namespace fb::bench {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Area-weighted vertex normals: each face adds its unnormalised cross product to its corners.
 std::vector<Vec3f> vertex_normals(const std::vector<Vec3f>& positions,

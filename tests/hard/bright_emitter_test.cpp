@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "hard_case.h"
 #include "support/polygon_irradiance.h"
 
@@ -13,8 +14,6 @@ namespace fb {
 namespace {
 
 using test::report_case;
-
-constexpr double kPi = std::numbers::pi;
 
 // The world-space corners of the emissive square at node `node`, in order.
 std::vector<Vec3d> square(const Scene& scene, const std::string& node) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "hard_case.h"
 #include "support/polygon_irradiance.h"
 
@@ -16,8 +17,6 @@ namespace fb {
 namespace {
 
 using test::report_case;
-
-constexpr double kPi = std::numbers::pi;
 
 // The world-space corners of instance `node`'s triangle `triangle`.
 std::vector<Vec3d> corners(const Scene& scene, const std::string& node, size_t triangle) {

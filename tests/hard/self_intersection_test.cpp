@@ -15,6 +15,7 @@
 #include <filmback/geometry.h>
 
 #include "core/accel/render_geometry.h"
+#include "core/math/constants.h"
 #include "core/util/error.h"
 #include "hard_case.h"
 
@@ -22,8 +23,6 @@ namespace fb {
 namespace {
 
 using test::report_case;
-
-constexpr double kPi = std::numbers::pi;
 
 // The same shot `scale` times larger: geometry, camera, light positions and clip range scale, and
 // the light's intensity by scale^2, so that irradiance E = I cos(theta) / d^2 stays the same.

@@ -12,12 +12,11 @@
 #include <numbers>
 
 #include "core/accel/render_geometry.h"
+#include "core/math/constants.h"
 #include "hard_case.h"
 
 namespace fb {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 TEST(Terminator, LowPolySphereShadesAsItsSmoothNormalsUpToTheTerminator) {
   const Scene scene = test::load_hard_scene("terminator.gltf");

@@ -12,14 +12,15 @@
 #include <vector>
 
 #include "core/plugin/loader.h"
+#include "tests/plugin_abi/test_plugin_folders.h"
 
 namespace fb {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kTestPlugins = FB_TEST_PLUGIN_DIR;
-const fs::path kDuplicates = FB_TEST_DUPLICATE_DIR;
+using test::kDuplicates;
+using test::kTestPlugins;
 const fs::path kCrashPlugins = FB_TEST_CRASH_DIR;
 
 std::string read_text(const fs::path& file) {

@@ -11,14 +11,15 @@
 #include "core/plugin/loader.h"
 #include "core/plugin/params.h"
 #include "core/util/error.h"
+#include "tests/plugin_abi/test_plugin_folders.h"
 
 namespace fb {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kTestPlugins = FB_TEST_PLUGIN_DIR;
-const fs::path kDuplicates = FB_TEST_DUPLICATE_DIR;
+using test::kDuplicates;
+using test::kTestPlugins;
 
 // The message of the InputError that load() throws; a test fails if it loads.
 std::string load_error(const std::vector<fs::path>& dirs, uint32_t kind, const std::string& name) {

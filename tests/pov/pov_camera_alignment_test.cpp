@@ -39,14 +39,13 @@
 #include "support/commands.h"
 #include "support/plugins.h"
 #include "support/pov_rays.h"
+#include "tests/pov/marker_tolerances.h"
 
 namespace fb::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kMaxCentroidErrorPx = 0.1;
-constexpr double kMaxAreaError = 0.02;
 constexpr double kMaxBlurDiameterError = 0.03;
 // A blob is a sphere's when their centroids are this close; spheres are > 25 px apart.
 constexpr double kMatchRadiusPx = 2.0;

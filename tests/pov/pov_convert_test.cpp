@@ -30,7 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr uint32_t kWidth = 128, kHeight = 96, kBlock = 8;
+constexpr uint32_t kConvertWidth = 128, kConvertHeight = 96, kBlock = 8;
 constexpr int kSamples = 64;
 // The conversion's tolerance, m: a fifth of the default for these metre-sized shapes. At the
 // default (a thousandth of each shape's size) the shading of the mirrored_camera shot's cone
@@ -170,7 +170,7 @@ ShotFiles prepare(const Shot& shot) {
 }
 
 std::string res() {
-  return " --res " + std::to_string(kWidth) + "x" + std::to_string(kHeight);
+  return " --res " + std::to_string(kConvertWidth) + "x" + std::to_string(kConvertHeight);
 }
 
 void convert(const ShotFiles& s) {
@@ -196,8 +196,8 @@ std::vector<double> block_z_scores(const Image& a1, const Image& a2, const Image
                                    const Image& b2) {
   std::vector<double> z;
   const double n = kBlock * kBlock;
-  for (uint32_t by = 0; by + kBlock <= kHeight; by += kBlock)
-    for (uint32_t bx = 0; bx + kBlock <= kWidth; bx += kBlock)
+  for (uint32_t by = 0; by + kBlock <= kConvertHeight; by += kBlock)
+    for (uint32_t bx = 0; bx + kBlock <= kConvertWidth; bx += kBlock)
       for (int c = 0; c < 3; ++c) {
         double difference = 0, variance = 0;
         for (uint32_t y = by; y < by + kBlock; ++y)
@@ -275,12 +275,13 @@ TEST_P(PovConvert, ValidatesAndRendersAsThePovWithinNoise) {
                            pov_depth.channels.begin());
   ASSERT_LT(zc, pov_depth.channels.size()) << "no Z channel";
   int edges = 0, moved = 0;
-  for (uint32_t y = 0; y < kHeight; ++y)
-    for (uint32_t x = 0; x < kWidth; ++x) {
+  for (uint32_t y = 0; y < kConvertHeight; ++y)
+    for (uint32_t x = 0; x < kConvertWidth; ++x) {
       const float d = pov_depth.at(x, y, zc);
       bool edge = false;
       for (auto [nx, ny] : {std::pair{x + 1, y}, {x, y + 1}})
-        edge |= nx < kWidth && ny < kHeight && depth_differs(d, pov_depth.at(nx, ny, zc));
+        edge |=
+            nx < kConvertWidth && ny < kConvertHeight && depth_differs(d, pov_depth.at(nx, ny, zc));
       edges += edge;
       moved += depth_differs(d, gltf_depth.at(x, y, zc));
     }

@@ -22,23 +22,23 @@
 #include "support/blobs.h"
 #include "support/commands.h"
 #include "support/plugins.h"
+#include "tests/pov/marker_tolerances.h"
 
 namespace fb::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr uint32_t kWidth = 160, kHeight = 120;
-constexpr double kMaxCentroidErrorPx = 0.1, kMaxAreaError = 0.02;
+constexpr uint32_t kGeometryWidth = 160, kGeometryHeight = 120;
 // Pixels whose values differ by more than this: sampling noise at 256 spp leaves few.
 constexpr double kLargePixelError = 0.25;
 
-struct Shot {
+struct SolidShot {
   const char* name;
   const char* sdl;  // the objects; the white texture is the #default
 };
 
-const Shot kShots[] = {
+const SolidShot kSolidShots[] = {
     {"sphere_minus_sphere",
      "difference { sphere { 0, 1 } sphere { <0.6, 0.4, -0.6>, 0.7 } rotate y * 20 }"},
     // Only the cut is white: it wears the subtracted sphere's texture, as in POV-Ray.
@@ -70,7 +70,7 @@ const Shot kShots[] = {
      "0.7056> rotate <60, 20, 0> }"},
 };
 
-std::string scene_sdl(const Shot& shot) {
+std::string scene_sdl(const SolidShot& shot) {
   return std::string(
              "#version 3.7;\n"
              "global_settings { assumed_gamma 1.0 }\n"
@@ -83,7 +83,7 @@ std::string scene_sdl(const Shot& shot) {
 Image povray_render(const fs::path& povray, const fs::path& work) {
   run_logged("cd " + quoted(work) + " && " + quoted(povray) +
                  " +Iscene.pov +Opovray.png +FN16 File_Gamma=1.0 -D -V +A0.0 +AM1 +R8 -J +W" +
-                 std::to_string(kWidth) + " +H" + std::to_string(kHeight),
+                 std::to_string(kGeometryWidth) + " +H" + std::to_string(kGeometryHeight),
              work / "povray.log");
   return read_image(work / "povray.png");
 }
@@ -93,11 +93,12 @@ Image povray_render(const fs::path& povray, const fs::path& work) {
 Image filmback_render(const fs::path& work) {
   pov::EvaluateOptions evaluate;
   evaluate.scene_file = work / "scene.pov";
-  evaluate.image_width = kWidth, evaluate.image_height = kHeight;
+  evaluate.image_width = kGeometryWidth, evaluate.image_height = kGeometryHeight;
   const pov::Scene pov = pov::evaluate_pov(evaluate);
   Diagnostics diagnostics;
   Scene scene;
-  scene.cameras.push_back(pov::convert_camera(pov.camera, kWidth, kHeight, diagnostics).camera);
+  scene.cameras.push_back(
+      pov::convert_camera(pov.camera, kGeometryWidth, kGeometryHeight, diagnostics).camera);
   const auto material_for = [&](const pov::Texture& t, const std::optional<pov::Interior>&) {
     Material m;
     m.base_color = {0, 0, 0};
@@ -110,7 +111,7 @@ Image filmback_render(const fs::path& work) {
   pov::convert_objects(pov, material_for, scene, diagnostics);
   EXPECT_EQ(diagnostics.count(), 0u) << (diagnostics.count() ? diagnostics.messages().front() : "");
   RenderOptions options;
-  options.width = kWidth, options.height = kHeight, options.samples_per_pixel = 256;
+  options.width = kGeometryWidth, options.height = kGeometryHeight, options.samples_per_pixel = 256;
   options.filter = "box";
   options.show_progress = false;
   return RenderJob(scene, options, loader()).run().image;
@@ -131,7 +132,7 @@ TEST(PovGeometryRender, FilmbackDrawsEachObjectOnPovRaysPixels) {
     GTEST_SKIP() << "POV-Ray is not installed: no `povray` on PATH (Debian package `povray`)";
   std::printf("%-30s %9s %9s %8s %8s %9s %8s %7s\n", "shot", "pov_x", "pov_y", "dx_px", "dy_px",
               "area_px", "area", "large");
-  for (const Shot& shot : kShots) {
+  for (const SolidShot& shot : kSolidShots) {
     SCOPED_TRACE(shot.name);
     const fs::path work = fs::path(FILMBACK_POV_WORK_DIR) / "geometry" / shot.name;
     fs::remove_all(work);
@@ -148,8 +149,8 @@ TEST(PovGeometryRender, FilmbackDrawsEachObjectOnPovRaysPixels) {
     const Blob &p = largest(pov_blobs), &b = largest(blobs);
     const double dx = b.x_px - p.x_px, dy = b.y_px - p.y_px, area = b.flux / p.flux;
     int large = 0;
-    for (uint32_t y = 0; y < kHeight; ++y)
-      for (uint32_t x = 0; x < kWidth; ++x)
+    for (uint32_t y = 0; y < kGeometryHeight; ++y)
+      for (uint32_t x = 0; x < kGeometryWidth; ++x)
         large += std::abs(sum_rgb(image, x, y) - sum_rgb(reference, x, y)) > 3 * kLargePixelError;
     std::printf("%-30s %9.4f %9.4f %+8.4f %+8.4f %9.1f %8.4f %7d\n", shot.name, p.x_px, p.y_px, dx,
                 dy, p.flux / 3, area, large);

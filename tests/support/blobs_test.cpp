@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/math/constants.h"
+
 namespace fb::test {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Image black_rgb(uint32_t width, uint32_t height) {
   return {width, height, {"B", "G", "R"}, std::vector<float>(size_t(width) * height * 3, 0.f)};

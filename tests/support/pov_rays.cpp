@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "core/render/plugin_choice_loader.h"
 #include "importers/pov/pov_space.h"
 #include "support/plugins.h"
@@ -19,8 +20,6 @@ Transform pov_rotate(Vec3d degrees) {
 }
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // POV-Ray's Compute_Axis_Rotation_Transform (Faux & Pratt) applied to v: the turn by `angle`
 // about unit(axis), counterclockwise seen from the axis' tip in POV-Ray's numbers (Rodrigues).

@@ -10,25 +10,23 @@
 #include <random>
 #include <vector>
 
+#include "core/math/constants.h"
 #include "tests/support/chi_square.h"
+#include "tests/support/sphere_quadrature.h"
 
 namespace fb {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using test::direction;
+using test::sphere_integral;
 
-Vec3f direction(double cos_theta, double phi) {
-  const double s = std::sqrt(std::max(0.0, 1 - cos_theta * cos_theta));
-  return Vec3f(Vec3d{s * std::cos(phi), s * std::sin(phi), cos_theta});
-}
-
-struct Case {
+struct BsdfCase {
   const char* name;
   BsdfParams params;
 };
 
-std::vector<Case> cases() {
-  std::vector<Case> out;
+std::vector<BsdfCase> bsdf_cases() {
+  std::vector<BsdfCase> out;
   for (float roughness : {0.3f, 0.6f, 1.f}) {
     out.push_back({"dielectric", {{1, 1, 1}, 0.f, roughness, 0.f, 1.5f}});
     out.push_back({"metal", {{1, 1, 1}, 1.f, roughness, 0.f, 1.5f}});
@@ -40,29 +38,19 @@ std::vector<Case> cases() {
   return out;
 }
 
-// Midpoint quadrature of g(wi) over the sphere in (cos theta, phi): fine enough for lobes of
-// alpha >= 0.09 (roughness 0.3).
-template <typename G>
-double sphere_integral(G g, int n = 1200) {
-  double sum = 0;
-  for (int i = 0; i < n; ++i) {
-    const double c = -1 + (i + 0.5) * 2.0 / n;
-    for (int j = 0; j < n; ++j)
-      sum += g(direction(c, (j + 0.5) * 2 * kPi / n));
-  }
-  return sum * (2.0 / n) * (2 * kPi / n);
-}
+// Quadrature fine enough for lobes of alpha >= 0.09 (roughness 0.3).
+constexpr int kBsdfQuadratureSteps = 1200;
 
 // The directional albedo, integral of f |cos| (for transmission, times eta^2 to undo radiance
 // scaling), never exceeds one for a white surface. For a white metal it is the GGX
 // single-scattering albedo, which loses energy at grazing angles and high roughness (half of it at
 // alpha = 1) but keeps more than 95 % at normal incidence for alpha = 0.09.
 TEST(Bsdf, WhiteFurnaceReflectsNoMoreThanItReceives) {
-  for (const Case& k : cases()) {
+  for (const BsdfCase& k : bsdf_cases()) {
     const Bsdf bsdf(k.params);
     for (double cos_o : {1.0, 0.7, 0.3, 0.05}) {
       const Vec3f wo = direction(cos_o, 0.3);
-      const double albedo = sphere_integral([&](Vec3f wi) {
+      const double albedo = sphere_integral(kBsdfQuadratureSteps, [&](Vec3f wi) {
         const double scale = wi.z < 0 ? double(k.params.eta) * k.params.eta : 1.0;
         return double(max_component(bsdf.eval(wo, wi))) * std::abs(wi.z) * scale;
       });
@@ -113,7 +101,7 @@ TEST(Bsdf, BumpShadowingDimsOnlyLightTheSmoothSurfaceHidesFromTheBump) {
 TEST(Bsdf, ReflectionIsReciprocal) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  for (const Case& k : cases()) {
+  for (const BsdfCase& k : bsdf_cases()) {
     const Bsdf bsdf(k.params);
     for (int n = 0; n < 200; ++n) {
       const Vec3f a = direction(0.02 + 0.98 * u(rng), 2 * kPi * u(rng));
@@ -131,11 +119,12 @@ TEST(Bsdf, ReflectionIsReciprocal) {
 TEST(Bsdf, PdfIntegratesToTheProbabilityOfASample) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0, 1);
-  for (const Case& k : cases()) {
+  for (const BsdfCase& k : bsdf_cases()) {
     const Bsdf bsdf(k.params);
     for (double cos_o : {0.9, 0.4}) {
       const Vec3f wo = direction(cos_o, 1.1);
-      const double mass = sphere_integral([&](Vec3f wi) { return double(bsdf.pdf(wo, wi)); });
+      const double mass =
+          sphere_integral(kBsdfQuadratureSteps, [&](Vec3f wi) { return double(bsdf.pdf(wo, wi)); });
       constexpr int kN = 100000;
       int successes = 0;
       for (int n = 0; n < kN; ++n) {
@@ -157,7 +146,7 @@ TEST(Bsdf, PdfIntegratesToTheProbabilityOfASample) {
 // freedom, so a correct sampler fails once in a thousand runs at most (the seed is fixed anyway).
 TEST(Bsdf, SamplesFollowThePdf) {
   constexpr int kTheta = 20, kPhi = 40, kSamples = 400000;
-  for (const Case& k : cases()) {
+  for (const BsdfCase& k : bsdf_cases()) {
     const Bsdf bsdf(k.params);
     const Vec3f wo = direction(0.6, 0.4);
     std::vector<double> observed(kTheta * kPhi, 0), expected(kTheta * kPhi, 0);
@@ -195,11 +184,11 @@ TEST(Bsdf, SamplesFollowThePdf) {
 // The estimator sample().weight has the albedo as its mean: importance sampling is consistent with
 // eval() (the furnace again, by Monte Carlo).
 TEST(Bsdf, SampleWeightsAverageToTheAlbedo) {
-  for (const Case& k : cases()) {
+  for (const BsdfCase& k : bsdf_cases()) {
     const Bsdf bsdf(k.params);
     const Vec3f wo = direction(0.5, 0.2);
     const double albedo = sphere_integral(
-        [&](Vec3f wi) { return double(bsdf.eval(wo, wi).y) * std::abs(wi.z); }, 800);
+        800, [&](Vec3f wi) { return double(bsdf.eval(wo, wi).y) * std::abs(wi.z); });
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0, 1);
     double sum = 0;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/math/constants.h"
 #include "core/render/render_job.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
@@ -16,8 +17,6 @@ namespace fb {
 namespace {
 
 using test::GltfBuilder;
-
-constexpr double kPi = std::numbers::pi;
 
 // An octahedron: a small emitter with no favoured direction.
 int octahedron(GltfBuilder& gltf, float radius, int material) {

@@ -21,7 +21,7 @@ using test::GltfBuilder;
 
 // A 96 x 24 frame with glTF's yfov = 2 atan(0.1) and the same aspect ratio: by glTF's definition
 // of yfov, f = (24 / 2) / 0.1 = 120 px per unit of depth on both axes, centre (48, 12).
-constexpr uint32_t kWidth = 96, kHeight = 24;
+constexpr uint32_t kStreakWidth = 96, kStreakHeight = 24;
 constexpr double kFocalPx = 120, kCentreX = 48;
 constexpr double kDepth = 10;                        // m, of the marker's plane
 constexpr double kMarkerPx = 4, kMarkerTallPx = 16;  // the marker's width and height in the image
@@ -51,7 +51,7 @@ Scene import(GltfBuilder& gltf, const char* name) {
 
 RenderOptions streak_options() {
   RenderOptions options;
-  options.width = kWidth, options.height = kHeight, options.samples_per_pixel = 1024;
+  options.width = kStreakWidth, options.height = kStreakHeight, options.samples_per_pixel = 1024;
   options.filter = "box";  // each pixel the plain mean over its square
   options.integrator = "path:max_depth=0";
   options.shutter_s = Vec2d{kShutterOpenS, kShutterCloseS};
@@ -74,7 +74,8 @@ Scene streak_scene(bool marker_moves) {
   marker.mesh = gltf.mesh(rectangle(kMarkerPx * kMetresPerPx, kMarkerTallPx * kMetresPerPx),
                           kSquare, gltf.material({0, 0, 0}, {1, 1, 1}, 1.0, true));
   marker.translation = {0, 0, -kDepth};
-  camera.camera = gltf.perspective_camera(2 * std::atan(0.1), double(kWidth) / kHeight, 0.1, 100);
+  camera.camera =
+      gltf.perspective_camera(2 * std::atan(0.1), double(kStreakWidth) / kStreakHeight, 0.1, 100);
   const int m = gltf.node(marker), c = gltf.node(camera);
   const float half = float(kSpeed / 2);  // keys at t = 0 and 1 s, the frame at 0.5 s
   if (marker_moves)

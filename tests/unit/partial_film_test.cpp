@@ -24,7 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr uint32_t kWidth = 70, kHeight = 45;  // tiles cut at the right and bottom edges
+constexpr uint32_t kFrameWidth = 70, kFrameHeight = 45;  // tiles cut at the right and bottom edges
 
 const Scene& default_scene() {
   static const Scene scene = [] {
@@ -36,10 +36,13 @@ const Scene& default_scene() {
 
 // Uneven parts that tile the 70x45 frame, none on the 16-pixel tile grid but the frame's edges.
 std::vector<PixelRect> parts_of(int count) {
-  if (count == 1) return {{0, 0, kWidth, kHeight}};
-  if (count == 3) return {{0, 0, 23, 17}, {23, 0, kWidth, 17}, {0, 17, kWidth, kHeight}};
-  return {{0, 0, 9, 20},   {9, 0, 40, 7},        {9, 7, 40, 20},  {40, 0, kWidth, 20},
-          {0, 20, 31, 21}, {31, 20, kWidth, 33}, {0, 21, 31, 45}, {31, 33, kWidth, kHeight}};
+  if (count == 1) return {{0, 0, kFrameWidth, kFrameHeight}};
+  if (count == 3)
+    return {{0, 0, 23, 17}, {23, 0, kFrameWidth, 17}, {0, 17, kFrameWidth, kFrameHeight}};
+  return {{0, 0, 9, 20},   {9, 0, 40, 7},
+          {9, 7, 40, 20},  {40, 0, kFrameWidth, 20},
+          {0, 20, 31, 21}, {31, 20, kFrameWidth, 33},
+          {0, 21, 31, 45}, {31, 33, kFrameWidth, kFrameHeight}};
 }
 
 PartialFilmHeader header(const RenderJob& job, const RenderResult& result, const PixelRect& crop,
@@ -97,7 +100,7 @@ TEST(PartialFilm, MergedPartsAreTheWholeRenderBitForBit) {
            {Reconstruction::kImportance, Reconstruction::kSplat})
         for (const uint64_t seed : {0u, 7u}) {
           RenderOptions o;
-          o.width = kWidth, o.height = kHeight, o.samples_per_pixel = 4, o.seed = seed;
+          o.width = kFrameWidth, o.height = kFrameHeight, o.samples_per_pixel = 4, o.seed = seed;
           o.sampler = sampler, o.filter = filter, o.reconstruction = reconstruction;
           o.show_progress = false;
           if (config % 5 == 0) {  // depth of field: lens samples too
@@ -131,7 +134,7 @@ TEST(PartialFilm, MergeRefusesWhatIsNotOneRender) {
   const fs::path folder = test::scratch_dir() / "partial_film_refusals";
   fs::create_directories(folder);
   RenderOptions o;
-  o.width = kWidth, o.height = kHeight, o.samples_per_pixel = 2, o.filter = "gaussian";
+  o.width = kFrameWidth, o.height = kFrameHeight, o.samples_per_pixel = 2, o.filter = "gaussian";
   o.reconstruction = Reconstruction::kSplat, o.show_progress = false;
   const RenderJob job(default_scene(), o, test::loader());
   const std::vector<fs::path> f = write_parts(job, parts_of(3), folder);
@@ -160,7 +163,7 @@ TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
   const fs::path folder = test::scratch_dir() / "partial_film_resume";
   fs::create_directories(folder);
   RenderOptions o;
-  o.width = kWidth, o.height = kHeight, o.samples_per_pixel = 16, o.seed = 2;
+  o.width = kFrameWidth, o.height = kFrameHeight, o.samples_per_pixel = 16, o.seed = 2;
   o.show_progress = false;
   const RenderJob job(default_scene(), o, test::loader());
   const PixelRect crop{9, 7, 40, 20};
@@ -168,7 +171,7 @@ TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
   job.run(uninterrupted, {}, RenderPart{crop, nullptr});
 
   // Stopped at the third checkpoint offered, saved over the crop's whole tiles, resumed.
-  const PixelRect region = whole_tiles_around(crop, kWidth, kHeight);
+  const PixelRect region = whole_tiles_around(crop, kFrameWidth, kFrameHeight);
   EXPECT_EQ(region, (PixelRect{0, 0, 48, 32}));
   const fs::path checkpoint = folder / "part.checkpoint.exr";
   std::atomic<bool> cancel{false};
@@ -187,7 +190,7 @@ TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
   job.run(resumed, {}, RenderPart{crop, nullptr});
   for (uint32_t y = crop.y0; y < crop.y1; ++y)
     for (uint32_t x = crop.x0; x < crop.x1; ++x) {
-      const size_t i = size_t(y) * kWidth + x;
+      const size_t i = size_t(y) * kFrameWidth + x;
       ASSERT_EQ(resumed.weights()[i], uninterrupted.weights()[i]) << x << "," << y;
       ASSERT_EQ(resumed.sums()[3 * i], uninterrupted.sums()[3 * i]) << x << "," << y;
     }
@@ -198,26 +201,27 @@ TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
 }
 
 TEST(PartCoverage, FindsOverlapsGapsAndCropsOutsideTheFrame) {
-  EXPECT_FALSE(check_coverage(parts_of(8), kWidth, kHeight));
+  EXPECT_FALSE(check_coverage(parts_of(8), kFrameWidth, kFrameHeight));
   std::vector<PixelRect> gap = parts_of(8);
   gap.erase(gap.begin() + 5);
-  const auto missing = check_coverage(gap, kWidth, kHeight);
+  const auto missing = check_coverage(gap, kFrameWidth, kFrameHeight);
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->kind, CoverageProblem::Kind::kGap);
   // A rectangle of the missing part (cut at the other parts' edges).
-  const PixelRect removed{31, 20, kWidth, 33};
+  const PixelRect removed{31, 20, kFrameWidth, 33};
   EXPECT_FALSE(missing->where.empty());
   EXPECT_TRUE(removed.contains(missing->where.x0, missing->where.y0) &&
               removed.contains(missing->where.x1 - 1, missing->where.y1 - 1));
   std::vector<PixelRect> overlap = parts_of(3);
   overlap[1].x0 = 22;
-  const auto twice = check_coverage(overlap, kWidth, kHeight);
+  const auto twice = check_coverage(overlap, kFrameWidth, kFrameHeight);
   ASSERT_TRUE(twice);
   EXPECT_EQ(twice->kind, CoverageProblem::Kind::kOverlap);
   EXPECT_EQ(twice->part, 1u);
   EXPECT_EQ(twice->other, 0u);
   EXPECT_EQ(twice->where, (PixelRect{22, 0, 23, 17}));
-  const auto outside = check_coverage({{0, 0, kWidth + 1, kHeight}}, kWidth, kHeight);
+  const auto outside =
+      check_coverage({{0, 0, kFrameWidth + 1, kFrameHeight}}, kFrameWidth, kFrameHeight);
   ASSERT_TRUE(outside);
   EXPECT_EQ(outside->kind, CoverageProblem::Kind::kOutside);
 }

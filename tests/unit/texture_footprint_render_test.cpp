@@ -18,16 +18,17 @@ namespace {
 
 using test::textured_quad;
 
-constexpr uint32_t kWidth = 64, kHeight = 40;
+constexpr uint32_t kGroundWidth = 64, kGroundHeight = 40;
 
 std::vector<float> render(const Scene& scene, uint32_t spp, bool footprint, uint64_t seed) {
   const RenderResult result =
-      RenderJob(scene, test::texture_render_options(kWidth, kHeight, spp, footprint, seed),
+      RenderJob(scene,
+                test::texture_render_options(kGroundWidth, kGroundHeight, spp, footprint, seed),
                 test::loader())
           .run();
   std::vector<float> red;
-  for (uint32_t y = 0; y < kHeight; ++y)
-    for (uint32_t x = 0; x < kWidth; ++x)
+  for (uint32_t y = 0; y < kGroundHeight; ++y)
+    for (uint32_t x = 0; x < kGroundWidth; ++x)
       red.push_back(result.image.at(x, y, 0));
   return red;
 }
@@ -47,7 +48,7 @@ double rms_difference(const std::vector<float>& a, const std::vector<float>& b) 
 TEST(TextureFootprint, MinifiedGroundHasLessErrorThanTheFinestLevel) {
   const Scene scene = textured_quad(
       {{-100.f, -1.f, -0.2f}, {100.f, -1.f, -0.2f}, {100.f, -1.f, -200.f}, {-100.f, -1.f, -200.f}},
-      true, 1.f, 64, 8, double(kWidth) / kHeight, test::scratch_dir() / "ground.gltf");
+      true, 1.f, 64, 8, double(kGroundWidth) / kGroundHeight, test::scratch_dir() / "ground.gltf");
   const std::vector<float> reference = render(scene, 1024, false, 7);
   // The reference's own noise: another 1024-spp render against it, over sqrt(2).
   const double reference_noise =
@@ -68,7 +69,7 @@ TEST(TextureFootprint, MinifiedGroundHasLessErrorThanTheFinestLevel) {
 TEST(TextureFootprint, MagnifiedTextureIsUnchanged) {
   const Scene scene = textured_quad(
       {{-5.f, -5.f, -0.5f}, {5.f, -5.f, -0.5f}, {5.f, 5.f, -0.5f}, {-5.f, 5.f, -0.5f}}, false, 1.f,
-      8, 1, double(kWidth) / kHeight, test::scratch_dir() / "wall.gltf");
+      8, 1, double(kGroundWidth) / kGroundHeight, test::scratch_dir() / "wall.gltf");
   const std::vector<float> finest = render(scene, 4, false, 1);
   const double difference = rms_difference(render(scene, 4, true, 1), finest);
   const double noise = rms_difference(render(scene, 4, false, 2), finest);
