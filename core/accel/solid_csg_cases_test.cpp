@@ -17,9 +17,9 @@ namespace {
 using test::ball;
 using test::csg;
 using test::inverted;
+using test::kReach;
 using test::primitive;
 
-const Bounds3d kReach{{-1e7, -1e7, -1e7}, {1e7, 1e7, 1e7}};
 const Vec3d kPlusX{1, 0, 0}, kMinusX{-1, 0, 0};
 
 // A box [lo, hi] on x, [-h, h] on y and z.

@@ -16,11 +16,10 @@
 namespace fb {
 namespace {
 
-const Bounds3d kReach{{-1e7, -1e7, -1e7}, {1e7, 1e7, 1e7}};
-
 using test::ball;
 using test::csg;
 using test::inverted;
+using test::kReach;
 using test::primitive;
 
 std::optional<SolidHit> trace(const Solid& solid, Vec3d o, Vec3d d, double t_min = 0) {

@@ -19,7 +19,7 @@ namespace {
 constexpr const char* kPath = "cameras[0].extensions.FILMBACK_blender.panorama";
 
 // One camera whose FILMBACK_blender extension has `panorama` (a JSON value) beside Blender's lens.
-std::filesystem::path write_gltf(const std::string& panorama) {
+std::filesystem::path write_panorama_gltf(const std::string& panorama) {
   const std::filesystem::path file = test::scratch_dir() / "panorama.gltf";
   std::ofstream(file) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["FILMBACK_blender"],
   "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"name": "Cam", "camera": 0}],
@@ -31,10 +31,10 @@ std::filesystem::path write_gltf(const std::string& panorama) {
   return file;
 }
 
-std::string error_of(const std::string& panorama) {
+std::string panorama_error(const std::string& panorama) {
   Diagnostics diagnostics;
   try {
-    const Scene scene = import_gltf(write_gltf(panorama), diagnostics);
+    const Scene scene = import_gltf(write_panorama_gltf(panorama), diagnostics);
     const ShotPlan plan = plan_shot(scene, {});
     load_camera(test::loader(), plan);
   } catch (const InputError& e) {
@@ -46,7 +46,8 @@ std::string error_of(const std::string& panorama) {
 TEST(GltfPanorama, IsReadIntoThePanoramicProjectionWithEachValuesOrigin) {
   Diagnostics diagnostics;
   const Scene scene = import_gltf(
-      write_gltf(R"({"type": "fisheye_equisolid", "fisheye_lens_mm": 8, "fisheye_fov_rad": 3})"),
+      write_panorama_gltf(
+          R"({"type": "fisheye_equisolid", "fisheye_lens_mm": 8, "fisheye_fov_rad": 3})"),
       diagnostics);
   ASSERT_EQ(scene.cameras.size(), 1u);
   const SceneCamera& camera = scene.cameras[0];
@@ -65,7 +66,7 @@ TEST(GltfPanorama, IsReadIntoThePanoramicProjectionWithEachValuesOrigin) {
   EXPECT_EQ(plan.camera_model.name, "fisheye_equisolid");
   EXPECT_NO_THROW(load_camera(test::loader(), plan));
   // A type without values.
-  EXPECT_EQ(error_of(R"({"type": "mirrorball"})"), "(no error)");
+  EXPECT_EQ(panorama_error(R"({"type": "mirrorball"})"), "(no error)");
 }
 
 TEST(GltfPanorama, HostilePanoramasAreRefusedNamingTheJsonPath) {
@@ -87,12 +88,12 @@ TEST(GltfPanorama, HostilePanoramasAreRefusedNamingTheJsonPath) {
        "latitude_max_rad"},
   };
   for (const auto& row : rows) {
-    const std::string error = error_of(row.panorama);
+    const std::string error = panorama_error(row.panorama);
     EXPECT_NE(error.find("panorama.gltf: " + std::string(kPath) + row.path), std::string::npos)
         << row.panorama << " -> " << error;
     EXPECT_NE(error.find(row.expected), std::string::npos) << row.panorama << " -> " << error;
   }
-  EXPECT_NE(error_of("3").find("FILMBACK_blender.panorama"), std::string::npos);
+  EXPECT_NE(panorama_error("3").find("FILMBACK_blender.panorama"), std::string::npos);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 
 namespace fb {
 namespace {
@@ -23,9 +24,9 @@ const double kDefaultYfov = 2 * std::atan(36.0 / 100 / (16.0 / 9));
 
 // One camera node; `camera_members` and `scene_members` are spliced into the camera and scene
 // objects ("" for none).
-std::filesystem::path write_gltf(const std::string& camera_members,
-                                 const std::string& scene_members = "",
-                                 double yfov = kDefaultYfov) {
+std::filesystem::path write_camera_gltf(const std::string& camera_members,
+                                        const std::string& scene_members = "",
+                                        double yfov = kDefaultYfov) {
   const std::filesystem::path file = test::scratch_dir() / "camera.gltf";
   char perspective[160];
   std::snprintf(
@@ -40,20 +41,6 @@ std::filesystem::path write_gltf(const std::string& camera_members,
                       << perspective << (camera_members.empty() ? "" : ", " + camera_members)
                       << "}]}";
   return file;
-}
-
-Scene import(const std::filesystem::path& file, Diagnostics& diagnostics) {
-  return import_gltf(file, diagnostics);
-}
-
-std::string error_of(const std::filesystem::path& file) {
-  Diagnostics diagnostics;
-  try {
-    import(file, diagnostics);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 // One row of the precedence table: the camera's sources as JSON members, options typed on the
@@ -150,7 +137,7 @@ TEST(GltfCamera, PrecedenceTakesTheHighestSourceWholeAndKeepsEachValuesOrigin) {
   for (const PrecedenceCase& c : precedence_cases()) {
     SCOPED_TRACE(c.name);
     Diagnostics d;
-    const Scene scene = import(write_gltf(c.camera_members, "", c.yfov), d);
+    const Scene scene = import_gltf(write_camera_gltf(c.camera_members, "", c.yfov), d);
     SceneCamera camera = scene.cameras.at(0);
     c.typed.apply(camera);
     for (const Expected& e : c.expected) {
@@ -175,8 +162,8 @@ TEST(GltfCamera, PrecedenceTakesTheHighestSourceWholeAndKeepsEachValuesOrigin) {
 // Bug 2 as a render would see it: the frame is yfov's, within 1e-9 degrees (it was 13.7 px off).
 TEST(GltfCamera, ExtrasWithoutAFocalLengthKeepYfovsFrame) {
   Diagnostics d;
-  const Scene scene = import(
-      write_gltf(
+  const Scene scene = import_gltf(
+      write_camera_gltf(
           R"("extras": {"sensor_width_mm": 24, "sensor_height_mm": 36, "sensor_fit": "vertical"})"),
       d);
   const CameraQuantities q = describe_camera(scene.cameras.at(0).physical, 1920, 1080);
@@ -186,8 +173,8 @@ TEST(GltfCamera, ExtrasWithoutAFocalLengthKeepYfovsFrame) {
 TEST(GltfCamera, ExtCameraPhysicalAloneTakesTheFitThatGivesYfov) {
   // 35 mm on 36 x 24 mm, vertical fit: yfov = 2 atan(12 / 35).
   Diagnostics d;
-  const Scene scene = import(
-      write_gltf(
+  const Scene scene = import_gltf(
+      write_camera_gltf(
           R"("extensions": {"EXT_camera_physical": {"focalLength": 0.035, "sensorSize": [0.036, 0.024]}})",
           "", 2 * std::atan(12.0 / 35)),
       d);
@@ -200,8 +187,8 @@ TEST(GltfCamera, ExtCameraPhysicalAloneTakesTheFitThatGivesYfov) {
 
 TEST(GltfCamera, ExtCameraPhysicalThatContradictsYfovIsWarnedAndYfovUsed) {
   Diagnostics d;
-  const Scene scene = import(
-      write_gltf(
+  const Scene scene = import_gltf(
+      write_camera_gltf(
           R"("extensions": {"EXT_camera_physical": {"focalLength": 0.2, "sensorSize": [0.036, 0.024]}})"),
       d);
   ASSERT_EQ(d.count(), 1u);
@@ -211,24 +198,27 @@ TEST(GltfCamera, ExtCameraPhysicalThatContradictsYfovIsWarnedAndYfovUsed) {
 
 TEST(GltfCamera, DisagreementBeyondOneHundredthOfADegreeIsWarnedNamingTheSourceUsed) {
   Diagnostics d;
-  const Scene scene =
-      import(write_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50.1}})"), d);
+  const Scene scene = import_gltf(
+      write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50.1}})"), d);
   ASSERT_EQ(d.count(), 1u);
   EXPECT_NE(d.messages().at(0).find("using FILMBACK_blender"), std::string::npos)
       << d.messages().at(0);
   EXPECT_EQ(scene.cameras.at(0).physical.focal_length_mm, 50.1);
   // 50.001 mm changes the field of view by 0.0005 degrees: no warning.
   Diagnostics quiet;
-  import(write_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50.001}})"), quiet);
+  import_gltf(
+      write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": 50.001}})"),
+      quiet);
   EXPECT_EQ(quiet.count(), 0u);
 }
 
 TEST(GltfCamera, LensTrackIsInterpolatedBetweenFramesAndHeldBeyond) {
   Diagnostics d;
-  const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
+  const Scene scene =
+      import_gltf(write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
       "focus_distance_m": 3, "focal_length_mm": 30, "per_frame": {"first_frame": 10, "focus_distance_m": [2, 4, 8],
       "focal_length_mm": [30, 40], "fstop": [2.8, 1.4, 2], "shift_x": [0, 0.1], "shift_y": [-0.1]}}})"),
-                             d);
+                  d);
   const SceneCamera& camera = scene.cameras.at(0);
   const LensTrack& t = camera.lens_track.value();
   using V = CameraValue;
@@ -258,25 +248,28 @@ TEST(GltfCamera, LensTrackIsInterpolatedBetweenFramesAndHeldBeyond) {
 // Files the add-on wrote before per_frame keep their focus track.
 TEST(GltfCamera, TheFocusTrackBeforePerFrameIsStillRead) {
   Diagnostics d;
-  const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
+  const Scene scene =
+      import_gltf(write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 2,
       "focus_distance_m": 3, "focus_distance_per_frame_m": {"first_frame": 10, "values": [2, 4]}}})"),
-                             d);
+                  d);
   const SceneCamera& camera = scene.cameras.at(0);
   const LensTrack& t = camera.lens_track.value();
   EXPECT_EQ(t.at(CameraValue::kFocusDistance, 10.5), 3);
   EXPECT_FALSE(t.tracks(CameraValue::kFocalLength));
   EXPECT_EQ(camera.origin(CameraValue::kFocusDistance).path,
             "cameras[0].extensions.FILMBACK_blender.focus_distance_per_frame_m.values");
-  EXPECT_NE(error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"focus_distance_per_frame_m":
+  EXPECT_NE(
+      test::import_error(
+          write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"focus_distance_per_frame_m":
       {"first_frame": 1, "values": [2, "x"]}}})"))
-                .find("focus_distance_per_frame_m.values[1]: expected a number"),
-            std::string::npos);
+          .find("focus_distance_per_frame_m.values[1]: expected a number"),
+      std::string::npos);
 }
 
 TEST(GltfCamera, HostileLensTracksAreErrorsNamingTheJsonPath) {
   const auto error = [](const std::string& per_frame) {
-    return error_of(
-        write_gltf(R"("extensions": {"FILMBACK_blender": {"per_frame": )" + per_frame + "}}"));
+    return test::import_error(write_camera_gltf(
+        R"("extensions": {"FILMBACK_blender": {"per_frame": )" + per_frame + "}}"));
   };
   const std::string path = "cameras[0].extensions.FILMBACK_blender.per_frame";
   const auto names = [](const std::string& text, const std::string& fragment) {
@@ -309,19 +302,20 @@ TEST(GltfCamera, HostileLensTracksAreErrorsNamingTheJsonPath) {
 
 TEST(GltfCamera, FstopZeroIsBlendersDepthOfFieldOff) {
   Diagnostics d;
-  const Scene scene = import(write_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 0}})"), d);
+  const Scene scene =
+      import_gltf(write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"fstop": 0}})"), d);
   EXPECT_FALSE(scene.cameras.at(0).physical.has_aperture());
 }
 
 TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
   Diagnostics d;
-  const Scene scene =
-      import(write_gltf("", R"("extensions": {"FILMBACK_blender": {"resolution_x_px": 960,
+  const Scene scene = import_gltf(
+      write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {"resolution_x_px": 960,
       "resolution_y_px": 540, "pixel_aspect_x": 2, "pixel_aspect_y": 1, "fps": 30, "fps_base": 1.001,
       "frame": 7, "shutter_open_s": -0.01, "shutter_close_s": 0.01, "shutter_curve": [0, 1, 0],
       "filter_type": "GAUSSIAN", "filter_width_px": 2, "film_exposure": 0.5,
       "view_transform": "Standard", "exposure_stops": 0}})"),
-             d);
+      d);
   const ShotSettings& s = scene.settings;
   EXPECT_EQ(s.width_px, 960u);
   EXPECT_EQ(s.pixel_aspect, 2.0);
@@ -342,7 +336,8 @@ TEST(GltfShot, SceneExtensionCarriesBlendersRenderSettings) {
 TEST(GltfShot, AdaptiveSamplingIsCyclesSettings) {
   Diagnostics d;
   const auto settings = [&](const std::string& members) {
-    return import(write_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"), d)
+    return import_gltf(
+               write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"), d)
         .settings;
   };
   const ShotSettings s = settings(
@@ -364,7 +359,8 @@ TEST(GltfShot, AdaptiveSamplingIsCyclesSettings) {
 TEST(GltfShot, RollingShutterIsCyclesTopToBottomWithinTheShutter) {
   Diagnostics d;
   const auto settings = [&](const std::string& members) {
-    return import(write_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"), d)
+    return import_gltf(
+               write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"), d)
         .settings;
   };
   const std::string shutter = R"("shutter_open_s": -0.01, "shutter_close_s": 0.01, )";
@@ -379,7 +375,8 @@ TEST(GltfShot, RollingShutterIsCyclesTopToBottomWithinTheShutter) {
   EXPECT_FALSE(settings(shutter.substr(0, shutter.size() - 2)).rolling_shutter_duration);
   const std::string path = "scenes[0].extensions.FILMBACK_blender.";
   const auto error = [&](const std::string& members) {
-    return error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"));
+    return test::import_error(
+        write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {)" + members + "}}"));
   };
   EXPECT_NE(error(shutter + R"("rolling_shutter_type": "BOTTOM")")
                 .find(path + "rolling_shutter_type: 'BOTTOM', expected NONE or TOP"),
@@ -398,10 +395,11 @@ TEST(GltfShot, RollingShutterIsCyclesTopToBottomWithinTheShutter) {
 TEST(GltfShot, ViewSettingsAreRead) {
   Diagnostics d;
   const ViewSettings v =
-      import(write_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Filmic",
+      import_gltf(
+          write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Filmic",
       "look": "Medium High Contrast", "display_device": "sRGB", "exposure_stops": 0.7,
       "gamma": 1.2, "dither_intensity": 0.5}})"),
-             d)
+          d)
           .settings.view;
   EXPECT_EQ(v.view_transform, "Filmic");
   EXPECT_EQ(v.look, "Medium High Contrast");
@@ -413,39 +411,45 @@ TEST(GltfShot, ViewSettingsAreRead) {
   // A file from Blender that does not say: Blender's defaults (dither 1); one that names no view:
   // the plain sRGB curve, no dither.
   const ViewSettings blender =
-      import(
-          write_gltf("", R"("extensions": {"FILMBACK_blender": {"view_transform": "Standard"}})"),
-          d)
+      import_gltf(write_camera_gltf(
+                      "", R"("extensions": {"FILMBACK_blender": {"view_transform": "Standard"}})"),
+                  d)
           .settings.view;
   EXPECT_EQ(blender.look, "None");
   EXPECT_EQ(blender.gamma, 1.0);
   EXPECT_EQ(blender.dither_intensity, 1.0);
-  const ViewSettings other = import(write_gltf("", ""), d).settings.view;
+  const ViewSettings other = import_gltf(write_camera_gltf("", ""), d).settings.view;
   EXPECT_FALSE(other.names_view());
   EXPECT_EQ(other.dither_intensity, 0.0);
-  EXPECT_NE(error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"gamma": 7}})"))
+  EXPECT_NE(test::import_error(
+                write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {"gamma": 7}})"))
                 .find("scenes[0].extensions.FILMBACK_blender.gamma: expected a number"),
             std::string::npos);
 }
 
 TEST(GltfCamera, BadValuesAreErrorsNamingTheFileAndJsonPath) {
-  EXPECT_NE(error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": -5}})"))
+  EXPECT_NE(test::import_error(
+                write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"focal_length_mm": -5}})"))
                 .find("cameras[0].extensions.FILMBACK_blender.focal_length_mm: expected a number"),
             std::string::npos);
   EXPECT_NE(
-      error_of(write_gltf(R"("extensions": {"FILMBACK_blender": {"sensor_fit": "diagonal"}})"))
+      test::import_error(
+          write_camera_gltf(R"("extensions": {"FILMBACK_blender": {"sensor_fit": "diagonal"}})"))
           .find("FILMBACK_blender.sensor_fit: 'diagonal', expected auto"),
       std::string::npos);
   EXPECT_NE(
-      error_of(write_gltf(R"("extensions": {"EXT_camera_physical": {"sensorSize": [0.036]}})"))
+      test::import_error(
+          write_camera_gltf(R"("extensions": {"EXT_camera_physical": {"sensorSize": [0.036]}})"))
           .find("EXT_camera_physical.sensorSize: expected [width, height]"),
       std::string::npos);
+  EXPECT_NE(test::import_error(
+                write_camera_gltf(
+                    "", R"("extensions": {"FILMBACK_blender": {"filter_type": "MITCHELL"}})"))
+                .find("scenes[0].extensions.FILMBACK_blender.filter_type: 'MITCHELL'"),
+            std::string::npos);
   EXPECT_NE(
-      error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"filter_type": "MITCHELL"}})"))
-          .find("scenes[0].extensions.FILMBACK_blender.filter_type: 'MITCHELL'"),
-      std::string::npos);
-  EXPECT_NE(
-      error_of(write_gltf("", R"("extensions": {"FILMBACK_blender": {"shutter_curve": [1]}})"))
+      test::import_error(
+          write_camera_gltf("", R"("extensions": {"FILMBACK_blender": {"shutter_curve": [1]}})"))
           .find("shutter_curve: expected at least two samples"),
       std::string::npos);
 }

@@ -21,7 +21,7 @@ using test::GltfBuilder;
 const std::vector<Vec3f> kQuad = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
 const std::vector<uint32_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
 
-Scene import(const std::filesystem::path& file) {
+Scene import_file(const std::filesystem::path& file) {
   Diagnostics diagnostics;
   return import_gltf(file, diagnostics);
 }
@@ -53,7 +53,7 @@ TEST(GltfImporter, CameraProjectsKnownWorldPointsAsThePinholeFormulaSays) {
   parent.rotation = {0, std::sin(0.3), 0, std::cos(0.3)};
   parent.children = {child};
   gltf.node(parent);
-  const Scene scene = import(gltf.write(test::scratch_dir() / "camera.gltf"));
+  const Scene scene = import_file(gltf.write(test::scratch_dir() / "camera.gltf"));
   ASSERT_EQ(scene.cameras.size(), 1u);
   const SceneCamera& camera = scene.cameras[0];
   EXPECT_EQ(camera.name, "Hero");
@@ -93,7 +93,7 @@ TEST(GltfImporter, YfovWithoutAspectRatioKeepsTheVerticalFieldOfView) {
   GltfBuilder::Node node;
   node.camera = gltf.perspective_camera(0.8, 0.0, 0.01, 0.0);
   gltf.node(node);
-  const Scene scene = import(gltf.write(test::scratch_dir() / "no_aspect.gltf"));
+  const Scene scene = import_file(gltf.write(test::scratch_dir() / "no_aspect.gltf"));
   const PhysicalCamera& c = scene.cameras.at(0).physical;
   EXPECT_FALSE(scene.cameras[0].intended_aspect.has_value());
   EXPECT_TRUE(std::isinf(c.clip_far_m));  // absent zfar: infinite projection
@@ -106,7 +106,7 @@ TEST(GltfImporter, OrthographicCameraBecomesBlendersOrthoScale) {
   GltfBuilder::Node node;
   node.camera = gltf.orthographic_camera(4, 2.25, 0.1, 50);
   gltf.node(node);
-  const Scene scene = import(gltf.write(test::scratch_dir() / "ortho.gltf"));
+  const Scene scene = import_file(gltf.write(test::scratch_dir() / "ortho.gltf"));
   const SceneCamera& c = scene.cameras.at(0);
   EXPECT_EQ(c.physical.projection, uint32_t(FB_PROJECTION_ORTHOGRAPHIC));
   EXPECT_DOUBLE_EQ(c.physical.ortho_scale_m, 8);
@@ -128,7 +128,7 @@ TEST(GltfImporter, EveryIndexTypeAndNonIndexedGiveTheSameTriangles) {
   n.mesh = gltf.mesh(unrolled, {}, material, -1);
   gltf.node(n);
   for (const char* name : {"types.gltf", "types.glb"}) {
-    const Scene scene = import(gltf.write(test::scratch_dir() / name));
+    const Scene scene = import_file(gltf.write(test::scratch_dir() / name));
     ASSERT_EQ(scene.meshes.size(), 4u);
     for (const TriangleMesh& mesh : scene.meshes) {
       ASSERT_EQ(mesh.triangle_count(), 2u);
@@ -156,7 +156,7 @@ TEST(GltfImporter, NodeHierarchyComposesParentAndChildAndSharesMeshes) {
                    std::cos(std::numbers::pi / 4)};  // 90 deg about z
   root.children = {child};
   gltf.node(root);
-  const Scene scene = import(gltf.write(test::scratch_dir() / "tree.gltf"));
+  const Scene scene = import_file(gltf.write(test::scratch_dir() / "tree.gltf"));
   ASSERT_EQ(scene.meshes.size(), 1u);  // one glTF mesh, two instances
   ASSERT_EQ(scene.instances.size(), 2u);
   EXPECT_EQ(scene.triangle_count(), 4u);
@@ -178,7 +178,7 @@ TEST(GltfImporter, EmissionStrengthAndPhotometricLightsAreConverted) {
   bulb.light = gltf.point_light({1, 0.5, 1}, 683 * 10.0);  // Blender: 10 W/sr * 683 lm/W
   bulb.translation = {1, 2, 3};
   gltf.node(bulb);
-  const Scene scene = import(gltf.write(test::scratch_dir() / "lights.gltf"));
+  const Scene scene = import_file(gltf.write(test::scratch_dir() / "lights.gltf"));
   const Material& m = scene.materials.at(0);
   EXPECT_FLOAT_EQ(m.emission.x, 8.f);
   EXPECT_FLOAT_EQ(m.emission.z, 2.f);
@@ -193,7 +193,7 @@ TEST(GltfImporter, PrimitiveWithoutMaterialGetsGltfDefaultWhite) {
   GltfBuilder::Node n;
   n.mesh = gltf.mesh(kQuad, kQuadIndices, -1);
   gltf.node(n);
-  const Scene scene = import(gltf.write(test::scratch_dir() / "default_material.gltf"));
+  const Scene scene = import_file(gltf.write(test::scratch_dir() / "default_material.gltf"));
   const Material& m = scene.materials.at(scene.meshes.at(0).material);
   EXPECT_EQ(m.base_color.x, 1.f);
   EXPECT_EQ(m.emission.x, 0.f);
@@ -201,7 +201,7 @@ TEST(GltfImporter, PrimitiveWithoutMaterialGetsGltfDefaultWhite) {
 
 TEST(GltfImporter, MissingFileIsAnInputErrorNamingIt) {
   try {
-    import(test::scratch_dir() / "nowhere.gltf");
+    import_file(test::scratch_dir() / "nowhere.gltf");
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("nowhere.gltf: no such file"), std::string::npos)

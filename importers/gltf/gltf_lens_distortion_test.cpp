@@ -25,8 +25,8 @@ constexpr const char* kAt =
 
 // One camera of `type` ("perspective" or "orthographic") whose FILMBACK_blender extension holds
 // `lens_distortion` (a JSON object's text).
-std::filesystem::path write_gltf(const std::string& lens_distortion,
-                                 const std::string& type = "perspective") {
+std::filesystem::path write_distortion_gltf(const std::string& lens_distortion,
+                                            const std::string& type = "perspective") {
   const std::filesystem::path file = test::scratch_dir() / "distortion.gltf";
   const std::string projection =
       type == "perspective"
@@ -55,7 +55,7 @@ std::map<std::string, NamedNumber> numbers_of(const SceneCamera& camera) {
 
 TEST(GltfLensDistortion, TheModelsCoefficientsAndTheClipBecomeRequiredPluginNumbers) {
   Diagnostics diagnostics;
-  const Scene scene = import_gltf(write_gltf(kPolynomial), diagnostics);
+  const Scene scene = import_gltf(write_distortion_gltf(kPolynomial), diagnostics);
   const auto numbers = numbers_of(scene.cameras.at(0));
   ASSERT_EQ(numbers.size(), 9u);  // k1-k3, the clip's size, focal length, centre, pixel aspect
   EXPECT_EQ(numbers.at("polynomial_k1").value, -0.12);
@@ -75,10 +75,11 @@ TEST(GltfLensDistortion, TheModelsCoefficientsAndTheClipBecomeRequiredPluginNumb
 // Blender's panel in millimetres: f_px = f_mm * clip width / sensor width.
 TEST(GltfLensDistortion, AFocalLengthInMillimetresIsTheClipsPixelsThroughTheSensor) {
   Diagnostics diagnostics;
-  const Scene scene = import_gltf(
-      write_gltf(R"({"model": "brown", "k1": 0.1, "p2": 0.002, "clip_size_px": [1920, 1080],
+  const Scene scene =
+      import_gltf(write_distortion_gltf(
+                      R"({"model": "brown", "k1": 0.1, "p2": 0.002, "clip_size_px": [1920, 1080],
           "focal_length_mm": 35, "sensor_width_mm": 36, "principal_px": [960, 540]})"),
-      diagnostics);
+                  diagnostics);
   const auto numbers = numbers_of(scene.cameras.at(0));
   EXPECT_DOUBLE_EQ(numbers.at("clip_focal_length_px").value, 35.0 * 1920 / 36);
   EXPECT_EQ(numbers.at("brown_p2").value, 0.002);
@@ -117,10 +118,10 @@ TEST(GltfLensDistortion, HostileValuesAreRefusedNamingTheMember) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.members);
-    const std::string error = test::import_error(write_gltf("{" + c.members + "}"));
+    const std::string error = test::import_error(write_distortion_gltf("{" + c.members + "}"));
     EXPECT_NE(error.find(std::string(kAt) + c.at + ":"), std::string::npos) << error;
   }
-  EXPECT_NE(test::import_error(write_gltf("[1, 2]")).find(std::string(kAt) + ":"),
+  EXPECT_NE(test::import_error(write_distortion_gltf("[1, 2]")).find(std::string(kAt) + ":"),
             std::string::npos);
 }
 
@@ -132,16 +133,17 @@ ShotPlan plan_of(const std::filesystem::path& file, const RenderOptions& options
 // The numbers reach perspective and thinlens; a plugin without them (orthographic, or one typed
 // with --camera-model) is an error naming the value's JSON path, not an undistorted render.
 TEST(GltfLensDistortion, ACameraPluginWithoutTheParametersIsAnError) {
-  const ShotPlan perspective = plan_of(write_gltf(kPolynomial));
+  const ShotPlan perspective = plan_of(write_distortion_gltf(kPolynomial));
   EXPECT_EQ(perspective.camera_model.name, "perspective");
   EXPECT_NO_THROW(load_camera(test::loader(), perspective));
 
   RenderOptions thinlens;
   thinlens.camera_model = "thinlens:fstop=4";
-  EXPECT_NO_THROW(load_camera(test::loader(), plan_of(write_gltf(kPolynomial), thinlens)));
+  EXPECT_NO_THROW(
+      load_camera(test::loader(), plan_of(write_distortion_gltf(kPolynomial), thinlens)));
 
   try {
-    load_camera(test::loader(), plan_of(write_gltf(kPolynomial, "orthographic")));
+    load_camera(test::loader(), plan_of(write_distortion_gltf(kPolynomial, "orthographic")));
     ADD_FAILURE() << "an orthographic camera took a lens distortion";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("has no parameter 'polynomial_k1'"), std::string::npos)
@@ -150,7 +152,8 @@ TEST(GltfLensDistortion, ACameraPluginWithoutTheParametersIsAnError) {
   }
   RenderOptions typed;
   typed.camera_model = "orthographic";
-  EXPECT_THROW(load_camera(test::loader(), plan_of(write_gltf(kPolynomial), typed)), UsageError);
+  EXPECT_THROW(load_camera(test::loader(), plan_of(write_distortion_gltf(kPolynomial), typed)),
+               UsageError);
 }
 
 }  // namespace

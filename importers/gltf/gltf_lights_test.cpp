@@ -17,15 +17,16 @@
 #include "importers/gltf/gltf_importer.h"
 #include "importers/gltf/gltf_writer.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 
 namespace fb {
 namespace {
 
 // A file with one node (scaled by `scale`, which lights ignore and area lights take) carrying
 // `node_extensions`, an optional KHR light list, and scene extensions.
-std::filesystem::path write_gltf(const std::string& node_extensions,
-                                 const std::string& khr_lights = "",
-                                 const std::string& scene_fields = "", double scale = 1.0) {
+std::filesystem::path write_lights_gltf(const std::string& node_extensions,
+                                        const std::string& khr_lights = "",
+                                        const std::string& scene_fields = "", double scale = 1.0) {
   const std::filesystem::path file = test::scratch_dir() / "lights.gltf";
   std::ofstream(file) << R"({"asset": {"version": "2.0"},
   "extensionsUsed": ["FILMBACK_blender", "KHR_lights_punctual"],)"
@@ -41,7 +42,7 @@ std::filesystem::path write_gltf(const std::string& node_extensions,
   return file;
 }
 
-Scene import(const std::filesystem::path& file, size_t expected_warnings = 0) {
+Scene import_lights(const std::filesystem::path& file, size_t expected_warnings = 0) {
   Diagnostics diagnostics;
   Scene scene = import_gltf(file, diagnostics);
   EXPECT_EQ(diagnostics.count(), expected_warnings);
@@ -52,22 +53,14 @@ std::string blender_light(const std::string& fields) {
   return R"("FILMBACK_blender": {"light": {)" + fields + "}}";
 }
 
-std::string error_of(const std::filesystem::path& file) {
-  try {
-    import(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 const std::string kLight = "lights.gltf: nodes[0].extensions.FILMBACK_blender.light";
 
 TEST(GltfLights, BlenderPointLightIsPowerOverFourPiAndOverridesTheKhrLight) {
-  const Scene scene = import(write_gltf(blender_light(R"("type": "POINT", "color": [1, 0.5, 0.25],
+  const Scene scene =
+      import_lights(write_lights_gltf(blender_light(R"("type": "POINT", "color": [1, 0.5, 0.25],
                                          "energy_w": 1000, "radius_m": 0.3)") +
-                                            R"(, "KHR_lights_punctual": {"light": 0})",
-                                        R"({"type": "point", "intensity": 99999})"));
+                                          R"(, "KHR_lights_punctual": {"light": 0})",
+                                      R"({"type": "point", "intensity": 99999})"));
   ASSERT_EQ(scene.lights.size(), 1u);
   const Light& light = scene.lights[0];
   EXPECT_EQ(light.type, LightType::kPoint);
@@ -84,7 +77,7 @@ TEST(GltfLights, KhrIntensitiesAreConvertedBackWithBlendersConstant) {
   const double cd = 1000 / (4 * kPi) * 683, lux = 3 * 683;
   for (const auto& [type, value, expected] :
        {std::tuple{"point", cd, 1000 / (4 * kPi)}, std::tuple{"directional", lux, 3.0}}) {
-    const Scene scene = import(write_gltf(
+    const Scene scene = import_lights(write_lights_gltf(
         R"("KHR_lights_punctual": {"light": 0})",
         std::string(R"({"type": ")") + type + R"(", "intensity": )" + std::to_string(value) + "}"));
     ASSERT_EQ(scene.lights.size(), 1u);
@@ -94,7 +87,8 @@ TEST(GltfLights, KhrIntensitiesAreConvertedBackWithBlendersConstant) {
 }
 
 TEST(GltfLights, SpotAndSunKeepBlendersShape) {
-  const Scene spot = import(write_gltf(blender_light(R"("type": "SPOT", "energy_w": 100,
+  const Scene spot =
+      import_lights(write_lights_gltf(blender_light(R"("type": "SPOT", "energy_w": 100,
       "spot_size_rad": 1.2, "spot_blend": 0.4, "radius_m": 0.1)")));
   ASSERT_EQ(spot.lights.size(), 1u);
   EXPECT_EQ(spot.lights[0].type, LightType::kSpot);
@@ -103,8 +97,8 @@ TEST(GltfLights, SpotAndSunKeepBlendersShape) {
   EXPECT_DOUBLE_EQ(spot.lights[0].spot_blend, 0.4);
   EXPECT_NEAR(spot.lights[0].intensity.x, 100 / (4 * kPi), 1e-5);
 
-  const Scene sun =
-      import(write_gltf(blender_light(R"("type": "SUN", "energy_w": 4.5, "angle_rad": 0.1)")));
+  const Scene sun = import_lights(
+      write_lights_gltf(blender_light(R"("type": "SUN", "energy_w": 4.5, "angle_rad": 0.1)")));
   ASSERT_EQ(sun.lights.size(), 1u);
   EXPECT_EQ(sun.lights[0].type, LightType::kDirectional);
   EXPECT_FLOAT_EQ(sun.lights[0].intensity.x, 4.5f);  // irradiance, W/m^2
@@ -129,7 +123,7 @@ TEST(GltfLights, AreaLightsHaveRadiancePowerOverFourAreaAndTheNodesScale) {
              AreaShape::kEllipse, 1, 1, kPi / 4, kPi},
         Case{R"("shape": "ELLIPSE", "size_m": 1, "size_y_m": 0.5, "spread_rad": 1)",
              AreaShape::kEllipse, 1, 0.5, kPi / 8, 1.0}}) {
-    const Scene scene = import(write_gltf(
+    const Scene scene = import_lights(write_lights_gltf(
         blender_light(std::string(R"("type": "AREA", "color": [1, 0.5, 0], "energy_w": 300, )") +
                       c.fields),
         "", "", 2.0));
@@ -176,14 +170,14 @@ double irradiance(const Scene& scene, Vec3f position, Vec3f normal) {
 TEST(GltfLights, AreaLightIrradianceMatchesTheFormFactor) {
   constexpr double kPower = 100, kHeight = 1.5;
   const Vec3f below(1, 2, float(3 - kHeight)), up(0, 0, 1);
-  const Scene disk = import(write_gltf(
+  const Scene disk = import_lights(write_lights_gltf(
       blender_light(R"("type": "AREA", "energy_w": 100, "shape": "DISK", "size_m": 1.2)")));
   const double radius = 0.6;
   const double disk_expected = kPi * kPower / (4 * kPi * radius * radius) * radius * radius /
                                (kHeight * kHeight + radius * radius);
   EXPECT_NEAR(irradiance(disk, below, up), disk_expected, 2e-3 * disk_expected);
 
-  const Scene rect = import(write_gltf(blender_light(
+  const Scene rect = import_lights(write_lights_gltf(blender_light(
       R"("type": "AREA", "energy_w": 100, "shape": "RECTANGLE", "size_m": 1, "size_y_m": 2)")));
   const double x = 0.5 / kHeight, y = 1.0 / kHeight;
   const double quarter = (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
@@ -198,7 +192,7 @@ TEST(GltfLights, AreaLightIrradianceMatchesTheFormFactor) {
 // As Cycles' lights, an area light is not a surface: no ray hits it or is shadowed by it, and BSDF
 // rays find it (LightSampler::crossed) only from the side it shines to.
 TEST(GltfLights, AreaLightsAreFoundByRaysOnlyFromTheirLitSide) {
-  const Scene scene = import(write_gltf(
+  const Scene scene = import_lights(write_lights_gltf(
       blender_light(R"("type": "AREA", "energy_w": 100, "shape": "SQUARE", "size_m": 1)")));
   const RenderGeometry geometry(scene, Transform(), ShotTimes{}, MotionTolerance{});
   const LightSampler sampler(scene, Transform(), geometry, 0.0);
@@ -224,15 +218,15 @@ TEST(GltfLights, AreaLightsAreFoundByRaysOnlyFromTheirLitSide) {
 // `filmback convert` writes an area light into our extension (KHR_lights_punctual has none), and
 // reading it back gives the same light.
 TEST(GltfLights, AreaLightsSurviveConvert) {
-  const Scene scene =
-      import(write_gltf(blender_light(R"("type": "AREA", "energy_w": 100, "color": [1, 0.5, 0.25],
+  const Scene scene = import_lights(
+      write_lights_gltf(blender_light(R"("type": "AREA", "energy_w": 100, "color": [1, 0.5, 0.25],
                        "shape": "ELLIPSE", "size_m": 1.5, "size_y_m": 0.5, "spread_rad": 0.7)"),
                         "", "", 2.0));
   const std::filesystem::path written = test::scratch_dir() / "converted.gltf";
   Diagnostics diagnostics;
   fb::write_gltf(scene, written, diagnostics);
   EXPECT_EQ(diagnostics.count(), 0u);
-  const Scene back = import(written);
+  const Scene back = import_lights(written);
   ASSERT_EQ(back.lights.size(), 1u);
   const Light &a = scene.lights[0], &b = back.lights[0];
   EXPECT_EQ(b.type, LightType::kArea);
@@ -246,14 +240,14 @@ TEST(GltfLights, AreaLightsSurviveConvert) {
 }
 
 TEST(GltfLights, WorldColourTimesStrengthIsTheBackground) {
-  const Scene ours = import(write_gltf(
+  const Scene ours = import_lights(write_lights_gltf(
       "", "",
       R"(, "extensions": {"FILMBACK_blender": {"world_color": [0.2, 0.4, 0.8], "world_strength": 2.5}})"));
   EXPECT_FLOAT_EQ(ours.background.x, 0.5f);
   EXPECT_FLOAT_EQ(ours.background.y, 1.0f);
   EXPECT_FLOAT_EQ(ours.background.z, 2.0f);
-  const Scene extras = import(
-      write_gltf("", "", R"(, "extras": {"world_color": [1, 1, 1], "world_strength": 0.25})"));
+  const Scene extras = import_lights(write_lights_gltf(
+      "", "", R"(, "extras": {"world_color": [1, 1, 1], "world_strength": 0.25})"));
   EXPECT_FLOAT_EQ(extras.background.y, 0.25f);
 }
 
@@ -261,17 +255,17 @@ TEST(GltfLights, WorldColourTimesStrengthIsTheBackground) {
 // folder, missing files and pixels that are not radiance are errors.
 TEST(GltfLights, WorldImageIsReadBesideTheFile) {
   const auto with_image = [](const std::string& uri, float texel) {
-    const std::filesystem::path file = write_gltf("", "",
-                                                  R"(, "extensions": {"FILMBACK_blender": {
+    const std::filesystem::path file = write_lights_gltf("", "",
+                                                         R"(, "extensions": {"FILMBACK_blender": {
         "world_color": [1, 1, 1], "world_strength": 2, "world_hdr_uri": ")" +
-                                                      uri + R"("}})");
+                                                             uri + R"("}})");
     const Image image{4, 2, {"R", "G", "B"}, std::vector<float>(24, 0.5f)};
     Image changed = image;
     changed.pixels[3 * 5 + 1] = texel;  // pixel (1, 1), green
     write_images(changed, {file.parent_path() / "sky.exr"}, {});
     return file;
   };
-  const Scene scene = import(with_image("sky.exr", 3.f));
+  const Scene scene = import_lights(with_image("sky.exr", 3.f));
   ASSERT_TRUE(scene.environment.has_value());
   EXPECT_EQ(scene.environment->width, 4u);
   EXPECT_EQ(scene.environment->height, 2u);
@@ -285,7 +279,7 @@ TEST(GltfLights, WorldImageIsReadBesideTheFile) {
         std::tuple{std::string("/etc/passwd"), 1.f, "relative to the scene's folder"},
         std::tuple{std::string("sky.exr"), -1.f, "negative or not finite"},
         std::tuple{std::string("sky.exr"), NAN, "negative or not finite"}}) {
-    const std::string error = error_of(with_image(uri, texel));
+    const std::string error = test::import_error(with_image(uri, texel));
     EXPECT_NE(error.find(where), std::string::npos) << uri << "\n" << error;
     EXPECT_NE(error.find(expected), std::string::npos) << uri << "\n" << error;
   }
@@ -317,25 +311,25 @@ TEST(GltfLights, BadValuesAreErrorsNamingTheFileAndJsonPath) {
       {R"("type": "POINT", "energy_w": 1, "use_nodes": 1)", ".use_nodes", "true or false"},
   };
   for (const auto& c : cases) {
-    const std::string error = error_of(write_gltf(blender_light(c.light)));
+    const std::string error = test::import_error(write_lights_gltf(blender_light(c.light)));
     EXPECT_NE(error.find(kLight + c.path + ": "), std::string::npos) << c.light << "\n" << error;
     EXPECT_NE(error.find(c.expected), std::string::npos) << c.light << "\n" << error;
   }
-  const std::string world = error_of(
-      write_gltf("", "", R"(, "extensions": {"FILMBACK_blender": {"world_strength": -1}})"));
+  const std::string world = test::import_error(
+      write_lights_gltf("", "", R"(, "extensions": {"FILMBACK_blender": {"world_strength": -1}})"));
   EXPECT_NE(world.find("lights.gltf: scenes[0].extensions.FILMBACK_blender.world_strength: "),
             std::string::npos)
       << world;
-  const std::string khr = error_of(
-      write_gltf(R"("KHR_lights_punctual": {"light": 3})", R"({"type": "point", "intensity": 1})"));
+  const std::string khr = test::import_error(write_lights_gltf(
+      R"("KHR_lights_punctual": {"light": 3})", R"({"type": "point", "intensity": 1})"));
   EXPECT_NE(khr.find("lights.gltf: nodes[0].extensions.KHR_lights_punctual.light: "),
             std::string::npos)
       << khr;
 }
 
 TEST(GltfLights, ANodeTreeIsReportedAsNotCarried) {
-  const Scene scene =
-      import(write_gltf(blender_light(R"("type": "POINT", "energy_w": 10, "use_nodes": true)")), 1);
+  const Scene scene = import_lights(
+      write_lights_gltf(blender_light(R"("type": "POINT", "energy_w": 10, "use_nodes": true)")), 1);
   EXPECT_EQ(scene.lights.size(), 1u);
 }
 

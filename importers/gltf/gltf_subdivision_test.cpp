@@ -24,10 +24,10 @@ const char* kGlow = R"({"name": "Glow", "emissiveFactor": [1, 1, 1],
 const char* kOnePrimitive = R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]})";
 
 // The file with `subdivision` on its node, whose mesh is `mesh`, and `materials`.
-std::filesystem::path write_gltf(const std::string& subdivision,
-                                 const std::string& materials = kGlow,
-                                 const std::string& mesh = kOnePrimitive,
-                                 const std::string& extra = "") {
+std::filesystem::path write_subdivision_gltf(const std::string& subdivision,
+                                             const std::string& materials = kGlow,
+                                             const std::string& mesh = kOnePrimitive,
+                                             const std::string& extra = "") {
   const std::filesystem::path file = test::scratch_dir() / "cage.gltf";
   std::ofstream(file) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["FILMBACK_blender"],
   "scene": 0, "scenes": [{"nodes": [0]}],
@@ -47,17 +47,17 @@ std::filesystem::path write_gltf(const std::string& subdivision,
   return file;
 }
 
-Scene import(const std::string& subdivision) {
+Scene import_subdivision(const std::string& subdivision) {
   Diagnostics diagnostics;
-  Scene scene = import_gltf(write_gltf(subdivision), diagnostics);
+  Scene scene = import_gltf(write_subdivision_gltf(subdivision), diagnostics);
   EXPECT_EQ(diagnostics.count(), 0u);
   return scene;
 }
 
 // The error message for `subdivision`, which must fail.
-std::string error_of(const std::string& subdivision) {
+std::string subdivision_error(const std::string& subdivision) {
   try {
-    import(subdivision);
+    import_subdivision(subdivision);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -67,7 +67,8 @@ std::string error_of(const std::string& subdivision) {
 const std::string kPath = "cage.gltf: nodes[0].extensions.FILMBACK_blender.subdivision";
 
 TEST(GltfSubdivision, ReadsTheCageAndSettingsAndDropsTheTriangulatedMesh) {
-  const Scene scene = import(std::string(kQuadCage) + R"(, "levels_render": 3, "quality": 3,
+  const Scene scene =
+      import_subdivision(std::string(kQuadCage) + R"(, "levels_render": 3, "quality": 3,
       "scheme": "SIMPLE", "boundary_smooth": "PRESERVE_CORNERS", "use_creases": false,
       "use_limit_surface": false, "uv_smooth": "PRESERVE_BOUNDARIES",
       "edge_creases": [1, 2, 0.5], "vertex_creases": [3, 1.0])");
@@ -97,7 +98,7 @@ TEST(GltfSubdivision, ReadsTheCageAndSettingsAndDropsTheTriangulatedMesh) {
 }
 
 TEST(GltfSubdivision, DefaultsAreBlenders) {
-  const SubdivisionSettings s = import(kQuadCage).subdivision_surfaces.at(0).settings;
+  const SubdivisionSettings s = import_subdivision(kQuadCage).subdivision_surfaces.at(0).settings;
   EXPECT_EQ(s.levels_render, 2u);
   EXPECT_EQ(s.scheme, SubdivisionSettings::Scheme::kCatmullClark);
   EXPECT_EQ(s.boundary_smooth, SubdivisionSettings::Boundary::kAll);
@@ -169,7 +170,7 @@ TEST(GltfSubdivision, BadCagesAreErrorsWithTheJsonPath) {
        "expected a primitive of the node's mesh from 0 to 0"},
   };
   for (const auto& c : cases) {
-    const std::string what = error_of(c.json);
+    const std::string what = subdivision_error(c.json);
     EXPECT_NE(what.find(kPath + c.where + ": " + c.what), std::string::npos)
         << c.json << "\n -> " << what;
   }
@@ -204,12 +205,13 @@ std::filesystem::path with_texture(const std::filesystem::path& gltf) {
 
 TEST(GltfSubdivision, UvMapsAreFoundByNameAndUnreadOnesDropped) {
   Diagnostics diagnostics;
-  const Scene scene = import_gltf(
-      with_texture(write_gltf(std::string(kStripCage) + R"(, "uv_smooth": "SMOOTH_ALL")",
-                              textured_material("Textured", "B"),
-                              R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0}],
+  const Scene scene =
+      import_gltf(with_texture(write_subdivision_gltf(
+                      std::string(kStripCage) + R"(, "uv_smooth": "SMOOTH_ALL")",
+                      textured_material("Textured", "B"),
+                      R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0}],
                      "extensions": {"FILMBACK_blender": {"uv_maps": ["A", "B"]}}})")),
-      diagnostics);
+                  diagnostics);
   EXPECT_EQ(diagnostics.count(), 0u);
   const SubdivisionSurface& s = scene.subdivision_surfaces.at(0);
   EXPECT_EQ(s.settings.uv_smooth, SubdivisionSettings::UvSmooth::kSmoothAll);
@@ -226,7 +228,7 @@ TEST(GltfSubdivision, UvMapsAreFoundByNameAndUnreadOnesDropped) {
 TEST(GltfSubdivision, TheActiveRenderMapIsTheMeshsAndAMissingMapIsAWarning) {
   Diagnostics diagnostics;
   const Scene scene = import_gltf(
-      with_texture(write_gltf(
+      with_texture(write_subdivision_gltf(
           kStripCage, textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
           R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
                                     {"attributes": {"POSITION": 0}, "material": 1}],
@@ -244,7 +246,7 @@ TEST(GltfSubdivision, TheActiveRenderMapIsTheMeshsAndAMissingMapIsAWarning) {
   // Faces on both primitives: "Elsewhere" reads "C", which the cage lacks: map 0 ("A") stands in,
   // as TEXCOORD_0 does for a triangle mesh, with a warning.
   const Scene both =
-      import_gltf(with_texture(write_gltf(
+      import_gltf(with_texture(write_subdivision_gltf(
                       std::string(kStripCage) + R"(, "face_primitives": [1, 0])",
                       textured_material("Textured", "") + "," + textured_material("Elsewhere", "C"),
                       R"({"primitives": [{"attributes": {"POSITION": 0}, "material": 0},
@@ -271,7 +273,8 @@ TEST(GltfSubdivision, AGltfTextureNeedsItsTexcoordAmongTheCagesMaps) {
       std::string(kQuadCage) + R"(, "uv_maps": [{"name": "A", "uvs": [0,0, 1,0, 1,1, 0,1]}])";
   try {
     Diagnostics diagnostics;
-    import_gltf(with_texture(write_gltf(cage, material, kOnePrimitive, images)), diagnostics);
+    import_gltf(with_texture(write_subdivision_gltf(cage, material, kOnePrimitive, images)),
+                diagnostics);
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     const std::string what = e.what();

@@ -14,17 +14,8 @@
 namespace fb {
 namespace {
 
-std::unique_ptr<CameraInstance> make_camera(const char* name, const fb_camera_setup& setup) {
-  auto library = test::loader().load(FB_KIND_CAMERA, name);
-  return std::make_unique<CameraInstance>(library, BoundParams(library->descriptor(), {}), setup);
-}
-
-fb_camera_ray generate(const CameraInstance& camera, float x, float y) {
-  fb_camera_sample sample{x, y, 0.f, 0.f, 0.f};
-  fb_camera_ray ray;
-  camera.generate_rays({&sample, 1}, &ray);
-  return ray;
-}
+using test::generate_ray;
+using test::make_camera;
 
 TEST(PerspectiveCamera, RaysReprojectOntoTheirRasterPoints) {
   PhysicalCamera physical;
@@ -39,7 +30,7 @@ TEST(PerspectiveCamera, RaysReprojectOntoTheirRasterPoints) {
   const ViewPlane v = view_plane(setup);
   for (auto [x, y] :
        {std::pair{0.f, 0.f}, {640.f, 360.f}, {17.25f, 300.5f}, {float(v.cx), float(v.cy)}}) {
-    const fb_camera_ray ray = generate(*camera, x, y);
+    const fb_camera_ray ray = generate_ray(*camera, x, y);
     const double dx = ray.direction[0], dy = ray.direction[1], dz = ray.direction[2];
     EXPECT_NEAR(std::hypot(dx, dy, dz), 1.0, 1e-6);
     EXPECT_NEAR(v.cx + v.fx * dx / -dz, x, 1e-4);
@@ -57,7 +48,7 @@ TEST(OrthographicCamera, RaysAreParallelAndSpacedByTheOrthoScale) {
   physical.clip_near_m = 0;
   physical.clip_far_m = 100;
   const auto camera = make_camera("orthographic", make_camera_setup(physical, 300, 150));
-  const fb_camera_ray left = generate(*camera, 0, 75), right = generate(*camera, 300, 0);
+  const fb_camera_ray left = generate_ray(*camera, 0, 75), right = generate_ray(*camera, 300, 0);
   EXPECT_NEAR(left.origin[0], -3, 1e-6);
   EXPECT_NEAR(right.origin[0], 3, 1e-6);
   EXPECT_NEAR(right.origin[1], 1.5, 1e-6);  // the height spans 6 * 150 / 300 m
@@ -110,7 +101,7 @@ TEST(CameraPlugins, ApplyATrackedLensDistortionBeforeTheirProjection) {
     auto library = test::loader().load(FB_KIND_CAMERA, name);
     const CameraInstance camera(library, BoundParams(library->descriptor(), settings), setup);
     for (auto [x, y] : {std::pair{20.f, 15.f}, {100.5f, 70.25f}, {110.f, 20.f}}) {
-      const fb_camera_ray ray = generate(camera, x, y);
+      const fb_camera_ray ray = generate_ray(camera, x, y);
       const Vec2d expected = *lens.undistorted_film({x, y}, 128, 80);
       const double dx = ray.direction[0], dy = ray.direction[1], dz = ray.direction[2];
       EXPECT_NEAR(v.cx + v.fx * dx / -dz, expected.x, 2e-4);
@@ -118,7 +109,7 @@ TEST(CameraPlugins, ApplyATrackedLensDistortionBeforeTheirProjection) {
       EXPECT_GT(std::hypot(expected.x - x, expected.y - y), 0.05);  // the distortion moves it
       EXPECT_EQ(ray.weight, 1.f);
     }
-    const fb_camera_ray corner = generate(camera, 0.5f, 0.5f);
+    const fb_camera_ray corner = generate_ray(camera, 0.5f, 0.5f);
     EXPECT_EQ(corner.weight, 0.f);
     for (float c : corner.direction)
       EXPECT_TRUE(std::isfinite(c));

@@ -17,6 +17,9 @@
 namespace fb {
 namespace {
 
+using test::generate_ray;
+using test::make_camera;
+
 namespace pano = fb::panorama;
 using pano::Film;
 constexpr double kPi = pano::kPi;
@@ -137,27 +140,12 @@ TEST(PanoramaMapping, APolynomialThatFoldsOverIsCutAtItsFold) {
 
 // ------------------------------------------------------------------ the plugins, through the ABI
 
-std::unique_ptr<CameraInstance> make_camera(
-    const char* name, const fb_camera_setup& setup,
-    const std::vector<std::pair<std::string, std::string>>& settings = {}) {
-  auto library = test::loader().load(FB_KIND_CAMERA, name);
-  return std::make_unique<CameraInstance>(library, BoundParams(library->descriptor(), settings),
-                                          setup);
-}
-
 fb_camera_setup panoramic_setup(uint32_t width, uint32_t height) {
   PhysicalCamera physical;
   physical.projection = FB_PROJECTION_PANORAMIC;
   physical.clip_near_m = 0.5;
   physical.clip_far_m = 90;
   return make_camera_setup(physical, width, height);
-}
-
-fb_camera_ray generate(const CameraInstance& camera, float x, float y) {
-  fb_camera_sample sample{x, y, 0.f, 0.f, 0.f};
-  fb_camera_ray ray;
-  camera.generate_rays({&sample, 1}, &ray);
-  return ray;
 }
 
 const char* const kPlugins[] = {
@@ -172,7 +160,7 @@ TEST(PanoramaCameras, EveryRayIsFiniteAndBlackOnesWeighNothing) {
     int black = 0;
     for (float y = 0; y <= 64; y += 4)
       for (float x = 0; x <= 96; x += 4) {
-        const fb_camera_ray ray = generate(*camera, x, y);
+        const fb_camera_ray ray = generate_ray(*camera, x, y);
         const Vec3d d{ray.direction[0], ray.direction[1], ray.direction[2]};
         EXPECT_NEAR(length(d), 1.0, 1e-6) << name << " at " << x << ", " << y;
         EXPECT_TRUE(ray.weight == 0.f || ray.weight == 1.f) << name;
@@ -189,8 +177,8 @@ TEST(PanoramaCameras, EveryRayIsFiniteAndBlackOnesWeighNothing) {
   }
   // The image's centre looks down the view axis; the top edge of an equirectangular image, up.
   const auto equirectangular = make_camera("equirectangular", setup);
-  EXPECT_NEAR(generate(*equirectangular, 48, 32).direction[2], -1, 1e-6);
-  EXPECT_NEAR(generate(*equirectangular, 10, 0).direction[1], 1, 1e-6);
+  EXPECT_NEAR(generate_ray(*equirectangular, 48, 32).direction[2], -1, 1e-6);
+  EXPECT_NEAR(generate_ray(*equirectangular, 10, 0).direction[1], 1, 1e-6);
 }
 
 TEST(PanoramaCameras, RefuseFieldsOfViewBeyond360Degrees) {

@@ -16,4 +16,9 @@ std::string import_error(const std::filesystem::path& file) {
   return "";
 }
 
+Scene import_built(GltfBuilder& gltf, const char* name) {
+  Diagnostics diagnostics;
+  return import_gltf(gltf.write(scratch_dir() / name), diagnostics);
+}
+
 }  // namespace fb::test

@@ -3,6 +3,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/plugin/instances.h"
 #include "core/plugin/loader.h"
@@ -11,5 +13,13 @@ namespace fb::test {
 
 const PluginLoader& loader();
 std::unique_ptr<FilterInstance> make_filter(const std::string& spec);
+
+// The camera plugin `name` with `settings` (its parameters by name, as --camera gives them).
+std::unique_ptr<CameraInstance> make_camera(
+    const char* name, const fb_camera_setup& setup,
+    const std::vector<std::pair<std::string, std::string>>& settings = {});
+
+// The ray of one camera sample at raster point (x, y), at the lens centre and shutter open.
+fb_camera_ray generate_ray(const CameraInstance& camera, float x, float y);
 
 }  // namespace fb::test

@@ -9,6 +9,9 @@
 
 namespace fb::test {
 
+// A RenderSolid's reach that clips nothing the tests place (they stay within metres of the origin).
+inline const Bounds3d kReach{{-1e7, -1e7, -1e7}, {1e7, 1e7, 1e7}};
+
 inline Solid primitive(SolidKind kind, const Transform& world_from_object = Transform(),
                        uint32_t material = 0) {
   Solid s;

@@ -11,6 +11,7 @@
 #include "importers/gltf/gltf_importer.h"
 #include "support/defocus.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 #include "support/plugins.h"
 
 namespace fb {
@@ -31,11 +32,6 @@ void add_camera(GltfBuilder& gltf) {
   GltfBuilder::Node camera;
   camera.camera = gltf.perspective_camera(0.7, 1.0, 0.01, 1000);
   gltf.node(camera);
-}
-
-Scene import(GltfBuilder& gltf, const char* name) {
-  Diagnostics diagnostics;
-  return import_gltf(gltf.write(test::scratch_dir() / name), diagnostics);
 }
 
 Image render(const Scene& scene, RenderOptions options) {
@@ -93,7 +89,7 @@ Image render_marker(const CocShot& shot, double depth_m, double radius_m, uint32
   marker.translation = {0, 0, -depth_m};
   gltf.node(marker);
   add_camera(gltf);
-  const Scene scene = import(gltf, "marker.gltf");
+  const Scene scene = test::import_built(gltf, "marker.gltf");
   RenderOptions options;
   options.width = options.height = shot.width_px;
   options.samples_per_pixel = spp;
@@ -153,7 +149,7 @@ class PhysicalSensor : public ::testing::Test {
     wall.mesh = gltf.mesh(quad, {0, 1, 2, 0, 2, 3}, gltf.material({0, 0, 0}, {1, 1, 1}, kRadiance));
     gltf.node(wall);
     add_camera(gltf);
-    const Scene scene = import(gltf, "wall.gltf");
+    const Scene scene = test::import_built(gltf, "wall.gltf");
     RenderOptions options;
     options.width = options.height = kSize;
     options.samples_per_pixel = spp;
@@ -211,7 +207,7 @@ TEST_F(PhysicalSensor, HalvingTheApertureQuartersAndDoublingTheTimeDoublesTheVal
 TEST(ModelSelection, OnlyApertureShotsGetLensSamples) {
   GltfBuilder gltf;
   add_camera(gltf);
-  const Scene scene = import(gltf, "empty.gltf");
+  const Scene scene = test::import_built(gltf, "empty.gltf");
   RenderOptions options;
   options.width = options.height = 8;
   options.show_progress = false;

@@ -12,6 +12,7 @@
 #include "core/render/render_job.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 #include "support/plugins.h"
 
 namespace fb {
@@ -42,11 +43,6 @@ std::vector<Vec3f> rectangle(double width, double height) {
 }
 std::vector<Vec3f> square(double side) {
   return rectangle(side, side);
-}
-
-Scene import(GltfBuilder& gltf, const char* name) {
-  Diagnostics diagnostics;
-  return import_gltf(gltf.write(test::scratch_dir() / name), diagnostics);
 }
 
 RenderOptions streak_options() {
@@ -82,7 +78,7 @@ Scene streak_scene(bool marker_moves) {
     gltf.animate(m, "translation", {0, 1}, {-half, 0, float(-kDepth), half, 0, float(-kDepth)});
   else
     gltf.animate(c, "translation", {0, 1}, {-half, 0, 0, half, 0, 0});
-  return import(gltf, marker_moves ? "moving_marker.gltf" : "moving_camera.gltf");
+  return test::import_built(gltf, marker_moves ? "moving_marker.gltf" : "moving_camera.gltf");
 }
 
 std::vector<double> column_sums(const Image& image) {
@@ -198,7 +194,7 @@ TEST(MotionBlur, TurningArmDrawsAnArc) {
   const float h = float(kRate / 4);
   gltf.animate(p, "rotation", {0, 1},
                {0, 0, -std::sin(h), std::cos(h), 0, 0, std::sin(h), std::cos(h)});
-  const Scene scene = import(gltf, "arm.gltf");
+  const Scene scene = test::import_built(gltf, "arm.gltf");
   RenderOptions options = streak_options();
   options.width = options.height = kSize;
   options.shutter_s = Vec2d{-0.3, 0.3};
@@ -233,7 +229,7 @@ TEST(GltfAnimation, ChannelsBecomeCurvesOnTheirNodes) {
   gltf.animate(parent.children[0], "rotation", {0, 2}, {0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0,  //
                                                         0, 0, 0, 0, 0, s, 0, c, 0, 0, 0, 0},
                "CUBICSPLINE");
-  const Scene scene = import(gltf, "channels.gltf");
+  const Scene scene = test::import_built(gltf, "channels.gltf");
   ASSERT_EQ(scene.hierarchy.curves.size(), 2u);
   EXPECT_EQ(scene.hierarchy.curves[0].interpolation, Interpolation::kStep);
   EXPECT_EQ(scene.hierarchy.curves[1].interpolation, Interpolation::kCubicSpline);
@@ -257,7 +253,7 @@ TEST(GltfAnimation, StaticFilesKeepNoHierarchy) {
   GltfBuilder::Node node;
   node.mesh = gltf.mesh(square(1), kSquare, gltf.material({0.5f, 0.5f, 0.5f}));
   gltf.node(node);
-  const Scene scene = import(gltf, "static.gltf");
+  const Scene scene = test::import_built(gltf, "static.gltf");
   EXPECT_TRUE(scene.hierarchy.nodes.empty());
   EXPECT_EQ(scene.instances[0].node_index, kNoNode);
 }
@@ -279,7 +275,7 @@ TEST(MotionBlur, OpenShutterOnAStillSceneChangesNoPixel) {
   const int l = gltf.node(lamp);
   // The lamp is animated, but only after t = 2 s: still within any shutter near t = 0.
   gltf.animate(l, "translation", {2, 3}, {0, 2, 0, 0, 3, 0});
-  const Scene scene = import(gltf, "still.gltf");
+  const Scene scene = test::import_built(gltf, "still.gltf");
   RenderOptions options;
   options.width = 48, options.height = 32, options.samples_per_pixel = 8, options.seed = 5;
   options.show_progress = false;

@@ -8,6 +8,7 @@
 #include "core/render/render_job.h"
 #include "importers/gltf/gltf_importer.h"
 #include "support/gltf_builder.h"
+#include "support/import_error.h"
 #include "support/plugins.h"
 
 namespace fb {
@@ -26,11 +27,6 @@ RenderResult render(const Scene& scene, RenderOptions options) {
   return job.run();
 }
 
-Scene import(GltfBuilder& gltf, const char* name) {
-  Diagnostics diagnostics;
-  return import_gltf(gltf.write(test::scratch_dir() / name), diagnostics);
-}
-
 TEST(Render, EmissiveQuadFillingTheViewReturnsItsEmissionInEveryPixel) {
   GltfBuilder gltf;
   const Rgb emission{0.25f, 1.5f, 3.f};
@@ -40,7 +36,7 @@ TEST(Render, EmissiveQuadFillingTheViewReturnsItsEmissionInEveryPixel) {
   GltfBuilder::Node camera;
   camera.camera = gltf.perspective_camera(1.0, 1.5, 0.1, 100);
   gltf.node(camera);
-  const Scene scene = import(gltf, "wall.gltf");
+  const Scene scene = test::import_built(gltf, "wall.gltf");
   for (const char* filter : {"box", "gaussian"}) {
     RenderOptions options;
     options.width = 48, options.height = 32, options.samples_per_pixel = 3;
@@ -74,7 +70,7 @@ TEST(Render, PointLightOverLambertianFloorMatchesTheInverseSquareLaw) {
   camera.translation = {0, 3, 0};
   camera.rotation = {-std::sin(std::numbers::pi / 4), 0, 0, std::cos(std::numbers::pi / 4)};
   gltf.node(camera);
-  const Scene scene = import(gltf, "floor.gltf");
+  const Scene scene = test::import_built(gltf, "floor.gltf");
   RenderOptions options;
   options.width = options.height = 33;
   options.samples_per_pixel = 256;  // the pixel-average's sampling error: ~0.05 % here
@@ -121,7 +117,7 @@ TEST(Render, RussianRouletteKeepsAnInterreflectingBoxAtTheNeumannSeries) {
   GltfBuilder::Node camera;
   camera.camera = gltf.perspective_camera(1.2, 1.0, 0.01, 10);
   gltf.node(camera);
-  const Scene scene = import(gltf, "closed_box.gltf");
+  const Scene scene = test::import_built(gltf, "closed_box.gltf");
   const int max_depth = 6;
   RenderOptions options;
   options.width = options.height = 16;
@@ -152,7 +148,8 @@ TEST(Render, ImageIsBitIdenticalForAnyThreadCount) {
   light.light = gltf.point_light({1, 0.8f, 0.6f}, 683.0);
   light.translation = {1, 1, 1};
   gltf.node(floor), gltf.node(lamp), gltf.node(light);
-  const Scene scene = import(gltf, "threads.gltf");  // no camera: the default one frames it
+  const Scene scene =
+      test::import_built(gltf, "threads.gltf");  // no camera: the default one frames it
   RenderOptions options;
   options.width = 40, options.height = 24, options.samples_per_pixel = 4, options.seed = 9;
   std::vector<float> pixels[2];
