@@ -187,7 +187,7 @@ CLI::App* add_tile_plan_command(CLI::App& app, fb::TilePlanCommand& plan) {
                        "costs from an earlier render's --stats-json (its tile seconds)");
   plan_cmd
       ->add_option("--pre-pass-spp", plan.pre_pass_spp,
-                   "samples per pixel of the pre-pass that measures the costs (default 1)")
+                   "samples per pixel of the pre-pass that measures the costs (default 4)")
       ->check(CLI::Range(1u, 1024u));
   plan_cmd->add_option("render-options", plan.render_arguments,
                        "after --: the render's options (the pre-pass renders with them)");

@@ -2,6 +2,7 @@
 // partial_film.h) into the whole frame's film, finished and written as `filmback render` writes
 // it: the same pixels, bit for bit (docs/cli.md, "Parts of a render").
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 
 #include "core/cmd/commands.h"
@@ -17,18 +18,35 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// What the parts' renders took, summed over the parts: they ran apart (in parallel or not), so
+// this is no frame's wall time.
+struct PartsTime {
+  double render_seconds = 0;    // each part's render loop, wall time
+  double sampling_seconds = 0;  // each part's 16x16 tiles, one worker thread's time each
+  uint64_t dropped_samples = 0;
+};
+
+PartsTime parts_time(const std::vector<PartialFilmHeader>& parts) {
+  PartsTime t;
+  for (const PartialFilmHeader& p : parts) {
+    t.render_seconds += p.render_seconds, t.dropped_samples += p.dropped_samples;
+    for (const double s : p.tile_seconds)
+      t.sampling_seconds += s;
+  }
+  return t;
+}
+
 // The whole render's metadata: the first part's, with the parts' render seconds and dropped
-// samples summed.
-ImageMetadata merged_metadata(const std::vector<PartialFilmHeader>& parts) {
+// samples summed, and what the sum is over (filmback/parts, filmback/parts_sampling_seconds).
+ImageMetadata merged_metadata(const std::vector<PartialFilmHeader>& parts, const PartsTime& t) {
   ImageMetadata m = parts[0].metadata;
-  double seconds = 0;
-  uint64_t dropped = 0;
-  for (const PartialFilmHeader& p : parts)
-    seconds += p.render_seconds, dropped += p.dropped_samples;
   for (auto& [name, value] : m.floats)
-    if (name == "filmback/render_seconds") value = float(seconds);
+    if (name == "filmback/render_seconds") value = float(t.render_seconds);
   for (auto& [name, value] : m.ints)
-    if (name == "filmback/dropped_samples") value = int(std::min<uint64_t>(dropped, INT32_MAX));
+    if (name == "filmback/dropped_samples")
+      value = int(std::min<uint64_t>(t.dropped_samples, INT32_MAX));
+  m.ints.push_back({"filmback/parts", int(parts.size())});
+  m.floats.push_back({"filmback/parts_sampling_seconds", float(t.sampling_seconds)});
   return m;
 }
 
@@ -51,9 +69,15 @@ int run_merge(const MergeCommand& command) {
   const Film film = merge_partial_films(command.parts, parts);
   Image image = film.resolve();
   apply_film_exposure(image, first.film_exposure);
-  write_outputs(image, merged_metadata(parts), view, command.outputs);
-  std::cout << "filmback: merged " << parts.size() << " parts into " << first.width << "x"
-            << first.height << std::endl;
+  const PartsTime time = parts_time(parts);
+  write_outputs(image, merged_metadata(parts, time), view, command.outputs);
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "filmback: merged %zu parts into %ux%u; summed over the parts: %.2f s of render "
+                "(wall time), %.2f thread-seconds of sampling",
+                parts.size(), first.width, first.height, time.render_seconds,
+                time.sampling_seconds);
+  std::cout << line << std::endl;
   return 0;
 }
 

@@ -211,7 +211,7 @@ struct Checkpoints {
   // Everything that decides the samples, so that a checkpoint of another render is refused; set
   // once the job is made.
   std::string key;
-  std::optional<PixelRect> region;  // a part's: the whole tiles it renders; none: the frame
+  std::optional<PixelRect> region;  // a part's: RenderJob::part_tiles; none: the frame
 };
 
 // What the command line asks beyond RenderOptions: the 8-bit view's numbers, the checkpoints and
@@ -267,10 +267,6 @@ CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
   c.options.show_progress = !c.quiet;
   Checkpoints& checkpoints = choices.checkpoints;
   checkpoints.enabled = !c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty();
-  if (checkpoints.enabled && c.options.reconstruction == Reconstruction::kSplat)
-    throw UsageError(
-        "--checkpoint-every/--resume: not with --reconstruction splat (its tiles' sums are not "
-        "saved)");
   if (!c.checkpoint_every.empty())
     checkpoints.every = parse_duration(c.checkpoint_every, "--checkpoint-every");
   if (checkpoints.enabled)
@@ -338,40 +334,35 @@ std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
 // A part (--tile/--crop) writes its partial film instead of an image (docs/cli.md, "Parts of a
 // render"); an interrupted part writes none, only its checkpoint when asked for.
 void write_part(const RenderJob& job, const RenderResult& result, const Film& film,
-                const SplatTiles::TileList& splat_tiles, const PixelRect& crop,
-                const OutputView& view, const RenderCommand& c, const Scene& scene,
-                const std::filesystem::path& output, const Checkpoints& checkpoints,
-                RenderReport& report) {
+                const SamplingState& state, const PixelRect& crop, const OutputView& view,
+                const RenderCommand& c, const Scene& scene, const std::filesystem::path& output,
+                const Checkpoints& checkpoints, RenderReport& report) {
   const auto stage = Clock::now();
   if (result.stats.interrupted) {
     if (checkpoints.enabled) {
-      write_checkpoint(film, checkpoints.key, report.checkpoint, checkpoints.region);
+      write_checkpoint(film, state, checkpoints.key, report.checkpoint, checkpoints.region);
       ++report.checkpoints_written;
     }
     std::cerr << "filmback: the part was interrupted: no partial film written\n";
   } else {
     PartialFilmHeader header = partial_film_header(job, result, crop, checkpoint_key(job, c),
                                                    view.view, scene.settings.film_exposure);
-    header.splat_tile_count = splat_tiles.size();
-    write_partial_film(output, header, film, splat_tiles);
+    header.splat_tile_count = state.splat_tiles.size();
+    write_partial_film(output, header, film, state.splat_tiles);
     if (checkpoints.enabled) std::filesystem::remove(report.checkpoint);
   }
   report.write_s = seconds_since(stage);
 }
 
-// The job's empty film, or with --resume the film the checkpoint holds.
-Film open_film(const RenderJob& job, bool resume, const Checkpoints& checkpoints,
-               RenderReport& report) {
-  Film film = job.make_film();
-  if (resume) {
-    if (!std::filesystem::exists(report.checkpoint))
-      throw InputError("--resume: no checkpoint '" + report.checkpoint.string() +
-                       "' (--checkpoint-every writes one)");
-    read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film,
-                    checkpoints.region);
-    report.resumed = true;
-  }
-  return film;
+// --resume: the film and sampling state the checkpoint holds, into the job's empty ones.
+void load_checkpoint(const RenderJob& job, const Checkpoints& checkpoints, Film& film,
+                     SamplingState& state, RenderReport& report) {
+  if (!std::filesystem::exists(report.checkpoint))
+    throw InputError("--resume: no checkpoint '" + report.checkpoint.string() +
+                     "' (--checkpoint-every writes one)");
+  read_checkpoint(report.checkpoint, checkpoints.key, job.samples_per_pixel(), kTileSize, film,
+                  state, checkpoints.region);
+  report.resumed = true;
 }
 
 // A signal stops the render; checkpoints are written on the way when asked for.
@@ -381,19 +372,19 @@ RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints
   control.cancel = &interrupts.requested();
   if (checkpoints.every != Clock::duration::zero()) {
     control.checkpoint_every = checkpoints.every;
-    control.checkpoint = [&checkpoints, &report](const Film& f) {
-      write_checkpoint(f, checkpoints.key, report.checkpoint, checkpoints.region);
+    control.checkpoint = [&checkpoints, &report](const Film& f, const SamplingState& state) {
+      write_checkpoint(f, state, checkpoints.key, report.checkpoint, checkpoints.region);
       ++report.checkpoints_written;
     };
   }
   return control;
 }
 
-RenderResult run_job(const RenderJob& job, Film& film, const RenderControl& control,
-                     const RenderPart& part, const InterruptGuard& interrupts,
-                     RenderReport& report) {
+RenderResult run_job(const RenderJob& job, Film& film, SamplingState& state,
+                     const RenderControl& control, const std::optional<PixelRect>& crop,
+                     const InterruptGuard& interrupts, RenderReport& report) {
   const auto stage = Clock::now();
-  RenderResult result = job.run(film, control, part);
+  RenderResult result = job.run(film, state, control, crop);
   report.render_s = seconds_since(stage);
   if (result.stats.interrupted) {
     report.signal = interrupts.signal_number();
@@ -404,39 +395,65 @@ RenderResult run_job(const RenderJob& job, Film& film, const RenderControl& cont
   return result;
 }
 
-// The image into every output; the checkpoint kept for --resume when interrupted, removed when
-// complete.
+// What an interrupted render writes: its EXR outputs only, which say so (filmback/interrupted, a
+// samples channel). A PNG or JPEG cannot: half-rendered, it would look like a finished image.
+std::vector<std::filesystem::path> interrupted_outputs(
+    const std::vector<std::filesystem::path>& outputs) {
+  std::vector<std::filesystem::path> kept;
+  for (const std::filesystem::path& output : outputs) {
+    if (is_8_bit(image_format_for(output)))
+      std::cerr << "filmback: interrupted: " << output.string()
+                << " not written (an 8-bit image of an unfinished render would look finished)\n";
+    else
+      kept.push_back(output);
+  }
+  return kept;
+}
+
+// The image into every output (an interrupted render's into its EXRs); the checkpoint kept for
+// --resume when interrupted, removed when complete.
 void write_outputs(const RenderJob& job, const RenderResult& result, const Film& film,
-                   const OutputView& view, const std::vector<std::filesystem::path>& outputs,
+                   const SamplingState& state, const OutputView& view,
+                   const std::vector<std::filesystem::path>& outputs,
                    const Checkpoints& checkpoints, RenderReport& report) {
   const auto stage = Clock::now();
-  fb::write_outputs(result.image, job.metadata(result), view, outputs);
   const bool interrupted = result.stats.interrupted;
+  const std::vector<std::filesystem::path> written =
+      interrupted ? interrupted_outputs(outputs) : outputs;
+  if (!written.empty()) fb::write_outputs(result.image, job.metadata(result), view, written);
   if (interrupted && checkpoints.enabled) {
-    write_checkpoint(film, checkpoints.key, report.checkpoint, checkpoints.region);
+    write_checkpoint(film, state, checkpoints.key, report.checkpoint, checkpoints.region);
     ++report.checkpoints_written;
   }
   if (!interrupted && checkpoints.enabled) std::filesystem::remove(report.checkpoint);
   report.write_s = seconds_since(stage);
 }
 
-// One line: the render's size, speed and dropped samples, or what an interrupted render holds.
+// "70x72", or for a part its crop in the frame: "part 0,37,70,72 of 70x72".
+std::string rendered_area(const RenderJob& job, const std::optional<PixelRect>& crop) {
+  const std::string frame = std::to_string(job.width()) + "x" + std::to_string(job.height());
+  return crop ? "part " + crop->text() + " of " + frame : frame;
+}
+
+// One line: the render's size (a part's crop), speed and dropped samples, or what an interrupted
+// render holds.
 void print_summary(const RenderJob& job, const RenderResult& result,
-                   const InterruptGuard& interrupts, const Checkpoints& checkpoints) {
+                   const std::optional<PixelRect>& crop, const InterruptGuard& interrupts,
+                   const Checkpoints& checkpoints) {
   const RenderStats& s = result.stats;
-  char line[320];
+  char line[360];
   std::snprintf(line, sizeof line,
-                "filmback: rendered %ux%u at %u spp in %.2f s: %.2f M samples/s, %.2f M rays/s, "
+                "filmback: rendered %s at %u spp in %.2f s: %.2f M samples/s, %.2f M rays/s, "
                 "%llu non-finite samples dropped",
-                job.width(), job.height(), job.samples_per_pixel(), s.seconds,
+                rendered_area(job, crop).c_str(), job.samples_per_pixel(), s.seconds,
                 s.samples / s.seconds * 1e-6, s.rays / s.seconds * 1e-6,
                 static_cast<unsigned long long>(s.dropped_samples));
   if (s.interrupted)
     std::snprintf(line, sizeof line,
-                  "filmback: interrupted (signal %d) after %.2f s: pixels hold %u to %u of %u "
-                  "samples%s",
-                  interrupts.signal_number(), s.seconds, result.fewest_samples, result.most_samples,
-                  job.samples_per_pixel(),
+                  "filmback: interrupted (signal %d) after %.2f s: pixels of %s hold %u to %u of "
+                  "%u samples%s",
+                  interrupts.signal_number(), s.seconds, rendered_area(job, crop).c_str(),
+                  result.fewest_samples, result.most_samples, job.samples_per_pixel(),
                   checkpoints.enabled ? "; --resume continues from the checkpoint" : "");
   std::cout << line << std::endl;
 }
@@ -485,33 +502,26 @@ int render_frame(RenderSession& s, const std::vector<std::filesystem::path>& out
   report_plan(job, s.c, report);
 
   Checkpoints& checkpoints = s.choices.checkpoints;
-  if (checkpoints.enabled && job.shot_plan().adaptive)
-    throw UsageError(
-        "--checkpoint-every/--resume: not with adaptive sampling (which pixels have converged is "
-        "not saved); give --adaptive-threshold 0");
   const std::optional<PixelRect> crop = part_crop(s.c.part, job.width(), job.height());
-  if (crop && job.shot_plan().adaptive)
-    throw UsageError(
-        "--tile/--crop: not with adaptive sampling (a pixel's convergence depends on pixels "
-        "beyond the part); give --adaptive-threshold 0");
-  if (crop) checkpoints.region = whole_tiles_around(*crop, job.width(), job.height());
+  if (crop) checkpoints.region = job.part_tiles(*crop);
   if (checkpoints.enabled)
     checkpoints.key = checkpoint_key(job, s.c) + (crop ? "; part " + crop->text() : std::string());
-  Film film = open_film(job, resume, checkpoints, report);
-  SplatTiles::TileList splat_tiles;
+  Film film = job.make_film();
+  SamplingState state = job.make_sampling_state();
+  if (resume) load_checkpoint(job, checkpoints, film, state, report);
   s.interrupts.arm();
   const RenderResult result =
-      run_job(job, film, render_control(s.interrupts, checkpoints, report),
-              RenderPart{crop, crop ? &splat_tiles : nullptr}, s.interrupts, report);
+      run_job(job, film, state, render_control(s.interrupts, checkpoints, report), crop,
+              s.interrupts, report);
   const bool interrupted = result.stats.interrupted;
   if (crop)
-    write_part(job, result, film, splat_tiles, *crop, *s.view, s.c, scene, outputs.front(),
-               checkpoints, report);
+    write_part(job, result, film, state, *crop, *s.view, s.c, scene, outputs.front(), checkpoints,
+               report);
   else if (interrupted && result.most_samples == 0)
     std::cerr << "filmback: interrupted before any pixel was sampled: nothing written\n";
   else
-    write_outputs(job, result, film, *s.view, outputs, checkpoints, report);
-  print_summary(job, result, s.interrupts, checkpoints);
+    write_outputs(job, result, film, state, *s.view, outputs, checkpoints, report);
+  print_summary(job, result, crop, s.interrupts, checkpoints);
   report.status = interrupted ? "interrupted" : "complete";
   report.exit_status = interrupted ? 128 + s.interrupts.signal_number() : 0;
   return report.exit_status;

@@ -3,6 +3,7 @@
 #include "core/cmd/submit_command.h"
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +11,7 @@
 #include "core/cmd/slurm_commands.h"
 #include "core/cmd/slurm_job.h"
 #include "core/cmd/slurm_job_folder.h"
+#include "core/cmd/tile_plan_command.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -90,19 +92,31 @@ void check_inputs(const SubmitCommand& c) {
     throw_input(c.filmback.string(), "", "--filmback: no such file");
 }
 
-// `filmback tile-plan` with the render options, for the first frame, into `plan`.
-void make_tile_plan(const SubmitCommand& c, const SlurmJob& job, const fs::path& filmback,
-                    const fs::path& plan, const fs::path& log) {
-  std::vector<std::string> argv = {
-      filmback.string(),       "tile-plan", c.scene.string(), "--tiles",
-      std::to_string(c.tiles), "-o",        plan.string(),    "--"};
-  argv.insert(argv.end(), c.render_args.begin(), c.render_args.end());
+// `filmback tile-plan` with the render options, for the first frame, into `plan`: its code, in
+// this process (a `filmback tile-plan` process would be one more program start, about a second
+// in this sandbox); its pre-pass is one `filmback render` process. Not a Slurm job either: that
+// would wait for scheduling passes before the tasks could even be submitted.
+void make_auto_plan(const SubmitCommand& c, const SlurmJob& job, const fs::path& plan) {
+  TilePlanCommand command;
+  command.scene = c.scene;
+  command.parts = c.tiles;
+  command.output = plan;
+  command.render_arguments = c.render_args;
   if (job.tile_tasks.front().frame)
-    argv.insert(argv.end(), {"--frame", std::to_string(*job.tile_tasks.front().frame)});
-  const ProgramRun run = run_program(argv, log);
-  if (run.exit_status != 0)
-    throw InputError(describe_failure(run, "submit: --tile-plan auto: filmback tile-plan", log) +
+    command.render_arguments.insert(command.render_arguments.end(),
+                                    {"--frame", std::to_string(*job.tile_tasks.front().frame)});
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const std::string line = plan_tiles(command);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cerr << "submit: tile plan made in " << seconds << " s: " << line << "\n";
+  } catch (const UsageError& e) {
+    throw UsageError(std::string("submit: --tile-plan auto: ") + e.what());
+  } catch (const InputError& e) {
+    throw InputError(std::string("submit: --tile-plan auto: ") + e.what() +
                      " (--tile-plan none splits into equal areas)");
+  }
 }
 
 std::string job_description(const SubmitCommand& c, const SlurmJob& job,
@@ -165,11 +179,9 @@ int run_submit(SubmitCommand& c) {
   fs::path plan;
   const fs::path made_plan =
       job.dir.parent_path() / (std::string(".") + job.dir.filename().string() + ".plan.json");
-  const fs::path plan_log =
-      job.dir.parent_path() / (std::string(".") + job.dir.filename().string() + ".plan.log");
   if (with_plan && c.tile_plan == "auto") {
     std::cerr << "submit: filmback tile-plan (a low-cost pre-pass of the first frame)\n";
-    make_tile_plan(c, job, settings.filmback, made_plan, plan_log);
+    make_auto_plan(c, job, made_plan);
     plan = made_plan;
   } else if (with_plan) {
     plan = c.tile_plan;
@@ -181,11 +193,9 @@ int run_submit(SubmitCommand& c) {
     write_job_folder(job, settings, plan, description);
   } catch (...) {
     fs::remove(made_plan, ec);
-    fs::remove(plan_log, ec);
     throw;
   }
   fs::remove(made_plan, ec);
-  fs::remove(plan_log, ec);
   std::cerr << "submit: job folder " << job.dir.string() << ": " << job.tile_tasks.size()
             << " tile tasks in " << job.tile_arrays.size() << " array(s), "
             << job.merge_tasks.size() << " merge(s)\n";

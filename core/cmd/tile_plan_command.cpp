@@ -121,7 +121,7 @@ TileCosts costs_from_pre_pass(const TilePlanCommand& c) {
 
 }  // namespace
 
-int run_tile_plan(TilePlanCommand& c) {
+std::string plan_tiles(const TilePlanCommand& c) {
   if (c.output.extension() != ".json")
     throw UsageError("tile-plan: output '" + c.output.string() + "': expected a .json file name");
   if (!c.previous.empty() && !c.report.empty())
@@ -153,11 +153,17 @@ int run_tile_plan(TilePlanCommand& c) {
   const char* source = !c.previous.empty() ? "the previous parts' tile times"
                        : !c.report.empty() ? "the report's tile times"
                                            : "a pre-pass";
-  std::printf(
-      "filmback: wrote %s: %u parts of %ux%u from %s; the costliest part %.3f x the "
-      "mean (%u bands of tile rows without a plan: %.3f x)\n",
-      c.output.string().c_str(), c.parts, costs.width_px, costs.height_px, source,
-      imbalance(planned), bands, imbalance(by_area));
+  char balance[160];
+  std::snprintf(balance, sizeof balance,
+                "the costliest part %.3f x the mean (%u bands of tile rows without a plan: %.3f x)",
+                imbalance(planned), bands, imbalance(by_area));
+  return "filmback: wrote " + c.output.string() + ": " + std::to_string(c.parts) + " parts of " +
+         std::to_string(costs.width_px) + "x" + std::to_string(costs.height_px) + " from " +
+         source + "; " + balance;
+}
+
+int run_tile_plan(TilePlanCommand& c) {
+  std::cout << plan_tiles(c) << std::endl;
   return 0;
 }
 

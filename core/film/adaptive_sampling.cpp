@@ -18,6 +18,13 @@ std::optional<AdaptiveSettings> adaptive_settings(const AdaptiveRequest& request
   return s;
 }
 
+uint32_t adaptive_check_count(const AdaptiveSettings& s, uint32_t samples_per_pixel) {
+  uint32_t checks = 0;
+  for (uint32_t samples = kAdaptiveStep; samples < samples_per_pixel; samples += kAdaptiveStep)
+    checks += adaptive_check_due(s, samples);
+  return checks;
+}
+
 ConvergenceMap::ConvergenceMap(uint32_t width, uint32_t height, const AdaptiveSettings& settings,
                                double exposure)
     : width_(width),

@@ -45,6 +45,12 @@ inline bool adaptive_check_due(const AdaptiveSettings& s, uint32_t samples) {
   return samples >= s.min_samples && samples % kAdaptiveStep == 0;
 }
 
+// The checks a render of `samples_per_pixel` makes: one at each due count below it (at the last
+// sample nothing is left to stop). After k checks a pixel's flag depends on pixels up to k away
+// (each check looks at the 3x3 neighbourhood, whose own samples depend on the checks before), so
+// a part of a render samples an apron this wide around its crop (render_loop.h, part_region).
+uint32_t adaptive_check_count(const AdaptiveSettings& s, uint32_t samples_per_pixel);
+
 // The half buffer and each pixel's converged flag, for a film whose first three channels are
 // R, G, B. Each pixel is written by the one tile that holds it, so no locks are needed.
 class ConvergenceMap {
@@ -62,8 +68,10 @@ class ConvergenceMap {
   // let a noisy pixel's neighbours go on sampling. A converged pixel stays converged, so that its
   // samples stay the indices 0 .. n-1 of its sequence. `on_converged(x, y)` is called for each
   // pixel that converges now. The result depends on the film's sums only: deterministic.
+  // `samples` is the count the unconverged pixels have reached: the check's, which a resumed
+  // render must not make again (checked_samples).
   template <typename OnConverged>
-  void update(const Film& film, const OnConverged& on_converged);
+  void update(const Film& film, uint32_t samples, const OnConverged& on_converged);
 
   // The error of pixel (x, y): the sum over R, G, B of |I - A|, over sqrt(R + G + B) of I (or
   // R + G + B itself above 1, as Cycles: brighter pixels need less), times the exposure.
@@ -71,6 +79,18 @@ class ConvergenceMap {
 
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
+
+  // The raw state, for checkpoints (core/film/convergence_exr.h), rows top first: per pixel the
+  // odd samples' 3 sums of w v and their sum of w, and the converged flag (0 or 1); and the sample
+  // count of the last check made (0: none yet).
+  double* half_sums() { return half_sums_.get(); }
+  double* half_weights() { return half_weights_.get(); }
+  uint8_t* converged_flags() { return converged_.get(); }
+  const double* half_sums() const { return half_sums_.get(); }
+  const double* half_weights() const { return half_weights_.get(); }
+  const uint8_t* converged_flags() const { return converged_.get(); }
+  uint32_t checked_samples() const { return checked_samples_; }
+  void set_checked_samples(uint32_t samples) { checked_samples_ = samples; }
 
  private:
   size_t index(uint32_t x, uint32_t y) const { return size_t(y) * width_ + x; }
@@ -83,10 +103,12 @@ class ConvergenceMap {
   std::unique_ptr<double[]> half_weights_;  // the odd samples' sum of w
   std::unique_ptr<uint8_t[]> converged_;
   std::unique_ptr<uint8_t[]> below_;  // scratch for update()
+  uint32_t checked_samples_ = 0;
 };
 
 template <typename OnConverged>
-void ConvergenceMap::update(const Film& film, const OnConverged& on_converged) {
+void ConvergenceMap::update(const Film& film, uint32_t samples, const OnConverged& on_converged) {
+  checked_samples_ = samples;
   for (uint32_t y = 0; y < height_; ++y)
     for (uint32_t x = 0; x < width_; ++x)
       below_[index(x, y)] = converged(x, y) || below_threshold(film, x, y);

@@ -3,6 +3,8 @@
 #include <bit>
 #include <cmath>
 
+#include "core/util/temporary_file.h"
+
 namespace fb {
 
 std::vector<std::string> film_state_channels(const std::vector<std::string>& channels,
@@ -83,15 +85,46 @@ std::string channel_positions(const OIIO::ImageSpec& spec, const std::vector<std
   return "";
 }
 
+void write_state_images(const std::filesystem::path& file, const std::vector<StateImage>& images) {
+  write_atomically(file, [&](const std::filesystem::path& temporary) -> std::string {
+    auto out = OIIO::ImageOutput::create(file.string());
+    if (!out) return OIIO::geterror();
+    std::vector<OIIO::ImageSpec> specs;
+    for (const StateImage& image : images)
+      specs.push_back(image.spec);
+    if (!out->open(temporary.string(), int(specs.size()), specs.data())) return out->geterror();
+    std::string why;
+    for (size_t i = 0; i < images.size() && why.empty(); ++i)
+      if ((i > 0 && !out->open(temporary.string(), specs[i], OIIO::ImageOutput::AppendSubimage)) ||
+          !out->write_image(OIIO::TypeDesc::UINT32, images[i].pixels))
+        why = out->geterror();
+    if (!out->close() && why.empty()) why = out->geterror();
+    return why;
+  });
+}
+
+PixelRect data_window(const OIIO::ImageSpec& spec) {
+  const uint32_t x0 = uint32_t(std::max(spec.x, 0)), y0 = uint32_t(std::max(spec.y, 0));
+  return {x0, y0, x0 + uint32_t(spec.width), y0 + uint32_t(spec.height)};
+}
+
+std::string read_state_words(OIIO::ImageInput& in, const PixelRect& region,
+                             std::vector<uint32_t>& words) {
+  const OIIO::ImageSpec& spec = in.spec();
+  words.resize(region.area() * size_t(spec.nchannels));
+  if (!in.read_image(in.current_subimage(), 0, 0, spec.nchannels, OIIO::TypeDesc::UINT32,
+                     words.data()))
+    return in.geterror();
+  return "";
+}
+
 std::string decode_film_state(OIIO::ImageInput& in, const PixelRect& region, Film& film) {
   const OIIO::ImageSpec& spec = in.spec();
   if (spec.full_width != int(film.width()) || spec.full_height != int(film.height()))
     return "its frame is " + std::to_string(spec.full_width) + "x" +
            std::to_string(spec.full_height) + ", the render's " + std::to_string(film.width()) +
            "x" + std::to_string(film.height());
-  const PixelRect window{uint32_t(std::max(spec.x, 0)), uint32_t(std::max(spec.y, 0)),
-                         uint32_t(std::max(spec.x, 0) + spec.width),
-                         uint32_t(std::max(spec.y, 0) + spec.height)};
+  const PixelRect window = data_window(spec);
   if (spec.x < 0 || spec.y < 0 || !(window == region))
     return "it holds pixels " + window.text() + ", expected " + region.text();
   std::vector<int> index;
@@ -99,10 +132,8 @@ std::string decode_film_state(OIIO::ImageInput& in, const PixelRect& region, Fil
       !why.empty())
     return why;
   const size_t n = film.channels().size(), stride = size_t(spec.nchannels);
-  std::vector<uint32_t> pixels(region.area() * stride);
-  if (!in.read_image(in.current_subimage(), 0, 0, spec.nchannels, OIIO::TypeDesc::UINT32,
-                     pixels.data()))
-    return in.geterror();
+  std::vector<uint32_t> pixels;
+  if (std::string why = read_state_words(in, region, pixels); !why.empty()) return why;
   const uint32_t* p = pixels.data();
   for (uint32_t y = region.y0; y < region.y1; ++y)
     for (uint32_t x = region.x0; x < region.x1; ++x, p += stride) {

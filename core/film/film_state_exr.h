@@ -7,6 +7,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,24 @@ std::vector<uint32_t> encode_film_state(const Film& film, const PixelRect& regio
 // The file positions of `names` in `spec`; "" or what is missing.
 std::string channel_positions(const OIIO::ImageSpec& spec, const std::vector<std::string>& names,
                               std::vector<int>& index);
+
+// The data window of `spec`, its negative origin clamped to 0 (callers refuse one as well).
+PixelRect data_window(const OIIO::ImageSpec& spec);
+
+// The current subimage of `in`, whose data window is `region`, as UINT32 words (spec.nchannels
+// per pixel, row by row). Returns "" or OpenImageIO's error.
+std::string read_state_words(OIIO::ImageInput& in, const PixelRect& region,
+                             std::vector<uint32_t>& words);
+
+// One subimage of a file: its spec and its UINT32 pixels.
+struct StateImage {
+  OIIO::ImageSpec spec;
+  const uint32_t* pixels;
+};
+
+// Writes `images` as the subimages of the OpenEXR `file`, in order, through a temporary file and
+// a rename. Throws InputError naming the file.
+void write_state_images(const std::filesystem::path& file, const std::vector<StateImage>& images);
 
 // Reads the current subimage of `in`, a film state over `region` of a film of `film`'s size and
 // channels, into `film`. Returns "" or what is wrong (another window, a missing channel, a

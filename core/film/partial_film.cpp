@@ -7,16 +7,18 @@
 
 #include "core/film/film_state_exr.h"
 #include "core/film/part_coverage.h"
+#include "core/film/splat_tiles_exr.h"
 #include "core/util/error.h"
 #include "core/util/parse_number.h"
-#include "core/util/temporary_file.h"
 
 namespace fb {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kPartialFilmVersion = 1;
+// 2: the splat tiles' table gives each tile's samples (splat_tiles_exr.h); parts of adaptive
+// renders (their apron, render_loop.h).
+constexpr int kPartialFilmVersion = 2;
 constexpr const char* kPrefix = "filmback/part/";
 // Metadata entries: kMetadata + a 4-digit position (OpenEXR sorts attributes by name) + a type
 // letter (f float, i int, s string, m matrix) + ":" + the entry's name.
@@ -111,25 +113,6 @@ std::string rect_text(const PixelRect& r) {
          std::to_string(r.y1);
 }
 
-// The splat tiles' table, "index x0 y0 x1 y1" per tile, and their sums stacked row by row in an
-// image as wide as the widest tile.
-struct SplatLayout {
-  std::vector<std::pair<size_t, const SplatTiles::Tile*>> tiles;
-  uint32_t width = 1, rows = 0;
-};
-
-SplatLayout splat_layout(const SplatTiles::TileList& tiles) {
-  SplatLayout layout;
-  for (size_t i = 0; i < tiles.size(); ++i)
-    if (tiles[i]) {
-      layout.tiles.push_back({i, tiles[i].get()});
-      layout.width = std::max(layout.width, tiles[i]->x1 - tiles[i]->x0);
-      layout.rows += tiles[i]->y1 - tiles[i]->y0;
-    }
-  layout.rows = std::max(layout.rows, 1u);
-  return layout;
-}
-
 // What differs between part `h` and the first part `first` that decides the image; empty: nothing.
 std::string difference(const PartialFilmHeader& h, const PartialFilmHeader& first) {
   if (h.render_key != first.render_key)
@@ -198,47 +181,13 @@ void write_partial_film(const fs::path& file, const PartialFilmHeader& h, const 
   spec.attribute(attr("tile_seconds"), joined(h.tile_seconds));
   put_metadata(h.metadata, spec);
   const std::vector<uint32_t> pixels = encode_film_state(film, h.crop);
-
-  const bool splat = h.reconstruction == Reconstruction::kSplat;
-  const size_t n = film.channels().size(), stride = 2 * n + 2;
-  const SplatLayout layout = splat_layout(splat_tiles);
-  OIIO::ImageSpec tiles_spec(int(layout.width), int(layout.rows), int(stride),
-                             OIIO::TypeDesc::UINT32);
-  std::vector<uint32_t> tile_pixels;
-  if (splat) {
-    tiles_spec.channelnames = film_state_channels(film.channels(), false);
-    // OpenEXR's parts of one file share the display window.
-    tiles_spec.full_width = spec.full_width, tiles_spec.full_height = spec.full_height;
-    tiles_spec.attribute("compression", "zip");
-    tile_pixels.assign(size_t(layout.width) * layout.rows * stride, 0);
-    std::string table;
-    uint32_t row = 0;
-    for (const auto& [index, t] : layout.tiles) {
-      table += std::to_string(index) + " " + rect_text({t->x0, t->y0, t->x1, t->y1}) + "\n";
-      for (uint32_t y = t->y0; y < t->y1; ++y, ++row)
-        for (uint32_t x = t->x0; x < t->x1; ++x) {
-          const size_t p = t->index(x, y);
-          pack_sums(&t->sums[p * n], t->weights[p], n,
-                    &tile_pixels[(size_t(row) * layout.width + (x - t->x0)) * stride]);
-        }
-    }
-    tiles_spec.attribute(attr("splat_tile_table"), table);
+  std::vector<StateImage> images{{spec, pixels.data()}};
+  SplatTilesImage tiles;
+  if (h.reconstruction == Reconstruction::kSplat) {
+    tiles = encode_splat_tiles(splat_tiles, film.channels(), film.width(), film.height());
+    images.push_back({tiles.spec, tiles.pixels.data()});
   }
-  write_atomically(file, [&](const fs::path& temporary) -> std::string {
-    auto out = OIIO::ImageOutput::create(file.string());
-    if (!out) return OIIO::geterror();
-    const OIIO::ImageSpec specs[2] = {spec, tiles_spec};
-    if (!out->open(temporary.string(), splat ? 2 : 1, specs)) return out->geterror();
-    std::string why =
-        out->write_image(OIIO::TypeDesc::UINT32, pixels.data()) ? "" : out->geterror();
-    if (why.empty() && splat) {
-      if (!out->open(temporary.string(), tiles_spec, OIIO::ImageOutput::AppendSubimage) ||
-          !out->write_image(OIIO::TypeDesc::UINT32, tile_pixels.data()))
-        why = out->geterror();
-    }
-    if (!out->close() && why.empty()) why = out->geterror();
-    return why;
-  });
+  write_state_images(file, images);
 }
 
 PartialFilmHeader read_partial_film_header(const fs::path& file) {
@@ -246,7 +195,13 @@ PartialFilmHeader read_partial_film_header(const fs::path& file) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) fail(file, "", "cannot be read as a partial film: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.get_int_attribute(attr("version")) != kPartialFilmVersion)
+  const int version = spec.get_int_attribute(attr("version"));
+  if (version > 0 && version != kPartialFilmVersion)
+    fail(file, "",
+         "a version " + std::to_string(version) + " partial film, this filmback merges version " +
+             std::to_string(kPartialFilmVersion) +
+             " (an earlier filmback wrote it): render the part again");
+  if (version != kPartialFilmVersion)
     fail(file, "",
          "not a filmback partial film (version " + std::to_string(kPartialFilmVersion) +
              "), as `filmback render --tile/--crop` writes");
@@ -313,38 +268,21 @@ void read_partial_film(const fs::path& file, const PartialFilmHeader& h, Film& f
   if (const std::string why = decode_film_state(*in, h.crop, film); !why.empty()) corrupt(why);
   if (h.reconstruction != Reconstruction::kSplat) return;
   if (!in->seek_subimage(1, 0)) corrupt("its splat tiles are missing");
-  const OIIO::ImageSpec& spec = in->spec();
-  const size_t n = film.channels().size();
-  std::vector<int> index;
+  SplatTiles::TileList own;
   if (const std::string why =
-          channel_positions(spec, film_state_channels(film.channels(), false), index);
+          decode_splat_tiles(*in, film.channels(), h.width, h.height, splat_tiles.size(), own);
       !why.empty())
     corrupt(why);
-  const size_t stride = size_t(spec.nchannels);
-  std::vector<uint32_t> pixels(size_t(spec.width) * spec.height * stride);
-  if (!in->read_image(1, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT32, pixels.data()))
-    corrupt(in->geterror());
-  std::istringstream table(spec.get_string_attribute(attr("splat_tile_table")));
-  uint32_t row = 0;
-  for (size_t tile; table >> tile;) {
-    auto t = std::make_unique<SplatTiles::Tile>();
-    if (!(table >> t->x0 >> t->y0 >> t->x1 >> t->y1) || tile >= splat_tiles.size() ||
-        t->x1 <= t->x0 || t->y1 <= t->y0 || t->x1 > h.width || t->y1 > h.height ||
-        t->x1 - t->x0 > uint32_t(spec.width) || row + (t->y1 - t->y0) > uint32_t(spec.height))
-      corrupt("its splat tile table does not match its tiles' sums");
+  for (size_t tile = 0; tile < own.size(); ++tile) {
+    if (!own[tile]) continue;
     if (splat_tiles[tile])
       fail(file, "",
            "splat tile " + std::to_string(tile) + " is also another part's: the parts overlap");
-    const size_t pixel_count = size_t(t->x1 - t->x0) * (t->y1 - t->y0);
-    t->sums.resize(pixel_count * n), t->weights.resize(pixel_count);
-    for (uint32_t y = t->y0; y < t->y1; ++y, ++row)
-      for (uint32_t x = t->x0; x < t->x1; ++x) {
-        const size_t p = t->index(x, y);
-        if (!unpack_sums(&pixels[(size_t(row) * spec.width + (x - t->x0)) * stride], index, n,
-                         &t->sums[p * n], t->weights[p]))
-          corrupt("splat tile " + std::to_string(tile) + " holds a non-finite sum");
-      }
-    splat_tiles[tile] = std::move(t);
+    if (own[tile]->samples != h.samples_per_pixel)
+      corrupt("splat tile " + std::to_string(tile) + " holds " +
+              std::to_string(own[tile]->samples) + " of " + std::to_string(h.samples_per_pixel) +
+              " samples");
+    splat_tiles[tile] = std::move(own[tile]);
   }
 }
 

@@ -7,10 +7,11 @@
 // display window the whole frame. Its header holds the render key (everything that decides the
 // samples: parts of different renders are refused), the finishing information (film exposure,
 // view settings, the image metadata a whole render writes) and the seconds each 16x16 tile of
-// the crop took. With splatting, subimage 1 holds the part's splat tiles' sums (the film pixels
-// their samples reach, inside the crop or not), so that merge adds every tile's sums in the
-// whole frame's tile order, as SplatTiles::add_to does: pixel sums formed in the same order, the
-// same bits.
+// the crop took. With splatting, subimage 1 holds the part's splat tiles' sums and samples
+// (splat_tiles_exr.h: the film pixels their samples reach, inside the crop or not), so that merge
+// adds every tile's sums in the whole frame's tile order, as SplatTiles::add_to does: pixel sums
+// formed in the same order, the same bits. With adaptive sampling the part sampled an apron
+// around its crop (render_loop.h, part_region); the file holds the crop's pixels only.
 #pragma once
 
 #include <filesystem>

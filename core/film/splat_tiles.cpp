@@ -9,13 +9,28 @@
 namespace fb {
 
 SplatTiles::SplatTiles(uint32_t width, uint32_t height, uint32_t tile_size, size_t channels,
-                       const FilterInstance& filter)
-    : width_(width), height_(height), tile_size_(tile_size), channels_(channels), filter_(filter) {
+                       const FilterInstance& filter, TileList& tiles)
+    : width_(width),
+      height_(height),
+      tile_size_(tile_size),
+      channels_(channels),
+      filter_(filter),
+      tiles_(tiles) {
   filter.radius(radius_);
   for (int axis = 0; axis < 2; ++axis)
     margin_[axis] = reach(radius_[axis]);
   tiles_x_ = (width + 2 * margin_[0] + tile_size - 1) / tile_size;
-  tiles_.resize(size_t(tiles_x_) * ((height + 2 * margin_[1] + tile_size - 1) / tile_size));
+  if (tiles_.empty()) tiles_.resize(tile_count(width, height, tile_size, filter));
+}
+
+size_t SplatTiles::tile_count(uint32_t width, uint32_t height, uint32_t tile_size,
+                              const FilterInstance& filter) {
+  float radius[2];
+  filter.radius(radius);
+  const auto tiles = [&](uint32_t side, float r) {
+    return (side + 2 * reach(r) + tile_size - 1) / tile_size;
+  };
+  return size_t(tiles(width, radius[0])) * tiles(height, radius[1]);
 }
 
 SplatTiles::~SplatTiles() = default;

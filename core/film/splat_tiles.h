@@ -27,11 +27,6 @@ namespace fb {
 
 class SplatTiles {
  public:
-  // A film of width x height pixels, rendered in tiles of tile_size over the sample domain.
-  SplatTiles(uint32_t width, uint32_t height, uint32_t tile_size, size_t channels,
-             const FilterInstance& filter);
-  ~SplatTiles();
-
   // Pixels beyond a film pixel that its samples can reach, along x (0) or y (1); also the margin
   // of the sample domain.
   uint32_t margin(int axis) const { return margin_[axis]; }
@@ -44,11 +39,23 @@ class SplatTiles {
     uint32_t x0, y0, x1, y1;
     std::vector<double> sums;     // per pixel and channel: sum h L
     std::vector<double> weights;  // per pixel: sum h
+    uint32_t samples = 0;         // the samples per pixel taken: where a resumed render goes on
     size_t index(uint32_t x, uint32_t y) const { return size_t(y - y0) * (x1 - x0) + (x - x0); }
   };
   // Per tile of the sample domain, in tile order (row by row): its buffer, or null when none of
   // its samples was taken (a part of a render takes only its own tiles').
   using TileList = std::vector<std::unique_ptr<Tile>>;
+
+  // A film of width x height pixels, rendered in tiles of tile_size over the sample domain, into
+  // `tiles`: the render's (core/film/sampling_state.h), so that a checkpoint saves them and a part
+  // writes them into its partial film. Empty, it is sized here; else it holds tile_count() slots
+  // (a resumed render's tiles).
+  SplatTiles(uint32_t width, uint32_t height, uint32_t tile_size, size_t channels,
+             const FilterInstance& filter, TileList& tiles);
+  ~SplatTiles();
+  // The tiles of the sample domain of such a film.
+  static size_t tile_count(uint32_t width, uint32_t height, uint32_t tile_size,
+                           const FilterInstance& filter);
 
   // The buffer of the tile whose first pixel is (x0, y0) in the sample domain; allocated by the
   // thread that renders it.
@@ -58,10 +65,7 @@ class SplatTiles {
   bool splat(Tile& tile, float film_x, float film_y, const float* values) const;
   // Adds every tile's sums into `film`, each pixel's in tile order.
   void add_to(Film& film) const { add_splat_tiles(tiles_, film); }
-  // The tiles' buffers, for a partial film (core/film/partial_film.h); the object is empty after.
-  TileList release_tiles() { return std::move(tiles_); }
   uint32_t tiles_x() const { return tiles_x_; }
-  size_t tile_count() const { return tiles_.size(); }
 
   // Adds the sums of `tiles` (in tile order, as above) into `film`, each pixel's in tile order:
   // add_to, and `filmback merge` with the tiles of every part (docs/cli.md, "merge").
@@ -73,7 +77,7 @@ class SplatTiles {
   const FilterInstance& filter_;
   float radius_[2];
   uint32_t margin_[2];  // pixels beyond a tile that its samples can reach
-  TileList tiles_;
+  TileList& tiles_;
 };
 
 }  // namespace fb

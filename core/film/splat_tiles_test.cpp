@@ -23,7 +23,8 @@ SplatTiles::Tile& tile_of(SplatTiles& tiles, uint32_t tile_size, float x, float 
 TEST(SplatTiles, ReachesThePixelsWithinTheRadiusAcrossTileBorders) {
   const auto filter = test::make_filter("box:radius=1.5");
   Film film(10, 6, {"R", "G", "B"});
-  SplatTiles tiles(10, 6, 4, 3, *filter);
+  SplatTiles::TileList list;
+  SplatTiles tiles(10, 6, 4, 3, *filter, list);
   const float v[3] = {1, 2, 3};
   // Centres i + 0.5 within 1.5 of x = 3.9: i = 2, 3 (first tile) and 4 (the next one); of
   // y = 1.0: j = 0, 1, 2 (box: the edge |d| = r counts).
@@ -41,7 +42,8 @@ TEST(SplatTiles, ReachesThePixelsWithinTheRadiusAcrossTileBorders) {
 TEST(SplatTiles, ResolvesToTheFilterWeightedMeanOfSamplesFromSeveralTiles) {
   const auto filter = test::make_filter("triangle:radius=2");
   Film film(8, 4, {"R", "G", "B"});
-  SplatTiles tiles(8, 4, 4, 3, *filter);
+  SplatTiles::TileList list;
+  SplatTiles tiles(8, 4, 4, 3, *filter, list);
   const float a[3] = {1, 1, 1}, b[3] = {5, 5, 5};
   // Domain pixels 5 and 8 (margin 2): tiles 1 and 2.
   tiles.splat(tile_of(tiles, 4, 3.2f, 1.5f), 3.2f, 1.5f, a);
@@ -56,7 +58,8 @@ TEST(SplatTiles, ResolvesToTheFilterWeightedMeanOfSamplesFromSeveralTiles) {
 
 TEST(SplatTiles, DropsNonFiniteSamplesWhole) {
   const auto filter = test::make_filter("gaussian");
-  SplatTiles tiles(4, 4, 4, 3, *filter);
+  SplatTiles::TileList list;
+  SplatTiles tiles(4, 4, 4, 3, *filter, list);
   const float bad[3] = {1, std::numeric_limits<float>::infinity(), 1};
   EXPECT_FALSE(tiles.splat(tile_of(tiles, 4, 2.f, 2.f), 2.f, 2.f, bad));
   Film film(4, 4, {"R", "G", "B"});

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/accel/instancing.h"
+#include "core/render/tile_size.h"
 #include "core/subdiv/face_varying.h"
 #include "core/util/error.h"
 
@@ -16,7 +17,6 @@ namespace {
 // Render-space vertices, indices, normals and Embree's BVH per flattened triangle, measured on
 // Embree 3.13 MEDIUM builds (notes/deps.md).
 constexpr double kBytesPerTriangle = 120;
-constexpr uint32_t kTileSize = 16;  // core/render/render_loop.cpp
 
 std::string gigabytes(double bytes) {
   return number_text(bytes / 1e9) + " GB";

@@ -331,9 +331,26 @@ Film RenderJob::make_film() const {
   return Film(plan_.width_px, plan_.height_px, plugins_->integrator->channels());
 }
 
+SamplingState RenderJob::make_sampling_state() const {
+  SamplingState state;
+  prepare_sampling_state(inputs(std::nullopt), plan_.width_px, plan_.height_px, state);
+  return state;
+}
+
+RenderResult RenderJob::run(Film& film) const {
+  SamplingState state;
+  return run(film, state);
+}
+
 RenderResult RenderJob::run() const {
   Film film = make_film();
   return run(film);
+}
+
+PixelRect RenderJob::part_tiles(const PixelRect& crop) const {
+  return whole_tiles_around(
+      part_region(crop, plan_.adaptive, plan_.samples_per_pixel, plan_.width_px, plan_.height_px),
+      plan_.width_px, plan_.height_px);
 }
 
 void apply_film_exposure(Image& image, double gain) {
@@ -343,8 +360,7 @@ void apply_film_exposure(Image& image, double gain) {
       image.pixels[i * image.channels.size() + c] *= float(gain);
 }
 
-RenderResult RenderJob::run(Film& film, const RenderControl& control,
-                            const RenderPart& part) const {
+RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
   const Plugins& p = *plugins_;
   RenderInputs inputs{*p.camera,
                       *p.filter,
@@ -363,21 +379,27 @@ RenderResult RenderJob::run(Film& film, const RenderControl& control,
   inputs.camera_path = p.camera_path.get();
   if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
   inputs.texture_footprint = options_.texture_footprint && !scene_.images.empty();
-  inputs.crop = part.crop;
+  inputs.crop = crop;
+  return inputs;
+}
+
+RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderControl& control,
+                            const std::optional<PixelRect>& crop) const {
+  const RenderInputs inputs = this->inputs(crop);
   std::optional<Progress> progress;
   if (options_.show_progress)
     progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,
                      stderr_is_terminal());
   RenderResult result;
-  result.stats =
-      render_image(inputs, film, control, progress ? &*progress : nullptr, part.splat_tiles);
+  result.stats = render_image(inputs, film, state, control, progress ? &*progress : nullptr);
   progress.reset();
+  if (!crop && !result.stats.interrupted) state.splat_tiles.clear();
   result.image = film.resolve();
   Image& image = result.image;
   apply_film_exposure(image, scene_.settings.film_exposure);
   const uint32_t* counts = film.sample_counts();
   // Over the pixels rendered: a part's crop, or the whole frame.
-  const PixelRect rendered = part.crop.value_or(whole_frame(film.width(), film.height()));
+  const PixelRect rendered = crop.value_or(whole_frame(film.width(), film.height()));
   result.fewest_samples = UINT32_MAX, result.most_samples = 0;
   for (uint32_t y = rendered.y0; y < rendered.y1; ++y)
     for (uint32_t x = rendered.x0; x < rendered.x1; ++x) {

@@ -44,13 +44,6 @@ struct RenderResult {
 // and `filmback merge` apply to the resolved film.
 void apply_film_exposure(Image& image, double gain);
 
-// A part of the render (docs/cli.md, "Parts of a render"): only `crop` is rendered
-// (RenderInputs::crop); with splatting, `splat_tiles` receives the tiles' buffers (render_image).
-struct RenderPart {
-  std::optional<PixelRect> crop;
-  SplatTiles::TileList* splat_tiles = nullptr;
-};
-
 class RenderJob {
  public:
   RenderJob(const Scene& scene, const RenderOptions& options, const PluginLoader& loader);
@@ -63,11 +56,21 @@ class RenderJob {
   std::string plan() const;  // one line: what was chosen and why
   // An empty film of this render's size and channels (or one to load a checkpoint into).
   Film make_film() const;
-  // Renders into `film`, continuing from the samples it already holds (docs/cli.md, "Interrupts
-  // and checkpoints"), and resolves it.
-  RenderResult run(Film& film, const RenderControl& control = {},
-                   const RenderPart& part = {}) const;
+  // An empty sampling state shaped for this render (splat tiles' slots, the convergence map), to
+  // load a checkpoint into (core/film/checkpoint.h).
+  SamplingState make_sampling_state() const;
+  // Renders into `film` and `state`, continuing from the samples they already hold (docs/cli.md,
+  // "Interrupts and checkpoints"), and resolves the film. With `crop`, only that part of the frame
+  // (docs/cli.md, "Parts of a render"; RenderInputs::crop): its pixels hold the whole render's
+  // sums, and with splatting `state` keeps the part's splat tiles for its partial film. A whole
+  // render that ends has added its splat tiles to the film: they are freed before it is resolved.
+  RenderResult run(Film& film, SamplingState& state, const RenderControl& control = {},
+                   const std::optional<PixelRect>& crop = std::nullopt) const;
+  RenderResult run(Film& film) const;
   RenderResult run() const;
+  // The pixels a part with `crop` renders and its checkpoint holds: the crop, with adaptive
+  // sampling its apron (part_region), grown to whole tiles.
+  PixelRect part_tiles(const PixelRect& crop) const;
   ImageMetadata metadata(const RenderResult& result) const;
 
   const ShotPlan& shot_plan() const { return plan_; }
@@ -83,6 +86,7 @@ class RenderJob {
   void build_geometry();       // subdivision refined, memory checked, geometry and lights
   void choose_time_samples();  // sets time_reason_ and the time plugins_ need
   void make_scene_table();     // what the integrator sees of the scene
+  RenderInputs inputs(const std::optional<PixelRect>& crop) const;  // what render_image is given
   // The film's, and these triangles' with their texture coordinates and tangents.
   void check_memory_budget(const GeometryCounts& geometry) const;
   const Scene& scene_;

@@ -234,6 +234,7 @@ class TileRenderer {
       stats.samples += n;
       if (++s < last && stop()) break;
     }
+    if (splat_tile) splat_tile->samples = s;
     stats.rays += context.rays_traced;
     return s;
   }
@@ -309,8 +310,12 @@ class TileGrid {
         margin_y_((domain_.y - height) / 2),
         tiles_x_((domain_.x + kTileSize - 1) / kTileSize),
         tiles_(uint64_t(tiles_x_) * ((domain_.y + kTileSize - 1) / kTileSize)),
-        crop_(inputs.crop),
-        splat_(inputs.reconstruction == Reconstruction::kSplat) {}
+        splat_(inputs.reconstruction == Reconstruction::kSplat) {
+    if (inputs.crop)
+      crop_ = splat_ ? *inputs.crop
+                     : part_region(*inputs.crop, inputs.adaptive, inputs.samples_per_pixel, width,
+                                   height);
+  }
 
   uint64_t size() const { return tiles_; }
   uint32_t margin_x() const { return margin_x_; }
@@ -343,8 +348,8 @@ class TileGrid {
   Vec2<uint32_t> domain_;
   uint32_t margin_x_, margin_y_, tiles_x_;
   uint64_t tiles_;
-  std::optional<PixelRect> crop_;
   bool splat_;
+  std::optional<PixelRect> crop_;  // the pixels sampled: importance's with the adaptive apron
 };
 
 // The sample counts at which passes end: doubling, so that an interrupted render has every pixel
@@ -388,13 +393,31 @@ PixelRect whole_tiles_around(const PixelRect& crop, uint32_t width, uint32_t hei
           std::min((crop.y1 + kTileSize - 1) / kTileSize * kTileSize, height)};
 }
 
-RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
-                         Progress* progress, SplatTiles::TileList* splat_tiles) {
+PixelRect part_region(const PixelRect& crop, const std::optional<AdaptiveSettings>& adaptive,
+                      uint32_t samples_per_pixel, uint32_t width, uint32_t height) {
+  if (!adaptive) return crop;
+  const uint32_t apron = adaptive_check_count(*adaptive, samples_per_pixel);
+  return {crop.x0 - std::min(crop.x0, apron), crop.y0 - std::min(crop.y0, apron),
+          uint32_t(std::min<uint64_t>(uint64_t(crop.x1) + apron, width)),
+          uint32_t(std::min<uint64_t>(uint64_t(crop.y1) + apron, height))};
+}
+
+void prepare_sampling_state(const RenderInputs& inputs, uint32_t width, uint32_t height,
+                            SamplingState& state) {
+  if (inputs.reconstruction == Reconstruction::kSplat && state.splat_tiles.empty())
+    state.splat_tiles.resize(SplatTiles::tile_count(width, height, kTileSize, inputs.filter));
+  if (inputs.adaptive && !state.convergence)
+    state.convergence.emplace(width, height, *inputs.adaptive, inputs.exposure);
+}
+
+RenderStats render_image(const RenderInputs& inputs, Film& film, SamplingState& state,
+                         const RenderControl& control, Progress* progress) {
   using Clock = std::chrono::steady_clock;
+  prepare_sampling_state(inputs, film.width(), film.height(), state);
   std::optional<SplatTiles> splats;
   if (inputs.reconstruction == Reconstruction::kSplat)
     splats.emplace(film.width(), film.height(), kTileSize, inputs.integrator.channels().size(),
-                   inputs.filter);
+                   inputs.filter, state.splat_tiles);
   const TileGrid grid(inputs, film.width(), film.height());
   const Vec2<uint32_t> domain = grid.domain();
   const uint32_t margin_x = grid.margin_x(), margin_y = grid.margin_y();
@@ -410,18 +433,24 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
     if (x1 > margin_x && y1 > margin_y && fx0 < fx1 && fy0 < fy1)
       film.set_sample_count(fx0, fy0, fx1, fy1, count);
   };
-  // A resumed film tells how far each tile got; a fresh one is all zeros.
+  ConvergenceMap* const convergence = state.convergence ? &*state.convergence : nullptr;
+  // A resumed film tells how far each tile got (its most sampled pixel: with adaptive sampling,
+  // the converged ones stopped short), a splat tile its own; a fresh one is all zeros.
   std::vector<uint32_t> done(tiles, 0);
-  if (!splats)
-    for (uint64_t tile = 0; tile < tiles; ++tile) {
-      const auto box = tile_box(tile);
-      done[tile] = std::min(film.sample_count(box[0], box[1]), inputs.samples_per_pixel);
+  for (uint64_t tile = 0; tile < tiles; ++tile) {
+    if (!grid.taken(tile)) continue;
+    const auto [x0, y0, x1, y1] = tile_box(tile);
+    if (splats) {
+      const std::unique_ptr<SplatTiles::Tile>& t = state.splat_tiles[tile];
+      done[tile] = t ? std::min(t->samples, inputs.samples_per_pixel) : 0;
+      continue;
     }
-  std::optional<ConvergenceMap> convergence;
-  if (inputs.adaptive)
-    convergence.emplace(film.width(), film.height(), *inputs.adaptive, inputs.exposure);
-  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr,
-                              convergence ? &*convergence : nullptr, domain);
+    for (uint32_t y = y0; y < (convergence ? y1 : y0 + 1); ++y)
+      for (uint32_t x = x0; x < (convergence ? x1 : x0 + 1); ++x)
+        done[tile] =
+            std::max(done[tile], std::min(film.sample_count(x, y), inputs.samples_per_pixel));
+  }
+  const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr, convergence, domain);
   tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
   std::atomic<bool> pause{false};  // a checkpoint is due: tiles stop, the film is saved, go on
@@ -439,11 +468,15 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
     }
     return false;
   };
-  if (progress)
+  if (progress)  // what a resumed render has done: a converged pixel's samples are all counted
     for (uint64_t tile = 0; tile < tiles; ++tile) {
       if (!grid.taken(tile)) continue;
       const auto [x0, y0, x1, y1] = tile_box(tile);
-      progress->advance(uint64_t(done[tile]) * (x1 - x0) * (y1 - y0));
+      uint64_t taken = uint64_t(done[tile]) * (x1 - x0) * (y1 - y0);
+      for (uint32_t y = y0; y < y1 && convergence; ++y)
+        for (uint32_t x = x0; x < x1; ++x)
+          if (convergence->converged(x, y)) taken += inputs.samples_per_pixel - done[tile];
+      progress->advance(taken);
     }
   RenderStats stats;
   for (const uint32_t end : pass_ends(inputs.samples_per_pixel, control, inputs.adaptive)) {
@@ -487,21 +520,22 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderCon
         break;
       }
       if (pause) {
-        control.checkpoint(film);
+        control.checkpoint(film, state);
         last_checkpoint = Clock::now();
         continue;
       }
       break;
     }
     if (stats.interrupted) break;
-    if (convergence && end < inputs.samples_per_pixel && adaptive_check_due(*inputs.adaptive, end))
-      convergence->update(film, [&](uint32_t, uint32_t) {
+    // Once per check: a resumed render's convergence map may have made it already.
+    if (convergence && end < inputs.samples_per_pixel &&
+        adaptive_check_due(*inputs.adaptive, end) && end > convergence->checked_samples())
+      convergence->update(film, end, [&](uint32_t, uint32_t) {
         // The samples it will not take count as done, so that progress ends at 100 %.
         if (progress) progress->advance(inputs.samples_per_pixel - end);
       });
   }
   if (splats) splats->add_to(film);
-  if (splats && splat_tiles) *splat_tiles = splats->release_tiles();
   const uint32_t film_tiles_x = (film.width() + kTileSize - 1) / kTileSize;
   stats.tile_seconds.assign(size_t(film_tiles_x) * ((film.height() + kTileSize - 1) / kTileSize),
                             0.0);

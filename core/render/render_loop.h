@@ -16,6 +16,7 @@
 #include "core/film/adaptive_sampling.h"
 #include "core/film/film.h"
 #include "core/film/pixel_rect.h"
+#include "core/film/sampling_state.h"
 #include "core/film/splat_tiles.h"
 #include "core/math/transform.h"
 #include "core/plugin/instances.h"
@@ -23,6 +24,7 @@
 #include "core/render/motion.h"
 #include "core/render/progress.h"
 #include "core/render/sampler.h"
+#include "core/render/tile_size.h"
 #include "core/render/zoom_in_shutter.h"
 
 namespace fb {
@@ -56,10 +58,11 @@ struct RenderInputs {
   bool texture_footprint = false;
   // A part of the render (docs/cli.md, "Parts of a render"): only the tiles it needs are sampled,
   // each pixel with exactly the samples of the whole render (the sampler is seeded per pixel of
-  // the whole sample domain). Importance: every tile that meets the crop (whole tiles, so that
-  // each ray batch is the whole render's). Splatting: every tile of the sample domain whose first
-  // film pixel (clamped to the film) lies in the crop, so that the parts of a frame share out its
-  // tiles. None: the whole frame.
+  // the whole sample domain). Importance: every tile that meets part_region(crop) (whole tiles,
+  // so that each ray batch is the whole render's; with adaptive sampling an apron around the crop,
+  // so that its pixels converge as in the whole render). Splatting: every tile of the sample
+  // domain whose first film pixel (clamped to the film) lies in the crop, so that the parts of a
+  // frame share out its tiles. None: the whole frame.
   std::optional<PixelRect> crop = std::nullopt;
 };
 
@@ -80,26 +83,33 @@ struct RenderControl {
   // When it becomes true (a signal handler sets it), every tile stops before its next sample
   // index: the render returns within about one sample of a tile.
   const std::atomic<bool>* cancel = nullptr;
-  // Called with the film at a consistent state (every pixel's sums cover exactly its recorded
-  // sample count) at least `checkpoint_every` after the start or the last call.
-  std::function<void(const Film&)> checkpoint;
+  // Called with the film and the sampling state at a consistent state (every pixel's sums cover
+  // exactly its recorded sample count, every splat tile's its samples) at least `checkpoint_every`
+  // after the start or the last call.
+  std::function<void(const Film&, const SamplingState&)> checkpoint;
   std::chrono::steady_clock::duration checkpoint_every{};
 };
 
-constexpr uint32_t kTileSize = 16;
+// Renders into `film` and `state` on the calling thread's TBB arena, in passes of doubling sample
+// counts over all tiles when `control` can stop the render (a cancel flag or checkpoints), else
+// each tile's samples in a row, while its part of the scene is in the core's cache (with adaptive
+// sampling: after its minimum, passes of kAdaptiveStep samples, each followed by the convergence
+// check; pixels that converged take no more samples and keep their own count in the film). A film
+// and state that already hold samples (a resumed checkpoint: Film::sample_count per tile, each
+// splat tile's samples, the convergence map and its last check) are continued from there; each
+// pixel's samples are still summed in sample order and each check made once, at its sample
+// count, so the image is bit-identical to an uninterrupted render. `progress` counts pixel
+// samples. `state` is shaped by prepare_sampling_state; with splatting its tiles are added to the
+// film when the render ends (or is interrupted) and stay there (a part writes them:
+// core/film/partial_film.h).
+RenderStats render_image(const RenderInputs& inputs, Film& film, SamplingState& state,
+                         const RenderControl& control, Progress* progress);
 
-// Renders into `film` on the calling thread's TBB arena, in passes of doubling sample counts over
-// all tiles when `control` can stop the render (a cancel flag or checkpoints), else each tile's
-// samples in a row, while its part of the scene is in the core's cache (with adaptive sampling:
-// after its minimum, passes of kAdaptiveStep samples, each followed by the convergence check;
-// pixels that converged take no more samples and keep their own count in the film). A film that
-// already holds samples (a resumed checkpoint: Film::sample_count per tile) is continued from
-// there; each pixel's samples are still summed in sample order, so the image is bit-identical to
-// an uninterrupted render. `progress` counts pixel samples.
-// With splatting and `splat_tiles`, the tiles' buffers are handed over there after they are added
-// to the film (a part of a render keeps them: core/film/partial_film.h).
-RenderStats render_image(const RenderInputs& inputs, Film& film, const RenderControl& control,
-                         Progress* progress, SplatTiles::TileList* splat_tiles = nullptr);
+// Gives `state` what a render of `inputs` into a width x height film keeps beside it: a slot per
+// splat tile when splatting, the convergence map with adaptive sampling. What it already holds (a
+// state to load a checkpoint into, or loaded) is kept.
+void prepare_sampling_state(const RenderInputs& inputs, uint32_t width, uint32_t height,
+                            SamplingState& state);
 
 // Pixel samples of a render: the sample domain's pixels (the film, and around it the filter's reach
 // when splatting) that inputs.crop takes, times the samples per pixel.
@@ -108,5 +118,12 @@ uint64_t sample_count(const RenderInputs& inputs, uint32_t width, uint32_t heigh
 // The pixels a part's importance-sampled render writes: `crop` grown to whole tiles, within the
 // film; what its checkpoint holds.
 PixelRect whole_tiles_around(const PixelRect& crop, uint32_t width, uint32_t height);
+
+// The pixels a part with `crop` samples, before whole tiles: with adaptive sampling, `crop` and an
+// apron of adaptive_check_count pixels around it, within the film (a pixel's convergence after k
+// checks depends on pixels up to k away); else `crop`. Only the crop's pixels go into the partial
+// film: the apron's may have converged otherwise than in the whole render.
+PixelRect part_region(const PixelRect& crop, const std::optional<AdaptiveSettings>& adaptive,
+                      uint32_t samples_per_pixel, uint32_t width, uint32_t height);
 
 }  // namespace fb

@@ -2,17 +2,15 @@
 // `filmback convert` read back exactly, and bad values are errors naming the JSON path.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 #include <string>
 
-#include "core/math/constants.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
 #include "importers/gltf/gltf_writer.h"
 #include "support/gltf_builder.h"
+#include "support/povray_light.h"
 
 namespace fb {
 namespace {
@@ -25,13 +23,8 @@ Scene round_trip(const Scene& scene, const std::string& name) {
 }
 
 Light pov_light(LightType type, Vec3d position) {
-  Light l;
-  l.name = "light";
-  l.type = type;
-  l.decay = LightDecay::kPovRay;
-  l.intensity = Rgb(0.8f, 0.5f, 0.3f) * float(kPi);
-  l.world_from_light = Transform::translate(position) * Transform::rotate({0.1, 0.7, -0.2, 0.6});
-  return l;
+  return test::povray_light(
+      type, Transform::translate(position) * Transform::rotate({0.1, 0.7, -0.2, 0.6}));
 }
 
 void expect_same_light(const Light& a, const Light& b) {

@@ -12,6 +12,7 @@
 #include "core/scene/sensor_fit.h"
 #include "core/util/error.h"
 #include "core/util/temporary_file.h"
+#include "importers/gltf/gltf_khr_stand_in.h"
 #include "importers/gltf/gltf_povray_light.h"
 #include "importers/gltf/gltf_povray_pattern.h"
 
@@ -23,6 +24,9 @@ using tinygltf::Value;
 
 // Blender's exporter's PBR_WATTS_TO_LUMENS, which importers/gltf/gltf_lights.cpp divides by.
 constexpr double kLumensPerWatt = 683;
+
+// The roughness written for Lambertian materials (material() below).
+constexpr double kLambertianViewerRoughness = 0.5;
 
 Value number(double v) {
   return Value(v);
@@ -90,6 +94,14 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
                                               m.alpha};
   out.pbrMetallicRoughness.metallicFactor = m.metallic;
   out.pbrMetallicRoughness.roughnessFactor = m.roughness;
+  // A Lambertian material (specular 0: filmback ignores its roughness) is matte in glTF's own
+  // BSDF at any roughness, but Blender's Principled diffuse (Disney's) brightens with roughness
+  // (retro-reflection) and its glTF importer does not read specularFactor 0: at roughness 0.5 it
+  // reflects, averaged over directions, what Lambert's does (1.008; 1.065 at roughness 1).
+  // Not under a POV-Ray pattern with filter, which makes points of it refract.
+  if (m.specular == 0 && m.metallic == 0 && m.transmission == 0 &&
+      !(m.base_color_pattern && gltf::mean_colour(*m.base_color_pattern).filter > 0))
+    out.pbrMetallicRoughness.roughnessFactor = kLambertianViewerRoughness;
   out.doubleSided = m.double_sided;
   out.alphaMode = m.alpha_mode == AlphaMode::kMask    ? "MASK"
                   : m.alpha_mode == AlphaMode::kBlend ? "BLEND"
@@ -135,14 +147,15 @@ std::vector<double> column_major(const Transform& t) {
 }
 
 // KHR_lights_punctual for any viewer, and the exact light in our extension (gltf_lights.cpp).
-void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light) {
+// `khr_scale` multiplies the KHR intensity only (gltf_khr_stand_in.h).
+void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light, double khr_scale) {
   constexpr double kPi = std::numbers::pi;
   tinygltf::Light out;
   out.name = light.name;
   const double peak = double(std::max(max_component(light.intensity), 0.f));
   const Rgb colour = peak > 0 ? light.intensity * float(1 / peak) : Rgb(1.f, 1.f, 1.f);
   out.color = {colour.x, colour.y, colour.z};
-  out.intensity = peak * kLumensPerWatt;
+  out.intensity = peak * kLumensPerWatt * khr_scale;
   Value::Object ours{{"color", gltf::number_array(colour)}};
   switch (light.type) {
     case LightType::kPoint:
@@ -152,9 +165,8 @@ void add_light(tinygltf::Model& model, tinygltf::Node& node, const Light& light)
       ours["energy_w"] = number(peak * 4 * kPi);
       ours["radius_m"] = number(light.radius_m);
       // KHR_lights_punctual: 0 <= inner < outer <= pi / 2 (POV-Ray's falloff may exceed it).
-      out.spot.outerConeAngle = std::clamp(light.spot_outer_angle_rad, 1e-6, kPi / 2);
-      out.spot.innerConeAngle =
-          std::clamp(light.spot_inner_angle_rad, 0.0, 0.999 * out.spot.outerConeAngle);
+      out.spot.innerConeAngle = gltf::khr_spot_cone(light).inner_rad;
+      out.spot.outerConeAngle = gltf::khr_spot_cone(light).outer_rad;
       if (light.type == LightType::kSpot) {
         ours["spot_size_rad"] = number(2 * light.spot_outer_angle_rad);
         ours["spot_blend"] = number(light.spot_blend);
@@ -234,16 +246,33 @@ void add_camera(tinygltf::Model& model, tinygltf::Node& node, const SceneCamera&
   node.camera = int(model.cameras.size() - 1);
 }
 
+// The mean radiance of an equirectangular world image over the sphere (each row weighted by the
+// solid angle it covers, sin of its polar angle): the uniform world that sends the same light.
+Rgb mean_radiance(const EnvironmentMap& map) {
+  Rgb sum{0.f, 0.f, 0.f};
+  double weights = 0;
+  for (uint32_t y = 0; y < map.height; ++y) {
+    const double w = std::sin(std::numbers::pi * (y + 0.5) / map.height);
+    for (uint32_t x = 0; x < map.width; ++x)
+      sum += map.texels[size_t(y) * map.width + x] * float(w);
+    weights += w * map.width;
+  }
+  return weights > 0 ? sum * float(1 / weights) : sum;
+}
+
 Value::Object scene_settings(const Scene& scene, uint32_t width_px, uint32_t height_px) {
   const ShotSettings& s = scene.settings;
-  Value::Object out{{"resolution_x_px", Value(int(width_px))},
-                    {"resolution_y_px", Value(int(height_px))},
-                    {"resolution_percentage", Value(100)},
-                    {"pixel_aspect_x", number(s.pixel_aspect.value_or(1.0))},
-                    {"pixel_aspect_y", number(1)},
-                    {"film_exposure", number(s.film_exposure)},
-                    {"world_color", gltf::number_array(scene.background)},
-                    {"world_strength", number(1)}};
+  Value::Object out{
+      {"resolution_x_px", Value(int(width_px))},
+      {"resolution_y_px", Value(int(height_px))},
+      {"resolution_percentage", Value(100)},
+      {"pixel_aspect_x", number(s.pixel_aspect.value_or(1.0))},
+      {"pixel_aspect_y", number(1)},
+      {"film_exposure", number(s.film_exposure)},
+      // A world image (a POV-Ray sky_sphere) is not written: its mean is.
+      {"world_color", gltf::number_array(scene.environment ? mean_radiance(*scene.environment)
+                                                           : scene.background)},
+      {"world_strength", number(1)}};
   if (s.fps) out["fps"] = number(*s.fps);
   if (s.frame) out["frame"] = number(*s.frame);
   return out;
@@ -254,7 +283,7 @@ Value::Object scene_settings(const Scene& scene, uint32_t width_px, uint32_t hei
 void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnostics) {
   if (scene.environment)
     diagnostics.warn("'" + file.string() + "': the world image '" + scene.environment->name +
-                     "' is not written; the world colour is");
+                     "' is not written; its mean radiance is, as the world colour");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "filmback convert";
@@ -274,16 +303,11 @@ void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnosti
     root.nodes.push_back(int(model.nodes.size()));
     model.nodes.push_back(node);
   }
-  for (const Light& light : scene.lights) {
-    tinygltf::Node node;
-    node.name = light.name;
-    node.matrix = column_major(light.world_from_light);
-    add_light(model, node, light);
-    root.nodes.push_back(int(model.nodes.size()));
-    model.nodes.push_back(node);
-  }
+  // Cameras first, written after the lights: the first one, as a viewer sees through it, sets
+  // how bright the lights' KHR stand-ins are.
   const uint32_t width = scene.settings.width_px.value_or(800);
   const uint32_t height = scene.settings.height_px.value_or(600);
+  std::vector<tinygltf::Node> camera_nodes;
   for (const SceneCamera& camera : scene.cameras) {
     if (camera.world_from_camera.determinant3x3() < 0)
       diagnostics.warn("camera '" + camera.name +
@@ -292,8 +316,24 @@ void write_gltf(const Scene& scene, const fs::path& file, Diagnostics& diagnosti
     node.name = camera.name;
     node.matrix = column_major(camera.world_from_camera);
     add_camera(model, node, camera, width, height);
+    camera_nodes.push_back(node);
+  }
+  const std::vector<double> khr_scales =
+      scene.cameras.empty()
+          ? std::vector<double>(scene.lights.size(), 1.0)
+          : gltf::khr_intensity_scales(scene, model.cameras[0], scene.cameras[0].world_from_camera);
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    tinygltf::Node node;
+    node.name = light.name;
+    node.matrix = column_major(light.world_from_light);
+    add_light(model, node, light, khr_scales[i]);
     root.nodes.push_back(int(model.nodes.size()));
     model.nodes.push_back(node);
+  }
+  for (tinygltf::Node& node : camera_nodes) {
+    root.nodes.push_back(int(model.nodes.size()));
+    model.nodes.push_back(std::move(node));
   }
   root.extensions["FILMBACK_blender"] = Value(scene_settings(scene, width, height));
   model.scenes.push_back(root);

@@ -2,8 +2,9 @@
 `render --frames A-B[:STEP]` renders each frame as `render --frame N` does (bit-identical), into
 output patterns whose run of '#' is the frame number; a re-run skips the frames that are done and
 touches none of their files; --overwrite renders them again; a signal stops the sequence after
-the frame it interrupted, whose checkpoint --resume continues; bad ranges and patterns are usage
-errors that write nothing.
+the frame it interrupted, whose checkpoint --resume continues; an interrupted frame writes its EXR
+(marked interrupted) and no PNG or JPEG; bad ranges and patterns are usage errors that write
+nothing.
 
 Run: frames_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case
 names (CMake registers one CTest test per case from it).
@@ -220,6 +221,33 @@ class FramesTest(unittest.TestCase):
         self.render("--frame", k, "-o", "single.exr", *render)
         self.assertEqual(compare([(self.dir / ("f.%d.exr" % k), self.dir / "single.exr")])[0],
                          [True])
+
+    def test_an_interrupted_frame_writes_its_exr_and_no_8_bit_image(self):
+        # A half-rendered PNG or JPEG would look finished: only the EXR, marked interrupted, is
+        # written, so the frame is not done and a re-run renders it.
+        sequence = ["--frames", "1", "-o", "f.#.exr", "-o", "f.#.png", "-o", "f.#.jpg",
+                    "--res", "32x32", "--spp", "100000", "--checkpoint-every", "0.05s", "-q"]
+        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
+        process = subprocess.Popen([FILMBACK, "render", str(self.scene), *sequence],
+                                   stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                   env=env, cwd=self.dir)
+        self.addCleanup(lambda: process.poll() is None and process.kill())
+        deadline = time.monotonic() + 60
+        while not (self.dir / "f.1.checkpoint.exr").exists() and process.poll() is None:
+            self.assertLess(time.monotonic(), deadline, "no checkpoint written")
+            time.sleep(0.01)
+        process.send_signal(signal.SIGINT)
+        stdout, stderr = process.communicate(timeout=120)
+        self.assertEqual(process.returncode, 128 + signal.SIGINT, stderr)
+        for eight_bit in ("f.1.png", "f.1.jpg"):
+            self.assertIn("filmback: interrupted: %s not written" % eight_bit, stderr)
+        self.assertEqual(sorted(p.name for p in self.dir.glob("f.1.*")),
+                         ["f.1.checkpoint.exr", "f.1.exr"])
+        info = subprocess.run(["oiiotool", "--info", "-v", str(self.dir / "f.1.exr")],
+                              capture_output=True, text=True).stdout
+        self.assertRegex(info, r"filmback/interrupted: 1\b")
+        self.assertRegex(stdout, r"filmback: interrupted \(signal 2\) after [0-9.]+ s: pixels of "
+                                 r"32x32 hold \d+ to [1-9]\d* of 100000 samples")
 
     def test_bad_ranges_and_patterns_are_usage_errors_writing_nothing(self):
         # More bad ranges are unit-tested (FrameRange.BadRangesAreUsageErrorsSayingWhy).

@@ -2,8 +2,8 @@
 `render --tile I/N --tile-plan` writes partial films (plans from `filmback tile-plan` too) that `merge` turns into the whole render's EXR
 and PNG, pixel for pixel (idiff with zero tolerance); merge refuses a part of another scene, a
 missing part and a truncated file (exit 1, the file or the uncovered pixels named, no output
-written); bad --tile/--crop are usage errors (exit 2); a part interrupted by SIGINT resumes from its
-checkpoint and merges into the same image. Few processes (each costs ~0.5 s of CPU to start): the
+written); bad --tile/--crop are usage errors (exit 2); parts of an adaptive render merge into the
+same image; a part interrupted by SIGINT resumes from its checkpoint and merges into the same image. Few processes (each costs ~0.5 s of CPU to start): the
 matrix (every sampler, filter, reconstruction, seed, part count) and the other refusals are
 in-process, tests/unit/partial_film_test.cpp.
 
@@ -12,6 +12,7 @@ Run: parts_test.py --filmback BIN --scratch DIR [unittest names...]; --list prin
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -90,6 +91,38 @@ class PartsTest(unittest.TestCase):
                     owners[y][x] += 1
         self.assertTrue(all(o == 1 for row in owners for o in row), "parts overlap or leave gaps")
 
+    def exr_attributes(self, file):
+        """The image's metadata as `oiiotool --info -v` prints it: name -> text (quotes kept)."""
+        text = subprocess.run(["oiiotool", "--info", "-v", str(self.dir / file)],
+                              capture_output=True, text=True, check=True).stdout
+        return dict(re.findall(r"^ +([\w/]+): (.*)$", text, re.MULTILINE))
+
+    def test_parts_name_their_crops_and_merge_sums_their_times(self):
+        # Bands of tile rows without a plan: rows 0-31 and 32-71.
+        crops = ["0,0,70,32", "0,32,70,72"]
+        for i in range(2):
+            result = self.run_cli("render", SCENE, "--tile", f"{i}/2", "-o", f"p{i}.exr", *RENDER)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertIn(f"filmback: rendered part {crops[i]} of 70x72 at 4 spp in ",
+                          result.stdout)
+        result = self.run_cli("merge", "p0.exr", "p1.exr", "-o", "merged.exr")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("filmback: merged 2 parts into 70x72; summed over the parts: ", result.stdout)
+        render_s = sampling_s = 0.0
+        for i in range(2):
+            part = self.exr_attributes(f"p{i}.exr")
+            render_s += float(part["filmback/part/render_seconds"].strip('"'))
+            sampling_s += sum(float(s) for s in
+                              part["filmback/part/tile_seconds"].strip('"').split())
+        merged = self.exr_attributes("merged.exr")
+        self.assertEqual(merged["filmback/parts"], "2")
+        # 32-bit floats, which oiiotool prints to at least 6 digits: the sums to 1e-5.
+        self.assertAlmostEqual(float(merged["filmback/render_seconds"]), render_s,
+                               delta=1e-5 * render_s)
+        self.assertAlmostEqual(float(merged["filmback/parts_sampling_seconds"]), sampling_s,
+                               delta=1e-5 * sampling_s)
+        self.assertGreater(sampling_s, 0)
+
     def test_merge_refuses_what_is_not_one_render(self):
         # Bands of tile rows: rows 0-31 and 32-71. The other refusals (seed, overlap, a corrupt
         # splat table) are PartialFilm.* in tests/unit/partial_film_test.cpp.
@@ -112,8 +145,18 @@ class PartsTest(unittest.TestCase):
                             "-o", "out.png")
         self.assert_refused(2, "outside the 70x72 frame", "render", SCENE, *RENDER,
                             "--crop", "0,0,71,10", "-o", "out.exr")
-        self.assert_refused(2, "--adaptive-threshold 0", "render", SCENE, *RENDER,
-                            "--adaptive-threshold", "0.01", "--tile", "0/2", "-o", "out.exr")
+
+    def test_adaptive_parts_merge_into_the_whole_render(self):
+        # Each part samples an apron of one pixel per convergence check (3 here) around its crop.
+        render = ["--res", "70x72", "--spp", "64", "-q", "--adaptive-threshold", "0.05",
+                  "--adaptive-min-samples", "16", "--seed", "3"]
+        self.render("-o", "whole.exr", *render)
+        for i in range(3):
+            self.render("--tile", f"{i}/3", "-o", f"part{i}.exr", *render)
+        result = self.run_cli("merge", "part0.exr", "part1.exr", "part2.exr", "-o", "merged.exr")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        same, why = images_identical(self.dir / "whole.exr", self.dir / "merged.exr")
+        self.assertTrue(same, why)
 
     def test_interrupted_part_resumes_into_the_same_image(self):
         render = ["--res", "96x54", "--spp", "64"]

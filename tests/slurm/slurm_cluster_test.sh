@@ -5,7 +5,8 @@
 # 8-tile array plus a merge, and compares each merged EXR with a one-process render of the frame,
 # bit for bit. In one job the last task's render (the element that holds the array's own job id)
 # is killed (SIGKILL) once its checkpoint exists: the task must requeue itself alone, resume from
-# the checkpoint (its log says so), and the merge must still be bit-identical. The daemons are stopped by pid at the end, also on failure, after
+# the checkpoint (its log says so), and the merge must still be bit-identical; the other job's
+# tasks must show their own names in squeue (fb:SCENE:fFFFF:tT/N). The daemons are stopped by pid at the end, also on failure, after
 # scancel. Exit 77 (CTest's skip) only when Slurm's daemons are not installed.
 #
 # Usage: slurm_cluster_test.sh FILMBACK SCENE SCRATCH
@@ -51,7 +52,8 @@ trap 'exit 130' INT TERM
 
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-# The shot: small, one frame, checkpoints allowed (no adaptive sampling, importance reconstruction).
+# The shot: small, one frame, with adaptive sampling at Blender's default threshold (0.01: 8 checks,
+# so each part samples an 8-pixel apron) and checkpoints.
 # A task renders for about a second on one core (2026-11-28, this 2-core machine): long enough
 # for the killed task to have written a checkpoint (every 0.05 s) and still be running. 8 rows of
 # 16-pixel tiles, so that 8 parts of equal area exist without a plan.
@@ -68,7 +70,7 @@ if ! has_command merge; then
   SPP=24  # the stand-in's parts are whole frames: 8 times a tile's work
 fi
 has_command tile-plan || PLAN=none
-RENDER_OPTIONS=(--res 96x128 --spp $SPP --adaptive-threshold 0 --seed 7)
+RENDER_OPTIONS=(--res 96x128 --spp $SPP --adaptive-threshold 0.01 --seed 7)
 
 log "one-process render of frame $FRAME"
 "$FILMBACK" render "$SCENE" "${RENDER_OPTIONS[@]}" --frame $FRAME --quiet -o "$W/out/reference.exr"
@@ -156,4 +158,8 @@ grep -q "^resuming from checkpoint $CHECKPOINT" "$TILE_LOG" ||
 for t in 0 1 2 3 4 5 6; do
   [ "$(grep -c ": try " "$JOB/logs/f000$FRAME.t$t.log")" = 1 ] || fail "tile $t ran more than once"
 done
+# Each task renamed itself (in the background, the render not waiting for it): squeue shows
+# scene, frame and tile.
+names=$(squeue -h -t all -o %j | grep -c "^fb:whole:f000$FRAME:t[0-7]/8\$" || true)
+[ "$names" = 8 ] || fail "$names of the whole job's 8 tile tasks show their own name in squeue"
 log "OK: both merges bit-identical to the one-process render; the killed task resumed from its checkpoint"

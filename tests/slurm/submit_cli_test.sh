@@ -3,7 +3,7 @@
 # prints the sbatch commands; the task files hold each task's command line exactly (a quote in a
 # path included); arrays stay within --max-array-size and the merge depends on every one of them;
 # usage errors exit 2 and bad input 1, each writing nothing; without sbatch on PATH, exit 1
-# suggesting --dry-run. Usage: submit_cli_test.sh FILMBACK SCENE SCRATCH
+# suggesting --dry-run; --tile-plan auto makes the plan every task reads. Usage: submit_cli_test.sh FILMBACK SCENE SCRATCH
 set -euo pipefail
 FILMBACK=$(realpath "$1")
 SCENE=$(realpath "$2")
@@ -64,4 +64,24 @@ expect_reuse=0
 "$FILMBACK" submit "$SCENE" --tiles 8 -o "$OUT" --frames 4-6:2 --dry-run --tile-plan none \
   >"$W/out.txt" 2>&1 || expect_reuse=$?
 [ $expect_reuse = 1 ] && grep -qF "the job folder exists" "$W/out.txt" || fail "a job folder was reused"
-echo "OK: dry run, task command lines, array split, refusals"
+# --tile-plan auto: the plan is made in submit's own process (its pre-pass one render process)
+# and every task reads it; a pre-pass that fails (a bad render option) leaves no job folder.
+status=0
+"$FILMBACK" submit "$SCENE" --tiles 4 -o "$W/auto.exr" --dry-run --res 64x48 --no-such-option \
+  >"$W/out.txt" 2>&1 || status=$?
+[ $status = 1 ] && grep -qF -- "submit: --tile-plan auto: tile-plan: the pre-pass render" "$W/out.txt" ||
+  { cat "$W/out.txt"; fail "a failing pre-pass: exit $status"; }
+[ -z "$(find "$W" -maxdepth 1 -name '*auto.filmback-job*')" ] || fail "a failing pre-pass left files"
+"$FILMBACK" submit "$SCENE" --tiles 4 -o "$W/auto.exr" --dry-run --res 64x48 --spp 4 \
+  >"$W/auto.txt" 2>"$W/auto.err" || { cat "$W/auto.err"; fail "submit --tile-plan auto failed"; }
+grep -q "^submit: tile plan made in [0-9.e-]* s: filmback: wrote .*: 4 parts of 64x48 from a pre-pass" \
+  "$W/auto.err" || { cat "$W/auto.err"; fail "no tile plan line"; }
+/usr/bin/python3 -c 'import json, sys; assert len(json.load(open(sys.argv[1]))["parts"]) == 4' \
+  "$W/auto.filmback-job/plan.json" || fail "the job folder's plan.json has not 4 parts"
+(
+  source "$W/auto.filmback-job/tasks/000002.sh"
+  [[ " ${render_args[*]} " == *" --tile 2/4 --tile-plan $W/auto.filmback-job/plan.json "* ]] ||
+    fail "task 2 does not read the plan: ${render_args[*]}"
+) || exit 1
+[ -z "$(find "$W" -maxdepth 1 -name '.auto.filmback-job*')" ] || fail "the made plan was left beside the folder"
+echo "OK: dry run, task command lines, array split, refusals, the tile plan"

@@ -100,7 +100,7 @@ TEST(AdaptiveSampling, ErrorIsTheHalfBufferDifferenceOverTheSquareRootOfIntensit
   EXPECT_NEAR(map.error(film, 0, 0), 0.3 / (1e-4 + std::sqrt(0.6)), 1e-6);
   EXPECT_NEAR(map.error(film, 1, 0), 0.0, 1e-7);
   // The constant pixel is below the threshold but its neighbour is not: both go on sampling.
-  map.update(film, [](uint32_t, uint32_t) { ADD_FAILURE() << "nothing should converge"; });
+  map.update(film, 4, [](uint32_t, uint32_t) { ADD_FAILURE() << "nothing should converge"; });
   EXPECT_FALSE(map.converged(1, 0));
 }
 

@@ -1,10 +1,14 @@
 // Interrupted, checkpointed and resumed renders (docs/cli.md, "Interrupts and checkpoints"):
 // whatever stops a render and wherever it is resumed from, the finished image is bit-identical
-// to one rendered without a stop, because each pixel's samples are summed in sample order.
+// to one rendered without a stop, because each pixel's samples are summed in sample order, with
+// importance sampling, splatting and adaptive sampling.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <functional>
 #include <numbers>
+#include <set>
 
 #include "core/film/checkpoint.h"
 #include "core/image/image_io.h"
@@ -57,7 +61,7 @@ struct StopAtCheckpoint {
     RenderControl c;
     c.cancel = &cancel;
     c.checkpoint_every = std::chrono::steady_clock::duration::zero();  // at every chance
-    c.checkpoint = [this](const Film&) {
+    c.checkpoint = [this](const Film&, const SamplingState&) {
       if (--remaining == 0) cancel = true;
     };
     return c;
@@ -73,8 +77,9 @@ TEST(Interrupt, ACancelledRenderReportsEachPixelsSamplesAndResumesBitIdentically
   EXPECT_EQ(whole.image.channels.size(), 3u);  // a finished render has no "samples" channel
 
   Film film = job.make_film();
+  SamplingState state;
   StopAtCheckpoint stop{5};
-  const RenderResult part = job.run(film, stop.control());
+  const RenderResult part = job.run(film, state, stop.control());
   ASSERT_TRUE(part.stats.interrupted);
   EXPECT_LT(part.fewest_samples, 24u);
   EXPECT_GT(part.most_samples, 0u);
@@ -90,10 +95,11 @@ TEST(Interrupt, ACancelledRenderReportsEachPixelsSamplesAndResumesBitIdentically
 
   // Through a checkpoint file, as the command line resumes.
   const auto file = test::scratch_dir() / "interrupt.checkpoint.exr";
-  write_checkpoint(film, "key", file);
+  write_checkpoint(film, state, "key", file);
   Film resumed = job.make_film();
-  read_checkpoint(file, "key", 24, kTileSize, resumed);
-  const RenderResult rest = job.run(resumed, {});
+  SamplingState resumed_state = job.make_sampling_state();
+  read_checkpoint(file, "key", 24, kTileSize, resumed, resumed_state);
+  const RenderResult rest = job.run(resumed, resumed_state);
   EXPECT_FALSE(rest.stats.interrupted);
   EXPECT_EQ(rest.stats.samples + part.stats.samples, whole.stats.samples);
   EXPECT_EQ(rest.image.pixels, whole.image.pixels);
@@ -104,10 +110,11 @@ TEST(Interrupt, CheckpointsTakenOnTheWayChangeNothing) {
   const RenderJob job(scene, options(9), test::loader());  // 9: the last pass is not a doubling
   const RenderResult whole = job.run();
   Film film = job.make_film();
+  SamplingState state;
   int checkpoints = 0;
   RenderControl control;
-  control.checkpoint = [&](const Film&) { ++checkpoints; };  // every chance: between all tiles
-  const RenderResult again = job.run(film, control);
+  control.checkpoint = [&](const Film&, const SamplingState&) { ++checkpoints; };  // every chance
+  const RenderResult again = job.run(film, state, control);
   EXPECT_GT(checkpoints, 4);
   EXPECT_EQ(again.image.pixels, whole.image.pixels);
 }
@@ -129,7 +136,8 @@ TEST(Interrupt, OnePassAndDoublingPassesGiveTheSameImage) {
     RenderControl control;
     control.cancel = &never;
     Film film = job.make_film();
-    const RenderResult passes = job.run(film, control);
+    SamplingState state;
+    const RenderResult passes = job.run(film, state, control);
     EXPECT_EQ(passes.stats.samples, one_pass.stats.samples);
     EXPECT_EQ(passes.image.pixels, one_pass.image.pixels) << reconstruction_name(reconstruction);
   }
@@ -139,14 +147,16 @@ TEST(Interrupt, CheckpointsOfAnotherRenderOrAnImpossibleStateAreRefused) {
   const Scene scene = lit_floor();
   const RenderJob job(scene, options(8), test::loader());
   Film film = job.make_film();
+  SamplingState state;
   StopAtCheckpoint stop{3};
-  job.run(film, stop.control());
+  job.run(film, state, stop.control());
   const auto file = test::scratch_dir() / "refused.checkpoint.exr";
-  write_checkpoint(film, "this render", file);
+  write_checkpoint(film, state, "this render", file);
   const auto refusal = [&](const std::string& key, uint32_t spp) -> std::string {
     Film target = job.make_film();
+    SamplingState target_state = job.make_sampling_state();
     try {
-      read_checkpoint(file, key, spp, kTileSize, target);
+      read_checkpoint(file, key, spp, kTileSize, target, target_state);
     } catch (const InputError& e) {
       return e.what();
     }
@@ -157,11 +167,97 @@ TEST(Interrupt, CheckpointsOfAnotherRenderOrAnImpossibleStateAreRefused) {
   EXPECT_NE(refusal("this render", 1).find("cannot have left"), std::string::npos);
   // Sample counts that differ within one tile: a state no render leaves.
   film.sample_counts()[1] += 1;
-  write_checkpoint(film, "this render", file);
+  write_checkpoint(film, state, "this render", file);
   EXPECT_NE(refusal("this render", 8).find("pixel 1,0 has"), std::string::npos);
   // An image is no checkpoint.
   write_images(job.run().image, {file}, {});
   EXPECT_NE(refusal("this render", 8).find("not a filmback checkpoint"), std::string::npos);
+  // A checkpoint of an earlier filmback (version 1: the film alone) names the file and versions.
+  ImageMetadata version_1;
+  version_1.ints = {{"filmback/checkpoint_version", 1}};
+  version_1.strings = {{"filmback/checkpoint_key", "this render"}};
+  write_images(job.run().image, {file}, version_1);
+  const std::string old = refusal("this render", 8);
+  EXPECT_NE(old.find(file.string() + ": cannot resume from this checkpoint: it is a version 1 "
+                                     "checkpoint, this filmback reads 2"),
+            std::string::npos)
+      << old;
+}
+
+// Interrupted at the `stop_at`-th checkpoint offered, saved through a checkpoint file, loaded into
+// a fresh film and state and finished: the film and the per-pixel counts of the whole render.
+struct ResumedRender {
+  RenderResult whole, stopped, rest;
+  std::vector<uint32_t> whole_counts, rest_counts;
+  size_t converged_at_stop = 0;  // pixels the checkpoint's convergence map had stopped
+};
+
+ResumedRender resume_through_file(const RenderJob& job, const std::string& name,
+                                  const std::function<bool(const SamplingState&)>& stop_now) {
+  ResumedRender r;
+  Film whole = job.make_film();
+  r.whole = job.run(whole);
+  r.whole_counts.assign(whole.sample_counts(), whole.sample_counts() + whole.pixel_count());
+  Film film = job.make_film();
+  SamplingState state;
+  std::atomic<bool> cancel{false};
+  RenderControl control;
+  control.cancel = &cancel;
+  control.checkpoint = [&](const Film&, const SamplingState& s) {
+    if (stop_now(s)) cancel = true;
+  };
+  r.stopped = job.run(film, state, control);
+  const auto file = test::scratch_dir() / (name + ".checkpoint.exr");
+  write_checkpoint(film, state, "key", file);
+  if (state.convergence)
+    r.converged_at_stop =
+        size_t(std::count(state.convergence->converged_flags(),
+                          state.convergence->converged_flags() + film.pixel_count(), uint8_t(1)));
+  Film resumed = job.make_film();
+  SamplingState resumed_state = job.make_sampling_state();
+  read_checkpoint(file, "key", job.samples_per_pixel(), kTileSize, resumed, resumed_state);
+  r.rest = job.run(resumed, resumed_state);
+  r.rest_counts.assign(resumed.sample_counts(), resumed.sample_counts() + resumed.pixel_count());
+  return r;
+}
+
+// Splatting: the tiles' sums, which reach their neighbours' pixels and are added to the film only
+// at the end, are saved in the checkpoint and resumed exactly.
+TEST(Interrupt, ASplattedRenderResumesFromItsCheckpointBitIdentically) {
+  const Scene scene = lit_floor();
+  RenderOptions o = options(12);
+  o.reconstruction = Reconstruction::kSplat;
+  o.filter = "gaussian:radius=2.5";
+  const RenderJob job(scene, o, test::loader());
+  int offered = 0;
+  const ResumedRender r =
+      resume_through_file(job, "splat", [&](const SamplingState&) { return ++offered == 5; });
+  ASSERT_TRUE(r.stopped.stats.interrupted);
+  EXPECT_LT(r.stopped.fewest_samples, 12u);
+  EXPECT_FALSE(r.rest.stats.interrupted);
+  EXPECT_EQ(r.rest.stats.samples + r.stopped.stats.samples, r.whole.stats.samples);
+  EXPECT_EQ(r.rest.image.pixels, r.whole.image.pixels);
+}
+
+// Adaptive sampling: stopped after two convergence checks, with some pixels converged and others
+// not, resumed with the saved half buffer and flags; the checks still to come are made at the
+// same counts. Pixels converge at several counts, so a lost or repeated check would show.
+TEST(Interrupt, AnAdaptiveRenderResumesFromItsCheckpointBitIdentically) {
+  const Scene scene = lit_floor();
+  RenderOptions o = options(64);
+  o.adaptive_threshold = 0.05, o.adaptive_min_samples = 16;  // checks at 16, 32 and 48
+  const RenderJob job(scene, o, test::loader());
+  const ResumedRender r = resume_through_file(job, "adaptive", [](const SamplingState& s) {
+    return s.convergence->checked_samples() >= 32;
+  });
+  ASSERT_TRUE(r.stopped.stats.interrupted);
+  EXPECT_GT(r.converged_at_stop, 0u);
+  EXPECT_LT(r.converged_at_stop, r.whole_counts.size());
+  const std::set<uint32_t> counts(r.whole_counts.begin(), r.whole_counts.end());
+  EXPECT_GE(counts.size(), 3u) << "pixels should converge at several counts";
+  EXPECT_EQ(r.rest.stats.samples + r.stopped.stats.samples, r.whole.stats.samples);
+  EXPECT_EQ(r.rest_counts, r.whole_counts);
+  EXPECT_EQ(r.rest.image.pixels, r.whole.image.pixels);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <set>
 
 #include "core/film/checkpoint.h"
 #include "core/film/part_coverage.h"
@@ -64,10 +65,11 @@ std::vector<fs::path> write_parts(const RenderJob& job, const std::vector<PixelR
   std::vector<fs::path> files;
   for (size_t i = 0; i < crops.size(); ++i) {
     Film film = job.make_film();
-    SplatTiles::TileList tiles;
-    const RenderResult result = job.run(film, {}, RenderPart{crops[i], &tiles});
+    SamplingState state;
+    const RenderResult result = job.run(film, state, {}, crops[i]);
     files.push_back(folder / ("part" + std::to_string(i) + ".exr"));
-    write_partial_film(files.back(), header(job, result, crops[i], tiles.size()), film, tiles);
+    write_partial_film(files.back(), header(job, result, crops[i], state.splat_tiles.size()), film,
+                       state.splat_tiles);
   }
   return files;
 }
@@ -117,6 +119,36 @@ TEST(PartialFilm, MergedPartsAreTheWholeRenderBitForBit) {
         }
 }
 
+// Adaptive sampling: a pixel's convergence depends on its neighbours', so each part samples an
+// apron around its crop (one pixel per check, render_loop.h part_region) and merges into the very
+// image of the whole render. The threshold lets pixels converge at every check, so that an apron
+// one pixel short would change pixels at the parts' borders (docs/distributed.md measures it).
+TEST(PartialFilm, AdaptivePartsMergeIntoTheWholeRenderBitForBit) {
+  const fs::path folder = test::scratch_dir() / "partial_film_adaptive";
+  fs::create_directories(folder);
+  RenderOptions o;
+  o.width = kFrameWidth, o.height = kFrameHeight, o.samples_per_pixel = 64, o.seed = 4;
+  o.adaptive_threshold = 0.05, o.adaptive_min_samples = 16;  // checks at 16, 32 and 48
+  o.show_progress = false;
+  const RenderJob job(default_scene(), o, test::loader());
+  EXPECT_EQ(job.part_tiles({20, 20, 21, 21}), (PixelRect{16, 16, 32, 32}));
+  EXPECT_EQ(job.part_tiles({9, 13, 40, 20}), (PixelRect{0, 0, 48, 32}));  // 3 pixels of apron
+  Film whole_film = job.make_film();
+  const Image whole = job.run(whole_film).image;
+  const std::set<uint32_t> counts(whole_film.sample_counts(),
+                                  whole_film.sample_counts() + whole_film.pixel_count());
+  EXPECT_GE(counts.size(), 4u) << "pixels should converge at every check and some never";
+  for (const int count : {3, 8}) {
+    SCOPED_TRACE(std::to_string(count) + " parts");
+    EXPECT_TRUE(same_bits(merged(job, parts_of(count), folder), whole));
+  }
+  // Edges where whole tiles add nothing to an apron one pixel short (2 pixels from x = 30 to the
+  // tile edge at 32, from y = 18 to 16): there that apron would be all the part had.
+  const std::vector<PixelRect> tight = {
+      {0, 0, 30, 18}, {30, 0, kFrameWidth, 18}, {0, 18, kFrameWidth, kFrameHeight}};
+  EXPECT_TRUE(same_bits(merged(job, tight, folder), whole)) << "parts with tight aprons";
+}
+
 // merge_partial_films' message for `files` (with `edit` applied to their headers), or "".
 std::string refusal(const std::vector<fs::path>& files,
                     const std::function<void(std::vector<PartialFilmHeader>&)>& edit = {}) {
@@ -159,6 +191,24 @@ TEST(PartialFilm, MergeRefusesWhatIsNotOneRender) {
   }
 }
 
+// A part written by an earlier filmback (version 1: no samples in its splat tiles' table, no
+// adaptive sampling) is refused by version, naming the file, rather than read as truncated.
+TEST(PartialFilm, AnOldPartIsRefusedByItsVersion) {
+  const fs::path file = test::scratch_dir() / "old_part.exr";
+  ImageMetadata version_1;
+  version_1.ints = {{"filmback/part/version", 1}};
+  write_images(Image{4, 4, {"R", "G", "B"}, std::vector<float>(48, 0.f)}, {file}, version_1);
+  try {
+    read_partial_film_header(file);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(file.string() + ": a version 1 partial film, this "
+                                                         "filmback merges version 2"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
   const fs::path folder = test::scratch_dir() / "partial_film_resume";
   fs::create_directories(folder);
@@ -168,26 +218,29 @@ TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
   const RenderJob job(default_scene(), o, test::loader());
   const PixelRect crop{9, 7, 40, 20};
   Film uninterrupted = job.make_film();
-  job.run(uninterrupted, {}, RenderPart{crop, nullptr});
+  SamplingState uninterrupted_state;
+  job.run(uninterrupted, uninterrupted_state, {}, crop);
 
   // Stopped at the third checkpoint offered, saved over the crop's whole tiles, resumed.
-  const PixelRect region = whole_tiles_around(crop, kFrameWidth, kFrameHeight);
+  const PixelRect region = job.part_tiles(crop);
   EXPECT_EQ(region, (PixelRect{0, 0, 48, 32}));
   const fs::path checkpoint = folder / "part.checkpoint.exr";
   std::atomic<bool> cancel{false};
   int offered = 0;
   RenderControl control;
   control.cancel = &cancel;
-  control.checkpoint = [&](const Film& f) {
-    write_checkpoint(f, "key", checkpoint, region);
+  control.checkpoint = [&](const Film& f, const SamplingState& state) {
+    write_checkpoint(f, state, "key", checkpoint, region);
     if (++offered == 3) cancel = true;
   };
   Film stopped = job.make_film();
-  ASSERT_TRUE(job.run(stopped, control, RenderPart{crop, nullptr}).stats.interrupted);
+  SamplingState stopped_state;
+  ASSERT_TRUE(job.run(stopped, stopped_state, control, crop).stats.interrupted);
   Film resumed = job.make_film();
-  read_checkpoint(checkpoint, "key", 16, kTileSize, resumed, region);
+  SamplingState resumed_state = job.make_sampling_state();
+  read_checkpoint(checkpoint, "key", 16, kTileSize, resumed, resumed_state, region);
   EXPECT_LT(resumed.sample_count(crop.x0, crop.y0), 16u);
-  job.run(resumed, {}, RenderPart{crop, nullptr});
+  job.run(resumed, resumed_state, {}, crop);
   for (uint32_t y = crop.y0; y < crop.y1; ++y)
     for (uint32_t x = crop.x0; x < crop.x1; ++x) {
       const size_t i = size_t(y) * kFrameWidth + x;
@@ -196,7 +249,9 @@ TEST(PartialFilm, ACheckpointedPartResumesBitIdentically) {
     }
   // A checkpoint of another part's region is refused.
   Film other = job.make_film();
-  EXPECT_THROW(read_checkpoint(checkpoint, "key", 16, kTileSize, other, PixelRect{0, 0, 48, 16}),
+  SamplingState other_state = job.make_sampling_state();
+  EXPECT_THROW(read_checkpoint(checkpoint, "key", 16, kTileSize, other, other_state,
+                               PixelRect{0, 0, 48, 16}),
                InputError);
 }
 

@@ -9,10 +9,10 @@ index=$(($2 + SLURM_ARRAY_TASK_ID))
 source "$job_dir/job.env"                                    # FILMBACK
 source "$(printf '%s/merges/%06d.sh' "$job_dir" "$index")"  # name, log, parts, outputs
 exec >>"$log" 2>&1
+# In the background, as a tile task names itself (tile_task.sh): the merge need not wait for it.
 scontrol update JobId="${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" JobName="$name" \
-  Comment="filmback ${name#fb:}" \
-  >/dev/null 2>&1 || true
-echo "$(date -u +%FT%TZ) $name: job ${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID} ($SLURM_JOB_ID) on $(hostname)"
+  Comment="filmback ${name#fb:}" >/dev/null 2>&1 &
+echo "$(date -u +%FT%T.%3NZ) $name: job ${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID} ($SLURM_JOB_ID) on $(hostname)"
 missing=0
 for part in "${parts[@]}"; do
   if [ ! -s "$part" ]; then
@@ -25,5 +25,5 @@ output_args=()
 for output in "${outputs[@]}"; do output_args+=(-o "$output"); done
 "$FILMBACK" merge "${parts[@]}" "${output_args[@]}"
 status=$?
-echo "$(date -u +%FT%TZ) $name: filmback merge exit status $status"
+echo "$(date -u +%FT%T.%3NZ) $name: filmback merge exit status $status"
 exit $status

@@ -13,10 +13,12 @@ source "$(printf '%s/tasks/%06d.sh' "$job_dir" "$index")"  # name, part, checkpo
 exec >>"$log" 2>&1
 try=${SLURM_RESTART_COUNT:-0}
 # Array elements share the array's name until they run: a running task names itself. It names
-# itself as ARRAY_INDEX: the element that holds the array's own job id would rename them all.
+# itself as ARRAY_INDEX: the element that holds the array's own job id would rename them all. In
+# the background: the render need not wait for slurmctld's answer (a busy controller takes
+# seconds), and a name not set before the task ends is no loss.
 scontrol update JobId="${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID}" JobName="$name" \
-  Comment="filmback ${name#fb:} try $((try + 1))" >/dev/null 2>&1 || true
-echo "$(date -u +%FT%TZ) $name: try $((try + 1)) of $((RETRIES + 1)), job ${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID} ($SLURM_JOB_ID) on $(hostname)"
+  Comment="filmback ${name#fb:} try $((try + 1))" >/dev/null 2>&1 &
+echo "$(date -u +%FT%T.%3NZ) $name: try $((try + 1)) of $((RETRIES + 1)), job ${SLURM_ARRAY_JOB_ID}_${SLURM_ARRAY_TASK_ID} ($SLURM_JOB_ID) on $(hostname)"
 if [ -s "$part" ]; then
   echo "$part exists (an earlier try or submission wrote it): nothing to render"
   exit 0
@@ -33,10 +35,10 @@ status=$?
 echo "processor time, user and system (this script's line, then the render's):"
 times
 if [ $status -eq 0 ]; then
-  echo "$(date -u +%FT%TZ) $name: done"
+  echo "$(date -u +%FT%T.%3NZ) $name: done"
   exit 0
 fi
-echo "$(date -u +%FT%TZ) $name: filmback render failed (exit status $status)"
+echo "$(date -u +%FT%T.%3NZ) $name: filmback render failed (exit status $status)"
 # Exit status 2 is a usage error: the same command line fails again, so it is not retried.
 if [ $status -ne 2 ] && [ "$try" -lt "$RETRIES" ]; then
   echo "requeueing (retry $((try + 1)) of $RETRIES)"
