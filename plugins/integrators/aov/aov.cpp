@@ -1,6 +1,8 @@
-// Integrator `aov`: what the camera ray hits, one ray per sample. Channels: the base colour
-// (albedo.R/G/B), the world-space shading normal (N.X/Y/Z) and the depth along the view axis (Z,
-// as Blender's depth pass: not the distance along the ray). R, G, B show one of them, chosen by
+// Integrator `aov`: what the camera ray hits, one ray per sample. Channels: the base colour at the
+// hit as the host's surface shader evaluated it (albedo.R/G/B: fb_hit.base_color, textures and
+// KHR_texture_transform applied, the value the path integrator's BSDF uses; not the material's
+// untextured factor), the world-space shading normal (N.X/Y/Z) and the depth along the view axis
+// (Z, as Blender's depth pass: not the distance along the ray). R, G, B show one of them, chosen by
 // `show`. Rays that escape get albedo 0, normal 0 and depth 1e10 m, as in Cycles.
 #include <filmback/plugin_sdk.h>
 #include <filmback/vec.h>
@@ -47,9 +49,8 @@ class Aov {
       v[9] = kMissDepth;
       return;
     }
-    const fb_material& m = scene.materials[hit.material];
     for (int c = 0; c < 3; ++c)
-      v[3 + c] = m.base_color[c], v[6 + c] = hit.shading_normal[c];
+      v[3 + c] = hit.base_color[c], v[6 + c] = hit.shading_normal[c];
     v[9] = fb::dot(fb::Vec3f(hit.position), fb::Vec3f(scene.view_axis));
     for (int c = 0; c < 3; ++c) {
       switch (show_) {
