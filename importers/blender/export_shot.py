@@ -36,13 +36,8 @@ def enable_addon():
 def export(path, **options):
     """Writes `path` (.gltf with a .bin beside it, or .glb); `options` go to Blender's exporter."""
     enable_addon()
-    settings = dict(export_format="GLB" if path.endswith(".glb") else "GLTF_SEPARATE",
-                    export_cameras=True, export_lights=True, export_extras=True,
-                    export_apply=False, export_yup=True)
-    settings.update(options)
-    result = bpy.ops.export_scene.gltf(filepath=os.path.abspath(path), **settings)
-    if result != {"FINISHED"}:
-        raise RuntimeError(f"Blender's glTF exporter did not finish: {result}")
+    from io_filmback.gltf_export import export_gltf
+    export_gltf(path, **options)
 
 
 def main():

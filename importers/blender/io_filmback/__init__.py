@@ -1,4 +1,5 @@
-"""filmback's Blender add-on: one glTF export carries the shot as Cycles renders it.
+"""filmback's Blender add-on: one glTF export carries the shot as Cycles renders it, and the
+filmback render engine (render_engine.py) renders that export from inside Blender.
 
 Hooks Blender's own glTF exporter (io_scene_gltf2's user extensions: an enabled add-on whose
 module defines `glTF2ExportUserExtension` is called back while the file is gathered) and adds the
@@ -24,12 +25,12 @@ exporter (io/exp/gltf2_io_user_extensions.py), so a failure shows as a missing e
 bl_info = {
     "name": "filmback glTF extensions",
     "author": "filmback",
-    "version": (1, 1, 0),
+    "version": (1, 2, 0),
     "blender": (3, 4, 0),
-    "location": "File > Export > glTF 2.0",
+    "location": "File > Export > glTF 2.0; Render Properties > Render Engine > filmback",
     "description": "Adds Blender's physical camera, lights, world, render and colour "
                    "settings, material node trees and subdivision surfaces to glTF exports, "
-                   "for filmback",
+                   "for filmback, and renders with filmback",
     "category": "Import-Export",
 }
 
@@ -115,8 +116,12 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
 
 
 def register():
-    pass
+    from . import render_engine, render_settings
+    render_settings.register()
+    render_engine.register()
 
 
 def unregister():
-    pass
+    from . import render_engine, render_settings
+    render_engine.unregister()
+    render_settings.unregister()

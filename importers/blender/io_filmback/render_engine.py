@@ -1,0 +1,133 @@
+"""filmback as a Blender render engine: F12 exports the shot to a temporary folder through the
+add-on's exporter, runs the `filmback` command on it and loads its EXR into the Render Result.
+
+Each render() is one frame (Ctrl+F12 calls it once per frame of the range), exported at the frame
+Blender is rendering. Esc (test_break) sends filmback SIGINT, on which it writes the image so far
+and exits 130 (docs/cli.md, "Interrupts and checkpoints"): that partial image is loaded too.
+"""
+
+import collections
+import os
+import shutil
+import signal
+import subprocess
+import tempfile
+import threading
+import time
+
+import bpy
+
+from . import filmback_cli, render_settings
+from .gltf_export import export_gltf
+
+POLL_INTERVAL_S = 0.05
+STDERR_LINES_KEPT = 200  # the tail that holds filmback's error; the stream itself is unbounded
+
+# For tests only: `blender -b` has no Esc key, so this many seconds into filmback's render the
+# engine acts as if test_break() had answered yes (docs/blender.md, "Rendering from Blender").
+TEST_CANCEL_AFTER_S_ENV = "FILMBACK_TEST_CANCEL_AFTER_S"
+
+
+class StderrReader:
+    """Reads filmback's stderr on a thread (a full pipe would stall the render), keeping its last
+    lines and the last progress fraction."""
+
+    def __init__(self, stream):
+        self.lines = collections.deque(maxlen=STDERR_LINES_KEPT)
+        self.fraction = 0.0
+        self._thread = threading.Thread(target=self._read, args=(stream,), daemon=True)
+        self._thread.start()
+
+    def _read(self, stream):
+        for line in stream:
+            self.lines.append(line)
+            fraction = filmback_cli.progress_fraction(line)
+            if fraction is not None:
+                self.fraction = fraction
+
+    def text(self):
+        self._thread.join()
+        return "".join(self.lines)
+
+
+class FilmbackRenderEngine(bpy.types.RenderEngine):
+    bl_idname = render_settings.ENGINE_ID
+    bl_label = "filmback"
+    bl_use_postprocess = True  # the compositor and sequencer run on filmback's image
+
+    def render(self, depsgraph):
+        scene = depsgraph.scene
+        executable = render_settings.executable(bpy.context)
+        if executable is None:
+            self.report({"ERROR"}, "filmback: not found on PATH nor at the path set in the "
+                                   "add-on's preferences")
+            return
+        folder = tempfile.mkdtemp(prefix="filmback-render-")
+        try:
+            self.render_in(folder, scene, executable)
+        finally:
+            shutil.rmtree(folder, ignore_errors=True)
+
+    def render_in(self, folder, scene, executable):
+        frame = scene.frame_current
+        self.update_stats("", f"filmback: exporting frame {frame}")
+        # The exporter and the add-on's hooks read the original scene, which Blender has set to
+        # the frame it renders; a render of another frame (an API call) moves it there first.
+        original = bpy.data.scenes[scene.name]
+        if original.frame_current != frame:
+            original.frame_set(frame)
+        scene_path = os.path.join(folder, "shot.gltf")
+        try:
+            export_gltf(scene_path)
+        except RuntimeError as e:
+            self.report({"ERROR"}, f"filmback: export failed: {e}")
+            return
+        output_path = os.path.join(folder, "shot.exr")
+        settings = scene.filmback
+        command = filmback_cli.render_command(executable, scene_path, output_path,
+                                              settings.samples, settings.sampler,
+                                              settings.integrator.strip(),
+                                              settings.filter.strip())
+        self.update_stats("", f"filmback: rendering frame {frame}")
+        status, stderr_text = self.run(command)
+        if status == 0 or (status in filmback_cli.INTERRUPTED_STATUSES and
+                           os.path.exists(output_path)):
+            self.load(output_path, scene.render)
+        elif status not in filmback_cli.INTERRUPTED_STATUSES:
+            message = filmback_cli.error_message(stderr_text) or f"exit status {status}"
+            self.report({"ERROR"}, message)
+
+    def run(self, command):
+        """Runs filmback until it exits, interrupting it once on Esc; returns its exit status
+        and stderr."""
+        process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                   stderr=subprocess.PIPE, text=True, errors="replace")
+        reader = StderrReader(process.stderr)
+        started = time.monotonic()
+        cancel_after_s = float(os.environ.get(TEST_CANCEL_AFTER_S_ENV, "inf"))
+        interrupted = False
+        while process.poll() is None:
+            if not interrupted and (self.test_break() or
+                                    time.monotonic() - started >= cancel_after_s):
+                process.send_signal(signal.SIGINT)
+                interrupted = True
+            self.update_progress(reader.fraction)
+            time.sleep(POLL_INTERVAL_S)
+        return process.returncode, reader.text()
+
+    def load(self, exr_path, render):
+        # The size after the percentage, rounded as Blender does (and as the export says).
+        width_px = render.resolution_x * render.resolution_percentage // 100
+        height_px = render.resolution_y * render.resolution_percentage // 100
+        result = self.begin_result(0, 0, width_px, height_px)
+        result.layers[0].load_from_file(exr_path)
+        self.end_result(result)
+        self.update_progress(1.0)
+
+
+def register():
+    bpy.utils.register_class(FilmbackRenderEngine)
+
+
+def unregister():
+    bpy.utils.unregister_class(FilmbackRenderEngine)

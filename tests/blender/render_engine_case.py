@@ -1,0 +1,181 @@
+"""Runs inside `blender -b` for render_engine_test.py: installs the add-on from a zip as a user
+does, builds a small animated shot, renders it with the filmback engine and checks one case.
+
+    blender -b --factory-startup --python render_engine_case.py -- ZIP FILMBACK OUT CASE
+
+Exits non-zero (an AssertionError's message on stderr) when the case fails.
+"""
+
+import os
+import subprocess
+import sys
+import time
+
+import bpy
+import numpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+WIDTH_PX, HEIGHT_PX = 64, 36
+SAMPLES = 4
+FIRST_FRAME, LAST_FRAME = 1, 3
+MARKER_X_BY_FRAME = {1: -1.0, 2: 0.0, 3: 1.0}  # the emissive marker's keyed x, m
+CANCEL_SAMPLES = 1 << 20  # far more than a second's worth at 64 x 36
+CANCEL_RETURN_LIMIT_S = 20.0  # export, one second of rendering, the stop and the load
+
+
+def install_addon(zip_path, filmback):
+    bpy.ops.preferences.addon_install(filepath=zip_path)
+    bpy.ops.preferences.addon_enable(module="io_filmback")
+    assert "io_filmback" in bpy.context.preferences.addons, "the add-on is not enabled"
+    bpy.context.preferences.addons["io_filmback"].preferences.filmback_path = filmback
+
+
+def emissive_material(name, strength):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = strength
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
+    return material
+
+
+def build_shot():
+    # The factory startup's cube, light and camera go; reading an empty factory file instead
+    # would also reset the preferences, disabling the add-on.
+    for obj in list(bpy.data.objects):
+        bpy.data.objects.remove(obj)
+    scene = bpy.context.scene
+    scene.render.engine = "FILMBACK"
+    scene.render.resolution_x, scene.render.resolution_y = WIDTH_PX, HEIGHT_PX
+    scene.render.resolution_percentage = 100
+    scene.frame_start, scene.frame_end = FIRST_FRAME, LAST_FRAME
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.image_settings.exr_codec = "ZIP"
+    scene.filmback.samples = SAMPLES
+
+    bpy.ops.mesh.primitive_plane_add(size=20)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, location=(0, 0, 0.8))
+    bpy.ops.object.light_add(type="POINT", location=(2, -2, 4))
+    bpy.context.object.data.energy = 800
+    bpy.ops.mesh.primitive_cube_add(size=0.6, location=(0, 1.5, 2.2))
+    marker = bpy.context.object
+    marker.data.materials.append(emissive_material("Marker", 10.0))
+    for frame, x in MARKER_X_BY_FRAME.items():
+        marker.location.x = x
+        marker.keyframe_insert("location", index=0, frame=frame)
+    bpy.ops.object.camera_add(location=(0, -8, 3), rotation=(1.3, 0, 0))
+    scene.camera = bpy.context.object
+    scene.frame_set(FIRST_FRAME)
+    return scene
+
+
+def pixels(exr_path):
+    """The file's RGBA values as Blender loads a float EXR (no colour conversion)."""
+    image = bpy.data.images.load(exr_path, check_existing=False)
+    values = numpy.empty(len(image.pixels), dtype=numpy.float32)
+    image.pixels.foreach_get(values)
+    bpy.data.images.remove(image)
+    return values.reshape(-1, 4)
+
+
+def command_line_render(filmback, out, frame):
+    """export_shot's export of the scene at `frame`, rendered by the command line with the
+    engine's settings; returns the EXR's path."""
+    # Appended, so that the installed add-on, not the repository's, stays the one in use.
+    sys.path.append(os.path.join(HERE, "..", "..", "importers", "blender"))
+    import export_shot
+    bpy.context.scene.frame_set(frame)
+    gltf = os.path.join(out, f"cli_{frame}.gltf")
+    exr = os.path.join(out, f"cli_{frame}.exr")
+    export_shot.export(gltf)
+    settings = bpy.context.scene.filmback
+    r = subprocess.run([filmback, "render", gltf, "-o", exr, "--spp", str(settings.samples),
+                        "--sampler", settings.sampler, "-q"], capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0, f"command-line render failed: {r.stderr}"
+    return exr
+
+
+def assert_bit_identical(engine_exr, cli_exr):
+    engine, cli = pixels(engine_exr), pixels(cli_exr)
+    assert engine.shape == (WIDTH_PX * HEIGHT_PX, 4), engine.shape
+    assert engine.shape == cli.shape, (engine.shape, cli.shape)
+    assert numpy.isfinite(engine).all(), "non-finite pixels"
+    assert engine[:, :3].max() > 0, "an all-black image"
+    differing = int(numpy.count_nonzero((engine != cli).any(axis=1)))
+    assert differing == 0, f"{differing} of {len(engine)} pixels differ from the command line's"
+
+
+def case_still(filmback, out):
+    scene = build_shot()
+    scene.render.filepath = os.path.join(out, "engine.exr")
+    bpy.ops.render.render(write_still=True)
+    assert_bit_identical(scene.render.filepath, command_line_render(filmback, out, FIRST_FRAME))
+    print("engine's EXR bit-identical to the command line's")
+
+
+def marker_column(rgba):
+    """The image column holding most of the emissive marker's light (its brightest pixels)."""
+    image = rgba[:, 0].reshape(HEIGHT_PX, WIDTH_PX)
+    bright = image >= image.max() * 0.9
+    return numpy.nonzero(bright)[1].mean()
+
+
+def case_animation(filmback, out):
+    scene = build_shot()
+    scene.render.filepath = os.path.join(out, "anim_")
+    bpy.ops.render.render(animation=True)
+    columns = []
+    for frame in range(FIRST_FRAME, LAST_FRAME + 1):
+        engine_exr = os.path.join(out, f"anim_{frame:04d}.exr")
+        assert os.path.exists(engine_exr), f"frame {frame} was not written"
+        assert_bit_identical(engine_exr, command_line_render(filmback, out, frame))
+        columns.append(marker_column(pixels(engine_exr)))
+    # The marker moves +x (rightwards in the image) by 1 m per frame.
+    assert columns[0] < columns[1] < columns[2], f"marker columns {columns}"
+    print("three frames, each bit-identical to its command-line render; marker columns", columns)
+
+
+def case_bad_setting(filmback, out):
+    scene = build_shot()
+    scene.filmback.integrator = "nosuch"
+    try:
+        bpy.ops.render.render()
+    except RuntimeError as e:
+        message = str(e)
+    else:
+        raise AssertionError("a render with an unknown integrator reported no error")
+    assert "Error" in message and "unknown integrator plugin 'nosuch'" in message, message
+    print("reported:", message)
+
+
+def case_cancel(filmback, out):
+    scene = build_shot()
+    scene.filmback.samples = CANCEL_SAMPLES
+    scene.render.filepath = os.path.join(out, "cancelled.exr")
+    started = time.monotonic()
+    bpy.ops.render.render(write_still=True)
+    elapsed = time.monotonic() - started
+    assert elapsed < CANCEL_RETURN_LIMIT_S, f"the cancelled render took {elapsed:.1f} s"
+    rgba = pixels(scene.render.filepath)
+    assert numpy.isfinite(rgba).all() and rgba[:, :3].max() > 0, "no partial image"
+    print(f"cancelled render returned after {elapsed:.1f} s with a partial image")
+
+
+CASES = {"still": case_still, "animation": case_animation, "bad_setting": case_bad_setting,
+         "cancel": case_cancel}
+
+
+def main():
+    zip_path, filmback, out, case = sys.argv[sys.argv.index("--") + 1:]
+    install_addon(zip_path, filmback)
+    CASES[case](filmback, out)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,81 @@
+"""The filmback render engine inside Blender (issue 20), one CTest test per case:
+
+    render_engine_test.py --filmback EXE --scratch DIR CASE
+
+Each case installs the add-on from a zip into a fresh user folder (Preferences > Add-ons >
+Install, as a user does) and runs render_engine_case.py under `blender -b`:
+  still        F12 (`bpy.ops.render.render(write_still=True)`) of a 64 x 36 shot: the EXR Blender
+               saves from the Render Result is bit-identical to a command-line render of
+               export_shot's export of the same shot
+  animation    Ctrl+F12 over frames 1-3: three files, each bit-identical to the command-line
+               render of its frame, the keyed marker moving rightwards
+  bad_setting  an unknown integrator: filmback's message in Blender's report, no crash
+  cancel       a long render cancelled after 1 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
+               stand-in for Esc under `blender -b`) returns promptly with a partial image
+Exit 77 (CTest's skip) when `blender` is not installed.
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ADDON_DIR = os.path.join(HERE, "..", "..", "importers", "blender", "io_filmback")
+SKIP = 77
+CASES = ("still", "animation", "bad_setting", "cancel")
+CANCEL_AFTER_S = "1"
+
+
+def blender_env(extra):
+    """The environment without this driver's own interpreter when it is not Debian's (see
+    roundtrip_test.py: Blender's embedded Python takes its home from the first python3 on PATH);
+    Debian's own folder, which holds `blender` too, stays."""
+    own_bin = os.path.realpath(os.path.join(sys.prefix, "bin"))
+    path = [p for p in os.environ.get("PATH", "").split(os.pathsep)
+            if p and (os.path.realpath(p) != own_bin or own_bin == "/usr/bin") and
+            ".pyenv" not in p]
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONHOME", "PYTHONPATH")}
+    env["PATH"] = os.pathsep.join(path)
+    env.update(extra)
+    return env
+
+
+def addon_zip(folder):
+    package = os.path.join(folder, "io_filmback.zip")
+    with zipfile.ZipFile(package, "w") as z:
+        for name in sorted(os.listdir(ADDON_DIR)):
+            if name.endswith(".py"):
+                z.write(os.path.join(ADDON_DIR, name), f"io_filmback/{name}")
+    return package
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--filmback", required=True)
+    p.add_argument("--scratch", required=True)
+    p.add_argument("case", choices=CASES)
+    a = p.parse_args()
+    if shutil.which("blender") is None:
+        print("skipped: Debian package blender is not installed")
+        sys.exit(SKIP)
+    shutil.rmtree(a.scratch, ignore_errors=True)
+    os.makedirs(a.scratch)
+    env = dict(BLENDER_USER_SCRIPTS=os.path.join(a.scratch, "scripts"),
+               BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"))
+    if a.case == "cancel":
+        env["FILMBACK_TEST_CANCEL_AFTER_S"] = CANCEL_AFTER_S
+    r = subprocess.run(["blender", "-b", "--factory-startup", "--python-exit-code", "1",
+                        "--python", os.path.join(HERE, "render_engine_case.py"), "--",
+                        addon_zip(a.scratch), os.path.abspath(a.filmback), a.scratch, a.case],
+                       capture_output=True, text=True, timeout=240, env=blender_env(env))
+    print(r.stdout)
+    print(r.stderr, file=sys.stderr)
+    if r.returncode != 0:
+        sys.exit(f"render_engine_case.py {a.case} failed ({r.returncode})")
+
+
+if __name__ == "__main__":
+    main()
