@@ -3,7 +3,7 @@ does, builds a small animated shot, renders it with the filmback engine and chec
 
     blender -b --factory-startup --python render_engine_case.py -- ZIP FILMBACK OUT CASE
 
-Exits non-zero (an AssertionError's message on stderr) when the case fails.
+Writes OUT/passed when the case passes; an AssertionError's message goes to stderr otherwise.
 """
 
 import os
@@ -20,7 +20,7 @@ WIDTH_PX, HEIGHT_PX = 64, 36
 SAMPLES = 4
 FIRST_FRAME, LAST_FRAME = 1, 3
 MARKER_X_BY_FRAME = {1: -1.0, 2: 0.0, 3: 1.0}  # the emissive marker's keyed x, m
-CANCEL_SAMPLES = 1 << 20  # far more than a second's worth at 64 x 36
+CANCEL_SAMPLES = 1_000_000  # filmback's most; far more than a second's worth at 64 x 36
 CANCEL_RETURN_LIMIT_S = 20.0  # export, one second of rendering, the stop and the load
 
 
@@ -111,8 +111,18 @@ def assert_bit_identical(engine_exr, cli_exr):
     assert differing == 0, f"{differing} of {len(engine)} pixels differ from the command line's"
 
 
+def assert_engine_and_plugins_listed(scene):
+    """filmback in Render Properties' engine list (the enum took it); the panel's plugin lists as
+    `filmback plugins` prints them (the panel draws what filmback_cli.plugin_names returns)."""
+    from io_filmback import filmback_cli, render_settings
+    assert scene.render.engine == "FILMBACK", scene.render.engine
+    plugins = filmback_cli.plugin_names(render_settings.executable(bpy.context))
+    assert "path" in plugins["integrator"] and "gaussian" in plugins["filter"], plugins
+
+
 def case_still(filmback, out):
     scene = build_shot()
+    assert_engine_and_plugins_listed(scene)
     scene.render.filepath = os.path.join(out, "engine.exr")
     bpy.ops.render.render(write_still=True)
     assert_bit_identical(scene.render.filepath, command_line_render(filmback, out, FIRST_FRAME))
@@ -175,6 +185,8 @@ def main():
     zip_path, filmback, out, case = sys.argv[sys.argv.index("--") + 1:]
     install_addon(zip_path, filmback)
     CASES[case](filmback, out)
+    with open(os.path.join(out, "passed"), "w") as f:
+        f.write(case + "\n")
 
 
 if __name__ == "__main__":

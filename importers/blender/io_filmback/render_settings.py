@@ -35,7 +35,7 @@ class FilmbackPreferences(bpy.types.AddonPreferences):
 
 class FilmbackSceneSettings(bpy.types.PropertyGroup):
     samples: bpy.props.IntProperty(name="Samples", description="Samples per pixel (--spp)",
-                                   default=16, min=1, max=1 << 20)
+                                   default=16, min=1, max=1_000_000)  # filmback's --spp range
     sampler: bpy.props.EnumProperty(
         name="Sampler", description="How sample values are drawn (--sampler)",
         items=[(name, name, "") for name in filmback_cli.SAMPLERS])
