@@ -18,38 +18,14 @@ Exit 77 (CTest's skip) when `blender` is not installed.
 import argparse
 import os
 import shutil
-import subprocess
 import sys
-import zipfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ADDON_DIR = os.path.join(HERE, "..", "..", "importers", "blender", "io_filmback")
-SKIP = 77
+sys.path.insert(0, HERE)
+from roundtrip_test import SKIP, addon_zip, blender  # noqa: E402
+
 CASES = ("still", "animation", "bad_setting", "cancel")
 CANCEL_AFTER_S = "1"
-
-
-def blender_env(extra):
-    """The environment without this driver's own interpreter when it is not Debian's (see
-    roundtrip_test.py: Blender's embedded Python takes its home from the first python3 on PATH);
-    Debian's own folder, which holds `blender` too, stays."""
-    own_bin = os.path.realpath(os.path.join(sys.prefix, "bin"))
-    path = [p for p in os.environ.get("PATH", "").split(os.pathsep)
-            if p and (os.path.realpath(p) != own_bin or own_bin == "/usr/bin") and
-            ".pyenv" not in p]
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONHOME", "PYTHONPATH")}
-    env["PATH"] = os.pathsep.join(path)
-    env.update(extra)
-    return env
-
-
-def addon_zip(folder):
-    package = os.path.join(folder, "io_filmback.zip")
-    with zipfile.ZipFile(package, "w") as z:
-        for name in sorted(os.listdir(ADDON_DIR)):
-            if name.endswith(".py"):
-                z.write(os.path.join(ADDON_DIR, name), f"io_filmback/{name}")
-    return package
 
 
 def main():
@@ -67,10 +43,9 @@ def main():
                BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"))
     if a.case == "cancel":
         env["FILMBACK_TEST_CANCEL_AFTER_S"] = CANCEL_AFTER_S
-    r = subprocess.run(["blender", "-b", "--factory-startup", "--python-exit-code", "1",
-                        "--python", os.path.join(HERE, "render_engine_case.py"), "--",
-                        addon_zip(a.scratch), os.path.abspath(a.filmback), a.scratch, a.case],
-                       capture_output=True, text=True, timeout=240, env=blender_env(env))
+    r = blender("--python-exit-code", "1", "--python", os.path.join(HERE, "render_engine_case.py"),
+                "--", addon_zip(a.scratch), os.path.abspath(a.filmback), a.scratch, a.case,
+                env=env)
     print(r.stdout)
     print(r.stderr, file=sys.stderr)
     # Blender 3.4 under -b exits 1 after a render that reported an error (measured), whatever

@@ -32,10 +32,12 @@ SKIP = 77
 def blender_env(extra=None):
     """The environment without this driver's own interpreter: Blender's embedded Python takes its
     home from the first python3 on PATH, and a pyenv or venv interpreter there hides Debian's
-    packages (numpy, which Blender's glTF exporter imports) from it."""
-    own_bin = os.path.join(sys.prefix, "bin")
+    packages (numpy, which Blender's glTF exporter imports) from it. Debian's own folder stays
+    when this driver is Debian's python3: it is the right home, and it holds `blender`."""
+    own_bin = os.path.realpath(os.path.join(sys.prefix, "bin"))
     path = [p for p in os.environ.get("PATH", "").split(os.pathsep)
-            if p and os.path.realpath(p) != os.path.realpath(own_bin) and ".pyenv" not in p]
+            if p and (os.path.realpath(p) != own_bin or own_bin == "/usr/bin") and
+            ".pyenv" not in p]
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONHOME", "PYTHONPATH")}
     env["PATH"] = os.pathsep.join(path)
     env.update(extra or {})
@@ -116,15 +118,21 @@ def case_validator(a):
     validate(a.node_modules, os.path.join(build_scene(a.scratch), "shot.gltf"))
 
 
-def case_addon_install(a):
-    root = os.path.join(a.scratch, "addon_install")
-    shutil.rmtree(root, ignore_errors=True)
-    os.makedirs(root)
-    package = os.path.join(root, "io_filmback.zip")
+def addon_zip(folder):
+    """The add-on as a user installs it: io_filmback.zip, made in `folder`; returns its path."""
+    package = os.path.join(folder, "io_filmback.zip")
     with zipfile.ZipFile(package, "w") as z:
         for name in sorted(os.listdir(os.path.join(ADDON_DIR, "io_filmback"))):
             if name.endswith(".py"):
                 z.write(os.path.join(ADDON_DIR, "io_filmback", name), f"io_filmback/{name}")
+    return package
+
+
+def case_addon_install(a):
+    root = os.path.join(a.scratch, "addon_install")
+    shutil.rmtree(root, ignore_errors=True)
+    os.makedirs(root)
+    package = addon_zip(root)
     script = os.path.join(root, "install.py")
     out = os.path.join(root, "out.gltf")
     with open(script, "w") as f:
