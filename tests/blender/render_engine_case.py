@@ -9,6 +9,7 @@ Writes OUT/passed when the case passes; an AssertionError's message goes to stde
 import os
 import subprocess
 import sys
+import tempfile
 import time
 
 import bpy
@@ -43,6 +44,17 @@ def emissive_material(name, strength):
     return material
 
 
+def toon_material():
+    """A Toon BSDF: the add-on carries it as a DIFFUSE with a warning, which filmback prints and
+    the engine reports."""
+    material = bpy.data.materials.new("Toon")
+    material.use_nodes = True
+    tree = material.node_tree
+    toon = tree.nodes.new("ShaderNodeBsdfToon")
+    tree.links.new(toon.outputs["BSDF"], tree.nodes["Material Output"].inputs["Surface"])
+    return material
+
+
 def build_shot():
     # The factory startup's cube, light and camera go; reading an empty factory file instead
     # would also reset the preferences, disabling the add-on.
@@ -60,6 +72,7 @@ def build_shot():
 
     bpy.ops.mesh.primitive_plane_add(size=20)
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.8, location=(0, 0, 0.8))
+    bpy.context.object.data.materials.append(toon_material())
     bpy.ops.object.light_add(type="POINT", location=(2, -2, 4))
     bpy.context.object.data.energy = 800
     bpy.ops.mesh.primitive_cube_add(size=0.6, location=(0, 1.5, 2.2))
@@ -185,6 +198,9 @@ def main():
     zip_path, filmback, out, case = sys.argv[sys.argv.index("--") + 1:]
     install_addon(zip_path, filmback)
     CASES[case](filmback, out)
+    # Blender keeps its own session folder (blender_XXXXXX) there until it quits.
+    left = [name for name in os.listdir(tempfile.gettempdir()) if name.startswith("filmback")]
+    assert not left, f"temporary files left in {tempfile.gettempdir()}: {left}"
     with open(os.path.join(out, "passed"), "w") as f:
         f.write(case + "\n")
 

@@ -6,13 +6,14 @@ Each case installs the add-on from a zip into a fresh user folder (Preferences >
 Install, as a user does) and runs render_engine_case.py under `blender -b`:
   still        F12 (`bpy.ops.render.render(write_still=True)`) of a 64 x 36 shot: the EXR Blender
                saves from the Render Result is bit-identical to a command-line render of
-               export_shot's export of the same shot
+               export_shot's export of the same shot; filmback's warning (a Toon BSDF carried
+               as a diffuse) shown as a WARNING report
   animation    Ctrl+F12 over frames 1-3: three files, each bit-identical to the command-line
                render of its frame, the keyed marker moving rightwards
   bad_setting  an unknown integrator: filmback's message in Blender's report, no crash
   cancel       a long render cancelled after 1 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
                stand-in for Esc under `blender -b`) returns promptly with a partial image
-Exit 77 (CTest's skip) when `blender` is not installed.
+Each case also checks that the engine leaves no temporary folder behind. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
 import argparse
@@ -39,8 +40,11 @@ def main():
         sys.exit(SKIP)
     shutil.rmtree(a.scratch, ignore_errors=True)
     os.makedirs(a.scratch)
+    # The engine's temporary folders go to the case's own, which it checks is left empty.
+    temporary = os.path.join(a.scratch, "tmp")
+    os.makedirs(temporary)
     env = dict(BLENDER_USER_SCRIPTS=os.path.join(a.scratch, "scripts"),
-               BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"))
+               BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"), TMPDIR=temporary)
     if a.case == "cancel":
         env["FILMBACK_TEST_CANCEL_AFTER_S"] = CANCEL_AFTER_S
     r = blender("--python-exit-code", "1", "--python", os.path.join(HERE, "render_engine_case.py"),
@@ -54,6 +58,9 @@ def main():
     if r.returncode != expected_status or \
             not os.path.exists(os.path.join(a.scratch, "passed")):
         sys.exit(f"render_engine_case.py {a.case} failed (exit {r.returncode})")
+    # Blender prints a WARNING report under -b as `Warning: ...`.
+    if a.case == "still" and "Warning: filmback: " not in r.stdout + r.stderr:
+        sys.exit("filmback's warning about the Toon BSDF was not reported")
 
 
 if __name__ == "__main__":

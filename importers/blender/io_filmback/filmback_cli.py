@@ -18,6 +18,9 @@ PLUGIN_LINE = re.compile(r"^(camera|filter|integrator) ([a-z0-9_]+) \S+ - ")
 # (core/render/progress.cpp).
 PROGRESS_LINE = re.compile(r"^progress: ([0-9.]+)%")
 
+# What the importer skipped, once each (core/util/diagnostics.cpp).
+WARNING_LINE = re.compile(r"^(filmback: )?warning: ")
+
 # Samplers are built in, not plugins (docs/cli.md, `--sampler KIND`).
 SAMPLERS = ("sobol", "zsobol", "stratified", "independent")
 
@@ -78,3 +81,10 @@ def error_message(stderr_text):
     lines = [line.strip() for line in stderr_text.splitlines() if line.strip()]
     errors = [line for line in lines if "error" in line.lower()]
     return "\n".join(errors) if errors else (lines[-1] if lines else "")
+
+
+def warnings(stderr_text):
+    """filmback's warnings, in its order, each as `filmback: WHAT` (Blender's report says that
+    it is a warning)."""
+    return ["filmback: " + line[WARNING_LINE.match(line).end():].strip()
+            for line in stderr_text.splitlines() if WARNING_LINE.match(line)]

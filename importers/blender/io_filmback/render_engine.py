@@ -21,7 +21,7 @@ from . import filmback_cli, render_settings
 from .gltf_export import export_gltf
 
 POLL_INTERVAL_S = 0.05
-STDERR_LINES_KEPT = 200  # the tail that holds filmback's error; the stream itself is unbounded
+STDERR_LINES_KEPT = 200  # warnings and errors; what a broken filmback prints past them is dropped
 
 # For tests only: `blender -b` has no Esc key, so this many seconds into filmback's render the
 # engine acts as if test_break() had answered yes (docs/blender.md, "Rendering from Blender").
@@ -40,9 +40,10 @@ class StderrReader:
 
     def _read(self, stream):
         for line in stream:
-            self.lines.append(line)
             fraction = filmback_cli.progress_fraction(line)
-            if fraction is not None:
+            if fraction is None:
+                self.lines.append(line)
+            else:  # progress lines are not kept: a long render would push its warnings out
                 self.fraction = fraction
 
     def text(self):
@@ -71,11 +72,10 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
     def render_in(self, folder, scene, executable):
         frame = scene.frame_current
         self.update_stats("", f"filmback: exporting frame {frame}")
-        # The exporter and the add-on's hooks read the original scene, which Blender has set to
+        # The exporter and the add-on's hooks read the context's scene, which Blender has set to
         # the frame it renders; a render of another frame (an API call) moves it there first.
-        original = bpy.data.scenes[scene.name]
-        if original.frame_current != frame:
-            original.frame_set(frame)
+        if bpy.context.scene.frame_current != frame:
+            bpy.context.scene.frame_set(frame)
         scene_path = os.path.join(folder, "shot.gltf")
         try:
             export_gltf(scene_path)
@@ -89,9 +89,15 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
                                               settings.integrator.strip(),
                                               settings.filter.strip())
         self.update_stats("", f"filmback: rendering frame {frame}")
-        status, stderr_text = self.run(command)
+        try:
+            status, stderr_text = self.run(command)
+        except OSError as e:
+            self.report({"ERROR"}, f"filmback: cannot run {executable}: {e}")
+            return
         if status == 0 or (status in filmback_cli.INTERRUPTED_STATUSES and
                            os.path.exists(output_path)):
+            for warning in filmback_cli.warnings(stderr_text):
+                self.report({"WARNING"}, warning)
             self.load(output_path, scene.render)
         elif status not in filmback_cli.INTERRUPTED_STATUSES:
             message = filmback_cli.error_message(stderr_text) or f"exit status {status}"
