@@ -79,7 +79,7 @@ def progress_fraction(line):
 def error_message(stderr_text):
     """filmback's error lines (`filmback: error: ...`), else its last non-empty line."""
     lines = [line.strip() for line in stderr_text.splitlines() if line.strip()]
-    errors = [line for line in lines if "error" in line.lower()]
+    errors = [line for line in lines if "error:" in line]
     return "\n".join(errors) if errors else (lines[-1] if lines else "")
 
 
