@@ -14,6 +14,7 @@
 #include "core/cmd/frame_sequence.h"
 #include "core/cmd/image_outputs.h"
 #include "core/cmd/interrupts.h"
+#include "core/cmd/render_ini.h"
 #include "core/cmd/render_report.h"
 #include "core/film/checkpoint.h"
 #include "core/image/image_io.h"
@@ -279,6 +280,8 @@ Scene read_scene(RenderCommand& c, Diagnostics& diagnostics, RenderReport& repor
   c.import.resolution.reset();
   if (c.options.width) c.import.resolution = {*c.options.width, *c.options.height};
   if (c.options.frame) c.import.frame = *c.options.frame;
+  // An .ini's animation: the clock runs from Initial_Clock to Final_Clock over its frames.
+  if (c.import.pov_animation) c.import.clock = c.import.pov_animation->clock_at(c.import.frame);
   const auto stage = Clock::now();
   Scene scene = import_scene(c.scene, c.import, diagnostics);
   report.import_s = seconds_since(stage);
@@ -579,6 +582,16 @@ int run_with_report(Report& report, const std::function<int()>& run,
 
 int run_render(RenderCommand& c) {
   const auto start = Clock::now();
+  std::vector<std::string> ini_warnings;
+  apply_pov_ini(c, ini_warnings);
+  if (!ini_warnings.empty()) {
+    Diagnostics diagnostics;
+    for (const std::string& warning : ini_warnings)
+      diagnostics.warn(warning);
+    diagnostics.print(std::cerr);
+  }
+  if (c.outputs.empty())
+    throw UsageError("render: expected -o FILE (or an .ini that names an Output_File_Name)");
   if (!c.frames.empty()) {
     SequenceReport report;
     report.scene = c.scene;

@@ -38,6 +38,8 @@ Parser::Parser(const EvaluateOptions& options) : options_(options) {
   scene_folder_ = options.scene_file.parent_path();
   if (scene_folder_.empty()) scene_folder_ = ".";
   scopes_.emplace_back();  // global identifiers
+  for (const auto& [name, value] : options.declarations)
+    scopes_.front()[name] = Value::number(value);
   std::string name = options.scene_file.filename().string();
   std::ifstream probe(options.scene_file);
   if (!probe) throw_input(options.scene_file.string(), "", "cannot open the scene file");

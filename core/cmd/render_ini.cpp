@@ -1,0 +1,71 @@
+#include "core/cmd/render_ini.h"
+
+#include <algorithm>
+
+#include "core/util/error.h"
+#include "importers/pov/pov_ini.h"
+
+namespace fb {
+namespace {
+
+// POV-Ray 3.7's defaults: +R3; Debian's povray.ini renders 800x600 (docs/pov.md).
+constexpr uint32_t kPovDefaultAntialiasDepth = 3;
+constexpr uint32_t kPovDefaultWidth = 800, kPovDefaultHeight = 600;
+// Path samples per POV-Ray eye ray: a path tracer also samples the lights, the soft shadows and
+// the glossy reflections with them, which POV-Ray computes without noise (a choice, docs/pov.md
+// ".ini files"; not yet measured against POV-Ray's images).
+constexpr uint32_t kPathSamplesPerPovRay = 16;
+
+bool has_ini_extension(const std::filesystem::path& file) {
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char ch) { return char(std::tolower(ch)); });
+  return extension == ".ini";
+}
+
+}  // namespace
+
+bool names_pov_ini(const std::filesystem::path& scene) {
+  return has_ini_extension(pov::split_ini_section(scene.string()).first);
+}
+
+uint32_t samples_for_pov_antialias(bool antialias, uint32_t depth) {
+  // Adaptive supersampling at depth d splits a pixel into up to d x d rays (POV-Ray 3.7 manual,
+  // "Anti-Aliasing Options", method 1); filmback samples every pixel at that ceiling.
+  return kPathSamplesPerPovRay * (antialias ? depth * depth : 1);
+}
+
+void apply_pov_ini(RenderCommand& c, std::vector<std::string>& warnings) {
+  const bool scene_is_ini = names_pov_ini(c.scene);
+  if (scene_is_ini && !c.ini.empty())
+    throw UsageError("--ini '" + c.ini + "': the scene '" + c.scene.string() +
+                     "' is an .ini already; expected one .ini");
+  if (!scene_is_ini && c.ini.empty()) return;
+  const auto [file, section] = pov::split_ini_section(scene_is_ini ? c.scene.string() : c.ini);
+  const pov::IniOptions ini = pov::read_ini(file, section);
+  warnings.insert(warnings.end(), ini.warnings.begin(), ini.warnings.end());
+  if (scene_is_ini) {
+    if (!ini.input_file)
+      throw InputError(file.string() +
+                       ": error: no Input_File_Name; expected one, or the scene with --ini");
+    c.scene = *ini.input_file;
+  }
+  if (c.resolution.empty() && (ini.width || ini.height))
+    c.resolution = std::to_string(ini.width.value_or(kPovDefaultWidth)) + "x" +
+                   std::to_string(ini.height.value_or(kPovDefaultHeight));
+  if (!c.options.samples_per_pixel && ini.antialias)
+    c.options.samples_per_pixel = samples_for_pov_antialias(
+        *ini.antialias, ini.antialias_depth.value_or(kPovDefaultAntialiasDepth));
+  const std::optional<pov::IniFrames> frames = pov::ini_frames(ini, file);
+  if (c.frames.empty() && c.frame.empty() && frames)
+    c.frames = std::to_string(frames->first) + "-" + std::to_string(frames->last);
+  if (c.outputs.empty())
+    if (const auto pattern = pov::ini_output_pattern(ini, c.scene)) c.outputs.push_back(*pattern);
+  if (c.import.library_paths.empty()) c.import.library_paths = ini.library_paths;
+  c.import.pov_declarations = ini.declarations;
+  c.import.pov_animation = ini.animation;
+  // A still's clock; --clock typed (other than its default 0) wins.
+  if (c.import.clock == 0 && ini.clock) c.import.clock = *ini.clock;
+}
+
+}  // namespace fb
