@@ -8,6 +8,7 @@
 
 #include "core/util/error.h"
 #include "core/util/parse_number.h"
+#include "importers/pov/sdl/path_rules.h"
 
 namespace fb::pov {
 namespace fs = std::filesystem;
@@ -43,15 +44,9 @@ bool is_console_option(const std::string& key) {
                      [&](const char* name) { return key == name; });
 }
 
-// Whether `path` (lexically normal) lies inside `root`, also once symbolic links are followed:
-// the rule #include follows (importers/pov/sdl/stream.cpp, Parser::resolve_include).
+// Inside `root` as written and once symbolic links are followed: the rule #include follows.
 bool stays_inside(const fs::path& path, const fs::path& root) {
-  const fs::path rel = path.lexically_relative(root.lexically_normal());
-  if (rel.empty() || *rel.begin() == "..") return false;
-  std::error_code ec;
-  const fs::path real = fs::weakly_canonical(path, ec);
-  const fs::path real_rel = real.lexically_relative(fs::weakly_canonical(root, ec));
-  return !ec && !real_rel.empty() && *real_rel.begin() != "..";
+  return lexically_inside(path, root) && really_inside(path, root);
 }
 
 // One .ini being read: where each option comes from, for errors and warnings.
