@@ -324,11 +324,20 @@ std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
         {"subdiv", c.subdiv},
         {"light-sampler", c.light_sampler}})
     if (!value.empty()) typed += std::string("; --") + name + " " + value;
-  // The frame as rendered (--frame's, or each frame's of a sequence), exactly.
+  // The frame as rendered (--frame's, or each frame's of a sequence), exactly; a POV-Ray scene's
+  // clock and an .ini's declarations, which change what the scene builds.
+  char number[40];
   if (c.options.frame) {
-    char frame[40];
-    std::snprintf(frame, sizeof frame, "; frame %.17g", *c.options.frame);
-    typed += frame;
+    std::snprintf(number, sizeof number, "; frame %.17g", *c.options.frame);
+    typed += number;
+  }
+  if (c.import.clock != 0) {
+    std::snprintf(number, sizeof number, "; clock %.17g", c.import.clock);
+    typed += number;
+  }
+  for (const auto& [name, value] : c.import.pov_declarations) {
+    std::snprintf(number, sizeof number, "=%.17g", value);
+    typed += "; declare " + name + number;
   }
   return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
          content_hash(c.scene) + typed;
