@@ -1,8 +1,8 @@
 """POV-Ray .ini files (docs/pov.md ".ini files"), end to end through the built `filmback`:
 `render scene.ini` renders the frames the .ini names, its clock running from Initial_Clock to
 Final_Clock as POV-Ray computes it, into the outputs Output_File_Name names; `render scene.pov
---ini FILE` reads the same options, the command line's own winning; unknown options are warnings
-naming the line; a bad .ini exits 1 naming file:line:column; a portfolio scene renders through
+--ini FILE` reads the same options, the command line's own winning; a checkpoint is not resumed
+with other declarations; unknown options are warnings naming the line; a bad .ini exits 1 naming file:line:column; a portfolio scene renders through
 its own .ini.
 
 Run: ini_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case names
@@ -12,9 +12,11 @@ Run: ini_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 from pathlib import Path
 
@@ -101,6 +103,25 @@ class IniTest(unittest.TestCase):
             self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(compare([(self.dir / "declared.exr", self.dir / "default.exr")])[0],
                          [False])
+
+    def test_resume_refuses_a_checkpoint_of_other_declarations(self):
+        # A checkpoint of the scene with Declare=Radius=0.25 (an interrupted render's), then
+        # --resume without the .ini: the same .pov, but another scene.
+        (self.dir / "radius.ini").write_text("Declare=Radius=0.25\n")
+        render = ["-o", "r.exr", "--res", "32x32", "--spp", "100000", "-q"]
+        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
+        process = subprocess.Popen([FILMBACK, "render", "moving.pov", "--ini", "radius.ini",
+                                    "--checkpoint-every", "0.01s", *render], cwd=self.dir,
+                                   env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        deadline = time.monotonic() + 60
+        while not (self.dir / "r.checkpoint.exr").exists() and time.monotonic() < deadline:
+            time.sleep(0.01)
+        process.send_signal(signal.SIGINT)
+        process.communicate(timeout=60)
+        self.assertTrue((self.dir / "r.checkpoint.exr").exists())
+        result = self.run_cli("render", "moving.pov", "--resume", *render)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("written for another render", result.stderr)
 
     def test_a_bad_ini_exits_non_zero_naming_file_line_column(self):
         (self.dir / "bad.ini").write_text("Input_File_Name=moving.pov\n+W24\nHeight = tall\n")
