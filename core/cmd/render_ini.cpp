@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/cmd/frame_range.h"
 #include "core/util/error.h"
 #include "importers/pov/pov_ini.h"
 
@@ -50,15 +51,27 @@ void apply_pov_ini(RenderCommand& c, std::vector<std::string>& warnings) {
                        ": error: no Input_File_Name; expected one, or the scene with --ini");
     c.scene = *ini.input_file;
   }
-  if (c.resolution.empty() && (ini.width || ini.height))
+  if (c.resolution.empty() && (ini.width || ini.height)) {
     c.resolution = std::to_string(ini.width.value_or(kPovDefaultWidth)) + "x" +
                    std::to_string(ini.height.value_or(kPovDefaultHeight));
+    try {  // the pixel count's bound, as for --res, but the .ini's fault
+      parse_resolution(c.resolution);
+    } catch (const UsageError& e) {
+      throw InputError(file.string() + ": error: Width and Height: " + e.what());
+    }
+  }
   if (!c.options.samples_per_pixel && ini.antialias)
     c.options.samples_per_pixel = samples_for_pov_antialias(
         *ini.antialias, ini.antialias_depth.value_or(kPovDefaultAntialiasDepth));
   const std::optional<pov::IniFrames> frames = pov::ini_frames(ini, file);
-  if (c.frames.empty() && c.frame.empty() && frames)
+  if (c.frames.empty() && c.frame.empty() && frames) {
+    if (frames->last - frames->first >= kMaxFramesInRange)
+      throw InputError(file.string() + ": error: frames " + std::to_string(frames->first) + " to " +
+                       std::to_string(frames->last) + ": expected at most " +
+                       std::to_string(kMaxFramesInRange) +
+                       " (Subset_Start_Frame/Subset_End_Frame or --frames choose fewer)");
     c.frames = std::to_string(frames->first) + "-" + std::to_string(frames->last);
+  }
   if (c.outputs.empty())
     if (const auto pattern = pov::ini_output_pattern(ini, c.scene)) c.outputs.push_back(*pattern);
   if (c.import.library_paths.empty()) c.import.library_paths = ini.library_paths;

@@ -128,12 +128,25 @@ class IniTest(unittest.TestCase):
         result = self.run_cli("render", "bad.ini", "-o", "x.png", "-q")
         self.assertEqual(result.returncode, 1, result.stderr)
         self.assertIn("bad.ini:3:10: error: Height 'tall': expected a number", result.stderr)
+        # Huge values an .ini may hold, each within its own bound, but too much together.
+        (self.dir / "huge.ini").write_text("Input_File_Name=moving.pov\n+W32768 +H32768\n")
+        result = self.run_cli("render", "huge.ini", "-o", "x.png", "-q")
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("huge.ini: error: Width and Height: --res '32768x32768': 1073741824 pixels",
+                      result.stderr)
+        (self.dir / "long.ini").write_text("Input_File_Name=moving.pov\n+KFI-1e9 +KFF1e9\n"
+                                           "Output_File_Name=f\n")
+        result = self.run_cli("render", "long.ini", "-q")
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("long.ini: error: frames -1000000000 to 1000000000: expected at most",
+                      result.stderr)
         (self.dir / "loop.ini").write_text("Input_File_Name=moving.pov\nInclude_Ini=loop.ini\n")
         result = self.run_cli("render", "loop.ini", "-o", "x.png", "-q")
         self.assertEqual(result.returncode, 1, result.stderr)
         self.assertIn("loop.ini:2:13: error: 'loop.ini': includes itself", result.stderr)
         self.assertEqual(sorted(os.listdir(self.dir)),
-                         ["bad.ini", "loop.ini", "moving.ini", "moving.pov"])
+                         ["bad.ini", "huge.ini", "long.ini", "loop.ini", "moving.ini",
+                          "moving.pov"])
 
     def test_a_portfolio_scene_renders_through_its_ini(self):
         ini = PORTFOLIO / "c_colors.ini"
