@@ -63,7 +63,8 @@ class IniReader {
     if (ec || !in) throw InputError(file.string() + ": error: cannot read the .ini file" + chain());
     if (bytes > kMaxIniFileBytes)
       throw InputError(file.string() + ": error: " + std::to_string(bytes) +
-                       " bytes, expected an .ini of at most " + std::to_string(kMaxIniFileBytes));
+                       " bytes, expected an .ini of at most " + std::to_string(kMaxIniFileBytes) +
+                       chain());
     const std::string wanted = lower(section);
     bool found = wanted.empty(), active = true;
     std::string text;
@@ -107,6 +108,7 @@ class IniReader {
 
   // A line holds one Key=Value, or switches (+W320 -D) and .ini file names.
   void read_line(const std::string& line, std::string_view body) {
+    line_text_ = &line;
     body = trim(body);
     const size_t equals = body.find('=');
     const char first = body.front();
@@ -115,7 +117,6 @@ class IniReader {
       std::string_view value = trim(body.substr(equals + 1));
       if (value.size() >= 2 && value.front() == '"' && value.back() == '"')
         value = value.substr(1, value.size() - 2);
-      line_text_ = &line;
       option(lower(key), std::string(key), value);
       return;
     }
@@ -126,7 +127,6 @@ class IniReader {
     std::string body_text(body);
     while (words >> word) {
       searched = body_text.find(word, searched);
-      line_text_ = &line;
       const std::string_view value = std::string_view(line).substr(offset + searched, word.size());
       if (word.front() == '+' || word.front() == '-')
         switch_option(word, value);
@@ -151,11 +151,6 @@ class IniReader {
       fail(column(value), name + " '" + std::string(value) + "': expected a whole number");
     return uint32_t(v);
   }
-  static std::string number_text(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-  }
 
   bool boolean(std::string_view value, const std::string& name) const {
     const std::string v = lower(value);
@@ -165,14 +160,21 @@ class IniReader {
          name + " '" + std::string(value) + "': expected on/off, true/false, yes/no or 1/0");
   }
 
-  // A file the .ini names, relative to its folder and inside the first .ini's folder tree.
-  fs::path path(std::string_view value, const std::string& name) const {
+  // A path the .ini names, relative to its folder; none unless inside the first .ini's folder
+  // tree.
+  std::optional<fs::path> resolve(std::string_view value) const {
     const fs::path relative{std::string(value)};
     const fs::path resolved = (file_.parent_path() / relative).lexically_normal();
     if (value.empty() || relative.is_absolute() || !stays_inside(resolved, root_))
+      return std::nullopt;
+    return resolved;
+  }
+  fs::path path(std::string_view value, const std::string& name) const {
+    const std::optional<fs::path> resolved = resolve(value);
+    if (!resolved)
       fail(column(value), name + " '" + std::string(value) +
                               "': expected a path inside the .ini's folder " + root_.string());
-    return resolved;
+    return *resolved;
   }
 
   Animation& animation() { return out_.animation ? *out_.animation : out_.animation.emplace(); }
@@ -230,10 +232,8 @@ class IniReader {
   // Library_Path from an untrusted .ini stays inside its folder tree; a folder elsewhere is the
   // user's to give (-L), so it is skipped with a warning rather than refused.
   void library_path(std::string_view value, const std::string& name) {
-    const fs::path relative{std::string(value)};
-    const fs::path resolved = (file_.parent_path() / relative).lexically_normal();
-    if (!value.empty() && !relative.is_absolute() && stays_inside(resolved, root_))
-      out_.library_paths.push_back(resolved);
+    if (const std::optional<fs::path> resolved = resolve(value))
+      out_.library_paths.push_back(*resolved);
     else
       warn("'" + name + "=" + std::string(value) +
            "': outside the .ini's folder, skipped (give it with -L)");
@@ -250,10 +250,10 @@ class IniReader {
                        });
     if (equals == std::string_view::npos || !valid)
       fail(column(value), name + " '" + std::string(value) + "': expected IDENTIFIER=FLOAT");
-    const std::string_view number_text = trim(value.substr(equals + 1));
+    const std::string_view float_text = trim(value.substr(equals + 1));
     out_.declarations.push_back(
         {std::string(identifier),
-         number(number_text, name + " " + std::string(identifier), -1e30, 1e30)});
+         number(float_text, name + " " + std::string(identifier), -1e30, 1e30)});
   }
 
   // Written relative to the current folder, as POV-Ray writes it, and never outside it.
