@@ -1,7 +1,5 @@
 #include "core/cmd/render_ini.h"
 
-#include <algorithm>
-
 #include "core/cmd/frame_range.h"
 #include "core/util/error.h"
 #include "importers/pov/pov_ini.h"
@@ -17,27 +15,17 @@ constexpr uint32_t kPovDefaultWidth = 800, kPovDefaultHeight = 600;
 // ".ini files"; not yet measured against POV-Ray's images).
 constexpr uint32_t kPathSamplesPerPovRay = 16;
 
-bool has_ini_extension(const std::filesystem::path& file) {
-  std::string extension = file.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char ch) { return char(std::tolower(ch)); });
-  return extension == ".ini";
+// filmback's samples per pixel for POV-Ray's antialiasing: adaptive supersampling at depth d
+// splits a pixel into up to d x d rays (POV-Ray 3.7 manual, "Anti-Aliasing Options", method 1);
+// filmback samples every pixel at that ceiling.
+uint32_t samples_for_pov_antialias(bool antialias, uint32_t depth) {
+  return kPathSamplesPerPovRay * (antialias ? depth * depth : 1);
 }
 
 }  // namespace
 
-bool names_pov_ini(const std::filesystem::path& scene) {
-  return has_ini_extension(pov::split_ini_section(scene.string()).first);
-}
-
-uint32_t samples_for_pov_antialias(bool antialias, uint32_t depth) {
-  // Adaptive supersampling at depth d splits a pixel into up to d x d rays (POV-Ray 3.7 manual,
-  // "Anti-Aliasing Options", method 1); filmback samples every pixel at that ceiling.
-  return kPathSamplesPerPovRay * (antialias ? depth * depth : 1);
-}
-
 void apply_pov_ini(RenderCommand& c, std::vector<std::string>& warnings) {
-  const bool scene_is_ini = names_pov_ini(c.scene);
+  const bool scene_is_ini = pov::is_ini_argument(c.scene.string());
   if (scene_is_ini && !c.ini.empty())
     throw UsageError("--ini '" + c.ini + "': the scene '" + c.scene.string() +
                      "' is an .ini already; expected one .ini");

@@ -20,14 +20,14 @@ constexpr double kMaxIniAntialiasDepth = 9;  // POV-Ray 3.7 refuses +R above 9
 constexpr double kMaxIniFrame = 1e9;
 constexpr double kMaxIniClock = 1e9;
 
-std::string lower(std::string_view text) {
+std::string ini_lower(std::string_view text) {
   std::string out(text);
   for (char& ch : out)
     ch = char(std::tolower(static_cast<unsigned char>(ch)));
   return out;
 }
 
-std::string_view trim(std::string_view text) {
+std::string_view ini_trim(std::string_view text) {
   const size_t first = text.find_first_not_of(" \t\r");
   if (first == std::string_view::npos) return {};
   return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
@@ -65,7 +65,7 @@ class IniReader {
       throw InputError(file.string() + ": error: " + std::to_string(bytes) +
                        " bytes, expected an .ini of at most " + std::to_string(kMaxIniFileBytes) +
                        chain());
-    const std::string wanted = lower(section);
+    const std::string wanted = ini_lower(section);
     bool found = wanted.empty(), active = true;
     std::string text;
     line_ = 0;
@@ -73,14 +73,15 @@ class IniReader {
       ++line_;
       std::string_view body = text;
       body = body.substr(0, body.find(';'));
-      if (trim(body).empty()) continue;
-      if (trim(body).front() == '[') {
-        const std::string_view label = trim(body);
+      if (ini_trim(body).empty()) continue;
+      if (ini_trim(body).front() == '[') {
+        const std::string_view label = ini_trim(body);
         if (label.back() != ']')
           fail(column_of(text, label), "'" + std::string(label) + "': expected a label [Name]");
         // Labels may hold blanks and are not case sensitive (POV-Ray 3.7 manual, "INI File
         // Sections").
-        active = !wanted.empty() && lower(trim(label.substr(1, label.size() - 2))) == wanted;
+        active =
+            !wanted.empty() && ini_lower(ini_trim(label.substr(1, label.size() - 2))) == wanted;
         found = found || active;
         continue;
       }
@@ -109,15 +110,15 @@ class IniReader {
   // A line holds one Key=Value, or switches (+W320 -D) and .ini file names.
   void read_line(const std::string& line, std::string_view body) {
     line_text_ = &line;
-    body = trim(body);
+    body = ini_trim(body);
     const size_t equals = body.find('=');
     const char first = body.front();
     if (equals != std::string_view::npos && first != '+' && first != '-') {
-      const std::string_view key = trim(body.substr(0, equals));
-      std::string_view value = trim(body.substr(equals + 1));
+      const std::string_view key = ini_trim(body.substr(0, equals));
+      std::string_view value = ini_trim(body.substr(equals + 1));
       if (value.size() >= 2 && value.front() == '"' && value.back() == '"')
         value = value.substr(1, value.size() - 2);
-      option(lower(key), std::string(key), value);
+      option(ini_lower(key), std::string(key), value);
       return;
     }
     std::istringstream words{std::string(body)};
@@ -153,7 +154,7 @@ class IniReader {
   }
 
   bool boolean(std::string_view value, const std::string& name) const {
-    const std::string v = lower(value);
+    const std::string v = ini_lower(value);
     if (v == "on" || v == "true" || v == "yes" || v == "1") return true;
     if (v == "off" || v == "false" || v == "no" || v == "0") return false;
     fail(column(value),
@@ -242,7 +243,7 @@ class IniReader {
   // Declare=IDENTIFIER=FLOAT (POV-Ray 3.7 manual, "Declare=IDENTIFIER=FLOAT").
   void declare(std::string_view value, const std::string& name) {
     const size_t equals = value.find('=');
-    const std::string_view identifier = trim(value.substr(0, equals));
+    const std::string_view identifier = ini_trim(value.substr(0, equals));
     const bool valid = !identifier.empty() &&
                        !std::isdigit(static_cast<unsigned char>(identifier[0])) &&
                        std::all_of(identifier.begin(), identifier.end(), [](char ch) {
@@ -250,7 +251,7 @@ class IniReader {
                        });
     if (equals == std::string_view::npos || !valid)
       fail(column(value), name + " '" + std::string(value) + "': expected IDENTIFIER=FLOAT");
-    const std::string_view float_text = trim(value.substr(equals + 1));
+    const std::string_view float_text = ini_trim(value.substr(equals + 1));
     out_.declarations.push_back(
         {std::string(identifier),
          number(float_text, name + " " + std::string(identifier), -1e30, 1e30)});
@@ -277,7 +278,7 @@ class IniReader {
   // Switches as on POV-Ray's command line; a '-' turns a boolean off.
   void switch_option(const std::string& word, std::string_view text) {
     const bool on = word.front() == '+';
-    const std::string letters = lower(word.substr(1));
+    const std::string letters = ini_lower(word.substr(1));
     const auto rest = [&](size_t n) { return text.substr(1 + n); };
     const auto starts = [&](const char* prefix) { return letters.rfind(prefix, 0) == 0; };
     if (starts("kfi"))
@@ -358,6 +359,10 @@ IniOptions read_ini(const fs::path& file, const std::string& section) {
   std::vector<fs::path> open_files{fs::weakly_canonical(file, ec)};
   IniReader(out, root, open_files).read(file, section, "");
   return out;
+}
+
+bool is_ini_argument(const std::string& argument) {
+  return ini_lower(split_ini_section(argument).first.extension().string()) == ".ini";
 }
 
 std::pair<fs::path, std::string> split_ini_section(const std::string& argument) {

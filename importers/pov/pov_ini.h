@@ -48,6 +48,8 @@ IniOptions read_ini(const std::filesystem::path& file, const std::string& sectio
 
 // "scene.ini[High]" -> {"scene.ini", "High"}; a name without a label -> {name, ""}.
 std::pair<std::filesystem::path, std::string> split_ini_section(const std::string& argument);
+// Whether a command line's scene names an .ini: "scene.ini", "SCENE.INI[High]".
+bool is_ini_argument(const std::string& argument);
 
 // The frames an .ini's options ask for, POV-Ray's way: Initial_Frame to Final_Frame, cut to the
 // subset; none when it sets no animation. Throws InputError naming `file` for an empty subset.

@@ -90,6 +90,10 @@ TEST_F(PovIni, SectionsAreReadOnlyWhenSelected) {
   EXPECT_EQ(split_ini_section("res.ini[Really High]"),
             (std::pair<fs::path, std::string>{"res.ini", "Really High"}));
   EXPECT_EQ(split_ini_section("res.ini").second, "");
+  EXPECT_TRUE(is_ini_argument("RES.INI[Really High]"));
+  EXPECT_TRUE(is_ini_argument("dir/res.ini"));
+  EXPECT_FALSE(is_ini_argument("scene.pov"));
+  EXPECT_FALSE(is_ini_argument("ini"));
 }
 
 TEST_F(PovIni, AnimationClockAsPovRayComputesIt) {
