@@ -29,7 +29,7 @@ std::string ini_lower(std::string_view text) {
 
 std::string_view ini_trim(std::string_view text) {
   const size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
+  if (first == std::string_view::npos) return text.substr(text.size());  // still where it was
   return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
 }
 
@@ -129,8 +129,12 @@ class IniReader {
     while (words >> word) {
       searched = body_text.find(word, searched);
       const std::string_view value = std::string_view(line).substr(offset + searched, word.size());
+      const size_t word_equals = word.find('=');
       if (word.front() == '+' || word.front() == '-')
         switch_option(word, value);
+      else if (word_equals != std::string::npos)  // Key=Value among switches: "+kc declare=fp=0"
+        option(ini_lower(word.substr(0, word_equals)), word.substr(0, word_equals),
+               value.substr(word_equals + 1));
       else
         include(value);
       searched += word.size();
@@ -257,11 +261,16 @@ class IniReader {
          number(float_text, name + " " + std::string(identifier), -1e30, 1e30)});
   }
 
-  // Written relative to the current folder, as POV-Ray writes it, and never outside it.
+  // Written relative to the current folder, as POV-Ray writes it, and never outside it; empty,
+  // POV-Ray's default name.
   void output_file(std::string_view value, const std::string& name) {
+    if (value.empty()) {
+      out_.output_file.reset();
+      return;
+    }
     const fs::path relative{std::string(value)};
     const fs::path normal = relative.lexically_normal();
-    if (value.empty() || relative.is_absolute() || (!normal.empty() && *normal.begin() == ".."))
+    if (relative.is_absolute() || (!normal.empty() && *normal.begin() == ".."))
       fail(column(value),
            name + " '" + std::string(value) +
                "': expected a file name relative to the current folder, without '..'");

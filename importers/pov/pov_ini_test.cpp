@@ -75,6 +75,13 @@ TEST_F(PovIni, BooleansInEveryFormPovRayTakes) {
     EXPECT_EQ(read(std::string("Antialias=") + yes).antialias, true) << yes;
   for (const char* no : {"Off", "false", "NO", "0"})
     EXPECT_EQ(read(std::string("Antialias=") + no).antialias, false) << no;
+  // Key=Value among switches, as animations/splinefollow/splinefollow.ini writes it.
+  const IniOptions mixed = read("+kf0.5 +kff20 +kc declare=fp=0");
+  ASSERT_EQ(mixed.declarations.size(), 1u);
+  EXPECT_EQ(mixed.declarations[0].first, "fp");
+  ASSERT_TRUE(mixed.animation);
+  EXPECT_EQ(mixed.animation->final_clock, 0.5);
+  EXPECT_TRUE(mixed.animation->cyclic);
   EXPECT_EQ(read("+A0.2").antialias, true);
   EXPECT_EQ(read("+A0.2").antialias_threshold, 0.2);
   EXPECT_EQ(read("Antialias=on\n-A").antialias, false);  // the last one wins
@@ -127,6 +134,7 @@ TEST_F(PovIni, OutputPatternAsPovRayNamesFrames) {
             fs::path("out/shot#.exr"));
   EXPECT_EQ(ini_output_pattern(read("Output_File_Name=still.png"), "a.pov"), fs::path("still.png"));
   EXPECT_FALSE(ini_output_pattern(read("+W10"), "a.pov"));
+  EXPECT_FALSE(ini_output_pattern(read("Output_File_Name="), "a.pov"));  // benchmark.ini's
   EXPECT_NE(error_of("Output_File_Name=../../home/x").find("without '..'"), std::string::npos);
 }
 
@@ -160,6 +168,9 @@ TEST_F(PovIni, ErrorsNameFileLineAndColumn) {
   EXPECT_NE(error_of("Final_Frame=1e12").find(":1:13: error: Final_Frame"), std::string::npos);
   EXPECT_NE(error_of("Width=2.5").find("expected a whole number"), std::string::npos);
   EXPECT_NE(error_of("[Open").find(":1:1: error:"), std::string::npos);
+  // An empty value is located where it would be (portfolio/__empty.ini's "Final_Frame=").
+  EXPECT_EQ(error_of("Final_Frame= "),
+            file + ":1:13: error: Final_Frame '': expected a number from -1e+09 to 1e+09");
 }
 
 TEST_F(PovIni, PathsStayInsideTheIniFolder) {
