@@ -67,6 +67,9 @@ TEST_F(PovIni, ReadsKeysAndSwitchesCaseInsensitively) {
   EXPECT_EQ(ini.declarations[0].first, "Speed");
   EXPECT_EQ(ini.declarations[0].second, 2.5);
   EXPECT_EQ(ini.output_file_type, 'E');
+  EXPECT_FALSE(ini.clock);
+  EXPECT_EQ(read("+K0.25").clock, 0.25);  // a still's clock
+  EXPECT_EQ(read("Clock=-2").clock, -2);
   EXPECT_TRUE(ini.warnings.empty()) << ini.warnings.front();
 }
 
