@@ -1,7 +1,10 @@
 #include "core/cmd/render_ini.h"
 
+#include <cmath>
+
 #include "core/cmd/frame_range.h"
 #include "core/util/error.h"
+#include "core/util/parse_number.h"
 #include "importers/pov/pov_ini.h"
 
 namespace fb {
@@ -61,7 +64,15 @@ void apply_pov_ini(RenderCommand& c, std::vector<std::string>& warnings) {
     c.frames = std::to_string(frames->first) + "-" + std::to_string(frames->last);
   }
   if (c.outputs.empty())
-    if (const auto pattern = pov::ini_output_pattern(ini, c.scene)) c.outputs.push_back(*pattern);
+    if (const auto pattern = pov::ini_output_pattern(ini, c.scene)) {
+      // --frame N typed: the one frame's name, as POV-Ray names frame N of the sequence.
+      const std::optional<double> frame = parse_number(c.frame);
+      const bool whole_frame =
+          frame && *frame == std::floor(*frame) && std::abs(*frame) <= double(kMaxFrameNumber);
+      c.outputs.push_back(whole_frame && is_frame_pattern(*pattern)
+                              ? frame_path(*pattern, int64_t(*frame))
+                              : *pattern);
+    }
   if (c.import.library_paths.empty()) c.import.library_paths = ini.library_paths;
   c.import.pov_declarations = ini.declarations;
   c.import.pov_animation = ini.animation;

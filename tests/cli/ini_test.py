@@ -77,10 +77,17 @@ class IniTest(unittest.TestCase):
                                   "--res", "24x24", "--spp", "16", "-q",
                                   "-o", "single%d.exr" % frame)
             self.assertEqual(result.returncode, 0, result.stderr)
+        # --frame 3 typed: the .ini's clock at frame 3 (Final_Clock, 1), into POV-Ray's name of it.
+        result = self.run_cli("render", "moving.ini", "--frame", "3", "-q")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        result = self.run_cli("render", "moving.pov", "--frame", "3", "--clock", "1",
+                              "--res", "24x24", "--spp", "16", "-q", "-o", "single3.exr")
+        self.assertEqual(result.returncode, 0, result.stderr)
         same = compare([(self.dir / "shot1.exr", self.dir / "single1.exr"),
                         (self.dir / "shot2.exr", self.dir / "single2.exr"),
+                        (self.dir / "shot3.exr", self.dir / "single3.exr"),
                         (self.dir / "shot1.exr", self.dir / "shot2.exr")])[0]
-        self.assertEqual(same, [True, True, False])
+        self.assertEqual(same, [True, True, True, False])
 
     def test_ini_beside_a_pov_and_the_command_line_wins(self):
         (self.dir / "big.ini").write_text("+W24 +H24\nAntialias=on\nAntialias_Depth=2\n"
