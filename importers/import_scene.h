@@ -20,6 +20,9 @@ struct ImportOptions {
   std::optional<std::pair<uint32_t, uint32_t>> resolution;  // as typed; none: the scene's default
   double clock = 0;
   double frame = 0;
+  // An .ini's animation (docs/pov.md ".ini files"): what initial_clock, clock_delta ... read.
+  std::optional<pov::Animation> pov_animation;
+  std::vector<std::pair<std::string, double>> pov_declarations;  // Declare=NAME=VALUE
   // Folders searched for #include after the scene's own; none given: POV-Ray's standard include
   // folder when povray-includes is installed (docs/pov.md "The language").
   std::vector<std::filesystem::path> library_paths;

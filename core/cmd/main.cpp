@@ -22,10 +22,17 @@ void add_import_options(CLI::App* command, fb::ImportOptions& options) {
 
 // `render`: the scene, the outputs, the sample count and size, and the plugins.
 void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& render) {
-  render_cmd->add_option("scene", render.scene, "scene file (.gltf, .glb, .pov)")->required();
   render_cmd
-      ->add_option("-o,--output", render.outputs, "output image, .exr, .png or .jpg (repeatable)")
+      ->add_option("scene", render.scene,
+                   "scene file (.gltf, .glb, .pov), or a POV-Ray .ini naming its scene "
+                   "(scene.ini or scene.ini[Section])")
       ->required();
+  render_cmd->add_option(
+      "-o,--output", render.outputs,
+      "output image, .exr, .png or .jpg (repeatable; required unless an .ini names one)");
+  render_cmd->add_option("--ini", render.ini,
+                         "POV-Ray: the options of this .ini (FILE or FILE[Section]) for the .pov "
+                         "scene; the command line's own options win");
   render_cmd
       ->add_option("--spp", render.options.samples_per_pixel, "samples per pixel (default 64)")
       ->check(CLI::Range(1u, 1000000u));

@@ -14,6 +14,7 @@
 #include "core/cmd/frame_sequence.h"
 #include "core/cmd/image_outputs.h"
 #include "core/cmd/interrupts.h"
+#include "core/cmd/render_ini.h"
 #include "core/cmd/render_report.h"
 #include "core/film/checkpoint.h"
 #include "core/image/image_io.h"
@@ -279,6 +280,8 @@ Scene read_scene(RenderCommand& c, Diagnostics& diagnostics, RenderReport& repor
   c.import.resolution.reset();
   if (c.options.width) c.import.resolution = {*c.options.width, *c.options.height};
   if (c.options.frame) c.import.frame = *c.options.frame;
+  // An .ini's animation: the clock runs from Initial_Clock to Final_Clock over its frames.
+  if (c.import.pov_animation) c.import.clock = c.import.pov_animation->clock_at(c.import.frame);
   const auto stage = Clock::now();
   Scene scene = import_scene(c.scene, c.import, diagnostics);
   report.import_s = seconds_since(stage);
@@ -321,11 +324,20 @@ std::string checkpoint_key(const RenderJob& job, const RenderCommand& c) {
         {"subdiv", c.subdiv},
         {"light-sampler", c.light_sampler}})
     if (!value.empty()) typed += std::string("; --") + name + " " + value;
-  // The frame as rendered (--frame's, or each frame's of a sequence), exactly.
+  // The frame as rendered (--frame's, or each frame's of a sequence), exactly; a POV-Ray scene's
+  // clock and an .ini's declarations, which change what the scene builds.
+  char number[40];
   if (c.options.frame) {
-    char frame[40];
-    std::snprintf(frame, sizeof frame, "; frame %.17g", *c.options.frame);
-    typed += frame;
+    std::snprintf(number, sizeof number, "; frame %.17g", *c.options.frame);
+    typed += number;
+  }
+  if (c.import.clock != 0) {
+    std::snprintf(number, sizeof number, "; clock %.17g", c.import.clock);
+    typed += number;
+  }
+  for (const auto& [name, value] : c.import.pov_declarations) {
+    std::snprintf(number, sizeof number, "=%.17g", value);
+    typed += "; declare " + name + number;
   }
   return job.plan() + "; seed " + std::to_string(c.options.seed) + "; scene content " +
          content_hash(c.scene) + typed;
@@ -579,6 +591,16 @@ int run_with_report(Report& report, const std::function<int()>& run,
 
 int run_render(RenderCommand& c) {
   const auto start = Clock::now();
+  std::vector<std::string> ini_warnings;
+  apply_pov_ini(c, ini_warnings);
+  if (!ini_warnings.empty()) {
+    Diagnostics diagnostics;
+    for (const std::string& warning : ini_warnings)
+      diagnostics.warn(warning);
+    diagnostics.print(std::cerr);
+  }
+  if (c.outputs.empty())
+    throw UsageError("render: expected -o FILE (or an .ini that names an Output_File_Name)");
   if (!c.frames.empty()) {
     SequenceReport report;
     report.scene = c.scene;

@@ -68,6 +68,8 @@ Scene import_pov(const std::filesystem::path& file, const ImportOptions& options
   evaluate.image_height = height;
   evaluate.clock = options.clock;
   evaluate.frame_number = options.frame;
+  evaluate.animation = options.pov_animation;
+  evaluate.declarations = options.pov_declarations;
   evaluate.limits = options.pov_limits;
   const pov::Scene pov = pov::evaluate_pov(evaluate);
   report_unsupported(pov, diagnostics);

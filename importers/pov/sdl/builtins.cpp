@@ -134,13 +134,22 @@ constexpr Constant kConstants[] = {
        return Value::vector({0, 1});
      }},
     {"clock", [](O o) { return Value::number(o.clock); }},
-    {"clock_delta", [](O) { return Value::number(0); }},
-    {"clock_on", [](O) { return Value::number(0); }},
-    {"initial_clock", [](O o) { return Value::number(o.clock); }},
-    {"final_clock", [](O o) { return Value::number(o.clock); }},
+    {"clock_delta",
+     [](O o) { return Value::number(o.animation ? o.animation->clock_delta() : 0); }},
+    {"clock_on", [](O o) { return Value::number(o.animation ? 1 : 0); }},
+    {"initial_clock",
+     [](O o) { return Value::number(o.animation ? o.animation->initial_clock : o.clock); }},
+    {"final_clock",
+     [](O o) { return Value::number(o.animation ? o.animation->final_clock : o.clock); }},
     {"frame_number", [](O o) { return Value::number(o.frame_number); }},
-    {"initial_frame", [](O o) { return Value::number(o.frame_number); }},
-    {"final_frame", [](O o) { return Value::number(o.frame_number); }},
+    {"initial_frame",
+     [](O o) { return Value::number(o.animation ? o.animation->initial_frame : o.frame_number); }},
+    // A cyclic animation reads one frame more, as POV-Ray 3.7 reports it.
+    {"final_frame",
+     [](O o) {
+       return Value::number(o.animation ? o.animation->final_frame + (o.animation->cyclic ? 1 : 0)
+                                        : o.frame_number);
+     }},
     {"image_width", [](O o) { return Value::number(o.image_width); }},
     {"image_height", [](O o) { return Value::number(o.image_height); }},
     {"version", [](O) { return Value::number(3.7); }},

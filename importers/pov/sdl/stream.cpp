@@ -6,6 +6,7 @@
 
 #include "core/util/error.h"
 #include "importers/pov/sdl/parser.h"
+#include "importers/pov/sdl/path_rules.h"
 
 namespace fb::pov {
 
@@ -38,6 +39,8 @@ Parser::Parser(const EvaluateOptions& options) : options_(options) {
   scene_folder_ = options.scene_file.parent_path();
   if (scene_folder_.empty()) scene_folder_ = ".";
   scopes_.emplace_back();  // global identifiers
+  for (const auto& [name, value] : options.declarations)
+    scopes_.front()[name] = Value::number(value);
   std::string name = options.scene_file.filename().string();
   std::ifstream probe(options.scene_file);
   if (!probe) throw_input(options.scene_file.string(), "", "cannot open the scene file");
@@ -82,22 +85,17 @@ std::optional<std::filesystem::path> Parser::resolve_include(const std::string& 
   roots.insert(roots.end(), options_.library_paths.begin(), options_.library_paths.end());
   for (const fs::path& dir : folders) {
     fs::path candidate = (dir / relative).lexically_normal();
-    bool inside = false;
-    for (const fs::path& root : roots) {
-      fs::path rel = candidate.lexically_relative(root.lexically_normal());
-      if (!rel.empty() && *rel.begin() != "..") inside = true;
-    }
+    const bool inside = std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
+      return lexically_inside(candidate, root);
+    });
     if (!inside) continue;  // escapes every allowed folder
     std::error_code ec;
     for (const fs::path& attempt : {candidate, fs::path(candidate.string() + ".inc")}) {
       if (!fs::is_regular_file(attempt, ec)) continue;
       // A symbolic link is followed only to a file inside an allowed folder.
-      const fs::path real = fs::weakly_canonical(attempt, ec);
-      const bool real_inside =
-          !ec && std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
-            const fs::path rel = real.lexically_relative(fs::weakly_canonical(root, ec));
-            return !rel.empty() && *rel.begin() != "..";
-          });
+      const bool real_inside = std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
+        return really_inside(attempt, root);
+      });
       if (!real_inside) continue;
       if (folder) *folder = attempt.parent_path();
       return attempt;
