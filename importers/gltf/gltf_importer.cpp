@@ -19,6 +19,7 @@
 #include "importers/gltf/gltf_lights.h"
 #include "importers/gltf/gltf_materials.h"
 #include "importers/gltf/gltf_shot.h"
+#include "importers/gltf/gltf_skin.h"
 #include "importers/gltf/gltf_subdivision.h"
 
 namespace fb {
@@ -39,14 +40,18 @@ class Importer {
     check_extensions();
     scene_.file = file_;
     gltf::read_materials(model_, name_, scene_, diagnostics_);
-    // Skins are reported where a node uses one (visit()), with what is rendered instead.
-    // The node hierarchy is kept only when something can move: a static file costs nothing more.
-    keep_nodes_ = !model_.animations.empty();
+    // The node hierarchy is kept only when something can move (animation, or joints that place
+    // a skinned mesh): a static file costs nothing more.
+    keep_nodes_ = !model_.animations.empty() || !model_.skins.empty();
     walk_nodes();
     if (keep_nodes_) {
       gltf::read_animations(model_, name_, scene_node_, scene_.hierarchy, diagnostics_);
       scene_.hierarchy.finish();
     }
+    // After the walk: a skin's joints may be met after the mesh they move.
+    for (const auto& [mesh, source] : skinned_)
+      scene_.deformations.push_back(
+          {mesh, gltf::read_skin_binding(model_, source, scene_node_, name_, diagnostics_)});
     return std::move(scene_);
   }
 
@@ -189,13 +194,13 @@ class Importer {
   // `scene_node` is the node's index in scene_.hierarchy, kNoNode when the file cannot move it.
   void visit(const tinygltf::Node& node, const std::string& path, const Transform& world,
              uint32_t scene_node) {
-    if (node.skin >= 0)
-      warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
     if (auto surface = gltf::read_node_subdivision(model_, node, path, world, scene_node,
                                                    scene_.materials, name_, diagnostics_)) {
       for (SubdivisionPart& part : surface->parts)
         if (part.material == gltf::kNoSubdivisionMaterial) part.material = default_material();
       scene_.subdivision_surfaces.push_back(std::move(*surface));
+    } else if (node.mesh >= 0 && node.skin >= 0) {
+      add_skinned_mesh(node, path);
     } else if (node.mesh >= 0) {
       add_mesh(node, path, world, scene_node);
     }
@@ -205,12 +210,40 @@ class Importer {
     gltf::read_node_light(model_, node, path, world, scene_node, name_, scene_, diagnostics_);
   }
 
-  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                uint32_t scene_node) {
+  const tinygltf::Mesh& node_mesh(const tinygltf::Node& node, const std::string& path) {
     if (size_t(node.mesh) >= model_.meshes.size())
       throw_input(name_, path + ".mesh",
                   out_of_range("mesh", node.mesh, model_.meshes.size(), "meshes"));
-    const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+    return model_.meshes[size_t(node.mesh)];
+  }
+
+  std::string primitive_path(const tinygltf::Node& node, size_t p) {
+    return index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
+  }
+
+  // glTF 2.0 §3.8.3: the joints place a skinned mesh, not its node, so each primitive becomes a
+  // mesh of its own at the identity, posed by the render; it is never shared with another node.
+  void add_skinned_mesh(const tinygltf::Node& node, const std::string& path) {
+    const tinygltf::Mesh& mesh = node_mesh(node, path);
+    gltf::check_instance_count(scene_.instances.size(), mesh.primitives.size(), name_,
+                               path + ".mesh");
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const std::string ppath = primitive_path(node, p);
+      std::optional<TriangleMesh> converted = convert_primitive(mesh, mesh.primitives[p], ppath);
+      if (!converted) continue;
+      const uint32_t index = uint32_t(scene_.meshes.size());
+      skinned_.push_back(
+          {index,
+           {node.skin, path + ".skin", &mesh.primitives[p], ppath, converted->positions.size()}});
+      scene_.meshes.push_back(std::move(*converted));
+      scene_.instances.push_back(
+          {index, Transform(), node.name.empty() ? path : node.name, kNoNode});
+    }
+  }
+
+  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
+                uint32_t scene_node) {
+    const tinygltf::Mesh& mesh = node_mesh(node, path);
     // The node's own placement, or one per EXT_mesh_gpu_instancing instance in the node's space.
     std::vector<Transform> placements{world};
     if (auto node_from_instance =
@@ -227,8 +260,7 @@ class Importer {
       const auto key = std::pair{node.mesh, p};
       auto cached = primitive_meshes_.find(key);
       if (cached == primitive_meshes_.end()) {
-        const std::string ppath =
-            index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
+        const std::string ppath = primitive_path(node, p);
         std::optional<TriangleMesh> converted = convert_primitive(mesh, mesh.primitives[p], ppath);
         std::optional<uint32_t> index;
         if (converted) {
@@ -330,6 +362,7 @@ class Importer {
   std::map<std::pair<int, size_t>, std::optional<uint32_t>> primitive_meshes_;
   bool keep_nodes_ = false;
   std::vector<uint32_t> scene_node_;  // glTF node -> scene_.hierarchy index, when keep_nodes_
+  std::vector<std::pair<uint32_t, gltf::SkinSource>> skinned_;  // scene_.meshes index, its skin
 };
 
 }  // namespace

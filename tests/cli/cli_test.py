@@ -860,12 +860,10 @@ class CliTest(unittest.TestCase):
                                "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}}]
         g.doc["meshes"][0]["primitives"][0]["material"] = 0
         g.doc["extensionsUsed"] = ["KHR_materials_clearcoat"]
-        g.doc["skins"] = [{"joints": [0]}]
-        g.doc["nodes"][0]["skin"] = 0
         scene = self.scene(g)
         result = self.render(scene, *TINY)
         self.assert_rendered(result, "image.exr")
-        expected = ["extensionsUsed[0]", "nodes[0].skin", "meshes[0].primitives[0].targets",
+        expected = ["extensionsUsed[0]", "meshes[0].primitives[0].targets",
                     "meshes[0].primitives[1].mode", "meshes[0].primitives[2].mode"]
         warnings = [line for line in result.stderr.splitlines() if line.startswith("warning: ")]
         self.assertEqual(len(warnings), len(expected), result.stderr)

@@ -165,6 +165,7 @@ int GltfBuilder::node(const Node& n, bool root) {
   node.name = n.name;
   node.mesh = n.mesh;
   node.camera = n.camera;
+  node.skin = n.skin;
   node.children = n.children;
   if (!n.matrix.empty()) {
     node.matrix = n.matrix;
@@ -182,6 +183,28 @@ int GltfBuilder::node(const Node& n, bool root) {
   const int index = int(impl_->model.nodes.size() - 1);
   if (root) impl_->model.scenes[0].nodes.push_back(index);
   return index;
+}
+
+int GltfBuilder::skin(const std::vector<int>& joints, const std::vector<float>& inverse_binds) {
+  tinygltf::Skin skin;
+  skin.joints = joints;
+  if (!inverse_binds.empty())
+    skin.inverseBindMatrices = impl_->add_accessor(
+        inverse_binds.data(), inverse_binds.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT,
+        TINYGLTF_TYPE_MAT4, inverse_binds.size() / 16);
+  impl_->model.skins.push_back(skin);
+  return int(impl_->model.skins.size() - 1);
+}
+
+void GltfBuilder::skin_weights(int mesh, int set, const std::vector<uint16_t>& joints,
+                               const std::vector<float>& weights) {
+  tinygltf::Primitive& prim = impl_->model.meshes[size_t(mesh)].primitives[0];
+  prim.attributes["JOINTS_" + std::to_string(set)] = impl_->add_accessor(
+      joints.data(), joints.size() * sizeof(uint16_t), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+      TINYGLTF_TYPE_VEC4, joints.size() / 4);
+  prim.attributes["WEIGHTS_" + std::to_string(set)] =
+      impl_->add_accessor(weights.data(), weights.size() * sizeof(float),
+                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, weights.size() / 4);
 }
 
 void GltfBuilder::animate(int node, const std::string& path, const std::vector<float>& times_s,

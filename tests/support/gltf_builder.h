@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -35,9 +36,17 @@ class GltfBuilder {
   int orthographic_camera(double xmag, double ymag, double znear, double zfar);
   int point_light(Rgb color, double intensity_cd);
 
+  // A skin of the joints `joints` (node indices) with their inverse bind matrices, 16
+  // column-major values per joint (empty: none written, each the identity).
+  int skin(const std::vector<int>& joints, const std::vector<float>& inverse_binds = {});
+  // JOINTS_<set> (unsigned shorts) and WEIGHTS_<set> (floats) of `mesh`'s first primitive, four
+  // of each per vertex.
+  void skin_weights(int mesh, int set, const std::vector<uint16_t>& joints,
+                    const std::vector<float>& weights);
+
   struct Node {
     std::string name;
-    int mesh = -1, camera = -1, light = -1;
+    int mesh = -1, camera = -1, light = -1, skin = -1;
     std::array<double, 3> translation{0, 0, 0};
     std::array<double, 4> rotation{0, 0, 0, 1};  // x, y, z, w
     std::array<double, 3> scale{1, 1, 1};
