@@ -83,6 +83,12 @@ GeometryCounts geometry_counts(const Scene& scene) {
       counts.texturing_bytes += bytes_of(mesh.texturing);
     }
   }
+  // Each deformed mesh is posed in a copy of the scene (RenderJob::build_geometry): its vertices
+  // counted as triangles once more, which bounds the copy (a render triangle costs more).
+  for (const MeshDeformation& d : scene.deformations) {
+    counts.triangles += double(scene.meshes[d.mesh].triangle_count());
+    counts.texturing_bytes += bytes_of(scene.meshes[d.mesh].texturing);
+  }
   return counts;
 }
 

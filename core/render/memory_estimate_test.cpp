@@ -91,6 +91,20 @@ TEST(MemoryEstimate, CountsAnInstancedMeshOnceAndEachOfItsInstances) {
   EXPECT_EQ(counts.texturing_bytes, 4 * 32);  // each mesh in the scene and in the render
 }
 
+// A skinned or morphed mesh is posed in a copy of the scene: its triangles count twice.
+TEST(MemoryEstimate, CountsADeformedMeshsPosedCopy) {
+  Scene scene;
+  scene.materials.push_back({});
+  TriangleMesh quad;
+  quad.positions.resize(4);
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  scene.meshes = {quad};
+  scene.instances.push_back(MeshInstance{});
+  EXPECT_EQ(geometry_counts(scene).triangles, 2);
+  scene.deformations.push_back(MeshDeformation{});
+  EXPECT_EQ(geometry_counts(scene).triangles, 4);
+}
+
 // Issue 17's forest: 10,000 copies of a 100,000-triangle tree (10^9 triangles flattened) fits
 // with a 1920 x 1080 film in 2 GiB, where flattened it needed 120 GB.
 TEST(MemoryEstimate, TenThousandCopiesOfAHundredThousandTrianglesFitInTwoGibibytes) {

@@ -29,7 +29,7 @@ Transform skin_matrix(const SkinBinding& skin, const std::vector<Transform>& joi
 
 // A deformed direction, unit length; `fallback` where the blend collapses it (a joint scaled to
 // zero), so that no NaN reaches the render.
-Vec3f unit_or(Vec3d v, Vec3f fallback) {
+Vec3f deformed_direction(Vec3d v, Vec3f fallback) {
   const double n = length(v);
   return n > 0 && std::isfinite(n) ? Vec3f(v / n) : fallback;
 }
@@ -53,19 +53,57 @@ void pose_mesh(const SkinBinding& skin, const std::vector<Transform>& joint_matr
     mesh.positions[v] = Vec3f(m.point(Vec3d(mesh.positions[v])));
     if (!mesh.normals.empty())
       mesh.normals[v] =
-          unit_or(m.normal_transform().vector(Vec3d(mesh.normals[v])), mesh.normals[v]);
+          deformed_direction(m.normal_transform().vector(Vec3d(mesh.normals[v])), mesh.normals[v]);
     if (!tangents.empty()) {
       std::array<float, 4>& t = tangents[v];
       const Vec3f bind{t[0], t[1], t[2]};
-      const Vec3f posed = unit_or(m.vector(Vec3d(bind)), bind);
+      const Vec3f posed = deformed_direction(m.vector(Vec3d(bind)), bind);
       t[0] = posed.x, t[1] = posed.y, t[2] = posed.z;
     }
   }
 }
 
+std::vector<double> MorphTargets::weights_at(double time_s) const {
+  if (!weight_curve) return weights;
+  std::vector<double> out(weights.size());
+  weight_curve->evaluate(time_s, out.data());
+  return out;
+}
+
+void apply_morph(const MorphTargets& morph, const std::vector<double>& weights,
+                 TriangleMesh& mesh) {
+  // Targets at rest are skipped: weights of zero leave the mesh bit for bit.
+  std::vector<size_t> moving;
+  for (size_t t = 0; t < weights.size(); ++t)
+    if (weights[t] != 0) moving.push_back(t);
+  if (moving.empty()) return;
+  // Σ_t w_t · d_t[v] over the targets that have the attribute, in double.
+  const auto displaced = [&](const std::vector<std::vector<Vec3f>>& d, Vec3d base, size_t v) {
+    for (size_t t : moving)
+      if (!d[t].empty()) base += weights[t] * Vec3d(d[t][v]);
+    return base;
+  };
+  std::vector<std::array<float, 4>>& tangents = mesh.texturing.tangents;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    mesh.positions[v] = Vec3f(displaced(morph.positions, Vec3d(mesh.positions[v]), v));
+    if (!mesh.normals.empty())
+      mesh.normals[v] =
+          deformed_direction(displaced(morph.normals, Vec3d(mesh.normals[v]), v), mesh.normals[v]);
+    if (!tangents.empty()) {
+      std::array<float, 4>& t = tangents[v];
+      const Vec3f base{t[0], t[1], t[2]};
+      const Vec3f moved = deformed_direction(displaced(morph.tangents, Vec3d(base), v), base);
+      t[0] = moved.x, t[1] = moved.y, t[2] = moved.z;
+    }
+  }
+}
+
 void pose_deformed_meshes(Scene& scene, double time_s) {
-  for (const MeshDeformation& d : scene.deformations)
-    pose_mesh(d.skin, joint_matrices(d.skin, scene.hierarchy, time_s), scene.meshes[d.mesh]);
+  for (const MeshDeformation& d : scene.deformations) {
+    TriangleMesh& mesh = scene.meshes[d.mesh];
+    if (!d.morph.empty()) apply_morph(d.morph, d.morph.weights_at(time_s), mesh);
+    if (d.skin) pose_mesh(*d.skin, joint_matrices(*d.skin, scene.hierarchy, time_s), mesh);
+  }
 }
 
 }  // namespace fb

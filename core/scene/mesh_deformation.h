@@ -1,10 +1,14 @@
-// Meshes whose vertices move, not only their placement: glTF skins (glTF 2.0 §3.8, "Skins").
+// Meshes whose vertices move, not only their placement: glTF morph targets (glTF 2.0 §3.7.2.2)
+// and skins (§3.8, "Skins"), morphing first, as the spec orders.
 // The importer keeps what the file says; the render poses each deformed mesh at the shot's still
 // time (pose_deformed_meshes), where the joints' animation is known (docs/scenes.md, "Skins").
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
+
+#include <filmback/vec.h>
 
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
@@ -27,12 +31,30 @@ struct SkinBinding {
   std::vector<float> weights;
 };
 
-// Scene::meshes[mesh] holds the bind pose as read; posing replaces its positions, normals and
-// tangents. A deformed mesh is drawn by exactly one instance, placed at the identity.
+// A primitive's morph targets: v' = v + Σ_t w_t · d_t for positions, normals and tangents' xyz
+// (glTF 2.0 §3.7.2.2), with the weights at the time.
+struct MorphTargets {
+  // Per target, one displacement per vertex, or none where the target has no such attribute.
+  std::vector<std::vector<Vec3f>> positions, normals, tangents;
+  std::vector<double> weights;  // one per target: the node's, else the mesh's, else zeros
+  std::optional<AnimationCurve> weight_curve;  // a `weights` channel on the node
+
+  bool empty() const { return weights.empty(); }
+  std::vector<double> weights_at(double time_s) const;
+};
+
+// Scene::meshes[mesh] holds the base shape (the bind pose) as read; posing replaces its
+// positions, normals and tangents. A deformed mesh is drawn by exactly one instance: at the
+// identity when skinned, else by its node.
 struct MeshDeformation {
   uint32_t mesh = 0;
-  SkinBinding skin;
+  MorphTargets morph;               // empty: none
+  std::optional<SkinBinding> skin;  // none: only morphed
 };
+
+// `mesh` displaced by `morph`'s targets with `weights` (one per target); normals and tangents
+// are renormalised where a target moved them.
+void apply_morph(const MorphTargets& morph, const std::vector<double>& weights, TriangleMesh& mesh);
 
 // The skinning matrices at `time_s`: world_from_node(joint_i, t) · inverse_bind_i per joint.
 std::vector<Transform> joint_matrices(const SkinBinding& skin, const NodeHierarchy& hierarchy,

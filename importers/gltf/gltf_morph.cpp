@@ -29,16 +29,17 @@ std::vector<double> static_morph_weights(const tinygltf::Node& node, const std::
 }
 
 // One target's displacements of `name`, or none when the target has no such attribute.
-std::vector<Vec3f> displacements(const AccessorContext& ctx, const std::map<std::string, int>& target,
-                                 const char* name, const std::string& tpath, size_t vertex_count) {
+std::vector<Vec3f> displacements(const AccessorContext& ctx,
+                                 const std::map<std::string, int>& target, const char* name,
+                                 const std::string& tpath, size_t vertex_count) {
   const auto it = target.find(name);
   if (it == target.end()) return {};
   const std::string where = tpath + "." + name;
   std::vector<Vec3f> out = read_vec3(ctx, it->second, where);
   if (out.size() != vertex_count)
     throw_input(ctx.file, where,
-                std::to_string(out.size()) + " displacements for " +
-                    std::to_string(vertex_count) + " positions");
+                std::to_string(out.size()) + " displacements for " + std::to_string(vertex_count) +
+                    " positions");
   return out;
 }
 
@@ -67,9 +68,9 @@ MorphTargets read_morph_targets(const tinygltf::Model& model, const tinygltf::No
     const std::string path = tpath + "[" + std::to_string(t) + "]";
     out.positions.push_back(displacements(ctx, prim.targets[t], "POSITION", path, vertex_count));
     out.normals.push_back(displacements(ctx, prim.targets[t], "NORMAL", path, vertex_count));
-    out.tangents.push_back(has_tangents ? displacements(ctx, prim.targets[t], "TANGENT", path,
-                                                        vertex_count)
-                                        : std::vector<Vec3f>{});
+    out.tangents.push_back(has_tangents
+                               ? displacements(ctx, prim.targets[t], "TANGENT", path, vertex_count)
+                               : std::vector<Vec3f>{});
   }
   return out;
 }

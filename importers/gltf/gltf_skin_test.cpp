@@ -202,7 +202,8 @@ TEST(GltfSkin, WeightsNotSummingToOneAreNormalisedWithAWarning) {
   EXPECT_NE(diagnostics.messages()[0].find("meshes[0].primitives[0].attributes.WEIGHTS_0"),
             std::string::npos)
       << diagnostics.messages()[0];
-  const SkinBinding& skin = scene.deformations[0].skin;
+  ASSERT_TRUE(scene.deformations[0].skin.has_value());
+  const SkinBinding& skin = *scene.deformations[0].skin;
   EXPECT_FLOAT_EQ(skin.weights[0] + skin.weights[1], 1.f);
   EXPECT_FLOAT_EQ(skin.weights[0], 0.5f);
 }
