@@ -32,7 +32,7 @@ struct RenderJob::Plugins {
   std::unique_ptr<LightSampler> lights;
   TimeSampling time;
   std::unique_ptr<CameraPath> camera_path;
-  std::unique_ptr<Scene> refined;  // subdivision surfaces made triangles, deformed meshes posed
+  std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
   std::string subdiv_summary;
   std::vector<fb_material> materials;
   fb_scene_api scene_api{};  // host_scene_api(), as long as the integrator knows it
@@ -139,7 +139,7 @@ void RenderJob::load_plugins(const PluginLoader& loader) {
 }
 
 // Render space: world translated so the camera is at the origin; only this is narrowed to float.
-// Subdivision surfaces become triangles here and deformed meshes are posed, where the camera that
+// Subdivision surfaces become triangles here, where the camera that
 // adaptive refinement needs is known; a scene without any never loads the subdivision module.
 void RenderJob::build_geometry() {
   Plugins& p = *plugins_;
@@ -161,12 +161,6 @@ void RenderJob::build_geometry() {
     for (const std::string& warning : report.warnings)
       std::cerr << "warning: " << warning << '\n';
     p.subdiv_summary = std::move(report.summary);
-    geometry_scene = p.refined.get();
-  }
-  if (!scene_.deformations.empty()) {
-    // Skinned meshes are posed on a copy: the scene itself stays the bind pose for other frames.
-    if (!p.refined) p.refined = std::make_unique<Scene>(scene_);
-    pose_deformed_meshes(*p.refined, plan_.times.still_s());
     geometry_scene = p.refined.get();
   }
   check_memory_budget(geometry_counts(*geometry_scene));

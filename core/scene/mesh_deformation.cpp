@@ -98,12 +98,22 @@ void apply_morph(const MorphTargets& morph, const std::vector<double>& weights,
   }
 }
 
-void pose_deformed_meshes(Scene& scene, double time_s) {
-  for (const MeshDeformation& d : scene.deformations) {
-    TriangleMesh& mesh = scene.meshes[d.mesh];
-    if (!d.morph.empty()) apply_morph(d.morph, d.morph.weights_at(time_s), mesh);
-    if (d.skin) pose_mesh(*d.skin, joint_matrices(*d.skin, scene.hierarchy, time_s), mesh);
-  }
+TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, double time_s) {
+  TriangleMesh mesh = scene.meshes[deformation.mesh];
+  if (!deformation.morph.empty())
+    apply_morph(deformation.morph, deformation.morph.weights_at(time_s), mesh);
+  if (deformation.skin)
+    pose_mesh(*deformation.skin, joint_matrices(*deformation.skin, scene.hierarchy, time_s), mesh);
+  return mesh;
+}
+
+bool deforms(const MeshDeformation& deformation, const NodeHierarchy& hierarchy, double t0,
+             double t1) {
+  if (deformation.morph.weight_curve && deformation.morph.weight_curve->varies(t0, t1)) return true;
+  if (deformation.skin)
+    for (uint32_t joint : deformation.skin->joint_nodes)
+      if (hierarchy.moves(joint, t0, t1)) return true;
+  return false;
 }
 
 }  // namespace fb

@@ -1,7 +1,7 @@
 // Meshes whose vertices move, not only their placement: glTF morph targets (glTF 2.0 §3.7.2.2)
 // and skins (§3.8, "Skins"), morphing first, as the spec orders.
-// The importer keeps what the file says; the render poses each deformed mesh at the shot's still
-// time (pose_deformed_meshes), where the joints' animation is known (docs/scenes.md, "Skins").
+// The importer keeps what the file says; the render poses each deformed mesh at its motion steps
+// (posed_mesh), where the joints' animation is known (docs/scenes.md, "Skins and morph targets").
 #pragma once
 
 #include <cstdint>
@@ -66,7 +66,12 @@ std::vector<Transform> joint_matrices(const SkinBinding& skin, const NodeHierarc
 void pose_mesh(const SkinBinding& skin, const std::vector<Transform>& joint_matrices,
                TriangleMesh& mesh);
 
-// Every deformed mesh of `scene` posed at `time_s` (seconds on the scene's timeline).
-void pose_deformed_meshes(Scene& scene, double time_s);
+// The deformed mesh `deformation` of `scene` posed at `time_s` (seconds on the scene's
+// timeline): morphed, then skinned.
+TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, double time_s);
+
+// Whether the pose can change within [t0, t1]: a joint moves or the weights' curve varies.
+bool deforms(const MeshDeformation& deformation, const NodeHierarchy& hierarchy, double t0,
+             double t1);
 
 }  // namespace fb

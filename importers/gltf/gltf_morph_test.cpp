@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "support/expect_vec.h"
 #include "support/gltf_builder.h"
 #include "support/import_error.h"
 
@@ -19,9 +20,7 @@ using test::GltfBuilder;
 constexpr double kMorphTestTolerance = 1e-6;
 
 void expect_morphed(Vec3f got, Vec3d expected) {
-  EXPECT_NEAR(got.x, expected.x, kMorphTestTolerance);
-  EXPECT_NEAR(got.y, expected.y, kMorphTestTolerance);
-  EXPECT_NEAR(got.z, expected.z, kMorphTestTolerance);
+  test::expect_vec_near(Vec3d(got), expected, kMorphTestTolerance);
 }
 
 // A triangle with two targets: the first lifts vertex 0 by +Y and tilts its normal toward +X,
@@ -45,10 +44,9 @@ struct TwoTargets {
   }
 };
 
-void expect_weights(Scene scene, double time_s, double a, double b) {
+void expect_weights(const Scene& scene, double time_s, double a, double b) {
   ASSERT_EQ(scene.deformations.size(), 1u);
-  pose_deformed_meshes(scene, time_s);
-  const TriangleMesh& mesh = scene.meshes[scene.deformations[0].mesh];
+  const TriangleMesh mesh = posed_mesh(scene, scene.deformations[0], time_s);
   const auto expected = TwoTargets::expected(a, b);
   for (size_t v = 0; v < 3; ++v)
     expect_morphed(mesh.positions[v], expected[v]);
@@ -62,9 +60,9 @@ TEST(GltfMorph, TheMeshsWeightsDisplaceVerticesAndNormals) {
   node.translation = {3, 0, 0};  // a morphed mesh stays placed by its node
   Scene scene = file.import(node);
   expect_weights(scene, 0, 0.25, 0.5);
-  pose_deformed_meshes(scene, 0);
   // (0, 0, 1) + 0.25 (1, 0, -1) = (0.25, 0, 0.75), normalised.
-  expect_morphed(scene.meshes[0].normals[0], Vec3d{0.25, 0, 0.75} / std::sqrt(0.625));
+  expect_morphed(posed_mesh(scene, scene.deformations[0], 0).normals[0],
+                 Vec3d{0.25, 0, 0.75} / std::sqrt(0.625));
   EXPECT_DOUBLE_EQ(scene.world_from_object(scene.instances[0], 0).translation().x, 3);
 }
 
@@ -83,11 +81,11 @@ TEST(GltfMorph, ZeroWeightsLeaveTheBaseShapeBitForBit) {
   GltfBuilder::Node node;
   node.mesh = file.mesh;
   Scene scene = file.import(node);
-  const TriangleMesh base = scene.meshes[0];
-  pose_deformed_meshes(scene, 0);
+  const TriangleMesh& base = scene.meshes[0];
+  const TriangleMesh posed = posed_mesh(scene, scene.deformations[0], 0);
   for (size_t v = 0; v < 3; ++v) {
-    EXPECT_EQ(scene.meshes[0].positions[v].y, base.positions[v].y);
-    EXPECT_EQ(scene.meshes[0].normals[v].x, base.normals[v].x);
+    EXPECT_EQ(posed.positions[v].y, base.positions[v].y);
+    EXPECT_EQ(posed.normals[v].x, base.normals[v].x);
   }
 }
 
@@ -138,8 +136,7 @@ TEST(GltfMorph, TargetsApplyBeforeTheSkin) {
   node.mesh = file.mesh;
   node.skin = file.gltf.skin({file.gltf.node(joint)});
   Scene scene = file.import(node);
-  pose_deformed_meshes(scene, 0);
-  const TriangleMesh& mesh = scene.meshes[scene.deformations[0].mesh];
+  const TriangleMesh mesh = posed_mesh(scene, scene.deformations[0], 0);
   // Morphed: (0, 1, 0), (2, 0, 0), (0, 1, -1); R (x, y, z) = (-y, x, z).
   expect_morphed(mesh.positions[0], {-1, 0, 0});
   expect_morphed(mesh.positions[1], {0, 2, 0});

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "importers/gltf/gltf_importer.h"
+#include "support/expect_vec.h"
 #include "support/gltf_builder.h"
 #include "support/import_error.h"
 
@@ -21,9 +22,7 @@ using test::GltfBuilder;
 constexpr double kSkinTestTolerance = 1e-6;
 
 void expect_near(Vec3f got, Vec3d expected) {
-  EXPECT_NEAR(got.x, expected.x, kSkinTestTolerance);
-  EXPECT_NEAR(got.y, expected.y, kSkinTestTolerance);
-  EXPECT_NEAR(got.z, expected.z, kSkinTestTolerance);
+  test::expect_vec_near(Vec3d(got), expected, kSkinTestTolerance);
 }
 
 // A rotation by `angle` about +Z as a glTF quaternion (x, y, z, w).
@@ -75,8 +74,7 @@ TEST(GltfSkin, TwoJointBendMatchesTheClosedFormAtTheFrame) {
   ASSERT_EQ(scene.deformations.size(), 1u);
   ASSERT_EQ(scene.instances.size(), 1u);
   EXPECT_EQ(scene.instances[0].node_index, kNoNode);  // placed by its joints, not its node
-  pose_deformed_meshes(scene, 1.0);
-  const TriangleMesh& mesh = scene.meshes[scene.deformations[0].mesh];
+  const TriangleMesh mesh = posed_mesh(scene, scene.deformations[0], 1.0);
   expect_near(mesh.positions[0], {1, 0, 0});
   expect_near(mesh.positions[1], bent({1, 2, 0}, file.bend));
   const Vec3d mid = bent({1, 1.5, 0}, file.bend);
@@ -88,8 +86,8 @@ TEST(GltfSkin, TwoJointBendMatchesTheClosedFormAtTheFrame) {
 TEST(GltfSkin, HalfwayThroughTheAnimationTheBendIsHalfAsLarge) {
   Bend file;
   Scene scene = test::import_built(file.gltf, "bend.gltf");
-  pose_deformed_meshes(scene, 0.5);  // slerp between identity and `bend` about one axis
-  expect_near(scene.meshes[scene.deformations[0].mesh].positions[1],
+  // Slerp between identity and `bend` about one axis.
+  expect_near(posed_mesh(scene, scene.deformations[0], 0.5).positions[1],
               bent({1, 2, 0}, file.bend / 2));
 }
 
@@ -115,8 +113,7 @@ TEST(GltfSkin, JointHierarchyWithNonUniformScale) {
   skinned.skin = gltf.skin({root_joint, child_joint});
   gltf.node(skinned);
   Scene scene = test::import_built(gltf, "scaled.gltf");
-  pose_deformed_meshes(scene, 0.0);
-  const TriangleMesh& posed = scene.meshes[scene.deformations[0].mesh];
+  const TriangleMesh posed = posed_mesh(scene, scene.deformations[0], 0.0);
   // Child: R (0, 1, 0) = (-1, 0, 0); + (0, 1, 0); x doubled.
   expect_near(posed.positions[0], {-2, 1, 0});
   expect_near(posed.positions[1], {2, 0, 0});  // the root's: x doubled
@@ -145,8 +142,7 @@ TEST(GltfSkin, StillJointsLeaveTheMeshBitIdenticalToTheUnskinnedOne) {
   skinned.node(node);
   const Scene expected = test::import_built(plain, "plain.gltf");
   Scene scene = test::import_built(skinned, "skinned.gltf");
-  pose_deformed_meshes(scene, 0.0);
-  const TriangleMesh& posed = scene.meshes[scene.deformations[0].mesh];
+  const TriangleMesh posed = posed_mesh(scene, scene.deformations[0], 0.0);
   for (size_t v = 0; v < positions.size(); ++v) {
     EXPECT_EQ(posed.positions[v].x, expected.meshes[0].positions[v].x);
     EXPECT_EQ(posed.positions[v].y, expected.meshes[0].positions[v].y);

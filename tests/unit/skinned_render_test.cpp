@@ -1,10 +1,12 @@
-// Skinned meshes through the whole render (core/render/render_job.cpp poses them at the shot's
-// still time): a joint's animation moves what the image shows, and a skin that changes nothing
-// renders the unskinned mesh's image bit for bit.
+// Skinned meshes through the whole render (core/accel/render_geometry.cpp poses them at their
+// motion steps): a joint's animation moves what the image shows at the frame and blurs it over an
+// open shutter, a still skin builds no motion data, and a skin that changes nothing renders the
+// unskinned mesh's image bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "core/accel/render_geometry.h"
 #include "core/render/render_job.h"
 #include "support/gltf_builder.h"
 #include "support/import_error.h"
@@ -16,7 +18,8 @@ namespace {
 using test::GltfBuilder;
 
 // A grey triangle filling the view of a camera 3 m up +Z; with `skinned`, bound to one joint
-// whose translation goes from the origin at t = 0 to 100 m along +X at t = 1 (when `animated`).
+// whose translation goes from the origin at t = 0 to 10 m along +X at t = 1 (when `animated`),
+// out of the view.
 Scene skinned_triangle(bool skinned, bool animated) {
   GltfBuilder gltf;
   GltfBuilder::Node node;
@@ -28,7 +31,7 @@ Scene skinned_triangle(bool skinned, bool animated) {
     gltf.skin_weights(node.mesh, 0, std::vector<uint16_t>(12, 0),
                       {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
     node.skin = gltf.skin({joint_node});
-    if (animated) gltf.animate(joint_node, "translation", {0, 1}, {0, 0, 0, 100, 0, 0});
+    if (animated) gltf.animate(joint_node, "translation", {0, 1}, {0, 0, 0, 10, 0, 0});
   }
   gltf.node(node);
   GltfBuilder::Node camera;
@@ -38,8 +41,9 @@ Scene skinned_triangle(bool skinned, bool animated) {
   return test::import_built(gltf, "skinned.gltf");
 }
 
-Image render_skinned_frame(const Scene& scene, double frame) {
+Image render_skinned_frame(const Scene& scene, double frame, bool open_shutter = false) {
   RenderOptions options;
+  if (open_shutter) options.shutter_s = Vec2d{0.0, 1.0};
   options.width = 16, options.height = 16, options.samples_per_pixel = 4;
   options.integrator = "path:max_depth=2";
   options.background = Rgb{1.f, 1.f, 1.f};
@@ -61,6 +65,28 @@ TEST(SkinnedRender, TheJointsAnimationAtTheFrameMovesTheMesh) {
   // Frame 0: the grey triangle (albedo 0.5 under a sky of 1); frame 1: moved out, only the sky.
   EXPECT_NEAR(skinned_mean_red(render_skinned_frame(scene, 0)), 0.5, 0.1);
   EXPECT_EQ(skinned_mean_red(render_skinned_frame(scene, 1)), 1.0);
+}
+
+// Over a shutter open from t = 0 to 1 the triangle leaves the view: the image lies between the
+// sharp triangle's and the sky's.
+TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
+  const Scene scene = skinned_triangle(true, true);
+  const double sharp = skinned_mean_red(render_skinned_frame(scene, 0));
+  const double blurred = skinned_mean_red(render_skinned_frame(scene, 0, true));
+  EXPECT_GT(blurred, sharp + 0.1);
+  EXPECT_LT(blurred, 0.95);
+}
+
+TEST(SkinnedRender, OnlyAMovingSkinBuildsMotionSteps) {
+  const ShotTimes shutter{0, 0, 1};
+  const Scene moving_scene = skinned_triangle(true, true);
+  const RenderGeometry moving(moving_scene, Transform(), shutter, MotionTolerance{});
+  EXPECT_EQ(moving.moving_instance_count(), 1u);
+  EXPECT_EQ(moving.most_motion_steps(), 9u);
+  const Scene still_scene = skinned_triangle(true, false);
+  const RenderGeometry still(still_scene, Transform(), shutter, MotionTolerance{});
+  EXPECT_EQ(still.moving_instance_count(), 0u);
+  EXPECT_EQ(still.most_motion_steps(), 1u);
 }
 
 TEST(SkinnedRender, StillJointsRenderTheUnskinnedImageBitForBit) {
