@@ -45,11 +45,18 @@ class SkinReader {
   void read_joints(const tinygltf::Skin& skin, const std::string& path, SkinBinding& out) {
     if (skin.joints.empty())
       throw_input(file_, path + ".joints", "no joints; expected at least one");
+    // glTF's schema asks for unique joints: that also bounds them by the node count.
+    std::vector<bool> seen(model_.nodes.size(), false);
     for (size_t j = 0; j < skin.joints.size(); ++j) {
       const int node = skin.joints[j];
       const std::string jpath = path + "." + index_path("joints", j);
       if (node < 0 || size_t(node) >= model_.nodes.size())
         throw_input(file_, jpath, out_of_range("node", node, model_.nodes.size(), "nodes"));
+      if (seen[size_t(node)])
+        throw_input(file_, jpath,
+                    index_path("nodes", size_t(node)) +
+                        " is a joint of this skin already; expected each joint once");
+      seen[size_t(node)] = true;
       if (scene_node_[size_t(node)] == kNoNode)
         throw_input(file_, jpath,
                     index_path("nodes", size_t(node)) +

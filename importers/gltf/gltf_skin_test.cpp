@@ -204,6 +204,22 @@ TEST(GltfSkin, WeightsNotSummingToOneAreNormalisedWithAWarning) {
   EXPECT_FLOAT_EQ(skin.weights[0], 0.5f);
 }
 
+TEST(GltfSkin, AJointListedTwiceIsRefused) {
+  GltfBuilder gltf;
+  GltfBuilder::Node joint;
+  const int joint_node = gltf.node(joint);
+  GltfBuilder::Node node;
+  node.mesh = gltf.mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, -1);
+  gltf.skin_weights(node.mesh, 0, std::vector<uint16_t>(12, 0),
+                    {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+  node.skin = gltf.skin({joint_node, joint_node});
+  gltf.node(node);
+  const std::string error = test::import_error(gltf.write(test::scratch_dir() / "twice.gltf"));
+  EXPECT_NE(error.find("skins[0].joints[1]: nodes[0] is a joint of this skin already"),
+            std::string::npos)
+      << error;
+}
+
 TEST(GltfSkin, JointOutsideTheRenderedSceneIsRefused) {
   GltfBuilder gltf;
   GltfBuilder::Node joint;
