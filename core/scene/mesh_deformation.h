@@ -43,9 +43,9 @@ struct MorphTargets {
   std::vector<double> weights_at(double time_s) const;
 };
 
-// Scene::meshes[mesh] holds the base shape (the bind pose) as read; posing replaces its
-// positions, normals and tangents. A deformed mesh is drawn by exactly one instance: at the
-// identity when skinned, else by its node.
+// Scene::meshes[mesh] holds the base shape (the bind pose) as read; posed_mesh makes the posed
+// copies the render traces. A deformed mesh is drawn by exactly one instance: at the identity
+// when skinned, else by its node.
 struct MeshDeformation {
   uint32_t mesh = 0;
   MorphTargets morph;               // empty: none

@@ -2,6 +2,8 @@
 
 #include <tiny_gltf.h>
 
+#include <cmath>
+
 #include "core/util/error.h"
 #include "importers/gltf/gltf_accessors.h"
 #include "importers/gltf/gltf_json.h"

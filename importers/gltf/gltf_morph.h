@@ -28,9 +28,10 @@ constexpr size_t kMaxMorphDisplacements = size_t(1) << 24;
 
 // The targets of `prim` (at `prim_path`) of `vertex_count` vertices, and their static weights:
 // the node's `weights`, else the mesh's, else zeros. `has_tangents`: whether the mesh keeps
-// tangents for TANGENT displacements to move. Throws InputError naming the JSON path for too
-// many targets or displacements, a weights array of the wrong length, a target without POSITION
-// or with a count other than the vertex count.
+// tangents for TANGENT displacements to move. A target may lack any attribute. Throws InputError
+// naming the JSON path for too many targets or displacements (before any target is read), a
+// weights array of the wrong length or with a non-finite weight, and a displacement accessor whose
+// count is not the vertex count.
 MorphTargets read_morph_targets(const tinygltf::Model& model, const tinygltf::Node& node,
                                 const std::string& node_path, const tinygltf::Mesh& mesh,
                                 const tinygltf::Primitive& prim, const std::string& prim_path,
