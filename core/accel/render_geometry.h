@@ -121,8 +121,15 @@ class RenderGeometry {
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
   float embree_time(float time_s) const;
+  // `posed`: a deformed mesh's shape at each step; empty: the scene's mesh at every step.
   Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
-                  const std::vector<Transform>& render_from_object_steps);
+                  const std::vector<Transform>& render_from_object_steps,
+                  const std::vector<TriangleMesh>& posed = {});
+  // A skinned or morphed mesh, posed at each motion step (docs/scenes.md, "Skins and morph
+  // targets").
+  void add_deformed_mesh(const Scene& scene, const MeshInstance& instance,
+                         const MeshDeformation& deformation, const Transform& render_from_world,
+                         const ShotTimes& times);
   // The object-space copy of scene mesh `mesh` with its own Embree scene, made at its first use.
   uint32_t prototype_of(const Scene& scene, uint32_t mesh);
   // `corners`: the mesh's object-space box corners.

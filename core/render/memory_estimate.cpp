@@ -83,6 +83,13 @@ GeometryCounts geometry_counts(const Scene& scene) {
       counts.texturing_bytes += bytes_of(mesh.texturing);
     }
   }
+  // Each deformed mesh is posed in a copy of it (RenderGeometry::add_deformed_mesh): counted as
+  // its triangles once more, which bounds the copy (a render triangle costs more). Motion steps
+  // are not counted, as for rigid motion (docs/camera-model.md, "Time and motion").
+  for (const MeshDeformation& d : scene.deformations) {
+    counts.triangles += double(scene.meshes[d.mesh].triangle_count());
+    counts.texturing_bytes += bytes_of(scene.meshes[d.mesh].texturing);
+  }
   return counts;
 }
 

@@ -23,7 +23,8 @@ constexpr double kBytesPerInstance = 1024;
 
 // What the render stores of a scene's meshes (core/accel/instancing.h): the render-space
 // triangles of each flattened instance plus one copy of each instanced mesh; the instances traced
-// as instances; and the texture coordinates and tangents in the scene and in the render's copies.
+// as instances; the texture coordinates and tangents in the scene and in the render's copies;
+// and each deformed (skinned or morphed) mesh's posed copy, as many triangles again.
 struct GeometryCounts {
   double triangles = 0;
   double instances = 0;

@@ -70,14 +70,20 @@ TEST(MemoryEstimate, CountsTextureCoordinatesAndTangents) {
   EXPECT_EQ(e.geometry_bytes, 2 * 120 + 288);
 }
 
+// Two triangles on four vertices.
+TriangleMesh estimate_quad() {
+  TriangleMesh quad;
+  quad.positions.resize(4);
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  return quad;
+}
+
 // A mesh several instances use is stored once (core/accel/instancing.h): its triangles and
 // texturing once in the render, plus a record per instance; a mesh used once is flattened.
 TEST(MemoryEstimate, CountsAnInstancedMeshOnceAndEachOfItsInstances) {
   Scene scene;
   scene.materials.push_back({});
-  TriangleMesh quad;
-  quad.positions.resize(4);
-  quad.indices = {0, 1, 2, 0, 2, 3};
+  TriangleMesh quad = estimate_quad();
   quad.texturing.texcoords[0].resize(4);
   scene.meshes = {quad, quad};
   for (const uint32_t mesh : {0u, 0u, 0u, 1u}) {
@@ -89,6 +95,17 @@ TEST(MemoryEstimate, CountsAnInstancedMeshOnceAndEachOfItsInstances) {
   EXPECT_EQ(counts.triangles, 2 + 2);  // mesh 0's one copy, mesh 1's one flattened instance
   EXPECT_EQ(counts.instances, 3);
   EXPECT_EQ(counts.texturing_bytes, 4 * 32);  // each mesh in the scene and in the render
+}
+
+// A skinned or morphed mesh is posed in a copy of it: its triangles count twice.
+TEST(MemoryEstimate, CountsADeformedMeshsPosedCopy) {
+  Scene scene;
+  scene.materials.push_back({});
+  scene.meshes = {estimate_quad()};
+  scene.instances.push_back(MeshInstance{});
+  EXPECT_EQ(geometry_counts(scene).triangles, 2);
+  scene.deformations.push_back(MeshDeformation{});
+  EXPECT_EQ(geometry_counts(scene).triangles, 4);
 }
 
 // Issue 17's forest: 10,000 copies of a 100,000-triangle tree (10^9 triangles flattened) fits

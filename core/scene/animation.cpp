@@ -39,7 +39,7 @@ Quatd slerp(Quatd a, Quatd b, double t) {
       {wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z, wa * a.w + wb * b.w});
 }
 
-void AnimationCurve::evaluate(double t, double out[4]) const {
+void AnimationCurve::evaluate(double t, double* out) const {
   const uint32_t w = width();
   const size_t n = times_s.size();
   const bool cubic = interpolation == Interpolation::kCubicSpline;

@@ -20,7 +20,8 @@ constexpr uint32_t kNoNode = 0xffffffffu;
 constexpr uint32_t kNoCurve = 0xffffffffu;
 
 enum class Interpolation : uint8_t { kStep, kLinear, kCubicSpline };
-enum class TrsPath : uint8_t { kTranslation = 0, kRotation = 1, kScale = 2 };
+// kWeights: a mesh's morph target weights (kept by its MeshDeformation, not by the hierarchy).
+enum class TrsPath : uint8_t { kTranslation = 0, kRotation = 1, kScale = 2, kWeights = 3 };
 
 // glTF 2.0 Appendix C's spherical linear interpolation of unit quaternions, along the shorter
 // arc; nearly parallel ones are interpolated linearly and normalised.
@@ -34,10 +35,14 @@ struct AnimationCurve {
   std::vector<double> times_s;  // strictly increasing, finite
   // width() numbers per key; CUBICSPLINE keys hold in-tangent, value, out-tangent (glTF order).
   std::vector<double> values;
+  uint32_t weight_count = 0;  // kWeights: values per key, one per morph target
 
-  uint32_t width() const { return path == TrsPath::kRotation ? 4 : 3; }
-  // The property at time t: x, y, z (and w for a rotation, then a unit quaternion).
-  void evaluate(double t, double out[4]) const;
+  uint32_t width() const {
+    return path == TrsPath::kRotation ? 4 : path == TrsPath::kWeights ? weight_count : 3;
+  }
+  // The property at time t into out[0 .. width()): x, y, z (and w for a rotation, then a unit
+  // quaternion), or one weight per morph target.
+  void evaluate(double t, double* out) const;
   // Whether the value can differ anywhere in [t0, t1]; false means constant there, exactly.
   bool varies(double t0, double t1) const;
 };

@@ -16,6 +16,7 @@
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
 #include "core/scene/material_textures.h"
+#include "core/scene/mesh_deformation.h"
 #include "core/scene/shader_graph.h"
 #include "core/scene/solid.h"
 #include "core/scene/solid_texture.h"
@@ -196,6 +197,8 @@ struct Scene {
   std::optional<EnvironmentMap> environment;  // replaces `background` when present
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
+  // Meshes posed by the render at the shot's still time (pose_deformed_meshes), not before.
+  std::vector<MeshDeformation> deformations;
 
   size_t triangle_count() const;
   Bounds3d world_bounds(double time_s) const;  // of all instanced geometry and bounded solids

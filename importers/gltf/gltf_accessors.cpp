@@ -125,6 +125,19 @@ AccessorView view(const AccessorContext& ctx, int index, const std::string& wher
   return {base, stride, a.count};
 }
 
+// An unsigned byte, short or int component at `e`.
+uint32_t unsigned_component(const unsigned char* e, int type) {
+  if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) return e[0];
+  if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+    uint16_t s;
+    std::memcpy(&s, e, 2);
+    return s;
+  }
+  uint32_t i;
+  std::memcpy(&i, e, 4);
+  return i;
+}
+
 }  // namespace
 
 std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std::string& where) {
@@ -151,17 +164,7 @@ std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
   const int type = ctx.model.accessors[size_t(accessor)].componentType;
   std::vector<uint32_t> out(v.count);
   for (size_t i = 0; i < v.count; ++i) {
-    const unsigned char* e = v.element(i);
-    uint32_t index;
-    if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
-      index = e[0];
-    } else if (type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
-      uint16_t s;
-      std::memcpy(&s, e, 2);
-      index = s;
-    } else {
-      std::memcpy(&index, e, 4);
-    }
+    const uint32_t index = unsigned_component(v.element(i), type);
     if (index >= vertex_count)
       throw_input(ctx.file, where + " (accessors[" + std::to_string(accessor) + "])",
                   "index " + std::to_string(i) + " is " + std::to_string(index) +
@@ -222,6 +225,20 @@ std::vector<double> read_animation_values(const AccessorContext& ctx, int access
         throw_input(ctx.file, path, "element " + std::to_string(i) + " is not a finite number");
       out[i * width + c] = x;
     }
+  return out;
+}
+
+std::vector<uint32_t> read_joint_indices(const AccessorContext& ctx, int accessor,
+                                         const std::string& where) {
+  const AccessorView v =
+      view(ctx, accessor, where, TINYGLTF_TYPE_VEC4,
+           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+  const int type = ctx.model.accessors[size_t(accessor)].componentType;
+  const size_t size = component_size(type);
+  std::vector<uint32_t> out(v.count * 4);
+  for (size_t i = 0; i < v.count; ++i)
+    for (size_t c = 0; c < 4; ++c)
+      out[i * 4 + c] = unsigned_component(v.element(i) + c * size, type);
   return out;
 }
 

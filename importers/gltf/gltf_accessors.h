@@ -27,9 +27,15 @@ std::vector<Vec3f> read_vec3(const AccessorContext& ctx, int accessor, const std
 std::vector<uint32_t> read_indices(const AccessorContext& ctx, int accessor,
                                    const std::string& where, size_t vertex_count);
 
-// An animation sampler's accessor (glTF 2.0 §3.11), or a texture coordinate or tangent
-// attribute, as doubles, every component finite: of the given TINYGLTF_TYPE_*, float, or also
-// normalized byte or short when `normalized_integers` (rotations and TEXCOORD_n may be stored so).
+// A JOINTS_n attribute (glTF 2.0 §3.7.3.1): VEC4 of unsigned byte or short, four per vertex.
+// The caller checks them against the skin's joint count.
+std::vector<uint32_t> read_joint_indices(const AccessorContext& ctx, int accessor,
+                                         const std::string& where);
+
+// An animation sampler's accessor (glTF 2.0 §3.11), a texture coordinate, tangent or WEIGHTS_n
+// attribute, or a skin's inverse bind matrices, as doubles, every component finite: of the given
+// TINYGLTF_TYPE_*, float, or also normalized byte or short when `normalized_integers` (rotations,
+// TEXCOORD_n and WEIGHTS_n may be stored so).
 std::vector<double> read_animation_values(const AccessorContext& ctx, int accessor,
                                           const std::string& where, int type,
                                           bool normalized_integers);

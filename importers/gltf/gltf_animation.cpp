@@ -16,11 +16,12 @@ class AnimationReader {
  public:
   AnimationReader(const tinygltf::Model& model, const std::string& file,
                   const std::vector<uint32_t>& scene_node, NodeHierarchy& hierarchy,
-                  Diagnostics& diagnostics)
+                  std::map<size_t, AnimationCurve>& morph_weights, Diagnostics& diagnostics)
       : model_(model),
         file_(file),
         scene_node_(scene_node),
         hierarchy_(hierarchy),
+        morph_weights_(morph_weights),
         diagnostics_(diagnostics) {}
 
   void run() {
@@ -41,14 +42,10 @@ class AnimationReader {
                   "sampler index " + std::to_string(channel.sampler) +
                       " is out of range (the animation has " +
                       std::to_string(animation.samplers.size()) + " samplers)");
-    if (channel.target_path == "weights") {
-      diagnostics_.warn(located(file_, cpath + ".target.path",
-                                "morph target weights are not supported yet; ignored"));
-      return;
-    }
     static const std::map<std::string, TrsPath> kPaths = {{"translation", TrsPath::kTranslation},
                                                           {"rotation", TrsPath::kRotation},
-                                                          {"scale", TrsPath::kScale}};
+                                                          {"scale", TrsPath::kScale},
+                                                          {"weights", TrsPath::kWeights}};
     const auto path = kPaths.find(channel.target_path);
     if (path == kPaths.end())
       throw_input(file_, cpath + ".target.path",
@@ -72,6 +69,10 @@ class AnimationReader {
                       "translation, rotation and scale");
     const uint32_t node = scene_node_[target];
     if (node == kNoNode) return;  // not in the rendered scene: moves nothing
+    if (path->second == TrsPath::kWeights) {
+      read_morph_weights(animation, apath, channel, cpath, target);
+      return;
+    }
     const auto key = std::pair{node, path->second};
     if (const auto first = claimed_.find(key); first != claimed_.end()) {
       diagnostics_.warn(located(file_, cpath,
@@ -85,11 +86,38 @@ class AnimationReader {
         apath + "." + index_path("samplers", size_t(channel.sampler)), node, path->second));
   }
 
+  // A `weights` channel: one value per morph target of the node's mesh (glTF 2.0 §3.11).
+  void read_morph_weights(const tinygltf::Animation& animation, const std::string& apath,
+                          const tinygltf::AnimationChannel& channel, const std::string& cpath,
+                          size_t target) {
+    const tinygltf::Node& node = model_.nodes[target];
+    const size_t targets = node.mesh >= 0 && size_t(node.mesh) < model_.meshes.size() &&
+                                   !model_.meshes[size_t(node.mesh)].primitives.empty()
+                               ? model_.meshes[size_t(node.mesh)].primitives[0].targets.size()
+                               : 0;
+    if (targets == 0) {
+      diagnostics_.warn(located(
+          file_, cpath + ".target.node",
+          index_path("nodes", target) + " has no morph targets for its weights to move; ignored"));
+      return;
+    }
+    if (morph_weights_.count(target)) {
+      diagnostics_.warn(located(
+          file_, cpath, index_path("nodes", target) + ".weights is already animated; ignored"));
+      return;
+    }
+    morph_weights_.emplace(
+        target, read_curve(animation.samplers[size_t(channel.sampler)],
+                           apath + "." + index_path("samplers", size_t(channel.sampler)), kNoNode,
+                           TrsPath::kWeights, uint32_t(targets)));
+  }
+
   AnimationCurve read_curve(const tinygltf::AnimationSampler& sampler, const std::string& spath,
-                            uint32_t node, TrsPath path) {
+                            uint32_t node, TrsPath path, uint32_t weight_count = 0) {
     AnimationCurve curve;
     curve.node = node;
     curve.path = path;
+    curve.weight_count = weight_count;
     if (sampler.interpolation == "LINEAR")
       curve.interpolation = Interpolation::kLinear;
     else if (sampler.interpolation == "STEP")
@@ -117,12 +145,15 @@ class AnimationReader {
                         " s does not follow key " + std::to_string(k - 1) + " at " +
                         number_text(curve.times_s[k - 1]) +
                         " s; expected strictly increasing times");
-    const bool rotation = path == TrsPath::kRotation;
+    const bool rotation = path == TrsPath::kRotation, weights = path == TrsPath::kWeights;
     const std::string output =
         spath + ".output (accessors[" + std::to_string(sampler.output) + "])";
-    curve.values =
-        read_animation_values(ctx, sampler.output, spath + ".output",
-                              rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, rotation);
+    // Rotations and weights may be normalized integers; weights are SCALARs, targets per key.
+    curve.values = read_animation_values(ctx, sampler.output, spath + ".output",
+                                         rotation  ? TINYGLTF_TYPE_VEC4
+                                         : weights ? TINYGLTF_TYPE_SCALAR
+                                                   : TINYGLTF_TYPE_VEC3,
+                                         rotation || weights);
     const size_t expected = keys * (cubic ? 3 : 1);
     const size_t w = curve.width();
     if (curve.values.size() != expected * w)
@@ -153,6 +184,7 @@ class AnimationReader {
   const std::string& file_;
   const std::vector<uint32_t>& scene_node_;
   NodeHierarchy& hierarchy_;
+  std::map<size_t, AnimationCurve>& morph_weights_;
   Diagnostics& diagnostics_;
   std::map<std::pair<uint32_t, TrsPath>, std::string> claimed_;  // the channel that moves each
 };
@@ -161,8 +193,8 @@ class AnimationReader {
 
 void read_animations(const tinygltf::Model& model, const std::string& file,
                      const std::vector<uint32_t>& scene_node, NodeHierarchy& hierarchy,
-                     Diagnostics& diagnostics) {
-  AnimationReader(model, file, scene_node, hierarchy, diagnostics).run();
+                     std::map<size_t, AnimationCurve>& morph_weights, Diagnostics& diagnostics) {
+  AnimationReader(model, file, scene_node, hierarchy, morph_weights, diagnostics).run();
 }
 
 }  // namespace fb::gltf

@@ -18,7 +18,9 @@
 #include "importers/gltf/gltf_json.h"
 #include "importers/gltf/gltf_lights.h"
 #include "importers/gltf/gltf_materials.h"
+#include "importers/gltf/gltf_morph.h"
 #include "importers/gltf/gltf_shot.h"
+#include "importers/gltf/gltf_skin.h"
 #include "importers/gltf/gltf_subdivision.h"
 
 namespace fb {
@@ -39,13 +41,25 @@ class Importer {
     check_extensions();
     scene_.file = file_;
     gltf::read_materials(model_, name_, scene_, diagnostics_);
-    // Skins are reported where a node uses one (visit()), with what is rendered instead.
-    // The node hierarchy is kept only when something can move: a static file costs nothing more.
-    keep_nodes_ = !model_.animations.empty();
+    // The node hierarchy is kept only when something can move (animation, or joints that place
+    // a skinned mesh): a static file costs nothing more.
+    keep_nodes_ = !model_.animations.empty() || !model_.skins.empty();
     walk_nodes();
+    std::map<size_t, AnimationCurve> morph_weights;
     if (keep_nodes_) {
-      gltf::read_animations(model_, name_, scene_node_, scene_.hierarchy, diagnostics_);
+      gltf::read_animations(model_, name_, scene_node_, scene_.hierarchy, morph_weights,
+                            diagnostics_);
       scene_.hierarchy.finish();
+    }
+    // After the walk: a skin's joints may be met after the mesh they move.
+    for (Deformed& d : deformed_) {
+      if (d.skin.skin >= 0)
+        d.deformation.skin =
+            gltf::read_skin_binding(model_, d.skin, scene_node_, name_, diagnostics_);
+      if (const auto curve = morph_weights.find(d.node);
+          curve != morph_weights.end() && !d.deformation.morph.empty())
+        d.deformation.morph.weight_curve = curve->second;
+      scene_.deformations.push_back(std::move(d.deformation));
     }
     return std::move(scene_);
   }
@@ -189,13 +203,13 @@ class Importer {
   // `scene_node` is the node's index in scene_.hierarchy, kNoNode when the file cannot move it.
   void visit(const tinygltf::Node& node, const std::string& path, const Transform& world,
              uint32_t scene_node) {
-    if (node.skin >= 0)
-      warn(path + ".skin", "skins are not supported yet; the mesh is rendered in its bind pose");
     if (auto surface = gltf::read_node_subdivision(model_, node, path, world, scene_node,
                                                    scene_.materials, name_, diagnostics_)) {
       for (SubdivisionPart& part : surface->parts)
         if (part.material == gltf::kNoSubdivisionMaterial) part.material = default_material();
       scene_.subdivision_surfaces.push_back(std::move(*surface));
+    } else if (node.mesh >= 0 && (node.skin >= 0 || has_morph_targets(node_mesh(node, path)))) {
+      add_deformed_mesh(node, path, world, scene_node);
     } else if (node.mesh >= 0) {
       add_mesh(node, path, world, scene_node);
     }
@@ -205,12 +219,56 @@ class Importer {
     gltf::read_node_light(model_, node, path, world, scene_node, name_, scene_, diagnostics_);
   }
 
-  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                uint32_t scene_node) {
+  const tinygltf::Mesh& node_mesh(const tinygltf::Node& node, const std::string& path) {
     if (size_t(node.mesh) >= model_.meshes.size())
       throw_input(name_, path + ".mesh",
                   out_of_range("mesh", node.mesh, model_.meshes.size(), "meshes"));
-    const tinygltf::Mesh& mesh = model_.meshes[size_t(node.mesh)];
+    return model_.meshes[size_t(node.mesh)];
+  }
+
+  std::string primitive_path(const tinygltf::Node& node, size_t p) {
+    return index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
+  }
+
+  static bool has_morph_targets(const tinygltf::Mesh& mesh) {
+    for (const tinygltf::Primitive& p : mesh.primitives)
+      if (!p.targets.empty()) return true;
+    return false;
+  }
+
+  // Each primitive of a skinned or morphed node becomes a mesh of its own, posed by the render
+  // and never shared with another node (the node's weights may differ from another's). glTF 2.0
+  // §3.8.3: the joints place a skinned mesh, not its node, so it is drawn at the identity.
+  void add_deformed_mesh(const tinygltf::Node& node, const std::string& path,
+                         const Transform& world, uint32_t scene_node) {
+    const tinygltf::Mesh& mesh = node_mesh(node, path);
+    gltf::check_instance_count(scene_.instances.size(), mesh.primitives.size(), name_,
+                               path + ".mesh");
+    const bool skinned = node.skin >= 0;
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const std::string ppath = primitive_path(node, p);
+      std::optional<TriangleMesh> converted = convert_primitive(mesh, prim, ppath);
+      if (!converted) continue;
+      Deformed d;
+      d.node = size_t(&node - model_.nodes.data());
+      d.deformation.mesh = uint32_t(scene_.meshes.size());
+      if (!prim.targets.empty())
+        d.deformation.morph = gltf::read_morph_targets(
+            model_, node, path, mesh, prim, ppath, converted->positions.size(),
+            !converted->texturing.tangents.empty(), name_);
+      if (skinned) d.skin = {node.skin, path + ".skin", &prim, ppath, converted->positions.size()};
+      scene_.instances.push_back({d.deformation.mesh, skinned ? Transform() : world,
+                                  node.name.empty() ? path : node.name,
+                                  skinned ? kNoNode : scene_node});
+      scene_.meshes.push_back(std::move(*converted));
+      deformed_.push_back(std::move(d));
+    }
+  }
+
+  void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
+                uint32_t scene_node) {
+    const tinygltf::Mesh& mesh = node_mesh(node, path);
     // The node's own placement, or one per EXT_mesh_gpu_instancing instance in the node's space.
     std::vector<Transform> placements{world};
     if (auto node_from_instance =
@@ -227,8 +285,7 @@ class Importer {
       const auto key = std::pair{node.mesh, p};
       auto cached = primitive_meshes_.find(key);
       if (cached == primitive_meshes_.end()) {
-        const std::string ppath =
-            index_path("meshes", size_t(node.mesh)) + "." + index_path("primitives", p);
+        const std::string ppath = primitive_path(node, p);
         std::optional<TriangleMesh> converted = convert_primitive(mesh, mesh.primitives[p], ppath);
         std::optional<uint32_t> index;
         if (converted) {
@@ -254,8 +311,6 @@ class Importer {
            "points and lines (mode " + std::to_string(mode) + ") are not supported yet; skipped");
       return std::nullopt;
     }
-    if (!prim.targets.empty())
-      warn(path + ".targets", "morph targets are not supported yet; rendering the base shape");
     const auto position = prim.attributes.find("POSITION");
     if (position == prim.attributes.end())
       throw_input(name_, path + ".attributes", "a triangle primitive needs POSITION");
@@ -330,6 +385,13 @@ class Importer {
   std::map<std::pair<int, size_t>, std::optional<uint32_t>> primitive_meshes_;
   bool keep_nodes_ = false;
   std::vector<uint32_t> scene_node_;  // glTF node -> scene_.hierarchy index, when keep_nodes_
+  // A skinned or morphed primitive until the walk is done: its glTF node and skin.
+  struct Deformed {
+    MeshDeformation deformation;
+    size_t node = 0;
+    gltf::SkinSource skin;  // skin -1: not skinned
+  };
+  std::vector<Deformed> deformed_;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 
 namespace fb::test {
 
@@ -165,6 +166,8 @@ int GltfBuilder::node(const Node& n, bool root) {
   node.name = n.name;
   node.mesh = n.mesh;
   node.camera = n.camera;
+  node.skin = n.skin;
+  node.weights = n.weights;
   node.children = n.children;
   if (!n.matrix.empty()) {
     node.matrix = n.matrix;
@@ -184,6 +187,45 @@ int GltfBuilder::node(const Node& n, bool root) {
   return index;
 }
 
+int GltfBuilder::skin(const std::vector<int>& joints, const std::vector<float>& inverse_binds) {
+  tinygltf::Skin skin;
+  skin.joints = joints;
+  if (!inverse_binds.empty())
+    skin.inverseBindMatrices = impl_->add_accessor(
+        inverse_binds.data(), inverse_binds.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT,
+        TINYGLTF_TYPE_MAT4, inverse_binds.size() / 16);
+  impl_->model.skins.push_back(skin);
+  return int(impl_->model.skins.size() - 1);
+}
+
+void GltfBuilder::skin_weights(int mesh, int set, const std::vector<uint16_t>& joints,
+                               const std::vector<float>& weights) {
+  tinygltf::Primitive& prim = impl_->model.meshes[size_t(mesh)].primitives[0];
+  prim.attributes["JOINTS_" + std::to_string(set)] = impl_->add_accessor(
+      joints.data(), joints.size() * sizeof(uint16_t), TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+      TINYGLTF_TYPE_VEC4, joints.size() / 4);
+  prim.attributes["WEIGHTS_" + std::to_string(set)] =
+      impl_->add_accessor(weights.data(), weights.size() * sizeof(float),
+                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, weights.size() / 4);
+}
+
+void GltfBuilder::morph_target(int mesh, const std::vector<Vec3f>& positions,
+                               const std::vector<Vec3f>& normals) {
+  std::map<std::string, int> target;
+  target["POSITION"] =
+      impl_->add_accessor(positions.data(), positions.size() * sizeof(Vec3f),
+                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, positions.size());
+  if (!normals.empty())
+    target["NORMAL"] =
+        impl_->add_accessor(normals.data(), normals.size() * sizeof(Vec3f),
+                            TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
+  impl_->model.meshes[size_t(mesh)].primitives[0].targets.push_back(target);
+}
+
+void GltfBuilder::morph_weights(int mesh, const std::vector<double>& weights) {
+  impl_->model.meshes[size_t(mesh)].weights = weights;
+}
+
 void GltfBuilder::animate(int node, const std::string& path, const std::vector<float>& times_s,
                           const std::vector<float>& values, const std::string& interpolation) {
   auto& model = impl_->model;
@@ -193,10 +235,14 @@ void GltfBuilder::animate(int node, const std::string& path, const std::vector<f
   sampler.input =
       impl_->add_accessor(times_s.data(), times_s.size() * sizeof(float),
                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, times_s.size());
-  const bool rotation = path == "rotation";
-  sampler.output = impl_->add_accessor(
-      values.data(), values.size() * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT,
-      rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, values.size() / (rotation ? 4 : 3));
+  const bool rotation = path == "rotation", weights = path == "weights";
+  const size_t width = weights ? 1 : rotation ? 4 : 3;
+  sampler.output = impl_->add_accessor(values.data(), values.size() * sizeof(float),
+                                       TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                       weights    ? TINYGLTF_TYPE_SCALAR
+                                       : rotation ? TINYGLTF_TYPE_VEC4
+                                                  : TINYGLTF_TYPE_VEC3,
+                                       values.size() / width);
   tinygltf::Animation& animation = model.animations[0];
   animation.samplers.push_back(sampler);
   tinygltf::AnimationChannel channel;

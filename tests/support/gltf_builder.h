@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -35,18 +36,35 @@ class GltfBuilder {
   int orthographic_camera(double xmag, double ymag, double znear, double zfar);
   int point_light(Rgb color, double intensity_cd);
 
+  // A skin of the joints `joints` (node indices) with their inverse bind matrices, 16
+  // column-major values per joint (empty: none written, each the identity).
+  int skin(const std::vector<int>& joints, const std::vector<float>& inverse_binds = {});
+  // JOINTS_<set> (unsigned shorts) and WEIGHTS_<set> (floats) of `mesh`'s first primitive, four
+  // of each per vertex.
+  void skin_weights(int mesh, int set, const std::vector<uint16_t>& joints,
+                    const std::vector<float>& weights);
+
+  // A morph target of `mesh`'s first primitive: POSITION displacements, and NORMAL ones unless
+  // empty.
+  void morph_target(int mesh, const std::vector<Vec3f>& positions,
+                    const std::vector<Vec3f>& normals = {});
+  // The mesh's default morph weights.
+  void morph_weights(int mesh, const std::vector<double>& weights);
+
   struct Node {
     std::string name;
-    int mesh = -1, camera = -1, light = -1;
+    int mesh = -1, camera = -1, light = -1, skin = -1;
     std::array<double, 3> translation{0, 0, 0};
     std::array<double, 4> rotation{0, 0, 0, 1};  // x, y, z, w
     std::array<double, 3> scale{1, 1, 1};
     std::vector<double> matrix;  // column-major 16 values; overrides TRS when set
     std::vector<int> children;
+    std::vector<double> weights;  // morph weights overriding the mesh's
   };
   int node(const Node& node, bool root = true);
-  // A channel of animation 0 moving `path` ("translation", "rotation", "scale") of `node`: key
-  // times in s and 3 or 4 values per key (CUBICSPLINE: in-tangent, value, out-tangent per key).
+  // A channel of animation 0 moving `path` ("translation", "rotation", "scale", "weights") of
+  // `node`: key times in s and 3 or 4 values per key, or one per morph target (CUBICSPLINE:
+  // in-tangent, value, out-tangent per key).
   void animate(int node, const std::string& path, const std::vector<float>& times_s,
                const std::vector<float>& values, const std::string& interpolation = "LINEAR");
 

@@ -1,0 +1,106 @@
+// Skinned meshes through the whole render (core/accel/render_geometry.cpp poses them at their
+// motion steps): a joint's animation moves what the image shows at the frame and blurs it over an
+// open shutter, a still skin builds no motion data, and a skin that changes nothing renders the
+// unskinned mesh's image bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/accel/render_geometry.h"
+#include "core/render/render_job.h"
+#include "support/gltf_builder.h"
+#include "support/import_error.h"
+#include "support/plugins.h"
+
+namespace fb {
+namespace {
+
+using test::GltfBuilder;
+
+// A grey triangle filling the view of a camera 3 m up +Z; with `skinned`, bound to one joint
+// whose translation goes from the origin at t = 0 to 10 m along +X at t = 1 (when `animated`),
+// out of the view.
+Scene skinned_triangle(bool skinned, bool animated) {
+  GltfBuilder gltf;
+  GltfBuilder::Node node;
+  node.mesh =
+      gltf.mesh({{-5, -5, 0}, {5, -5, 0}, {0, 5, 0}}, {0, 1, 2}, gltf.material({0.5f, 0.5f, 0.5f}));
+  if (skinned) {
+    GltfBuilder::Node joint;
+    const int joint_node = gltf.node(joint);
+    gltf.skin_weights(node.mesh, 0, std::vector<uint16_t>(12, 0),
+                      {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+    node.skin = gltf.skin({joint_node});
+    if (animated) gltf.animate(joint_node, "translation", {0, 1}, {0, 0, 0, 10, 0, 0});
+  }
+  gltf.node(node);
+  GltfBuilder::Node camera;
+  camera.camera = gltf.perspective_camera(0.5, 1.0, 0.1, 100);
+  camera.translation = {0, 0, 3};
+  gltf.node(camera);
+  return test::import_built(gltf, "skinned.gltf");
+}
+
+Image render_skinned_frame(const Scene& scene, double frame, bool open_shutter = false) {
+  RenderOptions options;
+  if (open_shutter) options.shutter_s = Vec2d{0.0, 1.0};
+  options.width = 16, options.height = 16, options.samples_per_pixel = 4;
+  options.integrator = "path:max_depth=2";
+  options.background = Rgb{1.f, 1.f, 1.f};
+  options.frame = frame, options.fps = 1;
+  options.show_progress = false;
+  return RenderJob(scene, options, test::loader()).run().image;
+}
+
+double skinned_mean_red(const Image& image) {
+  double sum = 0;
+  for (uint32_t y = 0; y < image.height; ++y)
+    for (uint32_t x = 0; x < image.width; ++x)
+      sum += image.at(x, y, 0);
+  return sum / (image.width * image.height);
+}
+
+TEST(SkinnedRender, TheJointsAnimationAtTheFrameMovesTheMesh) {
+  const Scene scene = skinned_triangle(true, true);
+  // Frame 0: the grey triangle (albedo 0.5 under a sky of 1); frame 1: moved out, only the sky.
+  EXPECT_NEAR(skinned_mean_red(render_skinned_frame(scene, 0)), 0.5, 0.1);
+  EXPECT_EQ(skinned_mean_red(render_skinned_frame(scene, 1)), 1.0);
+}
+
+// Over a shutter open from t = 0 to 1 the triangle leaves the view: the image lies between the
+// sharp triangle's and the sky's.
+TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
+  const Scene scene = skinned_triangle(true, true);
+  const double sharp = skinned_mean_red(render_skinned_frame(scene, 0));
+  const double blurred = skinned_mean_red(render_skinned_frame(scene, 0, true));
+  EXPECT_GT(blurred, sharp + 0.1);
+  EXPECT_LT(blurred, 0.95);
+}
+
+TEST(SkinnedRender, OnlyAMovingSkinBuildsMotionSteps) {
+  const ShotTimes shutter{0, 0, 1};
+  const Scene moving_scene = skinned_triangle(true, true);
+  const RenderGeometry moving(moving_scene, Transform(), shutter, MotionTolerance{});
+  EXPECT_EQ(moving.moving_instance_count(), 1u);
+  EXPECT_EQ(moving.most_motion_steps(), 9u);
+  const Scene still_scene = skinned_triangle(true, false);
+  const RenderGeometry still(still_scene, Transform(), shutter, MotionTolerance{});
+  EXPECT_EQ(still.moving_instance_count(), 0u);
+  EXPECT_EQ(still.most_motion_steps(), 1u);
+}
+
+TEST(SkinnedRender, StillJointsRenderTheUnskinnedImageBitForBit) {
+  const Image plain = render_skinned_frame(skinned_triangle(false, false), 0);
+  const Image skinned = render_skinned_frame(skinned_triangle(true, false), 0);
+  ASSERT_EQ(plain.width, skinned.width);
+  size_t differing = 0;
+  for (uint32_t y = 0; y < plain.height; ++y)
+    for (uint32_t x = 0; x < plain.width; ++x)
+      for (uint32_t c = 0; c < 3; ++c)
+        differing += plain.at(x, y, c) != skinned.at(x, y, c);
+  EXPECT_EQ(differing, 0u);
+  EXPECT_LT(skinned_mean_red(plain), 0.9);  // the triangle is in the picture
+}
+
+}  // namespace
+}  // namespace fb
