@@ -5,6 +5,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "core/cmd/bench_metrics.h"
 #include "core/cmd/bench_process.h"
@@ -103,7 +104,7 @@ CyclesBench::CyclesBench(const std::string& name, const BlenderShot& shot,
                               "cycles_reference_" + std::to_string(h + 1))
                     .image;
   }
-  reference_ = average_halves(halves[0], halves[1]);
+  reference_ = average_halves(std::move(halves[0]), std::move(halves[1]));
   reference_note_ = {"cycles", "the shot's",
                      "Cycles, 2 x " + std::to_string(half) + " spp (seeds " +
                          std::to_string(reference_seed) + " and " +

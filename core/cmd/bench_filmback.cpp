@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <utility>
 
 #include "core/accel/render_geometry.h"
 #include "core/cmd/bench_seeds.h"
@@ -131,10 +132,10 @@ void FilmbackBench::make_references(const std::optional<fs::path>& reference_fil
       for (int h = 0; h < 2; ++h) {
         std::cout << "bench: " << name_ << ": reference (" << note.filter << "), half " << h + 1
                   << " of 2 at " << half << " spp" << std::endl;
-        const Timed t = run(options(half, kDefaultSampler, filter, reference_seed + h, 0), false);
-        halves[h] = colour_channels(t.result.image, name_);
+        Timed t = run(options(half, kDefaultSampler, filter, reference_seed + h, 0), false);
+        halves[h] = colour_channels(std::move(t.result.image), name_);
       }
-      AveragedReference averaged = average_halves(halves[0], halves[1]);
+      AveragedReference averaged = average_halves(std::move(halves[0]), std::move(halves[1]));
       note.noise = averaged.noise;
       note.source = "filmback, 2 x " + std::to_string(half) + " spp (" +
                     sampler_name(kDefaultSampler) + ", seeds " + std::to_string(reference_seed) +
@@ -163,10 +164,10 @@ void FilmbackBench::render(uint32_t spp) {
 }
 
 RenderRow FilmbackBench::measure(const BenchConfiguration& c, uint32_t spp, uint64_t seed) {
-  const Timed t = run(options(spp, c.sampler, c.filter, seed, c.adaptive_threshold), true);
-  const Image image = colour_channels(t.result.image, name_);
-  report_.width = image.width, report_.height = image.height;
+  Timed t = run(options(spp, c.sampler, c.filter, seed, c.adaptive_threshold), true);
   report_.memory.film_bytes = film_bytes(t.result.image);
+  const Image image = colour_channels(std::move(t.result.image), name_);
+  report_.width = image.width, report_.height = image.height;
   RenderRow row;
   row.renderer = "filmback";
   row.sampler = sampler_name(c.sampler);

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/util/error.h"
 
 namespace fb {
 
-Image colour_channels(const Image& image, const std::string& file) {
+Image colour_channels(Image image, const std::string& file) {
   const char* names[3] = {"R", "G", "B"};
   size_t index[3];
   for (int c = 0; c < 3; ++c) {
@@ -16,6 +17,9 @@ Image colour_channels(const Image& image, const std::string& file) {
       throw_input(file, "", std::string("the image has no channel ") + names[c]);
     index[c] = size_t(it - image.channels.begin());
   }
+  // A render's film is already R, G, B: hand its pixels on rather than keep a second copy beside
+  // them (the bench's memory, docs/benchmarks.md "Issue 17").
+  if (image.channels.size() == 3 && index[0] == 0 && index[1] == 1 && index[2] == 2) return image;
   Image rgb{image.width, image.height, {"R", "G", "B"}, {}};
   rgb.pixels.resize(size_t(image.width) * image.height * 3);
   for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
@@ -40,23 +44,23 @@ ImageError image_error(const Image& image, const Image& reference) {
   return e;
 }
 
-AveragedReference average_halves(const Image& a, const Image& b) {
-  AveragedReference out{a, {}, a};
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    out.image.pixels[i] = 0.5f * (a.pixels[i] + b.pixels[i]);
-    out.half_difference.pixels[i] = 0.5f * (a.pixels[i] - b.pixels[i]);
-  }
+AveragedReference average_halves(Image a, Image b) {
   const ImageError between = image_error(a, b);
-  out.noise.rmse = between.rmse / 2;
-  out.noise.max_abs = between.max_abs / 2;
-  // relMSE's denominator is the reference's: the mean, as for every image measured against it.
+  // The mean is written over `a` and the half difference over `b`, so that the halves' storage
+  // becomes the reference's and no third and fourth image are made (the bench's memory).
   double relative = 0;
   for (size_t i = 0; i < a.pixels.size(); ++i) {
     const double d = double(a.pixels[i]) - b.pixels[i];
-    const double r = out.image.pixels[i];
-    relative += d * d / 4 / (r * r + kRelMseEpsilon);
+    const float mean = 0.5f * (a.pixels[i] + b.pixels[i]);
+    // relMSE's denominator is the reference's: the mean, as for every image measured against it.
+    relative += d * d / 4 / (double(mean) * mean + kRelMseEpsilon);
+    b.pixels[i] = 0.5f * (a.pixels[i] - b.pixels[i]);
+    a.pixels[i] = mean;
   }
-  out.noise.relmse = relative / double(a.pixels.size());
+  AveragedReference out{std::move(a), {}, std::move(b)};
+  out.noise.rmse = between.rmse / 2;
+  out.noise.max_abs = between.max_abs / 2;
+  out.noise.relmse = relative / double(out.image.pixels.size());
   return out;
 }
 

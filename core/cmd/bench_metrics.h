@@ -23,8 +23,9 @@ struct ImageError {
   double max_abs = 0;  // max |x - r|
 };
 
-// The R, G and B channels of `image` (InputError naming `file` when it lacks one of them).
-Image colour_channels(const Image& image, const std::string& file);
+// The R, G and B channels of `image` (InputError naming `file` when it lacks one of them); an image
+// of exactly R, G, B is returned as it is, so that a moved-in image keeps its one pixel buffer.
+Image colour_channels(Image image, const std::string& file);
 
 // `image` against `reference`, both colour_channels() images of the same size.
 ImageError image_error(const Image& image, const Image& reference);
@@ -39,7 +40,8 @@ struct AveragedReference {
   ImageError noise;
   Image half_difference;  // (A - B)/2; no pixels for a reference given as one image
 };
-AveragedReference average_halves(const Image& a, const Image& b);
+// The halves' pixel buffers become the mean's and the half difference's: move them in.
+AveragedReference average_halves(Image a, Image b);
 
 // Two renderers' references of one shot (filmback's `ours` against Cycles' `theirs`), each the mean
 // of two halves: how far apart they are beyond their noise, so that measuring both renderers

@@ -31,6 +31,24 @@ TEST(BenchMetrics, ColourChannelsAreFoundByNameAndRequired) {
   EXPECT_THROW(colour_channels(Image{1, 1, {"Y"}, {1.f}}, "x.exr"), InputError);
 }
 
+// The bench keeps one image per render: a render's R, G, B film image moved in is handed on, not
+// copied, and two moved-in halves become the reference's mean and half difference.
+TEST(BenchMetrics, MovedImagesKeepTheirPixelBuffers) {
+  Image render{2, 1, {"R", "G", "B"}, {1.f, 2.f, 3.f, 4.f, 5.f, 6.f}};
+  const float* render_pixels = render.pixels.data();
+  const Image rgb = colour_channels(std::move(render), "render");
+  EXPECT_EQ(rgb.pixels.data(), render_pixels);
+  EXPECT_EQ(rgb.pixels, (std::vector<float>{1.f, 2.f, 3.f, 4.f, 5.f, 6.f}));
+
+  Image a = rgb_image(2, 1, 3.f), b = rgb_image(2, 1, 1.f);
+  const float *a_pixels = a.pixels.data(), *b_pixels = b.pixels.data();
+  const AveragedReference reference = average_halves(std::move(a), std::move(b));
+  EXPECT_EQ(reference.image.pixels.data(), a_pixels);
+  EXPECT_EQ(reference.half_difference.pixels.data(), b_pixels);
+  EXPECT_EQ(reference.image.pixels, rgb_image(2, 1, 2.f).pixels);
+  EXPECT_EQ(reference.half_difference.pixels, rgb_image(2, 1, 1.f).pixels);
+}
+
 // Two references with independent noise of standard deviation s: their mean's RMSE against the
 // truth is s / sqrt(2), and average_halves estimates it from their difference alone.
 TEST(BenchMetrics, AveragedReferenceKnowsItsOwnNoise) {

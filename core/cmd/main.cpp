@@ -9,6 +9,7 @@
 #include "core/cmd/submit_command.h"
 #include "core/cmd/tile_plan_command.h"
 #include "core/util/error.h"
+#include "core/util/malloc_tuning.h"
 
 namespace {
 
@@ -379,6 +380,7 @@ struct Subcommand {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fb::keep_large_allocations_in_mmap();
   CLI::App app{"filmback: a physically based renderer that keeps the camera of the shot"};
   app.require_subcommand(1);
   fb::RenderCommand render;
