@@ -17,11 +17,7 @@ namespace {
 
 using test::GltfBuilder;
 
-constexpr double kMorphTestTolerance = 1e-6;
-
-void expect_morphed(Vec3f got, Vec3d expected) {
-  test::expect_vec_near(Vec3d(got), expected, kMorphTestTolerance);
-}
+using test::expect_vertex_near;
 
 // A triangle with two targets: the first lifts vertex 0 by +Y and tilts its normal toward +X,
 // the second pushes vertex 1 along +X and vertex 2 along -Z.
@@ -49,7 +45,7 @@ void expect_weights(const Scene& scene, double time_s, double a, double b) {
   const TriangleMesh mesh = posed_mesh(scene, scene.deformations[0], time_s);
   const auto expected = TwoTargets::expected(a, b);
   for (size_t v = 0; v < 3; ++v)
-    expect_morphed(mesh.positions[v], expected[v]);
+    expect_vertex_near(mesh.positions[v], expected[v]);
 }
 
 TEST(GltfMorph, TheMeshsWeightsDisplaceVerticesAndNormals) {
@@ -61,8 +57,8 @@ TEST(GltfMorph, TheMeshsWeightsDisplaceVerticesAndNormals) {
   Scene scene = file.import(node);
   expect_weights(scene, 0, 0.25, 0.5);
   // (0, 0, 1) + 0.25 (1, 0, -1) = (0.25, 0, 0.75), normalised.
-  expect_morphed(posed_mesh(scene, scene.deformations[0], 0).normals[0],
-                 Vec3d{0.25, 0, 0.75} / std::sqrt(0.625));
+  expect_vertex_near(posed_mesh(scene, scene.deformations[0], 0).normals[0],
+                     Vec3d{0.25, 0, 0.75} / std::sqrt(0.625));
   EXPECT_DOUBLE_EQ(scene.world_from_object(scene.instances[0], 0).translation().x, 3);
 }
 
@@ -138,9 +134,9 @@ TEST(GltfMorph, TargetsApplyBeforeTheSkin) {
   Scene scene = file.import(node);
   const TriangleMesh mesh = posed_mesh(scene, scene.deformations[0], 0);
   // Morphed: (0, 1, 0), (2, 0, 0), (0, 1, -1); R (x, y, z) = (-y, x, z).
-  expect_morphed(mesh.positions[0], {-1, 0, 0});
-  expect_morphed(mesh.positions[1], {0, 2, 0});
-  expect_morphed(mesh.positions[2], {-1, 0, -1});
+  expect_vertex_near(mesh.positions[0], {-1, 0, 0});
+  expect_vertex_near(mesh.positions[1], {0, 2, 0});
+  expect_vertex_near(mesh.positions[2], {-1, 0, -1});
 }
 
 TEST(GltfMorph, MoreTargetsThanTheBoundAreRefusedBeforeReading) {

@@ -19,11 +19,7 @@ namespace {
 
 using test::GltfBuilder;
 
-constexpr double kSkinTestTolerance = 1e-6;
-
-void expect_near(Vec3f got, Vec3d expected) {
-  test::expect_vec_near(Vec3d(got), expected, kSkinTestTolerance);
-}
+using test::expect_vertex_near;
 
 // A rotation by `angle` about +Z as a glTF quaternion (x, y, z, w).
 std::array<double, 4> about_z(double angle) {
@@ -75,20 +71,20 @@ TEST(GltfSkin, TwoJointBendMatchesTheClosedFormAtTheFrame) {
   ASSERT_EQ(scene.instances.size(), 1u);
   EXPECT_EQ(scene.instances[0].node_index, kNoNode);  // placed by its joints, not its node
   const TriangleMesh mesh = posed_mesh(scene, scene.deformations[0], 1.0);
-  expect_near(mesh.positions[0], {1, 0, 0});
-  expect_near(mesh.positions[1], bent({1, 2, 0}, file.bend));
+  expect_vertex_near(mesh.positions[0], {1, 0, 0});
+  expect_vertex_near(mesh.positions[1], bent({1, 2, 0}, file.bend));
   const Vec3d mid = bent({1, 1.5, 0}, file.bend);
-  expect_near(mesh.positions[2], {0.5 * (1 + mid.x), 0.5 * (1.5 + mid.y), 0});
-  expect_near(mesh.normals[0], {1, 0, 0});
-  expect_near(mesh.normals[1], {std::cos(file.bend), std::sin(file.bend), 0});
+  expect_vertex_near(mesh.positions[2], {0.5 * (1 + mid.x), 0.5 * (1.5 + mid.y), 0});
+  expect_vertex_near(mesh.normals[0], {1, 0, 0});
+  expect_vertex_near(mesh.normals[1], {std::cos(file.bend), std::sin(file.bend), 0});
 }
 
 TEST(GltfSkin, HalfwayThroughTheAnimationTheBendIsHalfAsLarge) {
   Bend file;
   Scene scene = test::import_built(file.gltf, "bend.gltf");
   // Slerp between identity and `bend` about one axis.
-  expect_near(posed_mesh(scene, scene.deformations[0], 0.5).positions[1],
-              bent({1, 2, 0}, file.bend / 2));
+  expect_vertex_near(posed_mesh(scene, scene.deformations[0], 0.5).positions[1],
+                     bent({1, 2, 0}, file.bend / 2));
 }
 
 // A root joint scaled (2, 1, 1), its child one metre up and turned 90 degrees about +Z, inverse
@@ -115,13 +111,13 @@ TEST(GltfSkin, JointHierarchyWithNonUniformScale) {
   Scene scene = test::import_built(gltf, "scaled.gltf");
   const TriangleMesh posed = posed_mesh(scene, scene.deformations[0], 0.0);
   // Child: R (0, 1, 0) = (-1, 0, 0); + (0, 1, 0); x doubled.
-  expect_near(posed.positions[0], {-2, 1, 0});
-  expect_near(posed.positions[1], {2, 0, 0});  // the root's: x doubled
-  expect_near(posed.positions[2], {0, 1, 1});  // child: R leaves +Z, T lifts it
+  expect_vertex_near(posed.positions[0], {-2, 1, 0});
+  expect_vertex_near(posed.positions[1], {2, 0, 0});  // the root's: x doubled
+  expect_vertex_near(posed.positions[2], {0, 1, 1});  // child: R leaves +Z, T lifts it
   // Normals by the inverse transpose S^-1 · R: R (h, h, 0) = (-h, h, 0), x halved.
-  expect_near(posed.normals[0], Vec3d{-0.5, 1, 0} / std::sqrt(1.25));
-  expect_near(posed.normals[1], {0, 1, 0});
-  expect_near(posed.normals[2], {0, 0, 1});
+  expect_vertex_near(posed.normals[0], Vec3d{-0.5, 1, 0} / std::sqrt(1.25));
+  expect_vertex_near(posed.normals[1], {0, 1, 0});
+  expect_vertex_near(posed.normals[2], {0, 0, 1});
 }
 
 // A skin whose one joint stands at the origin and never moves changes nothing, bit for bit.
