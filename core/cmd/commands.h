@@ -35,6 +35,7 @@ struct RenderCommand {
   std::string memory_limit;  // "8G"; empty: half of the machine's memory
   unsigned threads = 0;      // 0: all cores
   bool quiet = false;
+  std::string progress_every;  // --progress-every: a duration; empty: the default reporting
   // Interrupts and checkpoints (docs/cli.md): a duration ("5m"), the checkpoint file (default
   // next to the first output), whether to continue from it; and the --stats-json file.
   std::string checkpoint_every;

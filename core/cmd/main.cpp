@@ -148,6 +148,9 @@ void add_run_options(CLI::App* render_cmd, fb::RenderCommand& render) {
                        " lights with a place on; docs/sampling.md)")
       ->check(CLI::IsMember({"auto", "tree", "power"}));
   render_cmd->add_flag("-q,--quiet", render.quiet, "no progress bar and no plan line");
+  render_cmd->add_option("--progress-every", render.progress_every,
+                         "a plain progress line on stderr this often (e.g. 0.5s), even with no "
+                         "terminal or with --quiet");
   render_cmd->add_option("--checkpoint-every", render.checkpoint_every,
                          "save a resumable checkpoint this often, e.g. 30s, 5m, 2h");
   render_cmd->add_option("--checkpoint", render.checkpoint,

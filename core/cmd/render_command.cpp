@@ -265,7 +265,9 @@ CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
   if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");
   if (c.light_sampler == "tree") c.options.light_selection = LightSelection::kTree;
   if (c.light_sampler == "power") c.options.light_selection = LightSelection::kPower;
-  c.options.show_progress = !c.quiet;
+  c.options.show_progress = !c.quiet || !c.progress_every.empty();
+  if (!c.progress_every.empty())
+    c.options.progress_every = parse_duration(c.progress_every, "--progress-every");
   Checkpoints& checkpoints = choices.checkpoints;
   checkpoints.enabled = !c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty();
   if (!c.checkpoint_every.empty())

@@ -25,8 +25,13 @@ bool stderr_is_terminal() {
   return isatty(STDERR_FILENO) == 1;
 }
 
-Progress::Progress(uint64_t total, std::ostream& out, bool terminal)
-    : total_(total), out_(out), terminal_(terminal), start_(std::chrono::steady_clock::now()) {
+Progress::Progress(uint64_t total, std::ostream& out, bool terminal,
+                   std::chrono::steady_clock::duration line_every)
+    : total_(total),
+      out_(out),
+      terminal_(terminal && line_every <= line_every.zero()),
+      line_every_(line_every),
+      start_(std::chrono::steady_clock::now()) {
   reporter_ = std::thread([this] { report_loop(); });
 }
 
@@ -42,8 +47,11 @@ Progress::~Progress() {
 
 void Progress::report_loop() {
   using namespace std::chrono_literals;
-  const auto first = 500ms;
-  const auto period = terminal_ ? std::chrono::milliseconds(250) : std::chrono::milliseconds(10000);
+  const bool asked = line_every_ > line_every_.zero();
+  const std::chrono::steady_clock::duration first = asked ? line_every_ : 500ms;
+  const std::chrono::steady_clock::duration period = asked       ? line_every_
+                                                     : terminal_ ? 250ms
+                                                                 : 10000ms;
   std::unique_lock lock(mutex_);
   if (wake_.wait_for(lock, first, [this] { return stop_; })) return;
   do

@@ -14,8 +14,11 @@ namespace fb {
 
 class Progress {
  public:
-  // `total` units of work (pixel samples); `out` is normally std::cerr.
-  Progress(uint64_t total, std::ostream& out, bool terminal);
+  // `total` units of work (pixel samples); `out` is normally std::cerr. A positive `line_every`
+  // asks for plain lines at that interval whatever `out` is (--progress-every: a program reading
+  // the lines from a pipe, such as the Blender render engine, wants them often).
+  Progress(uint64_t total, std::ostream& out, bool terminal,
+           std::chrono::steady_clock::duration line_every = {});
   ~Progress();  // stops the reporter and clears the bar
   void advance(uint64_t units = 1) { done_.fetch_add(units, std::memory_order_relaxed); }
 
@@ -26,6 +29,7 @@ class Progress {
   std::atomic<uint64_t> done_{0};
   std::ostream& out_;
   bool terminal_;
+  std::chrono::steady_clock::duration line_every_;
   bool printed_ = false;
   std::chrono::steady_clock::time_point start_;
   std::mutex mutex_;

@@ -389,7 +389,7 @@ RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderContro
   std::optional<Progress> progress;
   if (options_.show_progress)
     progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,
-                     stderr_is_terminal());
+                     stderr_is_terminal(), options_.progress_every);
   RenderResult result;
   result.stats = render_image(inputs, film, state, control, progress ? &*progress : nullptr);
   progress.reset();

@@ -7,6 +7,7 @@
 // pixel filter to plugins (docs/architecture.md, "The shot plan").
 #pragma once
 
+#include <chrono>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -66,6 +67,9 @@ struct RenderOptions {
   std::optional<double> adaptive_threshold;
   std::optional<uint32_t> adaptive_min_samples;
   bool show_progress = true;
+  // --progress-every: plain progress lines at this interval whatever stderr is; zero: the
+  // default (a bar on a terminal, a line every 10 s otherwise).
+  std::chrono::steady_clock::duration progress_every{};
   // Texture lookups filtered by each ray's footprint (docs/architecture.md, "Texture
   // filtering"); false reads every texture at its finest level, as before issue 17.
   bool texture_footprint = true;
