@@ -14,8 +14,9 @@ import subprocess
 # followed by its indented parameters (docs/cli.md); the `searched:` header does not match.
 PLUGIN_LINE = re.compile(r"^(camera|filter|integrator) ([a-z0-9_]+) \S+ - ")
 
-# Without a terminal filmback prints `progress: 12.5% after 10s, ETA 1m10s` every 10 s
-# (core/render/progress.cpp).
+# With --progress-every filmback prints `progress: 12.5% after 10s, ETA 1m10s` at that interval
+# on its piped stderr (without it, only every 10 s: short renders would show no progress).
+PROGRESS_EVERY = "0.5s"
 PROGRESS_LINE = re.compile(r"^progress: ([0-9.]+)%")
 
 # What the importer skipped, once each (core/util/diagnostics.cpp).
@@ -62,7 +63,7 @@ def render_command(executable, scene_path, output_path, samples, sampler, integr
     """The argument list (no shell) rendering `scene_path` into `output_path`. An empty
     integrator or filter leaves the shot's own (the file's pixel filter, the path integrator)."""
     command = [executable, "render", scene_path, "-o", output_path,
-               "--spp", str(samples), "--sampler", sampler]
+               "--spp", str(samples), "--sampler", sampler, "--progress-every", PROGRESS_EVERY]
     if integrator:
         command += ["--integrator", integrator]
     if filter_spec:
