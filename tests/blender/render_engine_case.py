@@ -187,7 +187,12 @@ def case_cancel(filmback, out):
     assert elapsed < CANCEL_RETURN_LIMIT_S, f"the cancelled render took {elapsed:.1f} s"
     rgba = pixels(scene.render.filepath)
     assert numpy.isfinite(rgba).all() and rgba[:, :3].max() > 0, "no partial image"
-    print(f"cancelled render returned after {elapsed:.1f} s with a partial image")
+    from io_filmback import render_engine
+    progress_lines = render_engine.last_render_progress_lines
+    # Without --progress-every a piped filmback prints one line at 0.5 s, then one every 10 s.
+    assert progress_lines >= 2, f"{progress_lines} progress lines in a second (--progress-every)"
+    print(f"cancelled render returned after {elapsed:.1f} s with a partial image and "
+          f"{progress_lines} progress lines")
 
 
 CASES = {"still": case_still, "animation": case_animation, "bad_setting": case_bad_setting,

@@ -16,7 +16,7 @@ PLUGIN_LINE = re.compile(r"^(camera|filter|integrator) ([a-z0-9_]+) \S+ - ")
 
 # With --progress-every filmback prints `progress: 12.5% after 10s, ETA 1m10s` at that interval
 # on its piped stderr (without it, only every 10 s: short renders would show no progress).
-PROGRESS_EVERY = "0.5s"
+PROGRESS_EVERY = "0.25s"
 PROGRESS_LINE = re.compile(r"^progress: ([0-9.]+)%")
 
 # What the importer skipped, once each (core/util/diagnostics.cpp).

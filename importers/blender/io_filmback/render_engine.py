@@ -27,6 +27,10 @@ STDERR_LINES_KEPT = 200  # warnings and errors; what a broken filmback prints pa
 # engine acts as if test_break() had answered yes (docs/blender.md, "Rendering from Blender").
 TEST_CANCEL_AFTER_S_ENV = "FILMBACK_TEST_CANCEL_AFTER_S"
 
+# For tests only: how many progress lines the last render read (tests/blender's cancel case
+# checks that a render of a second moved the progress bar before it ended).
+last_render_progress_lines = 0
+
 
 class StderrReader:
     """Reads filmback's stderr on a thread (a full pipe would stall the render), keeping its last
@@ -35,6 +39,7 @@ class StderrReader:
     def __init__(self, stream):
         self.lines = collections.deque(maxlen=STDERR_LINES_KEPT)
         self.fraction = 0.0
+        self.progress_lines = 0
         self._thread = threading.Thread(target=self._read, args=(stream,), daemon=True)
         self._thread.start()
 
@@ -45,6 +50,7 @@ class StderrReader:
                 self.lines.append(line)
             else:  # progress lines are not kept: a long render would push its warnings out
                 self.fraction = fraction
+                self.progress_lines += 1
 
     def text(self):
         self._thread.join()
@@ -119,7 +125,10 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
                 interrupted = True
             self.update_progress(reader.fraction)
             time.sleep(POLL_INTERVAL_S)
-        return process.returncode, reader.text()
+        stderr_text = reader.text()  # joins the reader: its count is final
+        global last_render_progress_lines
+        last_render_progress_lines = reader.progress_lines
+        return process.returncode, stderr_text
 
     def load(self, exr_path, render):
         # The size after the percentage, rounded as Blender does (and as the export says).
