@@ -42,6 +42,10 @@ struct RenderCommand {
   std::filesystem::path checkpoint;
   bool resume = false;
   std::filesystem::path stats_json;
+  // The live image (docs/cli.md, "--preview"): an EXR written this often while rendering; both
+  // or neither.
+  std::filesystem::path preview;
+  std::string preview_every;
   // A frame sequence (docs/cli.md, "Frame sequences"): "A-B[:STEP]" or "N" as typed; empty: one
   // frame. `overwrite`: render again the frames whose outputs are all there.
   std::string frames;

@@ -157,6 +157,11 @@ void add_run_options(CLI::App* render_cmd, fb::RenderCommand& render) {
                          "checkpoint file (default: the first output's name, .checkpoint.exr)");
   render_cmd->add_flag("--resume", render.resume,
                        "continue from the checkpoint: the same image as an uninterrupted render");
+  render_cmd->add_option("--preview", render.preview,
+                         "an .exr of the image so far, replaced while rendering (with "
+                         "--preview-every)");
+  render_cmd->add_option("--preview-every", render.preview_every,
+                         "write the --preview image this often, e.g. 1s");
   render_cmd->add_option("--stats-json", render.stats_json,
                          "write timings, counts, warnings and the chosen models as JSON");
   render_cmd->add_flag("--overwrite", render.overwrite,

@@ -215,11 +215,30 @@ struct Checkpoints {
   std::optional<PixelRect> region;  // a part's: RenderJob::part_tiles; none: the frame
 };
 
-// What the command line asks beyond RenderOptions: the 8-bit view's numbers, the checkpoints and
-// the frames.
+// --preview: the image so far, into `file` (an EXR) at least `every` apart.
+struct LivePreview {
+  std::filesystem::path file;
+  Clock::duration every = Clock::duration::zero();
+};
+
+// Both options or neither, and an EXR: a preview keeps the scene-linear values the final image has.
+std::optional<LivePreview> parse_live_preview(const RenderCommand& c) {
+  if (c.preview.empty() && c.preview_every.empty()) return std::nullopt;
+  if (c.preview_every.empty())
+    throw UsageError("--preview: expected --preview-every too (how often to write it, e.g. 1s)");
+  if (c.preview.empty())
+    throw UsageError("--preview-every: expected --preview FILE too (the .exr to write)");
+  if (image_format_for(c.preview) != ImageFormat::kExr)
+    throw UsageError("--preview '" + c.preview.string() + "': expected a .exr file");
+  return LivePreview{c.preview, parse_duration(c.preview_every, "--preview-every")};
+}
+
+// What the command line asks beyond RenderOptions: the 8-bit view's numbers, the checkpoints, the
+// live preview and the frames.
 struct CommandChoices {
   ViewOverrides view_overrides;
   Checkpoints checkpoints;
+  std::optional<LivePreview> preview;
   std::optional<FrameRange> frames;  // --frames; its patterns are c.outputs and c.checkpoint
 };
 
@@ -274,6 +293,7 @@ CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
     checkpoints.every = parse_duration(c.checkpoint_every, "--checkpoint-every");
   if (checkpoints.enabled)
     report.checkpoint = c.checkpoint.empty() ? default_checkpoint(c.outputs.front()) : c.checkpoint;
+  choices.preview = parse_live_preview(c);
   return choices;
 }
 
@@ -379,10 +399,17 @@ void load_checkpoint(const RenderJob& job, const Checkpoints& checkpoints, Film&
   report.resumed = true;
 }
 
-// A signal stops the render; checkpoints are written on the way when asked for.
+// A signal stops the render; checkpoints and previews are written on the way when asked for.
 RenderControl render_control(const InterruptGuard& interrupts, const Checkpoints& checkpoints,
+                             const std::optional<LivePreview>& preview, const RenderJob& job,
                              RenderReport& report) {
   RenderControl control;
+  if (preview) {
+    control.preview_every = preview->every;
+    control.preview = [&preview, &job](const Film& f, const SamplingState& state) {
+      write_images(job.image_so_far(f, state), {preview->file}, {});
+    };
+  }
   control.cancel = &interrupts.requested();
   if (checkpoints.every != Clock::duration::zero()) {
     control.checkpoint_every = checkpoints.every;
@@ -524,9 +551,9 @@ int render_frame(RenderSession& s, const std::vector<std::filesystem::path>& out
   SamplingState state = job.make_sampling_state();
   if (resume) load_checkpoint(job, checkpoints, film, state, report);
   s.interrupts.arm();
-  const RenderResult result =
-      run_job(job, film, state, render_control(s.interrupts, checkpoints, report), crop,
-              s.interrupts, report);
+  const RenderResult result = run_job(
+      job, film, state, render_control(s.interrupts, checkpoints, s.choices.preview, job, report),
+      crop, s.interrupts, report);
   const bool interrupted = result.stats.interrupted;
   if (crop)
     write_part(job, result, film, state, *crop, *s.view, s.c, scene, outputs.front(), checkpoints,

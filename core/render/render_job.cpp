@@ -383,6 +383,22 @@ RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
   return inputs;
 }
 
+Image RenderJob::resolve(const Film& film) const {
+  Image image = film.resolve();
+  apply_film_exposure(image, scene_.settings.film_exposure);
+  return image;
+}
+
+Image RenderJob::image_so_far(const Film& film, const SamplingState& state) const {
+  if (state.splat_tiles.empty()) return resolve(film);
+  // Film keeps its arrays to itself (zeroed pages, not copyable): a copy through its raw state.
+  Film with_splats(film.width(), film.height(), film.channels());
+  std::copy_n(film.sums(), film.pixel_count() * film.channels().size(), with_splats.sums());
+  std::copy_n(film.weights(), film.pixel_count(), with_splats.weights());
+  SplatTiles::add_splat_tiles(state.splat_tiles, with_splats);
+  return resolve(with_splats);
+}
+
 RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderControl& control,
                             const std::optional<PixelRect>& crop) const {
   const RenderInputs inputs = this->inputs(crop);
@@ -394,9 +410,8 @@ RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderContro
   result.stats = render_image(inputs, film, state, control, progress ? &*progress : nullptr);
   progress.reset();
   if (!crop && !result.stats.interrupted) state.splat_tiles.clear();
-  result.image = film.resolve();
+  result.image = resolve(film);
   Image& image = result.image;
-  apply_film_exposure(image, scene_.settings.film_exposure);
   const uint32_t* counts = film.sample_counts();
   // Over the pixels rendered: a part's crop, or the whole frame.
   const PixelRect rendered = crop.value_or(whole_frame(film.width(), film.height()));

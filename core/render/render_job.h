@@ -68,6 +68,10 @@ class RenderJob {
                    const std::optional<PixelRect>& crop = std::nullopt) const;
   RenderResult run(Film& film) const;
   RenderResult run() const;
+  // The image a render paused between two samples (RenderControl's checkpoint or preview hook)
+  // holds so far, resolved as run() resolves the final one: with splatting, the splat tiles are
+  // added to a copy of `film`, which keeps its own sums for the render to go on.
+  Image image_so_far(const Film& film, const SamplingState& state) const;
   // The pixels a part with `crop` renders and its checkpoint holds: the crop, with adaptive
   // sampling its apron (part_region), grown to whole tiles.
   PixelRect part_tiles(const PixelRect& crop) const;
@@ -87,6 +91,7 @@ class RenderJob {
   void choose_time_samples();  // sets time_reason_ and the time plugins_ need
   void make_scene_table();     // what the integrator sees of the scene
   RenderInputs inputs(const std::optional<PixelRect>& crop) const;  // what render_image is given
+  Image resolve(const Film& film) const;  // the film's mean, with the scene's film exposure
   // The film's, and these triangles' with their texture coordinates and tangents.
   void check_memory_budget(const GeometryCounts& geometry) const;
   const Scene& scene_;

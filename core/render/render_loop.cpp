@@ -362,7 +362,7 @@ class TileGrid {
 std::vector<uint32_t> pass_ends(uint32_t samples_per_pixel, const RenderControl& control,
                                 const std::optional<AdaptiveSettings>& adaptive) {
   std::vector<uint32_t> ends;
-  if (control.cancel || control.checkpoint)
+  if (control.cancel || control.checkpoint || control.preview)
     for (uint32_t end = 1; end < samples_per_pixel; end *= 2)
       ends.push_back(end);
   if (adaptive)
@@ -453,16 +453,22 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, SamplingState& 
   const TileRenderer renderer(inputs, film, splats ? &*splats : nullptr, convergence, domain);
   tbb::enumerable_thread_specific<TileWork> work;
   std::atomic<uint64_t> samples{0}, rays{0}, dropped{0};
-  std::atomic<bool> pause{false};  // a checkpoint is due: tiles stop, the film is saved, go on
+  std::atomic<bool> pause{false};  // a checkpoint or preview is due: tiles stop, it is saved, go on
   const auto start = Clock::now();
-  auto last_checkpoint = start;
+  auto last_checkpoint = start, last_preview = start;
   const auto cancelled = [&] {
     return control.cancel && control.cancel->load(std::memory_order_relaxed);
   };
-  // Between two sample indices of a tile: a signal, or a checkpoint that has come due.
+  const auto checkpoint_due = [&] {
+    return control.checkpoint && Clock::now() - last_checkpoint >= control.checkpoint_every;
+  };
+  const auto preview_due = [&] {
+    return control.preview && Clock::now() - last_preview >= control.preview_every;
+  };
+  // Between two sample indices of a tile: a signal, or a checkpoint or preview that has come due.
   const auto stop = [&] {
     if (pause.load(std::memory_order_relaxed) || cancelled()) return true;
-    if (control.checkpoint && Clock::now() - last_checkpoint >= control.checkpoint_every) {
+    if (checkpoint_due() || preview_due()) {
       pause = true;
       return true;
     }
@@ -520,8 +526,14 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, SamplingState& 
         break;
       }
       if (pause) {
-        control.checkpoint(film, state);
-        last_checkpoint = Clock::now();
+        if (checkpoint_due()) {
+          control.checkpoint(film, state);
+          last_checkpoint = Clock::now();
+        }
+        if (preview_due()) {
+          control.preview(film, state);
+          last_preview = Clock::now();
+        }
         continue;
       }
       break;

@@ -88,10 +88,15 @@ struct RenderControl {
   // after the start or the last call.
   std::function<void(const Film&, const SamplingState&)> checkpoint;
   std::chrono::steady_clock::duration checkpoint_every{};
+  // Called the same way, at least `preview_every` apart: the live image (--preview). Its own
+  // clock, so that a preview every second does not make checkpoints that often.
+  std::function<void(const Film&, const SamplingState&)> preview;
+  std::chrono::steady_clock::duration preview_every{};
 };
 
 // Renders into `film` and `state` on the calling thread's TBB arena, in passes of doubling sample
-// counts over all tiles when `control` can stop the render (a cancel flag or checkpoints), else
+// counts over all tiles when `control` can stop the render (a cancel flag, checkpoints or
+// previews), else
 // each tile's samples in a row, while its part of the scene is in the core's cache (with adaptive
 // sampling: after its minimum, passes of kAdaptiveStep samples, each followed by the convergence
 // check; pixels that converged take no more samples and keep their own count in the film). A film

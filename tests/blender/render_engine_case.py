@@ -22,7 +22,7 @@ SAMPLES = 4
 FIRST_FRAME, LAST_FRAME = 1, 3
 MARKER_X_BY_FRAME = {1: -1.0, 2: 0.0, 3: 1.0}  # the emissive marker's keyed x, m
 CANCEL_SAMPLES = 1_000_000  # filmback's most; far more than a second's worth at 64 x 36
-CANCEL_RETURN_LIMIT_S = 20.0  # export, one second of rendering, the stop and the load
+CANCEL_RETURN_LIMIT_S = 20.0  # export, a few seconds of rendering, the stop and the load
 
 
 def install_addon(zip_path, filmback):
@@ -190,9 +190,12 @@ def case_cancel(filmback, out):
     from io_filmback import render_engine
     progress_lines = render_engine.last_render_progress_lines
     # Without --progress-every a piped filmback prints one line at 0.5 s, then one every 10 s.
-    assert progress_lines >= 2, f"{progress_lines} progress lines in a second (--progress-every)"
-    print(f"cancelled render returned after {elapsed:.1f} s with a partial image and "
-          f"{progress_lines} progress lines")
+    assert progress_lines >= 2, f"{progress_lines} progress lines before the cancel (--progress-every)"
+    # filmback writes its first preview a second (filmback_cli.PREVIEW_EVERY) into rendering.
+    previews = render_engine.last_render_previews_shown
+    assert previews >= 1, "no preview shown before the render was cancelled (--preview)"
+    print(f"cancelled render returned after {elapsed:.1f} s with a partial image, "
+          f"{progress_lines} progress lines and {previews} previews shown")
 
 
 CASES = {"still": case_still, "animation": case_animation, "bad_setting": case_bad_setting,

@@ -11,8 +11,9 @@ Install, as a user does) and runs render_engine_case.py under `blender -b`:
   animation    Ctrl+F12 over frames 1-3: three files, each bit-identical to the command-line
                render of its frame, the keyed marker moving rightwards
   bad_setting  an unknown integrator: filmback's message in Blender's report, no crash
-  cancel       a long render cancelled after 1 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
-               stand-in for Esc under `blender -b`) returns promptly with a partial image
+  cancel       a long render cancelled after 2.5 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
+               stand-in for Esc under `blender -b`) returns promptly with a partial image, having
+               shown at least one preview as the image filled in
 Each case also checks that the engine leaves no temporary folder behind. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
@@ -26,7 +27,8 @@ sys.path.insert(0, HERE)
 from roundtrip_test import SKIP, addon_zip, blender  # noqa: E402
 
 CASES = ("still", "animation", "bad_setting", "cancel")
-CANCEL_AFTER_S = "1"
+# Time for filmback to start, render a second and write its first preview (PREVIEW_EVERY).
+CANCEL_AFTER_S = "2.5"
 
 
 def main():

@@ -19,6 +19,10 @@ PLUGIN_LINE = re.compile(r"^(camera|filter|integrator) ([a-z0-9_]+) \S+ - ")
 PROGRESS_EVERY = "0.25s"
 PROGRESS_LINE = re.compile(r"^progress: ([0-9.]+)%")
 
+# With --preview filmback replaces an EXR of the image so far (atomically) at most this often
+# while rendering (docs/cli.md, "--preview"): the engine shows it as the image fills in.
+PREVIEW_EVERY = "1s"
+
 # What the importer skipped, once each (core/util/diagnostics.cpp).
 WARNING_LINE = re.compile(r"^(filmback: )?warning: ")
 
@@ -59,11 +63,14 @@ def plugin_names(executable):
     return _plugins_by_executable[executable]
 
 
-def render_command(executable, scene_path, output_path, samples, sampler, integrator, filter_spec):
-    """The argument list (no shell) rendering `scene_path` into `output_path`. An empty
-    integrator or filter leaves the shot's own (the file's pixel filter, the path integrator)."""
+def render_command(executable, scene_path, output_path, preview_path, samples, sampler,
+                   integrator, filter_spec):
+    """The argument list (no shell) rendering `scene_path` into `output_path`, the image so far
+    into `preview_path` while it renders. An empty integrator or filter leaves the shot's own
+    (the file's pixel filter, the path integrator)."""
     command = [executable, "render", scene_path, "-o", output_path,
-               "--spp", str(samples), "--sampler", sampler, "--progress-every", PROGRESS_EVERY]
+               "--spp", str(samples), "--sampler", sampler, "--progress-every", PROGRESS_EVERY,
+               "--preview", preview_path, "--preview-every", PREVIEW_EVERY]
     if integrator:
         command += ["--integrator", integrator]
     if filter_spec:

@@ -1,5 +1,6 @@
 """filmback as a Blender render engine: F12 exports the shot to a temporary folder through the
 add-on's exporter, runs the `filmback` command on it and loads its EXR into the Render Result.
+While filmback runs, each new preview it writes (--preview) is loaded too: the image fills in.
 
 Each render() is one frame (Ctrl+F12 calls it once per frame of the range), exported at the frame
 Blender is rendering. Esc (test_break) sends filmback SIGINT, on which it writes the image so far
@@ -30,6 +31,9 @@ TEST_CANCEL_AFTER_S_ENV = "FILMBACK_TEST_CANCEL_AFTER_S"
 # For tests only: how many progress lines the last render read (tests/blender's cancel case
 # checks that a render of a second moved the progress bar before it ended).
 last_render_progress_lines = 0
+# For tests only: how many of filmback's previews the last render showed (the cancel case checks
+# that the image filled in before the render ended).
+last_render_previews_shown = 0
 
 
 class StderrReader:
@@ -55,6 +59,21 @@ class StderrReader:
     def text(self):
         self._thread.join()
         return "".join(self.lines)
+
+
+def result_size(render):
+    """The Render Result's width and height: the size after the percentage, rounded as Blender
+    does (and as the export says)."""
+    return (render.resolution_x * render.resolution_percentage // 100,
+            render.resolution_y * render.resolution_percentage // 100)
+
+
+def preview_mtime_ns(path):
+    """When filmback last replaced its preview; None before the first one."""
+    try:
+        return os.stat(path).st_mtime_ns
+    except FileNotFoundError:
+        return None
 
 
 class FilmbackRenderEngine(bpy.types.RenderEngine):
@@ -89,14 +108,15 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
             self.report({"ERROR"}, f"filmback: export failed: {e}")
             return
         output_path = os.path.join(folder, "shot.exr")
+        preview_path = os.path.join(folder, "preview.exr")
         settings = scene.filmback
-        command = filmback_cli.render_command(executable, scene_path, output_path,
+        command = filmback_cli.render_command(executable, scene_path, output_path, preview_path,
                                               settings.samples, settings.sampler,
                                               settings.integrator.strip(),
                                               settings.filter.strip())
         self.update_stats("", f"filmback: rendering frame {frame}")
         try:
-            status, stderr_text = self.run(command)
+            status, stderr_text = self.run(command, preview_path, scene.render)
         except OSError as e:
             self.report({"ERROR"}, f"filmback: cannot run {executable}: {e}")
             return
@@ -109,32 +129,45 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
             message = filmback_cli.error_message(stderr_text) or f"exit status {status}"
             self.report({"ERROR"}, message)
 
-    def run(self, command):
-        """Runs filmback until it exits, interrupting it once on Esc; returns its exit status
-        and stderr."""
+    def run(self, command, preview_path, render):
+        """Runs filmback until it exits, interrupting it once on Esc and showing each new
+        preview it writes; returns its exit status and stderr."""
         process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                    stderr=subprocess.PIPE, text=True, errors="replace")
         reader = StderrReader(process.stderr)
         started = time.monotonic()
         cancel_after_s = float(os.environ.get(TEST_CANCEL_AFTER_S_ENV, "inf"))
         interrupted = False
+        shown_mtime_ns = None  # the preview last shown; filmback renames each new one into place
+        previews_shown = 0
         while process.poll() is None:
             if not interrupted and (self.test_break() or
                                     time.monotonic() - started >= cancel_after_s):
                 process.send_signal(signal.SIGINT)
                 interrupted = True
+            mtime_ns = preview_mtime_ns(preview_path)
+            if mtime_ns is not None and mtime_ns != shown_mtime_ns:
+                self.show_preview(preview_path, render)
+                shown_mtime_ns = mtime_ns
+                previews_shown += 1
             self.update_progress(reader.fraction)
             time.sleep(POLL_INTERVAL_S)
         stderr_text = reader.text()  # joins the reader: its count is final
-        global last_render_progress_lines
+        global last_render_progress_lines, last_render_previews_shown
         last_render_progress_lines = reader.progress_lines
+        last_render_previews_shown = previews_shown
         return process.returncode, stderr_text
 
+    def show_preview(self, exr_path, render):
+        """The image so far into the Render Result, shown while filmback goes on; the final
+        image replaces it (load)."""
+        result = self.begin_result(0, 0, *result_size(render))
+        result.layers[0].load_from_file(exr_path)
+        self.update_result(result)
+        self.end_result(result)
+
     def load(self, exr_path, render):
-        # The size after the percentage, rounded as Blender does (and as the export says).
-        width_px = render.resolution_x * render.resolution_percentage // 100
-        height_px = render.resolution_y * render.resolution_percentage // 100
-        result = self.begin_result(0, 0, width_px, height_px)
+        result = self.begin_result(0, 0, *result_size(render))
         result.layers[0].load_from_file(exr_path)
         self.end_result(result)
         self.update_progress(1.0)
