@@ -19,12 +19,11 @@ from pathlib import Path
 
 import case_main
 from never_lose_test import images_identical
+# About a second on one thread: long enough for several previews at a tenth of a second.
+from progress_test import SCENE, SECOND_LONG
 
 FILMBACK = None  # set by configure()
 SCRATCH = None
-SCENE = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
-# About a second on one thread: long enough for several previews at a tenth of a second.
-SECOND_LONG = ["--res", "160x90", "--spp", "64", "--threads", "1", "-q"]
 
 
 def image_size(file):
