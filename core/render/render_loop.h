@@ -96,14 +96,13 @@ struct RenderControl {
 
 // Renders into `film` and `state` on the calling thread's TBB arena, in passes of doubling sample
 // counts over all tiles when `control` can stop the render (a cancel flag, checkpoints or
-// previews), else
-// each tile's samples in a row, while its part of the scene is in the core's cache (with adaptive
-// sampling: after its minimum, passes of kAdaptiveStep samples, each followed by the convergence
-// check; pixels that converged take no more samples and keep their own count in the film). A film
-// and state that already hold samples (a resumed checkpoint: Film::sample_count per tile, each
-// splat tile's samples, the convergence map and its last check) are continued from there; each
-// pixel's samples are still summed in sample order and each check made once, at its sample
-// count, so the image is bit-identical to an uninterrupted render. `progress` counts pixel
+// previews), else each tile's samples in a row, while its part of the scene is in the core's cache
+// (with adaptive sampling: after its minimum, passes of kAdaptiveStep samples, each followed by the
+// convergence check; pixels that converged take no more samples and keep their own count in the
+// film). A film and state that already hold samples (a resumed checkpoint: Film::sample_count per
+// tile, each splat tile's samples, the convergence map and its last check) are continued from
+// there; each pixel's samples are still summed in sample order and each check made once, at its
+// sample count, so the image is bit-identical to an uninterrupted render. `progress` counts pixel
 // samples. `state` is shaped by prepare_sampling_state; with splatting its tiles are added to the
 // film when the render ends (or is interrupted) and stay there (a part writes them:
 // core/film/partial_film.h).

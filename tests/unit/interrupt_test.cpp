@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <numbers>
 #include <set>
@@ -117,6 +118,40 @@ TEST(Interrupt, CheckpointsTakenOnTheWayChangeNothing) {
   const RenderResult again = job.run(film, state, control);
   EXPECT_GT(checkpoints, 4);
   EXPECT_EQ(again.image.pixels, whole.image.pixels);
+}
+
+// --preview: the loop's preview hook, called at every chance, resolves the image so far without
+// touching the film. With splatting the samples so far live in the splat tiles only, so a preview
+// that missed them would be black; one that added them into the render's own film would change
+// the final image.
+TEST(Interrupt, PreviewsShowTheImageSoFarAndChangeNothing) {
+  const Scene scene = lit_floor();
+  for (const Reconstruction reconstruction :
+       {Reconstruction::kImportance, Reconstruction::kSplat}) {
+    RenderOptions o = options(9);
+    o.reconstruction = reconstruction;
+    o.filter = "gaussian";
+    const RenderJob job(scene, o, test::loader());
+    const RenderResult whole = job.run();
+    Film film = job.make_film();
+    SamplingState state = job.make_sampling_state();
+    int previews = 0;
+    float brightest_preview = 0;
+    RenderControl control;
+    control.preview = [&](const Film& f, const SamplingState& s) {
+      const Image image = job.image_so_far(f, s);
+      ASSERT_EQ(image.pixels.size(), whole.image.pixels.size());
+      for (const float value : image.pixels) {
+        ASSERT_TRUE(std::isfinite(value));
+        brightest_preview = std::max(brightest_preview, value);
+      }
+      ++previews;
+    };
+    const RenderResult again = job.run(film, state, control);
+    EXPECT_GT(previews, 4) << reconstruction_name(reconstruction);
+    EXPECT_GT(brightest_preview, 0.0f) << reconstruction_name(reconstruction);
+    EXPECT_EQ(again.image.pixels, whole.image.pixels) << reconstruction_name(reconstruction);
+  }
 }
 
 // A render nothing can stop takes one pass over each tile (render_loop.h); one that a signal could
