@@ -7,14 +7,41 @@ cases named (a case name or unittest's Class.test_name), or all of them.
 
 import argparse
 import os
+import shutil
+import subprocess
 import sys
+import tempfile
 import unittest
+from pathlib import Path
 
 
-def main(case_class, doc, configure, add_options=None):
+def cli_env():
+    """The environment filmback runs in: without FILMBACK_PLUGIN_PATH, so that the build's own
+    plugins, found beside the executable, are the ones tested."""
+    return {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
+
+
+class FolderCase(unittest.TestCase):
+    """A case that runs filmback in a folder of its own under --scratch, removed afterwards.
+    `filmback` and `scratch` are set by main(); `run_timeout` bounds one command (seconds)."""
+    filmback = None
+    scratch = None
+    run_timeout = 600
+
+    def setUp(self):
+        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=self.scratch))
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def run_cli(self, *args):
+        return subprocess.run([self.filmback, *map(str, args)], capture_output=True, text=True,
+                              env=cli_env(), cwd=self.dir, timeout=self.run_timeout)
+
+
+def main(case_class, doc, configure=None, add_options=None):
     """Runs the command line for `case_class`'s own cases and returns the exit status: 0 when all
-    pass. `add_options(parser)` adds the script's own options; `configure(args)` hands the parsed
-    options (--filmback, --scratch, the script's own) to the code under test before a case runs."""
+    pass. `add_options(parser)` adds the script's own options; `configure(args)`, when given,
+    hands the parsed options (--filmback, --scratch, the script's own) to the code under test
+    before a case runs; FolderCase gets --filmback and --scratch in any case."""
     parser = argparse.ArgumentParser(description=doc)
     parser.add_argument("--filmback", help="the filmback executable")
     parser.add_argument("--scratch", help="folder for the test files (created)")
@@ -29,7 +56,10 @@ def main(case_class, doc, configure, add_options=None):
     if not args.filmback or not args.scratch:
         parser.error("--filmback and --scratch are required")
     os.makedirs(args.scratch, exist_ok=True)
-    configure(args)
+    FolderCase.filmback = str(Path(args.filmback).resolve())
+    FolderCase.scratch = Path(args.scratch).resolve()
+    if configure:
+        configure(args)
     prefix = case_class.__name__ + "."
     names = [n if n.startswith(prefix) else prefix + "test_" + n for n in rest or cases]
     program = unittest.main(module=sys.modules[case_class.__module__],

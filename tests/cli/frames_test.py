@@ -14,21 +14,17 @@ import json
 import math
 import os
 import re
-import shutil
 import signal
 import struct
 import subprocess
 import sys
-import tempfile
 import time
-import unittest
 from pathlib import Path
 
 import case_main
 from gltf_files import FLOAT, triangle_scene
 
 FILMBACK = None  # set by configure()
-SCRATCH = None
 USAGE = 2
 # The triangle's node moves along x from X0 at t = 0 to X1 at t = T1, 6 m in front of the camera
 # (yfov 0.8, square): at 24 fps frames 1, 2 and 3 put it at x = -0.2, 0.2 and 0.6 m.
@@ -90,16 +86,10 @@ def compare(pairs, dump=False):
     return [v == "PASS" for v in verdicts], centroids
 
 
-class FramesTest(unittest.TestCase):
+class FramesTest(case_main.FolderCase):
     def setUp(self):
-        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
-        self.addCleanup(shutil.rmtree, self.dir, True)
+        super().setUp()
         self.scene = moving_triangle_scene().write(self.dir / "moving.gltf")
-
-    def run_cli(self, *args):
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
-                              env=env, cwd=self.dir, timeout=600)
 
     def render(self, *args):
         result = self.run_cli("render", self.scene, *args)
@@ -185,11 +175,10 @@ class FramesTest(unittest.TestCase):
         # (unless it ended just then and frame k + 1 had none yet: then k + 1 writes nothing).
         render = ["--res", "32x32", "--spp", "1024", "--checkpoint-every", "0.05s", "-q"]
         sequence = ["--frames", "1-3", "-o", "f.#.exr", *render]
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
         process = subprocess.Popen([FILMBACK, "render", str(self.scene), *sequence,
                                     "--stats-json", "interrupted.json"],
                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                   env=env, cwd=self.dir)
+                                   env=case_main.cli_env(), cwd=self.dir)
         self.addCleanup(lambda: process.poll() is None and process.kill())
         deadline = time.monotonic() + 60
         while not list(self.dir.glob("f.*.checkpoint.exr")) and process.poll() is None:
@@ -227,10 +216,9 @@ class FramesTest(unittest.TestCase):
         # written, so the frame is not done and a re-run renders it.
         sequence = ["--frames", "1", "-o", "f.#.exr", "-o", "f.#.png", "-o", "f.#.jpg",
                     "--res", "32x32", "--spp", "100000", "--checkpoint-every", "0.05s", "-q"]
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
         process = subprocess.Popen([FILMBACK, "render", str(self.scene), *sequence],
                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                   env=env, cwd=self.dir)
+                                   env=case_main.cli_env(), cwd=self.dir)
         self.addCleanup(lambda: process.poll() is None and process.kill())
         deadline = time.monotonic() + 60
         while not (self.dir / "f.1.checkpoint.exr").exists() and process.poll() is None:
@@ -271,9 +259,8 @@ class FramesTest(unittest.TestCase):
 
 
 def configure(args):
-    global FILMBACK, SCRATCH
+    global FILMBACK
     FILMBACK = str(Path(args.filmback).resolve())
-    SCRATCH = Path(args.scratch).resolve()
 
 
 if __name__ == "__main__":

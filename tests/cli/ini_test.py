@@ -11,20 +11,16 @@ Run: ini_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints
 
 import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
-import unittest
 from pathlib import Path
 
 import case_main
 from frames_test import compare
 
 FILMBACK = None  # set by configure()
-SCRATCH = None
 PORTFOLIO = Path("/usr/share/doc/povray/examples/portfolio")
 
 # A sphere whose place is the clock's: x = 2 clock - 1.
@@ -44,17 +40,13 @@ MOVING_INI = ("; two frames of three\n"
               "Pause_when_Done=off\n")
 
 
-class IniTest(unittest.TestCase):
+class IniTest(case_main.FolderCase):
+    run_timeout = 300
+
     def setUp(self):
-        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
-        self.addCleanup(shutil.rmtree, self.dir, True)
+        super().setUp()
         (self.dir / "moving.pov").write_text(MOVING_POV)
         (self.dir / "moving.ini").write_text(MOVING_INI)
-
-    def run_cli(self, *args):
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
-                              env=env, cwd=self.dir, timeout=300)
 
     def test_the_clock_follows_the_ini_frames(self):
         result = self.run_cli("render", "moving.ini", "-q", "--stats-json", "stats.json")
@@ -116,10 +108,9 @@ class IniTest(unittest.TestCase):
         # --resume without the .ini: the same .pov, but another scene.
         (self.dir / "radius.ini").write_text("Declare=Radius=0.25\n")
         render = ["-o", "r.exr", "--res", "32x32", "--spp", "100000", "-q"]
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
         process = subprocess.Popen([FILMBACK, "render", "moving.pov", "--ini", "radius.ini",
                                     "--checkpoint-every", "0.01s", *render], cwd=self.dir,
-                                   env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                                   env=case_main.cli_env(), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         deadline = time.monotonic() + 60
         while not (self.dir / "r.checkpoint.exr").exists() and time.monotonic() < deadline:
             time.sleep(0.01)
@@ -172,9 +163,8 @@ class IniTest(unittest.TestCase):
 
 
 def configure(args):
-    global FILMBACK, SCRATCH
+    global FILMBACK
     FILMBACK = str(Path(args.filmback).resolve())
-    SCRATCH = Path(args.scratch).resolve()
 
 
 if __name__ == "__main__":

@@ -19,15 +19,12 @@ import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
-import unittest
 from pathlib import Path
 
 import case_main
 
 FILMBACK = None  # set by configure()
-SCRATCH = None
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
 # Long enough to be interrupted (tens of seconds at full speed), small enough to write at once.
 # Not quiet: the plan line tells the test that the render is about to run.
@@ -52,27 +49,17 @@ def images_identical(a, b):
     return result.returncode == 0, result.stdout
 
 
-class InterruptTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
-        self.addCleanup(shutil.rmtree, self.dir, True)
-
+class InterruptTest(case_main.FolderCase):
     def start(self, *args):
         """A render in the background; unless quiet, its plan line is read first: the render loop
         is about to run (before that, a signal ends filmback at once, with nothing to save)."""
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
         process = subprocess.Popen([FILMBACK, "render", str(SCENE), *map(str, args)],
                                    stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-                                   env=env, cwd=self.dir)
+                                   env=case_main.cli_env(), cwd=self.dir)
         self.addCleanup(lambda: process.poll() is None and process.kill())
         if "-q" not in args:
             self.assertTrue(process.stdout.readline().startswith("filmback: camera"))
         return process
-
-    def run_cli(self, *args):
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
-                              env=env, cwd=self.dir, timeout=600)
 
     def wait_for(self, condition, seconds=60):
         deadline = time.monotonic() + seconds
@@ -256,9 +243,8 @@ class InterruptTest(unittest.TestCase):
 
 
 def configure(args):
-    global FILMBACK, SCRATCH
+    global FILMBACK
     FILMBACK = str(Path(args.filmback).resolve())
-    SCRATCH = Path(args.scratch).resolve()
 
 
 if __name__ == "__main__":

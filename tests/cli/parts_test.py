@@ -11,38 +11,25 @@ Run: parts_test.py --filmback BIN --scratch DIR [unittest names...]; --list prin
 """
 
 import json
-import os
 import re
 import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
-import unittest
 from pathlib import Path
 
 import case_main
 from never_lose_test import images_identical
 
 FILMBACK = None  # set by configure()
-SCRATCH = None
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
 # 5 rows of 16-pixel tiles, the last partial; a wide filter splatted across part borders.
 RENDER = ["--res", "70x72", "--spp", "4", "-q", "--reconstruction", "splat", "--filter",
           "blackman_harris", "--sampler", "zsobol", "--seed", "5"]
 
 
-class PartsTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
-        self.addCleanup(shutil.rmtree, self.dir, True)
-
-    def run_cli(self, *args):
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
-                              env=env, cwd=self.dir, timeout=600)
-
+class PartsTest(case_main.FolderCase):
     def render(self, *args, scene=SCENE):
         result = self.run_cli("render", scene, *args)
         self.assertEqual(result.returncode, 0, result.stderr)
@@ -161,11 +148,10 @@ class PartsTest(unittest.TestCase):
     def test_interrupted_part_resumes_into_the_same_image(self):
         render = ["--res", "96x54", "--spp", "64"]
         self.render("-o", "whole.exr", "-q", *render)
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
         process = subprocess.Popen([FILMBACK, "render", str(SCENE), "--crop", "0,0,96,54",
                                     "-o", "part.exr", "--checkpoint-every", "0.2s", *render],
                                    stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True,
-                                   env=env, cwd=self.dir)
+                                   env=case_main.cli_env(), cwd=self.dir)
         self.addCleanup(lambda: process.poll() is None and process.kill())
         self.assertTrue(process.stdout.readline().startswith("filmback: camera"))
         checkpoint = self.dir / "part.checkpoint.exr"
@@ -193,9 +179,8 @@ class PartsTest(unittest.TestCase):
 
 
 def configure(args):
-    global FILMBACK, SCRATCH
+    global FILMBACK
     FILMBACK = str(Path(args.filmback).resolve())
-    SCRATCH = Path(args.scratch).resolve()
 
 
 if __name__ == "__main__":

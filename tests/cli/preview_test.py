@@ -8,22 +8,15 @@ Run: preview_test.py --filmback BIN --scratch DIR [unittest names...]; --list pr
 names (CMake registers one CTest test per case from it).
 """
 
-import os
 import re
-import shutil
 import subprocess
 import sys
-import tempfile
-import unittest
-from pathlib import Path
 
 import case_main
 from never_lose_test import images_identical
 # About a second on one thread: long enough for several previews at a tenth of a second.
 from progress_test import SCENE, SECOND_LONG
 
-FILMBACK = None  # set by configure()
-SCRATCH = None
 
 
 def image_size(file):
@@ -33,15 +26,8 @@ def image_size(file):
     return int(width), int(height)
 
 
-class PreviewTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
-        self.addCleanup(shutil.rmtree, self.dir, True)
-
-    def run_cli(self, *args):
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
-                              env=env, cwd=self.dir, timeout=120)
+class PreviewTest(case_main.FolderCase):
+    run_timeout = 120
 
     def test_preview_written_and_final_image_unchanged(self):
         for reconstruction in ["importance", "splat"]:
@@ -74,11 +60,5 @@ class PreviewTest(unittest.TestCase):
                 self.assertEqual(list(self.dir.iterdir()), [])
 
 
-def configure(args):
-    global FILMBACK, SCRATCH
-    FILMBACK = str(Path(args.filmback).resolve())
-    SCRATCH = Path(args.scratch).resolve()
-
-
 if __name__ == "__main__":
-    sys.exit(case_main.main(PreviewTest, __doc__, configure))
+    sys.exit(case_main.main(PreviewTest, __doc__))

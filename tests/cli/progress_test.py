@@ -7,34 +7,20 @@ Run: progress_test.py --filmback BIN --scratch DIR [unittest names...]; --list p
 names (CMake registers one CTest test per case from it).
 """
 
-import os
 import re
-import shutil
-import subprocess
 import sys
-import tempfile
-import unittest
 from pathlib import Path
 
 import case_main
 from never_lose_test import images_identical
 
-FILMBACK = None  # set by configure()
-SCRATCH = None
 SCENE = Path(__file__).resolve().parents[2] / "scenes" / "default" / "default.gltf"
 # About a second on one thread: long enough for several lines at a tenth of a second.
 SECOND_LONG = ["--res", "160x90", "--spp", "64", "--threads", "1", "-q"]
 
 
-class ProgressTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = Path(tempfile.mkdtemp(prefix=self._testMethodName + "-", dir=SCRATCH))
-        self.addCleanup(shutil.rmtree, self.dir, True)
-
-    def run_cli(self, *args):
-        env = {k: v for k, v in os.environ.items() if k != "FILMBACK_PLUGIN_PATH"}
-        return subprocess.run([FILMBACK, *map(str, args)], capture_output=True, text=True,
-                              env=env, cwd=self.dir, timeout=120)
+class ProgressTest(case_main.FolderCase):
+    run_timeout = 120
 
     def test_lines_on_a_pipe_even_when_quiet(self):
         done = self.run_cli("render", SCENE, "-o", "a.exr", *SECOND_LONG, "--progress-every",
@@ -62,11 +48,5 @@ class ProgressTest(unittest.TestCase):
             self.assertFalse((self.dir / "bad.exr").exists())
 
 
-def configure(args):
-    global FILMBACK, SCRATCH
-    FILMBACK = str(Path(args.filmback).resolve())
-    SCRATCH = Path(args.scratch).resolve()
-
-
 if __name__ == "__main__":
-    sys.exit(case_main.main(ProgressTest, __doc__, configure))
+    sys.exit(case_main.main(ProgressTest, __doc__))
