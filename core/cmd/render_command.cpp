@@ -620,14 +620,9 @@ int run_with_report(Report& report, const std::function<int()>& run,
 
 int run_render(RenderCommand& c) {
   const auto start = Clock::now();
-  std::vector<std::string> ini_warnings;
-  apply_pov_ini(c, ini_warnings);
-  if (!ini_warnings.empty()) {
-    Diagnostics diagnostics;
-    for (const std::string& warning : ini_warnings)
-      diagnostics.warn(warning);
-    diagnostics.print(std::cerr);
-  }
+  Diagnostics ini_diagnostics;
+  apply_pov_ini(c, ini_diagnostics);
+  ini_diagnostics.print(std::cerr);
   if (c.outputs.empty())
     throw UsageError("render: expected -o FILE (or an .ini that names an Output_File_Name)");
   if (!c.frames.empty()) {

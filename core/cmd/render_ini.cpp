@@ -27,7 +27,7 @@ uint32_t samples_for_pov_antialias(bool antialias, uint32_t depth) {
 
 }  // namespace
 
-void apply_pov_ini(RenderCommand& c, std::vector<std::string>& warnings) {
+void apply_pov_ini(RenderCommand& c, Diagnostics& diagnostics) {
   const bool scene_is_ini = pov::is_ini_argument(c.scene.string());
   if (scene_is_ini && !c.ini.empty())
     throw UsageError("--ini '" + c.ini + "': the scene '" + c.scene.string() +
@@ -35,7 +35,8 @@ void apply_pov_ini(RenderCommand& c, std::vector<std::string>& warnings) {
   if (!scene_is_ini && c.ini.empty()) return;
   const auto [file, section] = pov::split_ini_section(scene_is_ini ? c.scene.string() : c.ini);
   const pov::IniOptions ini = pov::read_ini(file, section);
-  warnings.insert(warnings.end(), ini.warnings.begin(), ini.warnings.end());
+  for (const std::string& warning : ini.warnings)
+    diagnostics.warn(warning);
   if (scene_is_ini) {
     if (!ini.input_file)
       throw InputError(file.string() +

@@ -139,8 +139,8 @@ void RenderJob::load_plugins(const PluginLoader& loader) {
 }
 
 // Render space: world translated so the camera is at the origin; only this is narrowed to float.
-// Subdivision surfaces become triangles here, where the camera that
-// adaptive refinement needs is known; a scene without any never loads the subdivision module.
+// Subdivision surfaces become triangles here, where the camera that adaptive refinement needs is
+// known; a scene without any never loads the subdivision module.
 void RenderJob::build_geometry() {
   Plugins& p = *plugins_;
   const SceneCamera& camera = plan_.camera;

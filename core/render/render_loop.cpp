@@ -459,16 +459,18 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, SamplingState& 
   const auto cancelled = [&] {
     return control.cancel && control.cancel->load(std::memory_order_relaxed);
   };
-  const auto checkpoint_due = [&] {
-    return control.checkpoint && Clock::now() - last_checkpoint >= control.checkpoint_every;
+  const auto checkpoint_due = [&](Clock::time_point now) {
+    return control.checkpoint && now - last_checkpoint >= control.checkpoint_every;
   };
-  const auto preview_due = [&] {
-    return control.preview && Clock::now() - last_preview >= control.preview_every;
+  const auto preview_due = [&](Clock::time_point now) {
+    return control.preview && now - last_preview >= control.preview_every;
   };
-  // Between two sample indices of a tile: a signal, or a checkpoint or preview that has come due.
+  // Between two sample indices of a tile: a signal, or a checkpoint or preview that has come due
+  // (the clock read only when one is asked for).
   const auto stop = [&] {
     if (pause.load(std::memory_order_relaxed) || cancelled()) return true;
-    if (checkpoint_due() || preview_due()) {
+    if (!control.checkpoint && !control.preview) return false;
+    if (const auto now = Clock::now(); checkpoint_due(now) || preview_due(now)) {
       pause = true;
       return true;
     }
@@ -526,11 +528,12 @@ RenderStats render_image(const RenderInputs& inputs, Film& film, SamplingState& 
         break;
       }
       if (pause) {
-        if (checkpoint_due()) {
+        const auto now = Clock::now();
+        if (checkpoint_due(now)) {
           control.checkpoint(film, state);
           last_checkpoint = Clock::now();
         }
-        if (preview_due()) {
+        if (preview_due(now)) {
           control.preview(film, state);
           last_preview = Clock::now();
         }
