@@ -124,7 +124,8 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
                            os.path.exists(output_path)):
             for warning in filmback_cli.warnings(stderr_text):
                 self.report({"WARNING"}, warning)
-            self.load(output_path, scene.render)
+            self.show(output_path, scene.render)
+            self.update_progress(1.0)
         elif status not in filmback_cli.INTERRUPTED_STATUSES:
             message = filmback_cli.error_message(stderr_text) or f"exit status {status}"
             self.report({"ERROR"}, message)
@@ -147,7 +148,7 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
                 interrupted = True
             mtime_ns = preview_mtime_ns(preview_path)
             if mtime_ns is not None and mtime_ns != shown_mtime_ns:
-                self.show_preview(preview_path, render)
+                self.show(preview_path, render)
                 shown_mtime_ns = mtime_ns
                 previews_shown += 1
             self.update_progress(reader.fraction)
@@ -158,19 +159,13 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
         last_render_previews_shown = previews_shown
         return process.returncode, stderr_text
 
-    def show_preview(self, exr_path, render):
-        """The image so far into the Render Result, shown while filmback goes on; the final
-        image replaces it (load)."""
+    def show(self, exr_path, render):
+        """An EXR of filmback's into the Render Result: each preview while filmback goes on, then
+        the final image, which replaces the last preview."""
         result = self.begin_result(0, 0, *result_size(render))
         result.layers[0].load_from_file(exr_path)
         self.update_result(result)
         self.end_result(result)
-
-    def load(self, exr_path, render):
-        result = self.begin_result(0, 0, *result_size(render))
-        result.layers[0].load_from_file(exr_path)
-        self.end_result(result)
-        self.update_progress(1.0)
 
 
 def register():
