@@ -114,9 +114,9 @@ def command_line_render(filmback, out, frame):
     return exr
 
 
-def assert_bit_identical(engine_exr, cli_exr):
+def assert_bit_identical(engine_exr, cli_exr, size=(WIDTH_PX, HEIGHT_PX)):
     engine, cli = pixels(engine_exr), pixels(cli_exr)
-    assert engine.shape == (WIDTH_PX * HEIGHT_PX, 4), engine.shape
+    assert engine.shape == (size[0] * size[1], 4), engine.shape
     assert engine.shape == cli.shape, (engine.shape, cli.shape)
     assert numpy.isfinite(engine).all(), "non-finite pixels"
     assert engine[:, :3].max() > 0, "an all-black image"

@@ -20,6 +20,7 @@ import bpy
 
 from . import filmback_cli, render_settings
 from .gltf_export import export_gltf
+from . import main_thread
 
 POLL_INTERVAL_S = 0.05
 STDERR_LINES_KEPT = 200  # warnings and errors; what a broken filmback prints past them is dropped
@@ -76,6 +77,15 @@ def preview_mtime_ns(path):
         return None
 
 
+def export_frame(path, frame):
+    """The shot at `frame` into `path`. The exporter and the add-on's hooks read the context's
+    scene, which Blender has set to the frame it renders; a render of another frame (an API call)
+    moves it there first."""
+    if bpy.context.scene.frame_current != frame:
+        bpy.context.scene.frame_set(frame)
+    export_gltf(path)
+
+
 class FilmbackRenderEngine(bpy.types.RenderEngine):
     bl_idname = render_settings.ENGINE_ID
     bl_label = "filmback"
@@ -97,13 +107,9 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
     def render_in(self, folder, scene, executable):
         frame = scene.frame_current
         self.update_stats("", f"filmback: exporting frame {frame}")
-        # The exporter and the add-on's hooks read the context's scene, which Blender has set to
-        # the frame it renders; a render of another frame (an API call) moves it there first.
-        if bpy.context.scene.frame_current != frame:
-            bpy.context.scene.frame_set(frame)
         scene_path = os.path.join(folder, "shot.gltf")
         try:
-            export_gltf(scene_path)
+            main_thread.run_on_main_thread(scene, lambda: export_frame(scene_path, frame))
         except RuntimeError as e:
             self.report({"ERROR"}, f"filmback: export failed: {e}")
             return
@@ -170,7 +176,9 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
 
 def register():
     bpy.utils.register_class(FilmbackRenderEngine)
+    main_thread.register()
 
 
 def unregister():
+    main_thread.unregister()
     bpy.utils.unregister_class(FilmbackRenderEngine)

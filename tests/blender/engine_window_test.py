@@ -1,0 +1,64 @@
+"""The filmback render engine in Blender's window, not under `blender -b` (issue 20):
+
+    engine_window_test.py --filmback EXE --scratch DIR [--samples N] [--screenshot PNG]
+
+Installs the add-on from a zip into a fresh user folder and runs engine_window_case.py in a
+Blender with its window on a virtual X display (xvfb-run, Debian's package `xvfb`). There F12
+runs the render as a job on another thread, as it does for a user, which `blender -b` never
+does: the export must still work, the image must show in the render view, and it must be
+bit-identical to a command-line render of the export. With --screenshot, the screenshot of
+Blender's window is copied there (docs/blender.md's picture is made so).
+Exit 77 (CTest's skip) when `blender` or `xvfb-run` is not installed.
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from roundtrip_test import SKIP, addon_zip, blender_env  # noqa: E402
+
+SCREEN = "1280x720x24"  # the screenshot's size
+TIMEOUT_S = 240
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--filmback", required=True)
+    p.add_argument("--scratch", required=True)
+    p.add_argument("--samples", type=int)
+    p.add_argument("--screenshot")
+    a = p.parse_args()
+    for program, package in (("blender", "blender"), ("xvfb-run", "xvfb")):
+        if shutil.which(program) is None:
+            print(f"skipped: Debian package {package} is not installed")
+            sys.exit(SKIP)
+    shutil.rmtree(a.scratch, ignore_errors=True)
+    temporary = os.path.join(a.scratch, "tmp")
+    os.makedirs(temporary)
+    env = blender_env(dict(BLENDER_USER_SCRIPTS=os.path.join(a.scratch, "scripts"),
+                           BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"),
+                           TMPDIR=temporary))
+    command = ["xvfb-run", "--auto-servernum", "--server-args", f"-screen 0 {SCREEN}",
+               "blender", "--factory-startup", "--python-exit-code", "1",
+               "--python", os.path.join(HERE, "engine_window_case.py"), "--",
+               addon_zip(a.scratch), os.path.abspath(a.filmback), a.scratch]
+    if a.samples:
+        command.append(str(a.samples))
+    r = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
+    print(r.stdout)
+    print(r.stderr, file=sys.stderr)
+    if r.returncode != 0 or not os.path.exists(os.path.join(a.scratch, "passed")):
+        sys.exit(f"engine_window_case.py failed (exit {r.returncode})")
+    left = [name for name in os.listdir(temporary) if name.startswith("filmback")]
+    if left:
+        sys.exit(f"temporary files left in {temporary}: {left}")
+    if a.screenshot:
+        shutil.copyfile(os.path.join(a.scratch, "window.png"), a.screenshot)
+
+
+if __name__ == "__main__":
+    main()
