@@ -23,8 +23,8 @@ struct ImportOptions {
   // An .ini's animation (docs/pov.md ".ini files"): what initial_clock, clock_delta ... read.
   std::optional<pov::Animation> pov_animation;
   std::vector<std::pair<std::string, double>> pov_declarations;  // Declare=NAME=VALUE
-  // Folders searched for #include after the scene's own; none given: POV-Ray's standard include
-  // folder when povray-includes is installed (docs/pov.md "The language").
+  // Folders searched for #include after the scene's own and POV-Ray's standard include folder
+  // (when povray-includes is installed), in this order (docs/pov.md "The language").
   std::vector<std::filesystem::path> library_paths;
   // How far a POV-Ray scene's program may run (docs/pov.md "The language": the defaults).
   pov::EvaluateLimits pov_limits;

@@ -16,6 +16,8 @@ namespace fb {
 struct RenderCommand {
   std::filesystem::path scene;  // .gltf, .glb, .pov, or a POV-Ray .ini naming its scene
   std::string ini;  // --ini: a POV-Ray .ini ("FILE" or "FILE[Section]") beside a .pov scene
+  // The .ini's warnings (unknown options), filled by run_render: reported with every frame's.
+  std::vector<std::string> ini_warnings;
   std::vector<std::filesystem::path> outputs;
   std::string resolution;  // "WxH"
   std::string background;  // "r,g,b" or one grey value

@@ -528,7 +528,8 @@ const Scene& frame_scene(RenderSession& s, RenderReport& report) {
     if (diagnostics.messages() != s.warnings) diagnostics.print(std::cerr);
     s.warnings = diagnostics.messages();
   }
-  report.warnings = s.warnings;
+  report.warnings = s.c.ini_warnings;
+  report.warnings.insert(report.warnings.end(), s.warnings.begin(), s.warnings.end());
   return *s.scene;
 }
 
@@ -623,6 +624,7 @@ int run_render(RenderCommand& c) {
   Diagnostics ini_diagnostics;
   apply_pov_ini(c, ini_diagnostics);
   ini_diagnostics.print(std::cerr);
+  c.ini_warnings = ini_diagnostics.messages();
   if (c.outputs.empty())
     throw UsageError("render: expected -o FILE (or an .ini that names an Output_File_Name)");
   if (!c.frames.empty()) {

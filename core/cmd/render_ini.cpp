@@ -74,7 +74,9 @@ void apply_pov_ini(RenderCommand& c, Diagnostics& diagnostics) {
                               ? frame_path(*pattern, int64_t(*frame))
                               : *pattern);
     }
-  if (c.import.library_paths.empty()) c.import.library_paths = ini.library_paths;
+  // Searched after -L's, as POV-Ray accumulates +L and Library_Path.
+  c.import.library_paths.insert(c.import.library_paths.end(), ini.library_paths.begin(),
+                                ini.library_paths.end());
   c.import.pov_declarations = ini.declarations;
   c.import.pov_animation = ini.animation;
   // A still's clock; --clock typed (other than its default 0) wins.

@@ -61,9 +61,12 @@ Scene import_pov(const std::filesystem::path& file, const ImportOptions& options
       options.resolution.value_or(std::pair{kDefaultWidth, kDefaultHeight});
   pov::EvaluateOptions evaluate;
   evaluate.scene_file = file;
-  evaluate.library_paths = options.library_paths;
-  if (evaluate.library_paths.empty() && std::filesystem::is_directory(kStandardIncludes))
+  // The standard include folder first, as Debian's povray.ini puts it before the Library_Path
+  // options of the command line and the scene's .ini.
+  if (std::filesystem::is_directory(kStandardIncludes))
     evaluate.library_paths.push_back(kStandardIncludes);
+  evaluate.library_paths.insert(evaluate.library_paths.end(), options.library_paths.begin(),
+                                options.library_paths.end());
   evaluate.image_width = width;
   evaluate.image_height = height;
   evaluate.clock = options.clock;

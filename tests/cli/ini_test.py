@@ -22,6 +22,7 @@ from frames_test import compare
 
 FILMBACK = None  # set by configure()
 PORTFOLIO = Path("/usr/share/doc/povray/examples/portfolio")
+STANDARD_INCLUDES = Path("/usr/share/povray-3.7/include")
 
 # A sphere whose place is the clock's: x = 2 clock - 1.
 MOVING_POV = ("camera { location <0, 0, -5> look_at <0, 0, 0> }\n"
@@ -58,6 +59,8 @@ class IniTest(case_main.FolderCase):
         self.assertIn("warning: moving.ini:12: 'Jitter': not used by filmback", result.stderr)
         self.assertNotIn("Pause_when_Done", result.stderr)
         report = json.loads((self.dir / "stats.json").read_text())
+        self.assertIn("moving.ini:12: 'Jitter': not used by filmback (docs/pov.md \".ini files\")",
+                      report["frame_reports"][0]["warnings"])
         image = report["frame_reports"][0]["image"]
         # Antialias=off: 16 samples per POV-Ray ray (docs/pov.md ".ini files").
         self.assertEqual((image["width"], image["height"], image["samples_per_pixel"]),
@@ -145,6 +148,26 @@ class IniTest(case_main.FolderCase):
         self.assertEqual(sorted(os.listdir(self.dir)),
                          ["bad.ini", "huge.ini", "long.ini", "loop.ini", "moving.ini",
                           "moving.pov"])
+
+    def test_library_paths_add_to_the_standard_includes(self):
+        if not STANDARD_INCLUDES.is_dir():
+            self.skipTest("Debian's povray-includes is not installed")
+        # colors.inc from the standard folder, mine.inc from -L, theirs.inc from the .ini's
+        # Library_Path: POV-Ray searches them all.
+        for folder, name in (("mine", "MyRadius"), ("theirs", "TheirColour")):
+            (self.dir / folder).mkdir()
+            value = "0.5" if folder == "mine" else "Red"
+            (self.dir / folder / (folder + ".inc")).write_text(f"#declare {name} = {value};\n")
+        (self.dir / "included.pov").write_text(
+            '#include "colors.inc"\n#include "mine.inc"\n#include "theirs.inc"\n'
+            "camera { location <0, 0, -5> look_at <0, 0, 0> }\n"
+            "light_source { <0, 5, -5> color White }\n"
+            "sphere { 0, MyRadius pigment { color TheirColour } }\n")
+        (self.dir / "included.ini").write_text("Input_File_Name=included.pov\n+W8 +H8\n"
+                                               "Library_Path=theirs\n")
+        result = self.run_cli("render", "included.ini", "-L", "mine", "-o", "i.exr", "-q")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue((self.dir / "i.exr").exists())
 
     def test_a_portfolio_scene_renders_through_its_ini(self):
         ini = PORTFOLIO / "c_colors.ini"
