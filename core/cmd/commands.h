@@ -87,7 +87,10 @@ struct BenchCommand {
   std::string command_line;  // as typed, for the report
 };
 
-// "WxH" as typed after --res, each side 1..32768 and at most 2^28 pixels (UsageError).
+// The most pixels an image may have: 268 Mpx, 16K x 16K.
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+
+// "WxH" as typed after --res, each side 1..32768 and at most kMaxImagePixels (UsageError).
 std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text);
 
 int run_render(RenderCommand& command);

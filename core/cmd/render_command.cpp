@@ -30,7 +30,6 @@ namespace fb {
 namespace {
 
 constexpr uint32_t kMaxSidePx = 32768;
-constexpr uint64_t kMaxPixels = uint64_t(1) << 28;  // 268 Mpx: 16K x 16K
 
 uint32_t parse_side(std::string_view text, std::string_view whole) {
   uint32_t v = 0;
@@ -159,9 +158,9 @@ std::pair<uint32_t, uint32_t> parse_resolution(const std::string& text) {
     throw UsageError("--res '" + text + "': expected WxH, e.g. 1920x1080");
   const uint32_t width = parse_side(std::string_view(text).substr(0, x), text);
   const uint32_t height = parse_side(std::string_view(text).substr(x + 1), text);
-  if (const uint64_t pixels = uint64_t(width) * height; pixels > kMaxPixels)
+  if (const uint64_t pixels = uint64_t(width) * height; pixels > kMaxImagePixels)
     throw UsageError("--res '" + text + "': " + std::to_string(pixels) +
-                     " pixels, expected at most " + std::to_string(kMaxPixels));
+                     " pixels, expected at most " + std::to_string(kMaxImagePixels));
   return {width, height};
 }
 

@@ -44,13 +44,14 @@ void apply_pov_ini(RenderCommand& c, Diagnostics& diagnostics) {
     c.scene = *ini.input_file;
   }
   if (c.resolution.empty() && (ini.width || ini.height)) {
-    c.resolution = std::to_string(ini.width.value_or(kPovDefaultWidth)) + "x" +
-                   std::to_string(ini.height.value_or(kPovDefaultHeight));
-    try {  // the pixel count's bound, as for --res, but the .ini's fault
-      parse_resolution(c.resolution);
-    } catch (const UsageError& e) {
-      throw InputError(file.string() + ": error: Width and Height: " + e.what());
-    }
+    // Each side is checked where it is read; their product, as for --res, here.
+    const uint32_t width = ini.width.value_or(kPovDefaultWidth);
+    const uint32_t height = ini.height.value_or(kPovDefaultHeight);
+    if (const uint64_t pixels = uint64_t(width) * height; pixels > kMaxImagePixels)
+      throw InputError(file.string() + ": error: Width " + std::to_string(width) + " and Height " +
+                       std::to_string(height) + ": " + std::to_string(pixels) +
+                       " pixels, expected at most " + std::to_string(kMaxImagePixels));
+    c.resolution = std::to_string(width) + "x" + std::to_string(height);
   }
   if (!c.options.samples_per_pixel && ini.antialias)
     c.options.samples_per_pixel = samples_for_pov_antialias(

@@ -133,8 +133,8 @@ class IniTest(case_main.FolderCase):
         (self.dir / "huge.ini").write_text("Input_File_Name=moving.pov\n+W32768 +H32768\n")
         result = self.run_cli("render", "huge.ini", "-o", "x.png", "-q")
         self.assertEqual(result.returncode, 1, result.stderr)
-        self.assertIn("huge.ini: error: Width and Height: --res '32768x32768': 1073741824 pixels",
-                      result.stderr)
+        self.assertIn("huge.ini: error: Width 32768 and Height 32768: 1073741824 pixels, expected "
+                      "at most 268435456", result.stderr)
         (self.dir / "long.ini").write_text("Input_File_Name=moving.pov\n+KFI-1e9 +KFF1e9\n"
                                            "Output_File_Name=f\n")
         result = self.run_cli("render", "long.ini", "-q")
