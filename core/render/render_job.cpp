@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <filmback/camera_projection.h>
+#include <filmback/render_passes.h>
 
 #include "core/accel/render_geometry.h"
 #include "core/film/splat_tiles.h"
@@ -383,9 +384,28 @@ RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
   return inputs;
 }
 
+namespace {
+
+// With render passes the image is Blender's multi-layer EXR (docs/blender.md, "Passes"): the beauty
+// becomes ViewLayer.Combined.R/G/B/A, its alpha 1 as Cycles' without a transparent film. R, G, B
+// keep their places (the 8-bit outputs show the first three channels); A goes last.
+void name_beauty_as_combined(Image& image) {
+  for (size_t c = 0; c < 3; ++c)
+    image.channels[c] = pass_channel_name("Combined", "RGB"[c]);
+  const size_t n = image.channels.size();
+  std::vector<float> pixels(size_t(image.width) * image.height * (n + 1), 1.f);
+  for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
+    std::copy_n(&image.pixels[i * n], n, &pixels[i * (n + 1)]);
+  image.pixels = std::move(pixels);
+  image.channels.push_back(pass_channel_name("Combined", 'A'));
+}
+
+}  // namespace
+
 Image RenderJob::resolve(const Film& film) const {
   Image image = film.resolve();
   apply_film_exposure(image, scene_.settings.film_exposure);
+  if (!options_.passes.empty()) name_beauty_as_combined(image);
   return image;
 }
 
@@ -477,6 +497,10 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
                {"filmback/reconstruction", reconstruction_name(options_.reconstruction)},
                {"filmback/sampler", sampler_name(options_.sampler)},
                {"filmback/integrator", plan_.integrator.text()}};
+  // Blender's own multi-layer EXRs carry this marker (a Cycles render written with `blender -b`);
+  // Blender's reader takes a file with it for one with layers and passes.
+  if (!options_.passes.empty())
+    m.strings.push_back({"BlenderMultiChannel", "Blender V2.55.1 and newer"});
   return m;
 }
 
