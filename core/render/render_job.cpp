@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include <filmback/camera_projection.h>
-#include <filmback/render_passes.h>
 
 #include "core/accel/render_geometry.h"
 #include "core/film/splat_tiles.h"
 #include "core/plugin/instances.h"
+#include "core/render/blender_layers.h"
 #include "core/render/light_sampler.h"
 #include "core/render/memory_estimate.h"
 #include "core/render/motion.h"
@@ -48,6 +48,12 @@ ImageMetadata::Matrix to_float_matrix(const Transform& t) {
     for (int c = 0; c < 4; ++c)
       m[r * 4 + c] = float(t(r, c));
   return m;
+}
+
+// OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera), as Cycles' does;
+// ours, glTF's, looks down -Z: flip z. worldToNDC needs no flip.
+Transform exr_camera_from_world(const SceneCamera& camera) {
+  return Transform::scale({1, 1, -1}) * camera.world_from_camera.inverse();
 }
 
 // OpenEXR's NDC: (0,0) at the top-left corner of the image, (1,1) at the bottom-right.
@@ -384,28 +390,13 @@ RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
   return inputs;
 }
 
-namespace {
-
-// With render passes the image is Blender's multi-layer EXR (docs/blender.md, "Passes"): the beauty
-// becomes ViewLayer.Combined.R/G/B/A, its alpha 1 as Cycles' without a transparent film. R, G, B
-// keep their places (the 8-bit outputs show the first three channels); A goes last.
-void name_beauty_as_combined(Image& image) {
-  for (size_t c = 0; c < 3; ++c)
-    image.channels[c] = pass_channel_name("Combined", "RGB"[c]);
-  const size_t n = image.channels.size();
-  std::vector<float> pixels(size_t(image.width) * image.height * (n + 1), 1.f);
-  for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
-    std::copy_n(&image.pixels[i * n], n, &pixels[i * (n + 1)]);
-  image.pixels = std::move(pixels);
-  image.channels.push_back(pass_channel_name("Combined", 'A'));
-}
-
-}  // namespace
-
 Image RenderJob::resolve(const Film& film) const {
   Image image = film.resolve();
   apply_film_exposure(image, scene_.settings.film_exposure);
-  if (!options_.passes.empty()) name_beauty_as_combined(image);
+  if (!options_.passes.empty()) {
+    name_beauty_as_combined(image);
+    denoising_normal_to_camera_space(image, exr_camera_from_world(plan_.camera));
+  }
   return image;
 }
 
@@ -459,10 +450,7 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
   const fb_camera_setup setup = plan_.camera_setup();
   const Transform camera_from_world = plan_.camera.world_from_camera.inverse();
   ImageMetadata m;
-  // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera); ours, glTF's,
-  // looks down -Z: flip z. worldToNDC needs no flip.
-  const Transform exr_camera_from_world = Transform::scale({1, 1, -1}) * camera_from_world;
-  m.matrices = {{"worldToCamera", to_float_matrix(exr_camera_from_world)},
+  m.matrices = {{"worldToCamera", to_float_matrix(exr_camera_from_world(plan_.camera))},
                 {"worldToNDC", to_float_matrix(ndc_from_camera(setup) * camera_from_world)}};
   if (setup.projection == FB_PROJECTION_PERSPECTIVE)
     m.floats.push_back({"filmback/focal_length_mm", float(setup.focal_length_mm)});

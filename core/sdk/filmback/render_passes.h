@@ -68,7 +68,8 @@ inline PassFiltering channel_filtering(std::string_view channel) {
 //  - Emit: the radiance the surface emits towards the camera (front faces, or both if two-sided);
 //  - Denoising Albedo: the textured base colour (Cycles sums its closures' albedos, which for a
 //    principled surface is near it);
-//  - Denoising Normal: as Normal, but in world space where Cycles writes camera space.
+//  - Denoising Normal: as Normal, in world space; the host turns the resolved pixels into Cycles'
+//    camera space (core/render/blender_layers.h), which the integrator does not know.
 // Unlike Cycles' Denoising passes, these do not follow rays through perfectly specular surfaces.
 inline void first_hit_pass_values(const RenderPass& pass, const fb_scene& scene, const fb_ray& ray,
                                   const fb_hit& hit, float* out) {
