@@ -1,4 +1,4 @@
-// --passes LIST (docs/cli.md, "Render passes"): Blender's pass names, checked before the scene is
+// --passes LIST (docs/cli.md, `--passes`): Blender's pass names, checked before the scene is
 // read, and the options a render with passes cannot be combined with.
 #pragma once
 

@@ -40,9 +40,6 @@ class Film {
   void set_sample_count(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1, uint32_t count);
   uint32_t sample_count(uint32_t x, uint32_t y) const { return counts_[size_t(y) * width_ + x]; }
   Image resolve() const;
-  // Whether some channel is resolved to the nearest sample: state that checkpoints and partial
-  // films do not carry.
-  bool has_nearest_channels() const { return !nearest_channels_.empty(); }
 
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }

@@ -79,13 +79,11 @@ TEST(Film, DepthPassIsTheNearestSampleNotTheMean) {
   EXPECT_TRUE(film.add(0, 0, far, 1.f));
   EXPECT_TRUE(film.add(0, 0, miss, 2.f));
   EXPECT_TRUE(film.add(0, 0, near, 1.f));
-  EXPECT_TRUE(film.has_nearest_channels());
   const Image image = film.resolve();
   EXPECT_EQ(image.at(0, 0, 3), 2.f);
   EXPECT_FLOAT_EQ(image.at(0, 0, 0), (3.f + 1.f) / 4.f);
   EXPECT_FLOAT_EQ(image.at(0, 0, 4), 1.f / 4.f);
   EXPECT_EQ(image.at(1, 0, 3), 0.f);  // no sample: zero, as every channel
-  EXPECT_FALSE(Film(1, 1, {"R", "G", "B", "Z"}).has_nearest_channels());  // the aov integrator's
 }
 
 }  // namespace
