@@ -26,6 +26,7 @@ struct RenderCommand {
   std::string subdiv = "render";       // or "adaptive" (docs/cli.md)
   std::string sampler;                 // a SamplerKind's name; empty: the default
   std::string light_sampler = "auto";  // "auto", "tree" or "power" (docs/cli.md)
+  std::string passes;                  // --passes: Blender pass names, comma-separated, as typed
   // The physical camera and shutter, as typed (parsed and checked by run_render).
   std::string focal_length, fstop, focus_distance, sensor, sensor_fit, shift;
   std::string shutter, rolling_shutter, frame, fps, sensor_model, iso;

@@ -14,6 +14,7 @@
 #include "core/cmd/frame_sequence.h"
 #include "core/cmd/image_outputs.h"
 #include "core/cmd/interrupts.h"
+#include "core/cmd/passes_option.h"
 #include "core/cmd/render_ini.h"
 #include "core/cmd/render_report.h"
 #include "core/film/checkpoint.h"
@@ -279,6 +280,8 @@ CommandChoices parse_options(RenderCommand& c, RenderReport& report) {
   if (!c.background.empty()) c.options.background = parse_background(c.background);
   if (!c.memory_limit.empty()) c.options.memory_limit_bytes = parse_memory_size(c.memory_limit);
   if (c.reconstruction == "splat") c.options.reconstruction = Reconstruction::kSplat;
+  if (!c.passes.empty()) c.options.passes = parse_passes_option(c.passes);
+  check_passes_combinations(c);
   if (c.subdiv == "adaptive") c.options.subdiv = SubdivMode::kAdaptive;
   if (!c.sampler.empty()) c.options.sampler = parse_sampler_kind(c.sampler, "--sampler");
   if (c.light_sampler == "tree") c.options.light_selection = LightSelection::kTree;

@@ -3,8 +3,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <filmback/render_passes.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fb {
 
@@ -14,7 +17,13 @@ Film::Film(uint32_t width, uint32_t height, std::vector<std::string> channels)
       channels_(std::move(channels)),
       sums_(size_t(width) * height * channels_.size()),
       weights_(size_t(width) * height),
-      counts_(size_t(width) * height) {}
+      counts_(size_t(width) * height) {
+  for (size_t c = 0; c < channels_.size(); ++c)
+    if (channel_filtering(channels_[c]) == PassFiltering::kNearest) nearest_channels_.push_back(c);
+  if (!nearest_channels_.empty())
+    nearest_.assign(pixel_count() * nearest_channels_.size(),
+                    std::numeric_limits<float>::infinity());
+}
 
 bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
   const size_t n = channels_.size();
@@ -26,6 +35,10 @@ bool Film::add(uint32_t x, uint32_t y, const float* values, float weight) {
   for (size_t c = 0; c < n; ++c)
     sum[c] += double(weight) * values[c];
   weights_[pixel] += weight;
+  for (size_t k = 0; k < nearest_channels_.size(); ++k) {
+    float& nearest = nearest_[pixel * nearest_channels_.size() + k];
+    nearest = std::min(nearest, values[nearest_channels_[k]]);
+  }
   return true;
 }
 
@@ -56,6 +69,9 @@ Image Film::resolve() const {
           if (weights_[pixel] == 0.0) continue;  // no sample landed: stays zero, never NaN
           for (size_t c = 0; c < n; ++c)
             image.pixels[pixel * n + c] = float(sums_[pixel * n + c] / weights_[pixel]);
+          for (size_t k = 0; k < nearest_channels_.size(); ++k)
+            image.pixels[pixel * n + nearest_channels_[k]] =
+                nearest_[pixel * nearest_channels_.size() + k];
         }
       });
   return image;

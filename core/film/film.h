@@ -3,6 +3,8 @@
 // positions are drawn from the filter (pbrt 4e §5.4.3). Each sample lands in its own pixel, so
 // tiles never share a pixel and the sum order is fixed: bit-identical images for any thread count.
 // Splatting forms its sums per tile (splat_tiles.h) and adds them here in a fixed order.
+// Channels of a render pass resolved to the nearest sample (Depth: filmback/render_passes.h) keep
+// that sample's value beside the sums, which cannot express a minimum.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +27,7 @@ inline const char* reconstruction_name(Reconstruction r) {
 
 class Film {
  public:
+  // The channels' filtering follows their names (fb::channel_filtering).
   Film(uint32_t width, uint32_t height, std::vector<std::string> channels);
 
   // Adds one sample to pixel (x, y). A sample with any non-finite value is dropped (returns
@@ -61,6 +64,8 @@ class Film {
   ZeroedArray<double> sums_;
   ZeroedArray<double> weights_;
   ZeroedArray<uint32_t> counts_;
+  std::vector<size_t> nearest_channels_;  // indices into channels_, fb::PassFiltering::kNearest
+  std::vector<float> nearest_;  // per pixel and nearest channel: the least value, +inf: none yet
 };
 
 }  // namespace fb

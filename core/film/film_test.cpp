@@ -71,5 +71,20 @@ TEST(Film, AFreshFilmIsZeroEverywhere) {
   }
 }
 
+TEST(Film, DepthPassIsTheNearestSampleNotTheMean) {
+  // A pixel whose samples see a surface 2 m and 3 m away and the background (1e10 m): its depth
+  // is the nearest sample's, while the other channels stay the weighted mean.
+  Film film(2, 1, {"R", "G", "B", "ViewLayer.Depth.Z", "ViewLayer.Normal.Z"});
+  const float near[5] = {1, 1, 1, 2, 1}, far[5] = {3, 3, 3, 3, 0}, miss[5] = {0, 0, 0, 1e10f, 0};
+  EXPECT_TRUE(film.add(0, 0, far, 1.f));
+  EXPECT_TRUE(film.add(0, 0, miss, 2.f));
+  EXPECT_TRUE(film.add(0, 0, near, 1.f));
+  const Image image = film.resolve();
+  EXPECT_EQ(image.at(0, 0, 3), 2.f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, 0), (3.f + 1.f) / 4.f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, 4), 1.f / 4.f);
+  EXPECT_EQ(image.at(1, 0, 3), 0.f);  // no sample: zero, as every channel
+}
+
 }  // namespace
 }  // namespace fb

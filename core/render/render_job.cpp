@@ -11,6 +11,7 @@
 #include "core/accel/render_geometry.h"
 #include "core/film/splat_tiles.h"
 #include "core/plugin/instances.h"
+#include "core/render/blender_layers.h"
 #include "core/render/light_sampler.h"
 #include "core/render/memory_estimate.h"
 #include "core/render/motion.h"
@@ -47,6 +48,12 @@ ImageMetadata::Matrix to_float_matrix(const Transform& t) {
     for (int c = 0; c < 4; ++c)
       m[r * 4 + c] = float(t(r, c));
   return m;
+}
+
+// OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera), as Cycles' does;
+// ours, glTF's, looks down -Z: flip z. worldToNDC needs no flip.
+Transform exr_camera_from_world(const SceneCamera& camera) {
+  return Transform::scale({1, 1, -1}) * camera.world_from_camera.inverse();
 }
 
 // OpenEXR's NDC: (0,0) at the top-left corner of the image, (1,1) at the bottom-right.
@@ -386,6 +393,10 @@ RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
 Image RenderJob::resolve(const Film& film) const {
   Image image = film.resolve();
   apply_film_exposure(image, scene_.settings.film_exposure);
+  if (!options_.passes.empty()) {
+    name_beauty_as_combined(image);
+    denoising_normal_to_camera_space(image, exr_camera_from_world(plan_.camera));
+  }
   return image;
 }
 
@@ -439,10 +450,7 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
   const fb_camera_setup setup = plan_.camera_setup();
   const Transform camera_from_world = plan_.camera.world_from_camera.inverse();
   ImageMetadata m;
-  // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera); ours, glTF's,
-  // looks down -Z: flip z. worldToNDC needs no flip.
-  const Transform exr_camera_from_world = Transform::scale({1, 1, -1}) * camera_from_world;
-  m.matrices = {{"worldToCamera", to_float_matrix(exr_camera_from_world)},
+  m.matrices = {{"worldToCamera", to_float_matrix(exr_camera_from_world(plan_.camera))},
                 {"worldToNDC", to_float_matrix(ndc_from_camera(setup) * camera_from_world)}};
   if (setup.projection == FB_PROJECTION_PERSPECTIVE)
     m.floats.push_back({"filmback/focal_length_mm", float(setup.focal_length_mm)});
@@ -477,6 +485,10 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
                {"filmback/reconstruction", reconstruction_name(options_.reconstruction)},
                {"filmback/sampler", sampler_name(options_.sampler)},
                {"filmback/integrator", plan_.integrator.text()}};
+  // Blender's own multi-layer EXRs carry this marker (a Cycles render written with `blender -b`);
+  // Blender's reader takes a file with it for one with layers and passes.
+  if (!options_.passes.empty())
+    m.strings.push_back({"BlenderMultiChannel", "Blender V2.55.1 and newer"});
   return m;
 }
 

@@ -172,9 +172,20 @@ PluginChoice choose_camera_model(const std::optional<std::string>& typed, const 
   return {"perspective", {}, camera.lens_distortion, camera.origin(CameraValue::kFstop)};
 }
 
-PluginChoice choose_integrator(const std::optional<std::string>& typed) {
-  if (typed) return typed_choice(*typed, "--integrator");
-  return {kDefaultIntegrator, {}, {}, ValueOrigin::by_default("--integrator not given")};
+// --passes reaches the integrator as its parameter `passes` (docs/plugins.md, "Render passes").
+PluginChoice choose_integrator(const std::optional<std::string>& typed,
+                               const std::vector<std::string>& passes) {
+  PluginChoice choice =
+      typed ? typed_choice(*typed, "--integrator")
+            : PluginChoice{
+                  kDefaultIntegrator, {}, {}, ValueOrigin::by_default("--integrator not given")};
+  if (!passes.empty()) {
+    std::string list;
+    for (const std::string& pass : passes)
+      list += (list.empty() ? "" : ",") + pass;
+    choice.typed.emplace_back("passes", list);
+  }
+  return choice;
 }
 
 // --- end of the table
@@ -340,7 +351,7 @@ ShotPlan plan_shot(const Scene& scene, const RenderOptions& options) {
   plan.zoom = plan_zoom(plan);
   plan.camera_model = choose_camera_model(options.camera_model, plan.camera, plan.sensor);
   plan.filter = choose_filter(options.filter, shot);
-  plan.integrator = choose_integrator(options.integrator);
+  plan.integrator = choose_integrator(options.integrator, options.passes);
   return plan;
 }
 

@@ -47,6 +47,9 @@ struct RenderOptions {
   std::optional<std::string> camera_model;  // "NAME[:k=v,...]": overrides the projection's plugin
   std::optional<std::string> filter;        // "NAME[:k=v,...]"
   std::optional<std::string> integrator;    // "NAME[:k=v,...]"
+  // --passes: Blender's render passes to write beside the beauty (filmback/render_passes.h), as
+  // the integrator's `passes` parameter; none: the beauty alone, R, G, B as before.
+  std::vector<std::string> passes;
   std::optional<Rgb> background;
   CameraOverrides camera_overrides;
   std::optional<Vec2d> shutter_s;            // open, close, relative to the frame's time

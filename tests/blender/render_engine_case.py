@@ -96,9 +96,9 @@ def pixels(exr_path):
     return values.reshape(-1, 4)
 
 
-def command_line_render(filmback, out, frame):
+def command_line_render(filmback, out, frame, extra_args=()):
     """export_shot's export of the scene at `frame`, rendered by the command line with the
-    engine's settings; returns the EXR's path."""
+    engine's settings (and `extra_args`); returns the EXR's path."""
     # Appended, so that the installed add-on, not the repository's, stays the one in use.
     sys.path.append(os.path.join(HERE, "..", "..", "importers", "blender"))
     import export_shot
@@ -108,7 +108,8 @@ def command_line_render(filmback, out, frame):
     export_shot.export(gltf)
     settings = bpy.context.scene.filmback
     r = subprocess.run([filmback, "render", gltf, "-o", exr, "--spp", str(settings.samples),
-                        "--sampler", settings.sampler, "-q"], capture_output=True, text=True,
+                        "--sampler", settings.sampler, "-q", *extra_args],
+                       capture_output=True, text=True,
                        timeout=120)
     assert r.returncode == 0, f"command-line render failed: {r.stderr}"
     return exr
@@ -201,8 +202,39 @@ def case_cancel(filmback, out):
           f"{progress_lines} progress lines and {previews} previews shown")
 
 
+def depth_pass(exr_path, out, name):
+    """The file's ViewLayer.Depth.Z, as Blender loads it from a copy with it as R, G and B
+    (oiiotool; kept under its layer's name, Blender would take the copy for a multi-layer file)."""
+    copy = os.path.join(out, name)
+    subprocess.run(["oiiotool", exr_path, "--ch", ",".join(c + "=ViewLayer.Depth.Z" for c in "RGB"),
+                    "-o", copy], check=True, capture_output=True, timeout=60)
+    return pixels(copy)[:, 0]
+
+
+def case_passes(filmback, out):
+    """The view layer's Z pass switched on: the engine asks filmback for Depth and loads it into
+    the Render Result, which Blender writes into its multi-layer EXR as it writes Cycles'."""
+    scene = build_shot()
+    view_layer = scene.view_layers[0]
+    assert view_layer.name == "ViewLayer", view_layer.name
+    view_layer.use_pass_z = True
+    scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = os.path.join(out, "engine.exr")
+    bpy.ops.render.render(write_still=True)
+    cli = command_line_render(filmback, out, FIRST_FRAME, ["--passes", "Depth"])
+    engine_depth = depth_pass(scene.render.filepath, out, "engine_depth.exr")
+    cli_depth = depth_pass(cli, out, "cli_depth.exr")
+    assert engine_depth.shape == (WIDTH_PX * HEIGHT_PX,), engine_depth.shape
+    assert (engine_depth < 1e3).any() and (engine_depth == 1e10).any(), \
+        "expected both hits and the background's 1e10 m in the depth"
+    differing = int(numpy.count_nonzero(engine_depth != cli_depth))
+    assert differing == 0, f"{differing} depth pixels differ from the command line's"
+    print("engine's Depth pass bit-identical to the command line's")
+
+
 CASES = {"still": case_still, "animation": case_animation, "bad_setting": case_bad_setting,
-         "cancel": case_cancel}
+         "cancel": case_cancel, "passes": case_passes}
 
 
 def main():

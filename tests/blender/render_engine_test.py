@@ -26,7 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from roundtrip_test import SKIP, addon_zip, blender  # noqa: E402
 
-CASES = ("still", "animation", "bad_setting", "cancel")
+CASES = ("still", "animation", "bad_setting", "cancel", "passes")
 # Time for filmback to start, render a second and write its first preview (PREVIEW_EVERY).
 CANCEL_AFTER_S = "2.5"
 

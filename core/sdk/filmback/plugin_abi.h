@@ -348,7 +348,10 @@ typedef struct fb_scene {
   float view_axis[3];   /* unit: where the camera looks; depth = dot(position, view_axis) */
 } fb_scene;
 
-#define FB_MAX_CHANNELS 16u
+/* The most channels the host takes from an integrator. 16 in the first published layout; 32 since
+ * render passes (filmback/render_passes.h): the beauty and every pass is 22. A host limit, not a
+ * layout: a plugin that reports more than a host takes is refused by that host, naming both. */
+#define FB_MAX_CHANNELS 32u
 
 typedef struct fb_integrator_api {
   uint32_t struct_size;

@@ -197,22 +197,36 @@ constexpr fb_filter_api filter_api() {
 
 //   Integrator(const fb_value* params);
 //   static constexpr const char* kChannels[] = {"R", "G", "B", ...};
+//     or, when the channels depend on the parameters (render passes, filmback/render_passes.h):
+//   const std::vector<std::string>& channel_names() const;
 //   void radiance(const fb_scene& scene, fb_trace_context* context, const fb_ray* rays,
 //                 size_t count, float* values) const;   (values: count x channels)
 template <typename Integrator>
 constexpr fb_integrator_api integrator_api() {
-  constexpr size_t kCount = sizeof Integrator::kChannels / sizeof Integrator::kChannels[0];
-  static_assert(kCount >= 3 && kCount <= FB_MAX_CHANNELS);
+  using Channels = uint32_t (*)(const void*, const char**, uint32_t);
+  Channels channels = nullptr;
+  if constexpr (requires(const Integrator& i) { i.channel_names().size(); }) {
+    channels = [](const void* self, const char** names, uint32_t capacity) {
+      const auto& list = static_cast<const Integrator*>(self)->channel_names();
+      for (uint32_t i = 0; i < list.size() && i < capacity; ++i)
+        names[i] = list[i].c_str();
+      return uint32_t(list.size());
+    };
+  } else {
+    constexpr size_t kCount = sizeof Integrator::kChannels / sizeof Integrator::kChannels[0];
+    static_assert(kCount >= 3 && kCount <= FB_MAX_CHANNELS);
+    channels = [](const void*, const char** names, uint32_t capacity) {
+      for (uint32_t i = 0; i < kCount && i < capacity; ++i)
+        names[i] = Integrator::kChannels[i];
+      return uint32_t(kCount);
+    };
+  }
   return {sizeof(fb_integrator_api),
           [](const fb_value* params, void** instance, fb_error_buffer error) {
             return create_instance<Integrator>(instance, error, params);
           },
           destroy_instance<Integrator>,
-          [](const void*, const char** names, uint32_t capacity) {
-            for (uint32_t i = 0; i < kCount && i < capacity; ++i)
-              names[i] = Integrator::kChannels[i];
-            return uint32_t(kCount);
-          },
+          channels,
           [](const void* self, const fb_scene* scene, fb_trace_context* context, const fb_ray* rays,
              size_t count, float* values) {
             static_cast<const Integrator*>(self)->radiance(*scene, context, rays, count, values);

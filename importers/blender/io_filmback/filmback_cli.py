@@ -64,10 +64,11 @@ def plugin_names(executable):
 
 
 def render_command(executable, scene_path, output_path, preview_path, samples, sampler,
-                   integrator, filter_spec):
+                   integrator, filter_spec, passes=()):
     """The argument list (no shell) rendering `scene_path` into `output_path`, the image so far
     into `preview_path` while it renders. An empty integrator or filter leaves the shot's own
-    (the file's pixel filter, the path integrator)."""
+    (the file's pixel filter, the path integrator); `passes` are Blender's pass names written
+    beside the beauty (docs/cli.md, --passes)."""
     command = [executable, "render", scene_path, "-o", output_path,
                "--spp", str(samples), "--sampler", sampler, "--progress-every", PROGRESS_EVERY,
                "--preview", preview_path, "--preview-every", PREVIEW_EVERY]
@@ -75,6 +76,8 @@ def render_command(executable, scene_path, output_path, preview_path, samples, s
         command += ["--integrator", integrator]
     if filter_spec:
         command += ["--filter", filter_spec]
+    if passes:
+        command += ["--passes", ",".join(passes)]
     return command
 
 

@@ -22,6 +22,17 @@ from . import filmback_cli, render_settings
 from .gltf_export import export_gltf
 from . import main_thread
 
+# The view layer's pass switches filmback writes (docs/blender.md, "Passes"): the property, the
+# pass's name, its channels and its kind, as Cycles registers them.
+RENDER_PASSES = (
+    ("use_pass_z", "Depth", "Z", "VALUE"),
+    ("use_pass_normal", "Normal", "XYZ", "VECTOR"),
+    ("use_pass_diffuse_color", "DiffCol", "RGB", "COLOR"),
+    ("use_pass_emit", "Emit", "RGB", "COLOR"),
+)
+# The view layer filmback's multi-layer EXR names (core/sdk/filmback/render_passes.h).
+FILE_VIEW_LAYER = "ViewLayer"
+
 POLL_INTERVAL_S = 0.05
 STDERR_LINES_KEPT = 200  # warnings and errors; what a broken filmback prints past them is dropped
 
@@ -69,6 +80,11 @@ def result_size(render):
             render.resolution_y * render.resolution_percentage // 100)
 
 
+def enabled_passes(view_layer):
+    """RENDER_PASSES' entries the view layer has switched on."""
+    return [p for p in RENDER_PASSES if getattr(view_layer, p[0])]
+
+
 def preview_mtime_ns(path):
     """When filmback last replaced its preview; None before the first one."""
     try:
@@ -91,6 +107,13 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
     bl_label = "filmback"
     bl_use_postprocess = True  # the compositor and sequencer run on filmback's image
 
+    def update_render_passes(self, scene=None, renderlayer=None):
+        """The passes the compositor's Render Layers node offers: Combined, and those of
+        RENDER_PASSES the view layer switched on."""
+        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+        for _, name, channels, kind in enabled_passes(renderlayer):
+            self.register_pass(scene, renderlayer, name, len(channels), channels, kind)
+
     def render(self, depsgraph):
         scene = depsgraph.scene
         executable = render_settings.executable(bpy.context)
@@ -100,11 +123,11 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
             return
         folder = tempfile.mkdtemp(prefix="filmback-render-")
         try:
-            self.render_in(folder, scene, executable)
+            self.render_in(folder, scene, depsgraph.view_layer, executable)
         finally:
             shutil.rmtree(folder, ignore_errors=True)
 
-    def render_in(self, folder, scene, executable):
+    def render_in(self, folder, scene, view_layer, executable):
         frame = scene.frame_current
         self.update_stats("", f"filmback: exporting frame {frame}")
         scene_path = os.path.join(folder, "shot.gltf")
@@ -116,10 +139,20 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
         output_path = os.path.join(folder, "shot.exr")
         preview_path = os.path.join(folder, "preview.exr")
         settings = scene.filmback
+        passes = enabled_passes(view_layer)
+        for _, name, channels, _ in passes:
+            self.add_pass(name, len(channels), channels)
+        if passes and view_layer.name != FILE_VIEW_LAYER:
+            self.report({"WARNING"}, f"filmback: passes are loaded into a view layer named "
+                                     f"'{FILE_VIEW_LAYER}' only; '{view_layer.name}' gets the "
+                                     f"image alone")
+            passes = []
+        self.with_passes = bool(passes)
         command = filmback_cli.render_command(executable, scene_path, output_path, preview_path,
                                               settings.samples, settings.sampler,
                                               settings.integrator.strip(),
-                                              settings.filter.strip())
+                                              settings.filter.strip(),
+                                              [name for _, name, _, _ in passes])
         self.update_stats("", f"filmback: rendering frame {frame}")
         try:
             status, stderr_text = self.run(command, preview_path, scene.render)
@@ -169,7 +202,10 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
         """An EXR of filmback's into the Render Result: each preview while filmback goes on, then
         the final image, which replaces the last preview."""
         result = self.begin_result(0, 0, *result_size(render))
-        result.layers[0].load_from_file(exr_path)
+        if self.with_passes:  # a multi-layer EXR: every pass by its layer and pass names
+            result.load_from_file(exr_path)
+        else:
+            result.layers[0].load_from_file(exr_path)
         self.update_result(result)
         self.end_result(result)
 

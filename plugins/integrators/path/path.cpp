@@ -7,13 +7,18 @@
 // heuristic; delta lights are reached by light sampling only. Russian roulette from bounce
 // `rr_depth` on (Cycles' rule, below) keeps it unbiased. `clamp`, off by default, scales each
 // sample's radiance down so that its largest component is at most the clamp (pbrt 4e's RGBFilm
-// maxComponentValue): fireflies are bounded at the price of a bias.
+// maxComponentValue): fireflies are bounded at the price of a bias. `passes` (what --passes sets:
+// Blender's pass names, comma-separated) adds those render passes of the first hit as further
+// channels (filmback/render_passes.h); none by default, and then none is computed.
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
+#include <filmback/render_passes.h>
 #include <filmback/sampling.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -29,21 +34,39 @@ constexpr fb_param_desc kParams[] = {
      "bounces before Russian roulette may end a path (1: from the first bounce, as Cycles)"},
     {"clamp", FB_PARAM_FLOAT, "0", "W/sr/m^2", nullptr, 0, HUGE_VAL,
      "largest component a sample's radiance may have (scaled down to it: biased); 0 is off"},
+    {"passes", FB_PARAM_STRING, "", "", nullptr, 0, 0,
+     "Blender render passes of the first hit to add as channels, comma-separated (--passes)"},
 };
 constexpr auto kMaxDepth = fb::param<int>(kParams, "max_depth");
 constexpr auto kRrDepth = fb::param<int>(kParams, "rr_depth");
 constexpr auto kClamp = fb::param<float>(kParams, "clamp");
+constexpr auto kPasses = fb::param<const char*>(kParams, "passes");
 
 class PathTracer {
  public:
-  static constexpr const char* kChannels[] = {"R", "G", "B"};
   explicit PathTracer(const fb_value* values)
-      : max_depth_(kMaxDepth(values)), rr_depth_(kRrDepth(values)), clamp_(kClamp(values)) {}
+      : max_depth_(kMaxDepth(values)),
+        rr_depth_(kRrDepth(values)),
+        clamp_(kClamp(values)),
+        passes_(fb::parse_render_passes(kPasses(values))),
+        channels_{"R", "G", "B"} {
+    for (const fb::RenderPass* pass : passes_)
+      for (const char* c = pass->channels; *c; ++c)
+        channels_.push_back(fb::pass_channel_name(pass->name, *c));
+  }
+  const std::vector<std::string>& channel_names() const { return channels_; }
   void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
                 float* values) const {
     const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
-    for (size_t i = 0; i < count; ++i)
-      clamped(trace(scene, ctx, i, rays[i], hits[i])).store(values + 3 * i);
+    const size_t stride = channels_.size();
+    for (size_t i = 0; i < count; ++i) {
+      float* v = values + stride * i;
+      for (const fb::RenderPass* pass : passes_) {
+        fb::first_hit_pass_values(*pass, scene, rays[i], hits[i], v + 3);
+        v += std::char_traits<char>::length(pass->channels);
+      }
+      clamped(trace(scene, ctx, i, rays[i], hits[i])).store(values + stride * i);
+    }
   }
 
  private:
@@ -57,7 +80,9 @@ class PathTracer {
   }
   int max_depth_;  // bounces; 0 shows emitters only
   int rr_depth_;
-  float clamp_;  // W sr^-1 m^-2; 0: off
+  float clamp_;                                // W sr^-1 m^-2; 0: off
+  std::vector<const fb::RenderPass*> passes_;  // what `passes` asks for, in the table's order
+  std::vector<std::string> channels_;          // R, G, B, then each pass's
 };
 
 // Emission leaving the hit towards -direction: front faces only, unless the material is two-sided.

@@ -1,0 +1,64 @@
+#include "core/cmd/passes_option.h"
+
+#include <filmback/render_passes.h>
+
+#include <algorithm>
+#include <string_view>
+
+#include "core/cmd/commands.h"
+#include "core/util/error.h"
+
+namespace fb {
+namespace {
+
+// Blender passes filmback does not write yet, named so that asking for one says so rather than
+// calling it unknown (docs/blender.md, "Passes").
+constexpr std::string_view kUnwrittenPasses[] = {"GlossCol", "Vector", "CryptoObject",
+                                                 "CryptoMaterial", "CryptoAsset"};
+
+std::string written_pass_names() {
+  std::string names = "Combined";
+  for (const RenderPass& pass : kRenderPasses)
+    names += std::string(", ") + pass.name;
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> parse_passes_option(const std::string& list) {
+  std::vector<std::string> passes;
+  for (size_t start = 0; start <= list.size();) {
+    const size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    start = comma + 1;
+    if (name == "Combined" || std::find(passes.begin(), passes.end(), name) != passes.end())
+      continue;
+    if (std::find(std::begin(kUnwrittenPasses), std::end(kUnwrittenPasses), name) !=
+        std::end(kUnwrittenPasses))
+      throw UsageError("--passes: '" + name + "' is a Blender pass filmback does not write yet; " +
+                       "expected some of " + written_pass_names());
+    if (!find_render_pass(name))
+      throw UsageError("--passes: unknown pass '" + name + "'; expected some of " +
+                       written_pass_names() + " (Blender's names, comma-separated)");
+    passes.push_back(name);
+  }
+  return passes;
+}
+
+void check_passes_combinations(const RenderCommand& c) {
+  if (c.options.passes.empty()) return;
+  if (c.part.any())
+    throw UsageError(
+        "--passes with --tile/--crop: partial films do not carry passes yet; "
+        "render the passes in one whole render");
+  if (!c.checkpoint_every.empty() || c.resume || !c.checkpoint.empty())
+    throw UsageError(
+        "--passes with checkpoints (--checkpoint-every, --checkpoint, --resume): "
+        "checkpoints do not carry passes yet");
+  if (c.options.reconstruction == Reconstruction::kSplat)
+    throw UsageError(
+        "--passes with --reconstruction splat: passes are resolved from each "
+        "pixel's own samples; expected importance reconstruction");
+}
+
+}  // namespace fb

@@ -1,0 +1,77 @@
+"""Render passes (docs/cli.md, "--passes") end to end through the built `filmback`: the passes go
+into the same EXR as the beauty with Blender's multi-layer names, whose Combined is bit-identical
+to a render without --passes; an unknown pass, one filmback does not write, and --passes with parts,
+checkpoints or splatting are usage errors naming what was refused.
+
+Run: passes_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case
+names (CMake registers one CTest test per case from it).
+"""
+
+import re
+import subprocess
+import sys
+
+import case_main
+from never_lose_test import images_identical
+from progress_test import SCENE
+
+QUICK = ["--res", "48x27", "--spp", "4", "-q"]
+ALL_PASSES = "Depth,Normal,DiffCol,Emit,Denoising Albedo,Denoising Normal"
+
+
+def exr_header(file):
+    """OpenImageIO's iinfo -v of the file: its channel list and attributes."""
+    return subprocess.run(["iinfo", "-v", str(file)], capture_output=True, text=True,
+                          check=True).stdout
+
+
+class PassesTest(case_main.FolderCase):
+    run_timeout = 120
+
+    def test_passes_in_the_beauty_exr_with_blender_names(self):
+        plain = self.run_cli("render", SCENE, "-o", "plain.exr", *QUICK)
+        layers = self.run_cli("render", SCENE, "-o", "layers.exr", *QUICK, "--passes",
+                              ALL_PASSES)
+        self.assertEqual((plain.returncode, layers.returncode), (0, 0), layers.stderr)
+        header = exr_header(self.dir / "layers.exr")
+        channels = re.search(r"channel list: (.*)", header).group(1).split(", ")
+        expected = ["ViewLayer.Combined." + c for c in "RGBA"] + ["ViewLayer.Depth.Z"] + [
+            f"ViewLayer.{name}.{c}" for name, letters in [
+                ("Normal", "XYZ"), ("DiffCol", "RGB"), ("Emit", "RGB"),
+                ("Denoising Albedo", "RGB"), ("Denoising Normal", "XYZ")] for c in letters]
+        self.assertEqual(sorted(channels), sorted(expected))
+        self.assertIn("BlenderMultiChannel", header)
+        # Combined, renamed back to R, G, B, is the plain render's image bit for bit.
+        subprocess.run(["oiiotool", "layers.exr", "--ch",
+                        "R=ViewLayer.Combined.R,G=ViewLayer.Combined.G,B=ViewLayer.Combined.B",
+                        "-o", "combined.exr"], cwd=self.dir, check=True)
+        identical, report = images_identical(self.dir / "plain.exr", self.dir / "combined.exr")
+        self.assertTrue(identical, report)
+        self.assertNotIn("ViewLayer", exr_header(self.dir / "plain.exr"))
+
+    def test_unknown_or_unwritten_pass_refused(self):
+        for passes, named in [("Depth,Shadow", "'Shadow'"), ("depth", "'depth'"),
+                              ("Normal,GlossCol", "'GlossCol'"), ("Vector", "'Vector'")]:
+            with self.subTest(passes=passes):
+                refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, "--passes",
+                                       passes)
+                self.assertEqual(refused.returncode, 2, refused.stderr)
+                self.assertIn("--passes", refused.stderr)
+                self.assertIn(named, refused.stderr)
+                self.assertEqual(list(self.dir.iterdir()), [])
+
+    def test_passes_with_parts_checkpoints_or_splatting_refused(self):
+        for args, option in [(["--tile", "0/2"], "--tile"),
+                             (["--checkpoint-every", "1s"], "checkpoints"),
+                             (["--reconstruction", "splat"], "splat")]:
+            with self.subTest(args=args):
+                refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, *args,
+                                       "--passes", "Depth")
+                self.assertEqual(refused.returncode, 2, refused.stderr)
+                self.assertIn("--passes", refused.stderr)
+                self.assertIn(option, refused.stderr)
+                self.assertEqual(list(self.dir.iterdir()), [])
+
+
+if __name__ == "__main__":
+    sys.exit(case_main.main(PassesTest, __doc__))
