@@ -1,10 +1,13 @@
-// Skinned meshes through the whole render (core/accel/render_geometry.cpp poses them at their
-// motion steps): a joint's animation moves what the image shows at the frame and blurs it over an
-// open shutter, a still skin builds no motion data, and a skin that changes nothing renders the
-// unskinned mesh's image bit for bit.
+// Skinned meshes and evaluated shapes through the whole render (core/accel/render_geometry.cpp
+// poses them at their motion steps): a joint's animation moves what the image shows at the frame
+// and blurs it over an open shutter, a still skin builds no motion data, and a skin that changes
+// nothing renders the unskinned mesh's image bit for bit. Evaluated shapes (FILMBACK_deformation):
+// the shape at the frame is what a closed shutter shows, an open one blurs over the file's shapes
+// with as many motion steps as the file has, and shapes that do not change build none.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "core/accel/render_geometry.h"
 #include "core/render/render_job.h"
@@ -100,6 +103,61 @@ TEST(SkinnedRender, StillJointsRenderTheUnskinnedImageBitForBit) {
         differing += plain.at(x, y, c) != skinned.at(x, y, c);
   EXPECT_EQ(differing, 0u);
   EXPECT_LT(skinned_mean_red(plain), 0.9);  // the triangle is in the picture
+}
+
+// A grey triangle filling the view of a camera 3 m up +Z at the frame (t = 0), and 10 m along
+// +X, out of the view, at the `shapes` - 1 later times evenly spaced to t = 1 (`moving`; else in
+// view at all). The file's base mesh is out of the view: only the shapes put it there.
+Scene evaluated_triangle(bool moving, size_t shapes = 3) {
+  GltfBuilder gltf;
+  const std::vector<Vec3f> in_view = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0}};
+  std::vector<Vec3f> away = in_view;
+  for (Vec3f& p : away)
+    p.x += 10;
+  GltfBuilder::Node node;
+  node.mesh = gltf.mesh(away, {0, 1, 2}, gltf.material({0.5f, 0.5f, 0.5f}));
+  const int n = gltf.node(node);
+  std::vector<double> times;
+  std::vector<std::vector<Vec3f>> positions;
+  for (size_t k = 0; k < shapes; ++k) {
+    times.push_back(double(k) / double(shapes - 1));
+    positions.push_back(moving && k > 0 ? away : in_view);
+  }
+  gltf.evaluated_shapes(n, times, positions);
+  GltfBuilder::Node camera;
+  camera.camera = gltf.perspective_camera(0.5, 1.0, 0.1, 100);
+  camera.translation = {0, 0, 3};
+  gltf.node(camera);
+  return test::import_built(gltf, "evaluated.gltf");
+}
+
+TEST(EvaluatedRender, TheFramesShapeIsWhatAClosedShutterShows) {
+  // The grey triangle (albedo 0.5 under a sky of 1), not the base mesh out of the view.
+  EXPECT_NEAR(skinned_mean_red(render_skinned_frame(evaluated_triangle(true), 0)), 0.5, 0.1);
+}
+
+TEST(EvaluatedRender, AnOpenShutterBlursOverTheShapes) {
+  const Scene scene = evaluated_triangle(true);
+  const double sharp = skinned_mean_red(render_skinned_frame(scene, 0));
+  const double blurred = skinned_mean_red(render_skinned_frame(scene, 0, true));
+  EXPECT_GT(blurred, sharp + 0.1);
+  EXPECT_LT(blurred, 0.95);
+}
+
+TEST(EvaluatedRender, MotionStepsAreTheFilesShapesAndStillShapesBuildNone) {
+  const ShotTimes shutter{0, 0, 1};
+  for (const size_t shapes : {3u, 9u, 129u}) {
+    const Scene moving_scene = evaluated_triangle(true, shapes);
+    const RenderGeometry moving(moving_scene, Transform(), shutter, MotionTolerance{});
+    EXPECT_EQ(moving.moving_instance_count(), 1u);
+    EXPECT_EQ(moving.most_motion_steps(), shapes);
+    const RenderGeometry closed(moving_scene, Transform(), ShotTimes{}, MotionTolerance{});
+    EXPECT_EQ(closed.most_motion_steps(), 1u);
+  }
+  const Scene still_scene = evaluated_triangle(false);
+  const RenderGeometry still(still_scene, Transform(), shutter, MotionTolerance{});
+  EXPECT_EQ(still.moving_instance_count(), 0u);
+  EXPECT_EQ(still.most_motion_steps(), 1u);
 }
 
 }  // namespace
