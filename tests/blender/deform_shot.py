@@ -7,8 +7,8 @@ importers/blender/io_filmback/deformation.py) and Cycles renders the shot:
              the joint weighted half to each
   shapekey   a shape key at 0.6 moving two of three markers
   blur1, blur3, blur7
-             a shape key animated linearly (keys at frames 0 and 10) slides one marker across the
-             image during a half-frame shutter centred on frame 5, with the object's Cycles
+             a shape key animated linearly (keys at frames 4 and 6, values -2 and 2) slides one
+             marker 40 px across the image during a half-frame shutter centred on frame 5, with the object's Cycles
              motion steps 1, 3 or 7 (3, 9 or 129 evaluated positions); a second marker is still
 
     blender -b --factory-startup --python deform_shot.py -- OUTDIR SHOT
@@ -40,6 +40,7 @@ DEPTH_M = 6.0
 BEND_DEG = 50.0
 SHAPE_KEY_VALUE = 0.6
 BLUR_TRAVEL_PX = (40.0, 0.0)
+BLUR_KEY_FRAMES = (4, 6)  # the shape key's two linear keys, around the shutter
 SHOTS = ("armature", "shapekey", "blur1", "blur3", "blur7")
 
 
@@ -145,17 +146,18 @@ def build_blur(scene, camera, frame, steps):
     obj = joined([make_shot.add_sphere(camera, frame, m, DEPTH_M)[0] for m in markers], "slider")
     obj.shape_key_add(name="Basis")
     key = obj.shape_key_add(name="Slid", from_mix=False)
-    # The key's full travel over KEY_FRAMES; the shutter sees SHUTTER_FRAMES of it.
-    span = motion_shot.KEY_FRAMES[1] - motion_shot.KEY_FRAMES[0]
-    scale = span / motion_shot.SHUTTER_FRAMES * frame.metres_per_px(DEPTH_M)
+    # The key at 1 moves the marker by the shutter's travel; its value is keyed linearly as
+    # (frame - FRAME) / SHUTTER_FRAMES, so the marker is where make_shot put it at the frame and
+    # slides BLUR_TRAVEL_PX over the shutter centred on it.
     travel = camera.matrix_world.to_3x3() @ Vector(
-        (BLUR_TRAVEL_PX[0] * scale, -BLUR_TRAVEL_PX[1] * scale, 0.0))
+        (BLUR_TRAVEL_PX[0], -BLUR_TRAVEL_PX[1], 0.0)) * frame.metres_per_px(DEPTH_M)
     inverse = obj.matrix_world.to_3x3().inverted()
     for i in sphere_vertices(obj)[0]:
         key.data[i].co += inverse @ travel
-    # Centred on the frame: the marker sits where make_shot put it at frame 5 - span / 2.
-    for value, key_frame in zip((0.0, 1.0), motion_shot.KEY_FRAMES):
-        key.value = value
+    reach = (BLUR_KEY_FRAMES[1] - motion_shot.FRAME) / motion_shot.SHUTTER_FRAMES
+    key.slider_min, key.slider_max = -reach, reach  # Blender allows -10 to 10
+    for key_frame in BLUR_KEY_FRAMES:
+        key.value = (key_frame - motion_shot.FRAME) / motion_shot.SHUTTER_FRAMES
         key.keyframe_insert("value", frame=key_frame)
     for curve in obj.data.shape_keys.animation_data.action.fcurves:
         for point in curve.keyframe_points:
