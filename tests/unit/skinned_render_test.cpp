@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/accel/render_geometry.h"
 #include "core/render/render_job.h"
+#include "core/util/error.h"
 #include "support/gltf_builder.h"
 #include "support/import_error.h"
 #include "support/plugins.h"
@@ -158,6 +160,47 @@ TEST(EvaluatedRender, MotionStepsAreTheFilesShapesAndStillShapesBuildNone) {
   const RenderGeometry still(still_scene, Transform(), shutter, MotionTolerance{});
   EXPECT_EQ(still.moving_instance_count(), 0u);
   EXPECT_EQ(still.most_motion_steps(), 1u);
+}
+
+// A file's shapes count in the memory estimate: 129 shapes of a 4096-vertex mesh (25 MB of
+// shapes and motion steps) are refused under an 8 MiB limit before anything is built, where the
+// same mesh with one shape renders.
+TEST(EvaluatedRender, ShapesBeyondTheMemoryLimitAreRefusedBeforeTheRender) {
+  const auto many_vertices = [](size_t shapes) {
+    GltfBuilder gltf;
+    std::vector<Vec3f> soup;
+    std::vector<uint32_t> indices;
+    for (uint32_t v = 0; v < 4095; ++v) {
+      soup.push_back({float(v % 3), float(v / 3) * 0.01f, -20.f});
+      indices.push_back(v);
+    }
+    GltfBuilder::Node node;
+    node.mesh = gltf.mesh(soup, indices, gltf.material({0.5f, 0.5f, 0.5f}));
+    const int n = gltf.node(node);
+    std::vector<double> times;
+    std::vector<std::vector<Vec3f>> positions;
+    for (size_t k = 0; k < shapes; ++k) {
+      times.push_back(double(k));
+      positions.push_back(soup);
+      positions.back()[0].z += float(k);
+    }
+    gltf.evaluated_shapes(n, times, positions);
+    return test::import_built(gltf, "evaluated_large.gltf");
+  };
+  RenderOptions options;
+  options.width = 8, options.height = 8, options.samples_per_pixel = 1;
+  options.shutter_s = Vec2d{0.0, 1.0};
+  options.frame = 0, options.fps = 1;
+  options.show_progress = false;
+  options.memory_limit_bytes = 8u << 20;
+  EXPECT_NO_THROW(RenderJob(many_vertices(1), options, test::loader()).run());
+  try {
+    RenderJob(many_vertices(kMaxEvaluatedShapes), options, test::loader()).run();
+    ADD_FAILURE() << "129 shapes rendered under an 8 MiB limit";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the memory limit"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
