@@ -22,6 +22,7 @@
 
 #include "tests/blender/blender_shot.h"
 #include "tests/support/blobs.h"
+#include "tests/support/commands.h"
 
 namespace fb::test {
 namespace {
@@ -88,6 +89,13 @@ TEST_P(BlenderDeformBlur, StreaksOfEvaluatedShapesMatchCycles) {
   const ShotRenders r = render_deform_shot(*blender, GetParam());
   const std::string steps = "1 moving instance (up to " + r.shot.text("positions") + " motion";
   EXPECT_NE(r.filmback_log.find(steps), std::string::npos) << r.filmback_log;
+  // `filmback info` says which path the shot took: Blender's shapes, not the glTF morph targets.
+  const std::filesystem::path work = std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / GetParam();
+  run_logged(quoted(FILMBACK_EXE) + " info " + quoted(work / "shot.gltf"), work / "info.txt");
+  const std::string info = read_text(work / "info.txt");
+  EXPECT_NE(info.find("evaluated shapes at " + r.shot.text("positions") + " times"),
+            std::string::npos)
+      << info;
   const std::vector<Blob> cycles_blobs = find_blobs(r.cycles, kDeformBlobThreshold);
   const std::vector<Blob> filmback_blobs = find_blobs(r.filmback, kDeformBlobThreshold);
   ASSERT_EQ(cycles_blobs.size(), r.markers.size()) << "blobs in the Cycles render";

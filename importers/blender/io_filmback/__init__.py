@@ -121,9 +121,14 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         elif blender_object.type == "MESH" and not export_settings.get("gltf_apply"):
             # With Apply Modifiers the exported mesh is already subdivided: no cage to carry.
             surface = subdivision.subdivision_extension(blender_object, gltf2_node.mesh)
-            if surface is not None:
+            if surface is None:
+                self._add_deformation(gltf2_node, blender_object, bpy.context.scene)
+            else:
                 data["subdivision"] = surface
-            self._add_deformation(gltf2_node, blender_object, bpy.context.scene)
+                if blender_object.data.shape_keys or \
+                        sum(m.show_render for m in blender_object.modifiers) > 1:
+                    print(f"filmback: mesh object '{blender_object.name}': subdivision cage "
+                          "exported without the deformation before its Subdivision Surface")
         if data:
             self._add(gltf2_node, EXTENSION, data)
 

@@ -164,8 +164,11 @@ def deformation_extension(obj, gltf_node, scene, frame):
         for t in times:
             set_time(scene, frame, t)
             poses.append(Evaluated(obj))
-        set_time(scene, frame, 0.0)
-        at_frame = Evaluated(obj)
+        # The frame's own shape: among the poses when the shutter is centred on it.
+        at_frame = next((p for p, t in zip(poses, times) if t == 0.0), None)
+        if at_frame is None:
+            set_time(scene, frame, 0.0)
+            at_frame = Evaluated(obj)
     finally:
         scene.frame_set(frame)
     world_space = gltf_node.skin is not None
