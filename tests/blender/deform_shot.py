@@ -8,8 +8,9 @@ importers/blender/io_filmback/deformation.py) and Cycles renders the shot:
   shapekey   a shape key at 0.6 moving two of three markers
   blur1, blur3, blur7
              a shape key animated linearly (keys at frames 4 and 6, values -2 and 2) slides one
-             marker 40 px across the image during a half-frame shutter centred on frame 5, with the object's Cycles
-             motion steps 1, 3 or 7 (3, 9 or 129 evaluated positions); a second marker is still
+             marker 40 px across the image during a half-frame shutter centred on frame 5,
+             with the object's Cycles motion steps 1, 3 or 7 (3, 9 or 129 evaluated
+             positions); a second marker is still
 
     blender -b --factory-startup --python deform_shot.py -- OUTDIR SHOT
 

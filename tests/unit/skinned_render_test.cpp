@@ -74,12 +74,15 @@ TEST(SkinnedRender, TheJointsAnimationAtTheFrameMovesTheMesh) {
 
 // Over a shutter open from t = 0 to 1 the triangle leaves the view: the image lies between the
 // sharp triangle's and the sky's.
-TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
-  const Scene scene = skinned_triangle(true, true);
+void expect_blur_leaving_the_view(const Scene& scene) {
   const double sharp = skinned_mean_red(render_skinned_frame(scene, 0));
   const double blurred = skinned_mean_red(render_skinned_frame(scene, 0, true));
   EXPECT_GT(blurred, sharp + 0.1);
   EXPECT_LT(blurred, 0.95);
+}
+
+TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
+  expect_blur_leaving_the_view(skinned_triangle(true, true));
 }
 
 TEST(SkinnedRender, OnlyAMovingSkinBuildsMotionSteps) {
@@ -139,11 +142,7 @@ TEST(EvaluatedRender, TheFramesShapeIsWhatAClosedShutterShows) {
 }
 
 TEST(EvaluatedRender, AnOpenShutterBlursOverTheShapes) {
-  const Scene scene = evaluated_triangle(true);
-  const double sharp = skinned_mean_red(render_skinned_frame(scene, 0));
-  const double blurred = skinned_mean_red(render_skinned_frame(scene, 0, true));
-  EXPECT_GT(blurred, sharp + 0.1);
-  EXPECT_LT(blurred, 0.95);
+  expect_blur_leaving_the_view(evaluated_triangle(true));
 }
 
 TEST(EvaluatedRender, MotionStepsAreTheFilesShapesAndStillShapesBuildNone) {

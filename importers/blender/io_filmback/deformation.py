@@ -173,7 +173,8 @@ def deformation_extension(obj, gltf_node, scene, frame):
         scene.frame_set(frame)
     world_space = gltf_node.skin is not None
     base = base_positions(obj)
-    if len(at_frame.positions) != len(base):
+    if len(at_frame.positions) != len(base) or \
+            len(at_frame.corner_vertices) != len(obj.data.loops):
         return None, "glTF mesh as exported: its modifiers change the topology " \
                      "(deformation not carried)"
     if not all(at_frame.same_topology(p) for p in poses):
