@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/accel/render_geometry.h"
@@ -112,8 +113,9 @@ TEST(SkinnedRender, StillJointsRenderTheUnskinnedImageBitForBit) {
 
 // A grey triangle filling the view of a camera 3 m up +Z at the frame (t = 0), and 10 m along
 // +X, out of the view, at the `shapes` - 1 later times evenly spaced to t = 1 (`moving`; else in
-// view at all). The file's base mesh is out of the view: only the shapes put it there.
-Scene evaluated_triangle(bool moving, size_t shapes = 3) {
+// view at all). The file's base mesh is out of the view: only the shapes put it there. With
+// `node_moves` the node's own translation carries the shapes 10 m along +X from t = 0 to 1.
+Scene evaluated_triangle(bool moving, size_t shapes = 3, bool node_moves = false) {
   GltfBuilder gltf;
   const std::vector<Vec3f> in_view = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0}};
   std::vector<Vec3f> away = in_view;
@@ -122,10 +124,11 @@ Scene evaluated_triangle(bool moving, size_t shapes = 3) {
   GltfBuilder::Node node;
   node.mesh = gltf.mesh(away, {0, 1, 2}, gltf.material({0.5f, 0.5f, 0.5f}));
   const int n = gltf.node(node);
+  if (node_moves) gltf.animate(n, "translation", {0, 1}, {0, 0, 0, 10, 0, 0});
   std::vector<double> times;
   std::vector<std::vector<Vec3f>> positions;
   for (size_t k = 0; k < shapes; ++k) {
-    times.push_back(double(k) / double(shapes - 1));
+    times.push_back(shapes > 1 ? double(k) / double(shapes - 1) : 0.0);
     positions.push_back(moving && k > 0 ? away : in_view);
   }
   gltf.evaluated_shapes(n, times, positions);
@@ -164,6 +167,19 @@ TEST(EvaluatedRender, MotionStepsAreTheFilesShapesAndStillShapesBuildNone) {
 // A file's shapes count in the memory estimate: 129 shapes of a 4096-vertex mesh (25 MB of
 // shapes and motion steps) are refused under an 8 MiB limit before anything is built, where the
 // same mesh with one shape renders.
+// The node's rigid motion combines with the shapes: still shapes on a moving node blur, with the
+// file's step count when it has several shapes and the skins' default of 9 when it has one.
+TEST(EvaluatedRender, AMovingNodeMovesItsShapes) {
+  expect_blur_leaving_the_view(evaluated_triangle(false, 1, true));
+  const ShotTimes shutter{0, 0, 1};
+  for (const auto& [shapes, steps] : {std::pair<size_t, uint32_t>{1, 9}, {3, 3}}) {
+    const Scene scene = evaluated_triangle(false, shapes, true);
+    const RenderGeometry geometry(scene, Transform(), shutter, MotionTolerance{});
+    EXPECT_EQ(geometry.moving_instance_count(), 1u);
+    EXPECT_EQ(geometry.most_motion_steps(), steps) << shapes << " shapes";
+  }
+}
+
 TEST(EvaluatedRender, ShapesBeyondTheMemoryLimitAreRefusedBeforeTheRender) {
   const auto many_vertices = [](size_t shapes) {
     GltfBuilder gltf;
