@@ -27,6 +27,8 @@ CYCLES_MAX_MOTION_POSITIONS = 129  # Object::MAX_MOTION_STEPS, also Embree's lim
 # How far an exported vertex may sit from the base vertex it came from: the exporter rounds to
 # float32, and a skinned mesh's positions went through matrix_world in float32.
 MATCH_TOLERANCE_RELATIVE = 1e-5
+# Base vertices this close to the nearest one count as coinciding with it (a few float32 ulps).
+COINCIDENT_RELATIVE = 1e-6
 
 
 def position_count(scene, obj):
@@ -120,8 +122,8 @@ def match_corners(gltf_mesh, base_yup, at_frame_yup_normals, corner_vertices):
     for i, p in enumerate(base_yup):
         tree.insert(p, i)
     tree.balance()
-    extent = float(np.max(np.abs(base_yup))) if len(base_yup) else 0.0
-    tolerance = MATCH_TOLERANCE_RELATIVE * max(extent, 1.0)
+    scale = max(float(np.max(np.abs(base_yup))) if len(base_yup) else 0.0, 1.0)
+    tolerance = MATCH_TOLERANCE_RELATIVE * scale
     order = np.argsort(corner_vertices, kind="stable")
     starts = np.searchsorted(corner_vertices[order], np.arange(len(base_yup) + 1))
     out = []
@@ -131,7 +133,12 @@ def match_corners(gltf_mesh, base_yup, at_frame_yup_normals, corner_vertices):
             if "NORMAL" in primitive.attributes else None
         corners = np.empty(len(positions), dtype=np.int64)
         for j, p in enumerate(positions):
-            candidates = [index for _, index, _ in tree.find_range(p, tolerance)]
+            found = tree.find_range(p, tolerance)
+            # The nearest base vertices (several only where vertices coincide), not every one
+            # within the tolerance: a dense mesh far from the origin has neighbours inside it.
+            nearest = min((distance for _, _, distance in found), default=0.0)
+            candidates = [index for _, index, distance in found
+                          if distance <= nearest + COINCIDENT_RELATIVE * scale]
             loops = [c for v in candidates for c in order[starts[v]:starts[v + 1]]]
             if not loops:
                 return None
