@@ -11,6 +11,10 @@ importers/blender/io_filmback/deformation.py) and Cycles renders the shot:
              marker 40 px across the image during a half-frame shutter centred on frame 5,
              with the object's Cycles motion steps 1, 3 or 7 (3, 9 or 129 evaluated
              positions); a second marker is still
+  swing1, swing3
+             a marker on a bone turning 90 degrees about the view axis during the shutter, 40 px
+             from its pivot, with Cycles' motion steps 1 and 3: an arc both renderers cut into
+             the same 2 or 8 chords
 
     blender -b --factory-startup --python deform_shot.py -- OUTDIR SHOT
 
@@ -42,7 +46,9 @@ BEND_DEG = 50.0
 SHAPE_KEY_VALUE = 0.6
 BLUR_TRAVEL_PX = (40.0, 0.0)
 BLUR_KEY_FRAMES = (4, 6)  # the shape key's two linear keys, around the shutter
-SHOTS = ("armature", "shapekey", "blur1", "blur3", "blur7")
+SWING_DEG = 90.0  # the swing shots' turn during the shutter
+SWING_RADIUS_PX = 40.0
+SHOTS = ("armature", "shapekey", "blur1", "blur3", "blur7", "swing1", "swing3")
 
 
 def marker(name, u, v, radius_px=5.0, colour=(1.0, 0.9, 0.8), strength=4.0):
@@ -170,9 +176,45 @@ def build_blur(scene, camera, frame, steps):
     return obj
 
 
+def build_swing(scene, camera, frame, steps):
+    """A marker on a bone that turns SWING_DEG about the view axis during the shutter, at
+    SWING_RADIUS_PX from its pivot: an arc that the motion positions cut into chords."""
+    pivot = camera.matrix_world @ frame.point(0.3, 0.5, DEPTH_M)
+    at = marker("swings", 0.3 + SWING_RADIUS_PX / STILL_SHOT.width_px, 0.5)
+    obj = joined([make_shot.add_sphere(camera, frame, at, DEPTH_M)[0]], "swinger")
+    obj.vertex_groups.new(name="arm").add(range(len(obj.data.vertices)), 1.0, "REPLACE")
+    data = bpy.data.armatures.new("rig")
+    rig = bpy.data.objects.new("rig", data)
+    scene.collection.objects.link(rig)
+    bpy.context.view_layer.objects.active = rig
+    bpy.ops.object.mode_set(mode="EDIT")
+    arm = data.edit_bones.new("arm")
+    arm.head = pivot
+    arm.tail = pivot + camera.matrix_world.to_3x3() @ Vector((0.0, 0.3, 0.0))
+    bpy.ops.object.mode_set(mode="OBJECT")
+    pose = rig.pose.bones["arm"]
+    view_axis = camera.matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))
+    axis = (rig.data.bones["arm"].matrix_local.to_3x3().inverted() @ view_axis).normalized()
+    pose.rotation_mode = "AXIS_ANGLE"
+    per_frame = math.radians(SWING_DEG) / motion_shot.SHUTTER_FRAMES
+    for key_frame in BLUR_KEY_FRAMES:
+        pose.rotation_axis_angle = ((key_frame - motion_shot.FRAME) * per_frame, *axis)
+        pose.keyframe_insert("rotation_axis_angle", frame=key_frame)
+    for curve in rig.animation_data.action.fcurves:
+        for point in curve.keyframe_points:
+            point.interpolation = "LINEAR"
+    obj.modifiers.new("Armature", "ARMATURE").object = rig
+    obj.parent = rig
+    obj.cycles.motion_steps = steps
+    scene.render.use_motion_blur = True
+    scene.render.motion_blur_shutter = motion_shot.SHUTTER_FRAMES
+    scene.cycles.motion_blur_position = "CENTER"
+    return obj
+
+
 def main():
     out_dir, name = make_shot.shot_arguments("deform_shot.py", SHOTS)
-    blur = name.startswith("blur")
+    blur = name.startswith(("blur", "swing"))
     shot = BLUR_SHOT if blur else STILL_SHOT
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
@@ -188,6 +230,8 @@ def main():
         obj = build_armature(scene, camera, frame)
     elif name == "shapekey":
         obj = build_shapekey(camera, frame)
+    elif name.startswith("swing"):
+        obj = build_swing(scene, camera, frame, int(name[len("swing"):]))
     else:
         obj = build_blur(scene, camera, frame, int(name[len("blur"):]))
     scene.frame_set(motion_shot.FRAME)
