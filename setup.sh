@@ -102,6 +102,8 @@ if [ "$mode" = test ]; then
     sample_out 'BlenderMaterials\.' AlphaCutoutMatchesCycles EmissiveTextureMatchesCycles \
       TexturedGroundAndGlossySpheresMatchCycles
     sample_out 'BlenderSubdiv\.' SubdividedObjectMatchesCycles
+    sample_out 'Steps/BlenderDeformBlur\.StreaksOfEvaluatedShapesMatchCycles/' blur3 blur7
+    sample_out 'Steps/BlenderDeformSwing\.ArcsCutIntoCyclesChordsMatchCycles/' swing3
     sample_out '' 'BlenderAlbedo\..*' 'BlenderMotion\..*' 'PovGeometryRender\..*'
     sample_out 'Against/BlenderDistortion\.MarkersLandWhereTheMovieDistortionNodePutsThem/' \
       division nuke

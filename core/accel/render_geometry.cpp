@@ -115,10 +115,6 @@ Vec3f unit_through(const Transform& transform, Vec3d v) {
 // beyond FLT_LARGE (1.8e18); plugins must not be able to do that, so such rays are misses.
 constexpr double kLargestCoordinate = 1e18;
 
-// Poses of a deformed mesh that moves within the shutter: 8 segments, so a vertex a joint turns
-// a quarter turn strays from its arc by under 0.5 % of its radius; each pose copies the mesh.
-constexpr uint32_t kDeformationMotionSteps = 9;
-
 // A vertex of a mesh placed by render_from_object, refused beyond Embree's reach.
 Vec3d placed(const Transform& render_from_object, Vec3f p, const MeshInstance& instance,
              const TriangleMesh& source) {
@@ -224,25 +220,24 @@ Bounds3d solid_reach(const Bounds3d& bounded) {
 }  // namespace
 
 RenderGeometry::Mesh RenderGeometry::build_mesh(
-    const Scene& scene, const MeshInstance& instance,
-    const std::vector<Transform>& render_from_object_steps,
-    const std::vector<TriangleMesh>& posed) {
-  const TriangleMesh& source = posed.empty() ? scene.meshes[instance.mesh] : posed.front();
+    const MeshInstance& instance, const std::vector<Transform>& render_from_object_steps,
+    const TriangleMesh& source, const std::vector<DeformedShape>& shapes) {
   Mesh mesh;
   mesh.material = source.material;
   mesh.step_count = uint32_t(render_from_object_steps.size());
-  mesh.vertex_count = source.positions.size();
-  mesh.positions.reserve(source.positions.size() * mesh.step_count + 1);
+  mesh.vertex_count = shapes.empty() ? source.positions.size() : shapes.front().positions.size();
+  mesh.positions.reserve(mesh.vertex_count * mesh.step_count + 1);
   for (size_t k = 0; k < render_from_object_steps.size(); ++k) {
     const Transform& render_from_object = render_from_object_steps[k];
-    const TriangleMesh& at_step = posed.empty() ? source : posed[k];
-    for (const Vec3f& p : at_step.positions) {
+    const std::vector<Vec3f>& positions = shapes.empty() ? source.positions : shapes[k].positions;
+    for (const Vec3f& p : positions) {
       const Vec3d q = placed(render_from_object, p, instance, source);
       bounds_.extend(q);
       mesh.positions.emplace_back(q);
     }
     const Transform normal_transform = render_from_object.normal_transform();
-    for (const Vec3f& n : at_step.normals)
+    const bool own_normals = !shapes.empty() && !shapes[k].normals.empty();
+    for (const Vec3f& n : own_normals ? shapes[k].normals : source.normals)
       mesh.normals.push_back(unit_through(normal_transform, Vec3d(n)));
   }
   mesh.positions.emplace_back();
@@ -308,7 +303,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
       add_instance(scene, instance, corners_of(instance.mesh), std::move(steps));
       continue;
     }
-    Mesh mesh = build_mesh(scene, instance, steps);
+    Mesh mesh = build_mesh(instance, steps, scene.meshes[instance.mesh]);
     if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
     attach_mesh(std::move(mesh));
   }
@@ -326,30 +321,36 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
 }
 
 // Posed where the pose is wanted: once at the still time, or, when the deformation or the node's
-// placement changes within the open shutter, at kDeformationMotionSteps times evenly spaced over
-// it, as Embree's multi-segment vertex motion (a still mesh builds no motion data).
+// placement changes within the open shutter, at deformation_motion_steps times evenly spaced over
+// it, as Embree's multi-segment vertex motion (a still mesh builds no motion data). Each step
+// keeps only its positions and normals; a skinned or morphed mesh's first pose gives the rest.
 void RenderGeometry::add_deformed_mesh(const Scene& scene, const MeshInstance& instance,
                                        const MeshDeformation& deformation,
                                        const Transform& render_from_world, const ShotTimes& times) {
   const bool moving =
       times.shutter_open() && (deforms(deformation, scene.hierarchy, times.open_s, times.close_s) ||
                                scene.moves(instance.node_index, times.open_s, times.close_s));
-  std::vector<double> step_times{times.still_s()};
-  if (moving) {
-    step_times.clear();
-    for (uint32_t k = 0; k < kDeformationMotionSteps; ++k)
-      step_times.push_back(times.open_s + (times.close_s - times.open_s) * k /
-                                              double(kDeformationMotionSteps - 1));
-  }
+  const uint32_t count = moving ? deformation_motion_steps(deformation) : 1;
+  const bool evaluated = !deformation.evaluated.empty();
   std::vector<Transform> steps;
-  std::vector<TriangleMesh> posed;
-  for (const double t : step_times) {
+  std::vector<DeformedShape> shapes;
+  TriangleMesh first_pose;
+  for (uint32_t k = 0; k < count; ++k) {
+    const double t = moving ? times.open_s + (times.close_s - times.open_s) * k / double(count - 1)
+                            : times.still_s();
     steps.push_back(render_from_world * scene.world_from_object(instance, t));
-    posed.push_back(posed_mesh(scene, deformation, t));
+    if (evaluated) {
+      shapes.push_back(deformation.evaluated.at(t - times.frame_s));
+      continue;
+    }
+    TriangleMesh posed = posed_mesh(scene, deformation, t);
+    shapes.push_back({std::move(posed.positions), std::move(posed.normals)});
+    if (k == 0) first_pose = std::move(posed);
   }
   moving_instances_ += moving;
   most_motion_steps_ = std::max(most_motion_steps_, uint32_t(steps.size()));
-  Mesh mesh = build_mesh(scene, instance, steps, posed);
+  Mesh mesh =
+      build_mesh(instance, steps, evaluated ? scene.meshes[deformation.mesh] : first_pose, shapes);
   if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
   attach_mesh(std::move(mesh));
 }

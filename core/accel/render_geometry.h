@@ -121,12 +121,13 @@ class RenderGeometry {
   static void alpha_filter(const RTCFilterFunctionNArguments* args);
   // Embree's time in [0, 1] across the open shutter, for a ray's time relative to the frame.
   float embree_time(float time_s) const;
-  // `posed`: a deformed mesh's shape at each step; empty: the scene's mesh at every step.
-  Mesh build_mesh(const Scene& scene, const MeshInstance& instance,
+  // `source` gives the triangles, material and texturing; `shapes`, a deformed mesh's positions
+  // and normals at each step; empty: the source's at every step.
+  Mesh build_mesh(const MeshInstance& instance,
                   const std::vector<Transform>& render_from_object_steps,
-                  const std::vector<TriangleMesh>& posed = {});
-  // A skinned or morphed mesh, posed at each motion step (docs/scenes.md, "Skins and morph
-  // targets").
+                  const TriangleMesh& source, const std::vector<DeformedShape>& shapes = {});
+  // A skinned, morphed or evaluated mesh, posed at each motion step (docs/scenes.md, "Skins and
+  // morph targets", "Blender's evaluated deformation").
   void add_deformed_mesh(const Scene& scene, const MeshInstance& instance,
                          const MeshDeformation& deformation, const Transform& render_from_world,
                          const ShotTimes& times);

@@ -294,6 +294,25 @@ int run_info(const std::filesystem::path& file, const ImportOptions& options,
               << ", material '" << scene.materials[m.material].name << "', " << uses[uint32_t(i)]
               << " instance(s)\n";
   }
+  // Which path each deformed mesh takes (docs/scenes.md, "Skins and morph targets", "Blender's
+  // evaluated deformation").
+  if (!scene.deformations.empty())
+    std::cout << "deformed meshes (" << scene.deformations.size() << ")\n";
+  for (const MeshDeformation& d : scene.deformations) {
+    std::cout << "  " << scene.meshes[d.mesh].name << "  ";
+    const std::vector<double>& times = d.evaluated.times_s;
+    if (times.size() == 1)
+      std::cout << "evaluated shape at " << number_text(times[0]) << " s from the frame\n";
+    else if (!times.empty())
+      std::cout << "evaluated shapes at " << times.size() << " times, "
+                << number_text(times.front()) << " to " << number_text(times.back())
+                << " s from the frame\n";
+    else
+      std::cout << (d.skin
+                        ? "glTF skin of " + std::to_string(d.skin->joint_nodes.size()) + " joints"
+                        : std::string("glTF morph targets"))
+                << (d.skin && !d.morph.empty() ? " after morph targets" : "") << "\n";
+  }
   if (!scene.subdivision_surfaces.empty())
     std::cout << "subdivision surfaces (" << scene.subdivision_surfaces.size()
               << ", refined when rendered: docs/blender.md)\n";

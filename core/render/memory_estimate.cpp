@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 #include "core/accel/instancing.h"
 #include "core/render/tile_size.h"
@@ -43,7 +44,8 @@ MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
     e.splat_bytes = pixels * grown * grown * (c + 1) * sizeof(double);
   }
   e.geometry_bytes = geometry.triangles * kBytesPerTriangle +
-                     geometry.instances * kBytesPerInstance + geometry.texturing_bytes;
+                     geometry.instances * kBytesPerInstance + geometry.texturing_bytes +
+                     geometry.deformation_bytes;
   return e;
 }
 
@@ -62,6 +64,7 @@ GeometryCounts& GeometryCounts::operator+=(const GeometryCounts& more) {
   triangles += more.triangles;
   instances += more.instances;
   texturing_bytes += more.texturing_bytes;
+  deformation_bytes += more.deformation_bytes;
   return *this;
 }
 
@@ -84,11 +87,22 @@ GeometryCounts geometry_counts(const Scene& scene) {
     }
   }
   // Each deformed mesh is posed in a copy of it (RenderGeometry::add_deformed_mesh): counted as
-  // its triangles once more, which bounds the copy (a render triangle costs more). Motion steps
-  // are not counted, as for rigid motion (docs/camera-model.md, "Time and motion").
+  // its triangles once more, which bounds the copy (a render triangle costs more). A deformed
+  // mesh whose pose changes anywhere on the timeline may move within the shutter: its render
+  // copy then holds every motion step's positions and normals (deformation_motion_steps), and
+  // the scene holds the evaluated shapes it was given. Rigid motion's steps are not counted
+  // (docs/camera-model.md, "Time and motion").
+  const double forever = std::numeric_limits<double>::infinity();
   for (const MeshDeformation& d : scene.deformations) {
-    counts.triangles += double(scene.meshes[d.mesh].triangle_count());
-    counts.texturing_bytes += bytes_of(scene.meshes[d.mesh].texturing);
+    const TriangleMesh& mesh = scene.meshes[d.mesh];
+    counts.triangles += double(mesh.triangle_count());
+    counts.texturing_bytes += bytes_of(mesh.texturing);
+    for (const DeformedShape& shape : d.evaluated.shapes)
+      counts.deformation_bytes +=
+          double(shape.positions.size() + shape.normals.size()) * sizeof(Vec3f);
+    if (!deforms(d, scene.hierarchy, -forever, forever)) continue;
+    const double per_step = double(mesh.positions.size() + mesh.normals.size()) * sizeof(Vec3f);
+    counts.deformation_bytes += per_step * (deformation_motion_steps(d) - 1);
   }
   return counts;
 }

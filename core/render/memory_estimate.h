@@ -24,11 +24,15 @@ constexpr double kBytesPerInstance = 1024;
 // What the render stores of a scene's meshes (core/accel/instancing.h): the render-space
 // triangles of each flattened instance plus one copy of each instanced mesh; the instances traced
 // as instances; the texture coordinates and tangents in the scene and in the render's copies;
-// and each deformed (skinned or morphed) mesh's posed copy, as many triangles again.
+// and each deformed (skinned, morphed or evaluated) mesh's posed copy, as many triangles again,
+// with its motion steps' positions and normals.
 struct GeometryCounts {
   double triangles = 0;
   double instances = 0;
   double texturing_bytes = 0;
+  // Evaluated shapes held by the scene, and the motion steps past the first that the render's
+  // copy of a deformed mesh holds when its pose can change.
+  double deformation_bytes = 0;
   GeometryCounts& operator+=(const GeometryCounts& more);
 };
 
@@ -38,7 +42,7 @@ struct MemoryEstimate {
   double film_bytes = 0;      // sums, weights and counts; the resolved image and one copy of it
   double splat_bytes = 0;     // --reconstruction splat: the tiles' own sums
   double geometry_bytes = 0;  // stored triangles, their texture coordinates, Embree's BVHs,
-                              // instances
+                              // instances, deformed meshes' motion steps
   double total() const { return film_bytes + splat_bytes + geometry_bytes; }
 };
 

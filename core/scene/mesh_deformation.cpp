@@ -1,5 +1,6 @@
 #include "core/scene/mesh_deformation.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -98,6 +99,32 @@ void apply_morph(const MorphTargets& morph, const std::vector<double>& weights,
   }
 }
 
+DeformedShape EvaluatedShapes::at(double time_from_frame_s) const {
+  const size_t n = times_s.size();
+  if (n == 1 || !(time_from_frame_s > times_s.front())) return shapes.front();
+  if (time_from_frame_s >= times_s.back()) return shapes.back();
+  size_t k = 1;
+  while (times_s[k] < time_from_frame_s)
+    ++k;
+  const double f = (time_from_frame_s - times_s[k - 1]) / (times_s[k] - times_s[k - 1]);
+  if (f == 0) return shapes[k - 1];
+  const DeformedShape &a = shapes[k - 1], &b = shapes[k];
+  DeformedShape out;
+  out.positions.reserve(a.positions.size());
+  for (size_t v = 0; v < a.positions.size(); ++v)
+    out.positions.emplace_back(Vec3d(a.positions[v]) * (1 - f) + Vec3d(b.positions[v]) * f);
+  out.normals.reserve(a.normals.size());
+  for (size_t v = 0; v < a.normals.size(); ++v)
+    out.normals.push_back(
+        deformed_direction(Vec3d(a.normals[v]) * (1 - f) + Vec3d(b.normals[v]) * f, a.normals[v]));
+  return out;
+}
+
+uint32_t deformation_motion_steps(const MeshDeformation& deformation) {
+  const size_t evaluated = deformation.evaluated.times_s.size();
+  return evaluated > 1 ? uint32_t(evaluated) : kSkinMotionSteps;
+}
+
 TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, double time_s) {
   TriangleMesh mesh = scene.meshes[deformation.mesh];
   if (!deformation.morph.empty())
@@ -110,6 +137,12 @@ TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, 
 bool deforms(const MeshDeformation& deformation, const NodeHierarchy& hierarchy, double t0,
              double t1) {
   if (deformation.morph.weight_curve && deformation.morph.weight_curve->varies(t0, t1)) return true;
+  const std::vector<DeformedShape>& shapes = deformation.evaluated.shapes;
+  const auto same = [](Vec3f a, Vec3f b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+  for (size_t k = 1; k < shapes.size(); ++k)
+    if (!std::equal(shapes[k].positions.begin(), shapes[k].positions.end(),
+                    shapes[0].positions.begin(), same))
+      return true;
   if (deformation.skin)
     for (uint32_t joint : deformation.skin->joint_nodes)
       if (hierarchy.moves(joint, t0, t1)) return true;

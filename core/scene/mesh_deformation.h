@@ -1,5 +1,6 @@
 // Meshes whose vertices move, not only their placement: glTF morph targets (glTF 2.0 §3.7.2.2)
-// and skins (§3.8, "Skins"), morphing first, as the spec orders.
+// and skins (§3.8, "Skins"), morphing first, as the spec orders; or the shapes an exporter
+// evaluated at times over the shutter (Blender's depsgraph, FILMBACK_deformation).
 // The importer keeps what the file says; the render poses each deformed mesh at its motion steps
 // (posed_mesh), where the joints' animation is known (docs/scenes.md, "Skins and morph targets").
 #pragma once
@@ -43,6 +44,31 @@ struct MorphTargets {
   std::vector<double> weights_at(double time_s) const;
 };
 
+// A deformed mesh's vertices at one time: positions, and normals (none: the mesh's own).
+struct DeformedShape {
+  std::vector<Vec3f> positions, normals;
+};
+
+// Shapes an exporter evaluated (docs/scenes.md, "Blender's evaluated deformation"): the mesh at
+// each of `times_s`, seconds relative to the frame's time, increasing. Between two times a vertex
+// moves linearly, as Embree interpolates between motion steps; before the first and after the
+// last it stays.
+struct EvaluatedShapes {
+  std::vector<double> times_s;
+  std::vector<DeformedShape> shapes;  // one per time, every one of the mesh's vertex count
+
+  bool empty() const { return times_s.empty(); }
+  DeformedShape at(double time_from_frame_s) const;
+};
+
+// How many evaluated shapes a file may give a primitive: Embree's limit on motion steps
+// (RTC_MAX_TIME_STEP_COUNT), which is also Cycles' (Object::MAX_MOTION_STEPS).
+constexpr size_t kMaxEvaluatedShapes = 129;
+
+// Poses of a skinned or morphed mesh that moves within the shutter: 8 segments, so a vertex a
+// joint turns a quarter turn strays from its arc by under 0.5 % of its radius.
+constexpr uint32_t kSkinMotionSteps = 9;
+
 // Scene::meshes[mesh] holds the base shape (the bind pose) as read; posed_mesh makes the posed
 // copies the render traces. A deformed mesh is drawn by exactly one instance: at the identity
 // when skinned, else by its node.
@@ -50,6 +76,8 @@ struct MeshDeformation {
   uint32_t mesh = 0;
   MorphTargets morph;               // empty: none
   std::optional<SkinBinding> skin;  // none: only morphed
+  // Not empty: the exporter's shapes, which replace the morph targets and the skin.
+  EvaluatedShapes evaluated;
 };
 
 // `mesh` displaced by `morph`'s targets with `weights` (one per target); normals and tangents
@@ -67,10 +95,15 @@ void pose_mesh(const SkinBinding& skin, const std::vector<Transform>& joint_matr
                TriangleMesh& mesh);
 
 // The deformed mesh `deformation` of `scene` posed at `time_s` (seconds on the scene's
-// timeline): morphed, then skinned.
+// timeline): morphed, then skinned. Not for evaluated shapes (EvaluatedShapes::at).
 TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, double time_s);
 
-// Whether the pose can change within [t0, t1]: a joint moves or the weights' curve varies.
+// How many shapes the render stores for `deformation` when it moves within the shutter: the
+// evaluated shapes' count when there are several, else kSkinMotionSteps.
+uint32_t deformation_motion_steps(const MeshDeformation& deformation);
+
+// Whether the pose can change within [t0, t1]: a joint moves, the weights' curve varies, or the
+// evaluated shapes differ (whatever the times: the shutter may be any of the frame's).
 bool deforms(const MeshDeformation& deformation, const NodeHierarchy& hierarchy, double t0,
              double t1);
 

@@ -13,6 +13,7 @@
 #include "importers/gltf/gltf_accessors.h"
 #include "importers/gltf/gltf_animation.h"
 #include "importers/gltf/gltf_camera.h"
+#include "importers/gltf/gltf_deformation.h"
 #include "importers/gltf/gltf_file.h"
 #include "importers/gltf/gltf_instancing.h"
 #include "importers/gltf/gltf_json.h"
@@ -77,7 +78,7 @@ class Importer {
         "EXT_camera_physical",   "KHR_lights_punctual",    "KHR_materials_emissive_strength",
         "KHR_materials_ior",     "KHR_materials_specular", "KHR_materials_transmission",
         "KHR_texture_transform", "FILMBACK_blender",       "EXT_mesh_gpu_instancing",
-        "FILMBACK_povray",
+        "FILMBACK_povray",       "FILMBACK_deformation",
     };
     for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
       if (!kSupported.count(model_.extensionsRequired[i]))
@@ -208,7 +209,8 @@ class Importer {
       for (SubdivisionPart& part : surface->parts)
         if (part.material == gltf::kNoSubdivisionMaterial) part.material = default_material();
       scene_.subdivision_surfaces.push_back(std::move(*surface));
-    } else if (node.mesh >= 0 && (node.skin >= 0 || has_morph_targets(node_mesh(node, path)))) {
+    } else if (node.mesh >= 0 && (node.skin >= 0 || has_morph_targets(node_mesh(node, path)) ||
+                                  node.extensions.count("FILMBACK_deformation"))) {
       add_deformed_mesh(node, path, world, scene_node);
     } else if (node.mesh >= 0) {
       add_mesh(node, path, world, scene_node);
@@ -236,15 +238,19 @@ class Importer {
     return false;
   }
 
-  // Each primitive of a skinned or morphed node becomes a mesh of its own, posed by the render
-  // and never shared with another node (the node's weights may differ from another's). glTF 2.0
-  // §3.8.3: the joints place a skinned mesh, not its node, so it is drawn at the identity.
+  // Each primitive of a skinned, morphed or evaluated node becomes a mesh of its own, posed by
+  // the render and never shared with another node (the node's weights may differ from
+  // another's). glTF 2.0 §3.8.3: the joints place a skinned mesh, not its node, so it is drawn at
+  // the identity; so is an evaluated one whose shapes are in world space. Evaluated shapes
+  // (FILMBACK_deformation) replace the skin and the morph targets, which are not read.
   void add_deformed_mesh(const tinygltf::Node& node, const std::string& path,
                          const Transform& world, uint32_t scene_node) {
     const tinygltf::Mesh& mesh = node_mesh(node, path);
     gltf::check_instance_count(scene_.instances.size(), mesh.primitives.size(), name_,
                                path + ".mesh");
-    const bool skinned = node.skin >= 0;
+    const std::optional<gltf::NodeDeformation> evaluated =
+        gltf::read_node_deformation(node, path, mesh.primitives.size(), name_);
+    const bool skinned = evaluated ? evaluated->world_space : node.skin >= 0;
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const tinygltf::Primitive& prim = mesh.primitives[p];
       const std::string ppath = primitive_path(node, p);
@@ -253,11 +259,15 @@ class Importer {
       Deformed d;
       d.node = size_t(&node - model_.nodes.data());
       d.deformation.mesh = uint32_t(scene_.meshes.size());
-      if (!prim.targets.empty())
+      if (evaluated)
+        d.deformation.evaluated =
+            gltf::read_evaluated_shapes(model_, *evaluated, p, converted->positions.size(), name_);
+      else if (!prim.targets.empty())
         d.deformation.morph = gltf::read_morph_targets(
             model_, node, path, mesh, prim, ppath, converted->positions.size(),
             !converted->texturing.tangents.empty(), name_);
-      if (skinned) d.skin = {node.skin, path + ".skin", &prim, ppath, converted->positions.size()};
+      if (node.skin >= 0 && !evaluated)
+        d.skin = {node.skin, path + ".skin", &prim, ppath, converted->positions.size()};
       scene_.instances.push_back({d.deformation.mesh, skinned ? Transform() : world,
                                   node.name.empty() ? path : node.name,
                                   skinned ? kNoNode : scene_node});

@@ -39,14 +39,7 @@ struct Streak {
 
 // The blob's centroid, and its travel from the second moments along `ux, uy` (unit) and across.
 Streak measure(const Blob& blob, double ux, double uy) {
-  double along = 0, across = 0;
-  for (const BlobPixel& p : blob.pixels) {
-    const double dx = p.x + 0.5 - blob.x_px, dy = p.y + 0.5 - blob.y_px;
-    along += p.value * (dx * ux + dy * uy) * (dx * ux + dy * uy);
-    across += p.value * (dx * uy - dy * ux) * (dx * uy - dy * ux);
-  }
-  const double difference = (along - across) / blob.flux;
-  return {blob.x_px, blob.y_px, std::sqrt(std::max(0.0, 12 * difference))};
+  return {blob.x_px, blob.y_px, streak_length_px(blob, ux, uy)};
 }
 
 TEST(BlenderMotion, StreaksMatchTheAnalyticTravelAndCycles) {

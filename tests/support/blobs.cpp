@@ -90,6 +90,16 @@ Spread spread(const Blob& blob) {
   return s;
 }
 
+double streak_length_px(const Blob& blob, double ux, double uy) {
+  double along = 0, across = 0;
+  for (const BlobPixel& p : blob.pixels) {
+    const double dx = p.x + 0.5 - blob.x_px, dy = p.y + 0.5 - blob.y_px;
+    along += p.value * (dx * ux + dy * uy) * (dx * ux + dy * uy);
+    across += p.value * (dx * uy - dy * ux) * (dx * uy - dy * ux);
+  }
+  return std::sqrt(std::max(0.0, 12 * (along - across) / blob.flux));
+}
+
 double disk_diameter_px(double spread_px2) {
   return 4 * std::sqrt(std::max(0.0, spread_px2 - 1.0 / 12));
 }

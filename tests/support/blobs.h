@@ -42,6 +42,12 @@ Spread spread(const Blob& blob);
 // since moments add, squared diameters of convolved shapes add too.
 double disk_diameter_px(double spread_px2);
 
+// The length of a streak travelling along the unit direction (ux, uy): a shape convolved with a
+// segment of length L has second moments along and across the segment differing by L^2 / 12
+// more than the shape's own (moments add under convolution), so for an isotropic shape (a round
+// emitter's image, the 1 px box) L = sqrt(12 (along - across)). 0 for a still one.
+double streak_length_px(const Blob& blob, double ux, double uy);
+
 // The angle, in (-pi/n, pi/n], of a vertex of an n-fold symmetric blob (a polygonal bokeh) from
 // the phase of its complex central moment sum((z - z̄)^n) with z = x + i y (raster axes, y down):
 // a regular n-gon with a vertex at angle a has the phase n a. The moment of a shape convolved

@@ -222,6 +222,34 @@ void GltfBuilder::morph_target(int mesh, const std::vector<Vec3f>& positions,
   impl_->model.meshes[size_t(mesh)].primitives[0].targets.push_back(target);
 }
 
+void GltfBuilder::evaluated_shapes(int node, const std::vector<double>& times_s,
+                                   const std::vector<std::vector<Vec3f>>& positions,
+                                   const std::vector<std::vector<Vec3f>>& normals,
+                                   bool world_space) {
+  const auto accessors = [&](const std::vector<std::vector<Vec3f>>& shapes) {
+    tinygltf::Value::Array out;
+    for (const std::vector<Vec3f>& shape : shapes)
+      out.emplace_back(impl_->add_accessor(shape.data(), shape.size() * sizeof(Vec3f),
+                                           TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3,
+                                           shape.size()));
+    return tinygltf::Value(out);
+  };
+  tinygltf::Value::Object primitive;
+  primitive["positions"] = accessors(positions);
+  if (!normals.empty()) primitive["normals"] = accessors(normals);
+  tinygltf::Value::Array times;
+  for (double t : times_s)
+    times.emplace_back(t);
+  tinygltf::Value::Object ext;
+  ext["times_s"] = tinygltf::Value(times);
+  ext["world_space"] = tinygltf::Value(world_space);
+  ext["primitives"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(primitive)});
+  impl_->model.nodes[size_t(node)].extensions["FILMBACK_deformation"] = tinygltf::Value(ext);
+  std::vector<std::string>& used = impl_->model.extensionsUsed;
+  if (std::find(used.begin(), used.end(), "FILMBACK_deformation") == used.end())
+    used.push_back("FILMBACK_deformation");
+}
+
 void GltfBuilder::morph_weights(int mesh, const std::vector<double>& weights) {
   impl_->model.meshes[size_t(mesh)].weights = weights;
 }

@@ -51,6 +51,13 @@ class GltfBuilder {
   // The mesh's default morph weights.
   void morph_weights(int mesh, const std::vector<double>& weights);
 
+  // FILMBACK_deformation on `node` (whose mesh has one primitive): its shapes at `times_s`,
+  // positions per time, and normals per time unless empty.
+  void evaluated_shapes(int node, const std::vector<double>& times_s,
+                        const std::vector<std::vector<Vec3f>>& positions,
+                        const std::vector<std::vector<Vec3f>>& normals = {},
+                        bool world_space = false);
+
   struct Node {
     std::string name;
     int mesh = -1, camera = -1, light = -1, skin = -1;

@@ -1,13 +1,19 @@
-// Skinned meshes through the whole render (core/accel/render_geometry.cpp poses them at their
-// motion steps): a joint's animation moves what the image shows at the frame and blurs it over an
-// open shutter, a still skin builds no motion data, and a skin that changes nothing renders the
-// unskinned mesh's image bit for bit.
+// Skinned meshes and evaluated shapes through the whole render (core/accel/render_geometry.cpp
+// poses them at their motion steps): a joint's animation moves what the image shows at the frame
+// and blurs it over an open shutter, a still skin builds no motion data, and a skin that changes
+// nothing renders the unskinned mesh's image bit for bit. Evaluated shapes (FILMBACK_deformation):
+// the shape at the frame is what a closed shutter shows, an open one blurs over the file's shapes
+// with as many motion steps as the file has, and shapes that do not change build none.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/accel/render_geometry.h"
 #include "core/render/render_job.h"
+#include "core/util/error.h"
 #include "support/gltf_builder.h"
 #include "support/import_error.h"
 #include "support/plugins.h"
@@ -69,12 +75,15 @@ TEST(SkinnedRender, TheJointsAnimationAtTheFrameMovesTheMesh) {
 
 // Over a shutter open from t = 0 to 1 the triangle leaves the view: the image lies between the
 // sharp triangle's and the sky's.
-TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
-  const Scene scene = skinned_triangle(true, true);
+void expect_blur_leaving_the_view(const Scene& scene) {
   const double sharp = skinned_mean_red(render_skinned_frame(scene, 0));
   const double blurred = skinned_mean_red(render_skinned_frame(scene, 0, true));
   EXPECT_GT(blurred, sharp + 0.1);
   EXPECT_LT(blurred, 0.95);
+}
+
+TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
+  expect_blur_leaving_the_view(skinned_triangle(true, true));
 }
 
 TEST(SkinnedRender, OnlyAMovingSkinBuildsMotionSteps) {
@@ -100,6 +109,113 @@ TEST(SkinnedRender, StillJointsRenderTheUnskinnedImageBitForBit) {
         differing += plain.at(x, y, c) != skinned.at(x, y, c);
   EXPECT_EQ(differing, 0u);
   EXPECT_LT(skinned_mean_red(plain), 0.9);  // the triangle is in the picture
+}
+
+// A grey triangle filling the view of a camera 3 m up +Z at the frame (t = 0), and 10 m along
+// +X, out of the view, at the `shapes` - 1 later times evenly spaced to t = 1 (`moving`; else in
+// view at all). The file's base mesh is out of the view: only the shapes put it there. With
+// `node_moves` the node's own translation carries the shapes 10 m along +X from t = 0 to 1.
+Scene evaluated_triangle(bool moving, size_t shapes = 3, bool node_moves = false) {
+  GltfBuilder gltf;
+  const std::vector<Vec3f> in_view = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0}};
+  std::vector<Vec3f> away = in_view;
+  for (Vec3f& p : away)
+    p.x += 10;
+  GltfBuilder::Node node;
+  node.mesh = gltf.mesh(away, {0, 1, 2}, gltf.material({0.5f, 0.5f, 0.5f}));
+  const int n = gltf.node(node);
+  if (node_moves) gltf.animate(n, "translation", {0, 1}, {0, 0, 0, 10, 0, 0});
+  std::vector<double> times;
+  std::vector<std::vector<Vec3f>> positions;
+  for (size_t k = 0; k < shapes; ++k) {
+    times.push_back(shapes > 1 ? double(k) / double(shapes - 1) : 0.0);
+    positions.push_back(moving && k > 0 ? away : in_view);
+  }
+  gltf.evaluated_shapes(n, times, positions);
+  GltfBuilder::Node camera;
+  camera.camera = gltf.perspective_camera(0.5, 1.0, 0.1, 100);
+  camera.translation = {0, 0, 3};
+  gltf.node(camera);
+  return test::import_built(gltf, "evaluated.gltf");
+}
+
+TEST(EvaluatedRender, TheFramesShapeIsWhatAClosedShutterShows) {
+  // The grey triangle (albedo 0.5 under a sky of 1), not the base mesh out of the view.
+  EXPECT_NEAR(skinned_mean_red(render_skinned_frame(evaluated_triangle(true), 0)), 0.5, 0.1);
+}
+
+TEST(EvaluatedRender, AnOpenShutterBlursOverTheShapes) {
+  expect_blur_leaving_the_view(evaluated_triangle(true));
+}
+
+TEST(EvaluatedRender, MotionStepsAreTheFilesShapesAndStillShapesBuildNone) {
+  const ShotTimes shutter{0, 0, 1};
+  for (const size_t shapes : {3u, 9u, 129u}) {
+    const Scene moving_scene = evaluated_triangle(true, shapes);
+    const RenderGeometry moving(moving_scene, Transform(), shutter, MotionTolerance{});
+    EXPECT_EQ(moving.moving_instance_count(), 1u);
+    EXPECT_EQ(moving.most_motion_steps(), shapes);
+    const RenderGeometry closed(moving_scene, Transform(), ShotTimes{}, MotionTolerance{});
+    EXPECT_EQ(closed.most_motion_steps(), 1u);
+  }
+  const Scene still_scene = evaluated_triangle(false);
+  const RenderGeometry still(still_scene, Transform(), shutter, MotionTolerance{});
+  EXPECT_EQ(still.moving_instance_count(), 0u);
+  EXPECT_EQ(still.most_motion_steps(), 1u);
+}
+
+// A file's shapes count in the memory estimate: 129 shapes of a 4096-vertex mesh (25 MB of
+// shapes and motion steps) are refused under an 8 MiB limit before anything is built, where the
+// same mesh with one shape renders.
+// The node's rigid motion combines with the shapes: still shapes on a moving node blur, with the
+// file's step count when it has several shapes and the skins' default of 9 when it has one.
+TEST(EvaluatedRender, AMovingNodeMovesItsShapes) {
+  expect_blur_leaving_the_view(evaluated_triangle(false, 1, true));
+  const ShotTimes shutter{0, 0, 1};
+  for (const auto& [shapes, steps] : {std::pair<size_t, uint32_t>{1, 9}, {3, 3}}) {
+    const Scene scene = evaluated_triangle(false, shapes, true);
+    const RenderGeometry geometry(scene, Transform(), shutter, MotionTolerance{});
+    EXPECT_EQ(geometry.moving_instance_count(), 1u);
+    EXPECT_EQ(geometry.most_motion_steps(), steps) << shapes << " shapes";
+  }
+}
+
+TEST(EvaluatedRender, ShapesBeyondTheMemoryLimitAreRefusedBeforeTheRender) {
+  const auto many_vertices = [](size_t shapes) {
+    GltfBuilder gltf;
+    std::vector<Vec3f> soup;
+    std::vector<uint32_t> indices;
+    for (uint32_t v = 0; v < 4095; ++v) {
+      soup.push_back({float(v % 3), float(v / 3) * 0.01f, -20.f});
+      indices.push_back(v);
+    }
+    GltfBuilder::Node node;
+    node.mesh = gltf.mesh(soup, indices, gltf.material({0.5f, 0.5f, 0.5f}));
+    const int n = gltf.node(node);
+    std::vector<double> times;
+    std::vector<std::vector<Vec3f>> positions;
+    for (size_t k = 0; k < shapes; ++k) {
+      times.push_back(double(k));
+      positions.push_back(soup);
+      positions.back()[0].z += float(k);
+    }
+    gltf.evaluated_shapes(n, times, positions);
+    return test::import_built(gltf, "evaluated_large.gltf");
+  };
+  RenderOptions options;
+  options.width = 8, options.height = 8, options.samples_per_pixel = 1;
+  options.shutter_s = Vec2d{0.0, 1.0};
+  options.frame = 0, options.fps = 1;
+  options.show_progress = false;
+  options.memory_limit_bytes = 8u << 20;
+  EXPECT_NO_THROW(RenderJob(many_vertices(1), options, test::loader()).run());
+  try {
+    RenderJob(many_vertices(kMaxEvaluatedShapes), options, test::loader()).run();
+    ADD_FAILURE() << "129 shapes rendered under an 8 MiB limit";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than the memory limit"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

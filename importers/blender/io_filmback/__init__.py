@@ -5,7 +5,8 @@ Hooks Blender's own glTF exporter (io_scene_gltf2's user extensions: an enabled 
 module defines `glTF2ExportUserExtension` is called back while the file is gathered) and adds the
 `FILMBACK_blender` extension (docs/blender.md, "What is carried") to cameras, lights, subdivided
 meshes, materials, meshes' UV maps and the scene, and `EXT_camera_physical` (KhronosGroup/glTF pull
-request 2608) to cameras.
+request 2608) to cameras, and `FILMBACK_deformation` (deformation.py) to the nodes of meshes
+Blender deforms.
 
 Blender 3.4.1's exporter calls the hooks with these arguments (io_scene_gltf2/blender/exp/, the
 trailing `export_settings` always last); a hook's exception is printed and swallowed by the
@@ -73,6 +74,17 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         if data is not None:
             self._add(gltf2_mesh, EXTENSION, data)
 
+    def _add_deformation(self, gltf2_node, blender_object, scene):
+        """Blender's evaluated deformation on the node, and the path the mesh took in the
+        exporter's report (Blender's console)."""
+        from . import deformation
+        data, path = deformation.deformation_extension(blender_object, gltf2_node, scene,
+                                                       self.frame)
+        if data is not None:
+            self._add(gltf2_node, deformation.EXTENSION, data)
+        if path is not None:
+            print(f"filmback: mesh object '{blender_object.name}': {path}")
+
     def images(self, export_settings):
         if self._images is None:
             from .images import ImageFiles
@@ -109,8 +121,14 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         elif blender_object.type == "MESH" and not export_settings.get("gltf_apply"):
             # With Apply Modifiers the exported mesh is already subdivided: no cage to carry.
             surface = subdivision.subdivision_extension(blender_object, gltf2_node.mesh)
-            if surface is not None:
+            if surface is None:
+                self._add_deformation(gltf2_node, blender_object, bpy.context.scene)
+            else:
                 data["subdivision"] = surface
+                if blender_object.data.shape_keys or \
+                        sum(m.show_render for m in blender_object.modifiers) > 1:
+                    print(f"filmback: mesh object '{blender_object.name}': subdivision cage "
+                          "exported without the deformation before its Subdivision Surface")
         if data:
             self._add(gltf2_node, EXTENSION, data)
 

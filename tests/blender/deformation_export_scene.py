@@ -1,0 +1,170 @@
+"""The Blender side of tests/blender/deformation_export_test.py: which path each mesh takes through
+the add-on's FILMBACK_deformation (importers/blender/io_filmback/deformation.py), and the written
+shapes against Blender's own evaluated mesh.
+
+    blender -b --factory-startup --python-exit-code 1 --python deformation_export_scene.py -- OUTDIR
+
+Objects, with motion blur on (Object > Motion Blur > Steps 2: 5 positions):
+  bent       a cube skinned to a two-bone armature, the lower bone bent: world-space shapes
+  keyed      a cube whose shape key is keyed over the shutter: 5 object-space shapes
+  plain      a cube nothing deforms: no extension
+  remeshed   a cube under a Remesh modifier (other vertices than the base mesh): no extension, the
+             path reported
+  decimated  a cube whose Decimate ratio is keyed from 1 at the frame down after it (the topology
+             changes within the shutter): the frame's shape only, with a warning; the frame's
+             shape is the base mesh, so no extension
+Exports to OUTDIR/shot.gltf and raises (exit 1) naming what differs: each written position and
+normal, matched back to the Blender vertex at the exported base position, within 1e-5 of the
+evaluated mesh at the shutter's times.
+"""
+
+import json
+import math
+import os
+import struct
+import sys
+
+import bpy
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "importers", "blender"))
+import export_shot  # noqa: E402  (filmback's add-on, enabled for this session)
+from io_filmback import deformation  # noqa: E402
+
+FRAME = 5
+STEPS = 2
+TOLERANCE = 1e-5
+
+
+def cube(name, x):
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(x, 0.0, 0.0))
+    obj = bpy.context.active_object
+    obj.name = obj.data.name = name
+    obj.cycles.motion_steps = STEPS
+    return obj
+
+
+def build(scene):
+    bent = cube("bent", 0.0)
+    bpy.ops.object.modifier_add(type="SUBSURF")  # a denser mesh to bend, applied here
+    bpy.ops.object.modifier_apply(modifier=bent.modifiers[-1].name)
+    data = bpy.data.armatures.new("rig")
+    rig = bpy.data.objects.new("rig", data)
+    scene.collection.objects.link(rig)
+    bpy.context.view_layer.objects.active = rig
+    bpy.ops.object.mode_set(mode="EDIT")
+    upper = data.edit_bones.new("upper")
+    upper.head, upper.tail = (0, 0, -0.5), (0, 0, 0)
+    lower = data.edit_bones.new("lower")
+    lower.head, lower.tail, lower.parent = (0, 0, 0), (0, 0, 0.5), upper
+    bpy.ops.object.mode_set(mode="OBJECT")
+    for name, keep in (("upper", lambda z: z <= 0), ("lower", lambda z: z > 0)):
+        group = bent.vertex_groups.new(name=name)
+        group.add([v.index for v in bent.data.vertices if keep(v.co.z)], 1.0, "REPLACE")
+    bent.modifiers.new("Armature", "ARMATURE").object = rig
+    bent.parent = rig
+    rig.pose.bones["lower"].rotation_mode = "XYZ"
+    rig.pose.bones["lower"].rotation_euler = (math.radians(40), 0, 0)
+
+    keyed = cube("keyed", 3.0)
+    keyed.shape_key_add(name="Basis")
+    key = keyed.shape_key_add(name="Up", from_mix=False)
+    for point in key.data:
+        point.co.z += 0.5 * point.co.x + 0.25
+    for frame, value in ((FRAME - 1, 0.0), (FRAME + 1, 1.0)):
+        key.value = value
+        key.keyframe_insert("value", frame=frame)
+
+    cube("plain", 6.0)
+    remeshed = cube("remeshed", 9.0)
+    remeshed.modifiers.new("Remesh", "REMESH").octree_depth = 3
+    decimated = cube("decimated", 12.0)
+    bpy.ops.object.modifier_add(type="SUBSURF")
+    bpy.ops.object.modifier_apply(modifier=decimated.modifiers[-1].name)
+    decimate = decimated.modifiers.new("Decimate", "DECIMATE")
+    # Whole at the frame and before; decimated after it, within the shutter's second half.
+    for frame, ratio in ((FRAME, 1.0), (FRAME + 1, 0.2)):
+        decimate.ratio = ratio
+        decimate.keyframe_insert("ratio", frame=frame)
+
+
+def accessor(gltf, binary, index):
+    a = gltf["accessors"][index]
+    view = gltf["bufferViews"][a["bufferView"]]
+    start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+    values = struct.unpack_from(f"<{3 * a['count']}f", binary, start)
+    return np.array(values, dtype=np.float64).reshape(-1, 3)
+
+
+def evaluated_at(scene, obj, time_s, world_space):
+    deformation.set_time(scene, FRAME, time_s)
+    pose = deformation.Evaluated(obj)
+    return pose.placed(world_space)
+
+
+def check_shapes(scene, gltf, binary, node, obj, problems):
+    ext = node["extensions"]["FILMBACK_deformation"]
+    world = ext["world_space"]
+    for p, (primitive, shapes) in enumerate(zip(gltf["meshes"][node["mesh"]]["primitives"],
+                                                ext["primitives"])):
+        base = accessor(gltf, binary, primitive["attributes"]["POSITION"])
+        for k, t in enumerate(ext["times_s"]):
+            written = accessor(gltf, binary, shapes["positions"][k])
+            normals = accessor(gltf, binary, shapes["normals"][k])
+            positions, _ = evaluated_at(scene, obj, t, world)
+            # Each written vertex is one of Blender's evaluated ones, and moves with its base.
+            nearest = np.min(np.linalg.norm(written[:, None, :] - positions[None, :, :], axis=2),
+                             axis=1)
+            if nearest.max() > TOLERANCE:
+                problems.append(f"{obj.name}: primitive {p} time {k}: a written position is "
+                                f"{nearest.max():.3g} m from every evaluated vertex")
+            if abs(np.linalg.norm(normals, axis=1) - 1).max() > TOLERANCE:
+                problems.append(f"{obj.name}: primitive {p} time {k}: normals not unit")
+        scene.frame_set(FRAME)
+        if len(base) != len(written):
+            problems.append(f"{obj.name}: primitive {p}: {len(written)} shapes' vertices for "
+                            f"{len(base)} exported")
+
+
+def main():
+    out_dir = os.path.abspath(sys.argv[sys.argv.index("--") + 1])
+    os.makedirs(out_dir, exist_ok=True)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.render.use_motion_blur = True
+    scene.render.motion_blur_shutter = 0.5
+    scene.frame_start, scene.frame_end = 0, 10
+    scene.frame_set(FRAME)
+    build(scene)
+    scene.frame_set(FRAME)
+    path = os.path.join(out_dir, "shot.gltf")
+    export_shot.export(path, export_lights=False)
+
+    with open(path) as f:
+        gltf = json.load(f)
+    with open(os.path.join(out_dir, gltf["buffers"][0]["uri"]), "rb") as f:
+        binary = f.read()
+    nodes = {n["name"]: n for n in gltf["nodes"]}
+    problems = []
+    positions = (2 << (STEPS - 1)) + 1
+    expected = {"bent": (positions, True), "keyed": (positions, False)}
+    for name, (count, world) in expected.items():
+        ext = nodes[name].get("extensions", {}).get("FILMBACK_deformation")
+        if ext is None:
+            problems.append(f"{name}: no FILMBACK_deformation")
+            continue
+        if len(ext["times_s"]) != count or ext["world_space"] != world:
+            problems.append(f"{name}: {len(ext['times_s'])} times, world_space "
+                            f"{ext['world_space']}; expected {count}, {world}")
+        check_shapes(scene, gltf, binary, nodes[name], bpy.data.objects[name], problems)
+    for name in ("plain", "remeshed", "decimated"):
+        if "FILMBACK_deformation" in nodes[name].get("extensions", {}):
+            problems.append(f"{name}: has FILMBACK_deformation; expected none")
+    if problems:
+        raise SystemExit("\n".join(problems))
+    print("deformation export: every check passed")
+
+
+main()
