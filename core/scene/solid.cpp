@@ -29,6 +29,10 @@ Bounds3d object_bounds(const Solid& primitive) {
       const double r = std::abs(primitive.radius1);
       return {{-1 - r, -1 - r, -r}, {1 + r, 1 + r, r}};
     }
+    case SolidKind::kOutline: {
+      const Outline& o = *primitive.outline;
+      return {{o.lo.x, o.lo.y, 0}, {o.hi.x, o.hi.y, 1}};
+    }
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

@@ -141,6 +141,20 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       degenerate = polynomial3_degree(s.polynomial) == 0;
       break;
     }
+    case Shape::kPrism: {
+      if (!o.outline) return std::nullopt;  // not closed: the parser said so, as POV-Ray does
+      if (o.conic) {
+        incomplete(o, "prism with conic_sweep", "left out (only linear_sweep is drawn)");
+        return std::nullopt;
+      }
+      // The outline's <x, z> are canonical x, y; canonical z from 0 to 1 is y from r0 to r1.
+      s.kind = SolidKind::kOutline;
+      s.outline = o.outline;
+      degenerate = !(std::abs(o.r1 - o.r0) > 0) || !(o.outline->hi.x > o.outline->lo.x) ||
+                   !(o.outline->hi.y > o.outline->lo.y);
+      place = columns({1, 0, 0}, {0, 0, 1}, {0, o.r1 - o.r0, 0}, {0, o.r0, 0});
+      break;
+    }
     default:
       return std::nullopt;
   }

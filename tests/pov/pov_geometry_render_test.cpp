@@ -68,6 +68,25 @@ const SolidShot kSolidShots[] = {
     {"quartic_torus",
      "quartic { <1,0,0,0,2,0,0,2,0,-2.32,0,0,0,0,0,0,0,0,0,0,1,0,0,2,0,1.68,0,0,0,0,1,0,-2.32,0,"
      "0.7056> rotate <60, 20, 0> }"},
+    // Prisms (extruded outlines): a square ring (two linear sub-polygons, even-odd), a closed
+    // cubic_spline through six points, a bezier_spline lens swept open.
+    {"prism_linear_ring",
+     "prism { -0.4, 0.6, 10, <-1.2, -1>, <1.2, -1>, <1.2, 1>, <-1.2, 1>, <-1.2, -1>,"
+     " <-0.5, -0.4>, <0.6, -0.4>, <0.6, 0.5>, <-0.5, 0.5>, <-0.5, -0.4> rotate <-70, 25, 0> }"},
+    {"prism_cubic_spline",
+     "prism { cubic_spline 0, 0.8, 9, <0, -1.3>, <1.4, -0.6>, <1, 0.9>, <-0.2, 1.1>, <-1.3, 0.2>,"
+     " <-0.6, -1>, <0, -1.3>, <1.4, -0.6>, <1, 0.9> rotate <-50, -30, 0> translate y * -0.3 }"},
+    {"prism_bezier_open",
+     "prism { bezier_spline -0.7, 0.7, 8, <-1.5, 0>, <-0.8, 1.6>, <0.8, 1.6>, <1.5, 0>,"
+     " <1.5, 0>, <0.8, -1.6>, <-0.8, -1.6>, <-1.5, 0> open rotate <-35, 40, 10> }"},
+    // Text from the fonts POV-Ray ships: a kerned pair (AV), holes (o, g), quadratic outlines,
+    // and the per-character offset.
+    {"text_timrom",
+     "text { ttf \"timrom.ttf\" \"AVog\" 0.4, <0.05, 0.02, 0> scale 1.4"
+     " translate <-1.4, -0.4, 0> rotate <-20, 25, 0> }"},
+    {"text_cyrvetic",
+     "text { ttf \"cyrvetic.ttf\" \"R&B\" 0.6, 0 scale 1.5"
+     " translate <-1.3, -0.5, 0> rotate <15, -30, 0> }"},
 };
 
 std::string scene_sdl(const SolidShot& shot) {
@@ -93,6 +112,7 @@ Image povray_render(const fs::path& povray, const fs::path& work) {
 Image filmback_render(const fs::path& work) {
   pov::EvaluateOptions evaluate;
   evaluate.scene_file = work / "scene.pov";
+  evaluate.library_paths = {"/usr/share/povray-3.7/include"};  // the fonts, as POV-Ray's +L
   evaluate.image_width = kGeometryWidth, evaluate.image_height = kGeometryHeight;
   const pov::Scene pov = pov::evaluate_pov(evaluate);
   Diagnostics diagnostics;

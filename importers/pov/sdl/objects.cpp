@@ -11,15 +11,16 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",      "box",      "plane",           "cylinder",   "cone",         "torus",
-    "disc",        "triangle", "smooth_triangle", "mesh",       "mesh2",        "polygon",
-    "object",      "union",    "merge",           "difference", "intersection", "light_source",
-    "light_group", "quadric",  "cubic",           "quartic",    "poly"};
+    "sphere",     "box",          "plane",        "cylinder",        "cone",
+    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
+    "mesh2",      "polygon",      "object",       "union",           "merge",
+    "difference", "intersection", "light_source", "light_group",     "quadric",
+    "cubic",      "quartic",      "poly",         "prism",           "text"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "text",           "height_field", "blob",       "lathe",         "sor",        "prism",
-    "superellipsoid", "isosurface",   "polynomial", "julia_fractal", "parametric", "sphere_sweep",
-    "bicubic_patch",  "ovus",         "lemon",      "fractal"};
+    "height_field",  "blob",       "lathe",         "sor",        "superellipsoid",
+    "isosurface",    "polynomial", "julia_fractal", "parametric", "sphere_sweep",
+    "bicubic_patch", "ovus",       "lemon",         "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -251,6 +252,8 @@ constexpr ShapeParser kShapes[] = {
     {"mesh", [](Parser& p, Object& o) { p.parse_mesh(o); }},
     {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
     {"polygon", parse_polygon},
+    {"prism", [](Parser& p, Object& o) { p.parse_prism(o); }},
+    {"text", [](Parser& p, Object& o) { p.parse_text(o); }},
 };
 
 bool is_polynomial(std::string_view w) {
@@ -504,6 +507,11 @@ Node Parser::parse_object(const Tok& keyword) {
   o.where = where;
   expect("{");
   if (w == "object") return parse_object_reference();
+  if (w == "text" && peek().word("internal")) {  // POV-Ray's built-in fonts are not here
+    warn_at(where, "text with an internal font: POV-Ray's built-in fonts are not here");
+    skip_rest_of_block();
+    return missing_node(w, where);
+  }
   bool dropped = false;  // an unsupported object left out of this CSG
   if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
     parse_primitive(*this, o, *primitive);
