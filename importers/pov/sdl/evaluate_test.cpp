@@ -603,10 +603,17 @@ TEST_F(Sdl, TextObjects) {
   EXPECT_EQ(swept.z, 1);
   EXPECT_EQ(up.y, 1);
   EXPECT_EQ(h.world_from_object.point({0, 0, 0}).y, 1);  // translated with the text
-  EXPECT_NE(error_of("sphere { 0, 1 }\ntext { ttf \"missing.ttf\" \"Hi\" 1, 0 }")
-                .find("scene.pov:2:12: cannot find font \"missing.ttf\""),
-            std::string::npos);
-  EXPECT_NE(error_of("text { ttf \"../timrom.ttf\" \"Hi\" 1, 0 }").find("cannot find font"),
+  // A font that is not here (or only outside the allowed folders) leaves the text out, reported.
+  scene =
+      run("sphere { 0, 1 }\ntext { ttf \"missing.ttf\" \"Hi\" 1, 0 }\n"
+          "text { ttf \"../timrom.ttf\" \"Hi\" 1, 0 }");
+  EXPECT_EQ(scene.objects.size(), 1u);
+  ASSERT_EQ(scene.unsupported.size(), 2u);
+  EXPECT_EQ(scene.unsupported[0].feature, "text");
+  ASSERT_EQ(scene.warnings.size(), 2u);
+  EXPECT_EQ(scene.warnings[0].rfind("scene.pov:2:12: font \"missing.ttf\" is not in", 0), 0u);
+  EXPECT_EQ(scene.warnings[1].rfind("scene.pov:3:12: font \"../timrom.ttf\" is not in", 0), 0u);
+  EXPECT_NE(error_of("text { ttf \"timrom.ttf\" 7, 1, 0 }").find("scene.pov:1:25: text expects"),
             std::string::npos);
   // POV-Ray's built-in fonts are not here: such a text is left out and reported where placed.
   scene = run("sphere { 0, 1 }\ntext { internal 1 \"Hi\" 1, 0 }");

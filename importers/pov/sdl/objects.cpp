@@ -253,7 +253,6 @@ constexpr ShapeParser kShapes[] = {
     {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
     {"polygon", parse_polygon},
     {"prism", [](Parser& p, Object& o) { p.parse_prism(o); }},
-    {"text", [](Parser& p, Object& o) { p.parse_text(o); }},
 };
 
 bool is_polynomial(std::string_view w) {
@@ -507,11 +506,6 @@ Node Parser::parse_object(const Tok& keyword) {
   o.where = where;
   expect("{");
   if (w == "object") return parse_object_reference();
-  if (w == "text" && peek().word("internal")) {  // POV-Ray's built-in fonts are not here
-    warn_at(where, "text with an internal font: POV-Ray's built-in fonts are not here");
-    skip_rest_of_block();
-    return missing_node(w, where);
-  }
   bool dropped = false;  // an unsupported object left out of this CSG
   if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
     parse_primitive(*this, o, *primitive);
@@ -521,6 +515,11 @@ Node Parser::parse_object(const Tok& keyword) {
     if (!parse_polynomial(w, o)) {
       skip_rest_of_block();
       return missing_node(w, where);  // above degree 4
+    }
+  } else if (w == "text") {
+    if (!parse_text(o)) {
+      skip_rest_of_block();
+      return missing_node(w, where);  // a font that is not here
     }
   } else {
     dropped = parse_csg_children(w, where, o, node);

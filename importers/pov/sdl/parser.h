@@ -222,7 +222,7 @@ class Parser {
   void parse_mesh2(Object& o);
   bool parse_polynomial(const std::string& keyword, Object& o);
   void parse_prism(Object& o);  // prism.cpp
-  void parse_text(Object& o);   // text.cpp
+  bool parse_text(Object& o);   // text.cpp; false: its font is not here (reported)
   void skip_rest_of_block();    // to the '}' closing a block already open
   void parse_object_mods(Node& node);
   void parse_clipped_by(Node& node, Object& o);

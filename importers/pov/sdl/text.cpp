@@ -14,24 +14,30 @@ const std::vector<std::filesystem::path> kDebianPovRayFonts = {"/usr/share/fonts
 
 }  // namespace
 
-void Parser::parse_text(Object& o) {
-  const Tok kind = next();  // `internal` fonts are left out before (objects.cpp)
+bool Parser::parse_text(Object& o) {
+  const Tok kind = next();
+  if (kind.word("internal")) {
+    warn_at(o.where, "text with an internal font: POV-Ray's built-in fonts are not here");
+    return false;
+  }
   if (!kind.word("ttf")) fail_at(location_of(kind), "expected ttf \"font file\" in text");
   const Value font = parse_expression();
   if (font.kind != ValueKind::kString) fail("text expects a font file name string after ttf");
   const SourceLocation font_at = here();
   accept(",");
+  const std::optional<std::filesystem::path> path =
+      resolve_include(font.text, nullptr, false, kDebianPovRayFonts);
+  if (!path) {  // POV-Ray stops there; the rest of the scene can still be drawn
+    warn_at(font_at, "font \"" + font.text +
+                         "\" is not in the scene's folder or the library paths: text left out");
+    return false;
+  }
   const Value string = parse_expression();
   if (string.kind != ValueKind::kString) fail("text expects the string to draw after the font");
   accept(",");
   const double thickness = parse_float();
   accept(",");
   const Value offset = parse_numeric(3);
-  const std::optional<std::filesystem::path> path =
-      resolve_include(font.text, nullptr, false, kDebianPovRayFonts);
-  if (!path)
-    fail_at(font_at,
-            "cannot find font \"" + font.text + "\" in the scene's folder or the library paths");
   std::vector<PlacedGlyph> glyphs;
   try {
     glyphs = text_glyphs(*path, string.text, {offset.v[0], offset.v[1], offset.v[2]});
@@ -53,6 +59,7 @@ void Parser::parse_text(Object& o) {
     glyph.world_from_object = Matrix::translate(g.position) * turn;
     o.children.push_back(std::move(glyph));
   }
+  return true;
 }
 
 }  // namespace fb::pov::sdl
