@@ -24,6 +24,8 @@ struct RenderSolid::Node {
   Bounds3d bounds;               // render space, of the set before `inverse`; may be infinite
   Polynomial3 polynomial;        // kPolynomial, in object space
   std::shared_ptr<const Outline> outline;  // kOutline
+  bool conic = false;                      // kOutline: conic sweep
+  double z0 = 0, z1 = 1;                   // kOutline: the slab it is swept through
   Bounds3d window;       // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;  // farthest corner of a bounded primitive from the render origin
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
@@ -307,34 +309,63 @@ void polynomial_spans(const Node& leaf, const Ray& render_ray, const Ray& r, dou
 // share meets at least one of them: found by both, the crossing only splits a piece in two.
 constexpr double kOutlineJointSlack = 1e-9;
 
-// The outline swept from z = 0 to z = 1: the ray's piece within that slab cut at the walls'
-// crossings (each segment's line polynomial's sign changes), each piece then inside or not by
-// the outline's even-odd test at its middle. Deciding each piece on its own, rather than flipping
-// at every crossing, keeps a crossing found twice or a tangent ray from turning inside out.
-// `crossings` holds outline.degrees spans (only their `in` is used).
+// The polynomial in u whose sign changes are where the ray o + t d crosses the segment's wall.
+// Linear sweep: the ray's shadow on the xy plane crosses the curve. Conic: the plane through the
+// apex (the origin) and the ray holds the ruling through (point(u), 1): n . (point(u), 1) = 0
+// with n = o x d, again of the segment's degree.
+void outline_wall_polynomial(const Node& leaf, const OutlineSegment& s, Vec3d o, Vec3d d,
+                             double c[4]) {
+  if (!leaf.conic) return segment_line_polynomial(s, {o.x, o.y}, {d.x, d.y}, c);
+  const Vec3d n = cross(o, d);
+  for (int i = 0; i < 4; ++i)
+    c[i] = n.x * s.c[i].x + n.y * s.c[i].y + (i == 0 ? n.z : 0);
+}
+
+// The ray's parameter where it meets the wall at the segment's u: along the shadow, or where
+// o + t d = z (point(u), 1), that is (o x w) + t (d x w) = 0 for w = (point(u), 1).
+double outline_wall_t(const Node& leaf, const OutlineSegment& s, double u, Vec3d o, Vec3d d) {
+  const Vec2d b = segment_point(s, u);
+  if (!leaf.conic) {
+    const double dx = b.x - o.x, dy = b.y - o.y;
+    return (dx * d.x + dy * d.y) / (d.x * d.x + d.y * d.y);
+  }
+  const Vec3d w{b.x, b.y, 1}, dw = cross(d, w);
+  return -dot(cross(o, w), dw) / dot(dw, dw);
+}
+
+// Whether a point within the slab is inside: its cross-section, scaled back by z when conic.
+bool outline_section_holds(const Node& leaf, Vec3d p) {
+  if (!leaf.conic) return outline_contains(*leaf.outline, {p.x, p.y});
+  return p.z != 0 && outline_contains(*leaf.outline, {p.x / p.z, p.y / p.z});
+}
+
+// The outline swept through the slab z0 <= z <= z1: the ray's piece within it cut at the walls'
+// crossings (each segment's wall polynomial's sign changes), each piece then inside or not by
+// the section's even-odd test at its middle. Deciding each piece on its own, rather than
+// flipping at every crossing, keeps a crossing found twice or a tangent ray from turning inside
+// out. `crossings` holds outline.degrees spans (only their `in` is used).
 void outline_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n,
                    Span* crossings) {
   const Outline& outline = *leaf.outline;
+  if (!(dot(r.d, r.d) > 0)) return;
   Boundary slab_in{-kInf}, slab_out{kInf};
   if (r.d.z == 0) {
-    if (!(r.o.z >= 0 && r.o.z <= 1)) return;
+    if (!(r.o.z >= leaf.z0 && r.o.z <= leaf.z1)) return;
   } else {
-    const Boundary base = on(leaf, -r.o.z / r.d.z, 1, !leaf.open);
-    const Boundary cap = on(leaf, (1 - r.o.z) / r.d.z, 2, !leaf.open);
+    const Boundary base = on(leaf, (leaf.z0 - r.o.z) / r.d.z, 1, !leaf.open);
+    const Boundary cap = on(leaf, (leaf.z1 - r.o.z) / r.d.z, 2, !leaf.open);
     slab_in = r.d.z > 0 ? base : cap, slab_out = r.d.z > 0 ? cap : base;
   }
-  const Vec2d o{r.o.x, r.o.y}, d{r.d.x, r.d.y};
-  const double dd = d.x * d.x + d.y * d.y;
-  if (!(dd > 0) && r.d.z == 0) return;
+  // A ray along the linear sweep's walls crosses none (its shadow is a point).
+  const bool crosses = leaf.conic || r.d.x != 0 || r.d.y != 0;
   int count = 0;
-  for (uint32_t i = 0; dd > 0 && i < outline.segments.size(); ++i) {
+  for (uint32_t i = 0; crosses && i < outline.segments.size(); ++i) {
     const OutlineSegment& s = outline.segments[i];
     double c[4], u[3];
-    segment_line_polynomial(s, o, d, c);
+    outline_wall_polynomial(leaf, s, r.o, r.d, c);
     const int roots = sign_changes(c, s.degree, -kOutlineJointSlack, 1 + kOutlineJointSlack, u);
     for (int k = 0; k < roots; ++k) {
-      const Vec2d p = segment_point(s, u[k]) - o;
-      const double t = (p.x * d.x + p.y * d.y) / dd;
+      const double t = outline_wall_t(leaf, s, u[k], r.o, r.d);
       if (!(t > slab_in.t && t < slab_out.t)) continue;
       crossings[count].in = on(leaf, t, 0);
       crossings[count++].in.segment = i;
@@ -349,7 +380,7 @@ void outline_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* o
     if (!(end.t > from.t)) continue;  // an empty piece: it leaves the state as it was
     // Past the outermost crossing of an unbounded piece, the line is outside the outline.
     const bool piece_inside = std::isfinite(from.t) && std::isfinite(end.t) &&
-                              outline_contains(outline, o + d * (0.5 * (from.t + end.t)));
+                              outline_section_holds(leaf, r.o + r.d * (0.5 * (from.t + end.t)));
     if (piece_inside && !inside) entry = from;
     if (!piece_inside && inside) {
       from.part = from.part == 0 ? 3 : from.part;  // the wall where the ray leaves
@@ -470,24 +501,24 @@ int node_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, 
 // The outward normal of an outline's wall at object-space point p, which the ray along d (object
 // space) enters (part 0) or leaves (part 3) there. Even-odd contours have no orientation of
 // their own: the side the ray comes from tells outside from inside. The segment's parameter at
-// p is the root of the same line polynomial nearest to p.
+// p is the root of the same wall polynomial (the ray through p) whose point is nearest to p.
+// Linear: the tangent turned; conic: the tangent (t, 0) crossed with the ruling (point(u), 1).
 Vec3d outline_wall_normal(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
   const OutlineSegment& s = leaf.outline->segments[b.segment];
-  const Vec2d p2{p.x, p.y}, d2{d.x, d.y};
   double c[4], u[3];
-  segment_line_polynomial(s, p2, d2, c);
+  outline_wall_polynomial(leaf, s, p, d, c);
   const int roots = sign_changes(c, s.degree, -kOutlineJointSlack, 1 + kOutlineJointSlack, u);
-  double best = HUGE_VAL;
-  Vec2d tangent{0, 0};
+  const double scale = leaf.conic ? p.z : 1;
+  double best = HUGE_VAL, u_best = 0;
   for (int k = 0; k < roots; ++k) {
-    const Vec2d miss = segment_point(s, u[k]) - p2;
+    const Vec2d miss = segment_point(s, u[k]) * scale - Vec2d{p.x, p.y};
     const double distance = miss.x * miss.x + miss.y * miss.y;
-    if (distance < best) best = distance, tangent = segment_tangent(s, u[k]);
+    if (distance < best) best = distance, u_best = u[k];
   }
-  Vec2d normal{tangent.y, -tangent.x};
-  const bool along_ray = normal.x * d2.x + normal.y * d2.y > 0;
-  if (along_ray != (b.part == 3)) normal = normal * -1.0;
-  return {normal.x, normal.y, 0};
+  const Vec2d t = segment_tangent(s, u_best), q = segment_point(s, u_best);
+  Vec3d normal{t.y, -t.x, leaf.conic ? t.x * q.y - t.y * q.x : 0};
+  if ((dot(normal, d) > 0) != (b.part == 3)) normal = -normal;
+  return normal;
 }
 
 // The primitive's outward gradient at object-space point p on the boundary b, which the ray
@@ -563,6 +594,10 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   node.bounds = uncomplemented_bounds(solid, render_from_world);
   node.polynomial = solid.polynomial;
   node.outline = solid.outline;
+  node.conic = solid.conic;
+  if (solid.kind == SolidKind::kOutline && solid.conic)
+    node.z0 = std::min(solid.radius0, solid.radius1),
+    node.z1 = std::max(solid.radius0, solid.radius1);
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

@@ -33,7 +33,9 @@ enum class SolidKind : uint8_t {
   // poly): unbounded in general; POV-Ray scenes bound them by CSG.
   kPolynomial,
   // `outline` (core/scene/outline.h: closed curves in the xy plane, even-odd inside) swept from
-  // z = 0 to z = 1: POV-Ray's prism and text. `open`: the caps bound the set but are no surface.
+  // z = 0 to z = 1: POV-Ray's prism and text; `conic`: scaled by z from the origin, {z p : p in
+  // the outline} for radius0 <= z <= radius1 (POV-Ray's conic_sweep). `open`: the caps bound the
+  // set but are no surface.
   kOutline,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
@@ -47,6 +49,7 @@ struct Solid {
   Transform world_from_object;
   double radius0 = 1, radius1 = 1;  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1
   bool open = false;                // kCylinder, kCone, kOutline: no end caps
+  bool conic = false;               // kOutline: a conic sweep between radius0 < radius1
   bool inverse = false;             // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
   // object open where it cuts.

@@ -156,7 +156,7 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   }
   if (primitive.kind == SolidKind::kOutline) {
     tessellate_outline(
-        *primitive.outline, primitive.open,
+        primitive,
         tessellation_tolerance_m(primitive, options) / largest_stretch(primitive.world_from_object),
         std::max(options.max_segments, 1u), mesh);
     return mesh;

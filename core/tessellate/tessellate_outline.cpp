@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/solid.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -48,16 +49,16 @@ void add_vertex(TriangleMesh& mesh, Vec2d p, double z, Vec3d normal) {
   mesh.normals.emplace_back(normal);
 }
 
-// One segment's wall: a strip of quads from z = 0 to 1, wound counter-clockwise seen from out.
-void add_wall(const Outline& outline, const OutlineSegment& s, uint32_t chords, TriangleMesh& mesh,
-              std::vector<Vec2d>& flattened) {
+// One segment's wall: a strip of quads from z0 to z1, wound counter-clockwise seen from out.
+void add_wall(const Outline& outline, const OutlineSegment& s, uint32_t chords, double z0,
+              double z1, TriangleMesh& mesh, std::vector<Vec2d>& flattened) {
   const double sign = outward_sign(outline, s);
   const uint32_t base = uint32_t(mesh.positions.size());
   for (uint32_t k = 0; k <= chords; ++k) {
     const double u = double(k) / chords;
     const Vec2d p = k == 0 ? s.start : k == chords ? s.end : segment_point(s, u);
     const Vec2d n = outline_normal_at(s, u, sign);
-    for (double z : {0.0, 1.0})
+    for (double z : {z0, z1})
       add_vertex(mesh, p, z, {n.x, n.y, 0});
     flattened.push_back(p);
   }
@@ -81,7 +82,8 @@ struct CapEdge {
 // Both caps by a sweep in y: between two consecutive vertex heights no edge starts or ends, so
 // the edges crossing that band, sorted by x, bound it inside and out in turn (even-odd): each
 // pair is a trapezoid.
-void add_caps(const std::vector<std::vector<Vec2d>>& contours, TriangleMesh& mesh) {
+void add_caps(const std::vector<std::vector<Vec2d>>& contours, double z0, double z1,
+              TriangleMesh& mesh) {
   std::vector<CapEdge> edges;
   std::vector<double> levels;
   for (const std::vector<Vec2d>& chain : contours)
@@ -121,11 +123,11 @@ void add_caps(const std::vector<std::vector<Vec2d>>& contours, TriangleMesh& mes
                                 {left.x_at(y1), y1}};  // counter-clockwise seen from +z
       // Where the two edges meet (a vertex of the outline), a side has no length: one triangle.
       const bool bottom = corners[1].x > corners[0].x, top = corners[2].x > corners[3].x;
-      for (double z : {0.0, 1.0}) {
+      for (double z : {z0, z1}) {
+        const bool up = z == z1;  // the bottom cap faces -z: wound the other way
         const uint32_t base = uint32_t(mesh.positions.size());
         for (const Vec2d& c : corners)
-          add_vertex(mesh, c, z, {0, 0, z > 0 ? 1.0 : -1.0});
-        const bool up = z > 0;  // the bottom cap faces -z: wound the other way
+          add_vertex(mesh, c, z, {0, 0, up ? 1.0 : -1.0});
         if (bottom)
           mesh.indices.insert(mesh.indices.end(), {base, base + (up ? 1 : 2), base + (up ? 2 : 1)});
         if (top)
@@ -137,14 +139,34 @@ void add_caps(const std::vector<std::vector<Vec2d>>& contours, TriangleMesh& mes
 
 }  // namespace
 
-void tessellate_outline(const Outline& outline, bool open, double error, uint32_t most_pieces,
+void tessellate_outline(const Solid& primitive, double error, uint32_t most_pieces,
                         TriangleMesh& mesh) {
+  const Outline& outline = *primitive.outline;
+  const bool conic = primitive.conic;
+  const double z0 = conic ? std::min(primitive.radius0, primitive.radius1) : 0;
+  const double z1 = conic ? std::max(primitive.radius0, primitive.radius1) : 1;
+  // A conic section at z is the outline scaled by z: its chords stray z times as far.
+  const double section_error =
+      conic ? error / std::max({std::abs(z0), std::abs(z1), 1e-300}) : error;
+  const size_t first = mesh.positions.size();
   std::vector<std::vector<Vec2d>> flattened(outline.segments.size());
   for (size_t i = 0; i < outline.segments.size(); ++i) {
     const OutlineSegment& s = outline.segments[i];
-    add_wall(outline, s, outline_chords(s, error, most_pieces), mesh, flattened[i]);
+    add_wall(outline, s, outline_chords(s, section_error, most_pieces), z0, z1, mesh, flattened[i]);
   }
-  if (!open) add_caps(flattened, mesh);
+  if (!primitive.open) add_caps(flattened, z0, z1, mesh);
+  if (!conic) return;
+  // The conic solid is the linear one mapped by F(x, y, z) = (z x, z y, z), whose Jacobian has
+  // determinant z^2 > 0: the winding stays outward, normals go by the inverse transpose,
+  // (n_x / z, n_y / z, n_z - (x n_x + y n_y) / z), here times |z| so that the apex (z = 0, where
+  // the slab starts at it) keeps its walls' limit. The rulings are straight: exact between ends.
+  for (size_t i = first; i < mesh.positions.size(); ++i) {
+    const Vec3d p(mesh.positions[i]), n(mesh.normals[i]);
+    const double side = p.z < 0 ? -1 : 1;
+    const Vec3d mapped = Vec3d{n.x, n.y, n.z * p.z - (p.x * n.x + p.y * n.y)} * side;
+    mesh.positions[i] = Vec3f(Vec3d{p.x * p.z, p.y * p.z, p.z});
+    if (length(mapped) > 0) mesh.normals[i] = Vec3f(normalize(mapped));
+  }
 }
 
 }  // namespace fb

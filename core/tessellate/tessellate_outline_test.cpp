@@ -52,6 +52,32 @@ TEST(TessellateOutline, MeshLiesOnTheSurfaceAndEnclosesTheOutlinesVolume) {
   EXPECT_NEAR(volume, area, 1e-3 * area);
 }
 
+// The conic sweep between z = 0.5 and 1.5: the mesh is the outline scaled by each vertex's z,
+// closed and outward (volume = area (z1^3 - z0^3) / 3).
+TEST(TessellateOutline, ConicMeshIsTheScaledSectionAndEnclosesItsVolume) {
+  const Outline outline = test::mixed_outline();
+  Solid s = test::outline_solid(outline);
+  s.conic = true, s.radius0 = 0.5, s.radius1 = 1.5;
+  TessellationOptions options;
+  options.relative_tolerance = 1e-4;
+  const TriangleMesh mesh = tessellate(s, options);
+  ASSERT_FALSE(mesh.indices.empty());
+  const double tolerance = tessellation_tolerance_m(s, options);
+  double volume = 0;
+  for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+    const Vec3d a(mesh.positions[mesh.indices[i]]), b(mesh.positions[mesh.indices[i + 1]]),
+        c(mesh.positions[mesh.indices[i + 2]]);
+    volume += dot(a, cross(b, c)) / 6;
+    const Vec3d centre = (a + b + c) / 3.0, n = cross(b - a, c - a);
+    if (std::abs(n.z) < 0.999 * length(n)) {  // a wall: within the tolerance of the curve
+      const Vec2d section{centre.x / centre.z, centre.y / centre.z};
+      EXPECT_LT(test::distance_to_curves(outline, section) * centre.z, tolerance);
+    }
+  }
+  const double area = mixed_outline_area();
+  EXPECT_NEAR(volume, area * (1.5 * 1.5 * 1.5 - 0.5 * 0.5 * 0.5) / 3, 2e-3 * area);
+}
+
 TEST(TessellateOutline, OpenOutlineHasOnlyWalls) {
   Solid s = test::outline_solid(test::mixed_outline());
   s.open = true;

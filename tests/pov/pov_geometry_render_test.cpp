@@ -80,6 +80,10 @@ const SolidShot kSolidShots[] = {
     {"prism_bezier_open",
      "prism { bezier_spline -0.7, 0.7, 8, <-1.5, 0>, <-0.8, 1.6>, <0.8, 1.6>, <1.5, 0>,"
      " <1.5, 0>, <0.8, -1.6>, <-0.8, -1.6>, <-1.5, 0> open rotate <-35, 40, 10> }"},
+    // conic_sweep: a quadratic_spline outline scaled by y from the origin (a frustum, apex below).
+    {"prism_conic_quadratic",
+     "prism { conic_sweep quadratic_spline 0.4, 1, 6, <-1, 0>, <0, -1>, <1, 0>, <0, 1>, <-1, 0>,"
+     " <0, -1> scale 1.6 translate -y * 1.1 rotate <-30, 20, 0> }"},
     // Text from the fonts POV-Ray ships: a kerned pair (AV), holes (o, g), quadratic outlines,
     // and the per-character offset.
     {"text_timrom",

@@ -603,6 +603,7 @@ TEST_F(Sdl, TextObjects) {
   EXPECT_EQ(swept.z, 1);
   EXPECT_EQ(up.y, 1);
   EXPECT_EQ(h.world_from_object.point({0, 0, 0}).y, 1);  // translated with the text
+  EXPECT_EQ(run("text { ttf \"timrom\" \"Hi\" 0.25, 0 }").objects.at(0).children.size(), 2u);
   // A font that is not here (or only outside the allowed folders) leaves the text out, reported.
   scene =
       run("sphere { 0, 1 }\ntext { ttf \"missing.ttf\" \"Hi\" 1, 0 }\n"

@@ -25,8 +25,11 @@ bool Parser::parse_text(Object& o) {
   if (font.kind != ValueKind::kString) fail("text expects a font file name string after ttf");
   const SourceLocation font_at = here();
   accept(",");
-  const std::optional<std::filesystem::path> path =
+  // As POV-Ray, a name without an extension is also tried with ".ttf" ("cyrvetic").
+  std::optional<std::filesystem::path> path =
       resolve_include(font.text, nullptr, false, kDebianPovRayFonts);
+  if (!path && std::filesystem::path(font.text).extension().empty())
+    path = resolve_include(font.text + ".ttf", nullptr, false, kDebianPovRayFonts);
   if (!path) {  // POV-Ray stops there; the rest of the scene can still be drawn
     warn_at(font_at, "font \"" + font.text +
                          "\" is not in the scene's folder or the library paths: text left out");
