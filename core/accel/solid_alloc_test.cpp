@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/accel/solid_intersect.h"
+#include "support/outline_shapes.h"
 #include "support/solid_builders.h"
 
 namespace {
@@ -41,6 +42,8 @@ namespace {
 using test::ball;
 using test::csg;
 using test::inverted;
+using test::mixed_outline;
+using test::outline_solid;
 using test::primitive;
 
 // Allocations made while `work` runs.
@@ -78,6 +81,8 @@ std::vector<Solid> solids_of_every_shape() {
   for (int i = 0; i < 400; ++i)
     many.push_back(ball({double(i % 20) * 0.3 - 3, double(i / 20) * 0.3 - 3, 0}, 0.1, 0));
   solids.push_back(csg(SolidKind::kUnion, many));
+  // An extruded outline of every segment degree (its crossings need scratch spans), inverted.
+  solids.push_back(inverted(outline_solid(mixed_outline(), Transform::scale({0.5, 0.5, 1}))));
   return solids;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -22,8 +23,11 @@ struct RenderSolid::Node {
   Transform normal_from_object;  // inverse transpose of render_from_object
   Bounds3d bounds;               // render space, of the set before `inverse`; may be infinite
   Polynomial3 polynomial;        // kPolynomial, in object space
-  Bounds3d window;               // kPolynomial: render-space box its roots are searched in
-  double magnitude = 0;          // farthest corner of a bounded primitive from the render origin
+  std::shared_ptr<const Outline> outline;  // kOutline
+  bool conic = false;                      // kOutline: conic sweep
+  double z0 = 0, z1 = 1;                   // kOutline: the slab it is swept through
+  Bounds3d window;       // kPolynomial: render-space box its roots are searched in
+  double magnitude = 0;  // farthest corner of a bounded primitive from the render origin
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)
@@ -45,9 +49,12 @@ struct Ray {
 struct Boundary {
   double t = 0;
   const Node* leaf = nullptr;
-  uint8_t part = 0;      // which face: box 2 axis + (max side); cone 0 side, 1 base, 2 cap
+  // Which face: box 2 axis + (max side); cone 0 side, 1 base, 2 cap; outline 1 base, 2 cap, and
+  // its wall 0 where the ray enters the primitive, 3 where it leaves.
+  uint8_t part = 0;
   bool surface = false;  // false: bounds the set but is no surface (open caps, outside a disc)
   bool flipped = false;  // the set's outside is the primitive's inside (an odd complement)
+  uint32_t segment = 0;  // kOutline's wall: which segment (in the padding: a span stays 48 bytes)
 };
 
 struct Span {
@@ -298,8 +305,97 @@ void polynomial_spans(const Node& leaf, const Ray& render_ray, const Ray& r, dou
   }
 }
 
-// The primitive's spans (at most primitive_max_spans) into out; returns their count.
-int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out) {
+// Segment ends are searched a little past [0, 1], so that a ray through the point two segments
+// share meets at least one of them: found by both, the crossing only splits a piece in two.
+constexpr double kOutlineJointSlack = 1e-9;
+
+// The polynomial in u whose sign changes are where the ray o + t d crosses the segment's wall.
+// Linear sweep: the ray's shadow on the xy plane crosses the curve. Conic: the plane through the
+// apex (the origin) and the ray holds the ruling through (point(u), 1): n . (point(u), 1) = 0
+// with n = o x d, again of the segment's degree.
+void outline_wall_polynomial(const Node& leaf, const OutlineSegment& s, Vec3d o, Vec3d d,
+                             double c[4]) {
+  if (!leaf.conic) return segment_line_polynomial(s, {o.x, o.y}, {d.x, d.y}, c);
+  const Vec3d n = cross(o, d);
+  for (int i = 0; i < 4; ++i)
+    c[i] = n.x * s.c[i].x + n.y * s.c[i].y + (i == 0 ? n.z : 0);
+}
+
+// The ray's parameter where it meets the wall at the segment's u: along the shadow, or where
+// o + t d = z (point(u), 1), that is (o x w) + t (d x w) = 0 for w = (point(u), 1).
+double outline_wall_t(const Node& leaf, const OutlineSegment& s, double u, Vec3d o, Vec3d d) {
+  const Vec2d b = segment_point(s, u);
+  if (!leaf.conic) {
+    const double dx = b.x - o.x, dy = b.y - o.y;
+    return (dx * d.x + dy * d.y) / (d.x * d.x + d.y * d.y);
+  }
+  const Vec3d w{b.x, b.y, 1}, dw = cross(d, w);
+  return -dot(cross(o, w), dw) / dot(dw, dw);
+}
+
+// Whether a point within the slab is inside: its cross-section, scaled back by z when conic.
+bool outline_section_holds(const Node& leaf, Vec3d p) {
+  if (!leaf.conic) return outline_contains(*leaf.outline, {p.x, p.y});
+  return p.z != 0 && outline_contains(*leaf.outline, {p.x / p.z, p.y / p.z});
+}
+
+// The outline swept through the slab z0 <= z <= z1: the ray's piece within it cut at the walls'
+// crossings (each segment's wall polynomial's sign changes), each piece then inside or not by
+// the section's even-odd test at its middle. Deciding each piece on its own, rather than
+// flipping at every crossing, keeps a crossing found twice or a tangent ray from turning inside
+// out. `crossings` holds outline.degrees spans (only their `in` is used).
+void outline_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n,
+                   Span* crossings) {
+  const Outline& outline = *leaf.outline;
+  if (!(dot(r.d, r.d) > 0)) return;
+  Boundary slab_in{-kInf}, slab_out{kInf};
+  if (r.d.z == 0) {
+    if (!(r.o.z >= leaf.z0 && r.o.z <= leaf.z1)) return;
+  } else {
+    const Boundary base = on(leaf, (leaf.z0 - r.o.z) / r.d.z, 1, !leaf.open);
+    const Boundary cap = on(leaf, (leaf.z1 - r.o.z) / r.d.z, 2, !leaf.open);
+    slab_in = r.d.z > 0 ? base : cap, slab_out = r.d.z > 0 ? cap : base;
+  }
+  // A ray along the linear sweep's walls crosses none (its shadow is a point).
+  const bool crosses = leaf.conic || r.d.x != 0 || r.d.y != 0;
+  int count = 0;
+  for (uint32_t i = 0; crosses && i < outline.segments.size(); ++i) {
+    const OutlineSegment& s = outline.segments[i];
+    double c[4], u[3];
+    outline_wall_polynomial(leaf, s, r.o, r.d, c);
+    const int roots = sign_changes(c, s.degree, -kOutlineJointSlack, 1 + kOutlineJointSlack, u);
+    for (int k = 0; k < roots; ++k) {
+      const double t = outline_wall_t(leaf, s, u[k], r.o, r.d);
+      if (!(t > slab_in.t && t < slab_out.t)) continue;
+      crossings[count].in = on(leaf, t, 0);
+      crossings[count++].in.segment = i;
+    }
+  }
+  std::sort(crossings, crossings + count,
+            [](const Span& a, const Span& b) { return a.in.t < b.in.t; });
+  bool inside = false;
+  Boundary entry, from = slab_in;
+  for (int k = 0; k <= count; ++k) {
+    Boundary end = k < count ? crossings[k].in : slab_out;
+    if (!(end.t > from.t)) continue;  // an empty piece: it leaves the state as it was
+    // Past the outermost crossing of an unbounded piece, the line is outside the outline.
+    const bool piece_inside = std::isfinite(from.t) && std::isfinite(end.t) &&
+                              outline_section_holds(leaf, r.o + r.d * (0.5 * (from.t + end.t)));
+    if (piece_inside && !inside) entry = from;
+    if (!piece_inside && inside) {
+      from.part = from.part == 0 ? 3 : from.part;  // the wall where the ray leaves
+      push(out, n, entry, from, lo, hi);
+    }
+    inside = piece_inside;
+    from = end;
+  }
+  if (inside) push(out, n, entry, slab_out, lo, hi);
+}
+
+// The primitive's spans (at most primitive_max_spans) into out, using primitive_workspace spans
+// of scratch; returns their count.
+int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out,
+                    Span* scratch) {
   const Ray r{leaf.object_from_render.point(render_ray.o),
               leaf.object_from_render.vector(render_ray.d)};
   int n = 0;
@@ -324,6 +420,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kPolynomial:
       polynomial_spans(leaf, render_ray, r, lo, hi, out, n);
       break;
+    case SolidKind::kOutline:
+      outline_spans(leaf, r, lo, hi, out, n, scratch);
+      break;
     default:
       break;
   }
@@ -331,18 +430,26 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
 }
 
 // The most spans primitive_spans gives: a quadric's two spans within the cone's slab; one per
-// interval between the up to four roots of a torus or polynomial.
-size_t primitive_max_spans(SolidKind kind) {
-  switch (kind) {
+// interval between the up to four roots of a torus or polynomial; an outline's walls, crossed at
+// most `degrees` times, leave at most half as many pieces inside, and one more.
+size_t primitive_max_spans(const Node& leaf) {
+  switch (leaf.kind) {
     case SolidKind::kCylinder:
     case SolidKind::kCone:
       return 2;
     case SolidKind::kTorus:
     case SolidKind::kPolynomial:
       return kMaxPolynomialDegree + 1;
+    case SolidKind::kOutline:
+      return leaf.outline->degrees / 2 + 1;
     default:
       return 1;
   }
+}
+
+// The scratch primitive_spans needs: an outline's wall crossings.
+size_t primitive_workspace(const Node& leaf) {
+  return leaf.kind == SolidKind::kOutline ? leaf.outline->degrees : 0;
 }
 
 int node_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, Span* scratch);
@@ -384,15 +491,40 @@ int node_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, 
   int n = 0;
   double box_lo = lo, box_hi = hi + std::abs(hi) * 1e-9;
   if (clip_to_box(node.bounds, r, box_lo, box_hi)) {
-    n = node.kind < SolidKind::kUnion ? primitive_spans(node, r, lo, hi, out)
+    n = node.kind < SolidKind::kUnion ? primitive_spans(node, r, lo, hi, out, scratch)
                                       : children_spans(node, r, lo, hi, out, scratch);
   }
   if (node.inverse) n = complement(out, n, lo, hi, scratch);
   return n;
 }
 
-// The primitive's outward gradient at object-space point p on surface `part`.
-Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
+// The outward normal of an outline's wall at object-space point p, which the ray along d (object
+// space) enters (part 0) or leaves (part 3) there. Even-odd contours have no orientation of
+// their own: the side the ray comes from tells outside from inside. The segment's parameter at
+// p is the root of the same wall polynomial (the ray through p) whose point is nearest to p.
+// Linear: the tangent turned; conic: the tangent (t, 0) crossed with the ruling (point(u), 1).
+Vec3d outline_wall_normal(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
+  const OutlineSegment& s = leaf.outline->segments[b.segment];
+  double c[4], u[3];
+  outline_wall_polynomial(leaf, s, p, d, c);
+  const int roots = sign_changes(c, s.degree, -kOutlineJointSlack, 1 + kOutlineJointSlack, u);
+  const double scale = leaf.conic ? p.z : 1;
+  double best = HUGE_VAL, u_best = 0;
+  for (int k = 0; k < roots; ++k) {
+    const Vec2d miss = segment_point(s, u[k]) * scale - Vec2d{p.x, p.y};
+    const double distance = miss.x * miss.x + miss.y * miss.y;
+    if (distance < best) best = distance, u_best = u[k];
+  }
+  const Vec2d t = segment_tangent(s, u_best), q = segment_point(s, u_best);
+  Vec3d normal{t.y, -t.x, leaf.conic ? t.x * q.y - t.y * q.x : 0};
+  if ((dot(normal, d) > 0) != (b.part == 3)) normal = -normal;
+  return normal;
+}
+
+// The primitive's outward gradient at object-space point p on the boundary b, which the ray
+// along object-space direction d crosses there.
+Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
+  const uint8_t part = b.part;
   switch (leaf.kind) {
     case SolidKind::kSphere:
       return p;
@@ -414,6 +546,9 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
     }
     case SolidKind::kPolynomial:
       return polynomial3_gradient(leaf.polynomial, p);
+    case SolidKind::kOutline:
+      if (part == 1 || part == 2) return {0, 0, part == 1 ? -1.0 : 1.0};
+      return outline_wall_normal(leaf, b, p, d);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -425,7 +560,7 @@ void budget_spans(Node& node) {
   const auto capped = [](size_t v) { return std::min(v, kMaxSpans + 1); };
   size_t spans = 0, child_workspace = 0;
   if (node.kind < SolidKind::kUnion) {
-    spans = primitive_max_spans(node.kind);
+    spans = primitive_max_spans(node);
   } else {
     for (size_t i = 0; i < node.children.size(); ++i) {
       const Node& c = node.children[i];
@@ -442,7 +577,8 @@ void budget_spans(Node& node) {
   node.max_spans = capped(spans + (node.inverse ? 1 : 0));
   const size_t children =
       node.children.empty() ? 0 : capped(node.max_child_spans + node.max_spans + child_workspace);
-  node.workspace = std::max(children, node.inverse ? node.max_spans : 0);
+  node.workspace =
+      std::max({children, node.inverse ? node.max_spans : 0, capped(primitive_workspace(node))});
 }
 
 Node build(const Solid& solid, const Transform& render_from_world, const Bounds3d& reach,
@@ -457,6 +593,11 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   node.material = solid.material;
   node.bounds = uncomplemented_bounds(solid, render_from_world);
   node.polynomial = solid.polynomial;
+  node.outline = solid.outline;
+  node.conic = solid.conic;
+  if (solid.kind == SolidKind::kOutline && solid.conic)
+    node.z0 = std::min(solid.radius0, solid.radius1),
+    node.z1 = std::max(solid.radius0, solid.radius1);
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;
@@ -529,8 +670,9 @@ std::optional<SolidHit> RenderSolid::first_hit(Vec3d origin, Vec3d direction, do
   result.t = hit->t;
   result.material = leaf.material;
   result.position = r.o + r.d * hit->t;
-  const Vec3d p = leaf.object_from_render.point(r.o) + leaf.object_from_render.vector(r.d) * hit->t;
-  const Vec3d n = leaf.normal_from_object.vector(gradient(leaf, hit->part, p));
+  const Vec3d object_direction = leaf.object_from_render.vector(r.d);
+  const Vec3d p = leaf.object_from_render.point(r.o) + object_direction * hit->t;
+  const Vec3d n = leaf.normal_from_object.vector(gradient(leaf, *hit, p, object_direction));
   const double len = length(n);
   result.normal = len > 0 ? n / len : -normalize(r.d);  // a cone's apex, a torus's centre
   if (hit->flipped) result.normal = -result.normal;

@@ -29,6 +29,15 @@ Bounds3d object_bounds(const Solid& primitive) {
       const double r = std::abs(primitive.radius1);
       return {{-1 - r, -1 - r, -r}, {1 + r, 1 + r, r}};
     }
+    case SolidKind::kOutline: {
+      const Outline& o = *primitive.outline;
+      if (!primitive.conic) return {{o.lo.x, o.lo.y, 0}, {o.hi.x, o.hi.y, 1}};
+      Bounds3d box;  // the outline's box scaled by each end height
+      for (double z : {primitive.radius0, primitive.radius1})
+        for (Vec2d p : {o.lo, o.hi})
+          box.extend({p.x * z, p.y * z, z});
+      return box;
+    }
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/math/bounds.h"
 #include "core/math/polynomial.h"
 #include "core/math/transform.h"
+#include "core/scene/outline.h"
 
 namespace fb {
 
@@ -30,6 +32,11 @@ enum class SolidKind : uint8_t {
   // polynomial(p) <= 0 for `polynomial`, of degree <= 4 (POV-Ray's quadric, cubic, quartic and
   // poly): unbounded in general; POV-Ray scenes bound them by CSG.
   kPolynomial,
+  // `outline` (core/scene/outline.h: closed curves in the xy plane, even-odd inside) swept from
+  // z = 0 to z = 1: POV-Ray's prism and text; `conic`: scaled by z from the origin, {z p : p in
+  // the outline} for radius0 <= z <= radius1 (POV-Ray's conic_sweep). `open`: the caps bound the
+  // set but are no surface.
+  kOutline,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -41,13 +48,15 @@ struct Solid {
   std::string name;  // for messages: where it came from
   Transform world_from_object;
   double radius0 = 1, radius1 = 1;  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1
-  bool open = false;                // kCylinder, kCone: no end caps
+  bool open = false;                // kCylinder, kCone, kOutline: no end caps
+  bool conic = false;               // kOutline: a conic sweep between radius0 < radius1
   bool inverse = false;             // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
   // object open where it cuts.
   bool bounds_only = false;
-  uint32_t material = 0;   // of this primitive's surface (unused by set operations)
-  Polynomial3 polynomial;  // kPolynomial
+  uint32_t material = 0;                   // of this primitive's surface (unused by set operations)
+  Polynomial3 polynomial;                  // kPolynomial
+  std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat)
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

@@ -14,6 +14,7 @@ Solid bare_set(const Solid& primitive) {
   s.name = primitive.name;
   s.world_from_object = primitive.world_from_object;
   s.radius0 = primitive.radius0, s.radius1 = primitive.radius1;
+  s.outline = primitive.outline, s.conic = primitive.conic;
   return s;
 }
 

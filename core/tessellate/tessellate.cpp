@@ -7,6 +7,7 @@
 
 #include "core/math/constants.h"
 #include "core/tessellate/tessellate_csg.h"
+#include "core/tessellate/tessellate_outline.h"
 
 namespace fb {
 
@@ -151,6 +152,13 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   }
   if (primitive.kind == SolidKind::kHalfSpace) {
     plane_square(primitive, options, mesh);
+    return mesh;
+  }
+  if (primitive.kind == SolidKind::kOutline) {
+    tessellate_outline(
+        primitive,
+        tessellation_tolerance_m(primitive, options) / largest_stretch(primitive.world_from_object),
+        std::max(options.max_segments, 1u), mesh);
     return mesh;
   }
   // The tolerance in object units. Half of it goes to the angular segments, a quarter to the

@@ -141,6 +141,20 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       degenerate = polynomial3_degree(s.polynomial) == 0;
       break;
     }
+    case Shape::kPrism: {
+      if (!o.outline) return std::nullopt;  // not closed: the parser said so, as POV-Ray does
+      // The outline's <x, z> are canonical x, y. Linear: canonical z from 0 to 1 is y from r0 to
+      // r1. Conic: canonical z is y, the outline scaled by it (POV-Ray's points <x y, y, z y>).
+      s.kind = SolidKind::kOutline;
+      s.outline = o.outline;
+      s.conic = o.conic;
+      s.radius0 = std::min(o.r0, o.r1), s.radius1 = std::max(o.r0, o.r1);
+      degenerate = !(std::abs(o.r1 - o.r0) > 0) || !(o.outline->hi.x > o.outline->lo.x) ||
+                   !(o.outline->hi.y > o.outline->lo.y) || (o.conic && !(o.r0 * o.r1 >= 0));
+      place = o.conic ? columns({1, 0, 0}, {0, 0, 1}, {0, 1, 0}, {0, 0, 0})
+                      : columns({1, 0, 0}, {0, 0, 1}, {0, o.r1 - o.r0, 0}, {0, o.r0, 0});
+      break;
+    }
     default:
       return std::nullopt;
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <filmback/vec.h>
 
 #include "core/math/transform.h"
+#include "core/scene/outline.h"
 #include "core/scene/solid_texture.h"
 
 namespace fb::pov {
@@ -102,6 +104,9 @@ enum class Shape {
   // quadric, cubic, quartic, poly: `coefficients` of x^i y^j z^k in POV-Ray's poly order (i from
   // the degree down, then j, then k), degree `order`; inside where the polynomial is < 0
   kPolynomial,
+  // prism: `outline` (absent when POV-Ray leaves it out) in POV's xz plane swept in y from r0 to
+  // r1, straight up or, `conic`, scaled by y from the origin
+  kPrism,
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -118,8 +123,10 @@ struct Object {
   Vec3d a{0, 0, 0}, b{0, 0, 0};
   double r0 = 0, r1 = 0;
   bool open = false;
-  int order = 0;                     // kPolynomial
-  std::vector<double> coefficients;  // kPolynomial
+  int order = 0;                           // kPolynomial
+  std::vector<double> coefficients;        // kPolynomial
+  std::shared_ptr<const Outline> outline;  // kPrism
+  bool conic = false;                      // kPrism: conic_sweep
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

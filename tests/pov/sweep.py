@@ -3,10 +3,11 @@ scene: whether it imported and rendered, how long it took, and the unsupported f
 (docs/pov.md "Sample scenes"). Two counts are tracked: scenes that render with no error, and
 scenes that render with complete geometry (no object skipped or approximated away).
 
-    sweep.py --filmback build/bin/filmback [--every 20] [--timeout 60] [--out DIR]
+    sweep.py --filmback build/bin/filmback [--every 20] [--matching REGEX] [--timeout 60] [--out DIR]
 
 --every N takes every Nth scene of the sorted list (CI: a fixed sample of 20); without it,
-all 396. Writes DIR/sweep.csv and DIR/sweep.md. Exits non-zero only if filmback crashed (killed
+all 396. --matching REGEX keeps only the scenes whose own file matches it (not their includes):
+'\b(text|prism)\s*\{' re-runs the scenes a change to those shapes concerns. Writes DIR/sweep.csv and DIR/sweep.md. Exits non-zero only if filmback crashed (killed
 by a signal) or left a non-finite pixel: an unsupported scene is a result, not a failure.
 """
 
@@ -28,8 +29,11 @@ EXAMPLES = Path("/usr/share/doc/povray/examples")
 UNSUPPORTED = re.compile(r"unsupported (object|function|feature) '([^']+)'")
 
 
-def sample_scenes(every):
+def sample_scenes(every, matching=None):
     scenes = sorted(EXAMPLES.rglob("*.pov"))
+    if matching:
+        pattern = re.compile(matching)
+        scenes = [s for s in scenes if pattern.search(s.read_text(errors="replace"))]
     return scenes[::every] if every > 1 else scenes
 
 
@@ -72,6 +76,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--filmback", required=True)
     parser.add_argument("--every", type=int, default=1)
+    parser.add_argument("--matching", help="only scenes whose own file matches this regex")
     parser.add_argument("--timeout", type=float, default=60)
     parser.add_argument("--res", default="80x60")
     parser.add_argument("--spp", type=int, default=1)
@@ -83,7 +88,7 @@ def main():
     args.out.mkdir(parents=True, exist_ok=True)
     rows = []
     with tempfile.TemporaryDirectory() as scratch:
-        for scene in sample_scenes(args.every):
+        for scene in sample_scenes(args.every, args.matching):
             row = {"scene": str(scene.relative_to(EXAMPLES))}
             row.update(run_scene(args.filmback, scene, args, Path(scratch)))
             rows.append(row)

@@ -440,7 +440,7 @@ TEST_F(Sdl, LightsAndGlobals) {
 TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   Scene scene =
       run("fog { distance 10 color rgb 1 }\n"
-          "text { ttf \"timrom.ttf\" \"Hi\" 1, 0 translate x }\n"
+          "ovus { 1, 0.5 translate x }\n"
           "#declare F = function(a) { a * 2 }\n"
           "sphere { 0, 1 normal { bumps 0.5 } }\n"
           "global_settings { radiosity { count 100 } }\n");
@@ -448,7 +448,7 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   ASSERT_GE(scene.unsupported.size(), 4u);
   EXPECT_EQ(scene.unsupported[0].feature, "fog");
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
-  EXPECT_EQ(scene.unsupported[1].feature, "text");
+  EXPECT_EQ(scene.unsupported[1].feature, "ovus");
   EXPECT_EQ(scene.unsupported[1].where.line, 2u);
   EXPECT_TRUE(scene.objects[0].texture.has_normal);
 }
@@ -546,6 +546,84 @@ TEST_F(Sdl, PolygonAndMeshes) {
   EXPECT_NE(error_of("mesh2 { vertex_vectors { 1, 0 } face_indices { 1, <0,1,2> } }")
                 .find("past the vertex_vectors"),
             std::string::npos);
+}
+
+// prism's keywords in any order, its points as <x, z>, and what is wrong named by file:line:column
+// (importers/pov/sdl/prism_outline_test.cpp tests the splines themselves).
+TEST_F(Sdl, PrismObjects) {
+  Scene scene =
+      run("prism { bezier_spline linear_sweep -1, 2.5, 4, <0,0>, <1,1>, <2,1>, <0,0> open }\n"
+          "prism { conic_sweep 0, 1, 4 <0,0> <1,0> <0,1> <0,0> }");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  const Object& p = scene.objects[0];
+  EXPECT_EQ(p.shape, Shape::kPrism);
+  EXPECT_EQ(p.r0, -1);
+  EXPECT_EQ(p.r1, 2.5);
+  EXPECT_TRUE(p.open);
+  EXPECT_FALSE(p.conic);
+  ASSERT_TRUE(p.outline);
+  EXPECT_EQ(p.outline->segments.size(), 1u);
+  EXPECT_EQ(p.outline->segments[0].degree, 3);
+  EXPECT_TRUE(scene.objects[1].conic);
+  EXPECT_EQ(scene.objects[1].outline->segments.size(), 3u);
+  EXPECT_NE(error_of("sphere { 0, 1 }\n  prism { cubic_spline 0, 1, 3, <0,0>, <1,0>, <0,1> }")
+                .find("scene.pov:2:3: cubic_spline prism: a sub-polygon"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of("prism { 0, 1, 1e6, <0,0> }").find("scene.pov:1:15: prism point count 1e+06 is not"),
+      std::string::npos);
+  // Unclosed: closed (linear) or left out (the other splines), with a warning naming the line.
+  scene =
+      run("\nprism { 0, 1, 3, <0,0>, <1,0>, <0,1> }\n"
+          "prism { quadratic_spline 0, 1, 5, <0,0>, <1,0>, <1,1>, <0,1>, <0,0.5> }");
+  ASSERT_EQ(scene.warnings.size(), 2u);
+  EXPECT_EQ(scene.warnings[0].rfind("scene.pov:2:1: linear_spline prism not closed", 0), 0u);
+  EXPECT_EQ(scene.warnings[1].rfind("scene.pov:3:1: quadratic_spline prism not closed", 0), 0u);
+  EXPECT_EQ(scene.objects.at(0).outline->segments.size(), 3u);
+  EXPECT_FALSE(scene.objects.at(1).outline);
+}
+
+// text: a union of glyph prisms turned to sweep along z, its font found like an #include (the
+// library folder here), and what is wrong named by file:line:column.
+TEST_F(Sdl, TextObjects) {
+  const fs::path font = "/usr/share/povray-3.7/include/timrom.ttf";
+  if (!fs::exists(font)) GTEST_SKIP() << "POV-Ray's fonts are not installed (povray-includes)";
+  fs::copy_file(font, root_ / "lib" / "timrom.ttf");
+  Scene scene = run("text { ttf \"timrom.ttf\" \"Hi\" 0.25, <0.1, 0, 0> translate y }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Object& text = scene.objects[0];
+  EXPECT_EQ(text.shape, Shape::kUnion);
+  ASSERT_EQ(text.children.size(), 2u);
+  const Object& h = text.children[0];
+  EXPECT_EQ(h.shape, Shape::kPrism);
+  EXPECT_EQ(h.r1, 0.25);
+  // The prism's sweep (its y) runs along the text's z; the outline's y is the text's y.
+  const Vec3d swept = h.world_from_object.vector({0, 1, 0}),
+              up = h.world_from_object.vector({0, 0, 1});
+  EXPECT_EQ(swept.z, 1);
+  EXPECT_EQ(up.y, 1);
+  EXPECT_EQ(h.world_from_object.point({0, 0, 0}).y, 1);  // translated with the text
+  EXPECT_EQ(run("text { ttf \"timrom\" \"Hi\" 0.25, 0 }").objects.at(0).children.size(), 2u);
+  // A font that is not here (or only outside the allowed folders) leaves the text out, reported.
+  scene =
+      run("sphere { 0, 1 }\ntext { ttf \"missing.ttf\" \"Hi\" 1, 0 }\n"
+          "text { ttf \"../timrom.ttf\" \"Hi\" 1, 0 }");
+  EXPECT_EQ(scene.objects.size(), 1u);
+  ASSERT_EQ(scene.unsupported.size(), 2u);
+  EXPECT_EQ(scene.unsupported[0].feature, "text");
+  ASSERT_EQ(scene.warnings.size(), 2u);
+  EXPECT_EQ(scene.warnings[0].rfind("scene.pov:2:12: font \"missing.ttf\" is not in", 0), 0u);
+  EXPECT_EQ(scene.warnings[1].rfind("scene.pov:3:12: font \"../timrom.ttf\" is not in", 0), 0u);
+  EXPECT_NE(error_of("text { ttf \"timrom.ttf\" 7, 1, 0 }").find("scene.pov:1:25: text expects"),
+            std::string::npos);
+  // POV-Ray's built-in fonts are not here: such a text is left out and reported where placed.
+  scene = run("sphere { 0, 1 }\ntext { internal 1 \"Hi\" 1, 0 }");
+  EXPECT_EQ(scene.objects.size(), 1u);
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "text");
+  EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:2:1");
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_EQ(scene.warnings[0].rfind("scene.pov:2:1: text with an internal font", 0), 0u);
 }
 
 // shapes.inc's HFCreate_ writes face_indices as vector expressions `F1+A, F2+A,` with a trailing

@@ -11,15 +11,16 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",      "box",      "plane",           "cylinder",   "cone",         "torus",
-    "disc",        "triangle", "smooth_triangle", "mesh",       "mesh2",        "polygon",
-    "object",      "union",    "merge",           "difference", "intersection", "light_source",
-    "light_group", "quadric",  "cubic",           "quartic",    "poly"};
+    "sphere",     "box",          "plane",        "cylinder",        "cone",
+    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
+    "mesh2",      "polygon",      "object",       "union",           "merge",
+    "difference", "intersection", "light_source", "light_group",     "quadric",
+    "cubic",      "quartic",      "poly",         "prism",           "text"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "text",           "height_field", "blob",       "lathe",         "sor",        "prism",
-    "superellipsoid", "isosurface",   "polynomial", "julia_fractal", "parametric", "sphere_sweep",
-    "bicubic_patch",  "ovus",         "lemon",      "fractal"};
+    "height_field",  "blob",       "lathe",         "sor",        "superellipsoid",
+    "isosurface",    "polynomial", "julia_fractal", "parametric", "sphere_sweep",
+    "bicubic_patch", "ovus",       "lemon",         "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -251,6 +252,7 @@ constexpr ShapeParser kShapes[] = {
     {"mesh", [](Parser& p, Object& o) { p.parse_mesh(o); }},
     {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
     {"polygon", parse_polygon},
+    {"prism", [](Parser& p, Object& o) { p.parse_prism(o); }},
 };
 
 bool is_polynomial(std::string_view w) {
@@ -513,6 +515,11 @@ Node Parser::parse_object(const Tok& keyword) {
     if (!parse_polynomial(w, o)) {
       skip_rest_of_block();
       return missing_node(w, where);  // above degree 4
+    }
+  } else if (w == "text") {
+    if (!parse_text(o)) {
+      skip_rest_of_block();
+      return missing_node(w, where);  // a font that is not here
     }
   } else {
     dropped = parse_csg_children(w, where, o, node);

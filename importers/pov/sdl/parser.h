@@ -178,6 +178,7 @@ class Parser {
   void skip_parenthesised();  // a balanced ( ... ) (the '(' not yet read)
   void unsupported(const std::string& feature, const SourceLocation& where);
   void warn(const std::string& what);
+  void warn_at(const SourceLocation& where, const std::string& what);
 
   // ---- directives (directives.cpp) ----
   void directive(const Token& token);
@@ -220,7 +221,9 @@ class Parser {
   void parse_mesh(Object& o);
   void parse_mesh2(Object& o);
   bool parse_polynomial(const std::string& keyword, Object& o);
-  void skip_rest_of_block();  // to the '}' closing a block already open
+  void parse_prism(Object& o);  // prism.cpp
+  bool parse_text(Object& o);   // text.cpp; false: its font is not here (reported)
+  void skip_rest_of_block();    // to the '}' closing a block already open
   void parse_object_mods(Node& node);
   void parse_clipped_by(Node& node, Object& o);
   void complete_appearance(Object& o);  // after the modifiers: CSG and mesh inheritance
@@ -271,9 +274,10 @@ class Parser {
   Value* find(const std::string& name) { return lookup(name); }
   void assign(const std::string& name, Value value, bool local);
   std::shared_ptr<TokenFile> load(const std::filesystem::path& path, const std::string& display);
-  std::optional<std::filesystem::path> resolve_include(const std::string& name,
-                                                       std::filesystem::path* folder,
-                                                       bool scene_folder_only) const;
+  // `link_targets`: folders besides the allowed ones that a symbolic link may lead into.
+  std::optional<std::filesystem::path> resolve_include(
+      const std::string& name, std::filesystem::path* folder, bool scene_folder_only,
+      const std::vector<std::filesystem::path>& link_targets = {}) const;
   Token raw_next();  // the next raw token of the current frame (no directives, no lookups)
   uint64_t next_random(size_t stream);
   size_t new_random_stream(double seed);

@@ -67,9 +67,9 @@ std::shared_ptr<TokenFile> Parser::load(const std::filesystem::path& path,
   return file;
 }
 
-std::optional<std::filesystem::path> Parser::resolve_include(const std::string& name,
-                                                             std::filesystem::path* folder,
-                                                             bool scene_folder_only) const {
+std::optional<std::filesystem::path> Parser::resolve_include(
+    const std::string& name, std::filesystem::path* folder, bool scene_folder_only,
+    const std::vector<std::filesystem::path>& link_targets) const {
   namespace fs = std::filesystem;
   fs::path relative(name);
   if (name.empty() || relative.is_absolute() || relative.has_root_name()) return std::nullopt;
@@ -92,10 +92,10 @@ std::optional<std::filesystem::path> Parser::resolve_include(const std::string& 
     std::error_code ec;
     for (const fs::path& attempt : {candidate, fs::path(candidate.string() + ".inc")}) {
       if (!fs::is_regular_file(attempt, ec)) continue;
-      // A symbolic link is followed only to a file inside an allowed folder.
-      const bool real_inside = std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
-        return really_inside(attempt, root);
-      });
+      // A symbolic link is followed only to a file inside an allowed folder (or a link target).
+      const auto really_in = [&](const fs::path& root) { return really_inside(attempt, root); };
+      const bool real_inside = std::any_of(roots.begin(), roots.end(), really_in) ||
+                               std::any_of(link_targets.begin(), link_targets.end(), really_in);
       if (!real_inside) continue;
       if (folder) *folder = attempt.parent_path();
       return attempt;
@@ -133,7 +133,11 @@ void Parser::fail_at(const SourceLocation& where, const std::string& what) const
 }
 
 void Parser::warn(const std::string& what) {
-  scene_.warnings.push_back(here().text() + ": " + what);
+  warn_at(here(), what);
+}
+
+void Parser::warn_at(const SourceLocation& where, const std::string& what) {
+  scene_.warnings.push_back(where.text() + ": " + what);
 }
 
 void Parser::unsupported(const std::string& feature, const SourceLocation& where) {
