@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/math/polynomial.h"
+#include "core/math/superellipsoid.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -298,6 +299,25 @@ void polynomial_spans(const Node& leaf, const Ray& render_ray, const Ray& r, dou
   }
 }
 
+// f <= 0 (core/math/superellipsoid.h) between pairs of crossings, searched along the ray's
+// whole chord of a box a little wider than the unit box whatever lo and hi are: the same ray
+// finds the same roots, and f > 0 at both ends of the chord pairs them.
+void superellipsoid_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Ray c{r.o + r.d * t0, r.d};
+  constexpr double kChordBox = 1 + 1e-6;
+  double s_lo = -kInf, s_hi = kInf;
+  if (!clip_to_box({{-kChordBox, -kChordBox, -kChordBox}, {kChordBox, kChordBox, kChordBox}}, c,
+                   s_lo, s_hi))
+    return;
+  double roots[kSuperellipsoidMaxCrossings];
+  const int count =
+      superellipsoid_crossings({leaf.radius0, leaf.radius1}, c.o, c.d, s_lo, s_hi, roots);
+  for (int i = 0; i + 1 < count; i += 2)
+    push(out, n, on(leaf, t0 + roots[i]), on(leaf, t0 + roots[i + 1]), lo, hi);
+}
+
 // The primitive's spans (at most primitive_max_spans) into out; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out) {
   const Ray r{leaf.object_from_render.point(render_ray.o),
@@ -324,6 +344,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kPolynomial:
       polynomial_spans(leaf, render_ray, r, lo, hi, out, n);
       break;
+    case SolidKind::kSuperellipsoid:
+      superellipsoid_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -331,7 +354,8 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
 }
 
 // The most spans primitive_spans gives: a quadric's two spans within the cone's slab; one per
-// interval between the up to four roots of a torus or polynomial.
+// interval between the up to four roots of a torus or polynomial; one per pair of a
+// superellipsoid's crossings.
 size_t primitive_max_spans(SolidKind kind) {
   switch (kind) {
     case SolidKind::kCylinder:
@@ -340,6 +364,8 @@ size_t primitive_max_spans(SolidKind kind) {
     case SolidKind::kTorus:
     case SolidKind::kPolynomial:
       return kMaxPolynomialDegree + 1;
+    case SolidKind::kSuperellipsoid:
+      return kSuperellipsoidMaxCrossings / 2;
     default:
       return 1;
   }
@@ -414,6 +440,8 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
     }
     case SolidKind::kPolynomial:
       return polynomial3_gradient(leaf.polynomial, p);
+    case SolidKind::kSuperellipsoid:
+      return superellipsoid_gradient({leaf.radius0, leaf.radius1}, p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }

@@ -19,6 +19,7 @@ Bounds3d object_bounds(const Solid& primitive) {
   switch (primitive.kind) {
     case SolidKind::kSphere:
     case SolidKind::kBox:
+    case SolidKind::kSuperellipsoid:
     case SolidKind::kCylinder:
       return {{-1, -1, primitive.kind == SolidKind::kCylinder ? 0.0 : -1.0}, {1, 1, 1}};
     case SolidKind::kCone: {

@@ -30,6 +30,9 @@ enum class SolidKind : uint8_t {
   // polynomial(p) <= 0 for `polynomial`, of degree <= 4 (POV-Ray's quadric, cubic, quartic and
   // poly): unbounded in general; POV-Ray scenes bound them by CSG.
   kPolynomial,
+  // (|x|^(2/e) + |y|^(2/e))^(e/n) + |z|^(2/n) <= 1 with e = radius0, n = radius1 (> 0): POV-Ray's
+  // superellipsoid (core/math/superellipsoid.h), within the unit box.
+  kSuperellipsoid,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -40,9 +43,10 @@ struct Solid {
   SolidKind kind = SolidKind::kSphere;
   std::string name;  // for messages: where it came from
   Transform world_from_object;
-  double radius0 = 1, radius1 = 1;  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1
-  bool open = false;                // kCylinder, kCone: no end caps
-  bool inverse = false;             // the complement of the set
+  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1; kSuperellipsoid: exponents e, n
+  double radius0 = 1, radius1 = 1;
+  bool open = false;     // kCylinder, kCone: no end caps
+  bool inverse = false;  // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
   // object open where it cuts.
   bool bounds_only = false;

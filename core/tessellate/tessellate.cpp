@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/math/constants.h"
+#include "core/math/superellipsoid.h"
 #include "core/tessellate/tessellate_csg.h"
 
 namespace fb {
@@ -119,6 +120,55 @@ void plane_square(const Solid& primitive, const TessellationOptions& options, Tr
   mesh.indices = {0, 1, 2, 0, 2, 3};
 }
 
+// The grid's sagitta over a latitude-longitude grid of `rows` x `columns`: the largest distance,
+// along the surface's normal, between a cell edge's midpoint on the surface and on its chord (the
+// parametrisation also slides points along flat faces, which is no error).
+double superellipsoid_sagitta(SuperellipsoidExponents s, uint32_t rows, uint32_t columns) {
+  double worst = 0;
+  const auto at = [&](double i, double j) {
+    return superellipsoid_point(s, -kPi / 2 + kPi * i / rows, 2 * kPi * j / columns);
+  };
+  const auto off_chord = [&](Vec3d mid, Vec3d a, Vec3d b) {
+    return std::abs(dot(mid - (a + b) * 0.5, normalize(superellipsoid_gradient(s, mid))));
+  };
+  for (uint32_t i = 0; i < rows; ++i)
+    for (uint32_t j = 0; j < columns; ++j) {
+      const Vec3d p = at(i, j);
+      worst = std::max({worst, off_chord(at(i + 0.5, j), p, at(i + 1, j)),
+                        off_chord(at(i, j + 0.5), p, at(i, j + 1))});
+    }
+  return worst;
+}
+
+// The superellipsoid over its parametric latitude-longitude grid (superellipsoid_point), which
+// gathers vertices where the surface bends most; the grid doubles until its edges' sagitta is
+// within half of `error` (a cell's centre strays by about the sum of its two directions') or its
+// columns would pass `most` (at most kSuperellipsoidMostColumns: 2 million triangles). Normals from
+// the implicit gradient; the poles' degenerate triangles are left out.
+void superellipsoid_mesh(const Solid& primitive, double error, uint32_t most, TriangleMesh& mesh) {
+  const SuperellipsoidExponents s{std::abs(primitive.radius0), std::abs(primitive.radius1)};
+  constexpr uint32_t kSuperellipsoidMostColumns = 1024;
+  most = std::min(most, kSuperellipsoidMostColumns);
+  uint32_t columns = 16;
+  while (2 * columns <= most && superellipsoid_sagitta(s, columns / 2, columns) > error / 2)
+    columns *= 2;
+  const uint32_t rows = columns / 2, row = columns + 1;
+  for (uint32_t i = 0; i <= rows; ++i)
+    for (uint32_t j = 0; j <= columns; ++j) {
+      // The seam and the poles share their vertices.
+      const double eta = i == 0 ? -kPi / 2 : i == rows ? kPi / 2 : -kPi / 2 + kPi * i / rows;
+      const Vec3d p = superellipsoid_point(s, eta, 2 * kPi * (j % columns) / columns);
+      mesh.positions.emplace_back(p);
+      mesh.normals.emplace_back(normalize(superellipsoid_gradient(s, p)));
+    }
+  for (uint32_t i = 0; i < rows; ++i)
+    for (uint32_t j = 0; j < columns; ++j) {
+      const uint32_t a = i * row + j, b = a + 1, c = b + row, d = a + row;
+      triangle(mesh, a, b, c);
+      triangle(mesh, a, c, d);
+    }
+}
+
 }  // namespace
 
 double tessellation_tolerance_m(const Solid& primitive, const TessellationOptions& options) {
@@ -158,6 +208,10 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   const double stretch = largest_stretch(primitive.world_from_object);
   const double error = tessellation_tolerance_m(primitive, options) / stretch;
   const uint32_t most = std::max(options.max_segments, 3u);
+  if (primitive.kind == SolidKind::kSuperellipsoid) {
+    superellipsoid_mesh(primitive, error, most, mesh);
+    return mesh;
+  }
   const double r0 = std::abs(primitive.radius0), r1 = std::abs(primitive.radius1);
   std::vector<Piece> pieces;
   double widest = 1;  // the largest rho the profile reaches

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/superellipsoid.h"
+
 namespace fb {
 namespace {
 
@@ -25,6 +27,16 @@ double surface_distance(const Solid& s, Vec3d p) {
     }
     case SolidKind::kTorus:
       return std::abs(std::hypot(rho - 1, p.z) - s.radius1);
+    case SolidKind::kSuperellipsoid: {  // |f| / |grad f|, to first order; gradient by differences
+      const SuperellipsoidExponents e{s.radius0, s.radius1};
+      const double h = 1e-7;
+      const auto f = [&](Vec3d q) { return superellipsoid_value(e, q); };
+      const Vec3d g = Vec3d{f(p + Vec3d{h, 0, 0}) - f(p - Vec3d{h, 0, 0}),
+                            f(p + Vec3d{0, h, 0}) - f(p - Vec3d{0, h, 0}),
+                            f(p + Vec3d{0, 0, h}) - f(p - Vec3d{0, 0, h})} /
+                      (2 * h);
+      return std::abs(f(p)) / length(g);
+    }
     default:
       return std::abs(p.z);
   }
@@ -73,9 +85,28 @@ TEST(Tessellate, CurvedPrimitivesStayWithinTheTolerance) {
   }
 }
 
+// The parametric grid doubles until it meets the tolerance: from a rounded box to a star.
+TEST(Tessellate, SuperellipsoidStaysWithinTheTolerance) {
+  const double scale = 2.5;
+  for (const auto& [e, n] : {std::pair{0.5, 0.5}, {2.5, 0.5}, {0.3, 1.5}}) {
+    const Solid s = shape(SolidKind::kSuperellipsoid, scale, e, n);
+    for (double tolerance : {1e-2, 1e-3}) {
+      TessellationOptions options;
+      options.tolerance_m = tolerance, options.relative_tolerance = 0;
+      const TriangleMesh mesh = tessellate(s, options);
+      const double error = largest_error(s, mesh, scale);
+      EXPECT_LE(error, tolerance) << e << " " << n;
+      EXPECT_GT(error, tolerance / 16) << e << " " << n << ": finer than it needs to be";
+      for (size_t i = 0; i < mesh.positions.size(); ++i)  // vertices on the surface
+        ASSERT_LT(surface_distance(s, Vec3d(mesh.positions[i])) * scale, 1e-5) << e << " " << n;
+    }
+  }
+}
+
 TEST(Tessellate, FacesPointOutOfTheSolid) {
-  for (SolidKind kind : {SolidKind::kSphere, SolidKind::kBox, SolidKind::kCylinder,
-                         SolidKind::kCone, SolidKind::kTorus, SolidKind::kDisc}) {
+  for (SolidKind kind :
+       {SolidKind::kSphere, SolidKind::kBox, SolidKind::kCylinder, SolidKind::kCone,
+        SolidKind::kTorus, SolidKind::kDisc, SolidKind::kSuperellipsoid}) {
     Solid s = shape(kind, 1, 1, kind == SolidKind::kDisc ? 0.5 : 0.3);
     TessellationOptions options;
     options.tolerance_m = 1e-2;

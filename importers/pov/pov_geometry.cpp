@@ -141,6 +141,11 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       degenerate = polynomial3_degree(s.polynomial) == 0;
       break;
     }
+    case Shape::kSuperellipsoid:  // POV-Ray's own object space: the parser bounded e and n
+      s.kind = SolidKind::kSuperellipsoid;
+      s.radius0 = o.r0, s.radius1 = o.r1;
+      degenerate = !(o.r0 > 0 && o.r1 > 0);
+      break;
     default:
       return std::nullopt;
   }

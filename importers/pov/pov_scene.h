@@ -102,6 +102,7 @@ enum class Shape {
   // quadric, cubic, quartic, poly: `coefficients` of x^i y^j z^k in POV-Ray's poly order (i from
   // the degree down, then j, then k), degree `order`; inside where the polynomial is < 0
   kPolynomial,
+  kSuperellipsoid,  // exponents e = r0, n = r1 (> 0), within the unit box
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`

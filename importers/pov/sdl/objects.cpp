@@ -11,15 +11,16 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",      "box",      "plane",           "cylinder",   "cone",         "torus",
-    "disc",        "triangle", "smooth_triangle", "mesh",       "mesh2",        "polygon",
-    "object",      "union",    "merge",           "difference", "intersection", "light_source",
-    "light_group", "quadric",  "cubic",           "quartic",    "poly"};
+    "sphere",     "box",          "plane",        "cylinder",        "cone",
+    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
+    "mesh2",      "polygon",      "object",       "union",           "merge",
+    "difference", "intersection", "light_source", "light_group",     "quadric",
+    "cubic",      "quartic",      "poly",         "superellipsoid",  "height_field"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "text",           "height_field", "blob",       "lathe",         "sor",        "prism",
-    "superellipsoid", "isosurface",   "polynomial", "julia_fractal", "parametric", "sphere_sweep",
-    "bicubic_patch",  "ovus",         "lemon",      "fractal"};
+    "text",          "blob",       "lathe",         "sor",        "prism",
+    "isosurface",    "polynomial", "julia_fractal", "parametric", "sphere_sweep",
+    "bicubic_patch", "ovus",       "lemon",         "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -239,6 +240,25 @@ void parse_polygon(Parser& p, Object& o) {
   }
 }
 
+// superellipsoid { <e, n> }: both exponents positive and finite. Outside [1e-3, 1e3] they are
+// bounded (with a warning): a thousandth is already a box to a few parts in a thousand, and past
+// it the powers 2/e leave the range of a double.
+void parse_superellipsoid(Parser& p, Object& o) {
+  constexpr double kSuperellipsoidLeast = 1e-3, kSuperellipsoidMost = 1e3;
+  o.shape = Shape::kSuperellipsoid;
+  const SourceLocation where = p.location_of(p.peek());
+  const Value v = p.parse_numeric(2);
+  const double e = v.v[0], n = v.v[1];
+  if (!(e > 0 && n > 0 && std::isfinite(e) && std::isfinite(n)))
+    p.fail_at(where, "superellipsoid exponents <" + number_string(e) + ", " + number_string(n) +
+                         ">: both must be positive and finite");
+  o.r0 = std::clamp(e, kSuperellipsoidLeast, kSuperellipsoidMost);
+  o.r1 = std::clamp(n, kSuperellipsoidLeast, kSuperellipsoidMost);
+  if (o.r0 != e || o.r1 != n)
+    p.warn("superellipsoid exponents <" + number_string(e) + ", " + number_string(n) +
+           "> bounded to <" + number_string(o.r0) + ", " + number_string(o.r1) + ">");
+}
+
 // The other shapes, whose arguments need their own parser.
 struct ShapeParser {
   std::string_view name;
@@ -251,6 +271,8 @@ constexpr ShapeParser kShapes[] = {
     {"mesh", [](Parser& p, Object& o) { p.parse_mesh(o); }},
     {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
     {"polygon", parse_polygon},
+    {"superellipsoid", parse_superellipsoid},
+    {"height_field", [](Parser& p, Object& o) { p.parse_height_field(o); }},
 };
 
 bool is_polynomial(std::string_view w) {
@@ -505,6 +527,10 @@ Node Parser::parse_object(const Tok& keyword) {
   expect("{");
   if (w == "object") return parse_object_reference();
   bool dropped = false;  // an unsupported object left out of this CSG
+  if (w == "height_field" && peek().word("function")) {
+    skip_rest_of_block();  // its heights come from a user function: not evaluated
+    return missing_node(w, where);
+  }
   if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
     parse_primitive(*this, o, *primitive);
   } else if (const ShapeParser* shape = find_keyword(kShapes, w)) {
