@@ -23,6 +23,7 @@ struct RenderSolid::Node {
   Transform normal_from_object;  // inverse transpose of render_from_object
   Bounds3d bounds;               // render space, of the set before `inverse`; may be infinite
   Polynomial3 polynomial;        // kPolynomial, in object space
+  Blob blob;                     // kBlob, in object space
   Bounds3d window;               // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;          // farthest corner of a bounded primitive from the render origin
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
@@ -318,6 +319,27 @@ void superellipsoid_spans(const Node& leaf, const Ray& r, double lo, double hi, 
     push(out, n, on(leaf, t0 + roots[i]), on(leaf, t0 + roots[i + 1]), lo, hi);
 }
 
+// F >= threshold (core/math/blob.h): each gap between two crossings is inside or outside as the
+// field at its middle says, neighbouring inside gaps joining (where two of the field's quartic
+// pieces meet, a crossing may be found twice). Before the first crossing and after the last the
+// ray is outside every component.
+void blob_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0;
+  const std::vector<double>& roots = blob_crossings(leaf.blob, o, r.d);
+  bool inside = false;
+  double from = 0;
+  for (size_t i = 0; i < roots.size(); ++i) {
+    const bool gap_inside =
+        i + 1 < roots.size() &&
+        blob_field(leaf.blob, o + r.d * (0.5 * (roots[i] + roots[i + 1]))) >= leaf.blob.threshold;
+    if (gap_inside && !inside) from = roots[i];
+    if (!gap_inside && inside) push(out, n, on(leaf, t0 + from), on(leaf, t0 + roots[i]), lo, hi);
+    inside = gap_inside;
+  }
+}
+
 // The primitive's spans (at most primitive_max_spans) into out; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out) {
   const Ray r{leaf.object_from_render.point(render_ray.o),
@@ -347,6 +369,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kSuperellipsoid:
       superellipsoid_spans(leaf, r, lo, hi, out, n);
       break;
+    case SolidKind::kBlob:
+      blob_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -355,9 +380,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
 
 // The most spans primitive_spans gives: a quadric's two spans within the cone's slab; one per
 // interval between the up to four roots of a torus or polynomial; one per pair of a
-// superellipsoid's crossings.
-size_t primitive_max_spans(SolidKind kind) {
-  switch (kind) {
+// superellipsoid's or a blob's crossings.
+size_t primitive_max_spans(const Node& leaf) {
+  switch (leaf.kind) {
     case SolidKind::kCylinder:
     case SolidKind::kCone:
       return 2;
@@ -366,6 +391,8 @@ size_t primitive_max_spans(SolidKind kind) {
       return kMaxPolynomialDegree + 1;
     case SolidKind::kSuperellipsoid:
       return kSuperellipsoidMaxCrossings / 2;
+    case SolidKind::kBlob:
+      return blob_max_crossings(leaf.blob) / 2 + 1;
     default:
       return 1;
   }
@@ -442,6 +469,8 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
       return polynomial3_gradient(leaf.polynomial, p);
     case SolidKind::kSuperellipsoid:
       return superellipsoid_gradient({leaf.radius0, leaf.radius1}, p);
+    case SolidKind::kBlob:  // the field grows inwards
+      return -blob_gradient(leaf.blob, p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -453,7 +482,7 @@ void budget_spans(Node& node) {
   const auto capped = [](size_t v) { return std::min(v, kMaxSpans + 1); };
   size_t spans = 0, child_workspace = 0;
   if (node.kind < SolidKind::kUnion) {
-    spans = primitive_max_spans(node.kind);
+    spans = primitive_max_spans(node);
   } else {
     for (size_t i = 0; i < node.children.size(); ++i) {
       const Node& c = node.children[i];
@@ -485,6 +514,7 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   node.material = solid.material;
   node.bounds = uncomplemented_bounds(solid, render_from_world);
   node.polynomial = solid.polynomial;
+  node.blob = solid.blob;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

@@ -30,6 +30,8 @@ Bounds3d object_bounds(const Solid& primitive) {
       const double r = std::abs(primitive.radius1);
       return {{-1 - r, -1 - r, -r}, {1 + r, 1 + r, r}};
     }
+    case SolidKind::kBlob:
+      return blob_bounds(primitive.blob);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

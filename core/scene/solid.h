@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/math/blob.h"
 #include "core/math/bounds.h"
 #include "core/math/polynomial.h"
 #include "core/math/transform.h"
@@ -33,6 +34,9 @@ enum class SolidKind : uint8_t {
   // (|x|^(2/e) + |y|^(2/e))^(e/n) + |z|^(2/n) <= 1 with e = radius0, n = radius1 (> 0): POV-Ray's
   // superellipsoid (core/math/superellipsoid.h), within the unit box.
   kSuperellipsoid,
+  // POV-Ray's blob: its field reaches `blob.threshold` (core/math/blob.h); bounded by the
+  // components of positive strength.
+  kBlob,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -52,6 +56,7 @@ struct Solid {
   bool bounds_only = false;
   uint32_t material = 0;   // of this primitive's surface (unused by set operations)
   Polynomial3 polynomial;  // kPolynomial
+  Blob blob;               // kBlob
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

@@ -188,6 +188,8 @@ void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics) {
   diagnostics.warn(primitive.name + (primitive.kind == SolidKind::kPolynomial
                                          ? ": polynomial surfaces (quadric, cubic, quartic, poly) "
                                            "have no triangle form yet: left out of the mesh"
+                                     : primitive.kind == SolidKind::kBlob
+                                         ? ": blobs have no triangle form yet: left out of the mesh"
                                          : ": the surface has no triangles: left out"));
 }
 

@@ -146,6 +146,14 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       s.radius0 = o.r0, s.radius1 = o.r1;
       degenerate = !(o.r0 > 0 && o.r1 > 0);
       break;
+    case Shape::kBlob:  // POV-Ray's object space; each component placed by its own transforms
+      s.kind = SolidKind::kBlob;
+      s.blob.threshold = o.r0;
+      for (const BlobComponentStatement& c : o.blob_components)
+        s.blob.components.push_back(
+            {c.blob_from_component.inverse(), c.a, c.b, c.radius, c.strength, c.cylinder});
+      degenerate = blob_bounds(s.blob).empty();  // no component of positive strength
+      break;
     default:
       return std::nullopt;
   }

@@ -103,6 +103,7 @@ enum class Shape {
   // the degree down, then j, then k), degree `order`; inside where the polynomial is < 0
   kPolynomial,
   kSuperellipsoid,  // exponents e = r0, n = r1 (> 0), within the unit box
+  kBlob,            // threshold r0 (> 0), `blob_components`
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -112,6 +113,15 @@ enum class Shape {
   kDifference,
 };
 
+// A blob's component as written: sphere { a, radius, strength } or cylinder { a, b, radius,
+// strength }, placed in the blob's space by its own transforms.
+struct BlobComponentStatement {
+  bool cylinder = false;
+  Vec3d a{0, 0, 0}, b{0, 0, 0};
+  double radius = 0, strength = 0;
+  Matrix blob_from_component;
+};
+
 struct Object {
   Shape shape = Shape::kSphere;
   std::string keyword;  // as written ("smooth_triangle", "mesh2", ...), for messages
@@ -119,8 +129,9 @@ struct Object {
   Vec3d a{0, 0, 0}, b{0, 0, 0};
   double r0 = 0, r1 = 0;
   bool open = false;
-  int order = 0;                     // kPolynomial
-  std::vector<double> coefficients;  // kPolynomial
+  int order = 0;                                        // kPolynomial
+  std::vector<double> coefficients;                     // kPolynomial
+  std::vector<BlobComponentStatement> blob_components;  // kBlob
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

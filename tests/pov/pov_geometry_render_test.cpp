@@ -73,11 +73,6 @@ const SolidShot kSolidShots[] = {
      "superellipsoid { <0.25, 0.5> scale <1.3, 0.9, 1> rotate <30, 40, 0> }"},
     {"superellipsoid_star_cut",
      "difference { superellipsoid { <2.5, 2.2> scale 1.6 rotate <20, 30, 0> } box { 0, 2 } }"},
-    // A height field from POV-Ray's own colour-mapped plasma3.png (its include folder), cut by
-    // water_level: the palette index is the height.
-    {"height_field_plasma",
-     "height_field { png \"plasma3.png\" smooth water_level 0.3 translate <-0.5, -0.5, -0.5> "
-     "scale <3, 1.5, 3> rotate <-30, 20, 0> }"},
 };
 
 std::string scene_sdl(const SolidShot& shot) {

@@ -482,10 +482,10 @@ TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
 
   // written where it is placed: no separate placement; in clipped_by too
   scene =
-      run("#include \"shapes.inc\"\nblob { sphere { 0, 1, 1 } }\n"
+      run("#include \"shapes.inc\"\novus { 1, 0.5 }\n"
           "sphere { 0, 1 clipped_by { object { Q } } }");
   ASSERT_EQ(scene.unsupported.size(), 2u);
-  EXPECT_EQ(scene.unsupported[0].feature, "blob");
+  EXPECT_EQ(scene.unsupported[0].feature, "ovus");
   EXPECT_FALSE(scene.unsupported[0].placed);
   EXPECT_EQ(scene.unsupported[1].placed->text(), "scene.pov:3:1");
 }
@@ -625,6 +625,43 @@ TEST_F(Sdl, HeightFieldFromImages) {
   error = error_of("height_field { pgm \"h.pgm\" }", few);
   EXPECT_EQ(error.rfind("scene.pov:1:20: ", 0), 0u) << error;
   EXPECT_NE(error.find("at most 5"), std::string::npos) << error;
+}
+
+// blob: threshold and components in both syntaxes, their transforms; hostile values refused with
+// their place; a component's texture reported.
+TEST_F(Sdl, BlobComponents) {
+  Scene scene =
+      run("blob { threshold 0.6 sturm\n"
+          "  sphere { <1, 0, 0>, 2, strength 1.5 scale 2 }\n"
+          "  cylinder { 0, y, 0.5, -1 translate x pigment { rgb 1 } }\n"
+          "  component 1, 0.7, <0, 0, 3>\n"
+          "  translate z }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Object& blob = scene.objects[0];
+  EXPECT_EQ(blob.shape, Shape::kBlob);
+  EXPECT_EQ(blob.r0, 0.6);
+  ASSERT_EQ(blob.blob_components.size(), 3u);
+  EXPECT_EQ(blob.blob_components[0].strength, 1.5);
+  EXPECT_EQ(blob.blob_components[0].radius, 2);
+  EXPECT_EQ(blob.blob_components[0].blob_from_component.point({1, 0, 0}).x, 2);
+  EXPECT_TRUE(blob.blob_components[1].cylinder);
+  EXPECT_EQ(blob.blob_components[1].strength, -1);
+  EXPECT_EQ(blob.blob_components[1].b.y, 1);
+  EXPECT_EQ(blob.blob_components[2].a.z, 3);
+  EXPECT_EQ(blob.world_from_object.point({0, 0, 0}).z, 1);
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "blob component pigment");
+
+  std::string error = error_of("blob { threshold 0.5\n  sphere { 0, 0, 1 } }");
+  EXPECT_EQ(error.rfind("scene.pov:2:3: ", 0), 0u) << error;
+  EXPECT_NE(error.find("radius"), std::string::npos) << error;
+  error = error_of("blob { threshold -1 sphere { 0, 1, 1 } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:18: ", 0), 0u) << error;
+  error = error_of("blob { cylinder { x, x, 1, 1 } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:8: ", 0), 0u) << error;
+  error = error_of("blob { sphere { 0, 1, 1 matrix <1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0> } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:8: ", 0), 0u) << error;
+  EXPECT_NE(error_of("blob { threshold 1 }").find("no components"), std::string::npos);
 }
 
 TEST_F(Sdl, PolygonAndMeshes) {

@@ -11,16 +11,16 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",     "box",          "plane",        "cylinder",        "cone",
-    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
-    "mesh2",      "polygon",      "object",       "union",           "merge",
-    "difference", "intersection", "light_source", "light_group",     "quadric",
-    "cubic",      "quartic",      "poly",         "superellipsoid",  "height_field"};
+    "sphere",       "box",      "plane",           "cylinder",   "cone",         "torus",
+    "disc",         "triangle", "smooth_triangle", "mesh",       "mesh2",        "polygon",
+    "object",       "union",    "merge",           "difference", "intersection", "light_source",
+    "light_group",  "quadric",  "cubic",           "quartic",    "poly",         "superellipsoid",
+    "height_field", "blob"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "text",          "blob",       "lathe",         "sor",        "prism",
-    "isosurface",    "polynomial", "julia_fractal", "parametric", "sphere_sweep",
-    "bicubic_patch", "ovus",       "lemon",         "fractal"};
+    "text",       "lathe",         "sor",        "prism",        "isosurface",
+    "polynomial", "julia_fractal", "parametric", "sphere_sweep", "bicubic_patch",
+    "ovus",       "lemon",         "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -273,6 +273,7 @@ constexpr ShapeParser kShapes[] = {
     {"polygon", parse_polygon},
     {"superellipsoid", parse_superellipsoid},
     {"height_field", [](Parser& p, Object& o) { p.parse_height_field(o); }},
+    {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
 };
 
 bool is_polynomial(std::string_view w) {
