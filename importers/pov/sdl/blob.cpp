@@ -1,6 +1,8 @@
 // blob { threshold T  sphere { C, R, [strength] S }  cylinder { A, B, R, [strength] S }
 // component S, R, C  [sturm] [hierarchy] } (POV-Ray 3.7 reference, "Blob"): the components as
 // written, each placed by its own transforms; the converter makes the solid (core/math/blob.h).
+// No components is no error: a loop may place none (advanced/biscuit.pov's depend on inside(),
+// which the evaluator answers with zero); the converter leaves the empty blob out, warning.
 #include <cmath>
 
 #include "importers/pov/sdl/parser.h"
@@ -27,19 +29,17 @@ void Parser::parse_blob(Object& o) {
   o.shape = Shape::kBlob;
   o.r0 = 1;  // POV-Ray's default threshold
   for (;;) {
-    const Tok& tok = peek();
+    Tok tok = next();  // directives run: #while loops write components
     if (tok.word("threshold")) {
-      next();
       const SourceLocation where = location_of(peek());
       o.r0 = parse_float();
       if (!(o.r0 > 0 && std::isfinite(o.r0)))
         fail_at(where,
                 "blob threshold " + number_string(o.r0) + ": it must be positive and finite");
     } else if (tok.word("sturm") || tok.word("hierarchy")) {
-      next();
       parse_bool_option();               // the quartics are solved exactly either way; a speed hint
     } else if (tok.word("component")) {  // the old syntax: component Strength, Radius, Centre
-      const SourceLocation where = location_of(next());
+      const SourceLocation where = location_of(tok);
       BlobComponentStatement c;
       c.strength = parse_float();
       accept(",");
@@ -50,10 +50,9 @@ void Parser::parse_blob(Object& o) {
       count_objects(1);
       o.blob_components.push_back(c);
     } else if (tok.word("sphere") || tok.word("cylinder")) {
-      const Tok keyword = next();
-      const SourceLocation where = location_of(keyword);
+      const SourceLocation where = location_of(tok);
       BlobComponentStatement c;
-      c.cylinder = keyword.word("cylinder");
+      c.cylinder = tok.word("cylinder");
       expect("{");
       c.a = parse_vector();
       accept(",");
@@ -85,10 +84,10 @@ void Parser::parse_blob(Object& o) {
       count_objects(1);
       o.blob_components.push_back(c);
     } else {
+      unget(std::move(tok));
       break;
     }
   }
-  if (o.blob_components.empty()) fail("blob with no components");
 }
 
 }  // namespace fb::pov::sdl

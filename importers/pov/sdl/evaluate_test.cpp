@@ -578,8 +578,11 @@ TEST_F(Sdl, HeightFieldFromImages) {
   const Object& hf = scene.objects[0];
   EXPECT_EQ(hf.shape, Shape::kMesh);
   EXPECT_EQ(hf.keyword, "height_field");
-  ASSERT_EQ(hf.vertices.size(), 6u);
-  ASSERT_EQ(hf.normals.size(), 6u);
+  // the 3 x 2 grid, then four points where triangle edges meet the water line
+  ASSERT_EQ(hf.vertices.size(), 10u);
+  ASSERT_EQ(hf.normals.size(), 10u);
+  for (size_t i = 6; i < 10; ++i)
+    EXPECT_NEAR(hf.vertices[i].y, 0.09, 1e-12);
   const double scale = 65535.0 / 65536;  // POV-Ray's heights stay below 1
   // the top row at the far edge (z = 1), columns from x = 0 to 1
   EXPECT_EQ(hf.vertices[2].x, 1);
@@ -587,8 +590,10 @@ TEST_F(Sdl, HeightFieldFromImages) {
   EXPECT_NEAR(hf.vertices[2].y, 1 * scale, 1e-7);
   EXPECT_EQ(hf.vertices[3].z, 0);
   EXPECT_NEAR(hf.vertices[3].y, 10 / 255.0 * scale, 1e-7);
-  // Of the four triangles, the one whose corners (10, 0, 20) all lie below 0.09 is under water.
-  EXPECT_EQ(hf.indices.size(), 9u);
+  // Clipped at the water line 0.09 (as POV-Ray clips): of the four triangles, the one whose
+  // corners (10, 0, 20) all lie below it goes, one with one dry corner leaves a triangle, one
+  // with two a quadrilateral (two triangles), the dry one stays: four.
+  EXPECT_EQ(hf.indices.size(), 12u);
   EXPECT_EQ(hf.world_from_object.point({0, 0, 0}).x, 1);
   // Normals lean away from the rise: the heights grow with x on the top row.
   EXPECT_LT(hf.normals[1].x, 0);
@@ -651,6 +656,10 @@ TEST_F(Sdl, BlobComponents) {
   EXPECT_EQ(blob.world_from_object.point({0, 0, 0}).z, 1);
   ASSERT_EQ(scene.unsupported.size(), 1u);
   EXPECT_EQ(scene.unsupported[0].feature, "blob component pigment");
+  // components written by a loop, as advanced/biscuit.pov writes them
+  scene = run("blob { threshold 0.5 #for (I, 1, 3) sphere { x * I, 1, 1 } #end }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].blob_components.size(), 3u);
 
   std::string error = error_of("blob { threshold 0.5\n  sphere { 0, 0, 1 } }");
   EXPECT_EQ(error.rfind("scene.pov:2:3: ", 0), 0u) << error;
@@ -661,7 +670,9 @@ TEST_F(Sdl, BlobComponents) {
   EXPECT_EQ(error.rfind("scene.pov:1:8: ", 0), 0u) << error;
   error = error_of("blob { sphere { 0, 1, 1 matrix <1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0> } }");
   EXPECT_EQ(error.rfind("scene.pov:1:8: ", 0), 0u) << error;
-  EXPECT_NE(error_of("blob { threshold 1 }").find("no components"), std::string::npos);
+  scene = run("blob { threshold 1 }");  // empty: no error (the converter leaves it out)
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_TRUE(scene.objects[0].blob_components.empty());
 }
 
 TEST_F(Sdl, PolygonAndMeshes) {

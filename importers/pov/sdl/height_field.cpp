@@ -2,7 +2,9 @@
 // over the unit square of POV-Ray's x-z plane, two triangles a cell, as POV-Ray draws it: a
 // triangle mesh from here on (docs/pov.md, "Geometry").
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/util/error.h"
 #include "importers/pov/sdl/height_field_image.h"
@@ -21,10 +23,39 @@ struct HeightFieldOptions {
   double water_level = 0;
 };
 
+// The part of triangle `corners` at or above y = water_level, as POV-Ray clips its height field
+// there (the field's box starts at the water level): whole, cut to a triangle or a quadrilateral
+// (two triangles) with new vertices on the water line, or nothing.
+void add_above_water(std::array<uint32_t, 3> corners, double water_level, Object& o) {
+  const auto height = [&](uint32_t v) { return o.vertices[v].y; };
+  const auto dry = [&](uint32_t v) { return height(v) >= water_level; };
+  const int dry_count = dry(corners[0]) + dry(corners[1]) + dry(corners[2]);
+  if (dry_count == 3) {
+    o.indices.insert(o.indices.end(), corners.begin(), corners.end());
+    return;
+  }
+  if (dry_count == 0) return;
+  // Where edge (a, b) meets the water line.
+  const auto shore = [&](uint32_t a, uint32_t b) {
+    const double f = (water_level - height(a)) / (height(b) - height(a));
+    o.vertices.push_back(o.vertices[a] + (o.vertices[b] - o.vertices[a]) * f);
+    if (!o.normals.empty())
+      o.normals.push_back(normalize(o.normals[a] + (o.normals[b] - o.normals[a]) * f));
+    return uint32_t(o.vertices.size() - 1);
+  };
+  std::vector<uint32_t> polygon;  // the dry part, in the triangle's winding
+  for (int i = 0; i < 3; ++i) {
+    const uint32_t a = corners[size_t(i)], b = corners[size_t((i + 1) % 3)];
+    if (dry(a)) polygon.push_back(a);
+    if (dry(a) != dry(b)) polygon.push_back(shore(a, b));
+  }
+  for (size_t i = 1; i + 1 < polygon.size(); ++i)
+    o.indices.insert(o.indices.end(), {polygon[0], polygon[i], polygon[i + 1]});
+}
+
 // Vertex (column, row) of the image at x = column / (W - 1), y = its height, z = 1 - row / (H - 1):
-// the image's top row lies at the far edge, z = 1, as in POV-Ray. Two triangles a cell (none
-// where all three corners lie below the water level); with `smooth`, normals from the heights'
-// central differences.
+// the image's top row lies at the far edge, z = 1, as in POV-Ray. Two triangles a cell, clipped
+// at the water level; with `smooth`, normals from the heights' central differences.
 void height_field_mesh(const HeightImage& image, const HeightFieldOptions& options, Object& o) {
   const uint32_t w = image.width, h = image.height;
   const auto height = [&](int64_t x, int64_t y) {
@@ -41,18 +72,13 @@ void height_field_mesh(const HeightImage& image, const HeightFieldOptions& optio
       const double slope_z = (height(x, int64_t(y) - 1) - height(x, int64_t(y) + 1)) / (2 * dz);
       o.normals.push_back(normalize(Vec3d{-slope_x, 1, -slope_z}));
     }
-  const auto dry = [&](uint32_t a, uint32_t b, uint32_t c) {
-    return std::max({o.vertices[a].y, o.vertices[b].y, o.vertices[c].y}) >= options.water_level;
-  };
   for (uint32_t y = 0; y + 1 < h; ++y)
     for (uint32_t x = 0; x + 1 < w; ++x) {
       const uint32_t near_left = (y + 1) * w + x, near_right = near_left + 1, far_left = y * w + x,
                      far_right = far_left + 1;
       // Counter-clockwise seen from above (+y) in POV-Ray's left-handed space.
-      if (dry(near_left, far_left, near_right))
-        o.indices.insert(o.indices.end(), {near_left, far_left, near_right});
-      if (dry(near_right, far_left, far_right))
-        o.indices.insert(o.indices.end(), {near_right, far_left, far_right});
+      add_above_water({near_left, far_left, near_right}, options.water_level, o);
+      add_above_water({near_right, far_left, far_right}, options.water_level, o);
     }
 }
 
@@ -68,20 +94,17 @@ void Parser::parse_height_field(Object& o) {
   if (name.kind != ValueKind::kString) fail_at(where, "height_field expects an image file name");
   HeightFieldOptions options;
   for (;;) {
-    const Tok& tok = peek();
+    Tok tok = next();  // directives run
     if (tok.word("smooth")) {
-      next();
       options.smooth = parse_bool_option();
     } else if (tok.word("water_level")) {
-      next();
       options.water_level = parse_float();
     } else if (tok.word("hierarchy") || tok.word("premultiplied")) {
-      next();
       parse_bool_option();  // a speed hint; an alpha channel is no height
     } else if (tok.word("gamma")) {
-      next();
       parse_float();  // heights are data, read linear
     } else {
+      unget(std::move(tok));
       break;
     }
   }
