@@ -608,10 +608,12 @@ TEST_F(Sdl, HeightFieldFromImages) {
   EXPECT_EQ(scene.objects[0].indices.size(), 6u);
   EXPECT_TRUE(scene.objects[0].normals.empty());
 
-  scene = run("height_field { function 10, 10 { x * y } }");
-  EXPECT_TRUE(scene.objects.empty());
-  ASSERT_EQ(scene.unsupported.size(), 1u);
-  EXPECT_EQ(scene.unsupported[0].feature, "height_field");
+  for (const char* unread : {"function 10, 10 { x * y }", "pot \"mtmand.pot\" smooth"}) {
+    scene = run(std::string("height_field { ") + unread + " }");
+    EXPECT_TRUE(scene.objects.empty()) << unread;
+    ASSERT_EQ(scene.unsupported.size(), 1u) << unread;
+    EXPECT_EQ(scene.unsupported[0].feature, "height_field");
+  }
 
   std::string error = error_of("height_field { pgm \"none.pgm\" }");
   EXPECT_EQ(error.rfind("scene.pov:1:20: ", 0), 0u) << error;

@@ -14,9 +14,10 @@ namespace fb::pov::sdl {
 
 namespace {
 
-// The image types height_field names before its file; POV-Ray 3.7 also reads a file without one.
-constexpr std::string_view kHeightFieldTypes[] = {"gif",  "tga",  "iff", "ppm", "pgm", "png",
-                                                  "jpeg", "tiff", "sys", "exr", "hdr", "pot"};
+// The image types height_field names before its file that are read here (objects.cpp reports
+// gif, pot, iff and sys unsupported); POV-Ray 3.7 also reads a file without one.
+constexpr std::string_view kHeightFieldTypes[] = {"tga",  "ppm",  "pgm", "png",
+                                                  "jpeg", "tiff", "exr", "hdr"};
 
 struct HeightFieldOptions {
   bool smooth = false;

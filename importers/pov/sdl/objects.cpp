@@ -276,6 +276,15 @@ constexpr ShapeParser kShapes[] = {
     {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
 };
 
+// height_field { function ... } needs user functions, which are not evaluated; gif and pot keep
+// their heights in palette indices (pot: two 8-bit halves of one 16-bit height), which
+// OpenImageIO's GIF reader turns into colours; iff and sys it does not read.
+bool is_unread_height_field(const Tok& first) {
+  for (std::string_view w : {"function", "gif", "pot", "iff", "sys"})
+    if (first.word(w)) return true;
+  return false;
+}
+
 bool is_polynomial(std::string_view w) {
   return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly";
 }
@@ -528,8 +537,8 @@ Node Parser::parse_object(const Tok& keyword) {
   expect("{");
   if (w == "object") return parse_object_reference();
   bool dropped = false;  // an unsupported object left out of this CSG
-  if (w == "height_field" && peek().word("function")) {
-    skip_rest_of_block();  // its heights come from a user function: not evaluated
+  if (w == "height_field" && is_unread_height_field(peek())) {
+    skip_rest_of_block();
     return missing_node(w, where);
   }
   if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
