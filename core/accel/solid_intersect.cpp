@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/math/polynomial.h"
+#include "core/math/sor.h"
 #include "core/math/superellipsoid.h"
 #include "core/util/error.h"
 
@@ -24,6 +25,7 @@ struct RenderSolid::Node {
   Bounds3d bounds;               // render space, of the set before `inverse`; may be infinite
   Polynomial3 polynomial;        // kPolynomial, in object space
   Blob blob;                     // kBlob, in object space
+  Sor sor;                       // kSor, in object space
   Bounds3d window;               // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;          // farthest corner of a bounded primitive from the render origin
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
@@ -340,6 +342,69 @@ void blob_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out,
   }
 }
 
+// x^2 + z^2 <= r(y)^2 (core/math/sor.h), segment by segment in the ray's order: within a segment's
+// slab a cubic in t, searched within the sor's box. Slab ends between segments are no surface
+// (the spans join there); the lowest and highest are the caps (parts 1 and 2), surface unless
+// open.
+void sor_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0) || leaf.sor.empty()) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0, d = r.d;
+  // The sor's box, a little wider than its widest circle so that no root sits on the ends of
+  // the search; its height is the slabs'.
+  Bounds3d box = sor_bounds(leaf.sor);
+  box.lo.x *= 1.001, box.lo.z *= 1.001, box.hi.x *= 1.001, box.hi.z *= 1.001;
+  double box_lo = -kInf, box_hi = kInf;
+  if (!clip_to_box(box, {o, d}, box_lo, box_hi)) return;
+  const size_t count = leaf.sor.size();
+  const int first = n;
+  for (size_t k = 0; k < count; ++k) {
+    const size_t i = d.y >= 0 ? k : count - 1 - k;
+    const SorSegment& seg = leaf.sor[i];
+    double s_in = box_lo, s_out = box_hi;
+    Boundary in{t0 + s_in}, exit{t0 + s_out};
+    if (d.y != 0) {
+      const double s_bottom = (seg.y0 - o.y) / d.y, s_top = (seg.y1 - o.y) / d.y;
+      const Boundary bottom =
+          i == 0 ? on(leaf, t0 + s_bottom, 1, !leaf.open) : Boundary{t0 + s_bottom};
+      const Boundary top =
+          i + 1 == count ? on(leaf, t0 + s_top, 2, !leaf.open) : Boundary{t0 + s_top};
+      const bool up = d.y > 0;
+      // Ties go to the slab: the box's ends are the caps' planes.
+      if ((up ? s_bottom : s_top) >= s_in) s_in = up ? s_bottom : s_top, in = up ? bottom : top;
+      if ((up ? s_top : s_bottom) <= s_out) s_out = up ? s_top : s_bottom, exit = up ? top : bottom;
+    } else if (o.y < seg.y0 || o.y > seg.y1) {
+      continue;
+    }
+    if (!(s_in < s_out)) continue;
+    // g(s) = (o.x + s d.x)^2 + (o.z + s d.z)^2 - r^2(u), u = (o.y + s d.y - y0) / height
+    const double u0 = (o.y - seg.y0) / (seg.y1 - seg.y0), u1 = d.y / (seg.y1 - seg.y0);
+    const double* c = seg.c;
+    double g[4] = {o.x * o.x + o.z * o.z - (c[0] + u0 * (c[1] + u0 * (c[2] + u0 * c[3]))),
+                   2 * (o.x * d.x + o.z * d.z) - (c[1] + 2 * c[2] * u0 + 3 * c[3] * u0 * u0) * u1,
+                   d.x * d.x + d.z * d.z - (c[2] + 3 * c[3] * u0) * u1 * u1, -c[3] * u1 * u1 * u1};
+    int degree = 3;
+    while (degree > 0 && g[degree] == 0)
+      --degree;
+    double roots[3];
+    const int found = sign_changes(g, degree, s_in, s_out, roots);
+    Boundary from = in;
+    for (int j = 0; j <= found; ++j) {
+      const Boundary end = j < found ? on(leaf, t0 + roots[j]) : exit;
+      const double mid = 0.5 * ((from.t - t0) + (end.t - t0));
+      if (evaluate_polynomial(g, degree, mid) <= 0) {
+        if (n > first && out[n - 1].out.t >= from.t && !out[n - 1].out.surface) {
+          out[n - 1].out = end;  // continues across a slab end between segments
+          if (!(end.t <= hi)) out[n - 1].out = {hi};
+        } else {
+          push(out, n, from, end, lo, hi);
+        }
+      }
+      from = end;
+    }
+  }
+}
+
 // The primitive's spans (at most primitive_max_spans) into out; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out) {
   const Ray r{leaf.object_from_render.point(render_ray.o),
@@ -372,6 +437,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kBlob:
       blob_spans(leaf, r, lo, hi, out, n);
       break;
+    case SolidKind::kSor:
+      sor_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -393,6 +461,8 @@ size_t primitive_max_spans(const Node& leaf) {
       return kSuperellipsoidMaxCrossings / 2;
     case SolidKind::kBlob:
       return blob_max_crossings(leaf.blob) / 2 + 1;
+    case SolidKind::kSor:  // a cubic's two spans a segment
+      return 2 * leaf.sor.size() + 1;
     default:
       return 1;
   }
@@ -471,6 +541,8 @@ Vec3d gradient(const Node& leaf, uint8_t part, Vec3d p) {
       return superellipsoid_gradient({leaf.radius0, leaf.radius1}, p);
     case SolidKind::kBlob:  // the field grows inwards
       return -blob_gradient(leaf.blob, p);
+    case SolidKind::kSor:
+      return part == 0 ? sor_side_gradient(leaf.sor, p) : Vec3d{0, part == 1 ? -1.0 : 1.0, 0};
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -515,6 +587,7 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   node.bounds = uncomplemented_bounds(solid, render_from_world);
   node.polynomial = solid.polynomial;
   node.blob = solid.blob;
+  node.sor = solid.sor;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

@@ -32,6 +32,8 @@ Bounds3d object_bounds(const Solid& primitive) {
     }
     case SolidKind::kBlob:
       return blob_bounds(primitive.blob);
+    case SolidKind::kSor:
+      return sor_bounds(primitive.sor);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

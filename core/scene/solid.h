@@ -11,6 +11,7 @@
 #include "core/math/blob.h"
 #include "core/math/bounds.h"
 #include "core/math/polynomial.h"
+#include "core/math/sor.h"
 #include "core/math/transform.h"
 
 namespace fb {
@@ -37,6 +38,9 @@ enum class SolidKind : uint8_t {
   // POV-Ray's blob: its field reaches `blob.threshold` (core/math/blob.h); bounded by the
   // components of positive strength.
   kBlob,
+  // POV-Ray's sor: x^2 + z^2 <= r(y)^2 between its lowest and highest y (core/math/sor.h); `open`:
+  // the caps bound the set but are not surface.
+  kSor,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -57,6 +61,7 @@ struct Solid {
   uint32_t material = 0;   // of this primitive's surface (unused by set operations)
   Polynomial3 polynomial;  // kPolynomial
   Blob blob;               // kBlob
+  Sor sor;                 // kSor
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

@@ -154,6 +154,11 @@ std::optional<Solid> Converter::primitive(const Object& o) {
             {c.blob_from_component.inverse(), c.a, c.b, c.radius, c.strength, c.cylinder});
       degenerate = blob_bounds(s.blob).empty();  // no component of positive strength
       break;
+    case Shape::kSor:  // POV-Ray's object space, about its y axis; the parser checked the points
+      s.kind = SolidKind::kSor;
+      s.sor = sor_from_points(o.profile);
+      degenerate = s.sor.empty() || !(sor_bounds(s.sor).hi.x > 0);
+      break;
     default:
       return std::nullopt;
   }

@@ -104,6 +104,7 @@ enum class Shape {
   kPolynomial,
   kSuperellipsoid,  // exponents e = r0, n = r1 (> 0), within the unit box
   kBlob,            // threshold r0 (> 0), `blob_components`
+  kSor,             // `profile` points (radius, height), height increasing; open
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -132,6 +133,7 @@ struct Object {
   int order = 0;                                        // kPolynomial
   std::vector<double> coefficients;                     // kPolynomial
   std::vector<BlobComponentStatement> blob_components;  // kBlob
+  std::vector<std::pair<double, double>> profile;       // kSor
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

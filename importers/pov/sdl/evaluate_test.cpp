@@ -677,6 +677,24 @@ TEST_F(Sdl, BlobComponents) {
   EXPECT_TRUE(scene.objects[0].blob_components.empty());
 }
 
+// sor: its points and open flag; too few points or a height not above the previous one refused
+// at its place.
+TEST_F(Sdl, SorPoints) {
+  Scene scene = run("sor { 4, <1, 0>, <1, 1>, <0.5, 2>, <0.5, 3> open sturm }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].shape, Shape::kSor);
+  ASSERT_EQ(scene.objects[0].profile.size(), 4u);
+  EXPECT_EQ(scene.objects[0].profile[2].first, 0.5);
+  EXPECT_EQ(scene.objects[0].profile[2].second, 2);
+  EXPECT_TRUE(scene.objects[0].open);
+  scene = run("sor { 4, <0, 0>, <0.1, 0>, <0.6, 0.5>, <0.2, 0.5> }");  // ends may be level
+  EXPECT_EQ(scene.objects.size(), 1u);
+  std::string error = error_of("sor { 5, <1, 0>, <1, 1>,\n  <1, 1>, <1, 3>, <1, 4> }");
+  EXPECT_EQ(error.rfind("scene.pov:2:3: ", 0), 0u) << error;
+  error = error_of("sor { 3, <1, 0>, <1, 1>, <1, 2> }");
+  EXPECT_NE(error.find("at least 4 points"), std::string::npos) << error;
+}
+
 TEST_F(Sdl, PolygonAndMeshes) {
   // an L-shaped (concave) hexagon: 4 triangles covering area 3
   Scene scene = run("polygon { 7, <0,0>, <2,0>, <2,1>, <1,1>, <1,2>, <0,2>, <0,0> }");

@@ -11,16 +11,16 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",       "box",      "plane",           "cylinder",   "cone",         "torus",
-    "disc",         "triangle", "smooth_triangle", "mesh",       "mesh2",        "polygon",
-    "object",       "union",    "merge",           "difference", "intersection", "light_source",
-    "light_group",  "quadric",  "cubic",           "quartic",    "poly",         "superellipsoid",
-    "height_field", "blob"};
+    "sphere",     "box",          "plane",        "cylinder",        "cone",
+    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
+    "mesh2",      "polygon",      "object",       "union",           "merge",
+    "difference", "intersection", "light_source", "light_group",     "quadric",
+    "cubic",      "quartic",      "poly",         "superellipsoid",  "height_field",
+    "blob",       "sor"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "text",       "lathe",         "sor",        "prism",        "isosurface",
-    "polynomial", "julia_fractal", "parametric", "sphere_sweep", "bicubic_patch",
-    "ovus",       "lemon",         "fractal"};
+    "text",       "lathe",        "prism",         "isosurface", "polynomial", "julia_fractal",
+    "parametric", "sphere_sweep", "bicubic_patch", "ovus",       "lemon",      "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -259,6 +259,32 @@ void parse_superellipsoid(Parser& p, Object& o) {
            "> bounded to <" + number_string(o.r0) + ", " + number_string(o.r1) + ">");
 }
 
+// sor { N, <r1, y1>, ..., <rN, yN> }: at least 4 points, heights increasing (POV-Ray's
+// "Incorrect point in surface of revolution"), a point out of order refused at its place.
+void parse_sor(Parser& p, Object& o) {
+  o.shape = Shape::kSor;
+  const double n = p.parse_count();
+  if (!(n >= 4 && n <= double(p.options().limits.objects)))
+    p.fail("sor needs at least 4 points, got " + number_string(n));
+  p.count_objects(uint64_t(n));
+  for (size_t i = 0; i < size_t(n); ++i) {
+    p.accept(",");
+    const SourceLocation where = p.location_of(p.peek());
+    const Value v = p.parse_numeric(2);
+    if (!std::isfinite(v.v[0]) || !std::isfinite(v.v[1]))
+      p.fail_at(where, "sor point is not finite");
+    // The curve's points rise strictly; the first and last, which only steer its end slopes, may
+    // share their neighbour's height (objects/sor1.pov starts so).
+    const bool end_point = i == 1 || i + 1 == size_t(n);
+    if (!o.profile.empty() &&
+        (end_point ? v.v[1] < o.profile.back().second : !(v.v[1] > o.profile.back().second)))
+      p.fail_at(where, "sor point's height " + number_string(v.v[1]) + " is " +
+                           (end_point ? "below" : "not above") + " the previous point's " +
+                           number_string(o.profile.back().second));
+    o.profile.emplace_back(v.v[0], v.v[1]);
+  }
+}
+
 // The other shapes, whose arguments need their own parser.
 struct ShapeParser {
   std::string_view name;
@@ -274,6 +300,7 @@ constexpr ShapeParser kShapes[] = {
     {"superellipsoid", parse_superellipsoid},
     {"height_field", [](Parser& p, Object& o) { p.parse_height_field(o); }},
     {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
+    {"sor", parse_sor},
 };
 
 // height_field { function ... } needs user functions, which are not evaluated; gif and pot keep
