@@ -9,6 +9,7 @@
 
 #include "core/accel/solid_intersect.h"
 #include "core/math/blob.h"
+#include "support/finite_difference.h"
 #include "support/solid_builders.h"
 
 namespace fb {
@@ -89,9 +90,7 @@ TEST(SolidBlob, HitsLieOnTheThresholdAndNormalsMatchFiniteDifferences) {
     EXPECT_GE(blob_field(blob, p + d * 1e-9), blob.threshold) << "ray " << i;
     const double h = 1e-6;
     const auto f = [&](Vec3d q) { return blob_field(blob, q); };
-    const Vec3d fd{f(p + Vec3d{h, 0, 0}) - f(p - Vec3d{h, 0, 0}),
-                   f(p + Vec3d{0, h, 0}) - f(p - Vec3d{0, h, 0}),
-                   f(p + Vec3d{0, 0, h}) - f(p - Vec3d{0, 0, h})};
+    const Vec3d fd = test::central_difference_gradient(f, p, h);
     EXPECT_LT(length(hit->normal + normalize(fd)), 1e-5) << "ray " << i;
   }
   EXPECT_GT(hits, 150);

@@ -9,6 +9,7 @@
 
 #include "core/accel/solid_intersect.h"
 #include "core/math/sor.h"
+#include "support/finite_difference.h"
 #include "support/solid_builders.h"
 
 namespace fb {
@@ -73,9 +74,7 @@ TEST(SolidSor, WavyProfileAgainstItsImplicitFunction) {
       near_joint |= std::abs(p.y - y) < 2 * h;
     if (near_joint) continue;
     const auto f = [&](Vec3d q) { return sor_value(s.sor, q); };
-    const Vec3d fd{f(p + Vec3d{h, 0, 0}) - f(p - Vec3d{h, 0, 0}),
-                   f(p + Vec3d{0, h, 0}) - f(p - Vec3d{0, h, 0}),
-                   f(p + Vec3d{0, 0, h}) - f(p - Vec3d{0, 0, h})};
+    const Vec3d fd = test::central_difference_gradient(f, p, h);
     EXPECT_LT(length(hit->normal - normalize(fd)), 1e-5) << "ray " << i;
   }
   EXPECT_GT(sides, 150);

@@ -8,6 +8,7 @@
 
 #include "core/accel/solid_intersect.h"
 #include "core/math/superellipsoid.h"
+#include "support/finite_difference.h"
 #include "support/solid_builders.h"
 
 namespace fb {
@@ -83,9 +84,7 @@ TEST(SolidSuperellipsoid, NormalsMatchFiniteDifferences) {
       if (std::abs(p.x) < 1e-2 || std::abs(p.y) < 1e-2 || std::abs(p.z) < 1e-2) continue;
       const double h = 1e-7;
       const auto f = [&](Vec3d q) { return superellipsoid_value(s, q); };
-      const Vec3d fd{f(p + Vec3d{h, 0, 0}) - f(p - Vec3d{h, 0, 0}),
-                     f(p + Vec3d{0, h, 0}) - f(p - Vec3d{0, h, 0}),
-                     f(p + Vec3d{0, 0, h}) - f(p - Vec3d{0, 0, h})};
+      const Vec3d fd = test::central_difference_gradient(f, p, h);
       EXPECT_LT(length(hit->normal - normalize(fd)), 1e-4)
           << s.e << " " << s.n << " at " << p.x << " " << p.y << " " << p.z;
       ++checked;

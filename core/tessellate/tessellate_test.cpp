@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/math/superellipsoid.h"
+#include "support/finite_difference.h"
 
 namespace fb {
 namespace {
@@ -31,10 +32,7 @@ double surface_distance(const Solid& s, Vec3d p) {
       const SuperellipsoidExponents e{s.radius0, s.radius1};
       const double h = 1e-7;
       const auto f = [&](Vec3d q) { return superellipsoid_value(e, q); };
-      const Vec3d g = Vec3d{f(p + Vec3d{h, 0, 0}) - f(p - Vec3d{h, 0, 0}),
-                            f(p + Vec3d{0, h, 0}) - f(p - Vec3d{0, h, 0}),
-                            f(p + Vec3d{0, 0, h}) - f(p - Vec3d{0, 0, h})} /
-                      (2 * h);
+      const Vec3d g = test::central_difference_gradient(f, p, h);
       return std::abs(f(p)) / length(g);
     }
     default:
