@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/math/constants.h"
+#include "core/math/sor.h"
 #include "core/math/superellipsoid.h"
 #include "core/tessellate/tessellate_csg.h"
 
@@ -169,6 +170,55 @@ void superellipsoid_mesh(const Solid& primitive, double error, uint32_t most, Tr
     }
 }
 
+// A sor's profile in the (rho, y) half-plane: each segment sampled at a count doubled until the
+// radius at the samples' midpoints strays from their chord by less than `error`, its normals from
+// the gradient of rho^2 - r(y)^2; the caps as lines unless open. r^2 below 0 (no surface) is
+// clamped to the axis.
+std::vector<Piece> sor_profile(const Solid& primitive, double error, uint32_t most) {
+  const Sor& sor = primitive.sor;
+  const auto point = [](const SorSegment& s, double y) {
+    const double r = std::sqrt(std::max(sor_radius_2(s, y), 0.0));
+    const Vec3d g = sor_side_gradient({s}, {r, y, 0});
+    const double len = std::hypot(g.x, g.y);
+    return len > 0 ? ProfilePoint{r, y, g.x / len, g.y / len} : ProfilePoint{r, y, 1, 0};
+  };
+  Piece side;
+  for (const SorSegment& s : sor) {
+    uint32_t steps = 4;
+    const auto at = [&](double f) { return point(s, s.y0 + (s.y1 - s.y0) * f); };
+    const auto straying = [&](uint32_t n) {
+      double worst = 0;
+      for (uint32_t i = 0; i < n; ++i)
+        worst =
+            std::max(worst, std::abs(at((i + 0.5) / n).rho -
+                                     0.5 * (at(double(i) / n).rho + at(double(i + 1) / n).rho)));
+      return worst;
+    };
+    while (2 * steps <= most && straying(steps) > error)
+      steps *= 2;
+    for (uint32_t i = side.empty() ? 0 : 1; i <= steps; ++i)
+      side.push_back(at(double(i) / steps));
+  }
+  std::vector<Piece> pieces;
+  if (!primitive.open && side.front().rho > 0)
+    pieces.push_back(line(0, side.front().z, side.front().rho, side.front().z));
+  pieces.push_back(side);
+  if (!primitive.open && side.back().rho > 0)
+    pieces.push_back(line(side.back().rho, side.back().z, 0, side.back().z));
+  return pieces;
+}
+
+// revolve() turns its profile about z; a sor turns about y: swap the two, a mirror, so every
+// triangle's winding is reversed to stay counter-clockwise about its normals.
+void swap_y_and_z(TriangleMesh& mesh) {
+  for (Vec3f& p : mesh.positions)
+    std::swap(p.y, p.z);
+  for (Vec3f& n : mesh.normals)
+    std::swap(n.y, n.z);
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+    std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+}
+
 }  // namespace
 
 double tessellation_tolerance_m(const Solid& primitive, const TessellationOptions& options) {
@@ -212,6 +262,15 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   const uint32_t most = std::max(options.max_segments, 3u);
   if (primitive.kind == SolidKind::kSuperellipsoid) {
     superellipsoid_mesh(primitive, error, most, mesh);
+    return mesh;
+  }
+  if (primitive.kind == SolidKind::kSor && !primitive.sor.empty()) {
+    // As the other surfaces of revolution: a quarter of the tolerance to the profile, half to the
+    // angular segments.
+    const double widest = sor_bounds(primitive.sor).hi.x;
+    revolve(sor_profile(primitive, error / 4, most),
+            std::max(arc_segments(2 * kPi, widest, error / 2, most), 3u), mesh);
+    swap_y_and_z(mesh);
     return mesh;
   }
   const double r0 = std::abs(primitive.radius0), r1 = std::abs(primitive.radius1);
