@@ -83,6 +83,10 @@ const SolidShot kSolidShots[] = {
      "blob { threshold 0.6 sphere { 0, 1, 1 } sphere { <1, 0.3, 0>, 0.9, 1 } "
      "cylinder { <-1, -0.8, 0>, <1, -0.8, 0.4>, 0.6, 1.5 scale <1, 0.7, 1> rotate z * 20 } "
      "sphere { <0.4, 0.4, -0.6>, 0.5, -1 } rotate y * 30 }"},
+    // A surface of revolution with a wavy profile, its caps seen from above.
+    {"sor_wavy",
+     "sor { 7, <0.5, -0.5>, <0.8, 0>, <0.4, 0.5>, <1.0, 1.1>, <0.6, 1.6>, <0.7, 2.0>, <0.3, 2.4> "
+     "translate -y scale 1.3 rotate <-20, 0, 15> }"},
 };
 
 std::string scene_sdl(const SolidShot& shot) {
