@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <new>
 #include <random>
@@ -72,6 +73,18 @@ std::vector<Solid> solids_of_every_shape() {
   Solid quartic = primitive(SolidKind::kPolynomial);  // x^4 + y^4 + z^4 <= 1
   quartic.polynomial = {{1, 4, 0, 0}, {1, 0, 4, 0}, {1, 0, 0, 4}, {-1, 0, 0, 0}};
   solids.push_back(quartic);
+  // A pinched superellipsoid, and a blob whose crossings (up to 4 x (8 n + 1)) outgrow the stack
+  // buffer: its per-thread crossing buffers grow in the warm-up, then stay.
+  Solid star = primitive(SolidKind::kSuperellipsoid, Transform::scale({1.5, 1, 0.8}));
+  star.radius0 = 2.5, star.radius1 = 0.5;
+  solids.push_back(star);
+  Solid blob = primitive(SolidKind::kBlob);
+  blob.blob.threshold = 0.5;
+  for (int i = 0; i < 40; ++i) {
+    const Vec3d a{std::cos(i * 0.3), std::sin(i * 0.3), i * 0.05 - 1};
+    blob.blob.components.push_back({Transform(), a, a * 0.5, 0.4, i % 7 ? 1.0 : -0.5, i % 2 == 1});
+  }
+  solids.push_back(blob);
   // A nested difference, and a union past the stack buffer (the per-thread one).
   const Solid bite = inverted(ball({0.8, 0, 0}, 0.6, 2));
   solids.push_back(csg(SolidKind::kIntersection,

@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "core/math/polynomial.h"
+#include "core/math/sor.h"
+#include "core/math/superellipsoid.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -28,6 +30,8 @@ struct RenderSolid::Node {
   double z0 = 0, z1 = 1;                   // kOutline: the slab it is swept through
   Bounds3d window;       // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;  // farthest corner of a bounded primitive from the render origin
+  Blob blob;                     // kBlob, in object space
+  Sor sor;                       // kSor, in object space
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)
@@ -392,6 +396,109 @@ void outline_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* o
   if (inside) push(out, n, entry, slab_out, lo, hi);
 }
 
+// f <= 0 (core/math/superellipsoid.h) between pairs of crossings, searched along the ray's
+// whole chord of a box a little wider than the unit box whatever lo and hi are: the same ray
+// finds the same roots, and f > 0 at both ends of the chord pairs them.
+void superellipsoid_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Ray c{r.o + r.d * t0, r.d};
+  constexpr double kChordBox = 1 + 1e-6;
+  double s_lo = -kInf, s_hi = kInf;
+  if (!clip_to_box({{-kChordBox, -kChordBox, -kChordBox}, {kChordBox, kChordBox, kChordBox}}, c,
+                   s_lo, s_hi))
+    return;
+  double roots[kSuperellipsoidMaxCrossings];
+  const int count =
+      superellipsoid_crossings({leaf.radius0, leaf.radius1}, c.o, c.d, s_lo, s_hi, roots);
+  for (int i = 0; i + 1 < count; i += 2)
+    push(out, n, on(leaf, t0 + roots[i]), on(leaf, t0 + roots[i + 1]), lo, hi);
+}
+
+// F >= threshold (core/math/blob.h): each gap between two crossings is inside or outside as the
+// field at its middle says, neighbouring inside gaps joining (where two of the field's quartic
+// pieces meet, a crossing may be found twice). Before the first crossing and after the last the
+// ray is outside every component.
+void blob_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0;
+  const std::vector<double>& roots = blob_crossings(leaf.blob, o, r.d);
+  bool inside = false;
+  double from = 0;
+  for (size_t i = 0; i < roots.size(); ++i) {
+    const bool gap_inside =
+        i + 1 < roots.size() &&
+        blob_field(leaf.blob, o + r.d * (0.5 * (roots[i] + roots[i + 1]))) >= leaf.blob.threshold;
+    if (gap_inside && !inside) from = roots[i];
+    if (!gap_inside && inside) push(out, n, on(leaf, t0 + from), on(leaf, t0 + roots[i]), lo, hi);
+    inside = gap_inside;
+  }
+}
+
+// x^2 + z^2 <= r(y)^2 (core/math/sor.h), segment by segment in the ray's order: within a segment's
+// slab a cubic in t, searched within the sor's box. Slab ends between segments are no surface
+// (the spans join there); the lowest and highest are the caps (parts 1 and 2), surface unless
+// open.
+void sor_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0) || leaf.sor.empty()) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0, d = r.d;
+  // The sor's box, a little wider than its widest circle so that no root sits on the ends of
+  // the search; its height is the slabs'.
+  Bounds3d box = sor_bounds(leaf.sor);
+  box.lo.x *= 1.001, box.lo.z *= 1.001, box.hi.x *= 1.001, box.hi.z *= 1.001;
+  double box_lo = -kInf, box_hi = kInf;
+  if (!clip_to_box(box, {o, d}, box_lo, box_hi)) return;
+  const size_t count = leaf.sor.size();
+  const int first = n;
+  for (size_t k = 0; k < count; ++k) {
+    const size_t i = d.y >= 0 ? k : count - 1 - k;
+    const SorSegment& seg = leaf.sor[i];
+    double s_in = box_lo, s_out = box_hi;
+    Boundary in{t0 + s_in}, exit{t0 + s_out};
+    if (d.y != 0) {
+      const double s_bottom = (seg.y0 - o.y) / d.y, s_top = (seg.y1 - o.y) / d.y;
+      const Boundary bottom =
+          i == 0 ? on(leaf, t0 + s_bottom, 1, !leaf.open) : Boundary{t0 + s_bottom};
+      const Boundary top =
+          i + 1 == count ? on(leaf, t0 + s_top, 2, !leaf.open) : Boundary{t0 + s_top};
+      const bool up = d.y > 0;
+      // Ties go to the slab: the box's ends are the caps' planes.
+      if ((up ? s_bottom : s_top) >= s_in) s_in = up ? s_bottom : s_top, in = up ? bottom : top;
+      if ((up ? s_top : s_bottom) <= s_out) s_out = up ? s_top : s_bottom, exit = up ? top : bottom;
+    } else if (o.y < seg.y0 || o.y > seg.y1) {
+      continue;
+    }
+    if (!(s_in < s_out)) continue;
+    // g(s) = (o.x + s d.x)^2 + (o.z + s d.z)^2 - r^2(u), u = (o.y + s d.y - y0) / height
+    const double u0 = (o.y - seg.y0) / (seg.y1 - seg.y0), u1 = d.y / (seg.y1 - seg.y0);
+    const double* c = seg.c;
+    double g[4] = {o.x * o.x + o.z * o.z - (c[0] + u0 * (c[1] + u0 * (c[2] + u0 * c[3]))),
+                   2 * (o.x * d.x + o.z * d.z) - (c[1] + 2 * c[2] * u0 + 3 * c[3] * u0 * u0) * u1,
+                   d.x * d.x + d.z * d.z - (c[2] + 3 * c[3] * u0) * u1 * u1, -c[3] * u1 * u1 * u1};
+    int degree = 3;
+    while (degree > 0 && g[degree] == 0)
+      --degree;
+    double roots[3];
+    const int found = sign_changes(g, degree, s_in, s_out, roots);
+    Boundary from = in;
+    for (int j = 0; j <= found; ++j) {
+      const Boundary end = j < found ? on(leaf, t0 + roots[j]) : exit;
+      const double mid = 0.5 * ((from.t - t0) + (end.t - t0));
+      if (evaluate_polynomial(g, degree, mid) <= 0) {
+        if (n > first && out[n - 1].out.t >= from.t && !out[n - 1].out.surface) {
+          out[n - 1].out = end;  // continues across a slab end between segments
+          if (!(end.t <= hi)) out[n - 1].out = {hi};
+        } else {
+          push(out, n, from, end, lo, hi);
+        }
+      }
+      from = end;
+    }
+  }
+}
+
 // The primitive's spans (at most primitive_max_spans) into out, using primitive_workspace spans
 // of scratch; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out,
@@ -423,6 +530,15 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kOutline:
       outline_spans(leaf, r, lo, hi, out, n, scratch);
       break;
+    case SolidKind::kSuperellipsoid:
+      superellipsoid_spans(leaf, r, lo, hi, out, n);
+      break;
+    case SolidKind::kBlob:
+      blob_spans(leaf, r, lo, hi, out, n);
+      break;
+    case SolidKind::kSor:
+      sor_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -431,7 +547,8 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
 
 // The most spans primitive_spans gives: a quadric's two spans within the cone's slab; one per
 // interval between the up to four roots of a torus or polynomial; an outline's walls, crossed at
-// most `degrees` times, leave at most half as many pieces inside, and one more.
+// most `degrees` times, leave at most half as many pieces inside, and one more; one per pair of a
+// superellipsoid's or a blob's crossings.
 size_t primitive_max_spans(const Node& leaf) {
   switch (leaf.kind) {
     case SolidKind::kCylinder:
@@ -442,6 +559,12 @@ size_t primitive_max_spans(const Node& leaf) {
       return kMaxPolynomialDegree + 1;
     case SolidKind::kOutline:
       return leaf.outline->degrees / 2 + 1;
+    case SolidKind::kSuperellipsoid:
+      return kSuperellipsoidMaxCrossings / 2;
+    case SolidKind::kBlob:
+      return blob_max_crossings(leaf.blob) / 2 + 1;
+    case SolidKind::kSor:  // a cubic's two spans a segment
+      return 2 * leaf.sor.size() + 1;
     default:
       return 1;
   }
@@ -549,6 +672,12 @@ Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
     case SolidKind::kOutline:
       if (part == 1 || part == 2) return {0, 0, part == 1 ? -1.0 : 1.0};
       return outline_wall_normal(leaf, b, p, d);
+    case SolidKind::kSuperellipsoid:
+      return superellipsoid_gradient({leaf.radius0, leaf.radius1}, p);
+    case SolidKind::kBlob:  // the field grows inwards
+      return -blob_gradient(leaf.blob, p);
+    case SolidKind::kSor:
+      return part == 0 ? sor_side_gradient(leaf.sor, p) : Vec3d{0, part == 1 ? -1.0 : 1.0, 0};
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -598,6 +727,8 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   if (solid.kind == SolidKind::kOutline && solid.conic)
     node.z0 = std::min(solid.radius0, solid.radius1),
     node.z1 = std::max(solid.radius0, solid.radius1);
+  node.blob = solid.blob;
+  node.sor = solid.sor;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

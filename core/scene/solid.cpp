@@ -19,6 +19,7 @@ Bounds3d object_bounds(const Solid& primitive) {
   switch (primitive.kind) {
     case SolidKind::kSphere:
     case SolidKind::kBox:
+    case SolidKind::kSuperellipsoid:
     case SolidKind::kCylinder:
       return {{-1, -1, primitive.kind == SolidKind::kCylinder ? 0.0 : -1.0}, {1, 1, 1}};
     case SolidKind::kCone: {
@@ -38,6 +39,10 @@ Bounds3d object_bounds(const Solid& primitive) {
           box.extend({p.x * z, p.y * z, z});
       return box;
     }
+    case SolidKind::kBlob:
+      return blob_bounds(primitive.blob);
+    case SolidKind::kSor:
+      return sor_bounds(primitive.sor);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

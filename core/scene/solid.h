@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "core/math/blob.h"
 #include "core/math/bounds.h"
 #include "core/math/polynomial.h"
+#include "core/math/sor.h"
 #include "core/math/transform.h"
 #include "core/scene/outline.h"
 
@@ -37,6 +39,15 @@ enum class SolidKind : uint8_t {
   // the outline} for radius0 <= z <= radius1 (POV-Ray's conic_sweep). `open`: the caps bound the
   // set but are no surface.
   kOutline,
+  // (|x|^(2/e) + |y|^(2/e))^(e/n) + |z|^(2/n) <= 1 with e = radius0, n = radius1 (> 0): POV-Ray's
+  // superellipsoid (core/math/superellipsoid.h), within the unit box.
+  kSuperellipsoid,
+  // POV-Ray's blob: its field reaches `blob.threshold` (core/math/blob.h); bounded by the
+  // components of positive strength.
+  kBlob,
+  // POV-Ray's sor: x^2 + z^2 <= r(y)^2 between its lowest and highest y (core/math/sor.h); `open`:
+  // the caps bound the set but are not surface.
+  kSor,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -47,16 +58,19 @@ struct Solid {
   SolidKind kind = SolidKind::kSphere;
   std::string name;  // for messages: where it came from
   Transform world_from_object;
-  double radius0 = 1, radius1 = 1;  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1
-  bool open = false;                // kCylinder, kCone, kOutline: no end caps
-  bool conic = false;               // kOutline: a conic sweep between radius0 < radius1
-  bool inverse = false;             // the complement of the set
+  // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1; kSuperellipsoid: exponents e, n
+  double radius0 = 1, radius1 = 1;
+  bool open = false;     // kCylinder, kCone, kOutline, kSor: no end caps
+  bool conic = false;    // kOutline: a conic sweep between radius0 < radius1
+  bool inverse = false;  // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
   // object open where it cuts.
   bool bounds_only = false;
-  uint32_t material = 0;                   // of this primitive's surface (unused by set operations)
-  Polynomial3 polynomial;                  // kPolynomial
+  uint32_t material = 0;   // of this primitive's surface (unused by set operations)
+  Polynomial3 polynomial;  // kPolynomial
   std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat)
+  Blob blob;  // kBlob
+  Sor sor;    // kSor
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "core/math/constants.h"
+#include "core/math/sor.h"
+#include "core/math/superellipsoid.h"
 #include "core/tessellate/tessellate_csg.h"
 #include "core/tessellate/tessellate_outline.h"
 
@@ -120,6 +122,104 @@ void plane_square(const Solid& primitive, const TessellationOptions& options, Tr
   mesh.indices = {0, 1, 2, 0, 2, 3};
 }
 
+// The grid's sagitta over a latitude-longitude grid of `rows` x `columns`: the largest distance,
+// along the surface's normal, between a cell edge's midpoint on the surface and on its chord (the
+// parametrisation also slides points along flat faces, which is no error).
+double superellipsoid_sagitta(SuperellipsoidExponents s, uint32_t rows, uint32_t columns) {
+  double worst = 0;
+  const auto at = [&](double i, double j) {
+    return superellipsoid_point(s, -kPi / 2 + kPi * i / rows, 2 * kPi * j / columns);
+  };
+  const auto off_chord = [&](Vec3d mid, Vec3d a, Vec3d b) {
+    return std::abs(dot(mid - (a + b) * 0.5, normalize(superellipsoid_gradient(s, mid))));
+  };
+  for (uint32_t i = 0; i < rows; ++i)
+    for (uint32_t j = 0; j < columns; ++j) {
+      const Vec3d p = at(i, j);
+      worst = std::max({worst, off_chord(at(i + 0.5, j), p, at(i + 1, j)),
+                        off_chord(at(i, j + 0.5), p, at(i, j + 1))});
+    }
+  return worst;
+}
+
+// The superellipsoid over its parametric latitude-longitude grid (superellipsoid_point), which
+// gathers vertices where the surface bends most; the grid doubles until its edges' sagitta is
+// within half of `error` (a cell's centre strays by about the sum of its two directions') or its
+// columns would pass `most` (at most kSuperellipsoidMostColumns: 2 million triangles). Normals from
+// the implicit gradient; the poles' degenerate triangles are left out.
+void superellipsoid_mesh(const Solid& primitive, double error, uint32_t most, TriangleMesh& mesh) {
+  const SuperellipsoidExponents s{std::abs(primitive.radius0), std::abs(primitive.radius1)};
+  constexpr uint32_t kSuperellipsoidMostColumns = 1024;
+  most = std::min(most, kSuperellipsoidMostColumns);
+  uint32_t columns = 16;
+  while (2 * columns <= most && superellipsoid_sagitta(s, columns / 2, columns) > error / 2)
+    columns *= 2;
+  const uint32_t rows = columns / 2, row = columns + 1;
+  for (uint32_t i = 0; i <= rows; ++i)
+    for (uint32_t j = 0; j <= columns; ++j) {
+      // The seam and the poles share their vertices.
+      const double eta = i == 0 ? -kPi / 2 : i == rows ? kPi / 2 : -kPi / 2 + kPi * i / rows;
+      const Vec3d p = superellipsoid_point(s, eta, 2 * kPi * (j % columns) / columns);
+      mesh.positions.emplace_back(p);
+      mesh.normals.emplace_back(normalize(superellipsoid_gradient(s, p)));
+    }
+  for (uint32_t i = 0; i < rows; ++i)
+    for (uint32_t j = 0; j < columns; ++j) {
+      const uint32_t a = i * row + j, b = a + 1, c = b + row, d = a + row;
+      triangle(mesh, a, b, c);
+      triangle(mesh, a, c, d);
+    }
+}
+
+// A sor's profile in the (rho, y) half-plane: each segment sampled at a count doubled until the
+// radius at the samples' midpoints strays from their chord by less than `error`, its normals from
+// the gradient of rho^2 - r(y)^2; the caps as lines unless open. r^2 below 0 (no surface) is
+// clamped to the axis.
+std::vector<Piece> sor_profile(const Solid& primitive, double error, uint32_t most) {
+  const Sor& sor = primitive.sor;
+  const auto point = [](const SorSegment& s, double y) {
+    const double r = std::sqrt(std::max(sor_radius_2(s, y), 0.0));
+    const Vec3d g = sor_side_gradient({s}, {r, y, 0});
+    const double len = std::hypot(g.x, g.y);
+    return len > 0 ? ProfilePoint{r, y, g.x / len, g.y / len} : ProfilePoint{r, y, 1, 0};
+  };
+  Piece side;
+  for (const SorSegment& s : sor) {
+    uint32_t steps = 4;
+    const auto at = [&](double f) { return point(s, s.y0 + (s.y1 - s.y0) * f); };
+    const auto straying = [&](uint32_t n) {
+      double worst = 0;
+      for (uint32_t i = 0; i < n; ++i)
+        worst =
+            std::max(worst, std::abs(at((i + 0.5) / n).rho -
+                                     0.5 * (at(double(i) / n).rho + at(double(i + 1) / n).rho)));
+      return worst;
+    };
+    while (2 * steps <= most && straying(steps) > error)
+      steps *= 2;
+    for (uint32_t i = side.empty() ? 0 : 1; i <= steps; ++i)
+      side.push_back(at(double(i) / steps));
+  }
+  std::vector<Piece> pieces;
+  if (!primitive.open && side.front().rho > 0)
+    pieces.push_back(line(0, side.front().z, side.front().rho, side.front().z));
+  pieces.push_back(side);
+  if (!primitive.open && side.back().rho > 0)
+    pieces.push_back(line(side.back().rho, side.back().z, 0, side.back().z));
+  return pieces;
+}
+
+// revolve() turns its profile about z; a sor turns about y: swap the two, a mirror, so every
+// triangle's winding is reversed to stay counter-clockwise about its normals.
+void swap_y_and_z(TriangleMesh& mesh) {
+  for (Vec3f& p : mesh.positions)
+    std::swap(p.y, p.z);
+  for (Vec3f& n : mesh.normals)
+    std::swap(n.y, n.z);
+  for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
+    std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+}
+
 }  // namespace
 
 double tessellation_tolerance_m(const Solid& primitive, const TessellationOptions& options) {
@@ -139,6 +239,8 @@ void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics) {
   diagnostics.warn(primitive.name + (primitive.kind == SolidKind::kPolynomial
                                          ? ": polynomial surfaces (quadric, cubic, quartic, poly) "
                                            "have no triangle form yet: left out of the mesh"
+                                     : primitive.kind == SolidKind::kBlob
+                                         ? ": blobs have no triangle form yet: left out of the mesh"
                                          : ": the surface has no triangles: left out"));
 }
 
@@ -166,6 +268,19 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   const double stretch = largest_stretch(primitive.world_from_object);
   const double error = tessellation_tolerance_m(primitive, options) / stretch;
   const uint32_t most = std::max(options.max_segments, 3u);
+  if (primitive.kind == SolidKind::kSuperellipsoid) {
+    superellipsoid_mesh(primitive, error, most, mesh);
+    return mesh;
+  }
+  if (primitive.kind == SolidKind::kSor && !primitive.sor.empty()) {
+    // As the other surfaces of revolution: a quarter of the tolerance to the profile, half to the
+    // angular segments.
+    const double widest = sor_bounds(primitive.sor).hi.x;
+    revolve(sor_profile(primitive, error / 4, most),
+            std::max(arc_segments(2 * kPi, widest, error / 2, most), 3u), mesh);
+    swap_y_and_z(mesh);
+    return mesh;
+  }
   const double r0 = std::abs(primitive.radius0), r1 = std::abs(primitive.radius1);
   std::vector<Piece> pieces;
   double widest = 1;  // the largest rho the profile reaches

@@ -7,6 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/sor.h"
+#include "core/math/superellipsoid.h"
+#include "support/finite_difference.h"
+
 namespace fb {
 namespace {
 
@@ -25,6 +29,19 @@ double surface_distance(const Solid& s, Vec3d p) {
     }
     case SolidKind::kTorus:
       return std::abs(std::hypot(rho - 1, p.z) - s.radius1);
+    case SolidKind::kSor: {  // about y: the radial distance to the side, or to a cap's plane
+      const double radial = std::sqrt(p.x * p.x + p.z * p.z);
+      const SorSegment& seg = p.y < s.sor.front().y1 ? s.sor.front() : s.sor.back();
+      const double side = std::abs(radial - std::sqrt(std::max(sor_radius_2(seg, p.y), 0.0)));
+      return std::min({side, std::abs(p.y - s.sor.front().y0), std::abs(p.y - s.sor.back().y1)});
+    }
+    case SolidKind::kSuperellipsoid: {  // |f| / |grad f|, to first order; gradient by differences
+      const SuperellipsoidExponents e{s.radius0, s.radius1};
+      const double h = 1e-7;
+      const auto f = [&](Vec3d q) { return superellipsoid_value(e, q); };
+      const Vec3d g = test::central_difference_gradient(f, p, h);
+      return std::abs(f(p)) / length(g);
+    }
     default:
       return std::abs(p.z);
   }
@@ -73,9 +90,49 @@ TEST(Tessellate, CurvedPrimitivesStayWithinTheTolerance) {
   }
 }
 
+// The parametric grid doubles until it meets the tolerance: from a rounded box to a star.
+TEST(Tessellate, SuperellipsoidStaysWithinTheTolerance) {
+  const double scale = 2.5;
+  for (const auto& [e, n] : {std::pair{0.5, 0.5}, {2.5, 0.5}, {0.3, 1.5}}) {
+    const Solid s = shape(SolidKind::kSuperellipsoid, scale, e, n);
+    for (double tolerance : {1e-2, 1e-3}) {
+      TessellationOptions options;
+      options.tolerance_m = tolerance, options.relative_tolerance = 0;
+      const TriangleMesh mesh = tessellate(s, options);
+      const double error = largest_error(s, mesh, scale);
+      EXPECT_LE(error, tolerance) << e << " " << n;
+      EXPECT_GT(error, tolerance / 16) << e << " " << n << ": finer than it needs to be";
+      for (size_t i = 0; i < mesh.positions.size(); ++i)  // vertices on the surface
+        ASSERT_LT(surface_distance(s, Vec3d(mesh.positions[i])) * scale, 1e-5) << e << " " << n;
+    }
+  }
+}
+
+// A sor's profile, sampled per segment, and its caps, within the tolerance.
+TEST(Tessellate, SorStaysWithinTheTolerance) {
+  const double scale = 2.5;
+  Solid s = shape(SolidKind::kSor, scale);
+  s.sor = sor_from_points({{0.5, -0.5}, {0.8, 0}, {0.4, 0.5}, {1.0, 1.1}});
+  for (double tolerance : {1e-2, 1e-3}) {
+    TessellationOptions options;
+    options.tolerance_m = tolerance, options.relative_tolerance = 0;
+    const TriangleMesh mesh = tessellate(s, options);
+    ASSERT_GT(mesh.triangle_count(), 0u);
+    EXPECT_LE(largest_error(s, mesh, scale), tolerance);
+    for (size_t i = 0; i < mesh.indices.size(); i += 3) {  // faces out of the solid
+      const Vec3f a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                  c = mesh.positions[mesh.indices[i + 2]];
+      const Vec3f n = mesh.normals[mesh.indices[i]] + mesh.normals[mesh.indices[i + 1]] +
+                      mesh.normals[mesh.indices[i + 2]];
+      ASSERT_GT(dot(cross(b - a, c - a), n), 0.f) << "triangle " << i / 3;
+    }
+  }
+}
+
 TEST(Tessellate, FacesPointOutOfTheSolid) {
-  for (SolidKind kind : {SolidKind::kSphere, SolidKind::kBox, SolidKind::kCylinder,
-                         SolidKind::kCone, SolidKind::kTorus, SolidKind::kDisc}) {
+  for (SolidKind kind :
+       {SolidKind::kSphere, SolidKind::kBox, SolidKind::kCylinder, SolidKind::kCone,
+        SolidKind::kTorus, SolidKind::kDisc, SolidKind::kSuperellipsoid}) {
     Solid s = shape(kind, 1, 1, kind == SolidKind::kDisc ? 0.5 : 0.3);
     TessellationOptions options;
     options.tolerance_m = 1e-2;

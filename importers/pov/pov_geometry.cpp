@@ -155,6 +155,24 @@ std::optional<Solid> Converter::primitive(const Object& o) {
                       : columns({1, 0, 0}, {0, 0, 1}, {0, o.r1 - o.r0, 0}, {0, o.r0, 0});
       break;
     }
+    case Shape::kSuperellipsoid:  // POV-Ray's own object space: the parser bounded e and n
+      s.kind = SolidKind::kSuperellipsoid;
+      s.radius0 = o.r0, s.radius1 = o.r1;
+      degenerate = !(o.r0 > 0 && o.r1 > 0);
+      break;
+    case Shape::kBlob:  // POV-Ray's object space; each component placed by its own transforms
+      s.kind = SolidKind::kBlob;
+      s.blob.threshold = o.r0;
+      for (const BlobComponentStatement& c : o.blob_components)
+        s.blob.components.push_back(
+            {c.blob_from_component.inverse(), c.a, c.b, c.radius, c.strength, c.cylinder});
+      degenerate = blob_bounds(s.blob).empty();  // no component of positive strength
+      break;
+    case Shape::kSor:  // POV-Ray's object space, about its y axis; the parser checked the points
+      s.kind = SolidKind::kSor;
+      s.sor = sor_from_points(o.profile);
+      degenerate = s.sor.empty() || !(sor_bounds(s.sor).hi.x > 0);
+      break;
     default:
       return std::nullopt;
   }

@@ -107,6 +107,9 @@ enum class Shape {
   // prism: `outline` (absent when POV-Ray leaves it out) in POV's xz plane swept in y from r0 to
   // r1, straight up or, `conic`, scaled by y from the origin
   kPrism,
+  kSuperellipsoid,  // exponents e = r0, n = r1 (> 0), within the unit box
+  kBlob,            // threshold r0 (> 0), `blob_components`
+  kSor,             // `profile` points (radius, height), height increasing; open
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -114,6 +117,15 @@ enum class Shape {
   kMerge,
   kIntersection,
   kDifference,
+};
+
+// A blob's component as written: sphere { a, radius, strength } or cylinder { a, b, radius,
+// strength }, placed in the blob's space by its own transforms.
+struct BlobComponentStatement {
+  bool cylinder = false;
+  Vec3d a{0, 0, 0}, b{0, 0, 0};
+  double radius = 0, strength = 0;
+  Matrix blob_from_component;
 };
 
 struct Object {
@@ -127,6 +139,10 @@ struct Object {
   std::vector<double> coefficients;        // kPolynomial
   std::shared_ptr<const Outline> outline;  // kPrism
   bool conic = false;                      // kPrism: conic_sweep
+  int order = 0;                                        // kPolynomial
+  std::vector<double> coefficients;                     // kPolynomial
+  std::vector<BlobComponentStatement> blob_components;  // kBlob
+  std::vector<std::pair<double, double>> profile;       // kSor
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

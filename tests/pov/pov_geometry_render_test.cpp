@@ -94,6 +94,25 @@ const SolidShot kSolidShots[] = {
      "text { ttf \"cyrvetic.ttf\" \"R&B\" 0.15, 0 scale 1.5"
      " translate <-1.3, -0.5, 0> rotate <5, -10, 0> }",
      true},
+    // Superellipsoids: a rounded box, and a pinched star cut by a box (CSG through its spans).
+    {"superellipsoid_rounded_box",
+     "superellipsoid { <0.25, 0.5> scale <1.3, 0.9, 1> rotate <30, 40, 0> }"},
+    {"superellipsoid_star_cut",
+     "difference { superellipsoid { <2.5, 2.2> scale 1.6 rotate <20, 30, 0> } box { 0, 2 } }"},
+    // A height field from POV-Ray's own colour-mapped plasma3.png (its include folder), cut by
+    // water_level: the palette index is the height.
+    {"height_field_plasma",
+     "height_field { png \"plasma3.png\" smooth water_level 0.3 translate <-0.5, -0.5, -0.5> "
+     "scale <3, 1.5, 3> rotate <-30, 20, 0> }"},
+    // A blob: two spheres, a turned capsule squashed by its own scale, a subtracting sphere.
+    {"blob_mixed",
+     "blob { threshold 0.6 sphere { 0, 1, 1 } sphere { <1, 0.3, 0>, 0.9, 1 } "
+     "cylinder { <-1, -0.8, 0>, <1, -0.8, 0.4>, 0.6, 1.5 scale <1, 0.7, 1> rotate z * 20 } "
+     "sphere { <0.4, 0.4, -0.6>, 0.5, -1 } rotate y * 30 }"},
+    // A surface of revolution with a wavy profile, its caps seen from above.
+    {"sor_wavy",
+     "sor { 7, <0.5, -0.5>, <0.8, 0>, <0.4, 0.5>, <1.0, 1.1>, <0.6, 1.6>, <0.7, 2.0>, <0.3, 2.4> "
+     "translate -y scale 1.3 rotate <-20, 0, 15> }"},
 };
 
 std::string scene_sdl(const SolidShot& shot) {
@@ -121,6 +140,10 @@ Image filmback_render(const fs::path& work) {
   evaluate.scene_file = work / "scene.pov";
   evaluate.library_paths = {"/usr/share/povray-3.7/include"};  // the fonts, as POV-Ray's +L
   evaluate.image_width = kGeometryWidth, evaluate.image_height = kGeometryHeight;
+  // POV-Ray's include folder, where `povray` finds the height field's image too (its povray.ini's
+  // Library_Path)
+  const fs::path includes = "/usr/share/povray-3.7/include";
+  if (fs::is_directory(includes)) evaluate.library_paths = {includes};
   const pov::Scene pov = pov::evaluate_pov(evaluate);
   Diagnostics diagnostics;
   Scene scene;

@@ -1,8 +1,10 @@
 #include "importers/pov/sdl/evaluate.h"
 
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <cmath>
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -480,10 +482,10 @@ TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
 
   // written where it is placed: no separate placement; in clipped_by too
   scene =
-      run("#include \"shapes.inc\"\nblob { sphere { 0, 1, 1 } }\n"
+      run("#include \"shapes.inc\"\novus { 1, 0.5 }\n"
           "sphere { 0, 1 clipped_by { object { Q } } }");
   ASSERT_EQ(scene.unsupported.size(), 2u);
-  EXPECT_EQ(scene.unsupported[0].feature, "blob");
+  EXPECT_EQ(scene.unsupported[0].feature, "ovus");
   EXPECT_FALSE(scene.unsupported[0].placed);
   EXPECT_EQ(scene.unsupported[1].placed->text(), "scene.pov:3:1");
 }
@@ -516,6 +518,181 @@ TEST_F(Sdl, PolynomialObjects) {
   EXPECT_EQ(scene.objects[2].world_from_object.point({0, 0, 0}).x, 1);
   ASSERT_EQ(scene.unsupported.size(), 1u);  // degree 5 is past what the renderer solves
   EXPECT_EQ(scene.unsupported[0].feature, "poly");
+}
+
+// superellipsoid { <e, n> }: its exponents and flags read; hostile exponents refused with their
+// place, extreme ones bounded with a warning.
+TEST_F(Sdl, SuperellipsoidExponents) {
+  Scene scene = run("superellipsoid { <0.25, 2.5> sturm scale 2 }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].shape, Shape::kSuperellipsoid);
+  EXPECT_EQ(scene.objects[0].r0, 0.25);
+  EXPECT_EQ(scene.objects[0].r1, 2.5);
+  EXPECT_TRUE(scene.unsupported.empty());
+  std::string error = error_of("\nsuperellipsoid { <0, 1> }");
+  EXPECT_EQ(error.rfind("scene.pov:2:18: ", 0), 0u) << error;
+  EXPECT_NE(error.find("positive"), std::string::npos) << error;
+  error = error_of("#declare E = -1;\nsuperellipsoid {\n  <1, E> }");
+  EXPECT_EQ(error.rfind("scene.pov:3:3: ", 0), 0u) << error;
+  scene = run("superellipsoid { <1e-9, 1e9> }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].r0, 1e-3);
+  EXPECT_EQ(scene.objects[0].r1, 1e3);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("scene.pov:1:"), std::string::npos) << scene.warnings[0];
+  EXPECT_NE(scene.warnings[0].find("bounded to <0.001, 1000>"), std::string::npos)
+      << scene.warnings[0];
+}
+
+// A colour-mapped PNG whose palette is no grey ramp: red falling as the index rises.
+void write_palette_png(const fs::path& file, uint32_t width, uint32_t height,
+                       const std::vector<uint8_t>& indices) {
+  FILE* out = std::fopen(file.c_str(), "wb");
+  ASSERT_TRUE(out);
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  png_init_io(png, out);
+  png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_PALETTE, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  std::vector<png_color> palette(256);
+  for (int i = 0; i < 256; ++i)
+    palette[size_t(i)] = {png_byte(255 - i), 0, png_byte(i / 2)};
+  png_set_PLTE(png, info, palette.data(), 256);
+  png_write_info(png, info);
+  for (uint32_t y = 0; y < height; ++y)
+    png_write_row(png, indices.data() + size_t(y) * width);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  std::fclose(out);
+}
+
+// height_field from images: its grid, heights and water level, the palette index of a
+// colour-mapped image, and bad or hostile images refused with the file name's place.
+TEST_F(Sdl, HeightFieldFromImages) {
+  // 3 x 2 grey pixels, top row first: 0 128 255 / 10 20 30
+  std::ofstream(root_ / "scene" / "h.pgm", std::ios::binary)
+      << "P5\n3 2\n255\n"
+      << std::string("\x00\x80\xff\x0a\x14\x1e", 6);
+  Scene scene = run("height_field { pgm \"h.pgm\" smooth water_level 0.09 translate x }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Object& hf = scene.objects[0];
+  EXPECT_EQ(hf.shape, Shape::kMesh);
+  EXPECT_EQ(hf.keyword, "height_field");
+  // the 3 x 2 grid, then four points where triangle edges meet the water line
+  ASSERT_EQ(hf.vertices.size(), 10u);
+  ASSERT_EQ(hf.normals.size(), 10u);
+  for (size_t i = 6; i < 10; ++i)
+    EXPECT_NEAR(hf.vertices[i].y, 0.09, 1e-12);
+  const double scale = 65535.0 / 65536;  // POV-Ray's heights stay below 1
+  // the top row at the far edge (z = 1), columns from x = 0 to 1
+  EXPECT_EQ(hf.vertices[2].x, 1);
+  EXPECT_EQ(hf.vertices[2].z, 1);
+  EXPECT_NEAR(hf.vertices[2].y, 1 * scale, 1e-7);
+  EXPECT_EQ(hf.vertices[3].z, 0);
+  EXPECT_NEAR(hf.vertices[3].y, 10 / 255.0 * scale, 1e-7);
+  // Clipped at the water line 0.09 (as POV-Ray clips): of the four triangles, the one whose
+  // corners (10, 0, 20) all lie below it goes, one with one dry corner leaves a triangle, one
+  // with two a quadrilateral (two triangles), the dry one stays: four.
+  EXPECT_EQ(hf.indices.size(), 12u);
+  EXPECT_EQ(hf.world_from_object.point({0, 0, 0}).x, 1);
+  // Normals lean away from the rise: the heights grow with x on the top row.
+  EXPECT_LT(hf.normals[1].x, 0);
+  EXPECT_GT(hf.normals[1].y, 0);
+
+  write_palette_png(root_ / "lib" / "p.png", 2, 2, {0, 64, 128, 255});
+  scene = run("height_field { png \"p.png\" }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  ASSERT_EQ(scene.objects[0].vertices.size(), 4u);
+  EXPECT_EQ(scene.objects[0].vertices[1].y, 64 / 256.0);  // the index, not the colour
+  EXPECT_EQ(scene.objects[0].vertices[3].y, 255 / 256.0);
+  EXPECT_EQ(scene.objects[0].indices.size(), 6u);
+  EXPECT_TRUE(scene.objects[0].normals.empty());
+
+  for (const char* unread : {"function 10, 10 { x * y }", "pot \"mtmand.pot\" smooth"}) {
+    scene = run(std::string("height_field { ") + unread + " }");
+    EXPECT_TRUE(scene.objects.empty()) << unread;
+    ASSERT_EQ(scene.unsupported.size(), 1u) << unread;
+    EXPECT_EQ(scene.unsupported[0].feature, "height_field");
+  }
+
+  std::string error = error_of("height_field { pgm \"none.pgm\" }");
+  EXPECT_EQ(error.rfind("scene.pov:1:20: ", 0), 0u) << error;
+  write("outside.pgm", "P5\n2 2\n255\n\x01\x02\x03\x04");
+  error = error_of("\nheight_field { pgm \"../outside.pgm\" }");
+  EXPECT_EQ(error.rfind("scene.pov:2:20: ", 0), 0u) << error;
+  write("scene/line.pgm", "P5\n3 1\n255\nabc");
+  error = error_of("height_field { \"line.pgm\" }");
+  EXPECT_EQ(error.rfind("scene.pov:1:16: ", 0), 0u) << error;
+  EXPECT_NE(error.find("at least 2x2"), std::string::npos) << error;
+  write("scene/broken.png", "\x89PNG\r\n\x1a\n garbage");
+  error = error_of("height_field { png \"broken.png\" }");
+  EXPECT_EQ(error.rfind("scene.pov:1:20: ", 0), 0u) << error;
+  EvaluateOptions few;
+  few.limits.objects = 5;  // the 3 x 2 image has more pixels than that: refused unread
+  error = error_of("height_field { pgm \"h.pgm\" }", few);
+  EXPECT_EQ(error.rfind("scene.pov:1:20: ", 0), 0u) << error;
+  EXPECT_NE(error.find("at most 5"), std::string::npos) << error;
+}
+
+// blob: threshold and components in both syntaxes, their transforms; hostile values refused with
+// their place; a component's texture reported.
+TEST_F(Sdl, BlobComponents) {
+  Scene scene =
+      run("blob { threshold 0.6 sturm\n"
+          "  sphere { <1, 0, 0>, 2, strength 1.5 scale 2 }\n"
+          "  cylinder { 0, y, 0.5, -1 translate x pigment { rgb 1 } }\n"
+          "  component 1, 0.7, <0, 0, 3>\n"
+          "  translate z }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Object& blob = scene.objects[0];
+  EXPECT_EQ(blob.shape, Shape::kBlob);
+  EXPECT_EQ(blob.r0, 0.6);
+  ASSERT_EQ(blob.blob_components.size(), 3u);
+  EXPECT_EQ(blob.blob_components[0].strength, 1.5);
+  EXPECT_EQ(blob.blob_components[0].radius, 2);
+  EXPECT_EQ(blob.blob_components[0].blob_from_component.point({1, 0, 0}).x, 2);
+  EXPECT_TRUE(blob.blob_components[1].cylinder);
+  EXPECT_EQ(blob.blob_components[1].strength, -1);
+  EXPECT_EQ(blob.blob_components[1].b.y, 1);
+  EXPECT_EQ(blob.blob_components[2].a.z, 3);
+  EXPECT_EQ(blob.world_from_object.point({0, 0, 0}).z, 1);
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "blob component pigment");
+  // components written by a loop, as advanced/biscuit.pov writes them
+  scene = run("blob { threshold 0.5 #for (I, 1, 3) sphere { x * I, 1, 1 } #end }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].blob_components.size(), 3u);
+
+  std::string error = error_of("blob { threshold 0.5\n  sphere { 0, 0, 1 } }");
+  EXPECT_EQ(error.rfind("scene.pov:2:3: ", 0), 0u) << error;
+  EXPECT_NE(error.find("radius"), std::string::npos) << error;
+  error = error_of("blob { threshold -1 sphere { 0, 1, 1 } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:18: ", 0), 0u) << error;
+  error = error_of("blob { cylinder { x, x, 1, 1 } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:8: ", 0), 0u) << error;
+  error = error_of("blob { sphere { 0, 1, 1 matrix <1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0> } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:8: ", 0), 0u) << error;
+  scene = run("blob { threshold 1 }");  // empty: no error (the converter leaves it out)
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_TRUE(scene.objects[0].blob_components.empty());
+}
+
+// sor: its points and open flag; too few points or a height not above the previous one refused
+// at its place.
+TEST_F(Sdl, SorPoints) {
+  Scene scene = run("sor { 4, <1, 0>, <1, 1>, <0.5, 2>, <0.5, 3> open sturm }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].shape, Shape::kSor);
+  ASSERT_EQ(scene.objects[0].profile.size(), 4u);
+  EXPECT_EQ(scene.objects[0].profile[2].first, 0.5);
+  EXPECT_EQ(scene.objects[0].profile[2].second, 2);
+  EXPECT_TRUE(scene.objects[0].open);
+  scene = run("sor { 4, <0, 0>, <0.1, 0>, <0.6, 0.5>, <0.2, 0.5> }");  // ends may be level
+  EXPECT_EQ(scene.objects.size(), 1u);
+  std::string error = error_of("sor { 5, <1, 0>, <1, 1>,\n  <1, 1>, <1, 3>, <1, 4> }");
+  EXPECT_EQ(error.rfind("scene.pov:2:3: ", 0), 0u) << error;
+  error = error_of("sor { 3, <1, 0>, <1, 1>, <1, 2> }");
+  EXPECT_NE(error.find("at least 4 points"), std::string::npos) << error;
 }
 
 TEST_F(Sdl, PolygonAndMeshes) {

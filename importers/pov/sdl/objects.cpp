@@ -15,12 +15,12 @@ constexpr std::string_view kSupported[] = {
     "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
     "mesh2",      "polygon",      "object",       "union",           "merge",
     "difference", "intersection", "light_source", "light_group",     "quadric",
-    "cubic",      "quartic",      "poly",         "prism",           "text"};
+    "cubic",      "quartic",      "poly",         "prism",           "text",
+    "superellipsoid", "height_field", "blob", "sor"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "height_field",  "blob",       "lathe",         "sor",        "superellipsoid",
-    "isosurface",    "polynomial", "julia_fractal", "parametric", "sphere_sweep",
-    "bicubic_patch", "ovus",       "lemon",         "fractal"};
+    "lathe", "isosurface", "polynomial", "julia_fractal", "parametric", "sphere_sweep",
+    "bicubic_patch", "ovus", "lemon", "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -240,6 +240,51 @@ void parse_polygon(Parser& p, Object& o) {
   }
 }
 
+// superellipsoid { <e, n> }: both exponents positive and finite. Outside [1e-3, 1e3] they are
+// bounded (with a warning): a thousandth is already a box to a few parts in a thousand, and past
+// it the powers 2/e leave the range of a double.
+void parse_superellipsoid(Parser& p, Object& o) {
+  constexpr double kSuperellipsoidLeast = 1e-3, kSuperellipsoidMost = 1e3;
+  o.shape = Shape::kSuperellipsoid;
+  const SourceLocation where = p.location_of(p.peek());
+  const Value v = p.parse_numeric(2);
+  const double e = v.v[0], n = v.v[1];
+  if (!(e > 0 && n > 0 && std::isfinite(e) && std::isfinite(n)))
+    p.fail_at(where, "superellipsoid exponents <" + number_string(e) + ", " + number_string(n) +
+                         ">: both must be positive and finite");
+  o.r0 = std::clamp(e, kSuperellipsoidLeast, kSuperellipsoidMost);
+  o.r1 = std::clamp(n, kSuperellipsoidLeast, kSuperellipsoidMost);
+  if (o.r0 != e || o.r1 != n)
+    p.warn("superellipsoid exponents <" + number_string(e) + ", " + number_string(n) +
+           "> bounded to <" + number_string(o.r0) + ", " + number_string(o.r1) + ">");
+}
+
+// sor { N, <r1, y1>, ..., <rN, yN> }: at least 4 points, heights increasing (POV-Ray's
+// "Incorrect point in surface of revolution"), a point out of order refused at its place.
+void parse_sor(Parser& p, Object& o) {
+  o.shape = Shape::kSor;
+  const double n = p.parse_count();
+  if (!(n >= 4 && n <= double(p.options().limits.objects)))
+    p.fail("sor needs at least 4 points, got " + number_string(n));
+  p.count_objects(uint64_t(n));
+  for (size_t i = 0; i < size_t(n); ++i) {
+    p.accept(",");
+    const SourceLocation where = p.location_of(p.peek());
+    const Value v = p.parse_numeric(2);
+    if (!std::isfinite(v.v[0]) || !std::isfinite(v.v[1]))
+      p.fail_at(where, "sor point is not finite");
+    // The curve's points rise strictly; the first and last, which only steer its end slopes, may
+    // share their neighbour's height (objects/sor1.pov starts so).
+    const bool end_point = i == 1 || i + 1 == size_t(n);
+    if (!o.profile.empty() &&
+        (end_point ? v.v[1] < o.profile.back().second : !(v.v[1] > o.profile.back().second)))
+      p.fail_at(where, "sor point's height " + number_string(v.v[1]) + " is " +
+                           (end_point ? "below" : "not above") + " the previous point's " +
+                           number_string(o.profile.back().second));
+    o.profile.emplace_back(v.v[0], v.v[1]);
+  }
+}
+
 // The other shapes, whose arguments need their own parser.
 struct ShapeParser {
   std::string_view name;
@@ -253,7 +298,20 @@ constexpr ShapeParser kShapes[] = {
     {"mesh2", [](Parser& p, Object& o) { p.parse_mesh2(o); }},
     {"polygon", parse_polygon},
     {"prism", [](Parser& p, Object& o) { p.parse_prism(o); }},
+    {"superellipsoid", parse_superellipsoid},
+    {"height_field", [](Parser& p, Object& o) { p.parse_height_field(o); }},
+    {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
+    {"sor", parse_sor},
 };
+
+// height_field { function ... } needs user functions, which are not evaluated; gif and pot keep
+// their heights in palette indices (pot: two 8-bit halves of one 16-bit height), which
+// OpenImageIO's GIF reader turns into colours; iff and sys it does not read.
+bool is_unread_height_field(const Tok& first) {
+  for (std::string_view w : {"function", "gif", "pot", "iff", "sys"})
+    if (first.word(w)) return true;
+  return false;
+}
 
 bool is_polynomial(std::string_view w) {
   return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly";
@@ -507,6 +565,10 @@ Node Parser::parse_object(const Tok& keyword) {
   expect("{");
   if (w == "object") return parse_object_reference();
   bool dropped = false;  // an unsupported object left out of this CSG
+  if (w == "height_field" && is_unread_height_field(peek())) {
+    skip_rest_of_block();
+    return missing_node(w, where);
+  }
   if (const Primitive* primitive = find_keyword(kPrimitives, w)) {
     parse_primitive(*this, o, *primitive);
   } else if (const ShapeParser* shape = find_keyword(kShapes, w)) {
