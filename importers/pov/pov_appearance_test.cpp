@@ -89,11 +89,12 @@ TEST(PovAppearance, IdenticalTexturesShareOneMaterial) {
   EXPECT_EQ(table.material(glassy, Interior{1.5}), 3u);  // refracting: another material
   EXPECT_EQ(out.materials.size(), 4u);
   EXPECT_EQ(out.materials[0].name, "scene.pov:3:1");
-  a.has_normal = true;
+  a.finish.brilliance = 2;
   table.material(a, {});
+  c.finish.brilliance = 3;
   table.material(c, {});
   ASSERT_EQ(diagnostics.count(), 1u);  // reported once, with where it was first met
-  EXPECT_NE(diagnostics.messages()[0].find("scene.pov:3:1: normal"), std::string::npos);
+  EXPECT_NE(diagnostics.messages()[0].find("scene.pov:3:1: finish brilliance"), std::string::npos);
 }
 
 TEST(PovAppearance, FilterIsTransmissionTransmitIsCoverageAndIorMakesGlass) {

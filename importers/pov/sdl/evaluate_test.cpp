@@ -442,7 +442,7 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
       run("fog { distance 10 color rgb 1 }\n"
           "text { ttf \"timrom.ttf\" \"Hi\" 1, 0 translate x }\n"
           "#declare F = function(a) { a * 2 }\n"
-          "sphere { 0, 1 normal { bumps 0.5 } }\n"
+          "sphere { 0, 1 normal { quilted 0.5 } }\n"
           "global_settings { radiosity { count 100 } }\n");
   ASSERT_EQ(scene.objects.size(), 1u);
   ASSERT_GE(scene.unsupported.size(), 4u);
@@ -450,7 +450,67 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
   EXPECT_EQ(scene.unsupported[1].feature, "text");
   EXPECT_EQ(scene.unsupported[1].where.line, 2u);
-  EXPECT_TRUE(scene.objects[0].texture.has_normal);
+  ASSERT_TRUE(scene.objects[0].texture.normal);
+  EXPECT_FALSE(scene.objects[0].texture.normal->rendered);
+  EXPECT_EQ(scene.unsupported[2].feature, "normal pattern quilted");
+}
+
+TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {
+  Scene scene =
+      run("#declare N = normal { ripples 0.8 frequency 3 }\n"
+          "plane { y, 0 normal { bumps 0.3 scale 0.1 accuracy 0.05 } }\n"
+          "sphere { 0, 1 texture { normal { N translate x } } }\n"
+          "box { 0, 1 normal { gradient x, 0.6 slope_map { [0, <0, 1>] [1, <1, 1>] } } }\n"
+          "sphere { 0, 1 normal { wrinkles bump_size 2 turbulence 0.5 no_bump_scale } }\n"
+          "sphere { 0, 1 normal { checker normal { bumps } normal { dents } } }\n");
+  ASSERT_EQ(scene.objects.size(), 5u);
+  const Normal& bumps = *scene.objects[0].texture.normal;
+  EXPECT_EQ(bumps.pattern, Pattern::kBumps);
+  EXPECT_TRUE(bumps.rendered);
+  EXPECT_EQ(bumps.amount, 0.3);
+  EXPECT_EQ(bumps.accuracy, 0.05);
+  EXPECT_NEAR(bumps.pattern_from_world.point({1, 0, 0}).x, 10, 1e-12);  // scale 0.1, inverted
+  const Normal& ripples = *scene.objects[1].texture.normal;
+  EXPECT_EQ(ripples.pattern, Pattern::kRipples);
+  EXPECT_EQ(ripples.amount, 0.8);
+  EXPECT_EQ(ripples.frequency, 3);
+  EXPECT_NEAR(ripples.pattern_from_world.point({0, 0, 0}).x, -1, 1e-12);
+  const Normal& gradient = *scene.objects[2].texture.normal;
+  EXPECT_EQ(gradient.amount, 0.6);
+  EXPECT_EQ(gradient.gradient.x, 1);
+  ASSERT_EQ(gradient.slope_map.size(), 2u);
+  EXPECT_EQ(gradient.slope_map[1].height, 1);
+  const Normal& wrinkles = *scene.objects[3].texture.normal;
+  EXPECT_EQ(wrinkles.amount, 2);
+  EXPECT_EQ(wrinkles.turbulence.y, 0.5);
+  EXPECT_FALSE(wrinkles.scale_bumps);
+  EXPECT_FALSE(scene.objects[4].texture.normal->rendered);  // a normal list: reported
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "normal list checker");
+}
+
+TEST_F(Sdl, LayeredTexturesKeepEveryLayerInOrder) {
+  Scene scene =
+      run("#declare T = texture { pigment { rgb 1 } } texture { pigment { rgbt <1, 0, 0, 0.5> } }\n"
+          "plane { y, 0 texture { T translate x } texture { pigment { rgbf <0, 0, 1, 0.9> } } }\n"
+          "sphere { 0, 1 texture { T } }\n");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  const Texture& plane = scene.objects[0].texture;
+  ASSERT_EQ(plane.layers.size(), 2u);
+  EXPECT_EQ(plane.pigment.colour.g, 1);
+  EXPECT_EQ(plane.layers[0].pigment.colour.transmit, 0.5);
+  EXPECT_EQ(plane.layers[1].pigment.colour.filter, 0.9);
+  EXPECT_TRUE(plane.layers[0].layers.empty());
+  EXPECT_EQ(scene.objects[1].texture.layers.size(), 1u);
+  EXPECT_TRUE(scene.unsupported.empty());
+  // layers built in a loop are bounded: an error naming the line, not a slow render
+  const std::string error = error_of(
+      "#declare T = texture { pigment { rgb 1 } }\n"
+      "#declare L = T\n"
+      "#for (i, 1, 100) #declare L = texture { L } texture { T } #end\n"
+      "plane { y, 0 texture { L } }\n");
+  EXPECT_NE(error.find("scene.pov:3:"), std::string::npos) << error;
+  EXPECT_NE(error.find("at most 64 layers"), std::string::npos) << error;
 }
 
 // An unsupported object is reported where the scene places it, not where it is declared: an
