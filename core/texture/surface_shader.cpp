@@ -71,7 +71,7 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   const Material& m = materials_[index];
   Rgb base = m.base_color;
   float metallic = m.metallic, roughness = m.roughness, transmission = m.transmission;
-  float specular = m.specular;
+  float specular = m.specular, ior = m.ior;
   if (m.base_color_pattern) {
     const SolidColour c = solid_colour(*m.base_color_pattern, point);
     base *= c.rgb;
@@ -90,16 +90,20 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   // POV-Ray's layered textures, bottom up: each layer covers what is below by 1 - filter -
   // transmit of its pigment at the hit and lets the rest through, tinted by filter times its
   // colour (POV-Ray's layer loop in Compute_Lighted_Texture). Metallic and transmission take the
-  // covered share; the strongest highlight wins whatever its layer's coverage, as POV-Ray adds
-  // every layer's highlights unweighted (a clear top layer with phong is a clear coat).
+  // covered share; the strongest highlight (with its ior, which sets its Fresnel F0) wins whatever
+  // its layer's coverage, as POV-Ray adds every layer's highlights unweighted (a clear top layer
+  // with phong is a clear coat).
   for (const Material& layer : m.layers) {
-    const SolidColour c = solid_colour(*layer.base_color_pattern, point);
+    // a layer without a pattern is an opaque one of its base colour
+    const SolidColour c = layer.base_color_pattern ? solid_colour(*layer.base_color_pattern, point)
+                                                   : SolidColour{{1.f, 1.f, 1.f}, 0.f, 0.f};
     const float cover = std::clamp(1.f - c.filter - c.transmit, 0.f, 1.f);
     base = layer.base_color * c.rgb * cover +
            base * (c.rgb * c.filter + Rgb{c.transmit, c.transmit, c.transmit});
     metallic += (layer.metallic - metallic) * cover;
     transmission += (layer.transmission - transmission) * cover;
-    if (layer.specular > specular) specular = layer.specular, roughness = layer.roughness;
+    if (layer.specular > specular)
+      specular = layer.specular, roughness = layer.roughness, ior = layer.ior;
   }
   std::copy(hit.shading_normal, hit.shading_normal + 3, hit.smooth_normal);
   if (t.normal.present() && dot(point.tangent, point.tangent) > 0.f) {
@@ -131,7 +135,7 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   hit.metallic = clamp01(metallic);
   hit.roughness = clamp01(roughness);
   hit.transmission = clamp01(transmission);
-  hit.ior = m.ior;
+  hit.ior = ior;
   hit.specular = clamp01(specular);
   emission(index, point).store(hit.emission);
 }
