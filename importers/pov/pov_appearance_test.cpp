@@ -287,6 +287,16 @@ std::vector<float> povray_render(const std::filesystem::path& pov_file, int widt
 constexpr double kNormalLayerPixelTolerance = 0.01;
 constexpr double kBumpMeanTolerance = 0.03, kBumpSpreadTolerance = 0.15;
 
+// filmback's render of `scene` at size x size pixels, quietly.
+RenderResult render_square(const fb::Scene& scene, int size, uint32_t samples, const char* filter) {
+  RenderOptions options;
+  options.width = options.height = uint32_t(size);
+  options.samples_per_pixel = samples;
+  options.filter = filter;
+  options.show_progress = false;
+  return RenderJob(scene, options, test::loader()).run();
+}
+
 struct LightCase {
   const char* name;
   const char* pov;  // the light_source statement
@@ -346,12 +356,7 @@ TEST(PovAppearance, DiffusePlaneRendersAsPovRayDoes) {
     Scene pov;
     pov.lights = {c.light};
     convert_lights(pov, scene, diagnostics);
-    RenderOptions options;
-    options.width = options.height = uint32_t(kSize);
-    options.samples_per_pixel = 16;
-    options.filter = "box";
-    options.show_progress = false;
-    const RenderResult result = RenderJob(scene, options, test::loader()).run();
+    const RenderResult result = render_square(scene, kSize, 16, "box");
 
     double sum = 0;
     int lit = 0;
@@ -646,13 +651,8 @@ TEST(PovAppearance, NormalPatternsAndLayeredTexturesRenderAsPovRayDoes) {
     ImportOptions import;
     import.resolution = {uint32_t(kSize), uint32_t(kSize)};
     const fb::Scene scene = import_pov(pov_file, import, diagnostics);
-    EXPECT_EQ(diagnostics.count(), 0u) << c.name << ": " << diagnostics.messages()[0];
-    RenderOptions options;
-    options.width = options.height = uint32_t(kSize);
-    options.samples_per_pixel = 4;
-    options.filter = "box:radius=0.001";
-    options.show_progress = false;
-    const RenderResult result = RenderJob(scene, options, test::loader()).run();
+    EXPECT_EQ(diagnostics.count(), 0u) << c.name;
+    const RenderResult result = render_square(scene, kSize, 4, "box:radius=0.001");
 
     double relative_sum = 0, ours_sum = 0, pov_sum = 0, ours_sq = 0, pov_sq = 0;
     int values = 0;
