@@ -287,7 +287,7 @@ std::vector<SlopeMapEntry> parse_slope_map(Parser& parser) {
     if (tok.symbol("}")) break;
     if (!tok.symbol("[")) parser.fail("expected '[' in a slope_map");
     SlopeMapEntry e;
-    e.value = parser.parse_float();
+    e.value = parser.parse_count();  // no comparison: `[0.5 <1, 1>]` opens the vector
     parser.accept(",");
     const Vec3d height_slope = parser.parse_vector();
     e.height = height_slope.x, e.slope = height_slope.y;

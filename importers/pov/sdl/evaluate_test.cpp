@@ -460,7 +460,7 @@ TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {
       run("#declare N = normal { ripples 0.8 frequency 3 }\n"
           "plane { y, 0 normal { bumps 0.3 scale 0.1 accuracy 0.05 } }\n"
           "sphere { 0, 1 texture { normal { N translate x } } }\n"
-          "box { 0, 1 normal { gradient x, 0.6 slope_map { [0, <0, 1>] [1, <1, 1>] } } }\n"
+          "box { 0, 1 normal { gradient x, 0.6 slope_map { [0, <0, 1>] [1 <1, 1>] } } }\n"
           "sphere { 0, 1 normal { wrinkles bump_size 2 turbulence 0.5 no_bump_scale } }\n"
           "sphere { 0, 1 normal { checker normal { bumps } normal { dents } } }\n");
   ASSERT_EQ(scene.objects.size(), 5u);
