@@ -489,6 +489,24 @@ TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {
   EXPECT_EQ(scene.unsupported[0].feature, "normal list checker");
 }
 
+// #default { normal {..} } is where every later normal starts (POV-Ray's normmap.pov sets
+// bump_size 1.5 so), and a default with a pattern bends every later texture.
+TEST_F(Sdl, DefaultNormalIsWhereNormalsStart) {
+  Scene scene =
+      run("#default { normal { bump_size 1.5 } }\n"
+          "sphere { 0, 1 normal { marble } }\n"
+          "sphere { 0, 1 pigment { rgb 1 } }\n"
+          "#default { normal { dents 0.3 } }\n"
+          "sphere { 0, 1 pigment { rgb 1 } }\n");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  EXPECT_EQ(scene.objects[0].texture.normal->amount, 1.5);
+  EXPECT_TRUE(scene.objects[0].texture.normal->rendered);
+  EXPECT_FALSE(scene.objects[1].texture.normal && scene.objects[1].texture.normal->rendered);
+  ASSERT_TRUE(scene.objects[2].texture.normal);
+  EXPECT_EQ(scene.objects[2].texture.normal->pattern, Pattern::kDents);
+  EXPECT_EQ(scene.objects[2].texture.normal->amount, 0.3);
+}
+
 TEST_F(Sdl, LayeredTexturesKeepEveryLayerInOrder) {
   Scene scene =
       run("#declare T = texture { pigment { rgb 1 } } texture { pigment { rgbt <1, 0, 0, 0.5> } }\n"
