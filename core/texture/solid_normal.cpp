@@ -99,22 +99,50 @@ Vec3d normal_perturbation(const SolidNormal& n, Vec3d p) {
 
 }  // namespace solid
 
-Vec3d perturbed_normal(const SolidNormal& n, Vec3d world_point, Vec3d world_normal) {
-  const Transform& pattern_from_world = n.pattern.pattern_from_world;
-  // Normals go into pattern space by the inverse transpose of pattern_from_world and back by its
-  // transpose (POV-Ray's Warp_Normal and UnWarp_Normal).
-  Vec3d normal = pattern_from_world.normal_transform().vector(world_normal);
+namespace {
+
+// POV-Ray's Perturb_Normal for `n` at a point and normal of the space around it (the world, or
+// the pattern space of the normal whose normal_map holds n): the normal bent, made unit. Normals
+// go into pattern space by the inverse transpose of pattern_from_world and back by its transpose
+// (POV-Ray's Warp_Normal and UnWarp_Normal). A normal_map entry lives in its map's pattern space,
+// so the recursion is as deep as the maps nest (the SDL reader's nesting bound limits it).
+Vec3d bend_solid_normal(const SolidNormal& n, Vec3d outer_point, Vec3d outer_normal) {
+  const Transform& m = n.pattern.pattern_from_world;
+  Vec3d normal = m.normal_transform().vector(outer_normal);
   const double len = std::sqrt(dot(normal, normal));
   if (n.scale_bumps && len > 0) normal = normal / len;
-  normal += solid::normal_perturbation(
-      n, solid::warped_point(n.pattern, pattern_from_world.point(world_point)));
-  const Transform& m = pattern_from_world;
+  const Vec3d p = solid::warped_point(n.pattern, m.point(outer_point));
+  if (n.normal_map.empty()) {
+    normal += solid::normal_perturbation(n, p);
+  } else {
+    // POV-Ray's NormalBlendMap: the entries about the pattern's value, blended linearly; the end
+    // entries' normals beyond them.
+    const double value = solid::shape_value(n.pattern, solid::raw_value(n.pattern, p));
+    const std::vector<SolidNormalStop>& map = n.normal_map;
+    size_t above = 0;
+    while (above < map.size() && value > map[above].value)
+      ++above;
+    if (above == 0 || above == map.size()) {
+      normal = bend_solid_normal(map[above == 0 ? 0 : map.size() - 1].normal, p, normal);
+    } else {
+      const SolidNormalStop &a = map[above - 1], &b = map[above];
+      const double t = b.value > a.value ? (value - a.value) / (b.value - a.value) : 1.0;
+      normal = bend_solid_normal(a.normal, p, normal) * (1 - t) +
+               bend_solid_normal(b.normal, p, normal) * t;
+    }
+  }
   const Vec3d back{m(0, 0) * normal.x + m(1, 0) * normal.y + m(2, 0) * normal.z,
                    m(0, 1) * normal.x + m(1, 1) * normal.y + m(2, 1) * normal.z,
                    m(0, 2) * normal.x + m(1, 2) * normal.y + m(2, 2) * normal.z};
   const double back_len = std::sqrt(dot(back, back));
-  if (!(back_len > 0) || !std::isfinite(back_len)) return world_normal;
+  if (!(back_len > 0) || !std::isfinite(back_len)) return outer_normal;
   return back / back_len;
+}
+
+}  // namespace
+
+Vec3d perturbed_normal(const SolidNormal& n, Vec3d world_point, Vec3d world_normal) {
+  return bend_solid_normal(n, world_point, world_normal);
 }
 
 }  // namespace fb

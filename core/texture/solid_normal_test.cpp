@@ -143,6 +143,28 @@ TEST(SolidNormal, SlopeMapIsPovRaysHermiteCubic) {
   EXPECT_DOUBLE_EQ(solid::slope_height({}, 0.3), 0.3);
 }
 
+// A normal_map blends its entries' bent normals by where the pattern's value falls between them
+// (POV-Ray's NormalBlendMap), each evaluated in the map's pattern space.
+TEST(SolidNormal, NormalMapBlendsTheEntriesAboutThePatternsValue) {
+  SolidNormal map = normal_of(SolidPatternKind::kGradient, 0.5);
+  map.pattern.gradient = {1, 0, 0};
+  SolidNormal bumps = normal_of(SolidPatternKind::kBumps, 0.5);
+  SolidNormal flat = normal_of(SolidPatternKind::kBumps, 0.0);
+  map.normal_map = {{0.f, bumps}, {1.f, flat}};
+  const Vec3d up{0, 1, 0};
+  for (double x : {0.1, 0.25, 0.6, 0.9}) {
+    const Vec3d p{x, 0.37, 0.81};
+    const Vec3d blend = perturbed_normal(bumps, p, up) * (1 - x) + up * x;
+    const Vec3d bent = perturbed_normal(map, p, up);
+    EXPECT_NEAR(length_of(bent - blend / length_of(blend)), 0.0, 1e-9) << x;
+  }
+  // the entries live in the map's space: scaling the map scales where they are read
+  map.pattern.pattern_from_world = Transform::scale({0.5, 0.5, 0.5});
+  const Vec3d p{0.5, 0.74, 1.62};  // the map's point (0.25, 0.37, 0.81)
+  const Vec3d blend = perturbed_normal(bumps, p * 0.5, up) * 0.75 + up * 0.25;
+  EXPECT_NEAR(length_of(perturbed_normal(map, p, up) - blend / length_of(blend)), 0.0, 1e-9);
+}
+
 // POV-Ray scales the bumps with the pattern (the normal is made unit in pattern space): a
 // scaled gradient bends the normal as much as an unscaled one; no_bump_scale lets the scale in.
 TEST(SolidNormal, PatternTransformsMoveTheBumpsNotTheirDepth) {

@@ -50,14 +50,24 @@ SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_
 }
 
 // A normal as the scene model's: its pattern converted as a pigment's would be (default waves,
-// unit gradient), its colours unused.
-SolidNormal to_solid_normal(const Normal& n) {
+// unit gradient), its colours unused; `pov_from_input` as for to_solid. A normal_map entry that
+// is not rendered stays flat.
+SolidNormal to_solid_normal(const Normal& n, const Transform& pov_from_input) {
   Pigment shape;
   static_cast<SolidPatternModifiers&>(shape) = n;
   shape.pattern = n.pattern;
   shape.pattern_from_world = n.pattern_from_world;
   SolidNormal s;
-  s.pattern = to_solid(shape, 1.0, world_from_pov_space());
+  s.pattern = to_solid(shape, 1.0, pov_from_input);
+  for (const NormalMapEntry& e : n.normal_map) {
+    SolidNormalStop stop;
+    stop.value = float(std::clamp(e.value, 0.0, 1.0));
+    if (e.normal.rendered)
+      stop.normal = to_solid_normal(e.normal, Transform());  // in this normal's pattern space
+    else
+      stop.normal.amount = 0;
+    s.normal_map.push_back(std::move(stop));
+  }
   s.amount = n.amount;
   s.accuracy = n.accuracy;
   s.scale_bumps = n.scale_bumps;
@@ -134,20 +144,23 @@ void append_pattern(std::string& key, const SolidPattern& s) {
   append(key, s.spiral_arms), append(key, s.agate_turbulence);
   key += "}";
 }
+void append_normal(std::string& key, const SolidNormal& n) {
+  key += "normal{";
+  append_pattern(key, n.pattern);
+  append(key, n.amount), append(key, n.accuracy), append(key, n.scale_bumps);
+  for (const SolidSlopeStop& stop : n.slope_map)
+    append(key, stop.value), append(key, stop.height), append(key, stop.slope);
+  for (const SolidNormalStop& stop : n.normal_map)
+    append(key, stop.value), append_normal(key, stop.normal);
+  key += "}";
+}
 std::string material_key(const Material& m) {
   std::string key;
   append(key, m.base_color), append(key, m.emission), append(key, m.double_sided);
   append(key, m.metallic), append(key, m.roughness), append(key, m.transmission);
   append(key, m.ior), append(key, m.specular), append(key, int(m.alpha_mode)), append(key, m.alpha);
   if (m.base_color_pattern) append_pattern(key, *m.base_color_pattern);
-  if (m.normal_pattern) {
-    key += "normal";
-    append_pattern(key, m.normal_pattern->pattern);
-    append(key, m.normal_pattern->amount), append(key, m.normal_pattern->accuracy);
-    append(key, m.normal_pattern->scale_bumps);
-    for (const SolidSlopeStop& stop : m.normal_pattern->slope_map)
-      append(key, stop.value), append(key, stop.height), append(key, stop.slope);
-  }
+  if (m.normal_pattern) append_normal(key, *m.normal_pattern);
   for (const Material& layer : m.layers)
     key += "layer[" + material_key(layer) + "]";
   return key;
@@ -243,7 +256,7 @@ Material make_layer_material(const Texture& texture, const std::optional<Interio
     m.roughness = 1.f;
   }
   if (texture.normal && texture.normal->rendered)
-    m.normal_pattern = to_solid_normal(*texture.normal);
+    m.normal_pattern = to_solid_normal(*texture.normal, world_from_pov_space());
   return m;
 }
 

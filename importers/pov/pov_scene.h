@@ -85,6 +85,8 @@ struct SlopeMapEntry {
   double value = 0, height = 0, slope = 0;  // [value, <height, slope>]
 };
 
+struct NormalMapEntry;
+
 // normal { pattern [amount] modifiers }: the pattern as a pigment's, with the normal's own
 // keywords; `pattern_from_world` composed as a pigment's is.
 struct Normal : SolidPatternModifiers {
@@ -95,8 +97,16 @@ struct Normal : SolidPatternModifiers {
   double accuracy = 0.02;
   bool scale_bumps = true;  // no_bump_scale clears it
   std::vector<SlopeMapEntry> slope_map;
+  // normal_map { [value normal-body] ... }: the entries' pattern_from_world take points of this
+  // normal's pattern space (transforms after the map move this normal, not its entries).
+  std::vector<NormalMapEntry> normal_map;
   Matrix pattern_from_world;
   SourceLocation where;
+};
+
+struct NormalMapEntry {
+  double value = 0;
+  Normal normal;
 };
 
 struct Texture {

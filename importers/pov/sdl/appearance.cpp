@@ -298,6 +298,25 @@ std::vector<SlopeMapEntry> parse_slope_map(Parser& parser) {
   return map;
 }
 
+// normal_map { [value normal-body] ... }, at most 256 entries.
+std::vector<NormalMapEntry> parse_normal_map(Parser& parser) {
+  std::vector<NormalMapEntry> map;
+  parser.expect("{");
+  for (;;) {
+    Tok tok = parser.next();
+    if (tok.symbol("}")) break;
+    if (!tok.symbol("[")) parser.fail("expected '[' in a normal_map");
+    NormalMapEntry e;
+    // `average` maps may leave the value out: [gradient x, -5.0]
+    if (parser.starts_value(parser.peek())) e.value = parser.parse_count();
+    parser.accept(",");
+    e.normal = parser.parse_normal_items("]");
+    map.push_back(std::move(e));
+    if (map.size() > 256) parser.fail("a normal_map has at most 256 entries");
+  }
+  return map;
+}
+
 // ---- texture steps (POV-Ray 3.7 reference, "Texture", "Patterned Textures") ----
 
 // A texture pattern is not evaluated: the first texture of its list or map stands for the whole
@@ -721,15 +740,19 @@ Texture Parser::parse_texture_items(const char* closing) {
 }
 
 Normal Parser::parse_normal() {
-  Nesting guard(*this);
   expect("{");
+  return parse_normal_items("}");
+}
+
+Normal Parser::parse_normal_items(const char* closing) {
+  Nesting guard(*this);
   Normal n = default_texture_.normal.value_or(Normal{});
   n.where = here();
   bool first = true;
   for (;;) {
     Tok tok = next();
-    if (tok.symbol("}")) break;
-    if (tok.token.kind == TokenKind::kEnd) fail("missing '}' in normal");
+    if (tok.symbol(closing)) break;
+    if (tok.token.kind == TokenKind::kEnd) fail(std::string("missing '") + closing + "' in normal");
     const std::string& w = tok.token.text;
     if (first && tok.identifier && tok.value.get<Normal>()) {
       n = *tok.value.get<Normal>();
@@ -744,9 +767,7 @@ Normal Parser::parse_normal() {
     } else if (w == "slope_map") {
       n.slope_map = parse_slope_map(*this);
     } else if (w == "normal_map") {
-      unsupported("normal_map", location_of(tok));
-      skip_block();
-      n.rendered = false;
+      n.normal_map = parse_normal_map(*this);
     } else if (const PigmentModifier* modifier = find_keyword(kPigmentModifiers, w)) {
       modifier->parse(*this, n, tok);
     } else if (auto m = parse_transform_item(tok)) {

@@ -489,6 +489,31 @@ TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {
   EXPECT_EQ(scene.unsupported[0].feature, "normal list checker");
 }
 
+TEST_F(Sdl, NormalMapEntriesKeepTheirOwnSpaceInsideTheMaps) {
+  Scene scene =
+      run("plane { y, 0 normal { gradient x normal_map { [0.3 marble turbulence 0.5] "
+          "[0.7 bumps 0.2 scale 0.25] } scale 2 } }\n");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Normal& n = *scene.objects[0].texture.normal;
+  EXPECT_TRUE(n.rendered);
+  ASSERT_EQ(n.normal_map.size(), 2u);
+  EXPECT_EQ(n.normal_map[0].value, 0.3);
+  EXPECT_EQ(n.normal_map[0].normal.pattern, Pattern::kMarble);
+  EXPECT_EQ(n.normal_map[0].normal.turbulence.x, 0.5);
+  EXPECT_EQ(n.normal_map[1].normal.amount, 0.2);
+  // the map's scale moves the map; the entry's own scale only the entry, in the map's space
+  EXPECT_NEAR(n.pattern_from_world.point({1, 0, 0}).x, 0.5, 1e-12);
+  EXPECT_NEAR(n.normal_map[1].normal.pattern_from_world.point({1, 0, 0}).x, 4, 1e-12);
+  EXPECT_TRUE(scene.unsupported.empty());
+  // POV-Ray's normavg.pov: an average map's entries have no values; read, and reported
+  Scene averaged =
+      run("plane { z, 0 normal { average normal_map { [gradient x, -5.0 scallop_wave scale 0.5] "
+          "[gradient y, -5.0] } } }\n");
+  EXPECT_FALSE(averaged.objects.at(0).texture.normal->rendered);
+  ASSERT_EQ(averaged.unsupported.size(), 1u);
+  EXPECT_EQ(averaged.unsupported[0].feature, "normal pattern average");
+}
+
 // #default { normal {..} } is where every later normal starts (POV-Ray's normmap.pov sets
 // bump_size 1.5 so), and a default with a pattern bends every later texture.
 TEST_F(Sdl, DefaultNormalIsWhereNormalsStart) {

@@ -200,7 +200,8 @@ class Parser {
   // ---- appearance (appearance.cpp) ----
   Pigment parse_pigment();  // after the `pigment` keyword
   Finish parse_finish();
-  Normal parse_normal();  // after the `normal` keyword
+  Normal parse_normal();                           // after the `normal` keyword
+  Normal parse_normal_items(const char* closing);  // a normal's body up to `closing`
   Texture parse_texture();
   // `layer` (and the layers it carries) over `texture`'s top layer; fails past the layer limit.
   void add_texture_layer(Texture& texture, Texture layer);
