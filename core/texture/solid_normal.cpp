@@ -105,7 +105,7 @@ namespace {
 // the pattern space of the normal whose normal_map holds n): the normal bent, made unit. Normals
 // go into pattern space by the inverse transpose of pattern_from_world and back by its transpose
 // (POV-Ray's Warp_Normal and UnWarp_Normal). A normal_map entry lives in its map's pattern space,
-// so the recursion is as deep as the maps nest (the SDL reader's nesting bound limits it).
+// so the recursion is as deep as the maps nest (the SDL reader allows 6 levels).
 Vec3d bend_solid_normal(const SolidNormal& n, Vec3d outer_point, Vec3d outer_normal) {
   const Transform& m = n.pattern.pattern_from_world;
   Vec3d normal = m.normal_transform().vector(outer_normal);

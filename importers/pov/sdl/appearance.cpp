@@ -1,5 +1,6 @@
 // Appearance statements: pigment (colours, patterns, colour maps), finish, texture, interior,
 // material, and the transforms (translate/rotate/scale/matrix/transform) they and objects share.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -298,6 +299,17 @@ std::vector<SlopeMapEntry> parse_slope_map(Parser& parser) {
   return map;
 }
 
+// How deep normal_maps nest in `n` (0: none). A hit bends the normal through two entries per
+// level, so the work grows as 2^depth: a scene nesting them deeper than any real one is bad
+// input rather than a render that never ends.
+int normal_map_depth(const Normal& n) {
+  int deepest = 0;
+  for (const NormalMapEntry& e : n.normal_map)
+    deepest = std::max(deepest, normal_map_depth(e.normal));
+  return n.normal_map.empty() ? 0 : 1 + deepest;
+}
+constexpr int kMaxNormalMapDepth = 6;
+
 // normal_map { [value normal-body] ... }, at most 256 entries.
 std::vector<NormalMapEntry> parse_normal_map(Parser& parser) {
   std::vector<NormalMapEntry> map;
@@ -311,6 +323,8 @@ std::vector<NormalMapEntry> parse_normal_map(Parser& parser) {
     if (parser.starts_value(parser.peek())) e.value = parser.parse_count();
     parser.accept(",");
     e.normal = parser.parse_normal_items("]");
+    if (normal_map_depth(e.normal) >= kMaxNormalMapDepth)
+      parser.fail("normal_maps nest at most " + std::to_string(kMaxNormalMapDepth) + " deep");
     map.push_back(std::move(e));
     if (map.size() > 256) parser.fail("a normal_map has at most 256 entries");
   }

@@ -512,6 +512,13 @@ TEST_F(Sdl, NormalMapEntriesKeepTheirOwnSpaceInsideTheMaps) {
   EXPECT_FALSE(averaged.objects.at(0).texture.normal->rendered);
   ASSERT_EQ(averaged.unsupported.size(), 1u);
   EXPECT_EQ(averaged.unsupported[0].feature, "normal pattern average");
+  // nested maps cost 2^depth bends per hit: deeper than 6 is an error naming the line
+  const std::string error = error_of(
+      "#declare N = normal { bumps }\n"
+      "#for (i, 1, 8) #declare N = normal { gradient x normal_map { [0 N] [1 N] } } #end\n"
+      "plane { y, 0 normal { N } }\n");
+  EXPECT_NE(error.find("scene.pov:2:"), std::string::npos) << error;
+  EXPECT_NE(error.find("at most 6 deep"), std::string::npos) << error;
 }
 
 // #default { normal {..} } is where every later normal starts (POV-Ray's normmap.pov sets
