@@ -837,7 +837,10 @@ MaterialValue Parser::parse_material() {
     if (first && tok.identifier && tok.value.get<MaterialValue>()) {
       m = *tok.value.get<MaterialValue>();
     } else if (tok.word("texture")) {
-      m.texture = parse_texture();
+      if (m.texture)
+        add_texture_layer(*m.texture, parse_texture());  // layered, as on an object
+      else
+        m.texture = parse_texture();
     } else if (tok.word("interior")) {
       m.interior = parse_interior();
     } else if (auto t = parse_transform_item(tok)) {

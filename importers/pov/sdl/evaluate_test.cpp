@@ -543,8 +543,10 @@ TEST_F(Sdl, LayeredTexturesKeepEveryLayerInOrder) {
   Scene scene =
       run("#declare T = texture { pigment { rgb 1 } } texture { pigment { rgbt <1, 0, 0, 0.5> } }\n"
           "plane { y, 0 texture { T translate x } texture { pigment { rgbf <0, 0, 1, 0.9> } } }\n"
-          "sphere { 0, 1 texture { T } }\n");
-  ASSERT_EQ(scene.objects.size(), 2u);
+          "sphere { 0, 1 texture { T } }\n"
+          "box { 0, 1 material { texture { T } texture { pigment { rgbt 1 } } } }\n");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  EXPECT_EQ(scene.objects[2].texture.layers.size(), 2u);
   const Texture& plane = scene.objects[0].texture;
   ASSERT_EQ(plane.layers.size(), 2u);
   EXPECT_EQ(plane.pigment.colour.g, 1);
