@@ -12,7 +12,9 @@ std::vector<bool> instanced_meshes(const Scene& scene, Instancing policy) {
     const TriangleMesh& mesh = scene.meshes[m];
     if (mesh.indices.empty() || uses[m] < (policy == Instancing::kAlways ? 1 : 2)) continue;
     const Material& material = scene.materials[mesh.material];
-    instanced[m] = !(max_component(material.emission) > 0.f) && !material.base_color_pattern;
+    // POV-Ray's patterns, normals and layers are evaluated at the hit's world position
+    instanced[m] = !(max_component(material.emission) > 0.f) && !material.base_color_pattern &&
+                   !material.normal_pattern && material.layers.empty();
   }
   return instanced;
 }

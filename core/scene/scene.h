@@ -59,6 +59,13 @@ struct Material {
   // colour at the hit's world position, its transmit scales the coverage (alpha) and its filter
   // the transmission (docs/pov.md, "Appearance").
   std::optional<SolidPattern> base_color_pattern;
+  // A POV-Ray normal pattern: the shading normal bent at every hit (core/texture/solid_normal.h).
+  std::optional<SolidNormal> normal_pattern;
+  // POV-Ray's layered textures: materials over this one, each over the one before, each with a
+  // base_color_pattern whose filter and transmit at the hit let the layers below show through
+  // (SurfaceShader::shade; docs/pov.md "Layered textures"). Only the base material's alpha,
+  // emission and ior count.
+  std::vector<Material> layers;
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha = 1.f;          // baseColorFactor's fourth component
   float alpha_cutoff = 0.5f;  // kMask

@@ -118,4 +118,33 @@ struct SolidPattern : SolidPatternModifiers {
   Transform pattern_from_world;             // world: filmback's right-handed world, metres
 };
 
+// A slope_map entry (POV-Ray 3.7 manual, "Slope Maps"): at pattern value `value` the surface
+// stands at `height` and rises by `slope`; between entries a cubic Hermite curve joins them.
+struct SolidSlopeStop {
+  float value = 0.f, height = 0.f, slope = 0.f;
+};
+
+struct SolidNormalStop;
+
+// A POV-Ray `normal` (POV-Ray 3.7 manual, "Normal"): the shading normal bent by a pattern of
+// `pattern` (its kind, modifiers and space; its colours unused), core/texture/solid_normal.h
+// evaluates it. bumps, dents, ripples, waves and wrinkles have their own normal functions; any
+// other kind is differentiated numerically over `accuracy`. With a `normal_map`, the pattern's
+// value picks the entries instead, whose normals blend.
+struct SolidNormal {
+  SolidPattern pattern;
+  double amount = 0.5;      // the pattern's float or bump_size
+  double accuracy = 0.02;   // the numeric derivative's step, in pattern space
+  bool scale_bumps = true;  // false: no_bump_scale (the pattern's scale changes the bumps' depth)
+  std::vector<SolidSlopeStop> slope_map;  // empty: the pattern's value is the height
+  // Entries by non-decreasing value, each evaluated in this normal's pattern space (their
+  // pattern_from_world take this pattern's points).
+  std::vector<SolidNormalStop> normal_map;
+};
+
+struct SolidNormalStop {
+  float value = 0.f;
+  SolidNormal normal;
+};
+
 }  // namespace fb

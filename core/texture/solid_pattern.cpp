@@ -211,27 +211,6 @@ double spiral_angle(double x, double y, double radius) {
   return x < 0 ? 1.5 * kPi - std::asin(y / radius) : 0.5 * kPi + std::asin(y / radius);
 }
 
-// POV-Ray's waves and ripples sum circular waves from ten sources near the origin
-// (TraceThreadData's waveSources, drawn from its own random sequence); ours are drawn from a
-// fixed hash, so the rings sit elsewhere than in POV-Ray.
-constexpr int kWaveSources = 10;
-struct WaveSource {
-  Vec3d centre;
-  double frequency;
-};
-const std::array<WaveSource, kWaveSources>& wave_sources() {
-  static const std::array<WaveSource, kWaveSources> sources = [] {
-    std::array<WaveSource, kWaveSources> s;
-    for (int i = 0; i < kWaveSources; ++i) {
-      const double u = unit_from_hash(hash_cell(i, 1, 7)), v = unit_from_hash(hash_cell(i, 2, 7));
-      const double z = 2 * u - 1, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * kPi * v;
-      s[i] = {{r * std::cos(phi), r * std::sin(phi), z}, 0.5 + unit_from_hash(hash_cell(i, 3, 7))};
-    }
-    return s;
-  }();
-  return sources;
-}
-
 // Crackle (Jim McElhiney): the distance to the second-nearest of one random point per unit cube
 // minus the distance to the nearest (POV-Ray's default form <-1, 1, 0>, metric 2). The nearest
 // two lie within two cubes of the point's.
@@ -261,6 +240,21 @@ double crackle(Vec3d p) {
 }  // namespace
 
 namespace solid {
+
+// POV-Ray's sources are drawn from its own random sequence; ours from a fixed hash, so the rings
+// sit elsewhere than in POV-Ray.
+const std::array<WaveSource, kWaveSources>& wave_sources() {
+  static const std::array<WaveSource, kWaveSources> sources = [] {
+    std::array<WaveSource, kWaveSources> s;
+    for (int i = 0; i < kWaveSources; ++i) {
+      const double u = unit_from_hash(hash_cell(i, 1, 7)), v = unit_from_hash(hash_cell(i, 2, 7));
+      const double z = 2 * u - 1, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * kPi * v;
+      s[i] = {{r * std::cos(phi), r * std::sin(phi), z}, 0.5 + unit_from_hash(hash_cell(i, 3, 7))};
+    }
+    return s;
+  }();
+  return sources;
+}
 
 double noise(Vec3d p) {
   return std::clamp(0.5 + kNoiseScale * perlin(p), 0.0, 1.0);
@@ -417,15 +411,19 @@ SolidColour colour_at(const std::vector<SolidColourStop>& map, double value) {
   return map.back().colour;
 }
 
+Vec3d warped_point(const SolidPattern& s, Vec3d p) {
+  // POV-Ray's classic turbulence warp: the point moves before the pattern is evaluated.
+  if (!special_turbulence(s.kind) &&
+      (s.turbulence.x != 0 || s.turbulence.y != 0 || s.turbulence.z != 0))
+    p += vector_turbulence(p, s.octaves, s.omega, s.lambda) * s.turbulence;
+  return p;
+}
+
 }  // namespace solid
 
 SolidColour evaluate_solid(const SolidPattern& s, Vec3d world_point) {
   if (s.kind == SolidPatternKind::kSolid) return s.colour;
-  Vec3d p = s.pattern_from_world.point(world_point);
-  // POV-Ray's classic turbulence warp: the point moves before the pattern is evaluated.
-  if (!special_turbulence(s.kind) &&
-      (s.turbulence.x != 0 || s.turbulence.y != 0 || s.turbulence.z != 0))
-    p += solid::vector_turbulence(p, s.octaves, s.omega, s.lambda) * s.turbulence;
+  const Vec3d p = solid::warped_point(s, s.pattern_from_world.point(world_point));
   if (is_list(s.kind)) {
     const int index = std::clamp(int(solid::raw_value(s, p)), 0, list_size(s.kind) - 1);
     return size_t(index) < s.list.size() ? evaluate_solid(s.list[index], world_point)

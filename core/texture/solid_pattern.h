@@ -6,6 +6,8 @@
 // (docs/pov.md, "Appearance").
 #pragma once
 
+#include <array>
+
 #include <filmback/vec.h>
 
 #include "core/scene/solid_texture.h"
@@ -17,6 +19,15 @@ SolidColour evaluate_solid(const SolidPattern& pattern, Vec3d world_point);
 
 // The pieces, exposed for tests.
 namespace solid {
+
+// POV-Ray's waves and ripples sum circular waves from ten sources near the origin
+// (TraceThreadData's waveSources), each with a frequency factor (waves only).
+constexpr int kWaveSources = 10;
+struct WaveSource {
+  Vec3d centre;
+  double frequency;
+};
+const std::array<WaveSource, kWaveSources>& wave_sources();
 
 // Lattice noise in [0, 1] with POV-Ray's mean (0.5) and standard deviation (0.132, measured on
 // POV-Ray 3.7's bozo over a 40 x 40 unit plane).
@@ -32,6 +43,9 @@ double raw_value(const SolidPattern& pattern, Vec3d pattern_point);
 // frequency, phase and the wave shape applied to a raw value (POV-Ray's
 // ContinuousPattern::Evaluate).
 double shape_value(const SolidPattern& pattern, double raw);
+// The pattern point moved by the classic turbulence warp (none for the patterns that turbulate
+// inside: marble, wood, agate, the spirals).
+Vec3d warped_point(const SolidPattern& pattern, Vec3d pattern_point);
 // The colour map at `value`: linear between stops, clamped to the first and last.
 SolidColour colour_at(const std::vector<SolidColourStop>& map, double value);
 

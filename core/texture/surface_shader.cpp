@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/texture/solid_normal.h"
 #include "core/texture/solid_pattern.h"
 #include "core/util/error.h"
 
@@ -28,6 +29,14 @@ std::vector<uint8_t> image_uses(const Scene& scene) {
         uses.at(t.image) |= t.srgb ? TextureImages::kReadFromSrgb : TextureImages::kReadLinear;
   }
   return uses;
+}
+
+// The normal pattern that bends the shading normal: the topmost layer's that has one (POV-Ray
+// lights each layer with its own normal; one shading normal serves them all here).
+const SolidNormal* top_normal_pattern(const Material& m) {
+  for (auto layer = m.layers.rbegin(); layer != m.layers.rend(); ++layer)
+    if (layer->normal_pattern) return &*layer->normal_pattern;
+  return m.normal_pattern ? &*m.normal_pattern : nullptr;
 }
 
 }  // namespace
@@ -62,6 +71,7 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   const Material& m = materials_[index];
   Rgb base = m.base_color;
   float metallic = m.metallic, roughness = m.roughness, transmission = m.transmission;
+  float specular = m.specular, ior = m.ior;
   if (m.base_color_pattern) {
     const SolidColour c = solid_colour(*m.base_color_pattern, point);
     base *= c.rgb;
@@ -76,6 +86,24 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
     const auto c = lookup(t.metallic_roughness, point, false);
     roughness *= c[1];
     metallic *= c[2];
+  }
+  // POV-Ray's layered textures, bottom up: each layer covers what is below by 1 - filter -
+  // transmit of its pigment at the hit and lets the rest through, tinted by filter times its
+  // colour (POV-Ray's layer loop in Compute_Lighted_Texture). Metallic and transmission take the
+  // covered share; the strongest highlight (with its ior, which sets its Fresnel F0) wins whatever
+  // its layer's coverage, as POV-Ray adds every layer's highlights unweighted (a clear top layer
+  // with phong is a clear coat).
+  for (const Material& layer : m.layers) {
+    // a layer without a pattern is an opaque one of its base colour
+    const SolidColour c = layer.base_color_pattern ? solid_colour(*layer.base_color_pattern, point)
+                                                   : SolidColour{{1.f, 1.f, 1.f}, 0.f, 0.f};
+    const float cover = std::clamp(1.f - c.filter - c.transmit, 0.f, 1.f);
+    base = layer.base_color * c.rgb * cover +
+           base * (c.rgb * c.filter + Rgb{c.transmit, c.transmit, c.transmit});
+    metallic += (layer.metallic - metallic) * cover;
+    transmission += (layer.transmission - transmission) * cover;
+    if (layer.specular > specular)
+      specular = layer.specular, roughness = layer.roughness, ior = layer.ior;
   }
   std::copy(hit.shading_normal, hit.shading_normal + 3, hit.smooth_normal);
   if (t.normal.present() && dot(point.tangent, point.tangent) > 0.f) {
@@ -96,13 +124,19 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
         (mapped / mapped_len).store(hit.shading_normal);
     }
   }
+  if (const SolidNormal* bump = top_normal_pattern(m)) {
+    // Render space is the world translated (RenderGeometry): normals are the same in both.
+    const Vec3d bent = perturbed_normal(*bump, world_from_render_.point(Vec3d(point.position)),
+                                        Vec3d(Vec3f(hit.shading_normal)));
+    Vec3f(bent).store(hit.shading_normal);
+  }
   const auto clamp01 = [](float v) { return std::clamp(v, 0.f, 1.f); };
   min(max(base, Rgb{}), Rgb{1.f, 1.f, 1.f}).store(hit.base_color);
   hit.metallic = clamp01(metallic);
   hit.roughness = clamp01(roughness);
   hit.transmission = clamp01(transmission);
-  hit.ior = m.ior;
-  hit.specular = clamp01(m.specular);
+  hit.ior = ior;
+  hit.specular = clamp01(specular);
   emission(index, point).store(hit.emission);
 }
 

@@ -134,6 +134,9 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   }
   if (m.textures.any())
     diagnostics.warn("material '" + m.name + "': its textures are not written by convert");
+  if (m.normal_pattern || !m.layers.empty())
+    diagnostics.warn("material '" + m.name +
+                     "': its POV-Ray normal pattern and texture layers are not written by convert");
   return out;
 }
 

@@ -49,6 +49,33 @@ SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_
   return s;
 }
 
+// A normal as the scene model's: its pattern converted as a pigment's would be (default waves,
+// unit gradient), its colours unused; `pov_from_input` as for to_solid. A normal_map entry that
+// is not rendered stays flat.
+SolidNormal to_solid_normal(const Normal& n, const Transform& pov_from_input) {
+  Pigment shape;
+  static_cast<SolidPatternModifiers&>(shape) = n;
+  shape.pattern = n.pattern;
+  shape.pattern_from_world = n.pattern_from_world;
+  SolidNormal s;
+  s.pattern = to_solid(shape, 1.0, pov_from_input);
+  for (const NormalMapEntry& e : n.normal_map) {
+    SolidNormalStop stop;
+    stop.value = float(std::clamp(e.value, 0.0, 1.0));
+    if (e.normal.rendered)
+      stop.normal = to_solid_normal(e.normal, Transform());  // in this normal's pattern space
+    else
+      stop.normal.amount = 0;
+    s.normal_map.push_back(std::move(stop));
+  }
+  s.amount = n.amount;
+  s.accuracy = n.accuracy;
+  s.scale_bumps = n.scale_bumps;
+  for (const SlopeMapEntry& e : n.slope_map)
+    s.slope_map.push_back({float(std::clamp(e.value, 0.0, 1.0)), float(e.height), float(e.slope)});
+  return s;
+}
+
 bool any_transmit(const SolidPattern& s) {
   if (s.colour.transmit > 0) return true;
   for (const SolidColourStop& stop : s.colour_map)
@@ -117,12 +144,25 @@ void append_pattern(std::string& key, const SolidPattern& s) {
   append(key, s.spiral_arms), append(key, s.agate_turbulence);
   key += "}";
 }
+void append_normal(std::string& key, const SolidNormal& n) {
+  key += "normal{";
+  append_pattern(key, n.pattern);
+  append(key, n.amount), append(key, n.accuracy), append(key, n.scale_bumps);
+  for (const SolidSlopeStop& stop : n.slope_map)
+    append(key, stop.value), append(key, stop.height), append(key, stop.slope);
+  for (const SolidNormalStop& stop : n.normal_map)
+    append(key, stop.value), append_normal(key, stop.normal);
+  key += "}";
+}
 std::string material_key(const Material& m) {
   std::string key;
   append(key, m.base_color), append(key, m.emission), append(key, m.double_sided);
   append(key, m.metallic), append(key, m.roughness), append(key, m.transmission);
   append(key, m.ior), append(key, m.specular), append(key, int(m.alpha_mode)), append(key, m.alpha);
   if (m.base_color_pattern) append_pattern(key, *m.base_color_pattern);
+  if (m.normal_pattern) append_normal(key, *m.normal_pattern);
+  for (const Material& layer : m.layers)
+    key += "layer[" + material_key(layer) + "]";
   return key;
 }
 
@@ -142,8 +182,13 @@ double colour_gamma(const Scene& scene) {
   return scene.version >= 3.7 ? 1.0 : 2.2;
 }
 
-Material make_material(const Texture& texture, const std::optional<Interior>& interior,
-                       double gamma, const Colour& ambient_light) {
+namespace {
+
+// One texture's material. A layer over others (`over_layers`) keeps its pigment as a pattern even
+// when plain, whose filter and transmit at the hit then say how much of the layers below shows
+// (SurfaceShader::shade), instead of making the surface transparent.
+Material make_layer_material(const Texture& texture, const std::optional<Interior>& interior,
+                             double gamma, const Colour& ambient_light, bool over_layers) {
   const Finish& f = texture.finish;
   Material m;
   m.name = texture.where.text();
@@ -152,15 +197,16 @@ Material make_material(const Texture& texture, const std::optional<Interior>& in
   const bool patterned = pigment.kind != SolidPatternKind::kSolid;
   // The pigment's colour: the pattern's average where one colour must stand for it (emission).
   const Rgb rho = decode(texture.pigment.colour, gamma);
-  const float filter = patterned ? 0.f : pigment.colour.filter;
-  const float transmit = patterned ? 0.f : pigment.colour.transmit;
+  const bool colour_at_hit = patterned || over_layers;
+  const float filter = colour_at_hit ? 0.f : pigment.colour.filter;
+  const float transmit = colour_at_hit ? 0.f : pigment.colour.transmit;
   const double ior = interior ? interior->ior : 1.0;
   const bool refracts = ior != 1.0;
 
   // Transparency: filter is coloured transmission; transmit is plain see-through coverage, unless
   // the interior refracts, when it is transmission too (tinted, unlike POV-Ray's).
   m.transmission = std::clamp(filter + (refracts ? transmit : 0.f), 0.f, 1.f);
-  if (!refracts && (transmit > 0 || (patterned && any_transmit(pigment)))) {
+  if (!refracts && !over_layers && (transmit > 0 || (patterned && any_transmit(pigment)))) {
     m.alpha_mode = AlphaMode::kBlend;
     m.alpha = 1.f - transmit;
   }
@@ -172,7 +218,7 @@ Material make_material(const Texture& texture, const std::optional<Interior>& in
   const float d = float(std::max(f.diffuse, 0.0));
   const float scale = m.transmission > 0 || metal ? 1.f : d;
   m.base_color = Rgb{scale, scale, scale};
-  if (patterned)
+  if (colour_at_hit)
     m.base_color_pattern = pigment;
   else
     m.base_color = m.base_color * pigment.colour.rgb;
@@ -209,6 +255,18 @@ Material make_material(const Texture& texture, const std::optional<Interior>& in
     m.specular = 0.f;  // POV-Ray's default finish: Lambertian
     m.roughness = 1.f;
   }
+  if (texture.normal && texture.normal->rendered)
+    m.normal_pattern = to_solid_normal(*texture.normal, world_from_pov_space());
+  return m;
+}
+
+}  // namespace
+
+Material make_material(const Texture& texture, const std::optional<Interior>& interior,
+                       double gamma, const Colour& ambient_light) {
+  Material m = make_layer_material(texture, interior, gamma, ambient_light, false);
+  for (const Texture& layer : texture.layers)
+    m.layers.push_back(make_layer_material(layer, interior, gamma, ambient_light, true));
   return m;
 }
 
@@ -223,7 +281,6 @@ void MaterialTable::report(const Texture& texture) {
     if (reported_.insert(feature).second)
       diagnostics_.warn(where.text() + ": " + feature + " is not rendered (first met here)");
   };
-  if (texture.has_normal) once("normal perturbation", texture.where);
   if (texture.finish.brilliance != 1) once("finish brilliance", texture.where);
   const auto walk = [&](const auto& self, const Pigment& p) -> void {
     if (p.averaged)
@@ -234,6 +291,8 @@ void MaterialTable::report(const Texture& texture) {
       self(self, entry);
   };
   walk(walk, texture.pigment);
+  for (const Texture& layer : texture.layers)
+    report(layer);
 }
 
 uint32_t MaterialTable::material(const Texture& texture, const std::optional<Interior>& interior) {

@@ -83,10 +83,41 @@ struct Interior {
   Colour fade_colour{0, 0, 0};
 };
 
+struct SlopeMapEntry {
+  double value = 0, height = 0, slope = 0;  // [value, <height, slope>]
+};
+
+struct NormalMapEntry;
+
+// normal { pattern [amount] modifiers }: the pattern as a pigment's, with the normal's own
+// keywords; `pattern_from_world` composed as a pigment's is.
+struct Normal : SolidPatternModifiers {
+  Pattern pattern = Pattern::kSolid;
+  std::string name;       // the pattern's keyword; empty: none given yet (a #default's bump_size)
+  bool rendered = false;  // a pattern filmback evaluates, without a normal_map or normal list
+  double amount = 0.5;    // the float after the pattern, or bump_size
+  double accuracy = 0.02;
+  bool scale_bumps = true;  // no_bump_scale clears it
+  std::vector<SlopeMapEntry> slope_map;
+  // normal_map { [value normal-body] ... }: the entries' pattern_from_world take points of this
+  // normal's pattern space (transforms after the map move this normal, not its entries).
+  std::vector<NormalMapEntry> normal_map;
+  Matrix pattern_from_world;
+  SourceLocation where;
+};
+
+struct NormalMapEntry {
+  double value = 0;
+  Normal normal;
+};
+
 struct Texture {
   Pigment pigment;
   Finish finish;
-  bool has_normal = false;  // a `normal {}` perturbation was given (not rendered: reported)
+  std::optional<Normal> normal;
+  // Layered textures (`texture {A} texture {B}`): the textures over this one, each over the one
+  // before; none of them has layers of its own.
+  std::vector<Texture> layers;
   SourceLocation where;
 };
 

@@ -1,5 +1,6 @@
 // Appearance statements: pigment (colours, patterns, colour maps), finish, texture, interior,
 // material, and the transforms (translate/rotate/scale/matrix/transform) they and objects share.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -153,7 +154,7 @@ void parse_pigment_pattern(Parser& parser, Pigment& p, const Tok& tok) {
 }
 
 // poly_wave [Exponent]
-void parse_poly_wave(Parser& parser, Pigment& p) {
+void parse_poly_wave(Parser& parser, SolidPatternModifiers& p) {
   p.wave = Wave::kPoly;
   const Tok& n = parser.peek();
   if (n.token.kind == TokenKind::kNumber || (n.identifier && n.value.kind == ValueKind::kFloat)) {
@@ -176,15 +177,15 @@ void skip_two_floats(Parser& parser) {
   parser.parse_float();
 }
 
-// The modifiers a pigment reads after its pattern, one line each: those with a field in Pigment
-// are kept, the others read and dropped (uv_mapping and warp reported).
+// The modifiers a pigment or a normal reads after its pattern, one line each: those with a field
+// in SolidPatternModifiers are kept, the others read and dropped (uv_mapping and warp reported).
 struct PigmentModifier {
   std::string_view name;
-  void (*parse)(Parser&, Pigment&, const Tok&);
+  void (*parse)(Parser&, SolidPatternModifiers&, const Tok&);
 };
 
 using P = Parser&;
-using G = Pigment&;
+using G = SolidPatternModifiers&;
 using T = const Tok&;
 constexpr PigmentModifier kPigmentModifiers[] = {
     {"turbulence", [](P parser, G p, T) { p.turbulence = parser.parse_vector(); }},
@@ -239,6 +240,96 @@ constexpr PigmentModifier kPigmentModifiers[] = {
        parser.skip_block();
      }},
 };
+
+// ---- normal steps (POV-Ray 3.7 reference, "Normal", "Slope Maps") ----
+
+// A value right after a normal's pattern: its amount (`bumps 0.5`, `gradient x, 0.5`).
+bool starts_normal_amount(const Tok& tok) {
+  return tok.token.kind == TokenKind::kNumber || tok.symbol("-") || tok.symbol("(") ||
+         (tok.identifier && tok.value.kind == ValueKind::kFloat);
+}
+
+// The pattern keyword of a normal, its arguments and amount. A list pattern with normals of its
+// own (`checker normal {..} normal {..}`) is read and not rendered.
+void parse_normal_pattern(Parser& parser, Normal& n, const Tok& tok) {
+  const std::string& w = tok.token.text;
+  n.pattern = evaluated_pattern(w).value_or(Pattern::kSolid);
+  n.rendered = evaluated_pattern(w).has_value();
+  n.name = w;
+  if (w == "gradient") {
+    n.gradient = parser.parse_vector();
+  } else {
+    parser.parse_pattern_arguments(w);
+  }
+  if (!n.rendered) parser.unsupported("normal pattern " + w, parser.location_of(tok));
+  if (w == "checker" || w == "brick" || w == "hexagon") {
+    bool entries = false;
+    while (parser.peek().word("normal") ||
+           (parser.peek().identifier && parser.peek().value.get<Normal>())) {
+      if (parser.next().word("normal")) parser.skip_block();
+      parser.accept(",");
+      entries = true;
+    }
+    if (entries) {
+      n.rendered = false;
+      parser.unsupported("normal list " + w, parser.location_of(tok));
+    }
+  }
+  parser.accept(",");
+  if (starts_normal_amount(parser.peek())) n.amount = parser.parse_float();
+}
+
+// slope_map { [value, <height, slope>] ... }
+std::vector<SlopeMapEntry> parse_slope_map(Parser& parser) {
+  std::vector<SlopeMapEntry> map;
+  parser.expect("{");
+  for (;;) {
+    Tok tok = parser.next();
+    if (tok.symbol("}")) break;
+    if (!tok.symbol("[")) parser.fail("expected '[' in a slope_map");
+    SlopeMapEntry e;
+    e.value = parser.parse_count();  // no comparison: `[0.5 <1, 1>]` opens the vector
+    parser.accept(",");
+    const Vec3d height_slope = parser.parse_vector();
+    e.height = height_slope.x, e.slope = height_slope.y;
+    parser.expect("]");
+    map.push_back(e);
+    if (map.size() > 256) parser.fail("a slope_map has at most 256 entries");
+  }
+  return map;
+}
+
+// How deep normal_maps nest in `n` (0: none). A hit bends the normal through two entries per
+// level, so the work grows as 2^depth: a scene nesting them deeper than any real one is bad
+// input rather than a render that never ends.
+int normal_map_depth(const Normal& n) {
+  int deepest = 0;
+  for (const NormalMapEntry& e : n.normal_map)
+    deepest = std::max(deepest, normal_map_depth(e.normal));
+  return n.normal_map.empty() ? 0 : 1 + deepest;
+}
+constexpr int kMaxNormalMapDepth = 6;
+
+// normal_map { [value normal-body] ... }, at most 256 entries.
+std::vector<NormalMapEntry> parse_normal_map(Parser& parser) {
+  std::vector<NormalMapEntry> map;
+  parser.expect("{");
+  for (;;) {
+    Tok tok = parser.next();
+    if (tok.symbol("}")) break;
+    if (!tok.symbol("[")) parser.fail("expected '[' in a normal_map");
+    NormalMapEntry e;
+    // `average` maps may leave the value out: [gradient x, -5.0]
+    if (parser.starts_value(parser.peek())) e.value = parser.parse_count();
+    parser.accept(",");
+    e.normal = parser.parse_normal_items("]");
+    if (normal_map_depth(e.normal) >= kMaxNormalMapDepth)
+      parser.fail("normal_maps nest at most " + std::to_string(kMaxNormalMapDepth) + " deep");
+    map.push_back(std::move(e));
+    if (map.size() > 256) parser.fail("a normal_map has at most 256 entries");
+  }
+  return map;
+}
 
 // ---- texture steps (POV-Ray 3.7 reference, "Texture", "Patterned Textures") ----
 
@@ -302,9 +393,7 @@ bool parse_texture_part(Parser& parser, const Tok& tok, Texture& t) {
   } else if (tok.identifier && tok.value.get<Finish>()) {
     t.finish = *tok.value.get<Finish>();
   } else if (w == "normal") {
-    t.has_normal = true;
-    parser.unsupported("normal", parser.location_of(tok));
-    parser.skip_block();
+    t.normal = parser.parse_normal();
   } else {
     return false;
   }
@@ -316,6 +405,24 @@ bool parse_texture_part(Parser& parser, const Tok& tok, Texture& t) {
 // The pattern follows later transforms: pattern_from_world gains inverse(M) on the right.
 void transform_texture(Texture& texture, const Matrix& inverse) {
   move_pigment(texture.pigment, inverse);
+  if (texture.normal)
+    texture.normal->pattern_from_world = texture.normal->pattern_from_world * inverse;
+  for (Texture& layer : texture.layers)
+    transform_texture(layer, inverse);
+}
+
+// POV-Ray has no limit on layers; every layer costs a pattern evaluation per hit, so a scene
+// that builds thousands in a loop is bad input rather than a slow render.
+constexpr size_t kMaxTextureLayers = 64;
+
+void Parser::add_texture_layer(Texture& texture, Texture layer) {
+  std::vector<Texture> above = std::move(layer.layers);
+  layer.layers.clear();
+  texture.layers.push_back(std::move(layer));
+  for (Texture& t : above)
+    texture.layers.push_back(std::move(t));
+  if (texture.layers.size() >= kMaxTextureLayers)
+    fail("a layered texture has at most " + std::to_string(kMaxTextureLayers) + " layers");
 }
 
 // The arguments a pattern keyword takes right after it (POV-Ray manual 3.5.11).
@@ -589,7 +696,6 @@ Texture Parser::parse_texture_items(const char* closing) {
   Nesting guard(*this);
   Texture t = default_texture_;
   t.where = here();
-  t.has_normal = false;
   bool first = true;
   bool patterned = false;
   std::optional<Texture> first_sub;
@@ -647,6 +753,47 @@ Texture Parser::parse_texture_items(const char* closing) {
   return t;
 }
 
+Normal Parser::parse_normal() {
+  expect("{");
+  return parse_normal_items("}");
+}
+
+Normal Parser::parse_normal_items(const char* closing) {
+  Nesting guard(*this);
+  Normal n = default_texture_.normal.value_or(Normal{});
+  n.where = here();
+  bool first = true;
+  for (;;) {
+    Tok tok = next();
+    if (tok.symbol(closing)) break;
+    if (tok.token.kind == TokenKind::kEnd) fail(std::string("missing '") + closing + "' in normal");
+    const std::string& w = tok.token.text;
+    if (first && tok.identifier && tok.value.get<Normal>()) {
+      n = *tok.value.get<Normal>();
+    } else if (tok.keyword() && is_pattern(w)) {
+      parse_normal_pattern(*this, n, tok);
+    } else if (w == "bump_size") {
+      n.amount = parse_float();
+    } else if (w == "accuracy") {
+      n.accuracy = parse_float();
+    } else if (w == "no_bump_scale") {
+      n.scale_bumps = !parse_bool_option();
+    } else if (w == "slope_map") {
+      n.slope_map = parse_slope_map(*this);
+    } else if (w == "normal_map") {
+      n.normal_map = parse_normal_map(*this);
+    } else if (const PigmentModifier* modifier = find_keyword(kPigmentModifiers, w)) {
+      modifier->parse(*this, n, tok);
+    } else if (auto m = parse_transform_item(tok)) {
+      n.pattern_from_world = n.pattern_from_world * m->inverse();
+    } else {
+      fail("unexpected '" + w + "' in normal");
+    }
+    first = false;
+  }
+  return n;
+}
+
 Interior Parser::parse_interior() {
   Interior in;
   expect("{");
@@ -690,7 +837,10 @@ MaterialValue Parser::parse_material() {
     if (first && tok.identifier && tok.value.get<MaterialValue>()) {
       m = *tok.value.get<MaterialValue>();
     } else if (tok.word("texture")) {
-      m.texture = parse_texture();
+      if (m.texture)
+        add_texture_layer(*m.texture, parse_texture());  // layered, as on an object
+      else
+        m.texture = parse_texture();
     } else if (tok.word("interior")) {
       m.interior = parse_interior();
     } else if (auto t = parse_transform_item(tok)) {

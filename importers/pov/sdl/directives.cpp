@@ -472,7 +472,7 @@ void Parser::run_default() {
     } else if (tok.word("finish")) {
       default_texture_.finish = parse_finish();
     } else if (tok.word("normal")) {
-      skip_block();
+      default_texture_.normal = parse_normal();
     } else {
       fail("expected texture, pigment, finish or normal in #default");
     }

@@ -444,7 +444,7 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
       run("fog { distance 10 color rgb 1 }\n"
           "ovus { 1, 0.5 translate x }\n"
           "#declare F = function(a) { a * 2 }\n"
-          "sphere { 0, 1 normal { bumps 0.5 } }\n"
+          "sphere { 0, 1 normal { quilted 0.5 } }\n"
           "global_settings { radiosity { count 100 } }\n");
   ASSERT_EQ(scene.objects.size(), 1u);
   ASSERT_GE(scene.unsupported.size(), 4u);
@@ -452,7 +452,119 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
   EXPECT_EQ(scene.unsupported[1].feature, "ovus");
   EXPECT_EQ(scene.unsupported[1].where.line, 2u);
-  EXPECT_TRUE(scene.objects[0].texture.has_normal);
+  ASSERT_TRUE(scene.objects[0].texture.normal);
+  EXPECT_FALSE(scene.objects[0].texture.normal->rendered);
+  EXPECT_EQ(scene.unsupported[2].feature, "normal pattern quilted");
+}
+
+TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {
+  Scene scene =
+      run("#declare N = normal { ripples 0.8 frequency 3 }\n"
+          "plane { y, 0 normal { bumps 0.3 scale 0.1 accuracy 0.05 } }\n"
+          "sphere { 0, 1 texture { normal { N translate x } } }\n"
+          "box { 0, 1 normal { gradient x, 0.6 slope_map { [0, <0, 1>] [1 <1, 1>] } } }\n"
+          "sphere { 0, 1 normal { wrinkles bump_size 2 turbulence 0.5 no_bump_scale } }\n"
+          "sphere { 0, 1 normal { checker normal { bumps } normal { dents } } }\n");
+  ASSERT_EQ(scene.objects.size(), 5u);
+  const Normal& bumps = *scene.objects[0].texture.normal;
+  EXPECT_EQ(bumps.pattern, Pattern::kBumps);
+  EXPECT_TRUE(bumps.rendered);
+  EXPECT_EQ(bumps.amount, 0.3);
+  EXPECT_EQ(bumps.accuracy, 0.05);
+  EXPECT_NEAR(bumps.pattern_from_world.point({1, 0, 0}).x, 10, 1e-12);  // scale 0.1, inverted
+  const Normal& ripples = *scene.objects[1].texture.normal;
+  EXPECT_EQ(ripples.pattern, Pattern::kRipples);
+  EXPECT_EQ(ripples.amount, 0.8);
+  EXPECT_EQ(ripples.frequency, 3);
+  EXPECT_NEAR(ripples.pattern_from_world.point({0, 0, 0}).x, -1, 1e-12);
+  const Normal& gradient = *scene.objects[2].texture.normal;
+  EXPECT_EQ(gradient.amount, 0.6);
+  EXPECT_EQ(gradient.gradient.x, 1);
+  ASSERT_EQ(gradient.slope_map.size(), 2u);
+  EXPECT_EQ(gradient.slope_map[1].height, 1);
+  const Normal& wrinkles = *scene.objects[3].texture.normal;
+  EXPECT_EQ(wrinkles.amount, 2);
+  EXPECT_EQ(wrinkles.turbulence.y, 0.5);
+  EXPECT_FALSE(wrinkles.scale_bumps);
+  EXPECT_FALSE(scene.objects[4].texture.normal->rendered);  // a normal list: reported
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "normal list checker");
+}
+
+TEST_F(Sdl, NormalMapEntriesKeepTheirOwnSpaceInsideTheMaps) {
+  Scene scene =
+      run("plane { y, 0 normal { gradient x normal_map { [0.3 marble turbulence 0.5] "
+          "[0.7 bumps 0.2 scale 0.25] } scale 2 } }\n");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Normal& n = *scene.objects[0].texture.normal;
+  EXPECT_TRUE(n.rendered);
+  ASSERT_EQ(n.normal_map.size(), 2u);
+  EXPECT_EQ(n.normal_map[0].value, 0.3);
+  EXPECT_EQ(n.normal_map[0].normal.pattern, Pattern::kMarble);
+  EXPECT_EQ(n.normal_map[0].normal.turbulence.x, 0.5);
+  EXPECT_EQ(n.normal_map[1].normal.amount, 0.2);
+  // the map's scale moves the map; the entry's own scale only the entry, in the map's space
+  EXPECT_NEAR(n.pattern_from_world.point({1, 0, 0}).x, 0.5, 1e-12);
+  EXPECT_NEAR(n.normal_map[1].normal.pattern_from_world.point({1, 0, 0}).x, 4, 1e-12);
+  EXPECT_TRUE(scene.unsupported.empty());
+  // POV-Ray's normavg.pov: an average map's entries have no values; read, and reported
+  Scene averaged =
+      run("plane { z, 0 normal { average normal_map { [gradient x, -5.0 scallop_wave scale 0.5] "
+          "[gradient y, -5.0] } } }\n");
+  EXPECT_FALSE(averaged.objects.at(0).texture.normal->rendered);
+  ASSERT_EQ(averaged.unsupported.size(), 1u);
+  EXPECT_EQ(averaged.unsupported[0].feature, "normal pattern average");
+  // nested maps cost 2^depth bends per hit: deeper than 6 is an error naming the line
+  const std::string error = error_of(
+      "#declare N = normal { bumps }\n"
+      "#for (i, 1, 8) #declare N = normal { gradient x normal_map { [0 N] [1 N] } } #end\n"
+      "plane { y, 0 normal { N } }\n");
+  EXPECT_NE(error.find("scene.pov:2:"), std::string::npos) << error;
+  EXPECT_NE(error.find("at most 6 deep"), std::string::npos) << error;
+}
+
+// #default { normal {..} } is where every later normal starts (POV-Ray's normmap.pov sets
+// bump_size 1.5 so), and a default with a pattern bends every later texture.
+TEST_F(Sdl, DefaultNormalIsWhereNormalsStart) {
+  Scene scene =
+      run("#default { normal { bump_size 1.5 } }\n"
+          "sphere { 0, 1 normal { marble } }\n"
+          "sphere { 0, 1 pigment { rgb 1 } }\n"
+          "#default { normal { dents 0.3 } }\n"
+          "sphere { 0, 1 pigment { rgb 1 } }\n");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  EXPECT_EQ(scene.objects[0].texture.normal->amount, 1.5);
+  EXPECT_TRUE(scene.objects[0].texture.normal->rendered);
+  EXPECT_FALSE(scene.objects[1].texture.normal && scene.objects[1].texture.normal->rendered);
+  ASSERT_TRUE(scene.objects[2].texture.normal);
+  EXPECT_EQ(scene.objects[2].texture.normal->pattern, Pattern::kDents);
+  EXPECT_EQ(scene.objects[2].texture.normal->amount, 0.3);
+}
+
+TEST_F(Sdl, LayeredTexturesKeepEveryLayerInOrder) {
+  Scene scene =
+      run("#declare T = texture { pigment { rgb 1 } } texture { pigment { rgbt <1, 0, 0, 0.5> } }\n"
+          "plane { y, 0 texture { T translate x } texture { pigment { rgbf <0, 0, 1, 0.9> } } }\n"
+          "sphere { 0, 1 texture { T } }\n"
+          "box { 0, 1 material { texture { T } texture { pigment { rgbt 1 } } } }\n");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  EXPECT_EQ(scene.objects[2].texture.layers.size(), 2u);
+  const Texture& plane = scene.objects[0].texture;
+  ASSERT_EQ(plane.layers.size(), 2u);
+  EXPECT_EQ(plane.pigment.colour.g, 1);
+  EXPECT_EQ(plane.layers[0].pigment.colour.transmit, 0.5);
+  EXPECT_EQ(plane.layers[1].pigment.colour.filter, 0.9);
+  EXPECT_TRUE(plane.layers[0].layers.empty());
+  EXPECT_EQ(scene.objects[1].texture.layers.size(), 1u);
+  EXPECT_TRUE(scene.unsupported.empty());
+  // layers built in a loop are bounded: an error naming the line, not a slow render
+  const std::string error = error_of(
+      "#declare T = texture { pigment { rgb 1 } }\n"
+      "#declare L = T\n"
+      "#for (i, 1, 100) #declare L = texture { L } texture { T } #end\n"
+      "plane { y, 0 texture { L } }\n");
+  EXPECT_NE(error.find("scene.pov:3:"), std::string::npos) << error;
+  EXPECT_NE(error.find("at most 64 layers"), std::string::npos) << error;
 }
 
 // An unsupported object is reported where the scene places it, not where it is declared: an

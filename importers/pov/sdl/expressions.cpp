@@ -29,13 +29,12 @@ double srgb_decode(double c) {
 
 // ---- the values only #declare and #local hold (POV-Ray 3.7 reference, "Declare") ----
 
-// texture {..} [texture {..} ...]: of layered textures the first, the base layer, is kept.
+// texture {..} [texture {..} ...]: the first, with the others layered over it.
 Texture parse_layered_texture(Parser& p) {
   Texture texture = p.parse_texture();
   while (p.peek().word("texture")) {
-    p.unsupported("layered texture (base layer used)", p.here());
     p.next();
-    p.parse_texture();
+    p.add_texture_layer(texture, p.parse_texture());
   }
   return texture;
 }
@@ -64,8 +63,8 @@ SkySphere parse_sky_sphere(Parser& p) {
 
 // Blocks declared by name but not evaluated: skipped, held as an opaque value that names them.
 constexpr std::string_view kOpaqueBlocks[] = {
-    "normal", "texture_map", "normal_map", "slope_map",        "density_map", "media",    "density",
-    "fog",    "rainbow",     "spline",     "interior_texture", "photons",     "radiosity"};
+    "texture_map", "normal_map", "slope_map", "density_map",      "media",   "density",
+    "fog",         "rainbow",    "spline",    "interior_texture", "photons", "radiosity"};
 
 bool is_opaque_block(std::string_view w) {
   for (std::string_view block : kOpaqueBlocks) {
@@ -322,6 +321,7 @@ Value Parser::parse_rvalue() {
     if (is_object_keyword(tok)) return Value::of(parse_object(tok));
     if (w == "pigment") return Value::of(parse_pigment());
     if (w == "finish") return Value::of(parse_finish());
+    if (w == "normal") return Value::of(parse_normal());
     if (w == "texture") return Value::of(parse_layered_texture(*this));
     if (w == "interior") return Value::of(parse_interior());
     if (w == "material") return Value::of(parse_material());

@@ -448,7 +448,10 @@ bool parse_appearance_mod(Parser& p, const Tok& tok, Object& o) {
   const std::string& w = tok.token.text;
   if (w == "texture") {
     Texture t = p.parse_texture();
-    if (o.texture_given && o.shape != Shape::kMesh) return true;  // layered: the first stays
+    if (o.texture_given && o.shape != Shape::kMesh) {
+      p.add_texture_layer(o.texture, std::move(t));
+      return true;
+    }
     o.texture = std::move(t);
     o.texture_given = true;
   } else if (w == "pigment") {
@@ -460,10 +463,9 @@ bool parse_appearance_mod(Parser& p, const Tok& tok, Object& o) {
     p.ensure_texture(o);
     o.texture.finish = f;
   } else if (w == "normal") {
-    p.unsupported("normal", p.location_of(tok));
-    p.skip_block();
+    Normal normal = p.parse_normal();
     p.ensure_texture(o);
-    o.texture.has_normal = true;
+    o.texture.normal = std::move(normal);
   } else if (w == "interior") {
     o.interior = p.parse_interior();
   } else if (w == "material") {
@@ -509,13 +511,15 @@ bool parse_flag(Parser& p, std::string_view w, Object& o) {
 }
 
 // A declared texture or material used as a modifier.
-bool take_declared_appearance(const Tok& tok, Object& o) {
+bool take_declared_appearance(Parser& p, const Tok& tok, Object& o) {
   if (!tok.identifier) return false;
   if (const Texture* texture = tok.value.get<Texture>()) {
     // a texture identifier after a texture is a layer; as the first one it is the texture
     if (!o.texture_given) {
       o.texture = *texture;
       o.texture_given = true;
+    } else {
+      p.add_texture_layer(o.texture, *texture);
     }
     return true;
   }
@@ -783,7 +787,6 @@ void Parser::ensure_texture(Object& o) {
   if (o.texture_given) return;
   o.texture = default_texture_;
   o.texture.where = here();
-  o.texture.has_normal = false;
   o.texture_given = true;
 }
 
@@ -812,7 +815,7 @@ void Parser::parse_object_mods(Node& node) {
     } else if (w == "photons" || w == "radiosity" || w == "interior_texture") {
       unsupported(w, location_of(tok));
       skip_block();
-    } else if (!take_declared_appearance(tok, o)) {
+    } else if (!take_declared_appearance(*this, tok, o)) {
       fail("unexpected '" + w + "' in " + (node.object ? node.object->keyword : "object"));
     }
   }

@@ -40,8 +40,8 @@ struct MaterialValue {
 
 using ColourMap = std::vector<ColourMapEntry>;
 
-using Item = std::variant<Node, Pigment, Finish, Texture, Interior, MaterialValue, CameraStatement,
-                          Matrix, ColourMap, SkySphere>;
+using Item = std::variant<Node, Pigment, Finish, Normal, Texture, Interior, MaterialValue,
+                          CameraStatement, Matrix, ColourMap, SkySphere>;
 
 struct Macro {
   std::string name;
@@ -201,7 +201,11 @@ class Parser {
   // ---- appearance (appearance.cpp) ----
   Pigment parse_pigment();  // after the `pigment` keyword
   Finish parse_finish();
+  Normal parse_normal();                           // after the `normal` keyword
+  Normal parse_normal_items(const char* closing);  // a normal's body up to `closing`
   Texture parse_texture();
+  // `layer` (and the layers it carries) over `texture`'s top layer; fails past the layer limit.
+  void add_texture_layer(Texture& texture, Texture layer);
   Interior parse_interior();
   MaterialValue parse_material();
   ColourMap parse_colour_map(bool pigment_map);      // after colour_map / pigment_map
