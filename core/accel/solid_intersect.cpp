@@ -30,8 +30,8 @@ struct RenderSolid::Node {
   double z0 = 0, z1 = 1;                   // kOutline: the slab it is swept through
   Bounds3d window;       // kPolynomial: render-space box its roots are searched in
   double magnitude = 0;  // farthest corner of a bounded primitive from the render origin
-  Blob blob;                     // kBlob, in object space
-  Sor sor;                       // kSor, in object space
+  Blob blob;             // kBlob, in object space
+  Sor sor;               // kSor, in object space
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)

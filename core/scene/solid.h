@@ -66,11 +66,11 @@ struct Solid {
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
   // object open where it cuts.
   bool bounds_only = false;
-  uint32_t material = 0;   // of this primitive's surface (unused by set operations)
-  Polynomial3 polynomial;  // kPolynomial
+  uint32_t material = 0;                   // of this primitive's surface (unused by set operations)
+  Polynomial3 polynomial;                  // kPolynomial
   std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat)
-  Blob blob;  // kBlob
-  Sor sor;    // kSor
+  Blob blob;                               // kBlob
+  Sor sor;                                 // kSor
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

@@ -166,12 +166,10 @@ struct Object {
   Vec3d a{0, 0, 0}, b{0, 0, 0};
   double r0 = 0, r1 = 0;
   bool open = false;
-  int order = 0;                           // kPolynomial
-  std::vector<double> coefficients;        // kPolynomial
-  std::shared_ptr<const Outline> outline;  // kPrism
-  bool conic = false;                      // kPrism: conic_sweep
   int order = 0;                                        // kPolynomial
   std::vector<double> coefficients;                     // kPolynomial
+  std::shared_ptr<const Outline> outline;               // kPrism
+  bool conic = false;                                   // kPrism: conic_sweep
   std::vector<BlobComponentStatement> blob_components;  // kBlob
   std::vector<std::pair<double, double>> profile;       // kSor
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index

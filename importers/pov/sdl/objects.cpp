@@ -10,17 +10,39 @@
 namespace fb::pov::sdl {
 namespace {
 
-constexpr std::string_view kSupported[] = {
-    "sphere",     "box",          "plane",        "cylinder",        "cone",
-    "torus",      "disc",         "triangle",     "smooth_triangle", "mesh",
-    "mesh2",      "polygon",      "object",       "union",           "merge",
-    "difference", "intersection", "light_source", "light_group",     "quadric",
-    "cubic",      "quartic",      "poly",         "prism",           "text",
-    "superellipsoid", "height_field", "blob", "sor"};
+constexpr std::string_view kSupported[] = {"sphere",
+                                           "box",
+                                           "plane",
+                                           "cylinder",
+                                           "cone",
+                                           "torus",
+                                           "disc",
+                                           "triangle",
+                                           "smooth_triangle",
+                                           "mesh",
+                                           "mesh2",
+                                           "polygon",
+                                           "object",
+                                           "union",
+                                           "merge",
+                                           "difference",
+                                           "intersection",
+                                           "light_source",
+                                           "light_group",
+                                           "quadric",
+                                           "cubic",
+                                           "quartic",
+                                           "poly",
+                                           "prism",
+                                           "text",
+                                           "superellipsoid",
+                                           "height_field",
+                                           "blob",
+                                           "sor"};
 // parsed and reported: their geometry needs code the renderer does not have yet
 constexpr std::string_view kUnsupported[] = {
-    "lathe", "isosurface", "polynomial", "julia_fractal", "parametric", "sphere_sweep",
-    "bicubic_patch", "ovus", "lemon", "fractal"};
+    "lathe",        "isosurface",    "polynomial", "julia_fractal", "parametric",
+    "sphere_sweep", "bicubic_patch", "ovus",       "lemon",         "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
