@@ -93,6 +93,17 @@ def raster(scene, camera, point, shot):
     return c.x * shot.width_px, (1.0 - c.y) * shot.height_px
 
 
+def new_rig_in_edit_mode(scene):
+    """An empty armature "rig" in `scene`, active and in Edit Mode for its bones; returns its
+    data and object."""
+    data = bpy.data.armatures.new("rig")
+    rig = bpy.data.objects.new("rig", data)
+    scene.collection.objects.link(rig)
+    bpy.context.view_layer.objects.active = rig
+    bpy.ops.object.mode_set(mode="EDIT")
+    return data, rig
+
+
 def build_armature(scene, camera, frame):
     markers = (marker("root", 0.25, 0.55), marker("joint", 0.5, 0.55, colour=(0.6, 0.8, 1.0)),
                marker("tip", 0.72, 0.55, colour=(0.4, 1.0, 0.4), strength=6.0))
@@ -109,11 +120,7 @@ def build_armature(scene, camera, frame):
     start = camera.matrix_world @ frame.point(0.15, 0.55, DEPTH_M)
     middle = camera.matrix_world @ frame.point(0.5, 0.55, DEPTH_M)
     end = camera.matrix_world @ frame.point(0.85, 0.55, DEPTH_M)
-    data = bpy.data.armatures.new("rig")
-    rig = bpy.data.objects.new("rig", data)
-    scene.collection.objects.link(rig)
-    bpy.context.view_layer.objects.active = rig
-    bpy.ops.object.mode_set(mode="EDIT")
+    data, rig = new_rig_in_edit_mode(scene)
     upper = data.edit_bones.new("upper")
     upper.head, upper.tail = start, middle
     lower = data.edit_bones.new("lower")
@@ -183,11 +190,7 @@ def build_swing(scene, camera, frame, steps):
     at = marker("swings", 0.3 + SWING_RADIUS_PX / STILL_SHOT.width_px, 0.5)
     obj = joined([make_shot.add_sphere(camera, frame, at, DEPTH_M)[0]], "swinger")
     obj.vertex_groups.new(name="arm").add(range(len(obj.data.vertices)), 1.0, "REPLACE")
-    data = bpy.data.armatures.new("rig")
-    rig = bpy.data.objects.new("rig", data)
-    scene.collection.objects.link(rig)
-    bpy.context.view_layer.objects.active = rig
-    bpy.ops.object.mode_set(mode="EDIT")
+    data, rig = new_rig_in_edit_mode(scene)
     arm = data.edit_bones.new("arm")
     arm.head = pivot
     arm.tail = pivot + camera.matrix_world.to_3x3() @ Vector((0.0, 0.3, 0.0))
