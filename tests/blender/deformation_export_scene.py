@@ -31,6 +31,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "importers", "blender"))
 import export_shot  # noqa: E402  (filmback's add-on, enabled for this session)
 from io_filmback import deformation  # noqa: E402
+sys.path.insert(0, HERE)
+from deform_shot import new_rig_in_edit_mode  # noqa: E402
 
 FRAME = 5
 STEPS = 2
@@ -49,11 +51,7 @@ def build(scene):
     bent = cube("bent", 0.0)
     bpy.ops.object.modifier_add(type="SUBSURF")  # a denser mesh to bend, applied here
     bpy.ops.object.modifier_apply(modifier=bent.modifiers[-1].name)
-    data = bpy.data.armatures.new("rig")
-    rig = bpy.data.objects.new("rig", data)
-    scene.collection.objects.link(rig)
-    bpy.context.view_layer.objects.active = rig
-    bpy.ops.object.mode_set(mode="EDIT")
+    data, rig = new_rig_in_edit_mode(scene)
     upper = data.edit_bones.new("upper")
     upper.head, upper.tail = (0, 0, -0.5), (0, 0, 0)
     lower = data.edit_bones.new("lower")
