@@ -26,10 +26,12 @@ packages=(g++ cmake ninja-build pkg-config
 # strace, which shows that a render makes no network system call; Slurm's controller, node daemon
 # and client for `filmback submit`'s one-node-cluster test (tests/slurm/, docs/distributed.md), and
 # OpenImageIO's Python module, with which that test compares EXR files bit for bit; a virtual X
-# display (xvfb, and xauth for xvfb-run) for the render engine's test in Blender's window.
+# display (xvfb, and xauth for xvfb-run) for the render engine's test in Blender's window, and
+# xdotool, which presses Esc there as a keyboard does (through the X server's XTEST extension).
 [ "$mode" = test ] && packages+=(blender povray povray-includes povray-examples
                                  python3 python3-numpy python3-matplotlib clang libclang-rt-14-dev strace
-                                 slurmctld slurmd slurm-client python3-openimageio xvfb xauth)
+                                 slurmctld slurmd slurm-client python3-openimageio xvfb xauth
+                                 xdotool)
 # npm only when the machine has none: a Node.js from another Debian source (nodesource's `nodejs`,
 # which ships its own npm) conflicts with Debian's `npm` package.
 [ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(npm)

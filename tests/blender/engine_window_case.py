@@ -1,22 +1,34 @@
 """Runs inside Blender with its window (not `blender -b`), under Xvfb, for engine_window_test.py:
 installs the add-on from a zip, builds render_engine_case.py's shot, presses F12 as the user does
 (`render.render` invoked, so Blender runs the render as a job and shows it in its render view),
-takes a screenshot of Blender's window once the render is complete, then presses Ctrl+F12.
+takes a screenshot of Blender's window once the render is complete, then presses Ctrl+F12, then
+F12 on a render far too long to finish and Esc a few seconds into it.
 
     blender --factory-startup --python engine_window_case.py -- ZIP FILMBACK OUT [SAMPLES]
 
+Esc is pressed through the X server (`xdotool`, the XTEST extension), so that it reaches Blender
+as a key on the keyboard does: Blender sets its break flag only for key events that come from the
+window system (`Window.event_simulate`'s do not stop a render), and the engine reads it through
+test_break().
+
 Writes OUT/window.png (the screenshot), OUT/result.exr (the Render Result as Blender shows it),
-OUT/anim_000N.exr (the frames), and OUT/passed when each image is bit-identical to a command-line
-render of the add-on's export of its frame. A render cancelled, or not finished within
-WINDOW_TIMEOUT_S, quits Blender without OUT/passed.
+OUT/anim_000N.exr (the frames), OUT/cancelled.exr (the Render Result after Esc) and OUT/passed
+when each image is bit-identical to a command-line render of the add-on's export of its frame and
+Esc returned promptly with a partial image. A render cancelled other than by the case's Esc, or
+not finished within WINDOW_TIMEOUT_S, quits Blender without OUT/passed.
 """
 
 import os
+import subprocess
 import sys
+import tempfile
 import time
 import traceback
 
+import glob
+
 import bpy
+import numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -27,6 +39,7 @@ SAMPLES = 16  # the test's; docs/blender.md's screenshot passes more
 WINDOW_TIMEOUT_S = 180.0  # per render
 WATCH_INTERVAL_S = 0.2
 SETTLE_S = 1.0  # for the render view to redraw the final image before the screenshot
+ESCAPE_AFTER_PREVIEW_S = 1.0  # for the engine (polling every 0.1 s) to show filmback's preview
 
 
 def window_override():
@@ -35,6 +48,21 @@ def window_override():
     window = bpy.context.window_manager.windows[0]
     area = max(window.screen.areas, key=lambda a: a.width * a.height)
     return bpy.context.temp_override(window=window, screen=window.screen, area=area)
+
+
+def press_escape():
+    """Esc with the pointer in the middle of Blender's window (which has the keyboard focus
+    without a window manager), as the keyboard gives it. Not waited for: Blender's main thread
+    must go on to read the key."""
+    window = bpy.context.window_manager.windows[0]
+    return subprocess.Popen(["xdotool", "mousemove", str(window.width // 2), str(window.height // 2),
+                      "key", "Escape"])
+
+
+def preview_written():
+    """Whether filmback has written a preview of the render in progress: in the engine's
+    temporary folder (under TMPDIR, which engine_window_test.py gives the case)."""
+    return bool(glob.glob(os.path.join(tempfile.gettempdir(), "filmback-render-*", "preview.exr")))
 
 
 def show_render_properties():
@@ -46,15 +74,18 @@ def show_render_properties():
 
 
 class WindowCase:
-    """F12, checked and photographed, then Ctrl+F12, each frame checked. Blender calls the render
-    handlers on the render job's thread, where registering a timer crashes it: they only set
-    `state`, which a timer on the main thread watches."""
+    """F12, checked and photographed, then Ctrl+F12, each frame checked, then F12 and Esc. Blender
+    calls the render handlers on the render job's thread, where registering a timer crashes it:
+    they only set `state`, which a timer on the main thread watches."""
 
     def __init__(self, filmback, out, samples):
         self.filmback, self.out, self.samples = filmback, out, samples
         self.state = None  # "complete" or "cancelled", set by the handlers
-        self.started = self.completed = None
-        self.check = None  # what to do once the render in progress is complete
+        self.started = self.ended = None
+        self.awaiting_preview = False  # Esc is due once filmback shows its first preview
+        self.escape_at = self.escaped = None  # when Esc is due, when it was pressed
+        self.escape_key = None  # the xdotool that pressed it
+        self.check = None  # what to do once the render in progress has ended
 
     def start(self):
         scene = shot.build_shot()
@@ -70,7 +101,7 @@ class WindowCase:
         bpy.app.timers.register(self.watch, first_interval=WATCH_INTERVAL_S)
 
     def render(self, check, animation=False):
-        self.state, self.completed, self.check = None, None, check
+        self.state, self.ended, self.check = None, None, check
         self.started = time.monotonic()
         with window_override():
             bpy.ops.render.render("INVOKE_DEFAULT", animation=animation)
@@ -83,24 +114,29 @@ class WindowCase:
 
     def watch(self):
         now = time.monotonic()
-        if self.state == "complete" and self.completed is None:
-            self.completed = now
-        if self.completed is not None and now - self.completed >= SETTLE_S:
+        if self.awaiting_preview and preview_written():
+            self.awaiting_preview, self.escape_at = False, now + ESCAPE_AFTER_PREVIEW_S
+        if self.escape_at is not None and now >= self.escape_at:
+            self.escape_key = press_escape()
+            self.escape_at, self.escaped = None, now
+        if self.state is not None and self.ended is None:
+            self.ended = now
+        if self.ended is not None and now - self.ended >= SETTLE_S:
             try:
                 if self.check():  # done
                     self.quit()
                     return None
             except Exception:
                 traceback.print_exc()
-                self.quit("the finished render did not check out")
+                self.quit("the render did not check out")
                 return None
-        elif self.state == "cancelled":
-            self.quit("the render was cancelled")
-            return None
-        elif now - self.started >= WINDOW_TIMEOUT_S:
-            self.quit(f"no complete render within {WINDOW_TIMEOUT_S} s")
+        elif self.ended is None and now - self.started >= WINDOW_TIMEOUT_S:
+            self.quit(f"no render ended within {WINDOW_TIMEOUT_S} s")
             return None
         return WATCH_INTERVAL_S
+
+    def assert_complete(self):
+        assert self.state == "complete", f"the render ended {self.state}, not complete"
 
     def command_line_render(self, frame):
         with window_override():  # the exporter is an operator: it needs the window's context
@@ -108,6 +144,7 @@ class WindowCase:
 
     def check_still(self):
         """The F12 image in the render view: photographed, then compared; Ctrl+F12 next."""
+        self.assert_complete()
         with window_override():
             bpy.ops.screen.screenshot(filepath=os.path.join(self.out, "window.png"))
         scene = bpy.context.scene
@@ -121,12 +158,35 @@ class WindowCase:
         return False
 
     def check_animation(self):
-        """Ctrl+F12: each frame's file equal to its frame's command-line render."""
+        """Ctrl+F12: each frame's file equal to its frame's command-line render; F12 and Esc
+        next, on a render that would run for hours (as render_engine_case's cancel case)."""
+        self.assert_complete()
         for frame in range(shot.FIRST_FRAME, shot.LAST_FRAME + 1):
             frame_path = os.path.join(self.out, f"anim_{frame:04d}.exr")
             assert os.path.exists(frame_path), f"frame {frame} was not written"
             shot.assert_bit_identical(frame_path, self.command_line_render(frame),
                                       (WIDTH_PX, HEIGHT_PX))
+        scene = bpy.context.scene
+        scene.frame_set(shot.FIRST_FRAME)
+        scene.filmback.samples = shot.CANCEL_SAMPLES
+        scene.cycles.use_adaptive_sampling = False
+        self.awaiting_preview = True
+        self.render(self.check_cancelled)
+        return False
+
+    def check_cancelled(self):
+        """Esc: the render ended cancelled, soon after the key, with the image so far shown."""
+        assert self.escaped is not None, f"the long render ended ({self.state}) before Esc"
+        assert self.escape_key.wait(timeout=10) == 0, "xdotool could not press Esc"
+        assert self.state == "cancelled", f"the render ended {self.state} after Esc"
+        returned_s = self.ended - self.escaped
+        assert returned_s < shot.CANCEL_RETURN_LIMIT_S, f"Esc took {returned_s:.1f} s to stop it"
+        cancelled_path = os.path.join(self.out, "cancelled.exr")
+        bpy.data.images["Render Result"].save_render(cancelled_path, scene=bpy.context.scene)
+        rgba = shot.pixels(cancelled_path)
+        assert numpy.isfinite(rgba).all() and rgba[:, :3].max() > 0, "no partial image after Esc"
+        print(f"engine_window_case: Esc stopped the render in {returned_s:.1f} s, "
+              "partial image kept")
         with open(os.path.join(self.out, "passed"), "w") as f:
             f.write("window\n")
         return True
