@@ -7,14 +7,12 @@ namespace fb {
 namespace {
 
 // What probing a primitive's set needs: the set alone, all of its boundary surface. A disc's set
-// is its half-space (core/scene/solid.h), whose whole plane a point may lie on.
+// is its half-space (core/scene/solid.h), whose whole plane a point may lie on. The primitive is
+// copied whole, so that each kind's own data (polynomial, outline, blob, sor ...) comes along.
 Solid bare_set(const Solid& primitive) {
-  Solid s;
-  s.kind = primitive.kind == SolidKind::kDisc ? SolidKind::kHalfSpace : primitive.kind;
-  s.name = primitive.name;
-  s.world_from_object = primitive.world_from_object;
-  s.radius0 = primitive.radius0, s.radius1 = primitive.radius1;
-  s.outline = primitive.outline, s.conic = primitive.conic;
+  Solid s = primitive;
+  if (s.kind == SolidKind::kDisc) s.kind = SolidKind::kHalfSpace;
+  s.open = s.inverse = s.bounds_only = false;
   return s;
 }
 

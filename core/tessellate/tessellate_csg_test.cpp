@@ -13,6 +13,7 @@
 #include <map>
 
 #include "core/accel/solid_intersect.h"
+#include "core/math/sor.h"
 #include "core/render/render_job.h"
 #include "support/plugins.h"
 
@@ -128,6 +129,11 @@ std::vector<Case> hard_cases() {
                     Transform::scale({0.25, 0.25, 2}),
                 1);
   cases.push_back({difference(torus, {drill}, "torus minus cylinder"), Closed::kYes});
+  // A primitive with data of its own (a sor's profile): probing its set must carry that data.
+  Solid vase = primitive(SolidKind::kSor, Transform::scale({0.8, 0.8, 0.8}));
+  vase.sor = sor_from_points({{0.5, -1.2}, {0.8, -0.6}, {0.4, 0.3}, {1.0, 1.1}, {0.9, 1.6}});
+  cases.push_back(
+      {difference(vase, {sphere({0.6, 0.3, 0.4}, 0.5, 1)}, "sor minus sphere"), Closed::kYes});
   // POV-Ray's advanced/lamppost.pov support_piece: a disc and a box whose faces lie in the
   // disc's cap planes, and whose side touches the disc's rim along a line; a hole through both.
   // One material for both: where faces coincide the mesh keeps both, the render the first's.
