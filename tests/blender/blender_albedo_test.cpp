@@ -108,13 +108,13 @@ struct Bin {
   int pixels = 0;
 };
 
-TEST(BlenderAlbedo, DirectionalAlbedoMatchesCycles) {
-  const auto blender = find_blender();
-  if (!blender) GTEST_SKIP() << "blender not on PATH (Debian package blender)";
+using BlenderAlbedo = WithBlender<>;
+
+TEST_F(BlenderAlbedo, DirectionalAlbedoMatchesCycles) {
   const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "albedo";
   fs::remove_all(work);
   fs::create_directories(work);
-  run_logged(quoted(*blender) + " -b --factory-startup --python-exit-code 1 --python " +
+  run_logged(quoted(blender) + " -b --factory-startup --python-exit-code 1 --python " +
                  quoted(FILMBACK_ALBEDO_SHOT_PY) + " -- " + quoted(work),
              work / "blender.log");
   const Image cycles = read_image(work / "cycles.exr");

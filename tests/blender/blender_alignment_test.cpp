@@ -63,16 +63,12 @@ double deg(double rad) {
   return rad * 180 / std::numbers::pi;
 }
 
-class BlenderShot : public testing::TestWithParam<const char*> {};
+class BlenderShot : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderShot, MarkersMatchCycles) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
   const std::string name = GetParam();
   const ShotRenders r =
-      render_shot(*blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name);
+      render_shot(blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name);
 
   const auto width = uint32_t(r.shot.number("width_px")),
              height = uint32_t(r.shot.number("height_px"));

@@ -41,14 +41,10 @@ ShotRenders render_deform_shot(const std::filesystem::path& blender, const std::
                      FILMBACK_DEFORM_SHOT_PY);
 }
 
-class BlenderDeformStill : public testing::TestWithParam<const char*> {};
+class BlenderDeformStill : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderDeformStill, MarkersOnTheDeformedMeshMatchCycles) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
-  const ShotRenders r = render_deform_shot(*blender, GetParam());
+  const ShotRenders r = render_deform_shot(blender, GetParam());
   const std::vector<Blob> cycles_blobs = find_blobs(r.cycles, kDeformBlobThreshold);
   const std::vector<Blob> filmback_blobs = find_blobs(r.filmback, kDeformBlobThreshold);
   ASSERT_EQ(cycles_blobs.size(), r.markers.size()) << "blobs in the Cycles render";
@@ -81,14 +77,10 @@ std::string deform_shot_name(const testing::TestParamInfo<const char*>& info) {
 INSTANTIATE_TEST_SUITE_P(Shots, BlenderDeformStill, testing::Values("armature", "shapekey"),
                          deform_shot_name);
 
-class BlenderDeformBlur : public testing::TestWithParam<const char*> {};
+class BlenderDeformBlur : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderDeformBlur, StreaksOfEvaluatedShapesMatchCycles) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
-  const ShotRenders r = render_deform_shot(*blender, GetParam());
+  const ShotRenders r = render_deform_shot(blender, GetParam());
   const std::string steps = "1 moving instance (up to " + r.shot.text("positions") + " motion";
   EXPECT_NE(r.filmback_log.find(steps), std::string::npos) << r.filmback_log;
   // `filmback info` says which path the shot took: Blender's shapes, not the glTF morph targets.
@@ -149,14 +141,10 @@ INSTANTIATE_TEST_SUITE_P(Steps, BlenderDeformBlur, testing::Values("blur1", "blu
 // 1.75 px apart. Cycles' streak stops at 99.22 % of the shutter; the missing tail sits at the
 // close position, so the whole shutter's centroid is c C_cycles + (1 - c) P_close (within
 // 0.002 px for this arc).
-class BlenderDeformSwing : public testing::TestWithParam<const char*> {};
+class BlenderDeformSwing : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderDeformSwing, ArcsCutIntoCyclesChordsMatchCycles) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
-  const ShotRenders r = render_deform_shot(*blender, GetParam());
+  const ShotRenders r = render_deform_shot(blender, GetParam());
   const std::string steps = "1 moving instance (up to " + r.shot.text("positions") + " motion";
   EXPECT_NE(r.filmback_log.find(steps), std::string::npos) << r.filmback_log;
   const std::vector<Blob> cycles_blobs = find_blobs(r.cycles, kDeformBlobThreshold);

@@ -35,16 +35,12 @@ constexpr double kBlobThreshold = 1e-3;
 // One per entry of DISTORTIONS in distortion_shot.py.
 const char* const kModels[] = {"polynomial", "division", "nuke", "brown"};
 
-class BlenderDistortion : public testing::TestWithParam<const char*> {};
+class BlenderDistortion : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderDistortion, MarkersLandWhereTheMovieDistortionNodePutsThem) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
   const std::string name = GetParam();
   const ShotRenders r =
-      render_shot(*blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name,
+      render_shot(blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name,
                   FILMBACK_DISTORTION_SHOT_PY);
   ASSERT_EQ(r.filmback.width, r.cycles.width);
   ASSERT_EQ(r.filmback.height, r.cycles.height);

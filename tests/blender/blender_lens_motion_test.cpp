@@ -36,17 +36,12 @@ double rms_radius_px(const Blob& blob) {
   return std::sqrt(s.xx + s.yy);
 }
 
-ShotRenders render(const std::string& shot) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender) return {};
-  return render_shot(*blender, shot,
+ShotRenders render(const std::filesystem::path& blender, const std::string& shot) {
+  return render_shot(blender, shot,
                      std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / ("lens_motion_" + shot));
 }
 
-#define SKIP_WITHOUT_BLENDER()                                                                \
-  if (!find_blender())                                                                        \
-  GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package " \
-                  "`blender` (apt-get install blender) to run the tests against Blender."
+using BlenderLensMotion = WithBlender<>;
 
 // Where a top-first scan images a marker at (x0, y0) at the frame's time moving by (vx, vy) over
 // the shutter: its rows' shutter fraction s = 1/2 + (1 - d) ((y + 1/2) / H - 1/2) (the pixel row
@@ -63,9 +58,8 @@ std::pair<double, double> scanned_at(double x0, double y0, double vx, double vy,
   return {x0 + vx * (s - 0.5), y};
 }
 
-TEST(BlenderLensMotion, RollingShutterMatchesCycles) {
-  SKIP_WITHOUT_BLENDER();
-  const ShotRenders r = render("rolling");
+TEST_F(BlenderLensMotion, RollingShutterMatchesCycles) {
+  const ShotRenders r = render(blender, "rolling");
   ASSERT_NE(r.filmback_log.find("rolling top to bottom, each row 0.1 of it"), std::string::npos)
       << r.filmback_log;
   const std::vector<Blob> cycles = find_blobs(r.cycles, kBlobThreshold);
@@ -98,9 +92,8 @@ TEST(BlenderLensMotion, RollingShutterMatchesCycles) {
   }
 }
 
-TEST(BlenderLensMotion, ZoomRackFocusAndShiftMatchCycles) {
-  SKIP_WITHOUT_BLENDER();
-  const ShotRenders r = render("lens");
+TEST_F(BlenderLensMotion, ZoomRackFocusAndShiftMatchCycles) {
+  const ShotRenders r = render(blender, "lens");
   ASSERT_NE(r.filmback_log.find("the zoom"), std::string::npos) << r.filmback_log;
   const std::vector<Blob> cycles = find_blobs(r.cycles, kBlobThreshold);
   const std::vector<Blob> filmback = find_blobs(r.filmback, kBlobThreshold);

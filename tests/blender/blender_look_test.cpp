@@ -84,15 +84,11 @@ std::pair<Image, Image> blender_images(const fs::path& blender, const Case& c) {
   return {read_image(work / "blender.png"), read_image(work / "linear.exr")};
 }
 
-class BlenderLook : public testing::TestWithParam<Case> {};
+class BlenderLook : public WithBlender<testing::TestWithParam<Case>> {};
 
 TEST_P(BlenderLook, FilmbackTransformGivesBlendersPng) {
-  const std::optional<fs::path> blender = find_on_path("blender");
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
   const Case& c = GetParam();
-  const auto [png, linear] = blender_images(*blender, c);
+  const auto [png, linear] = blender_images(blender, c);
   ASSERT_EQ(png.width, linear.width);
   ASSERT_EQ(png.height, linear.height);
   ViewSettings settings;
@@ -136,14 +132,12 @@ constexpr double kAgreement = 0.02;
 constexpr double kDarkFraction = 0.02;
 constexpr double kMinAgreeingFraction = 0.1;  // of the pixels: else the comparison says little
 
-TEST(BlenderLookShot, FilmbacksPngIsBlendersWhereTheLinearImagesAgree) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
+using BlenderLookShot = WithBlender<>;
+
+TEST_F(BlenderLookShot, FilmbacksPngIsBlendersWhereTheLinearImagesAgree) {
   const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "look_shot";
   const ShotRenders r =
-      render_shot(*blender, "sun_world", work, FILMBACK_LOOK_SHOT_PY, {"filmback.png"});
+      render_shot(blender, "sun_world", work, FILMBACK_LOOK_SHOT_PY, {"filmback.png"});
   EXPECT_EQ(r.filmback_log.find("warning"), std::string::npos) << r.filmback_log;
   const Image cycles_png = read_image(work / "cycles.png");
   const Image filmback_png = read_image(work / "filmback.png");

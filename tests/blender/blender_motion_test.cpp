@@ -42,13 +42,11 @@ Streak measure(const Blob& blob, double ux, double uy) {
   return {blob.x_px, blob.y_px, streak_length_px(blob, ux, uy)};
 }
 
-TEST(BlenderMotion, StreaksMatchTheAnalyticTravelAndCycles) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
+using BlenderMotion = WithBlender<>;
+
+TEST_F(BlenderMotion, StreaksMatchTheAnalyticTravelAndCycles) {
   const ShotRenders r =
-      render_shot(*blender, "motion", std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / "motion");
+      render_shot(blender, "motion", std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / "motion");
   ASSERT_NE(r.filmback_log.find("time samples for 2 moving instances"), std::string::npos)
       << r.filmback_log;
   const std::vector<Blob> cycles_blobs = find_blobs(r.cycles, kBlobThreshold);

@@ -56,16 +56,12 @@ bool on_edge(const Image& image, uint32_t x, uint32_t y) {
   return any_lit && any_dark;
 }
 
-class BlenderPanorama : public testing::TestWithParam<const char*> {};
+class BlenderPanorama : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderPanorama, MarkersAndCircleMatchCycles) {
-  const std::optional<std::filesystem::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
   const std::string name = GetParam();
   const ShotRenders r =
-      render_shot(*blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name,
+      render_shot(blender, name, std::filesystem::path(FILMBACK_BLENDER_WORK_DIR) / name,
                   FILMBACK_PANO_SHOT_PY);
   const auto width = uint32_t(r.shot.number("width_px")),
              height = uint32_t(r.shot.number("height_px"));

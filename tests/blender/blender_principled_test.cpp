@@ -26,16 +26,12 @@ namespace fs = std::filesystem;
 constexpr double kMeanAboveNoise = 0.02;
 constexpr double kBlockAboveNoise = 0.05;
 
-class BlenderPrincipled : public testing::TestWithParam<const char*> {};
+class BlenderPrincipled : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderPrincipled, MatchesCycles) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
   const std::string shot = GetParam();
   const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / ("principled_" + shot);
-  const ShotRenders r = render_shot(*blender, shot, work, FILMBACK_PRINCIPLED_SHOT_PY);
+  const ShotRenders r = render_shot(blender, shot, work, FILMBACK_PRINCIPLED_SHOT_PY);
   const ShotComparison cmp = compare_shot(r.cycles, r.filmback, render_second_seed(r, work));
   std::printf("%s: %s; Blender %.1f s (Cycles %.1f s), filmback %.1f s\n", shot.c_str(),
               cmp.summary().c_str(), r.blender_s, r.cycles_s, r.filmback_s);

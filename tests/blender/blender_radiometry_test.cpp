@@ -69,16 +69,12 @@ Errors compare(const Image& filmback, const Image& cycles) {
   return e;
 }
 
-class BlenderRadiometry : public testing::TestWithParam<const char*> {};
+class BlenderRadiometry : public WithBlender<testing::TestWithParam<const char*>> {};
 
 TEST_P(BlenderRadiometry, MatchesCycles) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
   const std::string shot = GetParam();
   const ShotRenders r =
-      render_shot(*blender, shot, fs::path(FILMBACK_BLENDER_WORK_DIR) / ("radiometry_" + shot),
+      render_shot(blender, shot, fs::path(FILMBACK_BLENDER_WORK_DIR) / ("radiometry_" + shot),
                   FILMBACK_RADIOMETRY_SHOT_PY);
   ASSERT_EQ(r.filmback.width, r.cycles.width);
   ASSERT_EQ(r.filmback.height, r.cycles.height);

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "core/image/image.h"
 
 namespace fb::test {
@@ -39,6 +41,21 @@ std::vector<Record> read_manifest(const std::filesystem::path& file);
 
 // The `blender` executable on PATH, if any.
 std::optional<std::filesystem::path> find_blender();
+
+// A test against Blender (Base: testing::Test or testing::TestWithParam<T>): skipped, naming the
+// Debian package to install, where `blender` is not on PATH; else `blender` is its executable.
+template <class Base = testing::Test>
+class WithBlender : public Base {
+ protected:
+  void SetUp() override {
+    const std::optional<std::filesystem::path> found = find_blender();
+    if (!found)
+      GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
+                      "`blender` (apt-get install blender) to run the tests against Blender.";
+    blender = *found;
+  }
+  std::filesystem::path blender;
+};
 
 // Renders `shot` of the bpy script `script` (default: make_shot.py) into `work_dir` (emptied
 // first) with both renderers. The script runs as `blender -b --factory-startup --python SCRIPT

@@ -176,12 +176,10 @@ double worst_normal_degrees(const Case& c, const TriangleMesh& ours) {
   return worst;
 }
 
-TEST(BlenderSubdiv, RefinementMatchesBlendersEvaluatedMesh) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
-  const std::vector<Case> cases = blender_cases(*blender, "mesh", "meshes.txt");
+using BlenderSubdiv = WithBlender<>;
+
+TEST_F(BlenderSubdiv, RefinementMatchesBlendersEvaluatedMesh) {
+  const std::vector<Case> cases = blender_cases(blender, "mesh", "meshes.txt");
   ASSERT_EQ(cases.size(), 10u);
   std::printf("%-22s %8s %8s %12s %12s %12s\n", "case", "blender", "filmback", "max |d| (m)",
               "10c instead", "normal (deg)");
@@ -275,12 +273,8 @@ size_t split_vertices(const std::vector<std::pair<Vec3f, Vec2f>>& corners) {
   return distinct.size();
 }
 
-TEST(BlenderSubdiv, UvsMatchBlendersEvaluatedCorners) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
-  const std::vector<Case> cases = blender_cases(*blender, "uv", "uvs.txt");
+TEST_F(BlenderSubdiv, UvsMatchBlendersEvaluatedCorners) {
+  const std::vector<Case> cases = blender_cases(blender, "uv", "uvs.txt");
   ASSERT_EQ(cases.size(), 13u);
   std::printf("%-34s %8s %8s %8s %12s %12s %14s\n", "case", "corners", "blender", "filmback",
               "max |d uv|", "max |d| (m)", "other rule uv");
@@ -336,13 +330,9 @@ const Blob* nearest_blob(const std::vector<Blob>& blobs, double x_px, double y_p
   return nullptr;
 }
 
-TEST(BlenderSubdiv, SubdividedObjectMatchesCycles) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
+TEST_F(BlenderSubdiv, SubdividedObjectMatchesCycles) {
   const ShotRenders r = render_shot(
-      *blender, "subdiv", fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv", FILMBACK_MAKE_SHOT_PY);
+      blender, "subdiv", fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv", FILMBACK_MAKE_SHOT_PY);
   ASSERT_NE(r.filmback_log.find("'SubdividedCube' level 2: 192 triangles"), std::string::npos)
       << r.filmback_log;
   const std::vector<Blob> cycles = find_blobs(r.cycles, 0.0);
@@ -408,13 +398,9 @@ size_t misplaced_when_edited(const fs::path& work, const ShotRenders& r, const s
   return compare_checkers(r.cycles, read_image(image)).misplaced;
 }
 
-TEST(BlenderSubdiv, TexturedSubdividedObjectsMatchCycles) {
-  const std::optional<fs::path> blender = find_blender();
-  if (!blender)
-    GTEST_SKIP() << "Blender is not installed: no `blender` on PATH. Install Debian's package "
-                    "`blender` (apt-get install blender) to run the tests against Blender.";
+TEST_F(BlenderSubdiv, TexturedSubdividedObjectsMatchCycles) {
   const fs::path work = fs::path(FILMBACK_BLENDER_WORK_DIR) / "subdiv_textured";
-  const ShotRenders r = render_shot(*blender, "textured", work, FILMBACK_MAKE_SHOT_PY);
+  const ShotRenders r = render_shot(blender, "textured", work, FILMBACK_MAKE_SHOT_PY);
   ASSERT_EQ(r.cycles.width, r.filmback.width);
   ASSERT_EQ(r.cycles.height, r.filmback.height);
   ASSERT_NE(r.filmback_log.find("'Cube' level 2: 192 triangles"), std::string::npos)
