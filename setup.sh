@@ -18,7 +18,7 @@ esac
 packages=(g++ cmake ninja-build pkg-config
           libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev
           libtinygltf-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libosd-dev
-          libopencolorio-dev libfreetype-dev libpng-dev)
+          libopencolorio-dev libfreetype-dev libpng-dev libmurmurhash-dev)
 # Peers the tests render with (Blender's Cycles and glTF exporter; POV-Ray with its include files
 # and sample scenes), the test drivers' Python, matplotlib for `filmback bench`'s plots, and clang:
 # a second compiler for an out-of-tree plugin against the installed SDK, and with its sanitizer and

@@ -23,6 +23,7 @@ struct RenderGeometry::Mesh {
   VertexTextureData texturing;  // tangents in render space at the first motion step
   std::vector<uint32_t> indices;
   uint32_t material = 0;
+  uint32_t object = 0;                    // RenderGeometry::SurfaceIdentity's
   const SurfaceShader* shader = nullptr;  // set when the material has alpha: for the filter
   uint32_t first_emitter = FB_NONE;
   uint32_t step_count = 1;  // evenly spaced over the open shutter when more than one
@@ -33,6 +34,7 @@ struct RenderGeometry::Mesh {
 // flattened copy would be transformed, and the normals' transforms with them.
 struct RenderGeometry::Instance {
   uint32_t prototype = 0;
+  uint32_t object = 0;                        // RenderGeometry::SurfaceIdentity's
   std::vector<Transform> render_from_object;  // evenly spaced over the open shutter when several
   std::vector<Transform> normal_from_object;
   // A mirroring transform: corners 1 and 2 swap (and Embree's u and v with them), as a flattened
@@ -123,6 +125,11 @@ Vec3d placed(const Transform& render_from_object, Vec3f p, const MeshInstance& i
     throw InputError("instance '" + instance.node + "' of mesh '" + source.name +
                      "': a vertex lies beyond 1e18 m of the camera (scales multiply too far)");
   return q;
+}
+
+// The instance's index in the scene, as SurfaceIdentity names it.
+uint32_t scene_object_index(const Scene& scene, const MeshInstance& instance) {
+  return uint32_t(&instance - scene.instances.data());
 }
 
 bool traceable(const fb_ray& ray) {
@@ -304,9 +311,11 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
       continue;
     }
     Mesh mesh = build_mesh(instance, steps, scene.meshes[instance.mesh]);
+    mesh.object = scene_object_index(scene, instance);
     if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
     attach_mesh(std::move(mesh));
   }
+  object_count_ = uint32_t(scene.instances.size());
   attach_solids(scene, render_from_world);
   attach_instances();
   rtcCommitScene(embree_->scene);
@@ -351,6 +360,7 @@ void RenderGeometry::add_deformed_mesh(const Scene& scene, const MeshInstance& i
   most_motion_steps_ = std::max(most_motion_steps_, uint32_t(steps.size()));
   Mesh mesh =
       build_mesh(instance, steps, evaluated ? scene.meshes[deformation.mesh] : first_pose, shapes);
+  mesh.object = scene_object_index(scene, instance);
   if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
   attach_mesh(std::move(mesh));
 }
@@ -455,6 +465,7 @@ void RenderGeometry::add_instance(const Scene& scene, const MeshInstance& placem
   const TriangleMesh& source = scene.meshes[placement.mesh];
   Instance& instance = instances_.emplace_back();
   instance.prototype = prototype_of(scene, placement.mesh);
+  instance.object = scene_object_index(scene, placement);
   instance.mirrored = render_from_object_steps.front().determinant3x3() < 0;
   for (const Transform& render_from_object : render_from_object_steps) {
     for (const Vec3d& c : corners)
@@ -549,6 +560,28 @@ bool RenderGeometry::intersect(const fb_ray& ray, fb_hit& hit, SurfaceArena* are
   RTCRayHit rh = to_embree_hit(ray, time);
   rtcIntersect1(embree_->scene, &context, &rh);
   return fill_embree_hit(rh, {ray, arena, false, footprint}, hit);
+}
+
+std::optional<RenderGeometry::SurfaceIdentity> RenderGeometry::identify(const fb_ray& ray) const {
+  if (!traceable(ray)) return std::nullopt;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = to_embree_hit(ray, embree_time(ray.time_s));
+  rtcIntersect1(embree_->scene, &context, &rh);
+  const RTCHit& h = rh.hit;
+  if (h.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    const Instance& instance = instances_[h.instID[0] - meshes_.size() - solids_.size()];
+    return SurfaceIdentity{instance.object, prototypes_[instance.prototype].material};
+  }
+  if (h.geomID < meshes_.size())
+    return SurfaceIdentity{meshes_[h.geomID].object, meshes_[h.geomID].material};
+  // A solid's material is its primitive's: which one, only its exact intersection says.
+  const unsigned solid = h.geomID - unsigned(meshes_.size());
+  const auto found = first_covered_hit(embree_solids_[solid], Vec3d(Vec3f(ray.origin)),
+                                       Vec3d(Vec3f(ray.direction)), ray.t_min);
+  if (!found) return std::nullopt;  // cannot happen: Embree's hit came from the same computation
+  return SurfaceIdentity{object_count_ + solid, found->material};
 }
 
 bool RenderGeometry::fill_embree_hit(const RTCRayHit& found, const HitRequest& request,

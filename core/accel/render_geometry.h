@@ -12,6 +12,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <filmback/plugin_abi.h>
@@ -70,6 +71,16 @@ class RenderGeometry {
                           SurfaceArena* arena = nullptr,
                           const FootprintSource& footprints = {}) const;
   bool occluded(const fb_ray& ray) const;
+
+  // What a ray meets first, by what names it (Cryptomatte, core/film/cryptomatte.h): the scene
+  // object, an index into Scene::instances or, past them, into Scene::solids; and its material.
+  // None for a miss. Embree's intersection only, no hit record: a render that asks for Cryptomatte
+  // traces each camera ray once more, and one that does not pays nothing.
+  struct SurfaceIdentity {
+    uint32_t object;
+    uint32_t material;
+  };
+  std::optional<SurfaceIdentity> identify(const fb_ray& ray) const;
 
   const std::vector<EmissiveTriangle>& emitters() const { return emitters_; }
   // Radiance an emitter sends from barycentrics (u, v) (Embree's: p0 + u (p1 - p0) + v (p2 - p0)),
@@ -157,6 +168,7 @@ class RenderGeometry {
   Vec3f centre_;
   float radius_ = 0.f;
   size_t triangle_count_ = 0;
+  uint32_t object_count_ = 0;  // the scene's instances: solids' SurfaceIdentity::object follow
   size_t moving_instances_ = 0;
   uint32_t most_motion_steps_ = 1;
   float open_s_ = 0.f, inverse_duration_ = 0.f;  // the shutter relative to the frame's time

@@ -59,7 +59,8 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
   render_cmd->add_option("--passes", render.passes,
                          "Blender render passes written beside the beauty into the EXR as "
                          "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, "
-                         "Emit, Denoising Albedo, Denoising Normal (default: the beauty alone)");
+                         "Emit, Denoising Albedo, Denoising Normal, CryptoObject, CryptoMaterial "
+                         "(default: the beauty alone)");
   render_cmd
       ->add_option("--adaptive-threshold", render.options.adaptive_threshold,
                    "adaptive sampling's noise threshold, as Cycles' (0: off; default: the "

@@ -7,11 +7,13 @@
 #include <sstream>
 
 #include <filmback/camera_projection.h>
+#include <filmback/render_passes.h>
 
 #include "core/accel/render_geometry.h"
 #include "core/film/splat_tiles.h"
 #include "core/plugin/instances.h"
 #include "core/render/blender_layers.h"
+#include "core/render/cryptomatte_layers.h"
 #include "core/render/light_sampler.h"
 #include "core/render/memory_estimate.h"
 #include "core/render/motion.h"
@@ -412,17 +414,27 @@ Image RenderJob::image_so_far(const Film& film, const SamplingState& state) cons
 
 RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderControl& control,
                             const std::optional<PixelRect>& crop) const {
-  const RenderInputs inputs = this->inputs(crop);
+  RenderInputs inputs = this->inputs(crop);
   std::optional<Progress> progress;
   if (options_.show_progress)
     progress.emplace(sample_count(inputs, plan_.width_px, plan_.height_px), std::cerr,
                      stderr_is_terminal(), options_.progress_every);
   RenderResult result;
+  const Scene& geometry_scene = plugins_->refined ? *plugins_->refined : scene_;
+  std::optional<CryptomatteFilm> cryptomatte;
+  if (auto layers = cryptomatte_layers(geometry_scene, options_.passes); !layers.empty()) {
+    cryptomatte.emplace(film.width(), film.height(), std::move(layers));
+    inputs.cryptomatte = &*cryptomatte;
+  }
   result.stats = render_image(inputs, film, state, control, progress ? &*progress : nullptr);
   progress.reset();
   if (!crop && !result.stats.interrupted) state.splat_tiles.clear();
   result.image = resolve(film);
   Image& image = result.image;
+  if (cryptomatte) {
+    cryptomatte->append_layers(image, kViewLayer);
+    result.cryptomatte_metadata = cryptomatte->metadata(kViewLayer);
+  }
   const uint32_t* counts = film.sample_counts();
   // Over the pixels rendered: a part's crop, or the whole frame.
   const PixelRect rendered = crop.value_or(whole_frame(film.width(), film.height()));
@@ -489,6 +501,8 @@ ImageMetadata RenderJob::metadata(const RenderResult& result) const {
   // Blender's reader takes a file with it for one with layers and passes.
   if (!options_.passes.empty())
     m.strings.push_back({"BlenderMultiChannel", "Blender V2.55.1 and newer"});
+  m.strings.insert(m.strings.end(), result.cryptomatte_metadata.begin(),
+                   result.cryptomatte_metadata.end());
   return m;
 }
 

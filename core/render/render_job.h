@@ -38,6 +38,8 @@ struct RenderResult {
   Image image;  // an interrupted render adds a channel "samples": each pixel's sample count
   RenderStats stats;
   uint32_t fewest_samples = 0, most_samples = 0;  // over the pixels
+  // cryptomatte/<key>/... (CryptomatteFilm::metadata), when --passes asks for Cryptomatte.
+  std::vector<std::pair<std::string, std::string>> cryptomatte_metadata;
 };
 
 // Cycles' Film > Exposure: a gain on the rendered radiance, colour channels only. What a render

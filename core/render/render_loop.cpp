@@ -50,6 +50,7 @@ struct TileWork {
   std::vector<fb_camera_ray> neighbour_rays;
   std::vector<fb_ray> rays;
   std::vector<float> values;
+  std::vector<uint32_t> cryptomatte_names;  // one sample's, per Cryptomatte layer
   fb_trace_context context;
 
   // What plugins write starts zeroed in every tile, as in a fresh buffer, so that a plugin that
@@ -214,6 +215,7 @@ class TileRenderer {
       }
       context.surfaces.reset();  // the previous call's hits are done with
       in_.integrator.radiance(in_.scene, &context, w.rays, w.values.data());
+      if (in_.cryptomatte) add_cryptomatte_samples(w, n);
       for (size_t i = 0; i < n; ++i) {
         float* v = &w.values[i * channels_];
         const float camera_weight = w.camera_rays[i].weight;
@@ -244,6 +246,22 @@ class TileRenderer {
   Vec2f film_position(const TileWork& w, size_t i) const {
     return {float(w.px[i]) - margin_x_ + 0.5f + w.filter_samples[i].x,
             float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y};
+  }
+
+  // Each sample's object and material, found by intersecting its camera ray again, into the
+  // Cryptomatte film with the sample's filter weight, as the film takes the sample.
+  void add_cryptomatte_samples(TileWork& w, size_t n) const {
+    const std::vector<CryptomatteLayer>& layers = in_.cryptomatte->layers();
+    w.cryptomatte_names.resize(layers.size());
+    for (size_t i = 0; i < n; ++i) {
+      const auto met = in_.geometry.identify(w.rays[i]);
+      for (size_t k = 0; k < layers.size(); ++k)
+        w.cryptomatte_names[k] = !met                                       ? kCryptomatteNothing
+                                 : layers[k].key == CryptomatteKey::kObject ? met->object
+                                                                            : met->material;
+      in_.cryptomatte->add(w.px[i], w.py[i], w.cryptomatte_names.data(),
+                           w.filter_samples[i].weight);
+    }
   }
 
   // Camera ray `c` in render space, leaving at `time_s`.

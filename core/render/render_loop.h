@@ -14,6 +14,7 @@
 
 #include "core/accel/render_geometry.h"
 #include "core/film/adaptive_sampling.h"
+#include "core/film/cryptomatte.h"
 #include "core/film/film.h"
 #include "core/film/pixel_rect.h"
 #include "core/film/sampling_state.h"
@@ -64,6 +65,10 @@ struct RenderInputs {
   // domain whose first film pixel (clamped to the film) lies in the crop, so that the parts of a
   // frame share out its tiles. None: the whole frame.
   std::optional<PixelRect> crop = std::nullopt;
+  // Cryptomatte (core/film/cryptomatte.h): each sample's camera ray is intersected once more for
+  // the object and material it meets, which go here with the sample's filter weight. Importance
+  // reconstruction only. None: nothing more is traced.
+  CryptomatteFilm* cryptomatte = nullptr;
 };
 
 struct RenderStats {

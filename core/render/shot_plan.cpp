@@ -5,6 +5,7 @@
 
 #include <filmback/camera_projection.h>
 
+#include "core/film/cryptomatte.h"
 #include "core/plugin/params.h"
 #include "core/scene/default_camera.h"
 #include "core/util/error.h"
@@ -172,7 +173,8 @@ PluginChoice choose_camera_model(const std::optional<std::string>& typed, const 
   return {"perspective", {}, camera.lens_distortion, camera.origin(CameraValue::kFstop)};
 }
 
-// --passes reaches the integrator as its parameter `passes` (docs/plugins.md, "Render passes").
+// --passes reaches the integrator as its parameter `passes` (docs/plugins.md, "Render passes"),
+// but for the Cryptomatte passes, which the host writes (core/film/cryptomatte.h).
 PluginChoice choose_integrator(const std::optional<std::string>& typed,
                                const std::vector<std::string>& passes) {
   PluginChoice choice =
@@ -182,8 +184,8 @@ PluginChoice choose_integrator(const std::optional<std::string>& typed,
   if (!passes.empty()) {
     std::string list;
     for (const std::string& pass : passes)
-      list += (list.empty() ? "" : ",") + pass;
-    choice.typed.emplace_back("passes", list);
+      if (!find_cryptomatte_pass(pass)) list += (list.empty() ? "" : ",") + pass;
+    if (!list.empty()) choice.typed.emplace_back("passes", list);
   }
   return choice;
 }

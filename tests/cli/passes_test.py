@@ -49,6 +49,27 @@ class PassesTest(case_main.FolderCase):
         self.assertTrue(identical, report)
         self.assertNotIn("ViewLayer", exr_header(self.dir / "plain.exr"))
 
+    def test_cryptomatte_layers_and_manifests_as_blender_writes_them(self):
+        crypto = self.run_cli("render", SCENE, "-o", "crypto.exr", *QUICK, "--passes",
+                              "CryptoObject,CryptoMaterial")
+        self.assertEqual(crypto.returncode, 0, crypto.stderr)
+        header = exr_header(self.dir / "crypto.exr")
+        channels = re.search(r"channel list: (.*)", header).group(1).split(", ")
+        expected = ["ViewLayer.Combined." + c for c in "RGBA"] + [
+            f"ViewLayer.{layer}0{rank}.{c}" for layer in ("CryptoObject", "CryptoMaterial")
+            for rank in range(3) for c in "rgba"]
+        self.assertEqual(sorted(channels), sorted(expected))
+        # Blender 3.4's keys: the first 7 hex digits of MurmurHash3 of the layer's full name.
+        for key, layer in [("542cafa", "ViewLayer.CryptoObject"),
+                           ("c7dbf5e", "ViewLayer.CryptoMaterial")]:
+            self.assertIn(f'cryptomatte/{key}/name: "{layer}"', header)
+            self.assertIn(f'cryptomatte/{key}/hash: "MurmurHash3_32"', header)
+            self.assertIn(f'cryptomatte/{key}/conversion: "uint32_to_float32"', header)
+            # iinfo writes the JSON's quotes as \".
+            self.assertRegex(header,
+                             rf'cryptomatte/{key}/manifest: "{{\\"\w+\\":\\"[0-9a-f]{{8}}\\"')
+        self.assertIn('\\"Sphere\\":\\"', header)  # the default scene's sphere node
+
     def test_unknown_or_unwritten_pass_refused(self):
         for passes, named in [("Depth,Shadow", "'Shadow'"), ("depth", "'depth'"),
                               ("Normal,GlossCol", "'GlossCol'"), ("Vector", "'Vector'")]:
