@@ -165,5 +165,25 @@ TEST(CryptomatteRender, LeavesTheBeautyAndTheOtherPassesAsTheyWere) {
       }
 }
 
+TEST(CryptomatteRender, ChannelsAndKeysNameTheViewLayer) {
+  RenderOptions options = crypto_options({"Depth", "CryptoObject"});
+  options.view_layer = "Shot Layer";
+  const Scene scene = crypto_scene();
+  const RenderResult result = RenderJob(scene, options, test::loader()).run();
+  for (const char* channel :
+       {"Shot Layer.Combined.R", "Shot Layer.Combined.A", "Shot Layer.Depth.Z",
+        "Shot Layer.CryptoObject00.r", "Shot Layer.CryptoObject02.a"})
+    EXPECT_NE(std::find(result.image.channels.begin(), result.image.channels.end(), channel),
+              result.image.channels.end())
+        << channel;
+  for (const std::string& channel : result.image.channels)
+    EXPECT_TRUE(channel.starts_with("Shot Layer.")) << channel;
+  const std::string key =
+      "cryptomatte/" + cryptomatte_hex(cryptomatte_hash("Shot Layer.CryptoObject")).substr(0, 7);
+  const std::map<std::string, std::string> metadata(result.cryptomatte_metadata.begin(),
+                                                    result.cryptomatte_metadata.end());
+  EXPECT_EQ(metadata.at(key + "/name"), "Shot Layer.CryptoObject");
+}
+
 }  // namespace
 }  // namespace fb
