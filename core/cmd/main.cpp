@@ -61,6 +61,9 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
                          "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, "
                          "Emit, Denoising Albedo, Denoising Normal, CryptoObject, CryptoMaterial "
                          "(default: the beauty alone)");
+  render_cmd->add_option("--view-layer", render.options.view_layer,
+                         "with --passes: the view layer the passes' channels are named after, "
+                         "<NAME>.<Pass>.<Channel> (Blender's view layer; default ViewLayer)");
   render_cmd
       ->add_option("--adaptive-threshold", render.options.adaptive_threshold,
                    "adaptive sampling's noise threshold, as Cycles' (0: off; default: the "

@@ -46,7 +46,15 @@ std::vector<std::string> parse_passes_option(const std::string& list) {
 }
 
 void check_passes_combinations(const RenderCommand& c) {
-  if (c.options.passes.empty()) return;
+  if (c.options.view_layer.empty())
+    throw UsageError("--view-layer: an empty name; expected Blender's view layer name");
+  if (c.options.passes.empty()) {
+    if (c.options.view_layer != kViewLayer)
+      throw UsageError(
+          "--view-layer without --passes: it names the passes' layer; expected "
+          "--passes too");
+    return;
+  }
   if (c.part.any())
     throw UsageError(
         "--passes with --tile/--crop: partial films do not carry passes yet; "

@@ -18,6 +18,12 @@ void name_beauty_as_combined(Image& image) {
   image.channels.push_back(pass_channel_name("Combined", 'A'));
 }
 
+void rename_view_layer(Image& image, const std::string& view_layer) {
+  const std::string prefix = std::string(kViewLayer) + ".";
+  for (std::string& channel : image.channels)
+    if (channel.starts_with(prefix)) channel = view_layer + "." + channel.substr(prefix.size());
+}
+
 void denoising_normal_to_camera_space(Image& image, const Transform& exr_camera_from_world) {
   const auto x = std::find(image.channels.begin(), image.channels.end(),
                            pass_channel_name("Denoising Normal", 'X'));

@@ -3,6 +3,8 @@
 // converted after it resolves.
 #pragma once
 
+#include <string>
+
 #include "core/image/image.h"
 #include "core/math/transform.h"
 
@@ -11,6 +13,10 @@ namespace fb {
 // R, G, B become ViewLayer.Combined.R/G/B, keeping their places (the 8-bit outputs show the first
 // three channels), and ViewLayer.Combined.A = 1, as Cycles' without a transparent film, goes last.
 void name_beauty_as_combined(Image& image);
+
+// Channels "ViewLayer.<pass>.<channel>" (kViewLayer, as integrators name them) renamed
+// "<view_layer>.<pass>.<channel>": the view layer Blender loads the file into.
+void rename_view_layer(Image& image, const std::string& view_layer);
 
 // The Denoising Normal channels, world-space as integrators write them, turned into Cycles' camera
 // space (+Z forward, +Y up: OpenEXR's, the worldToCamera the EXR carries): the mean of rotated

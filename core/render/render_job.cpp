@@ -398,6 +398,7 @@ Image RenderJob::resolve(const Film& film) const {
   if (!options_.passes.empty()) {
     name_beauty_as_combined(image);
     denoising_normal_to_camera_space(image, exr_camera_from_world(plan_.camera));
+    rename_view_layer(image, options_.view_layer);
   }
   return image;
 }
@@ -432,8 +433,8 @@ RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderContro
   result.image = resolve(film);
   Image& image = result.image;
   if (cryptomatte) {
-    cryptomatte->append_layers(image, kViewLayer);
-    result.cryptomatte_metadata = cryptomatte->metadata(kViewLayer);
+    cryptomatte->append_layers(image, options_.view_layer);
+    result.cryptomatte_metadata = cryptomatte->metadata(options_.view_layer);
   }
   const uint32_t* counts = film.sample_counts();
   // Over the pixels rendered: a part's crop, or the whole frame.

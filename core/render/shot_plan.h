@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <filmback/render_passes.h>
 #include <filmback/vec.h>
 
 #include "core/film/adaptive_sampling.h"
@@ -50,6 +51,9 @@ struct RenderOptions {
   // --passes: Blender's render passes to write beside the beauty (filmback/render_passes.h), as
   // the integrator's `passes` parameter; none: the beauty alone, R, G, B as before.
   std::vector<std::string> passes;
+  // --view-layer: the layer the passes' channels are named after, "<view_layer>.<Pass>.<Ch>":
+  // Blender's view layer the image goes to (filmback/render_passes.h names Blender's default).
+  std::string view_layer = kViewLayer;
   std::optional<Rgb> background;
   CameraOverrides camera_overrides;
   std::optional<Vec2d> shutter_s;            // open, close, relative to the frame's time

@@ -11,8 +11,9 @@ y1] in pixels (Blender's own projection, world_to_camera_view; origin top-left, 
 
 `matte` reads EXR's Cryptomatte layer LAYER (e.g. ViewLayer.CryptoObject) with Blender's
 Cryptomatte node (the compositor's CryptomatteV2, source Image) and writes, for each NAME, the
-node's Matte output to OUTDIR/matte_<NAME>.exr: Blender's own decoding of the file's ids, ranks
-and manifest.
+node's Matte output to OUTDIR/matte_<NAME>.exr, and its values, top row first, to
+OUTDIR/matte_<NAME>.json (a list of rows): Blender's own decoding of the file's ids, ranks and
+manifest, for a driver without an image library.
 """
 
 import json
@@ -108,6 +109,12 @@ def write_mattes(out_dir, exr, layer, names):
         crypto.matte_id = name
         scene.render.filepath = os.path.join(out_dir, f"matte_{name}.exr")
         bpy.ops.render.render(write_still=True)
+        matte = bpy.data.images.load(scene.render.filepath, check_existing=False)
+        values = list(matte.pixels)  # RGBA, bottom row first
+        rows = [[values[4 * (y * WIDTH_PX + x)] for x in range(WIDTH_PX)]
+                for y in reversed(range(HEIGHT_PX))]
+        with open(os.path.join(out_dir, f"matte_{name}.json"), "w") as f:
+            json.dump(rows, f)
 
 
 def main():

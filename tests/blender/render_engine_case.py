@@ -6,7 +6,9 @@ does, builds a small animated shot, renders it with the filmback engine and chec
 Writes OUT/passed when the case passes; an AssertionError's message goes to stderr otherwise.
 """
 
+import json
 import os
+import struct
 import subprocess
 import sys
 import tempfile
@@ -233,8 +235,89 @@ def case_passes(filmback, out):
     print("engine's Depth pass bit-identical to the command line's")
 
 
+def channels(exr_path, out, name, pattern):
+    """{channel: values} of the file's channels whose names start with `pattern`, as 32-bit
+    floats (oiiotool copies four at a time into a file of their own, which Blender loads)."""
+    listing = subprocess.run(["oiiotool", "--info", "-v", exr_path], check=True,
+                             capture_output=True, text=True, timeout=60).stdout
+    names = [c for c in listing.split("channel list: ")[1].splitlines()[0].split(", ")
+             if c.startswith(pattern)]
+    assert names, f"no {pattern}* channel in {exr_path}"
+    values = {}
+    for k in range(0, len(names), 4):
+        group = (names[k:k + 4] + names[k:k + 1] * 4)[:4]
+        copy = os.path.join(out, f"{name}_{k}.exr")
+        subprocess.run(["oiiotool", exr_path, "--ch",
+                        ",".join(f"{c}={n}" for c, n in zip("RGBA", group)), "-o", copy],
+                       check=True, capture_output=True, timeout=60)
+        loaded = pixels(copy)
+        for column, channel in enumerate(group):
+            values[channel] = loaded[:, column]
+    return values
+
+
+def case_cryptomatte(filmback, out):
+    """The view layer, renamed, with its Cryptomatte switches on: the engine asks filmback for
+    CryptoObject and CryptoMaterial in a layer of the view layer's name, loads their layers into
+    the Render Result and its manifests into the Render Result's metadata; Blender's multi-layer
+    EXR of it has both, equal to the command line's, and the compositor's Cryptomatte node,
+    reading the Render Result, mattes the sphere by its name: each pixel its coverage, decoded
+    from the command line's layers through its manifest."""
+    scene = build_shot()
+    view_layer = scene.view_layers[0]
+    view_layer.name = layer = "Shot Layer"
+    view_layer.use_pass_cryptomatte_object = True
+    view_layer.use_pass_cryptomatte_material = True
+    scene.use_nodes = True
+    tree = scene.node_tree
+    crypto = tree.nodes.new("CompositorNodeCryptomatteV2")  # source: the Render Result
+    tree.links.new(tree.nodes["Render Layers"].outputs["Image"], crypto.inputs["Image"])
+    crypto.layer_name = f"{layer}.CryptoObject"
+    crypto.matte_id = "Sphere"
+    tree.links.new(crypto.outputs["Matte"], tree.nodes["Composite"].inputs["Image"])
+    scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = os.path.join(out, "engine.exr")
+    bpy.ops.render.render(write_still=True)
+    cli = command_line_render(filmback, out, FIRST_FRAME,
+                              ["--passes", "CryptoObject,CryptoMaterial", "--view-layer", layer])
+    engine = channels(scene.render.filepath, out, "engine", f"{layer}.Crypto")
+    cli_values = channels(cli, out, "cli", f"{layer}.Crypto")
+    assert sorted(engine) == sorted(cli_values), (sorted(engine), sorted(cli_values))
+    assert len(engine) == 24, sorted(engine)
+    for name, values in cli_values.items():
+        differing = int(numpy.count_nonzero(engine[name] != values))
+        assert differing == 0, f"{name}: {differing} values differ from the command line's"
+    from io_filmback import exr_header
+    engine_header = exr_header.string_attributes(scene.render.filepath)
+    cli_header = exr_header.string_attributes(cli)
+    for key, value in cli_header.items():
+        if key.startswith("cryptomatte/"):
+            assert engine_header.get(key) == value, (key, engine_header.get(key), value)
+    key = next(k[:-len("/name")] for k, v in cli_header.items()
+               if k.startswith("cryptomatte/") and v == f"{layer}.CryptoObject")
+    manifest = json.loads(cli_header[key + "/manifest"])
+    # The id as Cryptomatte stores it: the hash's bits as a float (an exponent of 0 or 255 moved
+    # off; the sphere's hash has neither, checked).
+    sphere_hash = int(manifest["Sphere"], 16)
+    assert 0 < (sphere_hash >> 23) & 0xFF < 255, manifest["Sphere"]
+    sphere_id = numpy.frombuffer(struct.pack("<I", sphere_hash), dtype=numpy.float32)[0]
+    expected = numpy.zeros_like(cli_values[f"{layer}.CryptoObject00.r"])
+    for rgba in range(3):
+        for id_channel, coverage_channel in (("r", "g"), ("b", "a")):
+            prefix = f"{layer}.CryptoObject{rgba:02d}."
+            expected += numpy.where(cli_values[prefix + id_channel] == sphere_id,
+                                    cli_values[prefix + coverage_channel], 0.0)
+    assert (expected == 1.0).any() and (expected == 0.0).any(), "the sphere is not in the shot"
+    matte = channels(scene.render.filepath, out, "matte", "Composite.Combined.R")
+    worst = float(numpy.abs(matte["Composite.Combined.R"] - expected).max())
+    assert worst < 1e-6, f"the Cryptomatte node's matte is {worst} from the sphere's coverage"
+    print(f"the Cryptomatte node's matte of the sphere matches its coverage in "
+          f"{len(expected)} pixels")
+
+
 CASES = {"still": case_still, "animation": case_animation, "bad_setting": case_bad_setting,
-         "cancel": case_cancel, "passes": case_passes}
+         "cancel": case_cancel, "passes": case_passes, "cryptomatte": case_cryptomatte}
 
 
 def main():

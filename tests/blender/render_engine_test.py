@@ -14,6 +14,11 @@ Install, as a user does) and runs render_engine_case.py under `blender -b`:
   cancel       a long render cancelled after 2.5 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
                stand-in for Esc under `blender -b`) returns promptly with a partial image, having
                shown at least one preview as the image filled in
+  passes       the view layer's Z pass: ViewLayer.Depth.Z in Blender's multi-layer EXR of the
+               Render Result, bit-identical to the command line's --passes Depth
+  cryptomatte  the view layer's Cryptomatte Object and Material switches: their layers in the
+               Render Result bit-identical to the command line's, the manifests in its metadata,
+               and the compositor's Cryptomatte node matting the sphere by name from it
 Each case also checks that the engine leaves no temporary folder behind. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
@@ -26,7 +31,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from roundtrip_test import SKIP, addon_zip, blender  # noqa: E402
 
-CASES = ("still", "animation", "bad_setting", "cancel", "passes")
+CASES = ("still", "animation", "bad_setting", "cancel", "passes", "cryptomatte")
 # Time for filmback to start, render a second and write its first preview (PREVIEW_EVERY).
 CANCEL_AFTER_S = "2.5"
 

@@ -81,6 +81,22 @@ class PassesTest(case_main.FolderCase):
                 self.assertIn(named, refused.stderr)
                 self.assertEqual(list(self.dir.iterdir()), [])
 
+    def test_view_layer_names_the_channels_and_needs_passes(self):
+        named = self.run_cli("render", SCENE, "-o", "named.exr", *QUICK, "--passes", "Depth",
+                             "--view-layer", "Shot Layer")
+        self.assertEqual(named.returncode, 0, named.stderr)
+        channels = re.search(r"channel list: (.*)", exr_header(self.dir / "named.exr")).group(1)
+        self.assertEqual(sorted(channels.split(", ")),
+                         ["Shot Layer.Combined." + c for c in "ABGR"] + ["Shot Layer.Depth.Z"])
+        for args, named in [(["--view-layer", "Shot Layer"], "without --passes"),
+                            (["--passes", "Depth", "--view-layer", ""], "empty")]:
+            with self.subTest(args=args):
+                refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, *args)
+                self.assertEqual(refused.returncode, 2, refused.stderr)
+                self.assertIn("--view-layer", refused.stderr)
+                self.assertIn(named, refused.stderr)
+                self.assertFalse((self.dir / "bad.exr").exists())
+
     def test_passes_with_parts_checkpoints_or_splatting_refused(self):
         for args, option in [(["--tile", "0/2"], "--tile"),
                              (["--checkpoint-every", "1s"], "checkpoints"),

@@ -165,5 +165,60 @@ TEST(CryptomatteRender, LeavesTheBeautyAndTheOtherPassesAsTheyWere) {
       }
 }
 
+TEST(CryptomatteRender, InstancesOfOneMeshAndSolidsKeepTheirOwnNames) {
+  // One mesh placed twice (an Embree instance each: Instancing::kRepeated), and a ball (a solid)
+  // 1.5 m away in the middle, about 5 pixels across.
+  Scene scene = crypto_scene();
+  const double shift_m = crypto_world_x(kCryptoSeamPx) - crypto_world_x(-10);
+  scene.meshes.pop_back();
+  scene.instances[1] = {0, Transform::translate({shift_m, 0, 0}), "Right"};
+  Material ball_material;
+  ball_material.name = "BallMat";
+  scene.materials.push_back(ball_material);
+  Solid ball;
+  ball.kind = SolidKind::kSphere;
+  ball.name = "Ball";
+  ball.material = 2;
+  ball.world_from_object = Transform::translate({0, 0, -1.5}) * Transform::scale({0.1, 0.1, 0.1});
+  scene.solids.push_back(ball);
+  const RenderResult result =
+      RenderJob(scene, crypto_options({"CryptoObject", "CryptoMaterial"}), test::loader()).run();
+  const auto objects = decode(result.image, result.cryptomatte_metadata, "CryptoObject");
+  const auto materials = decode(result.image, result.cryptomatte_metadata, "CryptoMaterial");
+  const auto at = [](const std::vector<std::map<std::string, float>>& c, uint32_t x, uint32_t y) {
+    return c[size_t(y) * kCryptoImagePx + x];
+  };
+  using Coverage = std::map<std::string, float>;
+  EXPECT_EQ(at(objects, 5, 5), (Coverage{{"Left", 1.f}}));
+  EXPECT_EQ(at(objects, 35, 5), (Coverage{{"Right", 1.f}}));
+  EXPECT_EQ(at(materials, 5, 5), (Coverage{{"RedMat", 1.f}}));  // one mesh: one material
+  EXPECT_EQ(at(materials, 35, 5), (Coverage{{"RedMat", 1.f}}));
+  for (const uint32_t x : {19u, 20u})
+    for (const uint32_t y : {19u, 20u}) {
+      EXPECT_EQ(at(objects, x, y), (Coverage{{"Ball", 1.f}})) << x << "," << y;
+      EXPECT_EQ(at(materials, x, y), (Coverage{{"BallMat", 1.f}})) << x << "," << y;
+    }
+}
+
+TEST(CryptomatteRender, ChannelsAndKeysNameTheViewLayer) {
+  RenderOptions options = crypto_options({"Depth", "CryptoObject"});
+  options.view_layer = "Shot Layer";
+  const Scene scene = crypto_scene();
+  const RenderResult result = RenderJob(scene, options, test::loader()).run();
+  for (const char* channel :
+       {"Shot Layer.Combined.R", "Shot Layer.Combined.A", "Shot Layer.Depth.Z",
+        "Shot Layer.CryptoObject00.r", "Shot Layer.CryptoObject02.a"})
+    EXPECT_NE(std::find(result.image.channels.begin(), result.image.channels.end(), channel),
+              result.image.channels.end())
+        << channel;
+  for (const std::string& channel : result.image.channels)
+    EXPECT_TRUE(channel.starts_with("Shot Layer.")) << channel;
+  const std::string key =
+      "cryptomatte/" + cryptomatte_hex(cryptomatte_hash("Shot Layer.CryptoObject")).substr(0, 7);
+  const std::map<std::string, std::string> metadata(result.cryptomatte_metadata.begin(),
+                                                    result.cryptomatte_metadata.end());
+  EXPECT_EQ(metadata.at(key + "/name"), "Shot Layer.CryptoObject");
+}
+
 }  // namespace
 }  // namespace fb

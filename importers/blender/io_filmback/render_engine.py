@@ -18,7 +18,7 @@ import time
 
 import bpy
 
-from . import filmback_cli, render_settings
+from . import exr_header, filmback_cli, render_settings
 from .gltf_export import export_gltf
 from . import main_thread
 
@@ -30,8 +30,15 @@ RENDER_PASSES = (
     ("use_pass_diffuse_color", "DiffCol", "RGB", "COLOR"),
     ("use_pass_emit", "Emit", "RGB", "COLOR"),
 )
-# The view layer filmback's multi-layer EXR names (core/sdk/filmback/render_passes.h).
-FILE_VIEW_LAYER = "ViewLayer"
+# The view layer's Cryptomatte switches (docs/blender.md, "Cryptomatte"): the property and the
+# pass's name. Each is CRYPTOMATTE_RGBA_LAYERS passes of channels r, g, b, a (lower-case, as in
+# the files Blender writes of Cycles' passes), "CryptoObject00", "01", ..., for filmback's 6
+# levels.
+CRYPTOMATTE_PASSES = (
+    ("use_pass_cryptomatte_object", "CryptoObject"),
+    ("use_pass_cryptomatte_material", "CryptoMaterial"),
+)
+CRYPTOMATTE_RGBA_LAYERS = 3
 
 POLL_INTERVAL_S = 0.05
 STDERR_LINES_KEPT = 200  # warnings and errors; what a broken filmback prints past them is dropped
@@ -81,8 +88,14 @@ def result_size(render):
 
 
 def enabled_passes(view_layer):
-    """RENDER_PASSES' entries the view layer has switched on."""
-    return [p for p in RENDER_PASSES if getattr(view_layer, p[0])]
+    """(name as --passes takes it, [(Render Result pass, channels, kind)]) for each pass of
+    RENDER_PASSES and CRYPTOMATTE_PASSES the view layer has switched on."""
+    passes = [(name, [(name, channels, kind)]) for prop, name, channels, kind in RENDER_PASSES
+              if getattr(view_layer, prop)]
+    passes += [(name, [(f"{name}{i:02d}", "rgba", "COLOR")
+                       for i in range(CRYPTOMATTE_RGBA_LAYERS)])
+               for prop, name in CRYPTOMATTE_PASSES if getattr(view_layer, prop)]
+    return passes
 
 
 def preview_mtime_ns(path):
@@ -109,10 +122,11 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene=None, renderlayer=None):
         """The passes the compositor's Render Layers node offers: Combined, and those of
-        RENDER_PASSES the view layer switched on."""
+        RENDER_PASSES and CRYPTOMATTE_PASSES the view layer switched on."""
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
-        for _, name, channels, kind in enabled_passes(renderlayer):
-            self.register_pass(scene, renderlayer, name, len(channels), channels, kind)
+        for _, result_passes in enabled_passes(renderlayer):
+            for name, channels, kind in result_passes:
+                self.register_pass(scene, renderlayer, name, len(channels), channels, kind)
 
     def render(self, depsgraph):
         scene = depsgraph.scene
@@ -140,19 +154,15 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
         preview_path = os.path.join(folder, "preview.exr")
         settings = scene.filmback
         passes = enabled_passes(view_layer)
-        for _, name, channels, _ in passes:
-            self.add_pass(name, len(channels), channels)
-        if passes and view_layer.name != FILE_VIEW_LAYER:
-            self.report({"WARNING"}, f"filmback: passes are loaded into a view layer named "
-                                     f"'{FILE_VIEW_LAYER}' only; '{view_layer.name}' gets the "
-                                     f"image alone")
-            passes = []
+        for _, result_passes in passes:
+            for name, channels, _ in result_passes:
+                self.add_pass(name, len(channels), channels)
         self.with_passes = bool(passes)
         command = filmback_cli.render_command(executable, scene_path, output_path, preview_path,
                                               settings.samples, settings.sampler,
                                               settings.integrator.strip(),
                                               settings.filter.strip(),
-                                              [name for _, name, _, _ in passes])
+                                              [name for name, _ in passes], view_layer.name)
         self.update_stats("", f"filmback: rendering frame {frame}")
         try:
             status, stderr_text = self.run(command, preview_path, scene.render)
@@ -164,6 +174,8 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
             for warning in filmback_cli.warnings(stderr_text):
                 self.report({"WARNING"}, warning)
             self.show(output_path, scene.render)
+            if self.with_passes:
+                self.add_cryptomatte_metadata(output_path)
             self.update_progress(1.0)
         elif status not in filmback_cli.INTERRUPTED_STATUSES:
             message = filmback_cli.error_message(stderr_text) or f"exit status {status}"
@@ -208,6 +220,17 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
             result.layers[0].load_from_file(exr_path)
         self.update_result(result)
         self.end_result(result)
+
+
+    def add_cryptomatte_metadata(self, exr_path):
+        """Cryptomatte's manifests (the EXR's cryptomatte/<key>/... attributes) into the whole
+        Render Result's metadata, where the Cryptomatte node looks for them and from which Blender
+        writes them into the files it saves: what Cycles does with its own (get_result(), not a
+        tile's result, holds the metadata)."""
+        result = self.get_result()
+        for name, value in exr_header.string_attributes(exr_path).items():
+            if name.startswith("cryptomatte/"):
+                result.stamp_data_add_field(name, value)
 
 
 def register():
