@@ -247,6 +247,8 @@ def evaluated_mesh_outcome(obj, gltf_node, at_frame, times, placed, still, world
     """The evaluated mesh in place of the gathered one (evaluated_mesh.py), with its shapes
     unless it is still in object space, where the mesh itself is the shape."""
     from .evaluated_mesh import replace_mesh
+    if len(at_frame.triangles) == 0:  # a glTF mesh needs a primitive, a primitive triangles
+        return Outcome(path="glTF mesh as exported: its evaluated mesh has no faces")
     corners = replace_mesh(gltf_node, obj, at_frame, *at_frame.placed(world_space))
     path = "Blender's evaluated mesh (its modifiers change the topology)"
     if still and not world_space:
