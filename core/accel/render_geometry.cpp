@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "core/accel/deformation_steps.h"
 #include "core/accel/embree_solids.h"
 #include "core/math/random.h"
 #include "core/util/error.h"
@@ -294,7 +295,7 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   for (const MeshInstance& instance : scene.instances) {
     if (scene.meshes[instance.mesh].indices.empty()) continue;
     if (const MeshDeformation* deformation = deformation_of[instance.mesh]) {
-      add_deformed_mesh(scene, instance, *deformation, render_from_world, times);
+      add_deformed_mesh(scene, instance, *deformation, render_from_world, times, tolerance);
       continue;
     }
     const bool moving =
@@ -329,37 +330,22 @@ RenderGeometry::RenderGeometry(const Scene& scene, const Transform& render_from_
   live_bytes_total.fetch_add(int64_t(own_bytes_), std::memory_order_relaxed);
 }
 
-// Posed where the pose is wanted: once at the still time, or, when the deformation or the node's
-// placement changes within the open shutter, at deformation_motion_steps times evenly spaced over
-// it, as Embree's multi-segment vertex motion (a still mesh builds no motion data). Each step
-// keeps only its positions and normals; a skinned or morphed mesh's first pose gives the rest.
+// Posed at deformation_steps' times (core/accel/deformation_steps.h; a still mesh builds no
+// motion data). Each step keeps only its positions and normals; a skinned or morphed mesh's first
+// pose gives the rest.
 void RenderGeometry::add_deformed_mesh(const Scene& scene, const MeshInstance& instance,
                                        const MeshDeformation& deformation,
-                                       const Transform& render_from_world, const ShotTimes& times) {
-  const bool moving =
-      times.shutter_open() && (deforms(deformation, scene.hierarchy, times.open_s, times.close_s) ||
-                               scene.moves(instance.node_index, times.open_s, times.close_s));
-  const uint32_t count = moving ? deformation_motion_steps(deformation) : 1;
-  const bool evaluated = !deformation.evaluated.empty();
-  std::vector<Transform> steps;
-  std::vector<DeformedShape> shapes;
-  TriangleMesh first_pose;
-  for (uint32_t k = 0; k < count; ++k) {
-    const double t = moving ? times.open_s + (times.close_s - times.open_s) * k / double(count - 1)
-                            : times.still_s();
-    steps.push_back(render_from_world * scene.world_from_object(instance, t));
-    if (evaluated) {
-      shapes.push_back(deformation.evaluated.at(t - times.frame_s));
-      continue;
-    }
-    TriangleMesh posed = posed_mesh(scene, deformation, t);
-    shapes.push_back({std::move(posed.positions), std::move(posed.normals)});
-    if (k == 0) first_pose = std::move(posed);
-  }
+                                       const Transform& render_from_world, const ShotTimes& times,
+                                       const MotionTolerance& tolerance) {
+  DeformationSteps steps =
+      deformation_steps(scene, instance, deformation, render_from_world, times, tolerance);
+  const bool moving = steps.times_s.size() > 1;
   moving_instances_ += moving;
-  most_motion_steps_ = std::max(most_motion_steps_, uint32_t(steps.size()));
+  most_motion_steps_ = std::max(most_motion_steps_, uint32_t(steps.times_s.size()));
+  const bool evaluated = !deformation.evaluated.empty();
   Mesh mesh =
-      build_mesh(instance, steps, evaluated ? scene.meshes[deformation.mesh] : first_pose, shapes);
+      build_mesh(instance, steps.render_from_object,
+                 evaluated ? scene.meshes[deformation.mesh] : steps.first_pose, steps.shapes);
   mesh.object = scene_object_index(scene, instance);
   if (max_component(scene.materials[mesh.material].emission) > 0.f) add_emitters(mesh, moving);
   attach_mesh(std::move(mesh));

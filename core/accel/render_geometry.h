@@ -19,6 +19,7 @@
 #include <filmback/vec.h>
 
 #include "core/accel/instancing.h"
+#include "core/accel/motion_tolerance.h"
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
 #include "core/shading/surface_arena.h"
@@ -42,13 +43,6 @@ struct EmissiveTriangle {
   // Moving during the shutter: where it is depends on the ray's time, so light sampling leaves it
   // to BSDF sampling (p0, p1, p2 hold its pose at shutter open).
   bool moving = false;
-};
-
-// How far a moving vertex may stray from its true path between two motion steps: absolute_m
-// plus per_metre times its distance from the camera (a fraction of a pixel's footprint).
-struct MotionTolerance {
-  double absolute_m = 0;
-  double per_metre = 0;
 };
 
 class RenderGeometry {
@@ -141,7 +135,7 @@ class RenderGeometry {
   // morph targets", "Blender's evaluated deformation").
   void add_deformed_mesh(const Scene& scene, const MeshInstance& instance,
                          const MeshDeformation& deformation, const Transform& render_from_world,
-                         const ShotTimes& times);
+                         const ShotTimes& times, const MotionTolerance& tolerance);
   // The object-space copy of scene mesh `mesh` with its own Embree scene, made at its first use.
   uint32_t prototype_of(const Scene& scene, uint32_t mesh);
   // `corners`: the mesh's object-space box corners.

@@ -89,8 +89,9 @@ GeometryCounts geometry_counts(const Scene& scene) {
   // Each deformed mesh is posed in a copy of it (RenderGeometry::add_deformed_mesh): counted as
   // its triangles once more, which bounds the copy (a render triangle costs more). A deformed
   // mesh whose pose changes anywhere on the timeline may move within the shutter: its render
-  // copy then holds every motion step's positions and normals (deformation_motion_steps), and
-  // the scene holds the evaluated shapes it was given. Rigid motion's steps are not counted
+  // copy then holds every motion step's positions and normals (at most deformation_motion_steps:
+  // a skin's count is chosen by its motion when the geometry is built, so the bound is counted),
+  // and the scene holds the evaluated shapes it was given. Rigid motion's steps are not counted
   // (docs/camera-model.md, "Time and motion").
   const double forever = std::numeric_limits<double>::infinity();
   for (const MeshDeformation& d : scene.deformations) {

@@ -122,7 +122,7 @@ DeformedShape EvaluatedShapes::at(double time_from_frame_s) const {
 
 uint32_t deformation_motion_steps(const MeshDeformation& deformation) {
   const size_t evaluated = deformation.evaluated.times_s.size();
-  return evaluated > 1 ? uint32_t(evaluated) : kSkinMotionSteps;
+  return uint32_t(evaluated > 1 ? evaluated : kMaxEvaluatedShapes);
 }
 
 TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, double time_s) {

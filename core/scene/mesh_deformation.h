@@ -65,10 +65,6 @@ struct EvaluatedShapes {
 // (RTC_MAX_TIME_STEP_COUNT), which is also Cycles' (Object::MAX_MOTION_STEPS).
 constexpr size_t kMaxEvaluatedShapes = 129;
 
-// Poses of a skinned or morphed mesh that moves within the shutter: 8 segments, so a vertex a
-// joint turns a quarter turn strays from its arc by under 0.5 % of its radius.
-constexpr uint32_t kSkinMotionSteps = 9;
-
 // Scene::meshes[mesh] holds the base shape (the bind pose) as read; posed_mesh makes the posed
 // copies the render traces. A deformed mesh is drawn by exactly one instance: at the identity
 // when skinned, else by its node.
@@ -98,8 +94,9 @@ void pose_mesh(const SkinBinding& skin, const std::vector<Transform>& joint_matr
 // timeline): morphed, then skinned. Not for evaluated shapes (EvaluatedShapes::at).
 TriangleMesh posed_mesh(const Scene& scene, const MeshDeformation& deformation, double time_s);
 
-// How many shapes the render stores for `deformation` when it moves within the shutter: the
-// evaluated shapes' count when there are several, else kSkinMotionSteps.
+// The most shapes the render stores for `deformation` when it moves within the shutter: the
+// evaluated shapes' count when there are several, else kMaxEvaluatedShapes (a skin's or morph's
+// count follows its motion, core/accel/deformation_steps.h, up to that).
 uint32_t deformation_motion_steps(const MeshDeformation& deformation);
 
 // Whether the pose can change within [t0, t1]: a joint moves, the weights' curve varies, or the

@@ -1,7 +1,9 @@
 // Blender's own deformation against Cycles (deform_shot.py): emissive markers on meshes that
 // Blender deforms, exported as Blender's evaluated positions (FILMBACK_deformation) and rendered
 // by Cycles and filmback.
-//  - A two-bone armature bent at its joint and a shape-key blend: each marker's centroid in
+//  - A two-bone armature bent at its joint, the same under a Subdivision Surface (Blender's
+//    evaluated mesh at render level, whose topology is not the base mesh's), a shape-key blend,
+//    and a marker moved by a shape key repeated by an Array modifier: each marker's centroid in
 //    filmback's render within 0.1 px of Cycles', and within 0.5 px of Blender's projection of its
 //    evaluated centre (off the axis a sphere's image centroid is not its projected centre).
 //  - A shape key sliding a marker during the shutter, with the object's Cycles motion steps 1, 3
@@ -74,7 +76,8 @@ std::string deform_shot_name(const testing::TestParamInfo<const char*>& info) {
   return info.param;
 }
 
-INSTANTIATE_TEST_SUITE_P(Shots, BlenderDeformStill, testing::Values("armature", "shapekey"),
+INSTANTIATE_TEST_SUITE_P(Shots, BlenderDeformStill,
+                         testing::Values("armature", "shapekey", "subdivided", "array"),
                          deform_shot_name);
 
 class BlenderDeformBlur : public WithBlender<testing::TestWithParam<const char*>> {};

@@ -15,6 +15,11 @@ importers/blender/io_filmback/deformation.py) and Cycles renders the shot:
              a marker on a bone turning 90 degrees about the view axis during the shutter, 40 px
              from its pivot, with Cycles' motion steps 1 and 3: an arc both renderers cut into
              the same 2 or 8 chords
+  subdivided the armature shot under a Subdivision Surface after the Armature modifier, viewport
+             level 0 and render level 1: the add-on writes Blender's evaluated mesh at render
+             level (the topology changes) with its bent positions
+  array      a marker moved by a shape key at 0.6, repeated three times by an Array modifier
+             after it: three markers where the base mesh has one
 
     blender -b --factory-startup --python deform_shot.py -- OUTDIR SHOT
 
@@ -48,7 +53,10 @@ BLUR_TRAVEL_PX = (40.0, 0.0)
 BLUR_KEY_FRAMES = (4, 6)  # the shape key's two linear keys, around the shutter
 SWING_DEG = 90.0  # the swing shots' turn during the shutter
 SWING_RADIUS_PX = 40.0
-SHOTS = ("armature", "shapekey", "blur1", "blur3", "blur7", "swing1", "swing3")
+ARRAY_COPIES = 3
+ARRAY_SPACING_PX = 50.0
+SHOTS = ("armature", "shapekey", "blur1", "blur3", "blur7", "swing1", "swing3", "subdivided",
+         "array")
 
 
 def marker(name, u, v, radius_px=5.0, colour=(1.0, 0.9, 0.8), strength=4.0):
@@ -67,25 +75,49 @@ def joined(spheres, name):
     return obj
 
 
-def sphere_vertices(obj):
-    """The vertex indices of each joined sphere, in the order they were joined: spheres are
-    disjoint, and make_shot's spheres all have the same vertex count."""
-    per_sphere = len(obj.data.vertices) // len(obj.data.materials)
-    return [range(k * per_sphere, (k + 1) * per_sphere) for k in range(len(obj.data.materials))]
-
-
-def evaluated_centres(obj):
+def evaluated_centres(obj, parts):
+    """The centres of the evaluated mesh's `parts` runs of consecutive vertices: the joined
+    spheres (disjoint, in the order they were joined, make_shot's spheres all of one vertex
+    count) or an Array's copies (each the whole base mesh, in order)."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
     evaluated = obj.evaluated_get(depsgraph)
     me = evaluated.to_mesh()
     try:
+        per_part = len(me.vertices) // parts
         out = []
-        for indices in sphere_vertices(obj):
-            centre = sum((me.vertices[i].co for i in indices), Vector()) / len(indices)
+        for k in range(parts):
+            centre = sum((me.vertices[i].co for i in range(k * per_part, (k + 1) * per_part)),
+                         Vector()) / per_part
             out.append(evaluated.matrix_world @ centre)
         return out
     finally:
         evaluated.to_mesh_clear()
+
+
+def sphere_vertices(obj):
+    """The vertex indices of each joined sphere (evaluated_centres says why they are runs)."""
+    per_sphere = len(obj.data.vertices) // len(obj.data.materials)
+    return [range(k * per_sphere, (k + 1) * per_sphere) for k in range(len(obj.data.materials))]
+
+
+def array_copies(obj):
+    return next((m.count for m in obj.modifiers if m.type == "ARRAY"), None)
+
+
+def marker_centres(obj):
+    """Blender's evaluated centre of each marker, with a Subdivision Surface hidden (the refined
+    mesh's vertices are not runs per sphere; the cage's are, and its centre is the marker's)."""
+    copies = array_copies(obj)
+    if copies:
+        return evaluated_centres(obj, copies)
+    subdivisions = [m for m in obj.modifiers if m.type == "SUBSURF" and m.show_viewport]
+    for m in subdivisions:
+        m.show_viewport = False
+    try:
+        return evaluated_centres(obj, len(obj.data.materials))
+    finally:
+        for m in subdivisions:
+            m.show_viewport = True
 
 
 def raster(scene, camera, point, shot):
@@ -151,6 +183,38 @@ def build_shapekey(camera, frame):
     for indices, offset in zip(sphere_vertices(obj), offsets):
         for i in indices:
             key.data[i].co += inverse @ offset
+    key.value = SHAPE_KEY_VALUE
+    return obj
+
+
+def build_subdivided(scene, camera, frame):
+    limb = build_armature(scene, camera, frame)
+    subdivision = limb.modifiers.new("Subdivision", "SUBSURF")
+    subdivision.levels, subdivision.render_levels = 0, 1  # the viewport's would not change it
+    return limb
+
+
+def build_array(camera, frame):
+    obj = build_shapekey_marker(camera, frame)
+    array = obj.modifiers.new("Array", "ARRAY")
+    array.count = ARRAY_COPIES
+    array.use_relative_offset, array.use_constant_offset = False, True
+    step = camera.matrix_world.to_3x3() @ Vector((ARRAY_SPACING_PX, 0.0, 0.0))
+    array.constant_offset_displace = obj.matrix_world.to_3x3().inverted() @ (
+        step * frame.metres_per_px(DEPTH_M))
+    return obj
+
+
+def build_shapekey_marker(camera, frame):
+    """One marker that a shape key at SHAPE_KEY_VALUE moves up and to the right."""
+    obj = joined([make_shot.add_sphere(camera, frame, marker("moved", 0.3, 0.5), DEPTH_M)[0]],
+                 "moved")
+    obj.shape_key_add(name="Basis")
+    key = obj.shape_key_add(name="Moved", from_mix=False)
+    offset = obj.matrix_world.to_3x3().inverted() @ (
+        camera.matrix_world.to_3x3() @ Vector((0.3, 0.2, 0.0)))
+    for point in key.data:
+        point.co += offset
     key.value = SHAPE_KEY_VALUE
     return obj
 
@@ -233,6 +297,10 @@ def main():
         obj = build_armature(scene, camera, frame)
     elif name == "shapekey":
         obj = build_shapekey(camera, frame)
+    elif name == "subdivided":
+        obj = build_subdivided(scene, camera, frame)
+    elif name == "array":
+        obj = build_array(camera, frame)
     elif name.startswith("swing"):
         obj = build_swing(scene, camera, frame, int(name[len("swing"):]))
     else:
@@ -241,19 +309,21 @@ def main():
     bpy.context.view_layer.update()
 
     from io_filmback import deformation
-    names = [m.name for m in obj.data.materials]
+    copies = array_copies(obj)
+    names = [f"copy{k}" for k in range(copies)] if copies else \
+        [m.name for m in obj.data.materials]
     with open(os.path.join(out_dir, "manifest.txt"), "w") as manifest:
         manifest.write(make_shot.record(
             "shot", name=name, samples=shot.samples, width_px=shot.width_px,
             height_px=shot.height_px, positions=deformation.position_count(scene, obj),
             cycles_shutter_fraction=motion_shot.CYCLES_SHUTTER_FRACTION))
-        at_frame = evaluated_centres(obj)
+        at_frame = marker_centres(obj)
         ends = []
         if blur:
             half = motion_shot.SHUTTER_FRAMES / 2
             for f, sub in ((motion_shot.FRAME - 1, 1.0 - half), (motion_shot.FRAME, half)):
                 scene.frame_set(f, subframe=sub)
-                ends.append(evaluated_centres(obj))
+                ends.append(marker_centres(obj))
             scene.frame_set(motion_shot.FRAME)
         for k, (marker_name, centre) in enumerate(zip(names, at_frame)):
             x, y = raster(scene, camera, centre, shot)

@@ -60,6 +60,24 @@ struct GltfBuilder::Impl {
   }
 };
 
+namespace {
+
+// Indices as unsigned bytes, shorts or ints (5121, 5123, 5125), little-endian.
+std::vector<unsigned char> index_bytes(const std::vector<uint32_t>& indices, int component_type) {
+  std::vector<unsigned char> bytes;
+  for (uint32_t i : indices) {
+    unsigned char b[4];
+    std::memcpy(b, &i, 4);  // little-endian: the low bytes come first
+    const size_t n = component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
+                     : component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                                                                                : 4;
+    bytes.insert(bytes.end(), b, b + n);
+  }
+  return bytes;
+}
+
+}  // namespace
+
 GltfBuilder::GltfBuilder() : impl_(std::make_unique<Impl>()) {
   impl_->model.buffers.emplace_back();
   impl_->model.scenes.emplace_back();
@@ -107,15 +125,7 @@ int GltfBuilder::mesh(const std::vector<Vec3f>& positions, const std::vector<uin
         impl_->add_accessor(normals.data(), normals.size() * sizeof(Vec3f),
                             TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, normals.size());
   if (index_component_type > 0) {
-    std::vector<unsigned char> bytes;
-    for (uint32_t i : indices) {
-      unsigned char b[4];
-      std::memcpy(b, &i, 4);  // little-endian: the low bytes come first
-      const size_t n = index_component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 1
-                       : index_component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
-                                                                                        : 4;
-      bytes.insert(bytes.end(), b, b + n);
-    }
+    const std::vector<unsigned char> bytes = index_bytes(indices, index_component_type);
     prim.indices = impl_->add_accessor(bytes.data(), bytes.size(), index_component_type,
                                        TINYGLTF_TYPE_SCALAR, indices.size());
   }
@@ -248,6 +258,45 @@ void GltfBuilder::evaluated_shapes(int node, const std::vector<double>& times_s,
   std::vector<std::string>& used = impl_->model.extensionsUsed;
   if (std::find(used.begin(), used.end(), "FILMBACK_deformation") == used.end())
     used.push_back("FILMBACK_deformation");
+}
+
+int GltfBuilder::sparse_vec3(size_t count, const std::vector<uint32_t>& indices,
+                             const std::vector<Vec3f>& values, int base, int index_component_type,
+                             int sparse_count) {
+  const std::vector<unsigned char> index_data = index_bytes(indices, index_component_type);
+  const int index_accessor =
+      impl_->add_accessor(index_data.data(), index_data.size(), index_component_type,
+                          TINYGLTF_TYPE_SCALAR, indices.size());
+  const int value_accessor =
+      impl_->add_accessor(values.data(), values.size() * sizeof(Vec3f),
+                          TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, values.size());
+  auto& model = impl_->model;
+  // The indices and values are read through bufferViews of their own (their accessors stay,
+  // unused).
+  tinygltf::Accessor sparse = base >= 0 ? model.accessors[size_t(base)] : tinygltf::Accessor{};
+  if (base < 0) {
+    sparse.bufferView = -1;
+    sparse.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    sparse.type = TINYGLTF_TYPE_VEC3;
+  }
+  sparse.count = count;
+  sparse.sparse.isSparse = true;
+  sparse.sparse.count = sparse_count >= 0 ? sparse_count : int(indices.size());
+  sparse.sparse.indices.bufferView = model.accessors[size_t(index_accessor)].bufferView;
+  sparse.sparse.indices.byteOffset = 0;
+  sparse.sparse.indices.componentType = index_component_type;
+  sparse.sparse.values.bufferView = model.accessors[size_t(value_accessor)].bufferView;
+  sparse.sparse.values.byteOffset = 0;
+  model.accessors.push_back(sparse);
+  return int(model.accessors.size() - 1);
+}
+
+void GltfBuilder::attribute(int mesh, const std::string& name, int accessor) {
+  impl_->model.meshes[size_t(mesh)].primitives[0].attributes[name] = accessor;
+}
+
+void GltfBuilder::morph_target_accessor(int mesh, int positions) {
+  impl_->model.meshes[size_t(mesh)].primitives[0].targets.push_back({{"POSITION", positions}});
 }
 
 void GltfBuilder::morph_weights(int mesh, const std::vector<double>& weights) {

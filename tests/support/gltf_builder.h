@@ -48,6 +48,17 @@ class GltfBuilder {
   // empty.
   void morph_target(int mesh, const std::vector<Vec3f>& positions,
                     const std::vector<Vec3f>& normals = {});
+  // A sparse VEC3 float accessor (glTF 2.0 §3.6.2.3) of `count` elements: accessor `base`'s
+  // data, or zeros without a bufferView when `base` is -1, with `values` at `indices` (written
+  // as `index_component_type`: 5121, 5123, 5125). `sparse_count` replaces sparse.count, which is
+  // otherwise the number of indices.
+  int sparse_vec3(size_t count, const std::vector<uint32_t>& indices,
+                  const std::vector<Vec3f>& values, int base = -1, int index_component_type = 5125,
+                  int sparse_count = -1);
+  // Sets attribute `name` of `mesh`'s first primitive to `accessor`.
+  void attribute(int mesh, const std::string& name, int accessor);
+  // A morph target of `mesh`'s first primitive whose POSITION is `positions`.
+  void morph_target_accessor(int mesh, int positions);
   // The mesh's default morph weights.
   void morph_weights(int mesh, const std::vector<double>& weights);
 

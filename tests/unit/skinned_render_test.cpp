@@ -6,11 +6,15 @@
 // with as many motion steps as the file has, and shapes that do not change build none.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/accel/deformation_steps.h"
 #include "core/accel/render_geometry.h"
 #include "core/render/render_job.h"
 #include "core/util/error.h"
@@ -86,16 +90,83 @@ TEST(SkinnedRender, AMovingJointBlursTheMeshOverTheShutter) {
   expect_blur_leaving_the_view(skinned_triangle(true, true));
 }
 
+// The joint's translation is linear in time: two steps (one segment) follow it exactly.
 TEST(SkinnedRender, OnlyAMovingSkinBuildsMotionSteps) {
   const ShotTimes shutter{0, 0, 1};
   const Scene moving_scene = skinned_triangle(true, true);
   const RenderGeometry moving(moving_scene, Transform(), shutter, MotionTolerance{});
   EXPECT_EQ(moving.moving_instance_count(), 1u);
-  EXPECT_EQ(moving.most_motion_steps(), 9u);
+  EXPECT_EQ(moving.most_motion_steps(), 2u);
   const Scene still_scene = skinned_triangle(true, false);
   const RenderGeometry still(still_scene, Transform(), shutter, MotionTolerance{});
   EXPECT_EQ(still.moving_instance_count(), 0u);
   EXPECT_EQ(still.most_motion_steps(), 1u);
+}
+
+// The triangle of skinned_triangle bound to a joint at the origin that turns `degrees` about +Z
+// from t = 0 to 1 (a rotation channel: slerp, so the angle grows linearly).
+Scene turning_triangle(double degrees) {
+  GltfBuilder gltf;
+  GltfBuilder::Node node;
+  node.mesh =
+      gltf.mesh({{-5, -5, 0}, {5, -5, 0}, {0, 5, 0}}, {0, 1, 2}, gltf.material({0.5f, 0.5f, 0.5f}));
+  const int joint = gltf.node(GltfBuilder::Node{});
+  gltf.skin_weights(node.mesh, 0, std::vector<uint16_t>(12, 0),
+                    {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+  node.skin = gltf.skin({joint});
+  const double half = degrees * std::numbers::pi / 360;
+  gltf.animate(joint, "rotation", {0, 1},
+               {0, 0, 0, 1, 0, 0, float(std::sin(half)), float(std::cos(half))});
+  gltf.node(node);
+  return test::import_built(gltf, "turning.gltf");
+}
+
+// A vertex at radius r turning by θ strays from the chord of a segment of n by r (1 - cos(θ/2n))
+// at the segment's middle, the most along it: the fewest 2^k segments within the tolerance.
+size_t turning_steps_closed_form(double radius_m, double degrees, double tolerance_m) {
+  const double theta = degrees * std::numbers::pi / 180;
+  size_t segments = 1;
+  while (radius_m * (1 - std::cos(theta / (2.0 * double(segments)))) > tolerance_m &&
+         segments < kMaxEvaluatedShapes - 1)
+    segments *= 2;
+  return segments + 1;
+}
+
+// A joint turning a quarter turn gets the steps the closed form asks for at a tolerance of 1 mm
+// (65), a nearly still one (half a degree) two; between the steps the posed vertices stray from
+// their closed-form arcs by at most the tolerance, at every one of 1000 times over the shutter.
+TEST(SkinnedRender, AJointsStepsFollowItsMotionWithinTheTolerance) {
+  constexpr double kToleranceM = 1e-3;
+  const MotionTolerance tolerance{kToleranceM, 0};
+  const ShotTimes shutter{0, 0, 1};
+  const double far_radius = std::sqrt(50.0);  // the corners at (±5, -5)
+  for (const double degrees : {90.0, 0.5}) {
+    const Scene scene = turning_triangle(degrees);
+    ASSERT_EQ(scene.deformations.size(), 1u);
+    const DeformationSteps steps = deformation_steps(
+        scene, scene.instances[0], scene.deformations[0], Transform(), shutter, tolerance);
+    EXPECT_EQ(steps.times_s.size(), turning_steps_closed_form(far_radius, degrees, kToleranceM))
+        << degrees << " degrees";
+    const std::vector<Vec3f>& base = scene.meshes[scene.deformations[0].mesh].positions;
+    double worst = 0;
+    for (int i = 0; i <= 1000; ++i) {
+      const double t = i / 1000.0;
+      const double angle = degrees * std::numbers::pi / 180 * t;
+      const size_t k =
+          std::min(size_t(t * double(steps.times_s.size() - 1)), steps.times_s.size() - 2);
+      const double f = (t - steps.times_s[k]) / (steps.times_s[k + 1] - steps.times_s[k]);
+      for (size_t v = 0; v < base.size(); ++v) {
+        const Vec3d exact{base[v].x * std::cos(angle) - base[v].y * std::sin(angle),
+                          base[v].x * std::sin(angle) + base[v].y * std::cos(angle), base[v].z};
+        const Vec3d drawn = Vec3d(steps.shapes[k].positions[v]) * (1 - f) +
+                            Vec3d(steps.shapes[k + 1].positions[v]) * f;
+        worst = std::max(worst, length(drawn - exact));
+      }
+    }
+    EXPECT_LE(worst, kToleranceM) << degrees << " degrees";
+    std::printf("a joint turning %g degrees: %zu steps, the drawn vertices at most %.3g m off\n",
+                degrees, steps.times_s.size(), worst);
+  }
 }
 
 TEST(SkinnedRender, StillJointsRenderTheUnskinnedImageBitForBit) {
@@ -168,11 +239,12 @@ TEST(EvaluatedRender, MotionStepsAreTheFilesShapesAndStillShapesBuildNone) {
 // shapes and motion steps) are refused under an 8 MiB limit before anything is built, where the
 // same mesh with one shape renders.
 // The node's rigid motion combines with the shapes: still shapes on a moving node blur, with the
-// file's step count when it has several shapes and the skins' default of 9 when it has one.
+// file's step count when it has several shapes and, when it has one, the steps the node's motion
+// needs (a linear translation: two).
 TEST(EvaluatedRender, AMovingNodeMovesItsShapes) {
   expect_blur_leaving_the_view(evaluated_triangle(false, 1, true));
   const ShotTimes shutter{0, 0, 1};
-  for (const auto& [shapes, steps] : {std::pair<size_t, uint32_t>{1, 9}, {3, 3}}) {
+  for (const auto& [shapes, steps] : {std::pair<size_t, uint32_t>{1, 2}, {3, 3}}) {
     const Scene scene = evaluated_triangle(false, shapes, true);
     const RenderGeometry geometry(scene, Transform(), shutter, MotionTolerance{});
     EXPECT_EQ(geometry.moving_instance_count(), 1u);

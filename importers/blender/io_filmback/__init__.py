@@ -74,16 +74,20 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         if data is not None:
             self._add(gltf2_mesh, EXTENSION, data)
 
-    def _add_deformation(self, gltf2_node, blender_object, scene):
-        """Blender's evaluated deformation on the node, and the path the mesh took in the
-        exporter's report (Blender's console)."""
-        from . import deformation
-        data, path = deformation.deformation_extension(blender_object, gltf2_node, scene,
-                                                       self.frame)
-        if data is not None:
-            self._add(gltf2_node, deformation.EXTENSION, data)
-        if path is not None:
-            print(f"filmback: mesh object '{blender_object.name}': {path}")
+    def _add_mesh_shapes(self, gltf2_node, blender_object, scene, data):
+        """The path the mesh takes (deformation.py): Blender's evaluated deformation on the node,
+        its evaluated mesh in place of the gathered one, or its subdivision cage in `data`; and
+        the path in the exporter's report (Blender's console)."""
+        from . import deformation, subdivision
+        outcome = deformation.deformation_extension(blender_object, gltf2_node, scene,
+                                                    self.frame)
+        if outcome.extension is not None:
+            self._add(gltf2_node, deformation.EXTENSION, outcome.extension)
+        if outcome.cage:
+            data["subdivision"] = subdivision.subdivision_extension(blender_object,
+                                                                    gltf2_node.mesh)
+        if outcome.path is not None:
+            print(f"filmback: mesh object '{blender_object.name}': {outcome.path}")
 
     def images(self, export_settings):
         if self._images is None:
@@ -105,7 +109,7 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
             return
         import bpy
 
-        from . import camera, lights, subdivision
+        from . import camera, lights
         data = {}
         if blender_object.type == "CAMERA" and gltf2_node.camera is None and \
                 blender_object.data.type == "PANO" and export_settings.get("gltf_cameras"):
@@ -119,16 +123,8 @@ class glTF2ExportUserExtension:  # noqa: N801 (the name Blender's exporter looks
         elif blender_object.type == "LIGHT":
             data["light"] = lights.light_extension(blender_object.data)
         elif blender_object.type == "MESH" and not export_settings.get("gltf_apply"):
-            # With Apply Modifiers the exported mesh is already subdivided: no cage to carry.
-            surface = subdivision.subdivision_extension(blender_object, gltf2_node.mesh)
-            if surface is None:
-                self._add_deformation(gltf2_node, blender_object, bpy.context.scene)
-            else:
-                data["subdivision"] = surface
-                if blender_object.data.shape_keys or \
-                        sum(m.show_render for m in blender_object.modifiers) > 1:
-                    print(f"filmback: mesh object '{blender_object.name}': subdivision cage "
-                          "exported without the deformation before its Subdivision Surface")
+            # With Apply Modifiers the exported mesh is already evaluated: no cage to carry.
+            self._add_mesh_shapes(gltf2_node, blender_object, bpy.context.scene, data)
         if data:
             self._add(gltf2_node, EXTENSION, data)
 

@@ -61,22 +61,24 @@ def set_time(scene, frame, time_s):
 
 class Evaluated:
     """The evaluated mesh at the scene's current time: positions, split normals, the corners'
-    vertices (its topology), and the object's matrix_world."""
+    vertices (its topology), and the object's matrix_world; `with_faces` adds what a mesh of its
+    own needs (evaluated_mesh.py): its triangles' corners and material slots, and its UV maps'
+    coordinates per corner."""
 
-    def __init__(self, obj):
+    def __init__(self, obj, with_faces=False):
         depsgraph = bpy.context.evaluated_depsgraph_get()
         evaluated = obj.evaluated_get(depsgraph)
         me = evaluated.to_mesh()
         try:
             me.calc_normals_split()
-            self.positions = np.empty(len(me.vertices) * 3, dtype=np.float64)
-            me.vertices.foreach_get("co", self.positions)
-            self.positions = self.positions.reshape(-1, 3)
-            self.normals = np.empty(len(me.loops) * 3, dtype=np.float64)
-            me.loops.foreach_get("normal", self.normals)
-            self.normals = self.normals.reshape(-1, 3)
-            self.corner_vertices = np.empty(len(me.loops), dtype=np.int64)
-            me.loops.foreach_get("vertex_index", self.corner_vertices)
+            self.positions = read(me.vertices, "co", 3)
+            self.normals = read(me.loops, "normal", 3)
+            self.corner_vertices = read(me.loops, "vertex_index", 1, np.int64)
+            if with_faces:
+                me.calc_loop_triangles()
+                self.triangles = read(me.loop_triangles, "loops", 3, np.int64)
+                self.triangle_materials = read(me.loop_triangles, "material_index", 1, np.int64)
+                self.uv_maps = [read(layer.data, "uv", 2) for layer in me.uv_layers]
         finally:
             evaluated.to_mesh_clear()
         self.matrix_world = np.array(evaluated.matrix_world, dtype=np.float64)
@@ -97,6 +99,13 @@ class Evaluated:
             len(self.positions) == len(other.positions)
 
 
+def read(collection, name, width, dtype=np.float64):
+    """`name` of every item of a bpy collection, as an array of `width` columns (flat for 1)."""
+    out = np.empty(len(collection) * width, dtype=dtype)
+    collection.foreach_get(name, out)
+    return out if width == 1 else out.reshape(-1, width)
+
+
 def yup(v):
     return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
 
@@ -106,9 +115,7 @@ def base_positions(obj):
     me = obj.data
     keys = me.shape_keys.key_blocks if me.shape_keys else None
     source = keys[0].relative_key.data if keys else me.vertices
-    out = np.empty(len(me.vertices) * 3, dtype=np.float64)
-    source.foreach_get("co", out)
-    return out.reshape(-1, 3)
+    return read(source, "co", 3)
 
 
 def accessor_data(attribute):
@@ -159,53 +166,107 @@ def float_accessor(array):
                              gltf2_io_constants.DataType.Vec3, include_max_and_min=True)
 
 
-def deformation_extension(obj, gltf_node, scene, frame):
-    """(extension or None, the path the object took, as the exporter's report says it)."""
-    if gltf_node.mesh is None or not gltf_node.mesh.primitives:
-        return None, None
-    if not obj.data.shape_keys and not any(m.show_render for m in obj.modifiers):
-        return None, None  # nothing evaluates it away from its base mesh: no time stepping
-    times = step_times(scene, obj)
-    try:
-        poses = []
-        for t in times:
-            set_time(scene, frame, t)
-            poses.append(Evaluated(obj))
-        # The frame's own shape: among the poses when the shutter is centred on it.
-        at_frame = next((p for p, t in zip(poses, times) if t == 0.0), None)
-        if at_frame is None:
+class Outcome:
+    """What the export of a mesh object carries: `extension` (FILMBACK_deformation or None),
+    `cage` (export its Subdivision Surface as the cage, subdivision.py) and `path`, what the
+    exporter's report says (None: nothing to say)."""
+
+    def __init__(self, extension=None, path=None, cage=False):
+        self.extension, self.path, self.cage = extension, path, cage
+
+
+def evaluate(obj, scene, frame, times):
+    """The evaluated meshes at `times` and the frame's own, with its faces, as Cycles' render
+    evaluates the modifiers (render_levels.py)."""
+    from .render_levels import as_rendered
+    with as_rendered(obj):
+        try:
+            poses = []
+            for t in times:
+                set_time(scene, frame, t)
+                poses.append(Evaluated(obj))
             set_time(scene, frame, 0.0)
-            at_frame = Evaluated(obj)
-    finally:
-        scene.frame_set(frame)
+            at_frame = Evaluated(obj, with_faces=True)
+        finally:
+            scene.frame_set(frame)
+    return poses, at_frame
+
+
+def ends_in_subdivision(obj):
+    shown = [m for m in obj.modifiers if m.show_render]
+    return bool(shown) and shown[-1].type == "SUBSURF"
+
+
+def deformation_extension(obj, gltf_node, scene, frame):
+    """The path a mesh object takes (docs/blender.md, "Deformation"), as an Outcome.
+
+    A trailing Subdivision Surface travels as its cage when nothing before it moves within the
+    shutter and the node has no skin (the cage, evaluated at the frame, is then what Cycles
+    subdivides); otherwise, as any mesh whose modifiers change the topology, the evaluated mesh
+    replaces the gathered one and carries its shapes: what Cycles renders, Blender's mesh at
+    render levels and its positions at each motion step."""
+    subdivided = ends_in_subdivision(obj)
+    if gltf_node.mesh is None or not gltf_node.mesh.primitives:
+        return Outcome(cage=subdivided)
+    shown = sum(m.show_render for m in obj.modifiers)
+    if not obj.data.shape_keys and shown == int(subdivided):
+        return Outcome(cage=subdivided)  # nothing evaluates it away from its base mesh or cage
+    times = step_times(scene, obj)
+    poses, at_frame = evaluate(obj, scene, frame, times)
     world_space = gltf_node.skin is not None
-    base = base_positions(obj)
-    if len(at_frame.positions) != len(base) or \
-            len(at_frame.corner_vertices) != len(obj.data.loops):
-        return None, "glTF mesh as exported: its modifiers change the topology " \
-                     "(deformation not carried)"
     if not all(at_frame.same_topology(p) for p in poses):
         print(f"filmback: mesh object '{obj.name}': the topology changes within the shutter; "
               "the frame's shape is exported without deformation blur")
-        poses = [at_frame]
-        times = [0.0]
+        poses, times = [at_frame], [0.0]
     placed = [p.placed(world_space) for p in poses]
+    still = all(np.array_equal(positions, placed[0][0]) for positions, _ in placed)
+    if subdivided and still and not world_space:
+        return Outcome(cage=True, path="subdivision cage evaluated at the frame (nothing before "
+                                       "its Subdivision Surface moves within the shutter)")
+    if not np.array_equal(at_frame.corner_vertices, read(obj.data.loops, "vertex_index", 1,
+                                                         np.int64)):
+        return evaluated_mesh_outcome(obj, gltf_node, at_frame, times, placed, still,
+                                      world_space)
+    base = base_positions(obj)
     if world_space:
         m = np.array(obj.matrix_world, dtype=np.float64)
         base = base @ m[:3, :3].T + m[:3, 3]
     base_yup = yup(base)
     if all(np.array_equal(positions, base_yup) for positions, _ in placed) and \
             obj.data.shape_keys is None and gltf_node.skin is None:
-        return None, None  # nothing deforms it
+        return Outcome()  # nothing deforms it
     corners = match_corners(gltf_node.mesh, base_yup, at_frame.placed(world_space)[1],
                             at_frame.corner_vertices)
     if corners is None:
-        return None, "glTF skin/morph: its exported vertices do not match its base mesh"
+        return Outcome(path="glTF skin/morph: its exported vertices do not match its base mesh")
+    return Outcome(extension(times, world_space, corners, at_frame, placed),
+                   f"Blender's evaluated deformation, {count_of_times(times)}")
+
+
+def evaluated_mesh_outcome(obj, gltf_node, at_frame, times, placed, still, world_space):
+    """The evaluated mesh in place of the gathered one (evaluated_mesh.py), with its shapes
+    unless it is still in object space, where the mesh itself is the shape."""
+    from .evaluated_mesh import replace_mesh
+    if len(at_frame.triangles) == 0:  # a glTF mesh needs a primitive, a primitive triangles
+        return Outcome(path="glTF mesh as exported: its evaluated mesh has no faces")
+    corners = replace_mesh(gltf_node, obj, at_frame, *at_frame.placed(world_space))
+    path = "Blender's evaluated mesh (its modifiers change the topology)"
+    if still and not world_space:
+        return Outcome(path=path + ", still")
+    return Outcome(extension(times, world_space, corners, at_frame, placed),
+                   f"{path} and deformation, {count_of_times(times)}")
+
+
+def count_of_times(times):
+    return f"{len(times)} time{'s' if len(times) > 1 else ''}"
+
+
+def extension(times, world_space, corners, at_frame, placed):
+    """FILMBACK_deformation: per primitive, the shapes of the corners its vertices came from."""
     primitives = []
     for corner in corners:
         vertex = at_frame.corner_vertices[corner]
         primitives.append({
             "positions": [float_accessor(positions[vertex]) for positions, _ in placed],
             "normals": [float_accessor(normals[corner]) for _, normals in placed]})
-    path = f"Blender's evaluated deformation, {len(times)} time{'s' if len(times) > 1 else ''}"
-    return {"times_s": times, "world_space": world_space, "primitives": primitives}, path
+    return {"times_s": times, "world_space": world_space, "primitives": primitives}

@@ -21,10 +21,11 @@ def subdivision_extension(obj, gltf_mesh):
 
 
 def cage(obj, modifier, gltf_mesh):
-    """The mesh the modifiers before the subdivision make, in glTF axes (x, z, -y)."""
-    shown = modifier.show_viewport
-    modifier.show_viewport = False
-    try:
+    """The mesh the modifiers before the subdivision make as Cycles' render evaluates them
+    (render_levels.py), in glTF axes (x, z, -y)."""
+    from .render_levels import as_rendered
+    with as_rendered(obj):
+        modifier.show_viewport = False  # as_rendered puts it back
         depsgraph = bpy.context.evaluated_depsgraph_get()
         evaluated = obj.evaluated_get(depsgraph)
         me = evaluated.to_mesh()
@@ -32,9 +33,6 @@ def cage(obj, modifier, gltf_mesh):
             return cage_arrays(me, face_primitives(me, obj, gltf_mesh))
         finally:
             evaluated.to_mesh_clear()
-    finally:
-        modifier.show_viewport = shown
-        bpy.context.evaluated_depsgraph_get()
 
 
 def cage_arrays(me, faces_primitives=None):
@@ -77,20 +75,28 @@ def corner_uvs(me, layer):
 
 def face_primitives(me, obj, gltf_mesh):
     """Which primitive of the exported mesh each polygon's material went to, or None when the mesh
-    has one primitive. Blender's exporter makes a primitive per material slot used, with the
-    slot's material (io_scene_gltf2 gltf2_blender_gather_primitives_extract.py): a polygon's
-    primitive is the one whose material is its slot's, found by name."""
+    has one primitive."""
+    primitives = slot_primitives(obj, gltf_mesh)
+    if primitives is None:
+        return None
+    # Blender clamps a polygon's material index to the slots there are.
+    return [primitives[min(p.material_index, len(primitives) - 1)] for p in me.polygons]
+
+
+def slot_primitives(obj, gltf_mesh):
+    """Per material slot (at least one), the primitive of the exported mesh its material went to,
+    or None when the mesh has one primitive. Blender's exporter makes a primitive per material
+    slot used, with the slot's material (io_scene_gltf2 gltf2_blender_gather_primitives_extract.py):
+    a slot's primitive is the one whose material is its material, found by name (the first
+    primitive for a material it has none of)."""
     primitives = list(getattr(gltf_mesh, "primitives", None) or [])
     if len(primitives) < 2:
         return None
     names = [getattr(p.material, "name", None) if p.material is not None else None
              for p in primitives]
-    slots = [slot.material for slot in obj.material_slots]
+    materials = [slot.material for slot in obj.material_slots] or [None]
     out = []
-    for p in me.polygons:
-        # Blender clamps a polygon's material index to the slots there are.
-        index = min(p.material_index, len(slots) - 1) if slots else 0
-        material = slots[index] if slots else None
+    for material in materials:
         name = material.name if material is not None else None
         out.append(names.index(name) if name in names else 0)
     return out
