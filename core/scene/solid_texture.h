@@ -13,6 +13,7 @@
 #include <filmback/vec.h>
 
 #include "core/math/transform.h"
+#include "core/scene/material_textures.h"
 
 namespace fb {
 
@@ -53,7 +54,9 @@ enum class SolidPatternKind {
   kWrinkles,
   kDents,
   kCrackle,
-  kCells,  // the last kind (solid_pattern_names_cover_the_enum)
+  kCells,
+  // An image projected onto the pattern space (SolidPattern::image_map), not a value pattern.
+  kImageMap,  // the last kind (solid_pattern_names_cover_the_enum)
 };
 
 // The one list of the patterns filmback evaluates, with POV-Ray's keyword for each ("solid" is
@@ -71,13 +74,13 @@ inline constexpr std::pair<SolidPatternKind, const char*> kSolidPatternNames[] =
     {SolidPatternKind::kSpiral2, "spiral2"},   {SolidPatternKind::kWaves, "waves"},
     {SolidPatternKind::kRipples, "ripples"},   {SolidPatternKind::kWrinkles, "wrinkles"},
     {SolidPatternKind::kDents, "dents"},       {SolidPatternKind::kCrackle, "crackle"},
-    {SolidPatternKind::kCells, "cells"}};
+    {SolidPatternKind::kCells, "cells"},       {SolidPatternKind::kImageMap, "image_map"}};
 
 // Every kind once, in order, so that a kind added to the enum must be named here too.
 constexpr bool solid_pattern_names_cover_the_enum() {
   for (size_t i = 0; i < std::size(kSolidPatternNames); ++i)
     if (size_t(kSolidPatternNames[i].first) != i) return false;
-  return size_t(SolidPatternKind::kCells) + 1 == std::size(kSolidPatternNames);
+  return size_t(SolidPatternKind::kImageMap) + 1 == std::size(kSolidPatternNames);
 }
 static_assert(solid_pattern_names_cover_the_enum());
 
@@ -110,11 +113,31 @@ struct SolidPatternModifiers {
   double agate_turbulence = 1;  // agate_turb
 };
 
+// How POV-Ray's image_map wraps its image around the pattern space (POV-Ray 3.7 reference,
+// "Image Map"; the map_type numbers): planar projects along z onto the unit square of x and y;
+// spherical and cylindrical wrap the longitude about y; the torus wraps both angles of a torus
+// of major radius `major_radius` about y.
+enum class SolidImageProjection { kPlanar = 0, kSpherical = 1, kCylindrical = 2, kTorus = 5 };
+
+// pigment { image_map { "file" ... } }: core/texture/solid_image_map.h evaluates it.
+struct SolidImageMap {
+  uint32_t image = kNoImage;  // in Scene::images; none: the pattern's `colour` stands in
+  SolidImageProjection projection = SolidImageProjection::kPlanar;
+  bool once = false;  // one copy of the image; outside it, fully transmitting white
+  TextureInterpolation interpolation = TextureInterpolation::kClosest;  // POV-Ray's default
+  // How the file's values become linear: the sRGB curve, or v^decode_gamma.
+  bool srgb = true;
+  float decode_gamma = 1.f;
+  float filter_all = 0.f, transmit_all = 0.f;  // added to every texel (transmit to 1 - alpha)
+  double major_radius = 1;                     // kTorus
+};
+
 struct SolidPattern : SolidPatternModifiers {
   SolidPatternKind kind = SolidPatternKind::kSolid;
   SolidColour colour;                       // kSolid
   std::vector<SolidColourStop> colour_map;  // value patterns; empty: black to white
   std::vector<SolidPattern> list;           // list patterns, each with its own pattern space
+  SolidImageMap image_map;                  // kImageMap
   Transform pattern_from_world;             // world: filmback's right-handed world, metres
 };
 

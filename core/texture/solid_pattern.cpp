@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/math/constants.h"
+#include "core/texture/solid_image_map.h"
 
 namespace fb {
 namespace {
@@ -369,6 +370,8 @@ double raw_value(const SolidPattern& s, Vec3d p) {
     }
     case K::kCrackle:
       return crackle(p);
+    case K::kImageMap:  // a colour, not a value (evaluate_solid)
+      return 0;
     case K::kCells:
       return unit_from_hash(hash_cell(int64_t(std::floor(p.x + kEpsilon)),
                                       int64_t(std::floor(p.y + kEpsilon)),
@@ -421,12 +424,14 @@ Vec3d warped_point(const SolidPattern& s, Vec3d p) {
 
 }  // namespace solid
 
-SolidColour evaluate_solid(const SolidPattern& s, Vec3d world_point) {
+SolidColour evaluate_solid(const SolidPattern& s, Vec3d world_point, const TextureImages* images) {
   if (s.kind == SolidPatternKind::kSolid) return s.colour;
   const Vec3d p = solid::warped_point(s, s.pattern_from_world.point(world_point));
+  if (s.kind == SolidPatternKind::kImageMap)
+    return images ? image_map_colour(s.image_map, p, *images, s.colour) : s.colour;
   if (is_list(s.kind)) {
     const int index = std::clamp(int(solid::raw_value(s, p)), 0, list_size(s.kind) - 1);
-    return size_t(index) < s.list.size() ? evaluate_solid(s.list[index], world_point)
+    return size_t(index) < s.list.size() ? evaluate_solid(s.list[index], world_point, images)
                                          : default_list_colour(s.kind, index);
   }
   const double value = solid::shape_value(s, solid::raw_value(s, p));

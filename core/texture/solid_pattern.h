@@ -11,11 +11,14 @@
 #include <filmback/vec.h>
 
 #include "core/scene/solid_texture.h"
+#include "core/texture/texture_images.h"
 
 namespace fb {
 
-// The texture's colour at a world-space point (filter and transmit included).
-SolidColour evaluate_solid(const SolidPattern& pattern, Vec3d world_point);
+// The texture's colour at a world-space point (filter and transmit included). Image maps read
+// `images`; without them (a sky baked before any render) they stand in with their `colour`.
+SolidColour evaluate_solid(const SolidPattern& pattern, Vec3d world_point,
+                           const TextureImages* images = nullptr);
 
 // The pieces, exposed for tests.
 namespace solid {

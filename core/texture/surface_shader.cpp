@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/texture/solid_image_map.h"
 #include "core/texture/solid_normal.h"
 #include "core/texture/solid_pattern.h"
 #include "core/util/error.h"
@@ -12,14 +13,21 @@ namespace fb {
 namespace {
 
 // How each image is read (TextureImages::kReadLinear, kReadFromSrgb): colours and emission from
-// sRGB (glTF 2.0 §3.9.2), the rest as stored; a shader graph's texture as its node says.
+// sRGB (glTF 2.0 §3.9.2), the rest as stored; a shader graph's texture as its node says; a POV-Ray
+// image map as its file's gamma says.
 std::vector<uint8_t> image_uses(const Scene& scene) {
   std::vector<uint8_t> uses(scene.images.size(), 0);
   const auto mark = [&uses](const TextureRef& t, bool srgb) {
     if (t.present())
       uses.at(t.image) |= srgb ? TextureImages::kReadFromSrgb : TextureImages::kReadLinear;
   };
+  const auto mark_patterns = [&uses](const Material& m) {
+    if (m.base_color_pattern) mark_image_map_uses(*m.base_color_pattern, uses);
+  };
   for (const Material& m : scene.materials) {
+    mark_patterns(m);
+    for (const Material& layer : m.layers)
+      mark_patterns(layer);
     mark(m.textures.base_color, true);
     mark(m.textures.emissive, true);
     mark(m.textures.metallic_roughness, false);
@@ -54,7 +62,7 @@ SurfaceShader::SurfaceShader(const Scene& scene, const Transform& world_from_ren
 
 SolidColour SurfaceShader::solid_colour(const SolidPattern& pattern,
                                         const SurfacePoint& point) const {
-  return evaluate_solid(pattern, world_from_render_.point(Vec3d(point.position)));
+  return evaluate_solid(pattern, world_from_render_.point(Vec3d(point.position)), &images_);
 }
 
 std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfacePoint& point,

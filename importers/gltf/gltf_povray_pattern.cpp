@@ -131,6 +131,12 @@ SolidPattern read(const Fields& f, int depth, size_t& count) {
 }  // namespace
 
 tinygltf::Value pattern_json(const SolidPattern& p) {
+  if (p.kind == K::kImageMap) {
+    // The extension does not carry image files: the map's average colour stands in (docs/pov.md).
+    SolidPattern plain;
+    plain.colour = p.colour;
+    return pattern_json(plain);
+  }
   const SolidPattern d;  // what the reader assumes for what is not written
   Value::Object o = colour_json(p.colour);
   o["pattern"] = Value(std::string(name_of(kSolidPatternNames, p.kind)));
@@ -179,7 +185,7 @@ SolidPattern read_pattern(const Fields& json) {
 
 SolidColour mean_colour(const SolidPattern& p) {
   SolidColour mean;
-  if (p.kind == K::kSolid) return p.colour;
+  if (p.kind == K::kSolid || p.kind == K::kImageMap) return p.colour;  // an image map's average
   if (!p.list.empty()) {
     for (const SolidPattern& entry : p.list) {
       const SolidColour c = mean_colour(entry);

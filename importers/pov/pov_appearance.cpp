@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/math/constants.h"
+#include "core/texture/solid_image_map.h"
 #include "core/texture/solid_pattern.h"
 #include "importers/pov/pov_space.h"
 
@@ -35,6 +36,7 @@ SolidPattern to_solid(const Pigment& p, double gamma, const Transform& pov_from_
     s.colour_map.push_back({float(std::clamp(e.value, 0.0, 1.0)), solid_colour(e.colour, gamma)});
   for (const Pigment& entry : p.list)
     s.list.push_back(to_solid(entry, gamma, pov_from_input));
+  s.image_map = p.image_map;  // its image index is the same in both scenes (import_pov)
   static_cast<SolidPatternModifiers&>(s) = p;
   // Marble, wood and the spirals default to triangle_wave (checked against POV-Ray's renders,
   // pov_appearance_test). pov::Pigment does not say whether a ramp_wave was written, so ramp
@@ -77,7 +79,8 @@ SolidNormal to_solid_normal(const Normal& n, const Transform& pov_from_input) {
 }
 
 bool any_transmit(const SolidPattern& s) {
-  if (s.colour.transmit > 0) return true;
+  // an image map may be clear off a `once` image or where its alpha is below 1
+  if (s.colour.transmit > 0 || s.kind == SolidPatternKind::kImageMap) return true;
   for (const SolidColourStop& stop : s.colour_map)
     if (stop.colour.transmit > 0) return true;
   for (const SolidPattern& entry : s.list)
@@ -142,6 +145,10 @@ void append_pattern(std::string& key, const SolidPattern& s) {
   append(key, s.phase), append(key, int(s.wave)), append(key, s.wave_exponent);
   append(key, s.gradient), append(key, s.brick_size), append(key, s.mortar);
   append(key, s.spiral_arms), append(key, s.agate_turbulence);
+  const SolidImageMap& image = s.image_map;
+  append(key, image.image), append(key, int(image.projection)), append(key, image.once);
+  append(key, int(image.interpolation)), append(key, image.srgb), append(key, image.decode_gamma);
+  append(key, image.filter_all), append(key, image.transmit_all), append(key, image.major_radius);
   key += "}";
 }
 void append_normal(std::string& key, const SolidNormal& n) {
@@ -360,12 +367,16 @@ void convert_environment(const Scene& scene, fb::Scene& out, Diagnostics& diagno
   if (!scene.sky_sphere || scene.sky_sphere->pigments.empty()) return;
   const SkySphere& sky = *scene.sky_sphere;
   std::vector<SolidPattern> layers;
+  std::vector<uint8_t> image_uses(out.images.size(), 0);
   for (const Pigment& p : sky.pigments) {
     if (p.averaged)
       diagnostics.warn(p.where.text() + ": sky_sphere pattern " + p.name +
                        " is not rendered (its average colour is used)");
     layers.push_back(to_solid(p, gamma, Transform()));  // evaluated in the sky's own space
+    mark_image_map_uses(layers.back(), image_uses);
   }
+  // the sky's image maps, read as a render reads them (an unreadable image: an InputError)
+  const TextureImages images(out, image_uses);
   const Transform sky_from_pov = sky.transform.inverse();
   EnvironmentMap map;
   map.name = "sky_sphere (" + sky.pigments.front().where.text() + ")";
@@ -386,7 +397,7 @@ void convert_environment(const Scene& scene, fb::Scene& out, Diagnostics& diagno
       Rgb colour{};
       double through = 1, filter = 1, transmit = 1;
       for (size_t i = layers.size(); i-- > 0;) {
-        const SolidColour c = evaluate_solid(layers[i], p);
+        const SolidColour c = evaluate_solid(layers[i], p, &images);
         colour += c.rgb * float(through * std::max(0.0, 1.0 - c.filter - c.transmit));
         filter *= c.filter, transmit *= c.transmit;
         through = std::abs(filter) + std::abs(transmit);

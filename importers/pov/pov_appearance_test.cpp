@@ -249,13 +249,15 @@ TEST(PovAppearance, SkySphereIsBakedIntoTheWorldOverTheBackground) {
 
 // POV-Ray's render of `pov_file`, one ray through each pixel centre (-A), as linear RGB floats
 // (16-bit PNG, File_Gamma 1): width * height * 3 values, or empty (with a message in `why`) if
-// povray failed or its image could not be read.
+// povray failed or its image could not be read. The scene's folder is a library path, so that
+// its files are found as filmback finds them.
 std::vector<float> povray_render(const std::filesystem::path& pov_file, int width, int height,
                                  std::string& why) {
   const std::filesystem::path png = std::filesystem::path(pov_file).replace_extension(".png");
   const std::string command = "povray +W" + std::to_string(width) + " +H" + std::to_string(height) +
-                              " -D -A +FN16 File_Gamma=1.0 +I'" + pov_file.string() + "' +O'" +
-                              png.string() + "' > '" + pov_file.string() + ".log' 2>&1";
+                              " -D -A +FN16 File_Gamma=1.0 +L'" + pov_file.parent_path().string() +
+                              "' +I'" + pov_file.string() + "' +O'" + png.string() + "' > '" +
+                              pov_file.string() + ".log' 2>&1";
   if (std::system(command.c_str()) != 0) {
     why = "failed: " + command;
     return {};
@@ -286,6 +288,22 @@ std::vector<float> povray_render(const std::filesystem::path& pov_file, int widt
 // scale error in the normal moves these by tens of %.
 constexpr double kNormalLayerPixelTolerance = 0.01;
 constexpr double kBumpMeanTolerance = 0.03, kBumpSpreadTolerance = 0.15;
+
+// Tolerances of ImageMapsRenderAsPovRayDoes (docs/pov.md "Image maps"): per value, on average and
+// at worst, about ten times what it measured (0.018 % and 0.0002 with bilinear interpolation,
+// 16-bit rounding otherwise). A texel off by one, a flipped row order or a wrong decoding curve
+// differs by tens of %.
+constexpr double kImageMapPixelTolerance = 0.002, kImageMapLargestDifference = 0.002;
+
+// filmback's import of `pov_file` for size x size pixels; `warnings`: how many it reported.
+fb::Scene import_square(const std::filesystem::path& pov_file, int size, size_t& warnings) {
+  Diagnostics diagnostics;
+  ImportOptions import;
+  import.resolution = {uint32_t(size), uint32_t(size)};
+  fb::Scene scene = import_pov(pov_file, import, diagnostics);
+  warnings = diagnostics.count();
+  return scene;
+}
 
 // filmback's render of `scene` at size x size pixels, quietly.
 RenderResult render_square(const fb::Scene& scene, int size, uint32_t samples, const char* filter) {
@@ -647,11 +665,9 @@ TEST(PovAppearance, NormalPatternsAndLayeredTexturesRenderAsPovRayDoes) {
     write_scene(pov_file, c.appearance);
     const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
     ASSERT_FALSE(reference.empty()) << why;
-    Diagnostics diagnostics;
-    ImportOptions import;
-    import.resolution = {uint32_t(kSize), uint32_t(kSize)};
-    const fb::Scene scene = import_pov(pov_file, import, diagnostics);
-    EXPECT_EQ(diagnostics.count(), 0u) << c.name;
+    size_t warnings = 0;
+    const fb::Scene scene = import_square(pov_file, kSize, warnings);
+    EXPECT_EQ(warnings, 0u) << c.name;
     const RenderResult result = render_square(scene, kSize, 4, "box:radius=0.001");
 
     double relative_sum = 0, ours_sum = 0, pov_sum = 0, ours_sq = 0, pov_sq = 0;
@@ -687,6 +703,83 @@ TEST(PovAppearance, NormalPatternsAndLayeredTexturesRenderAsPovRayDoes) {
       EXPECT_LT(std::abs(ours_mean / pov_mean - 1), kBumpMeanTolerance) << c.name;
       EXPECT_LT(std::abs(ours_spread / pov_spread - 1), kBumpSpreadTolerance) << c.name;
     }
+  }
+}
+
+// An 8 x 4 RGB image of distinct 8-bit colours (x, y, and their mix in the three channels).
+void write_image_map_test_image(const std::filesystem::path& file) {
+  constexpr int kWidth = 8, kHeight = 4;
+  std::vector<unsigned char> pixels;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      pixels.insert(pixels.end(), {(unsigned char)(30 * x + 15), (unsigned char)(60 * y + 20),
+                                   (unsigned char)((37 * (x + 3 * y)) % 256)});
+  auto out = OIIO::ImageOutput::create(file.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(kWidth, kHeight, 3, OIIO::TypeDesc::UINT8)));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
+  out->close();
+}
+
+// image_map through the whole chain (import_pov and a render) against POV-Ray, pixel by pixel:
+// a plane under one point light, an orthographic camera seeing the image's unit square and half
+// a unit around it, each texel 4 x 8 pixels (no pixel centre on a texel's edge).
+// The 8-bit PNG decoded by the sRGB curve, repeated, read once (clear around it: black), and
+// read linear (`gamma 1.0`) with bilinear interpolation; scaled and rotated.
+TEST(PovAppearance, ImageMapsRenderAsPovRayDoes) {
+  if (std::system("command -v povray > /dev/null 2>&1") != 0) GTEST_SKIP() << "no povray";
+  struct Case {
+    const char* name;
+    const char* pigment;
+  };
+  const Case cases[] = {
+      {"repeated", "image_map { png \"map.png\" }"},
+      {"once", "image_map { png \"map.png\" once }"},
+      {"linear_bilinear", "image_map { png \"map\" gamma 1.0 interpolate 2 }"},
+      {"transformed", "image_map { \"map.png\" } scale <0.7, 0.4, 1> rotate 20*z"},
+  };
+  constexpr int kSize = 64;
+  const std::filesystem::path dir = test::scratch_dir();
+  write_image_map_test_image(dir / "map.png");
+  for (const Case& c : cases) {
+    const std::filesystem::path pov_file = dir / (std::string(c.name) + ".pov");
+    std::ofstream(pov_file) << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n"
+                               "camera { orthographic location <0.5,0.5,-10> look_at <0.5,0.5,0> "
+                               "right x*2 up y*2 }\n"
+                               "light_source { <0.3, 0.8, -3> rgb 1 }\n"
+                               "plane { -z, 0 pigment { "
+                            << c.pigment << " } finish { ambient 0 diffuse 0.8 } }\n";
+    std::string why;
+    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    ASSERT_FALSE(reference.empty()) << why;
+    size_t warnings = 0;
+    const fb::Scene scene = import_square(pov_file, kSize, warnings);
+    EXPECT_EQ(warnings, 0u) << c.name;
+    const RenderResult result = render_square(scene, kSize, 1, "box:radius=0.001");
+    double relative_sum = 0, largest = 0;
+    int values = 0, dark = 0, dark_here = 0;  // dark: off a `once` image, or a black texel
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        for (int ch = 0; ch < 3; ++ch) {
+          const double expected = reference[(size_t(y) * kSize + x) * 3 + ch];
+          const double ours = result.image.at(x, y, ch);
+          largest = std::max(largest, std::abs(ours - expected));
+          if (expected < 0.01) {
+            ++dark, dark_here += ours < 0.01;
+            continue;
+          }
+          relative_sum += std::abs(ours - expected) / expected;
+          ++values;
+        }
+    const double mean_relative = values ? relative_sum / values : 1;
+    std::printf("%s: mean relative difference %.4f %% over %d values, largest %.5f\n", c.name,
+                100 * mean_relative, values, largest);
+    RecordProperty(std::string(c.name) + "_mean_relative_difference",
+                   std::to_string(mean_relative));
+    ASSERT_GT(values, kSize * kSize / 2) << c.name;
+    EXPECT_EQ(dark_here, dark) << c.name;
+    EXPECT_LT(mean_relative, kImageMapPixelTolerance) << c.name;
+    EXPECT_LT(largest, kImageMapLargestDifference) << c.name;
   }
 }
 

@@ -79,6 +79,9 @@ Scene import_pov(const std::filesystem::path& file, const ImportOptions& options
 
   Scene scene;
   scene.file = file;
+  // image_map files, at the indices the pigments give (pov_appearance's to_solid)
+  for (const std::filesystem::path& image : pov.images)
+    scene.images.push_back({image.filename().string(), image, {}});
   scene.settings.width_px = width;
   scene.settings.height_px = height;
   const pov::PovCamera camera = pov::convert_camera(pov.camera, width, height, diagnostics);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -51,11 +52,12 @@ struct ColourMapEntry {
 // default wave (pov_appearance).
 struct Pigment : SolidPatternModifiers {
   Pattern pattern = Pattern::kSolid;
-  // image_map, or a pattern the evaluator knows only by name: not evaluated, the converter uses
-  // `colour`, the parser's estimate of its average (see pov_appearance)
+  // A pattern the evaluator knows only by name: not evaluated, the converter uses `colour`, the
+  // parser's estimate of its average (see pov_appearance)
   bool averaged = false;
-  std::string name;  // the pattern's keyword, for messages
-  Colour colour;     // kSolid; otherwise the pattern's average, as the parser estimates it
+  SolidImageMap image_map;  // kImageMap: its image indexes Scene::images
+  std::string name;         // the pattern's keyword, for messages
+  Colour colour;            // kSolid; otherwise the pattern's average, as the parser estimates it
   std::vector<ColourMapEntry> colour_map;  // value patterns; empty: POV-Ray's default grey ramp
   std::vector<Pigment> list;               // list patterns (checker A, B ...)
   // Pattern space from POV world space: the pigment's own transforms and every transform applied
@@ -273,6 +275,7 @@ struct Scene {
   std::optional<SkySphere> sky_sphere;
   std::optional<double> assumed_gamma;
   Colour ambient_light{1, 1, 1};
+  std::vector<std::filesystem::path> images;  // image_map files, found; each once
   double version = 3.7;
   // Features met but not rendered, in the order met; the converters report each once per scene.
   std::vector<Unsupported> unsupported;

@@ -26,10 +26,10 @@ Matrix rotation(Vec3d degrees) {
 // POV-Ray's pattern keywords that filmback does not evaluate (beside those it does, named in
 // core/scene/solid_texture.h): a pigment of one is parsed and rendered in its average colour.
 const char* const kAveragedPatterns[] = {
-    "image_map", "boxed",   "cylindrical",   "spherical", "planar",          "mandel",
-    "julia",     "magnet",  "object",        "function",  "pigment_pattern", "density_file",
-    "facets",    "quilted", "tiling",        "pavement",  "slope",           "aoi",
-    "cubic",     "average", "image_pattern", "square",    "triangular",      "bump_map",
+    "boxed",   "cylindrical",   "spherical", "planar",          "mandel",       "julia",
+    "magnet",  "object",        "function",  "pigment_pattern", "density_file", "facets",
+    "quilted", "tiling",        "pavement",  "slope",           "aoi",          "cubic",
+    "average", "image_pattern", "square",    "triangular",      "bump_map",
 };
 
 bool is_averaged_pattern(const std::string& w) {
@@ -147,10 +147,13 @@ void parse_pigment_pattern(Parser& parser, Pigment& p, const Tok& tok) {
       p.list.push_back(solid(defaults[p.list.size()]));
   } else if (w == "gradient") {
     p.gradient = parser.parse_vector();
+  } else if (w == "image_map") {
+    parser.parse_image_map(p);  // image_map.cpp
+    return;
   } else {
     parser.parse_pattern_arguments(w);
   }
-  if (p.averaged && w != "image_map") parser.unsupported("pattern " + w, parser.location_of(tok));
+  if (p.averaged) parser.unsupported("pattern " + w, parser.location_of(tok));
 }
 
 // poly_wave [Exponent]

@@ -746,6 +746,77 @@ TEST_F(Sdl, HeightFieldFromImages) {
   EXPECT_NE(error.find("at most 5"), std::string::npos) << error;
 }
 
+// image_map: the file found as #include finds files (the type's extension added when the name has
+// none), one image per file, the map's options, how its values decode (POV-Ray 3.7's rules),
+// unread types averaged, and a missing or escaping file refused with its place.
+TEST_F(Sdl, ImageMapsAreFoundAndDecodedAsPovRayReadsThem) {
+  write("scene/map.png", "not read by the parser");
+  write("lib/sky.jpg", "not read by the parser");
+  write("scene/light.exr", "not read by the parser");
+  Scene scene =
+      run("#version 3.7;\n"
+          "sphere { 0, 1 pigment { image_map { png \"map.png\" map_type 1 once interpolate 2\n"
+          "  filter all 0.2 transmit all 0.3 } scale 2 } }\n"
+          "sphere { 0, 1 pigment { image_map { jpeg \"sky\" map_type 5 major_radius 3 } } }\n"
+          "sphere { 0, 1 pigment { image_map { \"map.png\" gamma 1.8 map_type 4 } } }\n"
+          "sphere { 0, 1 pigment { image_map { exr \"light.exr\" } } }\n"
+          "sphere { 0, 1 pigment { image_map { gif \"anim.gif\" once } } }\n"
+          "sphere { 0, 1 pigment { image_map { \"sky\" } } }\n");  // no type: sky.jpg
+  ASSERT_EQ(scene.objects.size(), 6u);
+  EXPECT_EQ(scene.objects[5].texture.pigment.image_map.image, 1u);
+  ASSERT_EQ(scene.images.size(), 3u);  // map.png once for two pigments
+  EXPECT_EQ(scene.images[0], root_ / "scene" / "map.png");
+  EXPECT_EQ(scene.images[1], root_ / "lib" / "sky.jpg");
+  const Pigment& first = scene.objects[0].texture.pigment;
+  EXPECT_EQ(first.pattern, Pattern::kImageMap);
+  EXPECT_FALSE(first.averaged);
+  EXPECT_EQ(first.image_map.image, 0u);
+  EXPECT_EQ(first.image_map.projection, SolidImageProjection::kSpherical);
+  EXPECT_TRUE(first.image_map.once);
+  EXPECT_EQ(first.image_map.interpolation, TextureInterpolation::kLinear);
+  EXPECT_FLOAT_EQ(first.image_map.filter_all, 0.2f);
+  EXPECT_FLOAT_EQ(first.image_map.transmit_all, 0.3f);
+  EXPECT_TRUE(first.image_map.srgb);                                 // an 8-bit file in a 3.7 scene
+  EXPECT_DOUBLE_EQ(first.pattern_from_world.point({2, 0, 0}).x, 1);  // the pigment's scale
+  const SolidImageMap& torus = scene.objects[1].texture.pigment.image_map;
+  EXPECT_EQ(torus.image, 1u);
+  EXPECT_EQ(torus.projection, SolidImageProjection::kTorus);
+  EXPECT_EQ(torus.major_radius, 3);
+  EXPECT_EQ(torus.interpolation, TextureInterpolation::kClosest);
+  const SolidImageMap& gamma = scene.objects[2].texture.pigment.image_map;
+  EXPECT_EQ(gamma.image, 0u);
+  EXPECT_EQ(gamma.projection, SolidImageProjection::kPlanar);  // map_type 4: planar, as POV-Ray
+  EXPECT_FALSE(gamma.srgb);
+  EXPECT_FLOAT_EQ(gamma.decode_gamma, 1.8f);
+  const SolidImageMap& linear = scene.objects[3].texture.pigment.image_map;
+  EXPECT_FALSE(linear.srgb);
+  EXPECT_FLOAT_EQ(linear.decode_gamma, 1.f);
+  const Pigment& gif = scene.objects[4].texture.pigment;
+  EXPECT_TRUE(gif.averaged);
+  EXPECT_EQ(gif.name, "image_map gif");
+
+  // A legacy scene: the stored values, decoded as its colours are; assumed_gamma makes it 3.7's.
+  const SolidImageMap legacy =
+      run("#version 3.6;\nsphere { 0, 1 pigment { image_map { png \"map.png\" } } }")
+          .objects.at(0)
+          .texture.pigment.image_map;
+  EXPECT_FALSE(legacy.srgb);
+  EXPECT_FLOAT_EQ(legacy.decode_gamma, 2.2f);
+  EXPECT_TRUE(run("#version 3.6;\nglobal_settings { assumed_gamma 1 }\n"
+                  "sphere { 0, 1 pigment { image_map { png \"map.png\" } } }")
+                  .objects.at(0)
+                  .texture.pigment.image_map.srgb);
+
+  std::string error = error_of("sphere { 0, 1 pigment { image_map { png \"none.png\" } } }");
+  EXPECT_EQ(error.rfind("scene.pov:1:41: ", 0), 0u) << error;
+  EXPECT_NE(error.find("none.png"), std::string::npos) << error;
+  write("outside.png", "not read");
+  error = error_of("\nsphere { 0, 1 pigment { image_map { png \"../outside.png\" } } }");
+  EXPECT_EQ(error.rfind("scene.pov:2:41: ", 0), 0u) << error;
+  error = error_of("sphere { 0, 1 pigment { image_map { \"map.png\" tile 3 } } }");
+  EXPECT_NE(error.find("'tile' in image_map"), std::string::npos) << error;
+}
+
 // blob: threshold and components in both syntaxes, their transforms; hostile values refused with
 // their place; a component's texture reported.
 TEST_F(Sdl, BlobComponents) {

@@ -212,6 +212,7 @@ class Parser {
   Pigment parse_pigment_items(const char* closing);  // a pigment's body up to `closing`
   Texture parse_texture_items(const char* closing);
   void parse_pattern_arguments(const std::string& pattern);
+  void parse_image_map(Pigment& p);                            // image_map.cpp: after `image_map`
   std::optional<Matrix> parse_transform_item(const Tok& tok);  // translate/rotate/.../transform
   Matrix parse_transform_block();                              // after `transform`
   const Texture& default_texture() const { return default_texture_; }
