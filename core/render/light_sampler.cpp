@@ -222,8 +222,9 @@ bool LightSampler::sample_lamp(uint32_t index, Vec3f position, const float u[2],
   const Lamp& lamp = lamps_[index];
   if (std::holds_alternative<std::monostate>(lamp.size))
     return sample_delta(lamp, position, u, out);
+  constexpr float kCentre[2] = {0.5f, 0.5f};
   SizedLightPoint point;
-  if (!sample_sized(lamp, position, u, point)) return false;
+  if (!sample_sized(lamp, position, u ? u : kCentre, point)) return false;
   const Rgb L = radiance(lamp, point);
   point.direction.store(out.direction);
   L.store(out.radiance);
@@ -309,7 +310,7 @@ bool LightSampler::sample_delta(const Lamp& lamp, Vec3f position, const float u[
     return max_component(lamp.intensity) > 0.f;
   }
   const Vec3f q =
-      lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u) : lamp.position;
+      u && lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u) : lamp.position;
   const Vec3f d = q - position;
   const float distance2 = dot(d, d);
   if (!(distance2 > 0.f)) return false;

@@ -340,7 +340,9 @@ typedef struct fb_scene_api {
    * lights, 0 .. fb_scene.lamp_count - 1; not emissive triangles nor the world) as seen from
    * `position`, with two sample values (a POV-Ray area light's grid point, a point on a light with
    * a size), without a choice among lights: pdf is 1 for a delta light. For integrators that sum
-   * over every light, as POV-Ray does. Returns 0 when the sample carries no light. */
+   * over every light, as POV-Ray does. `u` NULL asks for the lamp's centre (a POV-Ray area
+   * light's, which POV-Ray lights from while its grid shadows; u = (0.5, 0.5) for a light with a
+   * size). Returns 0 when the sample carries no light. */
   int (*sample_lamp)(fb_trace_context* context, uint32_t lamp, const float position[3],
                      const float u[2], fb_light_sample* sample);
 } fb_scene_api;

@@ -152,21 +152,28 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
 
   if (f.diffuse != 0.f || f.phong != 0.f || f.specular != 0.f) {
     for (uint32_t lamp = 0; lamp < scene.lamp_count; ++lamp) {
+      // POV-Ray lights from the light's centre, and shadows an area light from its grid: one
+      // grid point per sample here, so that the samples average the grid's visibility. A light
+      // with a size (not POV-Ray's) lights from the point sampled on it.
       float u[2];
       api.next_samples(ctx, path, u, 2);
-      fb_light_sample ls;
-      if (!api.sample_lamp(ctx, lamp, hit.position, u, &ls)) continue;
-      const Vec3f to_light(ls.direction);
+      fb_light_sample point, centre;
+      if (!api.sample_lamp(ctx, lamp, hit.position, u, &point)) continue;
+      if (!point.is_delta)
+        centre = point;
+      else if (!api.sample_lamp(ctx, lamp, hit.position, nullptr, &centre))
+        continue;
+      const Vec3f to_light(centre.direction), to_point(point.direction);
       const float cos_light = dot(n, to_light);
       if (cos_light < lighting::kHorizonCosine) continue;
       fb_ray shadow{};
-      fb::offset_ray_origin(p, p_error, ng, to_light).store(shadow.origin);
-      to_light.store(shadow.direction);
-      // POV-Ray's lights have colour c where filmback's have intensity pi c (docs/pov.md).
-      shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - 1e-4f);
+      fb::offset_ray_origin(p, p_error, ng, to_point).store(shadow.origin);
+      to_point.store(shadow.direction);
+      shadow.t_max = std::isinf(point.distance) ? HUGE_VALF : point.distance * (1.f - 1e-4f);
       shadow.time_s = r.ray.time_s;
-      const Rgb light = lighting::rgb(ls.radiance) * (1.f / (kPovPi * ls.pdf)) *
-                        light_through(shadow, ls.distance);
+      // POV-Ray's lights have colour c where filmback's have intensity pi c (docs/pov.md).
+      const Rgb light = lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf)) *
+                        light_through(shadow, point.distance);
       if (!(fb::max_component(light) > 0.f)) continue;
       colour += lighting::diffuse(f, cos_light, opacity, pigment, light) +
                 lighting::phong(f, view, n, to_light, pigment, light) +

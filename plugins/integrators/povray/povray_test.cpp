@@ -130,35 +130,35 @@ const PovCase kPovCases[] = {
      "} }\n"
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.3, 0.5, 0.9> } finish { ambient 0.2 brilliance "
      "0.5 } }\n",
-     1, 0.005},
+     1, 0.001},
     {"phong",
      "light_source { <3, 5, -4> rgb 1 }\n"
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.8, 0.2, 0.2> } finish { phong 0.9 phong_size 30 "
      "} }\n",
-     1, 0.005},
+     1, 0.001},
     {"specular",
      "light_source { <-3, 5, -4> rgb <1, 0.9, 0.8> }\n"
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.2, 0.7, 0.3> } finish { specular 0.8 roughness "
      "0.02 metallic 0.5 } }\n",
-     1, 0.005},
+     1, 0.001},
     {"shadow",
      "light_source { <2, 6, -3> rgb 1 }\n"
      "plane { y, 0 pigment { rgb 0.8 } finish { ambient 0.2 } }\n"
      "box { <-0.5, 0.3, -0.5>, <0.5, 1.3, 0.5> pigment { rgb <0.9, 0.4, 0.1> } }\n"
      "sphere { <1.2, 0.4, -0.8>, 0.4 pigment { rgbf <0.3, 0.9, 0.3, 0.7> } }\n",
-     1, 0.005},
+     1, 0.001},
     {"mirror",
      "light_source { <3, 5, -4> rgb 1 }\n"
      "plane { y, 0 pigment { checker rgb 0.9, rgb <0.7, 0.1, 0.1> } }\n"
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgb 0.1 } finish { ambient 0 diffuse 0.2 reflection { "
      "0.1, 0.9 falloff 2 } } }\n",
-     1, 0.005},
+     1, 0.01},
     {"glass",
      "light_source { <3, 5, -4> rgb 1 }\n"
      "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgbf <0.95, 1, 0.95, 0.9> } finish { ambient 0 diffuse "
      "0.1 phong 0.5 reflection { 0.05, 1 fresnel } } interior { ior 1.5 } }\n",
-     1, 0.01},
+     1, 0.02},
     {"area_light",
      "light_source { <0, 4, -1> rgb 1 area_light <2, 0, 0>, <0, 0, 2>, 5, 5 }\n"
      "plane { y, 0 pigment { rgb 0.8 } finish { ambient 0.1 } }\n"
