@@ -216,7 +216,9 @@ PovFinish pov_finish(const Finish& f, Rgb pigment, float pigment_scale, float fi
   p.reflection_exponent = float(f.reflection_exponent);
   p.reflection_fresnel = f.reflection_fresnel;
   p.reflection_metallic = float(f.reflection_metallic);
-  p.ior = float(ior);
+  // The interior shows only through a transparent pigment or in Fresnel's reflection: an opaque
+  // surface keeps sharing its material whatever its interior.
+  p.ior = filter + transmit > 0 || f.reflection_fresnel ? float(ior) : 1.f;
   return p;
 }
 

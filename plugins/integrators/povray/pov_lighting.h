@@ -41,6 +41,13 @@ inline Rgb pigment_at_hit(const fb_pov_finish& f, const float base_color[3]) {
   return f.pigment_scale > 0.f ? rgb(base_color) / f.pigment_scale : rgb(f.pigment);
 }
 
+// What a hit lets through of what lies behind it: filter * pigment + transmit (POV-Ray's
+// TransmittedColour), less the transmit the host's coverage already passed by (a hit on a
+// blended pigment is found with probability `coverage`; what the caller adds is divided by it).
+inline Rgb passed_through(const fb_pov_finish& f, Rgb pigment) {
+  return pigment * f.filter + Rgb(1.f, 1.f, 1.f) * (f.transmit - (1.f - f.coverage));
+}
+
 // Diffuse: diffuse * cos(theta)^brilliance * opacity, times the pigment and the light.
 inline Rgb diffuse(const fb_pov_finish& f, float cos_light, float opacity, Rgb pigment, Rgb light) {
   if (!(cos_light > 0.f) || f.diffuse == 0.f) return {};

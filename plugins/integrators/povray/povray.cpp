@@ -114,9 +114,7 @@ Rgb PovRayTracer::Tracer::light_through(const fb_ray& shadow, float distance) co
     if (!api.intersect(ctx, &ray, &hit)) return through;
     const fb_pov_finish& f = finish(hit.material);
     const Rgb pigment = lighting::pigment_at_hit(f, hit.base_color);
-    const Rgb filtered =
-        pigment * f.filter + Rgb(1.f, 1.f, 1.f) * (f.transmit - (1.f - f.coverage));
-    through *= filtered / f.coverage;
+    through *= lighting::passed_through(f, pigment) / std::max(f.coverage, 1e-6f);
     if (!(fb::max_component(through) > 0.f)) return {};
     const Vec3f p(hit.position), d(ray.direction);
     fb::offset_ray_origin(p, Vec3f(hit.position_error), Vec3f(hit.geometric_normal), d)
@@ -182,8 +180,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
   }
 
   // Transmission: the pigment's filter and transmit, less what the host's coverage passed by.
-  const Rgb see_through =
-      pigment * f.filter + Rgb(1.f, 1.f, 1.f) * (f.transmit - (1.f - f.coverage));
+  const Rgb see_through = lighting::passed_through(f, pigment);
   bool total_internal_reflection = false;
   const float transmitted_weight = fb::max_component(see_through);
   if (transmitted_weight > adc_bailout) {
@@ -228,7 +225,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
   }
   // The host keeps this hit with probability `coverage` and passes the ray on otherwise: divided
   // by it, the mean over samples is POV-Ray's colour.
-  return colour / f.coverage;
+  return colour / std::max(f.coverage, 1e-6f);
 }
 
 constexpr fb_integrator_api kApi = fb::integrator_api<PovRayTracer>();
