@@ -45,7 +45,13 @@ inline constexpr Layout kHitLayouts[] = {
     {sizeof(fb_hit), sizeof(fb_hit)}};
 inline constexpr Layout kSceneApiLayouts[] = {
     {uint32_t(offsetof(fb_scene_api, bsdf_eval)), uint32_t(offsetof(fb_scene_api, bsdf_eval))},
+    {uint32_t(offsetof(fb_scene_api, sample_lamp)), uint32_t(offsetof(fb_scene_api, sample_lamp))},
     {sizeof(fb_scene_api), sizeof(fb_scene_api)}};
+// fb_scene's first layout ends at view_axis; issue 19 appended `povray` and `lamp_count`.
+inline constexpr Layout kSceneLayouts[] = {
+    {padded_size(offsetof(fb_scene, povray), alignof(fb_scene)),
+     uint32_t(offsetof(fb_scene, view_axis) + sizeof(float[3]))},
+    {sizeof(fb_scene), sizeof(fb_scene)}};
 
 // A growth must change sizeof, else a plugin's size could not tell its layout (plugin_abi.h).
 template <size_t N>
@@ -55,7 +61,8 @@ constexpr bool sizes_grow(const Layout (&layouts)[N]) {
   return true;
 }
 static_assert(sizes_grow(kCameraApiLayouts) && sizes_grow(kIntegratorApiLayouts) &&
-                  sizes_grow(kHitLayouts) && sizes_grow(kSceneApiLayouts),
+                  sizes_grow(kHitLayouts) && sizes_grow(kSceneApiLayouts) &&
+                  sizes_grow(kSceneLayouts),
               "a growth of the plugin ABI must change the struct's sizeof");
 
 struct FirstLayout {
@@ -64,7 +71,7 @@ struct FirstLayout {
   static constexpr uint32_t filter_api = sizeof(fb_filter_api);
   static constexpr uint32_t integrator_api = kIntegratorApiLayouts[0].size;
   static constexpr uint32_t hit = kHitLayouts[0].size;
-  static constexpr uint32_t scene = sizeof(fb_scene);
+  static constexpr uint32_t scene = kSceneLayouts[0].size;
   static constexpr uint32_t scene_api = kSceneApiLayouts[0].size;
 };
 

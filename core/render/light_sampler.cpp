@@ -216,25 +216,31 @@ LightSampler::LightSampler(const Scene& scene, const Transform& render_from_worl
   choice_ = LightChoice(power, bounds, selection);
 }
 
+bool LightSampler::sample_lamp(uint32_t index, Vec3f position, const float u[2],
+                               fb_light_sample& out) const {
+  if (index >= lamps_.size()) return false;
+  const Lamp& lamp = lamps_[index];
+  if (std::holds_alternative<std::monostate>(lamp.size))
+    return sample_delta(lamp, position, u, out);
+  constexpr float kCentre[2] = {0.5f, 0.5f};
+  SizedLightPoint point;
+  if (!sample_sized(lamp, position, u ? u : kCentre, point)) return false;
+  const Rgb L = radiance(lamp, point);
+  point.direction.store(out.direction);
+  L.store(out.radiance);
+  out.distance = lamp.casts_shadows ? point.distance : 0.f;
+  out.pdf = point.pdf;
+  out.is_delta = 0;
+  return max_component(L) > 0.f;
+}
+
 bool LightSampler::sample(Vec3f position, const float u[3], fb_light_sample& out) const {
   uint32_t index;
   float pmf;
   if (!choice_.choose(position, u[0], index, pmf)) return false;
   bool ok;
   if (index < lamps_.size()) {
-    const Lamp& lamp = lamps_[index];
-    SizedLightPoint point;
-    if (std::holds_alternative<std::monostate>(lamp.size)) {
-      ok = sample_delta(lamp, position, u + 1, out);
-    } else if ((ok = sample_sized(lamp, position, u + 1, point))) {
-      const Rgb L = radiance(lamp, point);
-      point.direction.store(out.direction);
-      L.store(out.radiance);
-      out.distance = lamp.casts_shadows ? point.distance : 0.f;
-      out.pdf = point.pdf;
-      out.is_delta = 0;
-      ok = max_component(L) > 0.f;
-    }
+    ok = sample_lamp(index, position, u + 1, out);
   } else if (index < lamps_.size() + emitters_.size()) {
     ok = sample_triangle(uint32_t(index - lamps_.size()), position, u + 1, out);
   } else {
@@ -304,7 +310,7 @@ bool LightSampler::sample_delta(const Lamp& lamp, Vec3f position, const float u[
     return max_component(lamp.intensity) > 0.f;
   }
   const Vec3f q =
-      lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u) : lamp.position;
+      u && lamp.area_size1 * lamp.area_size2 > 1 ? area_point(lamp, position, u) : lamp.position;
   const Vec3f d = q - position;
   const float distance2 = dot(d, d);
   if (!(distance2 > 0.f)) return false;

@@ -36,6 +36,10 @@ class LightSampler {
                std::optional<Rgb> background_override = {},
                LightSelection selection = LightSelection::kAuto);
   bool sample(Vec3f position, const float u[3], fb_light_sample& out) const;
+  // fb_scene_api::sample_lamp: a point on lamp `index` (< lamp_count()) from `position`, without a
+  // choice among lights (pdf 1 for a delta light); false for an index past the lamps. `u` NULL:
+  // the lamp's centre (a POV-Ray area light's; u = (0.5, 0.5) for a light with a size).
+  bool sample_lamp(uint32_t index, Vec3f position, const float u[2], fb_light_sample& out) const;
   float pdf(Vec3f position, const fb_hit& emitter_hit) const;
   // Radiance of the world arriving from direction -w (w: the escaping ray's direction), and the
   // solid-angle pdf with which sample() would have chosen w (0 for a uniform world, which only

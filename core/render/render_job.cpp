@@ -38,6 +38,8 @@ struct RenderJob::Plugins {
   std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
   std::string subdiv_summary;
   std::vector<fb_material> materials;
+  std::vector<fb_pov_finish> pov_finishes;  // per material, for a POV-Ray scene
+  fb_povray_scene povray{};
   fb_scene_api scene_api{};  // host_scene_api(), as long as the integrator knows it
   fb_scene scene{};
 };
@@ -50,6 +52,28 @@ ImageMetadata::Matrix to_float_matrix(const Transform& t) {
     for (int c = 0; c < 4; ++c)
       m[r * 4 + c] = float(t(r, c));
   return m;
+}
+
+fb_pov_finish to_abi(const PovFinish& f) {
+  fb_pov_finish out{};
+  out.present = 1;
+  f.pigment.store(out.pigment);
+  out.pigment_scale = f.pigment_scale;
+  out.filter = f.filter, out.transmit = f.transmit, out.coverage = f.coverage;
+  f.ambient.store(out.ambient);
+  f.emission.store(out.emission);
+  out.diffuse = f.diffuse, out.brilliance = f.brilliance;
+  out.phong = f.phong, out.phong_size = f.phong_size;
+  out.specular = f.specular, out.roughness = f.roughness;
+  out.metallic = f.metallic;
+  f.reflection_min.store(out.reflection_min);
+  f.reflection_max.store(out.reflection_max);
+  out.reflection_falloff = f.reflection_falloff;
+  out.reflection_exponent = f.reflection_exponent;
+  out.reflection_fresnel = f.reflection_fresnel;
+  out.reflection_metallic = f.reflection_metallic;
+  out.ior = f.ior;
+  return out;
 }
 
 // OpenEXR's camera space looks down +Z (ImfStandardAttributes.h, worldToCamera), as Cycles' does;
@@ -199,6 +223,15 @@ void RenderJob::make_scene_table() {
   options_.background.value_or(scene_.background).store(p.scene.background);
   p.scene.scene_radius_m = length(p.geometry->bounds_centre()) + p.geometry->bounds_radius();
   Vec3f(normalize(plan_.camera.world_from_camera.vector({0, 0, -1}))).store(p.scene.view_axis);
+  p.scene.lamp_count = uint32_t(p.lights->lamp_count());
+  if (scene_.pov_tracing) {
+    for (const Material& m : scene_.materials)
+      p.pov_finishes.push_back(m.pov_finish ? to_abi(*m.pov_finish) : fb_pov_finish{});
+    p.povray = {sizeof(fb_povray_scene), scene_.pov_tracing->max_trace_level,
+                float(scene_.pov_tracing->adc_bailout), uint32_t(p.pov_finishes.size()),
+                p.pov_finishes.data()};
+    p.scene.povray = &p.povray;
+  }
 }
 
 RenderJob::~RenderJob() = default;

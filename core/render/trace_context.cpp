@@ -96,12 +96,17 @@ uint32_t lights_crossed(fb_trace_context* c, const fb_ray* ray, float t_end,
   return c->lights->crossed(*ray, t_end, crossings, capacity);
 }
 
+int sample_lamp(fb_trace_context* c, uint32_t lamp, const float position[3], const float u[2],
+                fb_light_sample* sample) {
+  return c->lights->sample_lamp(lamp, Vec3f(position), u, *sample) ? 1 : 0;
+}
+
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
   static const fb_scene_api api{
-      sizeof(fb_scene_api), intersect,  intersect_batch, occluded,    sample_light,  light_pdf,
-      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed};
+      sizeof(fb_scene_api), intersect,  intersect_batch, occluded,    sample_light,   light_pdf,
+      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed, sample_lamp};
   return api;
 }
 

@@ -17,6 +17,7 @@
 #include "core/scene/camera.h"
 #include "core/scene/material_textures.h"
 #include "core/scene/mesh_deformation.h"
+#include "core/scene/pov_finish.h"
 #include "core/scene/shader_graph.h"
 #include "core/scene/solid.h"
 #include "core/scene/solid_texture.h"
@@ -74,6 +75,9 @@ struct Material {
   // `emission` to a bound of what it emits (for light selection), double_sided (Cycles' emission
   // leaves both faces) and alpha_mode kBlend when a node can be transparent.
   std::optional<ShaderGraph> shader_graph;
+  // A POV-Ray texture's finish and interior as written (importers/pov), for the `povray`
+  // integrator; the fields above are its physical mapping. The base layer's only.
+  std::optional<PovFinish> pov_finish;
 };
 
 enum class LightType { kPoint, kSpot, kDirectional, kArea };
@@ -206,6 +210,8 @@ struct Scene {
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
   // Meshes posed by the render at the shot's still time (pose_deformed_meshes), not before.
   std::vector<MeshDeformation> deformations;
+  // A POV-Ray scene's trace depth (global_settings); none for other scenes.
+  std::optional<PovTracing> pov_tracing;
 
   size_t triangle_count() const;
   Bounds3d world_bounds(double time_s) const;  // of all instanced geometry and bounded solids

@@ -161,8 +161,21 @@ void append_normal(std::string& key, const SolidNormal& n) {
     append(key, stop.value), append_normal(key, stop.normal);
   key += "}";
 }
+void append_finish(std::string& key, const PovFinish& f) {
+  key += "pov{";
+  append(key, f.pigment), append(key, f.pigment_scale), append(key, f.filter);
+  append(key, f.transmit), append(key, f.coverage), append(key, f.ambient);
+  append(key, f.emission);
+  append(key, f.diffuse), append(key, f.brilliance), append(key, f.phong);
+  append(key, f.phong_size), append(key, f.specular), append(key, f.roughness);
+  append(key, f.metallic), append(key, f.reflection_min), append(key, f.reflection_max);
+  append(key, f.reflection_falloff), append(key, f.reflection_exponent);
+  append(key, f.reflection_fresnel), append(key, f.reflection_metallic), append(key, f.ior);
+  key += "}";
+}
 std::string material_key(const Material& m) {
   std::string key;
+  if (m.pov_finish) append_finish(key, *m.pov_finish);
   append(key, m.base_color), append(key, m.emission), append(key, m.double_sided);
   append(key, m.metallic), append(key, m.roughness), append(key, m.transmission);
   append(key, m.ior), append(key, m.specular), append(key, int(m.alpha_mode)), append(key, m.alpha);
@@ -190,6 +203,57 @@ double colour_gamma(const Scene& scene) {
 }
 
 namespace {
+
+// The finish as written, for the `povray` integrator (PovFinish says what each field is).
+PovFinish pov_finish(const Finish& f, Rgb pigment, float pigment_scale, float filter,
+                     float transmit, float coverage, double ior, Rgb ambient_light) {
+  const auto colour = [](const Colour& c) { return Rgb(float(c.r), float(c.g), float(c.b)); };
+  PovFinish p;
+  p.pigment = pigment;
+  p.pigment_scale = pigment_scale;
+  p.filter = filter, p.transmit = transmit, p.coverage = coverage;
+  p.ambient = colour(f.ambient) * ambient_light;
+  p.emission = colour(f.emission);
+  p.diffuse = float(f.diffuse), p.brilliance = float(f.brilliance);
+  p.phong = float(f.phong), p.phong_size = float(f.phong_size);
+  p.specular = float(f.specular), p.roughness = float(f.roughness);
+  p.metallic = float(f.metallic);
+  p.reflection_min = colour(f.reflection_min), p.reflection_max = colour(f.reflection_max);
+  p.reflection_falloff = float(f.reflection_falloff);
+  p.reflection_exponent = float(f.reflection_exponent);
+  p.reflection_fresnel = f.reflection_fresnel;
+  p.reflection_metallic = float(f.reflection_metallic);
+  // The interior shows only through a transparent pigment or in Fresnel's reflection: an opaque
+  // surface keeps sharing its material whatever its interior.
+  p.ior = filter + transmit > 0 || f.reflection_fresnel ? float(ior) : 1.f;
+  return p;
+}
+
+// A layer's reflection and highlights added to the base's finish, which is the one the `povray`
+// integrator lights a hit with: POV-Ray adds every layer's reflected ray and highlights whatever
+// shows of the layer (ComputeLightedTexture), so their amounts add; the first layer that has one
+// gives its shape (falloff, fresnel, metallic, exponent; phong_size; roughness). The layers'
+// diffuse is in the blended base colour already (SurfaceShader).
+void add_layer_finish(PovFinish& base, const PovFinish& layer) {
+  if (max_component(layer.reflection_max) > 0 || max_component(layer.reflection_min) > 0) {
+    if (!(max_component(base.reflection_max) > 0 || max_component(base.reflection_min) > 0)) {
+      base.reflection_falloff = layer.reflection_falloff;
+      base.reflection_exponent = layer.reflection_exponent;
+      base.reflection_fresnel = layer.reflection_fresnel;
+      base.reflection_metallic = layer.reflection_metallic;
+    }
+    base.reflection_min += layer.reflection_min;
+    base.reflection_max += layer.reflection_max;
+  }
+  if (layer.phong > 0) {
+    if (!(base.phong > 0)) base.phong_size = layer.phong_size;
+    base.phong += layer.phong;
+  }
+  if (layer.specular > 0) {
+    if (!(base.specular > 0)) base.roughness = layer.roughness;
+    base.specular += layer.specular;
+  }
+}
 
 // One texture's material. A layer over others (`over_layers`) keeps its pigment as a pattern even
 // when plain, whose filter and transmit at the hit then say how much of the layers below shows
@@ -264,6 +328,9 @@ Material make_layer_material(const Texture& texture, const std::optional<Interio
   }
   if (texture.normal && texture.normal->rendered)
     m.normal_pattern = to_solid_normal(*texture.normal, world_from_pov_space());
+  m.pov_finish =
+      pov_finish(f, rho, scale, filter, transmit, m.alpha_mode == AlphaMode::kBlend ? m.alpha : 1.f,
+                 ior, decode(ambient_light, gamma));
   return m;
 }
 
@@ -272,8 +339,10 @@ Material make_layer_material(const Texture& texture, const std::optional<Interio
 Material make_material(const Texture& texture, const std::optional<Interior>& interior,
                        double gamma, const Colour& ambient_light) {
   Material m = make_layer_material(texture, interior, gamma, ambient_light, false);
-  for (const Texture& layer : texture.layers)
+  for (const Texture& layer : texture.layers) {
     m.layers.push_back(make_layer_material(layer, interior, gamma, ambient_light, true));
+    add_layer_finish(*m.pov_finish, *m.layers.back().pov_finish);
+  }
   return m;
 }
 

@@ -1,6 +1,5 @@
 #include "importers/pov/pov_appearance.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include "core/shading/gltf_bsdf.h"
 
@@ -20,6 +19,7 @@
 #include "importers/pov/pov_space.h"
 #include "support/gltf_builder.h"
 #include "support/plugins.h"
+#include "support/povray_render.h"
 
 namespace fb::pov {
 namespace {
@@ -247,39 +247,6 @@ TEST(PovAppearance, SkySphereIsBakedIntoTheWorldOverTheBackground) {
   EXPECT_NEAR(down.z, 0.5, 1e-3);  // the background shows through
 }
 
-// POV-Ray's render of `pov_file`, one ray through each pixel centre (-A), as linear RGB floats
-// (16-bit PNG, File_Gamma 1): width * height * 3 values, or empty (with a message in `why`) if
-// povray failed or its image could not be read. The scene's folder is a library path, so that
-// its files are found as filmback finds them.
-std::vector<float> povray_render(const std::filesystem::path& pov_file, int width, int height,
-                                 std::string& why) {
-  const std::filesystem::path png = std::filesystem::path(pov_file).replace_extension(".png");
-  const std::string command = "povray +W" + std::to_string(width) + " +H" + std::to_string(height) +
-                              " -D -A +FN16 File_Gamma=1.0 +L'" + pov_file.parent_path().string() +
-                              "' +I'" + pov_file.string() + "' +O'" + png.string() + "' > '" +
-                              pov_file.string() + ".log' 2>&1";
-  if (std::system(command.c_str()) != 0) {
-    why = "failed: " + command;
-    return {};
-  }
-  auto in = OIIO::ImageInput::open(png.string());
-  if (!in || in->spec().width != width || in->spec().height != height) {
-    why = "no " + std::to_string(width) + "x" + std::to_string(height) + " image from " + command;
-    return {};
-  }
-  const int channels = in->spec().nchannels;
-  std::vector<float> pixels(size_t(width) * height * channels);
-  if (!in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, pixels.data())) {
-    why = "unreadable " + png.string();
-    return {};
-  }
-  std::vector<float> rgb;
-  for (size_t i = 0; i < size_t(width) * height; ++i)
-    for (int c = 0; c < 3; ++c)
-      rgb.push_back(pixels[i * channels + c]);
-  return rgb;
-}
-
 // Tolerances of NormalPatternsAndLayeredTexturesRenderAsPovRayDoes, three times what it measured
 // (docs/pov.md "Normals"): per pixel 0.33 % (marble: the pixels where the triangle wave's kink
 // falls inside the derivative's tetrahedron) and 0.002 % (layers); bumps, whose noise is not
@@ -353,7 +320,7 @@ TEST(PovAppearance, DiffusePlaneRendersAsPovRayDoes) {
         << c.pov
         << "\nplane { -z, 0 pigment { rgb <0.8,0.5,0.3> } finish { ambient 0 diffuse 0.7 } }\n";
     std::string why;
-    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    const std::vector<float> reference = test::povray_render(pov_file, kSize, kSize, why);
     ASSERT_FALSE(reference.empty()) << why;
 
     // The same scene in filmback: a quad on z = 0 facing the camera at +z (POV-Ray's -z).
@@ -501,7 +468,7 @@ TEST(PovAppearance, DeterministicPatternsMatchPovRaysRenders) {
     }
     scene.close();
     std::string why;
-    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    const std::vector<float> reference = test::povray_render(pov_file, kSize, kSize, why);
     ASSERT_FALSE(reference.empty()) << why;
     for (size_t q = 0; q < 4 && first + q < cases.size(); ++q) {
       const PatternCase& c = cases[first + q];
@@ -556,7 +523,7 @@ sphere { <0, 0, 0>, 1
 }
 )";
   std::string why;
-  const std::vector<float> reference = povray_render(pov_file, kWidth, kHeight, why);
+  const std::vector<float> reference = test::povray_render(pov_file, kWidth, kHeight, why);
   ASSERT_FALSE(reference.empty()) << why;
 
   Diagnostics diagnostics;
@@ -658,12 +625,12 @@ TEST(PovAppearance, NormalPatternsAndLayeredTexturesRenderAsPovRayDoes) {
   const std::filesystem::path dir = test::scratch_dir();
   std::string why;
   write_scene(dir / "flat.pov", "pigment { rgb <0.8, 0.7, 0.6> } finish { ambient 0 diffuse 0.8 }");
-  const std::vector<float> flat = povray_render(dir / "flat.pov", kSize, kSize, why);
+  const std::vector<float> flat = test::povray_render(dir / "flat.pov", kSize, kSize, why);
   ASSERT_FALSE(flat.empty()) << why;
   for (const Case& c : cases) {
     const std::filesystem::path pov_file = dir / (std::string(c.name) + ".pov");
     write_scene(pov_file, c.appearance);
-    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    const std::vector<float> reference = test::povray_render(pov_file, kSize, kSize, why);
     ASSERT_FALSE(reference.empty()) << why;
     size_t warnings = 0;
     const fb::Scene scene = import_square(pov_file, kSize, warnings);
@@ -750,7 +717,7 @@ TEST(PovAppearance, ImageMapsRenderAsPovRayDoes) {
                                "plane { -z, 0 pigment { "
                             << c.pigment << " } finish { ambient 0 diffuse 0.8 } }\n";
     std::string why;
-    const std::vector<float> reference = povray_render(pov_file, kSize, kSize, why);
+    const std::vector<float> reference = test::povray_render(pov_file, kSize, kSize, why);
     ASSERT_FALSE(reference.empty()) << why;
     size_t warnings = 0;
     const fb::Scene scene = import_square(pov_file, kSize, warnings);

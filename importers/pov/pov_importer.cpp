@@ -96,6 +96,9 @@ Scene import_pov(const std::filesystem::path& file, const ImportOptions& options
       scene, diagnostics);
   pov::convert_lights(pov, scene, diagnostics);
   pov::convert_environment(pov, scene, diagnostics);
+  PovTracing& tracing = scene.pov_tracing.emplace();
+  if (pov.max_trace_level) tracing.max_trace_level = uint32_t(*pov.max_trace_level);
+  if (pov.adc_bailout) tracing.adc_bailout = *pov.adc_bailout;
   return scene;
 }
 

@@ -75,6 +75,7 @@ struct Finish {
   Colour reflection_min{0, 0, 0}, reflection_max{0, 0, 0};
   bool reflection_fresnel = false;
   double reflection_metallic = 0;
+  double reflection_falloff = 1, reflection_exponent = 1;
   double metallic = 0;
   bool conserve_energy = false;
 };
@@ -276,6 +277,7 @@ struct Scene {
   std::optional<double> assumed_gamma;
   Colour ambient_light{1, 1, 1};
   std::vector<std::filesystem::path> images;  // image_map files, found; each once
+  std::optional<double> max_trace_level, adc_bailout;  // global_settings, as written
   double version = 3.7;
   // Features met but not rendered, in the order met; the converters report each once per scene.
   std::vector<Unsupported> unsupported;

@@ -45,7 +45,7 @@ Outcome run_filmback(const std::string& args, const fs::path& plugin_dir, const 
 }
 
 // The host's first published layout is the frozen header's, struct by struct, and this host's
-// layout is newer where issue 14 grew it: the frozen plugins below are really older ones.
+// layout is newer where issues 14 and 19 grew it: the frozen plugins below are really older ones.
 TEST(AbiGrowth, FirstLayoutIsTheFrozenHeader) {
   const frozen_sizes frozen = frozen_layout_sizes();
   EXPECT_EQ(FirstLayout::plugin, frozen.plugin);
@@ -57,6 +57,7 @@ TEST(AbiGrowth, FirstLayoutIsTheFrozenHeader) {
   EXPECT_EQ(FirstLayout::scene_api, frozen.scene_api);
   EXPECT_GT(sizeof(fb_hit), frozen.hit);
   EXPECT_GT(sizeof(fb_scene_api), frozen.scene_api);
+  EXPECT_GT(sizeof(fb_scene), frozen.scene);  // issue 19: povray, lamp_count
   EXPECT_GT(sizeof(fb_integrator_api), frozen.integrator_api);
   EXPECT_GT(sizeof(fb_camera_api), frozen.camera_api);
   // Data the plugin only reads grows too; a camera reads the prefix it knows.

@@ -336,7 +336,53 @@ typedef struct fb_scene_api {
    * angle) are found so; delta lights never are. Returns how many it wrote. */
   uint32_t (*lights_crossed)(fb_trace_context* context, const fb_ray* ray, float t_end,
                              fb_light_crossing* crossings, uint32_t capacity);
+  /* Appended by issue 19 (Growth): a point on lamp `lamp` (the scene's
+   * lights, 0 .. fb_scene.lamp_count - 1; not emissive triangles nor the world) as seen from
+   * `position`, with two sample values (a POV-Ray area light's grid point, a point on a light with
+   * a size), without a choice among lights: pdf is 1 for a delta light. For integrators that sum
+   * over every light, as POV-Ray does. `u` NULL asks for the lamp's centre (a POV-Ray area
+   * light's, which POV-Ray lights from while its grid shadows; u = (0.5, 0.5) for a light with a
+   * size). Returns 0 when the sample carries no light. */
+  int (*sample_lamp)(fb_trace_context* context, uint32_t lamp, const float position[3],
+                     const float u[2], fb_light_sample* sample);
 } fb_scene_api;
+
+/* POV-Ray's finish and interior as the scene wrote them (docs/pov.md, "The povray integrator"),
+ * for an integrator that lights a surface as POV-Ray 3.7 does rather than physically. Colours
+ * decoded to linear as the scene's pigments are; amounts as written. Frozen: a later need appends
+ * a new array to fb_povray_scene. */
+typedef struct fb_pov_finish {
+  uint32_t present; /* 0: the material has no POV-Ray finish (not from a .pov scene) */
+  float pigment[3]; /* the pigment's colour (a pattern's average) */
+  /* fb_hit.base_color is the pigment at the hit times this (diffuse, or 1 for metals and
+   * transparent pigments, docs/pov.md "Finishes and interiors"); 0: read `pigment` instead */
+  float pigment_scale;
+  float filter, transmit; /* the pigment's (0 for a patterned pigment: not known per hit) */
+  /* the probability that intersect() keeps a hit on it: 1 - transmit where the host blends a
+   * transmitting pigment's coverage stochastically (docs/plugins.md, end), else 1 */
+  float coverage;
+  float ambient[3];  /* finish ambient times the scene's ambient_light */
+  float emission[3]; /* finish emission */
+  float diffuse, brilliance;
+  float phong, phong_size;
+  float specular, roughness; /* Blinn exponent 1 / roughness */
+  float metallic;            /* highlights tinted by the pigment */
+  float reflection_min[3], reflection_max[3];
+  float reflection_falloff;  /* exponent on (1 - cos) between min and max */
+  float reflection_exponent; /* applied to the reflected colour */
+  uint32_t reflection_fresnel;
+  float reflection_metallic; /* reflection tinted by the pigment */
+  float ior;                 /* the interior's; 1: none or not refracting */
+} fb_pov_finish;
+
+/* A POV-Ray scene's global_settings and finishes; fb_scene.povray, NULL for other scenes. */
+typedef struct fb_povray_scene {
+  uint32_t struct_size;          /* sizeof(fb_povray_scene) as the host built it; it may grow */
+  uint32_t max_trace_level;      /* global_settings max_trace_level (POV-Ray's default 5) */
+  float adc_bailout;             /* global_settings adc_bailout (default 1/255) */
+  uint32_t finish_count;         /* fb_scene.material_count */
+  const fb_pov_finish* finishes; /* one per material, by index */
+} fb_povray_scene;
 
 typedef struct fb_scene {
   uint32_t struct_size;
@@ -346,6 +392,10 @@ typedef struct fb_scene {
   float background[3];  /* uniform radiance of rays that escape (api->background() is the world) */
   float scene_radius_m; /* a sphere of this radius about the camera holds the whole scene */
   float view_axis[3];   /* unit: where the camera looks; depth = dot(position, view_axis) */
+  /* Appended together by issue 19 (Growth): a POV-Ray scene's finishes
+   * (NULL for other scenes), and how many lamps fb_scene_api.sample_lamp() takes. */
+  const fb_povray_scene* povray;
+  uint32_t lamp_count;
 } fb_scene;
 
 /* The most channels the host takes from an integrator. 16 in the first published layout; 32 since

@@ -659,8 +659,10 @@ Finish Parser::parse_finish() {
             f.reflection_fresnel = parse_bool_option();
           } else if (item.word("metallic")) {
             f.reflection_metallic = parse_bool_option() ? 1 : 0;
-          } else if (item.word("falloff") || item.word("exponent")) {
-            parse_float();
+          } else if (item.word("falloff")) {
+            f.reflection_falloff = parse_float();
+          } else if (item.word("exponent")) {
+            f.reflection_exponent = parse_float();
           } else {
             fail("unexpected '" + item.token.text + "' in reflection");
           }
@@ -668,8 +670,10 @@ Finish Parser::parse_finish() {
       } else {
         f.reflection_min = f.reflection_max = parse_colour(false);
       }
-    } else if (w == "reflection_exponent" || w == "crand" || w == "refraction" || w == "ior" ||
-               w == "caustics" || w == "fade_distance" || w == "fade_power") {
+    } else if (w == "reflection_exponent") {
+      f.reflection_exponent = parse_float();
+    } else if (w == "crand" || w == "refraction" || w == "ior" || w == "caustics" ||
+               w == "fade_distance" || w == "fade_power") {
       parse_float();
     } else if (w == "conserve_energy") {
       f.conserve_energy = parse_bool_option();

@@ -439,6 +439,26 @@ TEST_F(Sdl, LightsAndGlobals) {
   EXPECT_EQ(scene.ambient_light.g, 0.5);
 }
 
+// The trace depth and the reflection falloff, which the `povray` integrator reads (docs/pov.md,
+// "The povray integrator"); a depth or bailout past POV-Ray's bounds is refused where it stands.
+TEST_F(Sdl, TraceDepthAndReflectionFalloffAreRead) {
+  Scene scene =
+      run("global_settings { max_trace_level 12 adc_bailout 0.01 }\n"
+          "sphere { 0, 1 finish { reflection { 0.1, 0.8 falloff 3 exponent 0.5 } } }\n");
+  EXPECT_EQ(*scene.max_trace_level, 12);
+  EXPECT_EQ(*scene.adc_bailout, 0.01);
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Finish& f = scene.objects[0].texture.finish;
+  EXPECT_EQ(f.reflection_falloff, 3);
+  EXPECT_EQ(f.reflection_exponent, 0.5);
+  EXPECT_EQ(f.reflection_max.r, 0.8);
+  const std::string deep = error_of("global_settings { max_trace_level 300 }");
+  EXPECT_NE(deep.find("scene.pov:1:"), std::string::npos) << deep;
+  EXPECT_NE(deep.find("max_trace_level 300 is outside [1, 256]"), std::string::npos) << deep;
+  EXPECT_NE(error_of("global_settings { adc_bailout -1 }").find("outside [0, 1]"),
+            std::string::npos);
+}
+
 TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   Scene scene =
       run("fog { distance 10 color rgb 1 }\n"

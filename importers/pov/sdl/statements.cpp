@@ -2,6 +2,8 @@
 // atmospheric effects (reported), and the top-level loop.
 #include "importers/pov/sdl/parser.h"
 
+#include <cmath>
+
 namespace fb::pov::sdl {
 
 CameraStatement Parser::parse_camera(const Tok& keyword) {
@@ -218,8 +220,19 @@ void Parser::parse_statement(const Tok& tok) {
         next();
       } else if (g == "hf_gray_16") {
         parse_bool_option();
-      } else if (g == "max_trace_level" || g == "adc_bailout" || g == "number_of_waves" ||
-                 g == "noise_generator" || g == "max_intersections" || g == "mm_per_unit") {
+      } else if (g == "max_trace_level") {
+        // POV-Ray's own limit (MAX_TRACE_LEVEL_LIMIT): a ray tree's depth, so its cost, is bounded
+        const double level = parse_float();
+        if (!(level >= 1 && level <= 256))
+          fail("max_trace_level " + number_string(level) + " is outside [1, 256]");
+        scene_.max_trace_level = std::floor(level);
+      } else if (g == "adc_bailout") {
+        const double bailout = parse_float();
+        if (!(bailout >= 0 && bailout <= 1))
+          fail("adc_bailout " + number_string(bailout) + " is outside [0, 1]");
+        scene_.adc_bailout = bailout;
+      } else if (g == "number_of_waves" || g == "noise_generator" || g == "max_intersections" ||
+                 g == "mm_per_unit") {
         parse_float();
       } else {
         fail("unexpected '" + g + "' in global_settings");

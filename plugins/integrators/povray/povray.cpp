@@ -1,0 +1,240 @@
+// Integrator `povray`: POV-Ray 3.7's classic ray tracer (source/core/render/trace.cpp,
+// ComputeLightedTexture), so that a .pov scene renders as POV-Ray draws it rather than
+// physically (docs/pov.md, "The povray integrator"). At each hit, from the finish as the scene
+// wrote it (fb_povray_scene, plugin_abi.h): ambient and emission times the pigment; for every
+// light (fb_scene_api::sample_lamp, no choice among lights) diffuse with brilliance, phong and
+// specular highlights, shadowed by what lies between, seen through filter and transmit; then the
+// refracted or straight-through ray weighted by the pigment's filter and transmit, and the
+// reflected ray by reflection min/max, falloff, fresnel and metallic; down to max_trace_level,
+// pruned below adc_bailout, the background or sky_sphere where a ray escapes. No light bounces
+// between surfaces but by these mirror and refraction rays: POV-Ray's `ambient` stands in for it.
+// A surface without a POV-Ray finish (another scene's) is lit as diffuse 1 in its base colour.
+#include <filmback/geometry.h>
+#include <filmback/plugin_sdk.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "pov_lighting.h"
+
+namespace {
+
+using fb::Rgb;
+using fb::Vec3f;
+namespace lighting = fb::pov_lighting;
+
+constexpr float kPovPi = 3.14159265f;
+// Surfaces a shadow ray looks through before it is taken as blocked (a bound on untrusted scenes).
+constexpr int kMostShadowSurfaces = 64;
+// Straight-through (ior 1) rays do not count towards max_trace_level (POV-Ray's continued rays);
+// this bounds how many a ray may still take.
+constexpr int kMostContinuedRays = 256;
+// The finish of surfaces a POV-Ray scene did not describe: diffuse 1 in the hit's base colour.
+constexpr fb_pov_finish kPlainFinish = lighting::diffuse_finish(1.f);
+
+constexpr fb_param_desc kParams[] = {
+    {"max_trace_level", FB_PARAM_INT, "0", "", nullptr, 0, 256,
+     "deepest ray (the camera's is 1); 0: the scene's global_settings, else POV-Ray's 5"},
+};
+constexpr auto kMaxTraceLevel = fb::param<int>(kParams, "max_trace_level");
+
+// One ray of the tree: where it starts, where it goes, and its weight in the pixel.
+struct PovRay {
+  fb_ray ray;
+  int level;      // 1 for the camera's
+  int continued;  // straight-through rays taken since the last counted level
+  float weight;
+};
+
+class PovRayTracer {
+ public:
+  static constexpr const char* kChannels[] = {"R", "G", "B"};
+
+  explicit PovRayTracer(const fb_value* values) : max_trace_level_(kMaxTraceLevel(values)) {}
+
+  void radiance(const fb_scene& scene, fb_trace_context* ctx, const fb_ray* rays, size_t count,
+                float* values) const {
+    const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
+    Tracer tracer{scene, ctx, max_trace_level_};
+    for (size_t i = 0; i < count; ++i)
+      tracer.shade({rays[i], 1, 0, 1.f}, hits[i], i).store(values + 3 * i);
+  }
+
+ private:
+  // The recursion for one batch: the scene, its settings and the thread's context.
+  struct Tracer {
+    Tracer(const fb_scene& s, fb_trace_context* c, int max_level)
+        : scene(s), api(*s.api), ctx(c), povray(s.povray) {
+      max_trace_level = max_level > 0       ? max_level
+                        : povray != nullptr ? int(povray->max_trace_level)
+                                            : 5;
+      adc_bailout = povray != nullptr ? povray->adc_bailout : 1.f / 255.f;
+    }
+    Rgb trace(const PovRay& r, size_t path) const;
+    Rgb shade(const PovRay& r, const fb_hit& hit, size_t path) const;
+    Rgb light_through(const fb_ray& shadow, float distance) const;
+    const fb_pov_finish& finish(uint32_t material) const {
+      return povray && material < povray->finish_count && povray->finishes[material].present
+                 ? povray->finishes[material]
+                 : kPlainFinish;
+    }
+
+    const fb_scene& scene;
+    const fb_scene_api& api;
+    fb_trace_context* ctx;
+    const fb_povray_scene* povray;
+    int max_trace_level;
+    float adc_bailout;
+  };
+
+  int max_trace_level_;
+};
+
+// POV-Ray's TraceRay: nothing past the deepest level or below the bailout weight.
+Rgb PovRayTracer::Tracer::trace(const PovRay& r, size_t path) const {
+  if (r.level > max_trace_level || r.weight < adc_bailout || r.continued > kMostContinuedRays)
+    return {};
+  fb_hit hit;
+  if (!api.intersect(ctx, &r.ray, &hit)) hit.t = HUGE_VALF;
+  return shade(r, hit, path);
+}
+
+// What a shadow ray from a lit point brings of a light `distance` away: each surface between
+// passes its pigment's filter and transmit (POV-Ray's ComputeShadowColour); an opaque one, or one
+// without a POV-Ray finish, blocks it. A surface the host let through already by its coverage
+// (fb_pov_finish.coverage) passes the rest of its transmit where it is found, so that the mean is
+// POV-Ray's.
+Rgb PovRayTracer::Tracer::light_through(const fb_ray& shadow, float distance) const {
+  if (!(distance > 0.f)) return {1.f, 1.f, 1.f};  // a light nothing shadows
+  fb_ray ray = shadow;
+  Rgb through{1.f, 1.f, 1.f};
+  for (int i = 0; i < kMostShadowSurfaces; ++i) {
+    fb_hit hit;
+    if (!api.intersect(ctx, &ray, &hit)) return through;
+    const fb_pov_finish& f = finish(hit.material);
+    const Rgb pigment = lighting::pigment_at_hit(f, hit.base_color);
+    through *= lighting::passed_through(f, pigment) / std::max(f.coverage, 1e-6f);
+    if (!(fb::max_component(through) > 0.f)) return {};
+    const Vec3f p(hit.position), d(ray.direction);
+    fb::offset_ray_origin(p, Vec3f(hit.position_error), Vec3f(hit.geometric_normal), d)
+        .store(ray.origin);
+    ray.t_max = shadow.t_max - dot(p - Vec3f(shadow.origin), d);
+    if (!(ray.t_max > 0.f)) return through;
+  }
+  return {};
+}
+
+Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path) const {
+  const Vec3f view(r.ray.direction);
+  if (std::isinf(hit.t)) {
+    float le[3], pdf;
+    api.background(ctx, r.ray.direction, le, &pdf);
+    return lighting::rgb(le);
+  }
+  const fb_pov_finish& f = finish(hit.material);
+  // POV-Ray turns the normal to face the ray; the geometric normal decides whether the ray enters
+  // or leaves the object (nested interiors are not tracked: docs/pov.md).
+  Vec3f ng(hit.geometric_normal), n(hit.shading_normal);
+  const bool entering = dot(ng, view) < 0.f;
+  if (!entering) ng = -ng, n = -n;
+  if (dot(n, view) > 0.f) n = ng;  // a bent normal turned away from the viewer
+  const float eta = entering ? f.ior : 1.f / std::max(f.ior, 1e-6f);  // n2 / n1
+  const Vec3f p(hit.position), p_error(hit.position_error);
+  const Rgb pigment = lighting::pigment_at_hit(f, hit.base_color);
+  const float opacity = 1.f - f.filter - f.transmit;  // POV-Ray 3.7's Opacity()
+
+  Rgb colour = pigment * (lighting::rgb(f.ambient) + lighting::rgb(f.emission)) * opacity;
+  const float cos_view = -dot(view, n);
+  const Rgb reflec = lighting::reflectivity(f, cos_view, eta, pigment);
+
+  if (f.diffuse != 0.f || f.phong != 0.f || f.specular != 0.f) {
+    for (uint32_t lamp = 0; lamp < scene.lamp_count; ++lamp) {
+      // POV-Ray lights from the light's centre, and shadows an area light from its grid: one
+      // grid point per sample here, so that the samples average the grid's visibility. A light
+      // with a size (not POV-Ray's) lights from the point sampled on it.
+      float u[2];
+      api.next_samples(ctx, path, u, 2);
+      fb_light_sample point, centre;
+      if (!api.sample_lamp(ctx, lamp, hit.position, u, &point)) continue;
+      if (!point.is_delta)
+        centre = point;
+      else if (!api.sample_lamp(ctx, lamp, hit.position, nullptr, &centre))
+        continue;
+      const Vec3f to_light(centre.direction), to_point(point.direction);
+      const float cos_light = dot(n, to_light);
+      if (cos_light < lighting::kHorizonCosine) continue;
+      fb_ray shadow{};
+      fb::offset_ray_origin(p, p_error, ng, to_point).store(shadow.origin);
+      to_point.store(shadow.direction);
+      shadow.t_max = std::isinf(point.distance) ? HUGE_VALF : point.distance * (1.f - 1e-4f);
+      shadow.time_s = r.ray.time_s;
+      // POV-Ray's lights have colour c where filmback's have intensity pi c (docs/pov.md).
+      const Rgb light = lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf)) *
+                        light_through(shadow, point.distance);
+      if (!(fb::max_component(light) > 0.f)) continue;
+      colour += lighting::diffuse(f, cos_light, opacity, pigment, light) +
+                lighting::phong(f, view, n, to_light, pigment, light) +
+                lighting::specular(f, view, n, to_light, pigment, light);
+    }
+  }
+
+  // Transmission: the pigment's filter and transmit, less what the host's coverage passed by.
+  const Rgb see_through = lighting::passed_through(f, pigment);
+  bool total_internal_reflection = false;
+  const float transmitted_weight = fb::max_component(see_through);
+  if (transmitted_weight > adc_bailout) {
+    PovRay next{{}, r.level + 1, 0, r.weight * transmitted_weight};
+    Vec3f direction = view;
+    if (std::abs(eta - 1.f) < 1e-5f) {
+      next.level = r.level, next.continued = r.continued + 1;  // straight on, not a new level
+    } else if (const auto refracted = lighting::refracted(view, n, eta)) {
+      direction = *refracted;
+    } else {
+      total_internal_reflection = true;
+      direction = view - n * (2.f * dot(view, n));
+    }
+    fb::offset_ray_origin(p, p_error, ng, direction).store(next.ray.origin);
+    direction.store(next.ray.direction);
+    next.ray.t_max = HUGE_VALF;
+    next.ray.time_s = r.ray.time_s;
+    const Rgb behind = trace(next, path);
+    // Totally reflected light is not filtered (POV-Ray's ComputeLightedTexture).
+    colour += total_internal_reflection ? behind : behind * see_through;
+  }
+
+  if (!total_internal_reflection && fb::max_component(reflec) > 0.f) {
+    const float reflect_weight = f.reflection_fresnel
+                                     ? fb::max_component(reflec)
+                                     : std::max(fb::max_component(lighting::rgb(f.reflection_max)),
+                                                fb::max_component(lighting::rgb(f.reflection_min)));
+    Vec3f mirrored = view - n * (2.f * dot(view, n));
+    // A bent normal may mirror the ray into the surface: mirror it on the geometric normal then.
+    if (dot(mirrored, ng) < 0.f) mirrored = view - ng * (2.f * dot(view, ng));
+    PovRay next{{}, r.level + 1, 0, r.weight * reflect_weight};
+    fb::offset_ray_origin(p, p_error, ng, mirrored).store(next.ray.origin);
+    mirrored.store(next.ray.direction);
+    next.ray.t_max = HUGE_VALF;
+    next.ray.time_s = r.ray.time_s;
+    Rgb seen = trace(next, path);
+    if (f.reflection_exponent != 1.f)
+      seen = {std::pow(std::max(seen.x, 0.f), f.reflection_exponent),
+              std::pow(std::max(seen.y, 0.f), f.reflection_exponent),
+              std::pow(std::max(seen.z, 0.f), f.reflection_exponent)};
+    colour += reflec * seen;
+  }
+  // The host keeps this hit with probability `coverage` and passes the ray on otherwise: divided
+  // by it, the mean over samples is POV-Ray's colour.
+  return colour / std::max(f.coverage, 1e-6f);
+}
+
+constexpr fb_integrator_api kApi = fb::integrator_api<PovRayTracer>();
+constexpr fb_plugin kPlugin =
+    fb::describe("povray", "1.0.0",
+                 "POV-Ray 3.7's classic lighting: ambient, diffuse, phong, specular, shadows, "
+                 "reflection and refraction from the scene's finishes",
+                 kParams, kApi);
+
+}  // namespace
+
+FB_PLUGIN_ENTRY(kPlugin)
