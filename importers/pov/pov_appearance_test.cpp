@@ -1,5 +1,6 @@
 #include "importers/pov/pov_appearance.h"
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include "core/shading/gltf_bsdf.h"
 
