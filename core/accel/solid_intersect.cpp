@@ -11,6 +11,7 @@
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
 #include "core/math/superellipsoid.h"
+#include "core/scene/lathe.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -499,6 +500,71 @@ void sor_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, 
   }
 }
 
+// The boundaries lathe_spans may cut a ray at: each segment's crossings and its two ends.
+size_t lathe_boundaries(const Outline& profile) {
+  return profile.segments.size() * (kLatheSegmentCrossings + 2);
+}
+
+// The lathe (core/scene/lathe.h) along the ray, within its box: the ray cut at the surface's
+// crossings, each piece then inside or not by POV-Ray's inside test at its middle, as for the
+// outline. An unclosed curve's inside test jumps at the heights of its loose ends, which bound
+// the set but are no surface: the ray is cut there too. `cuts` holds lathe_boundaries spans.
+void lathe_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n,
+                 Span* cuts) {
+  const Outline& profile = *leaf.outline;
+  if (!(dot(r.d, r.d) > 0)) return;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0, d = r.d;
+  // The box a little wider than the lathe's, so that no crossing sits on its ends.
+  Bounds3d box = lathe_bounds(profile);
+  const Vec3d pad = (box.hi - box.lo) * 1e-3 + Vec3d{1e-9, 1e-9, 1e-9};
+  box.lo = box.lo - pad, box.hi = box.hi + pad;
+  double s_in = -kInf, s_out = kInf;
+  if (!clip_to_box(box, {o, d}, s_in, s_out)) return;
+  const bool level = !(std::abs(d.y) > kLatheLevelRay * length(d));
+  const std::vector<OutlineSegment>& segments = profile.segments;
+  const auto same = [](Vec2d a, Vec2d b) { return a.x == b.x && a.y == b.y; };
+  int count = 0;
+  for (uint32_t i = 0; i < segments.size(); ++i) {
+    const OutlineSegment& s = segments[i];
+    double u[kLatheSegmentCrossings], t[kLatheSegmentCrossings];
+    const int found = lathe_crossings(s, o, d, u, t);
+    for (int k = 0; k < found; ++k) {
+      if (!(t[k] > s_in && t[k] < s_out)) continue;
+      cuts[count].in = on(leaf, t0 + t[k], 0);
+      cuts[count++].in.segment = i;
+    }
+    // The curve's neighbours, the first's being the last (a closed curve has no loose end).
+    const size_t last = segments.size() - 1;
+    const bool loose_start = !same(segments[i == 0 ? last : i - 1].end, s.start);
+    const bool loose_end = !same(segments[i == last ? 0 : i + 1].start, s.end);
+    for (const auto& [loose, end] : {std::pair{loose_start, s.start}, {loose_end, s.end}}) {
+      const double t_end = level ? kInf : (end.y - o.y) / d.y;
+      if (loose && t_end > s_in && t_end < s_out) cuts[count++].in = Boundary{t0 + t_end};
+    }
+  }
+  // At equal t a crossing goes first: the piece that starts there starts on the surface.
+  std::sort(cuts, cuts + count, [](const Span& a, const Span& b) {
+    return a.in.t < b.in.t || (a.in.t == b.in.t && a.in.leaf && !b.in.leaf);
+  });
+  const Boundary box_in{t0 + s_in}, box_out{t0 + s_out};
+  bool inside = false;
+  Boundary entry, from = box_in;
+  for (int k = 0; k <= count; ++k) {
+    Boundary end = k < count ? cuts[k].in : box_out;
+    if (!(end.t > from.t)) continue;  // an empty piece: it leaves the state as it was
+    const bool piece_inside = lathe_contains(profile, o + d * (0.5 * (from.t + end.t) - t0));
+    if (piece_inside && !inside) entry = from;
+    if (!piece_inside && inside) {
+      from.part = 3;  // where the ray leaves
+      push(out, n, entry, from, lo, hi);
+    }
+    inside = piece_inside;
+    from = end;
+  }
+  if (inside) push(out, n, entry, box_out, lo, hi);
+}
+
 // The primitive's spans (at most primitive_max_spans) into out, using primitive_workspace spans
 // of scratch; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out,
@@ -539,6 +605,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kSor:
       sor_spans(leaf, r, lo, hi, out, n);
       break;
+    case SolidKind::kLathe:
+      lathe_spans(leaf, r, lo, hi, out, n, scratch);
+      break;
     default:
       break;
   }
@@ -546,9 +615,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
 }
 
 // The most spans primitive_spans gives: a quadric's two spans within the cone's slab; one per
-// interval between the up to four roots of a torus or polynomial; an outline's walls, crossed at
-// most `degrees` times, leave at most half as many pieces inside, and one more; one per pair of a
-// superellipsoid's or a blob's crossings.
+// interval between the roots of a torus (4) or polynomial (its degree, up to 15); an outline's
+// walls, crossed at most `degrees` times, leave at most half as many pieces inside, and one more;
+// one per pair of a superellipsoid's or a blob's crossings.
 size_t primitive_max_spans(const Node& leaf) {
   switch (leaf.kind) {
     case SolidKind::kCylinder:
@@ -565,14 +634,17 @@ size_t primitive_max_spans(const Node& leaf) {
       return blob_max_crossings(leaf.blob) / 2 + 1;
     case SolidKind::kSor:  // a cubic's two spans a segment
       return 2 * leaf.sor.size() + 1;
+    case SolidKind::kLathe:  // pieces between its cuts, every other one inside
+      return lathe_boundaries(*leaf.outline) / 2 + 1;
     default:
       return 1;
   }
 }
 
-// The scratch primitive_spans needs: an outline's wall crossings.
+// The scratch primitive_spans needs: an outline's wall crossings, a lathe's cuts.
 size_t primitive_workspace(const Node& leaf) {
-  return leaf.kind == SolidKind::kOutline ? leaf.outline->degrees : 0;
+  if (leaf.kind == SolidKind::kOutline) return leaf.outline->degrees;
+  return leaf.kind == SolidKind::kLathe ? lathe_boundaries(*leaf.outline) : 0;
 }
 
 int node_spans(const Node& node, const Ray& r, double lo, double hi, Span* out, Span* scratch);
@@ -678,6 +750,8 @@ Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
       return -blob_gradient(leaf.blob, p);
     case SolidKind::kSor:
       return part == 0 ? sor_side_gradient(leaf.sor, p) : Vec3d{0, part == 1 ? -1.0 : 1.0, 0};
+    case SolidKind::kLathe:
+      return lathe_normal(leaf.outline->segments[b.segment], p, d, part == 3);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }

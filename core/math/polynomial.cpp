@@ -67,12 +67,14 @@ double power(double v, int n) {
   return r;
 }
 
-// (o + t d)^n as coefficients of t (binomial expansion), n <= kMaxPolynomialDegree.
+// (o + t d)^n as coefficients out[0..n] of t (binomial expansion), n <= kMaxPolynomialDegree:
+// C(n, k) = C(n, k - 1) (n - k + 1) / k, exact in doubles at these sizes.
 void binomial_power(double o, double d, int n, double* out) {
-  static constexpr double kChoose[5][5] = {
-      {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
-  for (int k = 0; k <= kMaxPolynomialDegree; ++k)
-    out[k] = k <= n ? kChoose[n][k] * power(o, n - k) * power(d, k) : 0;
+  double choose = 1;
+  for (int k = 0; k <= n; ++k) {
+    if (k > 0) choose = choose * (n - k + 1) / k;
+    out[k] = choose * power(o, n - k) * power(d, k);
+  }
 }
 
 }  // namespace

@@ -93,8 +93,9 @@ void finish_outline(Outline& outline) {
 }
 
 bool outline_contains(const Outline& outline, Vec2d p) {
-  if (!(p.x >= outline.lo.x && p.x <= outline.hi.x && p.y >= outline.lo.y && p.y <= outline.hi.y))
-    return false;
+  // No crossing right of the box or above or below it. Left of it there may be an odd number when
+  // the curves are not closed (a lathe's: core/scene/lathe.h).
+  if (!(p.x <= outline.hi.x && p.y >= outline.lo.y && p.y <= outline.hi.y)) return false;
   // Crossings are where "above p" (y > p.y) changes along the closed curves, right of p. Inside
   // a segment the polynomial's sign changes give them. Its value at u = 0 is the exact start
   // (c[0]); at u = 1 it may round to the other side of p.y than the exact end the next segment

@@ -41,8 +41,9 @@ struct Outline {
 // Fills outline.lo, hi and degrees from its segments.
 void finish_outline(Outline& outline);
 
-// Whether `p` is inside by the even-odd rule: the crossings of the half-line from p towards +x.
-// Exact at the segments' shared ends (a crossing there counts once); on a curve, either answer.
+// Whether `p` is inside by the even-odd rule: the crossings of the half-line from p towards +x
+// (curves that do not close count the same way). Exact at the segments' shared ends (a crossing
+// there counts once); on a curve, either answer.
 bool outline_contains(const Outline& outline, Vec2d p);
 
 }  // namespace fb

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/scene/lathe.h"
+
 namespace fb {
 
 namespace {
@@ -43,6 +45,8 @@ Bounds3d object_bounds(const Solid& primitive) {
       return blob_bounds(primitive.blob);
     case SolidKind::kSor:
       return sor_bounds(primitive.sor);
+    case SolidKind::kLathe:
+      return lathe_bounds(*primitive.outline);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

@@ -31,8 +31,9 @@ enum class SolidKind : uint8_t {
   // The unit disc in the plane z = 0 with a hole of radius `radius1`. Flat, so it bounds POV-Ray's
   // set for it, the half-space z <= 0 (Disc::Inside), of whose plane only the annulus is surface.
   kDisc,
-  // polynomial(p) <= 0 for `polynomial`, of degree <= 4 (POV-Ray's quadric, cubic, quartic and
-  // poly): unbounded in general; POV-Ray scenes bound them by CSG.
+  // polynomial(p) <= 0 for `polynomial`, of degree <= kMaxPolynomialDegree (15: POV-Ray's
+  // quadric, cubic, quartic, poly and polynomial): unbounded in general; POV-Ray scenes bound them
+  // by CSG.
   kPolynomial,
   // `outline` (core/scene/outline.h: closed curves in the xy plane, even-odd inside) swept from
   // z = 0 to z = 1: POV-Ray's prism and text; `conic`: scaled by z from the origin, {z p : p in
@@ -48,6 +49,10 @@ enum class SolidKind : uint8_t {
   // POV-Ray's sor: x^2 + z^2 <= r(y)^2 between its lowest and highest y (core/math/sor.h); `open`:
   // the caps bound the set but are not surface.
   kSor,
+  // POV-Ray's lathe: `outline`'s curves in the (radius, height) = (x, y) plane turned about the y
+  // axis; a point is inside when the half-line from (sqrt(x^2 + z^2), y) towards +x crosses them
+  // an odd number of times (POV-Ray's Lathe::Inside), so an unclosed curve bounds a set too.
+  kLathe,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -68,7 +73,7 @@ struct Solid {
   bool bounds_only = false;
   uint32_t material = 0;                   // of this primitive's surface (unused by set operations)
   Polynomial3 polynomial;                  // kPolynomial
-  std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat)
+  std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat), kLathe
   Blob blob;                               // kBlob
   Sor sor;                                 // kSor
   std::vector<Solid> children;

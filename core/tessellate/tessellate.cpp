@@ -8,6 +8,7 @@
 #include "core/math/constants.h"
 #include "core/math/sor.h"
 #include "core/math/superellipsoid.h"
+#include "core/scene/lathe.h"
 #include "core/tessellate/tessellate_csg.h"
 #include "core/tessellate/tessellate_outline.h"
 
@@ -209,6 +210,51 @@ std::vector<Piece> sor_profile(const Solid& primitive, double error, uint32_t mo
   return pieces;
 }
 
+// A lathe's curves (core/scene/lathe.h) in the (rho, y) half-plane, a piece a segment: each
+// sampled at a count doubled until the curve at the samples' midpoints strays from their chords
+// by less than `error`. Normals are the tangent turned towards the outside, which for a curve
+// running counter-clockwise (positive area, closing it by a chord if open) is on its right.
+std::vector<Piece> lathe_pieces(const Outline& profile, double error, uint32_t most) {
+  double area_2 = 0;
+  const Vec2d first = profile.segments.front().start, last = profile.segments.back().end;
+  area_2 += last.x * first.y - first.x * last.y;
+  std::vector<std::vector<Vec2d>> samples;
+  for (const OutlineSegment& s : profile.segments) {
+    const auto straying = [&](uint32_t n) {
+      double worst = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        const Vec2d mid = segment_point(s, (i + 0.5) / n);
+        const Vec2d chord =
+            (segment_point(s, double(i) / n) + segment_point(s, double(i + 1) / n)) * 0.5;
+        worst = std::max(worst, std::hypot(mid.x - chord.x, mid.y - chord.y));
+      }
+      return worst;
+    };
+    uint32_t steps = 1;
+    while (s.degree > 1 && 2 * steps <= most && (steps < 4 || straying(steps) > error))
+      steps *= 2;
+    std::vector<Vec2d>& points = samples.emplace_back();
+    for (uint32_t i = 0; i <= steps; ++i)
+      points.push_back(i == 0 ? s.start : i == steps ? s.end : segment_point(s, double(i) / steps));
+    for (uint32_t i = 0; i < steps; ++i)
+      area_2 += points[i].x * points[i + 1].y - points[i + 1].x * points[i].y;
+  }
+  const double outside = area_2 >= 0 ? 1 : -1;
+  std::vector<Piece> pieces;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const OutlineSegment& s = profile.segments[k];
+    Piece& piece = pieces.emplace_back();
+    const size_t steps = samples[k].size() - 1;
+    for (size_t i = 0; i <= steps; ++i) {
+      const Vec2d p = samples[k][i], t = segment_tangent(s, double(i) / steps);
+      const double len = std::hypot(t.x, t.y);
+      piece.push_back(len > 0 ? ProfilePoint{p.x, p.y, outside * t.y / len, -outside * t.x / len}
+                              : ProfilePoint{p.x, p.y, 0, 0});
+    }
+  }
+  return pieces;
+}
+
 // revolve() turns its profile about z; a sor turns about y: swap the two, a mirror, so every
 // triangle's winding is reversed to stay counter-clockwise about its normals.
 void swap_y_and_z(TriangleMesh& mesh) {
@@ -272,11 +318,15 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
     superellipsoid_mesh(primitive, error, most, mesh);
     return mesh;
   }
-  if (primitive.kind == SolidKind::kSor && !primitive.sor.empty()) {
+  const bool lathe = primitive.kind == SolidKind::kLathe;
+  if ((primitive.kind == SolidKind::kSor && !primitive.sor.empty()) ||
+      (lathe && !primitive.outline->segments.empty())) {
     // As the other surfaces of revolution: a quarter of the tolerance to the profile, half to the
     // angular segments.
-    const double widest = sor_bounds(primitive.sor).hi.x;
-    revolve(sor_profile(primitive, error / 4, most),
+    const double widest =
+        lathe ? lathe_bounds(*primitive.outline).hi.x : sor_bounds(primitive.sor).hi.x;
+    revolve(lathe ? lathe_pieces(*primitive.outline, error / 4, most)
+                  : sor_profile(primitive, error / 4, most),
             std::max(arc_segments(2 * kPi, widest, error / 2, most), 3u), mesh);
     swap_y_and_z(mesh);
     return mesh;

@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "core/math/sor.h"
 #include "core/math/superellipsoid.h"
+#include "core/scene/lathe.h"
 #include "support/finite_difference.h"
 
 namespace fb {
@@ -34,6 +36,34 @@ double surface_distance(const Solid& s, Vec3d p) {
       const SorSegment& seg = p.y < s.sor.front().y1 ? s.sor.front() : s.sor.back();
       const double side = std::abs(radial - std::sqrt(std::max(sor_radius_2(seg, p.y), 0.0)));
       return std::min({side, std::abs(p.y - s.sor.front().y0), std::abs(p.y - s.sor.back().y1)});
+    }
+    case SolidKind::kLathe: {  // about y: the profile's distance from (rho, y)
+      const Vec2d q{std::sqrt(p.x * p.x + p.z * p.z), p.y};
+      double nearest = HUGE_VAL;
+      for (const OutlineSegment& seg : s.outline->segments) {
+        const auto away = [&](double u) {
+          const Vec2d c = segment_point(seg, u);
+          return std::hypot(c.x - q.x, c.y - q.y);
+        };
+        // The nearest of 16 samples, then golden-section search about it: the distance has one
+        // minimum that near for these gently curved profiles.
+        constexpr int kSamples = 16;
+        int best = 0;
+        for (int i = 1; i <= kSamples; ++i)
+          if (away(double(i) / kSamples) < away(double(best) / kSamples)) best = i;
+        double a = std::max(best - 1, 0) / double(kSamples);
+        double b = std::min(best + 1, kSamples) / double(kSamples);
+        const double golden = (std::sqrt(5.0) - 1) / 2;
+        for (int i = 0; i < 40; ++i) {  // to 1e-9 of the segment
+          const double u1 = b - golden * (b - a), u2 = a + golden * (b - a);
+          if (away(u1) < away(u2))
+            b = u2;
+          else
+            a = u1;
+        }
+        nearest = std::min(nearest, away(0.5 * (a + b)));
+      }
+      return nearest;
     }
     case SolidKind::kSuperellipsoid: {  // |f| / |grad f|, to first order; gradient by differences
       const SuperellipsoidExponents e{s.radius0, s.radius1};
@@ -207,6 +237,40 @@ TEST(Tessellate, SceneSolidsBecomeMeshes) {
       ground.world_from_object.inverse().point({0, 0, 50}) * Vec3d{1, 1, 0});
   EXPECT_LT(min_component(ground_bounds.hi - foot), 1e4 * 1.0001);
   EXPECT_GT(max_component(ground_bounds.hi - foot), 1e4 * 0.9999);
+}
+
+// A lathe's profile (a Bézier bulge closed by a line), sampled per segment, within the
+// tolerance, its faces and normals out of the solid.
+TEST(Tessellate, LatheStaysWithinTheTolerance) {
+  const double scale = 2.5;
+  Solid s = shape(SolidKind::kLathe, scale);
+  Outline profile;
+  profile.segments = {cubic_bezier_segment({0.5, 0}, {1.5, 0.2}, {1.5, 0.8}, {0.5, 1}),
+                      line_segment({0.5, 1}, {0.5, 0})};
+  finish_outline(profile);
+  s.outline = std::make_shared<const Outline>(profile);
+  for (double tolerance : {1e-2, 2e-3}) {
+    TessellationOptions options;
+    options.tolerance_m = tolerance, options.relative_tolerance = 0;
+    const TriangleMesh mesh = tessellate(s, options);
+    ASSERT_GT(mesh.triangle_count(), 0u);
+    const double error = largest_error(s, mesh, scale);
+    EXPECT_LE(error, tolerance);
+    EXPECT_GT(error, tolerance / 16) << "finer than it needs to be";
+    for (size_t i = 0; i < mesh.indices.size(); i += 3) {  // wound about the normals
+      const Vec3f a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                  c = mesh.positions[mesh.indices[i + 2]];
+      const Vec3f n = mesh.normals[mesh.indices[i]] + mesh.normals[mesh.indices[i + 1]] +
+                      mesh.normals[mesh.indices[i + 2]];
+      ASSERT_GT(dot(cross(b - a, c - a), n), 0.f) << "triangle " << i / 3;
+    }
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {  // the normals out of the solid
+      const Vec3d p(mesh.positions[i]), n(mesh.normals[i]);
+      if (p.y < 1e-3 || p.y > 1 - 1e-3) continue;  // at the corners, beside the other piece
+      ASSERT_TRUE(lathe_contains(*s.outline, p - n * 1e-4)) << "vertex " << i;
+      ASSERT_FALSE(lathe_contains(*s.outline, p + n * 1e-4)) << "vertex " << i;
+    }
+  }
 }
 
 }  // namespace

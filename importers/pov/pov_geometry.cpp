@@ -173,6 +173,11 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       s.sor = sor_from_points(o.profile);
       degenerate = s.sor.empty() || !(sor_bounds(s.sor).hi.x > 0);
       break;
+    case Shape::kLathe:  // POV-Ray's object space: the profile's (radius, height) about y
+      s.kind = SolidKind::kLathe;
+      s.outline = o.outline;
+      degenerate = !(o.outline->hi.x > 0);  // all on the axis: no surface
+      break;
     default:
       return std::nullopt;
   }

@@ -144,6 +144,7 @@ enum class Shape {
   kSuperellipsoid,  // exponents e = r0, n = r1 (> 0), within the unit box
   kBlob,            // threshold r0 (> 0), `blob_components`
   kSor,             // `profile` points (radius, height), height increasing; open
+  kLathe,           // `outline`: its curve in the (radius, height) plane, about the y axis
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -171,7 +172,7 @@ struct Object {
   bool open = false;
   int order = 0;                                        // kPolynomial
   std::vector<double> coefficients;                     // kPolynomial
-  std::shared_ptr<const Outline> outline;               // kPrism
+  std::shared_ptr<const Outline> outline;               // kPrism, kLathe
   bool conic = false;                                   // kPrism: conic_sweep
   std::vector<BlobComponentStatement> blob_components;  // kBlob
   std::vector<std::pair<double, double>> profile;       // kSor

@@ -113,6 +113,15 @@ const SolidShot kSolidShots[] = {
     {"sor_wavy",
      "sor { 7, <0.5, -0.5>, <0.8, 0>, <0.4, 0.5>, <1.0, 1.1>, <0.6, 1.6>, <0.7, 2.0>, <0.3, 2.4> "
      "translate -y scale 1.3 rotate <-20, 0, 15> }"},
+    // A lathe's open cubic profile, its loose ends at two heights: the inside between them is
+    // what the wall bounds, and the rim is seen from above.
+    {"lathe_cubic_open",
+     "lathe { cubic_spline 7, <0.2, -1>, <0.5, -1>, <1.0, -0.3>, <0.4, 0.3>, <0.8, 1>, "
+     "<0.3, 1.2>, <0, 1.5> rotate <-25, 0, 10> }"},
+    // A degree-6 polynomial, |x|^6 + |y|^6 + |z|^6 <= 1.2: bounded, a rounded cube.
+    {"polynomial_sextic",
+     "polynomial { 6, xyz(6, 0, 0): 1, xyz(0, 6, 0): 1, xyz(0, 0, 6): 1, xyz(0, 0, 0): -1.2 "
+     "rotate <30, 40, 0> }"},
 };
 
 std::string scene_sdl(const SolidShot& shot) {

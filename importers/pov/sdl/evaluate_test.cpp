@@ -590,14 +590,14 @@ TEST_F(Sdl, LayeredTexturesKeepEveryLayerInOrder) {
 // An unsupported object is reported where the scene places it, not where it is declared: an
 // include that declares shapes the scene never uses leaves its geometry complete.
 TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
-  write("lib/shapes.inc", "#declare Q = lathe { 2, <0, 0>, <1, 1> }\n");
+  write("lib/shapes.inc", "#declare Q = lemon { <0, 0, 0>, 1, <0, 1, 0>, 1, 2 }\n");
   Scene scene = run("#include \"shapes.inc\"\nsphere { 0, 1 }");
   EXPECT_TRUE(scene.unsupported.empty());
   ASSERT_EQ(scene.objects.size(), 1u);
 
   scene = run("#include \"shapes.inc\"\nobject { Q translate x }");
   ASSERT_EQ(scene.unsupported.size(), 1u);
-  EXPECT_EQ(scene.unsupported[0].feature, "lathe");
+  EXPECT_EQ(scene.unsupported[0].feature, "lemon");
   const std::string written = scene.unsupported[0].where.text();
   EXPECT_EQ(written.substr(written.size() - 19), "lib/shapes.inc:1:14") << written;
   ASSERT_TRUE(scene.unsupported[0].placed);
@@ -637,7 +637,7 @@ TEST_F(Sdl, PolynomialObjects) {
           coefficients35 +
           ", 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, "
           "1, 1, 1> }\n");
-  ASSERT_EQ(scene.objects.size(), 4u);
+  ASSERT_EQ(scene.objects.size(), 5u);
   EXPECT_EQ(scene.objects[3].order, 2);
   EXPECT_EQ(scene.objects[3].coefficients.at(9), -1);
   // quadric: A x2 + B y2 + C z2 + D xy + E xz + F yz + G x + H y + I z + J in poly order
@@ -648,8 +648,35 @@ TEST_F(Sdl, PolynomialObjects) {
   EXPECT_EQ(scene.objects[1].coefficients.size(), 20u);
   EXPECT_EQ(scene.objects[2].coefficients.at(34), 35);
   EXPECT_EQ(scene.objects[2].world_from_object.point({0, 0, 0}).x, 1);
-  ASSERT_EQ(scene.unsupported.size(), 1u);  // degree 5 is past what the renderer solves
-  EXPECT_EQ(scene.unsupported[0].feature, "poly");
+  EXPECT_EQ(scene.objects[4].order, 5);  // up to 15, as POV-Ray
+  EXPECT_EQ(scene.objects[4].coefficients.size(), 56u);
+  EXPECT_TRUE(scene.unsupported.empty());
+  EXPECT_NE(error_of("poly { 16, <1> }").find("order must be 2 to 15"), std::string::npos);
+}
+
+// polynomial { N, xyz(i, j, k): c, ... } (POV-Ray 3.7): each named term at its place in poly
+// order, the rest 0; a power past the order refused at the term.
+TEST_F(Sdl, PolynomialTermsByTheirPowers) {
+  Scene scene = run("polynomial { 4, xyz(4, 0, 0): 2, xyz(0,0,0): -1 xyz(1, 1, 2): 3.5 sturm }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Object& o = scene.objects[0];
+  EXPECT_EQ(o.shape, Shape::kPolynomial);
+  EXPECT_EQ(o.order, 4);
+  ASSERT_EQ(o.coefficients.size(), 35u);
+  EXPECT_EQ(o.coefficients[0], 2);    // x^4 first
+  EXPECT_EQ(o.coefficients[34], -1);  // the constant last
+  // poly order: the x^1 terms start after x^4 (1 term), x^3 (3) and x^2 (6); among them y^3,
+  // y^2 z, y^2, then y z^2
+  EXPECT_EQ(o.coefficients[10 + 3], 3.5);
+  double sum = 0;
+  for (double c : o.coefficients)
+    sum += std::abs(c);
+  EXPECT_EQ(sum, 6.5);  // no other term
+  const std::string error = error_of("polynomial { 3,\n  xyz(2, 1, 1): 1 }");
+  EXPECT_EQ(error.rfind("scene.pov:2:7: ", 0), 0u) << error;
+  EXPECT_NE(error.find("above the order 3"), std::string::npos) << error;
+  EXPECT_NE(error_of("polynomial { 3, xyz(1.5, 0, 0): 1 }").find("whole number"),
+            std::string::npos);
 }
 
 // superellipsoid { <e, n> }: its exponents and flags read; hostile exponents refused with their
@@ -896,6 +923,44 @@ TEST_F(Sdl, SorPoints) {
   EXPECT_EQ(error.rfind("scene.pov:2:3: ", 0), 0u) << error;
   error = error_of("sor { 3, <1, 0>, <1, 1>, <1, 2> }");
   EXPECT_NE(error.find("at least 4 points"), std::string::npos) << error;
+}
+
+// lathe: its spline's segments over consecutive points (Compute_Lathe), sharing their ends; too
+// few points, a Bézier count not a multiple of 4, an inner point left of the axis refused at
+// their place.
+TEST_F(Sdl, LatheSplines) {
+  Scene scene =
+      run("lathe { 4, <1, 0>, <1, 1>, <0.5, 2>, <0.5, 3> sturm }\n"
+          "lathe { quadratic_spline 4, <0, 0>, <1, 0>, <1, 1>, <0.5, 2> }\n"
+          "lathe { cubic_spline 5, <0, 0>, <1, 0>, <1, 1>, <0.5, 2>, <0, 3> }\n"
+          "lathe { bezier_spline 8, <0, 0>, <1, 0>, <1, 1>, <0.5, 1>, <0.5, 1>, <0.2, 1>, <0, 2>, "
+          "<0, 3> }");
+  ASSERT_EQ(scene.objects.size(), 4u);
+  for (const Object& o : scene.objects)
+    EXPECT_EQ(o.shape, Shape::kLathe);
+  const size_t segments[4] = {3, 2, 2, 2};
+  const int degrees[4] = {1, 2, 3, 3};
+  for (size_t i = 0; i < 4; ++i) {
+    const std::vector<OutlineSegment>& s = scene.objects[i].outline->segments;
+    ASSERT_EQ(s.size(), segments[i]) << i;
+    EXPECT_EQ(s[0].degree, degrees[i]) << i;
+    EXPECT_EQ(s[0].end.x, s[1].start.x) << i;
+    EXPECT_EQ(s[0].end.y, s[1].start.y) << i;
+  }
+  // quadratic: from the second point to the third, the first steering the start's slope
+  const OutlineSegment& q = scene.objects[1].outline->segments[0];
+  EXPECT_EQ(q.start.x, 1);
+  EXPECT_EQ(q.start.y, 0);
+  EXPECT_EQ(q.end.y, 1);
+  EXPECT_EQ(segment_tangent(q, 0).x, 0.5);  // (p2 - p0) / 2
+  std::string error = error_of("lathe { cubic_spline 3, <0, 0>, <1, 0>, <1, 1> }");
+  EXPECT_NE(error.find("at least 4 points"), std::string::npos) << error;
+  error = error_of("lathe { bezier_spline 6, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 2>, <1, 2> }");
+  EXPECT_NE(error.find("four points a segment"), std::string::npos) << error;
+  error = error_of("lathe { 3, <0, 0>,\n <-1, 1>, <0, 2> }");
+  EXPECT_EQ(error.rfind("scene.pov:2:2: ", 0), 0u) << error;
+  // the first and last points only steer a spline's ends: they may lie left of the axis
+  EXPECT_EQ(run("lathe { cubic_spline 4, <-1, 0>, <1, 1>, <1, 2>, <-1, 3> }").objects.size(), 1u);
 }
 
 TEST_F(Sdl, PolygonAndMeshes) {

@@ -10,39 +10,17 @@
 namespace fb::pov::sdl {
 namespace {
 
-constexpr std::string_view kSupported[] = {"sphere",
-                                           "box",
-                                           "plane",
-                                           "cylinder",
-                                           "cone",
-                                           "torus",
-                                           "disc",
-                                           "triangle",
-                                           "smooth_triangle",
-                                           "mesh",
-                                           "mesh2",
-                                           "polygon",
-                                           "object",
-                                           "union",
-                                           "merge",
-                                           "difference",
-                                           "intersection",
-                                           "light_source",
-                                           "light_group",
-                                           "quadric",
-                                           "cubic",
-                                           "quartic",
-                                           "poly",
-                                           "prism",
-                                           "text",
-                                           "superellipsoid",
-                                           "height_field",
-                                           "blob",
-                                           "sor"};
+constexpr std::string_view kSupported[] = {
+    "sphere",      "box",      "plane",           "cylinder",     "cone",         "torus",
+    "disc",        "triangle", "smooth_triangle", "mesh",         "mesh2",        "polygon",
+    "object",      "union",    "merge",           "difference",   "intersection", "light_source",
+    "light_group", "quadric",  "cubic",           "quartic",      "poly",         "polynomial",
+    "prism",       "text",     "superellipsoid",  "height_field", "blob",         "sor",
+    "lathe"};
 // parsed and reported: their geometry needs code the renderer does not have yet
-constexpr std::string_view kUnsupported[] = {
-    "lathe",        "isosurface",    "polynomial", "julia_fractal", "parametric",
-    "sphere_sweep", "bicubic_patch", "ovus",       "lemon",         "fractal"};
+constexpr std::string_view kUnsupported[] = {"isosurface",   "julia_fractal", "parametric",
+                                             "sphere_sweep", "bicubic_patch", "ovus",
+                                             "lemon",        "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -324,6 +302,7 @@ constexpr ShapeParser kShapes[] = {
     {"height_field", [](Parser& p, Object& o) { p.parse_height_field(o); }},
     {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
     {"sor", parse_sor},
+    {"lathe", [](Parser& p, Object& o) { p.parse_lathe(o); }},
 };
 
 // height_field { function ... } needs user functions, which are not evaluated; gif and pot keep
@@ -336,7 +315,7 @@ bool is_unread_height_field(const Tok& first) {
 }
 
 bool is_polynomial(std::string_view w) {
-  return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly";
+  return w == "quadric" || w == "cubic" || w == "quartic" || w == "poly" || w == "polynomial";
 }
 
 // ---- mesh2 (POV-Ray 3.7 reference, "Mesh2"): its blocks, read in any order ----
@@ -600,10 +579,7 @@ Node Parser::parse_object(const Tok& keyword) {
   } else if (const ShapeParser* shape = find_keyword(kShapes, w)) {
     shape->parse(*this, o);
   } else if (is_polynomial(w)) {
-    if (!parse_polynomial(w, o)) {
-      skip_rest_of_block();
-      return missing_node(w, where);  // above degree 4
-    }
+    parse_polynomial(w, o);
   } else if (w == "text") {
     if (!parse_text(o)) {
       skip_rest_of_block();
@@ -766,10 +742,26 @@ void Parser::parse_mesh2(Object& o) {
   finish_mesh2(*this, o, normals, normal_indices);
 }
 
+namespace {
+
+// Where x^i y^j z^k sits among an order-n polynomial's coefficients in POV-Ray's poly order (x
+// powers from n down, then y, then z).
+size_t poly_term_index(int order, int i, int j, int k) {
+  size_t index = 0;
+  for (int a = order; a >= 0; --a)
+    for (int b = order - a; b >= 0; --b)
+      for (int c = order - a - b; c >= 0; --c, ++index)
+        if (a == i && b == j && c == k) return index;
+  return index;
+}
+
+}  // namespace
+
 // quadric { <A,B,C>, <D,E,F>, <G,H,I>, J }: A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x +
 // H y + I z + J; cubic { <20 terms> }, quartic { <35> }, poly { N, <(N+1)(N+2)(N+3)/6> } in
-// POV-Ray's order. False for a poly above the degree the renderer solves (4).
-bool Parser::parse_polynomial(const std::string& keyword, Object& o) {
+// POV-Ray's order; polynomial { N, xyz(i, j, k): c, ... } (POV-Ray 3.7), the terms it names, the
+// others 0. Orders 2 to 15, as POV-Ray.
+void Parser::parse_polynomial(const std::string& keyword, Object& o) {
   o.shape = Shape::kPolynomial;
   if (keyword == "quadric") {
     o.order = 2;
@@ -783,16 +775,42 @@ bool Parser::parse_polynomial(const std::string& keyword, Object& o) {
     // in poly order: x2, xy, xz, x, y2, yz, y, z2, z, 1
     o.coefficients = {squares.x, mixed.x,  mixed.y,   linear.x, squares.y,
                       mixed.z,   linear.y, squares.z, linear.z, constant};
-    return true;
+    return;
   }
   o.order = keyword == "cubic" ? 3 : keyword == "quartic" ? 4 : 0;
-  if (keyword == "poly") {
+  if (keyword == "poly" || keyword == "polynomial") {
     const double order = parse_count();  // `poly { 4 <...` has no comma: no comparison here
-    if (!(order >= 2 && order <= 15)) fail("poly order must be 2 to 15");
+    if (!(order >= 2 && order <= 15)) fail(keyword + " order must be 2 to 15");
     o.order = static_cast<int>(order);
     accept(",");
   }
   const size_t terms = static_cast<size_t>((o.order + 1) * (o.order + 2) * (o.order + 3) / 6);
+  if (keyword == "polynomial") {
+    o.coefficients.assign(terms, 0);
+    while (peek().word("xyz")) {
+      next();
+      expect("(");
+      const SourceLocation where = location_of(peek());
+      int powers[3];
+      for (int a = 0; a < 3; ++a) {
+        if (a > 0) expect(",");
+        const double v = parse_float();
+        if (!(v >= 0 && v <= o.order && v == std::floor(v)))
+          fail_at(where, "polynomial term xyz(...): each power must be a whole number from 0 to " +
+                             std::to_string(o.order) + ", got " + number_string(v));
+        powers[a] = static_cast<int>(v);
+      }
+      if (powers[0] + powers[1] + powers[2] > o.order)
+        fail_at(where, "polynomial term xyz(" + std::to_string(powers[0]) + ", " +
+                           std::to_string(powers[1]) + ", " + std::to_string(powers[2]) +
+                           ") is above the order " + std::to_string(o.order));
+      expect(")");
+      expect(":");
+      o.coefficients[poly_term_index(o.order, powers[0], powers[1], powers[2])] = parse_float();
+      accept(",");
+    }
+    return;
+  }
   expect("<");
   int saved = vector_level_;
   vector_level_ = nesting + 1;
@@ -802,7 +820,6 @@ bool Parser::parse_polynomial(const std::string& keyword, Object& o) {
   }
   vector_level_ = saved;
   expect(">");
-  return o.order <= 4;
 }
 
 void Parser::ensure_texture(Object& o) {

@@ -225,8 +225,9 @@ class Parser {
                           Node& node);
   void parse_mesh(Object& o);
   void parse_mesh2(Object& o);
-  bool parse_polynomial(const std::string& keyword, Object& o);
+  void parse_polynomial(const std::string& keyword, Object& o);
   void parse_prism(Object& o);         // prism.cpp
+  void parse_lathe(Object& o);         // lathe.cpp: its spline and points, after the '{'
   bool parse_text(Object& o);          // text.cpp; false: its font is not here (reported)
   void parse_height_field(Object& o);  // height_field.cpp: an image's, after the '{'
   void parse_blob(Object& o);          // blob.cpp: threshold and components, after the '{'

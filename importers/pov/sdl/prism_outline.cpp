@@ -24,8 +24,8 @@ const char* spline_name(PrismSpline spline) {
   }
 }
 
-// POV-Ray's interpolating splines between window[lead] and window[lead + 1], in power form (the
-// coefficients of prism.cpp's Compute_Prism, from its reference's definitions).
+}  // namespace
+
 OutlineSegment spline_segment(PrismSpline spline, const Vec2d* p) {
   OutlineSegment s;
   switch (spline) {
@@ -49,8 +49,6 @@ OutlineSegment spline_segment(PrismSpline spline, const Vec2d* p) {
   s.start = p[1], s.end = p[2];
   return s;
 }
-
-}  // namespace
 
 std::optional<Outline> prism_outline(PrismSpline spline, const std::vector<Vec2d>& points,
                                      std::vector<std::string>& warnings) {

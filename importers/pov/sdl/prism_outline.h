@@ -16,6 +16,11 @@ enum class PrismSpline { kLinear, kQuadratic, kCubic, kBezier };
 // Points past this many are refused: every ray meeting the prism's box solves every segment.
 constexpr size_t kMaxPrismPoints = 100'000;
 
+// POV-Ray's linear, quadratic and cubic interpolating splines between p[lead] and p[lead + 1]
+// (lead 0 for linear, else 1; cubic reads p[0..3]), in power form: the coefficients of
+// Compute_Prism and Compute_Lathe, from the reference's definitions, shared by prism and lathe.
+OutlineSegment spline_segment(PrismSpline spline, const Vec2d* p);
+
 // The outline of `points` (<x, z> as written): linear, each point to the next, a sub-polygon
 // ending where a point repeats its first; quadratic, a control point then points, ending where
 // the first point (after the control) repeats; cubic, the same and one more control point after;
