@@ -143,6 +143,24 @@ bool is_binary(FunctionOp op) {
   return op >= FunctionOp::kAdd && op <= FunctionOp::kDiv;
 }
 
+double pigment_channel(const SolidColour& c, PigmentChannel channel) {
+  switch (channel) {
+    case PigmentChannel::kRed:
+      return c.rgb.x;
+    case PigmentChannel::kGreen:
+      return c.rgb.y;
+    case PigmentChannel::kBlue:
+      return c.rgb.z;
+    case PigmentChannel::kFilter:
+      return c.filter;
+    case PigmentChannel::kTransmit:
+      return c.transmit;
+    case PigmentChannel::kGrey:
+      return 0.297 * c.rgb.x + 0.589 * c.rgb.y + 0.114 * c.rgb.z;
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::optional<FunctionBuiltin> function_builtin_named(std::string_view name) {
@@ -197,6 +215,11 @@ void UserFunction::sample_pattern(SolidPattern pattern) {
   patterns_.push_back(std::move(pattern));
 }
 
+void UserFunction::sample_pigment(SolidPattern pigment, PigmentChannel channel) {
+  append({FunctionOp::kPigment, uint32_t(patterns_.size()), double(channel)}, 3);
+  patterns_.push_back(std::move(pigment));
+}
+
 void UserFunction::finish() {
   if (depth_ != 1)
     throw std::logic_error("function program leaves " + std::to_string(depth_) + " values");
@@ -248,6 +271,12 @@ double UserFunction::run(const double* arguments) const {
       const Vec3d p = solid::warped_point(
           pattern, pattern.pattern_from_world.point({stack[top], stack[top + 1], stack[top + 2]}));
       stack[top] = solid::shape_value(pattern, solid::raw_value(pattern, p));
+      ++top;
+    } else if (op == FunctionOp::kPigment) {
+      top -= 3;
+      const SolidColour c =
+          evaluate_solid(patterns_[in.index], {stack[top], stack[top + 1], stack[top + 2]});
+      stack[top] = pigment_channel(c, PigmentChannel(int(in.constant)));
       ++top;
     }
   }

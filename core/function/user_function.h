@@ -72,7 +72,12 @@ enum class FunctionOp : uint8_t {
   kCall,      // callees[index], with its parameter count of arguments
   kInternal,  // POV-Ray's internal(index) (core/function/internal_functions.h)
   kPattern,   // patterns[index]'s value at (x, y, z): three arguments
+  kPigment,   // patterns[index]'s colour at (x, y, z), channel `constant` (a PigmentChannel)
 };
+
+// The float a pigment function's call gives with .red, .green ... (POV-Ray's .gray: 0.297 R +
+// 0.589 G + 0.114 B).
+enum class PigmentChannel { kRed, kGreen, kBlue, kFilter, kTransmit, kGrey };
 
 // A program past one of UserFunction's bounds.
 struct FunctionBoundError : std::runtime_error {
@@ -112,6 +117,7 @@ class UserFunction {
   void call(std::shared_ptr<const UserFunction> callee);
   void call_internal(int number);  // its argument count from internal_function_arguments()
   void sample_pattern(SolidPattern pattern);
+  void sample_pigment(SolidPattern pigment, PigmentChannel channel);
   // The program complete: exactly one value on the stack.
   void finish();
 

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -53,7 +54,8 @@ enum class SolidPatternKind {
   kWrinkles,
   kDents,
   kCrackle,
-  kCells,  // the last kind (solid_pattern_names_cover_the_enum)
+  kCells,
+  kFunction,  // a user function's value (SolidPatternModifiers::function); the last kind
 };
 
 // The one list of the patterns filmback evaluates, with POV-Ray's keyword for each ("solid" is
@@ -71,13 +73,13 @@ inline constexpr std::pair<SolidPatternKind, const char*> kSolidPatternNames[] =
     {SolidPatternKind::kSpiral2, "spiral2"},   {SolidPatternKind::kWaves, "waves"},
     {SolidPatternKind::kRipples, "ripples"},   {SolidPatternKind::kWrinkles, "wrinkles"},
     {SolidPatternKind::kDents, "dents"},       {SolidPatternKind::kCrackle, "crackle"},
-    {SolidPatternKind::kCells, "cells"}};
+    {SolidPatternKind::kCells, "cells"},       {SolidPatternKind::kFunction, "function"}};
 
 // Every kind once, in order, so that a kind added to the enum must be named here too.
 constexpr bool solid_pattern_names_cover_the_enum() {
   for (size_t i = 0; i < std::size(kSolidPatternNames); ++i)
     if (size_t(kSolidPatternNames[i].first) != i) return false;
-  return size_t(SolidPatternKind::kCells) + 1 == std::size(kSolidPatternNames);
+  return size_t(SolidPatternKind::kFunction) + 1 == std::size(kSolidPatternNames);
 }
 static_assert(solid_pattern_names_cover_the_enum());
 
@@ -87,6 +89,8 @@ constexpr std::optional<SolidPatternKind> solid_pattern_named(std::string_view n
     if (name == keyword) return kind;
   return std::nullopt;
 }
+
+class UserFunction;  // core/function/user_function.h
 
 // POV-Ray's wave types: how a value pattern's raw value becomes the colour map's index.
 enum class SolidWave { kRamp, kTriangle, kSine, kScallop, kCubic, kPoly };
@@ -108,6 +112,8 @@ struct SolidPatternModifiers {
   double mortar = 0.5;
   int spiral_arms = 1;          // spiral1 / spiral2 N
   double agate_turbulence = 1;  // agate_turb
+  // kFunction: f(x, y, z) of the pattern point (none: 0 everywhere), shared by the copies
+  std::shared_ptr<const UserFunction> function;
 };
 
 struct SolidPattern : SolidPatternModifiers {

@@ -567,15 +567,9 @@ Value Parser::parse_primary() {
     fail("unexpected '" + tok.token.text + "' in an expression");
   if (tok.identifier) {
     const Value& value = tok.value;
-    if (value.kind == ValueKind::kFunction && peek().symbol("(")) {
-      Value result = Value::number(call_function(*value.function, tok));
-      // a vector function's component: unsupported, so 0 whichever it is
-      if (peek().symbol(".")) {
-        next();
-        next();
-      }
-      return result;
-    }
+    // (parse_postfix reads a pigment function's .red, .gray ...)
+    if (value.kind == ValueKind::kFunction && peek().symbol("("))
+      return call_function(*value.function, tok);
     if (value.kind == ValueKind::kOpaque && value.text == "spline" && peek().symbol("(")) {
       skip_parenthesised();
       unsupported("spline", location_of(tok));

@@ -7,8 +7,10 @@
 #include <cmath>
 
 #include "core/function/internal_functions.h"
+#include "core/texture/solid_pattern.h"
 #include "importers/pov/sdl/builtins.h"
 #include "importers/pov/sdl/parser.h"
+#include "importers/pov/sdl/solid_pigment.h"
 
 namespace fb::pov::sdl {
 namespace {
@@ -141,8 +143,28 @@ class FunctionCompiler {
     out_.apply(builtin.op, count);
   }
 
+  // fn(x, y, z).red ...: a channel of a pigment function's colour.
+  void pigment_call(const Tok& tok, const SolidPattern& pigment) {
+    if (arguments() != 3) p_.fail("pigment function '" + tok.token.text + "' takes 3 arguments");
+    if (!p_.accept("."))
+      p_.fail("pigment function '" + tok.token.text +
+              "' gives a colour: expected .red, .green, .blue, .filter, .transmit or .gray");
+    const Tok member = p_.next();
+    static constexpr std::pair<std::string_view, PigmentChannel> kChannels[] = {
+        {"red", PigmentChannel::kRed},           {"x", PigmentChannel::kRed},
+        {"green", PigmentChannel::kGreen},       {"y", PigmentChannel::kGreen},
+        {"blue", PigmentChannel::kBlue},         {"z", PigmentChannel::kBlue},
+        {"filter", PigmentChannel::kFilter},     {"t", PigmentChannel::kFilter},
+        {"transmit", PigmentChannel::kTransmit}, {"gray", PigmentChannel::kGrey},
+        {"grey", PigmentChannel::kGrey}};
+    for (const auto& [name, channel] : kChannels)
+      if (member.token.text == name) return out_.sample_pigment(pigment, channel);
+    p_.fail("unknown colour component '." + member.token.text + "'");
+  }
+
   void function_call(const Tok& tok) {
     const FunctionValue& callee = *tok.value.function;
+    if (callee.pigment) return pigment_call(tok, *callee.pigment);
     const int count = arguments();
     if (count != callee.program->parameter_count())
       p_.fail("function '" + tok.token.text + "' takes " +
@@ -230,13 +252,34 @@ FunctionValue internal_function_value(Parser& p) {
   return value;
 }
 
-// A function filmback does not evaluate: "function `what`" is reported where it is used; it takes
-// x, y, z.
+// A function filmback does not evaluate: "function `what`" is reported where it is used. A spline
+// function takes the spline's parameter, the others x, y, z.
 FunctionValue unsupported_function(std::string what) {
-  auto program = std::make_shared<UserFunction>(std::vector<std::string>{"x", "y", "z"});
+  std::vector<std::string> names = {"x", "y", "z"};
+  if (what == "spline") names.resize(1);
+  auto program = std::make_shared<UserFunction>(std::move(names));
   program->push_constant(0);
   program->finish();
-  return {std::move(program), std::move(what)};
+  FunctionValue value;
+  value.program = std::move(program);
+  value.unsupported = std::move(what);
+  return value;
+}
+
+// function { pigment { ... } }, after the pigment: a function of x, y, z whose value is a colour.
+FunctionValue pigment_function(Parser& p, const Pigment& pigment) {
+  p.expect("}");
+  if (pigment.averaged) return unsupported_function("pigment");
+  auto pattern = std::make_shared<const SolidPattern>(to_solid(pigment, 1.0, Transform()));
+  auto program = std::make_shared<UserFunction>(std::vector<std::string>{"x", "y", "z"});
+  for (int i = 0; i < 3; ++i)
+    program->push_parameter(i);
+  program->sample_pigment(*pattern, PigmentChannel::kGrey);
+  program->finish();
+  FunctionValue value;
+  value.program = std::move(program);
+  value.pigment = std::move(pattern);
+  return value;
 }
 
 }  // namespace
@@ -267,8 +310,11 @@ FunctionValue Parser::parse_function_body(std::vector<std::string> names, bool d
     next();
     return internal_function_value(*this);
   }
-  if (first.word("pigment") || first.word("pattern") || first.word("spline") ||
-      first.word("transform")) {
+  if (first.word("pigment")) {
+    next();
+    return pigment_function(*this, parse_pigment());
+  }
+  if (first.word("pattern") || first.word("spline") || first.word("transform")) {
     // vector and pattern functions: their block read and left unevaluated
     Tok kind = next();
     skip_block();
@@ -284,10 +330,13 @@ FunctionValue Parser::parse_function_body(std::vector<std::string> names, bool d
     fail(e.what());
   }
   expect("}");
-  return {std::move(program), std::move(compiler.unsupported)};
+  FunctionValue value;
+  value.program = std::move(program);
+  value.unsupported = std::move(compiler.unsupported);
+  return value;
 }
 
-double Parser::call_function(const FunctionValue& function, const Tok& name) {
+Value Parser::call_function(const FunctionValue& function, const Tok& name) {
   const UserFunction& program = *function.program;
   std::vector<double> arguments;
   expect("(");
@@ -301,12 +350,17 @@ double Parser::call_function(const FunctionValue& function, const Tok& name) {
          " arguments, not " + std::to_string(arguments.size()));
   if (!function.unsupported.empty()) {
     unsupported("function " + function.unsupported, location_of(name));
-    return 0;
+    return Value::number(0);
+  }
+  if (function.pigment) {
+    const SolidColour c =
+        evaluate_solid(*function.pigment, {arguments[0], arguments[1], arguments[2]});
+    return Value::colour({c.rgb.x, c.rgb.y, c.rgb.z, c.filter, c.transmit});
   }
   const double result = program.evaluate(arguments);
   if (!std::isfinite(result))
     fail("function '" + name.token.text + "' gives no finite number here");
-  return result;
+  return Value::number(result);
 }
 
 }  // namespace fb::pov::sdl

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "core/function/user_function.h"
 #include "importers/pov/sdl/sdl_test_fixture.h"
 
 namespace fb::pov {
@@ -79,13 +80,37 @@ TEST_F(SdlFunction, WhatIsNotEvaluatedIsReportedWhereItIsCalled) {
   EXPECT_TRUE(scene.unsupported.empty());
   scene =
       run("#include \"functions.inc\"\n"
-          "#declare P = function { pigment { checker } }\n"
-          "sphere { 0, 1 + f_boy_surface(1, 2, 3, 1, 1) + P(1, 2, 3).red }\n");
+          "#declare P = function { spline { linear_spline 0, <0, 0, 0> 1, <1, 1, 1> } }\n"
+          "sphere { 0, 1 + f_boy_surface(1, 2, 3, 1, 1) + P(0.5).x }\n");
   ASSERT_EQ(scene.unsupported.size(), 2u);
   EXPECT_EQ(scene.unsupported[0].feature, "function internal(8)");
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:3:17");
-  EXPECT_EQ(scene.unsupported[1].feature, "function pigment");
+  EXPECT_EQ(scene.unsupported[1].feature, "function spline");
   EXPECT_EQ(scene.objects.at(0).r0, 1);
+}
+
+// function { pigment { ... } }: a colour where the scene calls it, a channel inside a function,
+// its grey in a height field.
+TEST_F(SdlFunction, PigmentFunctionsGiveTheirColour) {
+  const std::string declarations =
+      "#declare P = function { pigment { checker rgb <1, 0.5, 0>, rgb 0.25 } }\n"
+      "#declare G = function { P(x, y, z).green * 2 + P(x, y, z).gray }\n";
+  Vec3d v =
+      three(declarations, "P(0.5, 0.5, 0.5).red", "P(1.5, 0.5, 0.5).blue", "G(0.5, 0.5, 0.5)");
+  EXPECT_DOUBLE_EQ(v.x, 1);
+  EXPECT_DOUBLE_EQ(v.y, 0.25);
+  EXPECT_NEAR(v.z, 0.5 * 2 + 0.297 + 0.589 * 0.5, 1e-6);
+  Scene scene =
+      run("height_field { function 2, 2 { pigment { gradient x color_map { [0 rgb 0] [1 rgb 1] } } "
+          "} }\n");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  ASSERT_EQ(scene.objects[0].vertices.size(), 4u);
+  EXPECT_EQ(scene.objects[0].vertices[0].y, 0);
+  EXPECT_NEAR(scene.objects[0].vertices[1].y, 65535.0 / 65536, 1e-4);
+  EXPECT_EQ(error_of("#declare P = function { pigment { rgb 1 } }\n"
+                     "#declare F = function { P(x, y, z) }"),
+            "scene.pov:2:34: pigment function 'P' gives a colour: expected .red, .green, .blue, "
+            ".filter, .transmit or .gray");
 }
 
 // POV-Ray samples the function at x = column / (W - 1), y = row / (H - 1) into a 16-bit image
@@ -114,6 +139,29 @@ TEST_F(SdlFunction, HeightFieldSamplesTheFunctionAsAnImage) {
             "scene.pov:1:25: height_field function resolution 1, 5: it needs at least 2, 2");
   EXPECT_NE(error_of("height_field { function 1e9, 1e9 { x } }").find("object limit"),
             std::string::npos);
+}
+
+TEST_F(SdlFunction, FunctionPatternsInPigmentsAndNormals) {
+  Scene scene = run(
+      "#declare F = function { x * 0.5 }\n"
+      "sphere { 0, 1 pigment { function { F(x, y, z) + y } color_map { [0 rgb 0] [1 rgb 1] } }\n"
+      "  normal { function { sin(x) } 0.3 } }\n"
+      "#declare S = function { spline { linear_spline 0, <0, 0, 0> 1, <1, 1, 1> } }\n"
+      "sphere { 0, 1 pigment { function { S(x).y } } }\n");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  const Pigment& pigment = scene.objects[0].texture.pigment;
+  EXPECT_EQ(pigment.pattern, Pattern::kFunction);
+  EXPECT_FALSE(pigment.averaged);
+  ASSERT_TRUE(pigment.function);
+  EXPECT_DOUBLE_EQ(pigment.function->evaluate(0.5, 0.25, 0), 0.5);
+  ASSERT_TRUE(scene.objects[0].texture.normal);
+  EXPECT_TRUE(scene.objects[0].texture.normal->rendered);
+  EXPECT_EQ(scene.objects[0].texture.normal->pattern, Pattern::kFunction);
+  // a pattern calling a function filmback does not evaluate: averaged, and reported
+  EXPECT_TRUE(scene.objects[1].texture.pigment.averaged);
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "function spline");
+  EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:5:34");
 }
 
 TEST_F(SdlFunction, BadFunctionsAreLocatedErrors) {

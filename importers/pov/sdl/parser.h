@@ -61,6 +61,8 @@ struct ReadFile;
 struct FunctionValue {
   std::shared_ptr<const UserFunction> program;
   std::string unsupported;  // empty: `program` is the function
+  // A pigment function's pigment, in POV-Ray's space, colours as written; `program` is its grey.
+  std::shared_ptr<const SolidPattern> pigment;
 };
 
 enum class ValueKind {
@@ -210,8 +212,9 @@ class Parser {
   FunctionValue parse_function();  // after the `function` keyword: [(params)] { body }
   // { body } of a function of `parameters`; `default_parameters`: x, y, z, which u, v also name.
   FunctionValue parse_function_body(std::vector<std::string> parameters, bool default_parameters);
-  // A call of `function` at parse time, after its name: (arguments); 0 if it is unsupported.
-  double call_function(const FunctionValue& function, const Tok& name);
+  // A call of `function` at parse time, after its name: (arguments). A float, a pigment
+  // function's colour, or 0 if the function is unsupported.
+  Value call_function(const FunctionValue& function, const Tok& name);
   bool starts_colour(const Tok& tok) const;
 
   // ---- appearance (appearance.cpp) ----
