@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -56,7 +57,8 @@ enum class SolidPatternKind {
   kCrackle,
   kCells,
   // An image projected onto the pattern space (SolidPattern::image_map), not a value pattern.
-  kImageMap,  // the last kind (solid_pattern_names_cover_the_enum)
+  kImageMap,
+  kFunction,  // a user function's value (SolidPatternModifiers::function); the last kind
 };
 
 // The one list of the patterns filmback evaluates, with POV-Ray's keyword for each ("solid" is
@@ -74,13 +76,14 @@ inline constexpr std::pair<SolidPatternKind, const char*> kSolidPatternNames[] =
     {SolidPatternKind::kSpiral2, "spiral2"},   {SolidPatternKind::kWaves, "waves"},
     {SolidPatternKind::kRipples, "ripples"},   {SolidPatternKind::kWrinkles, "wrinkles"},
     {SolidPatternKind::kDents, "dents"},       {SolidPatternKind::kCrackle, "crackle"},
-    {SolidPatternKind::kCells, "cells"},       {SolidPatternKind::kImageMap, "image_map"}};
+    {SolidPatternKind::kCells, "cells"},       {SolidPatternKind::kImageMap, "image_map"},
+    {SolidPatternKind::kFunction, "function"}};
 
 // Every kind once, in order, so that a kind added to the enum must be named here too.
 constexpr bool solid_pattern_names_cover_the_enum() {
   for (size_t i = 0; i < std::size(kSolidPatternNames); ++i)
     if (size_t(kSolidPatternNames[i].first) != i) return false;
-  return size_t(SolidPatternKind::kImageMap) + 1 == std::size(kSolidPatternNames);
+  return size_t(SolidPatternKind::kFunction) + 1 == std::size(kSolidPatternNames);
 }
 static_assert(solid_pattern_names_cover_the_enum());
 
@@ -90,6 +93,8 @@ constexpr std::optional<SolidPatternKind> solid_pattern_named(std::string_view n
     if (name == keyword) return kind;
   return std::nullopt;
 }
+
+class UserFunction;  // core/function/user_function.h
 
 // POV-Ray's wave types: how a value pattern's raw value becomes the colour map's index.
 enum class SolidWave { kRamp, kTriangle, kSine, kScallop, kCubic, kPoly };
@@ -111,6 +116,8 @@ struct SolidPatternModifiers {
   double mortar = 0.5;
   int spiral_arms = 1;          // spiral1 / spiral2 N
   double agate_turbulence = 1;  // agate_turb
+  // kFunction: f(x, y, z) of the pattern point (none: 0 everywhere), shared by the copies
+  std::shared_ptr<const UserFunction> function;
 };
 
 // How POV-Ray's image_map wraps its image around the pattern space (POV-Ray 3.7 reference,

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "core/function/user_function.h"
 #include "core/math/constants.h"
 #include "core/texture/solid_image_map.h"
 
@@ -376,6 +377,12 @@ double raw_value(const SolidPattern& s, Vec3d p) {
       return unit_from_hash(hash_cell(int64_t(std::floor(p.x + kEpsilon)),
                                       int64_t(std::floor(p.y + kEpsilon)),
                                       int64_t(std::floor(p.z + kEpsilon))));
+    case K::kFunction: {
+      if (!s.function) return 0;
+      // POV-Ray's FunctionPattern wraps values above 1 (fmod) and keeps the others
+      const double value = s.function->evaluate(p.x, p.y, p.z);
+      return value > 1 ? std::fmod(value, 1.0) : value;
+    }
   }
   return 0;
 }

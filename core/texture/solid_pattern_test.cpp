@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
+
+#include "core/function/user_function.h"
 
 namespace fb {
 namespace {
@@ -130,6 +133,27 @@ TEST(SolidPattern, TurbulenceIsBoundedByItsOctavesAndDeterministic) {
   EXPECT_TRUE(std::isfinite(solid::turbulence({1, 2, 3}, 1 << 30, 0.9, 2.0)));
 }
 
+// f(x, y, z) = x * scale, as the SDL reader compiles `function { x * scale }`.
+std::shared_ptr<const UserFunction> x_times(double scale) {
+  auto f = std::make_shared<UserFunction>(std::vector<std::string>{"x", "y", "z"});
+  f->push_parameter(0);
+  f->push_constant(scale);
+  f->apply(FunctionOp::kMultiply, 2);
+  f->finish();
+  return f;
+}
+
+// POV-Ray's function pattern: the function's value in pattern space, values above 1 wrapped.
+TEST(SolidPattern, FunctionPatternIsTheFunctionsValueInPatternSpace) {
+  SolidPattern s = grey_ramp(SolidPatternKind::kFunction);
+  s.function = x_times(0.25);
+  s.pattern_from_world = Transform::scale({0.5, 1, 1});
+  EXPECT_NEAR(evaluate_solid(s, {2, 0, 0}).rgb.x, 0.25, 1e-6);   // pattern x = 1
+  EXPECT_NEAR(evaluate_solid(s, {10, 0, 0}).rgb.x, 0.25, 1e-5);  // 1.25 wraps to 0.25
+  SolidPattern none = grey_ramp(SolidPatternKind::kFunction);
+  EXPECT_EQ(evaluate_solid(none, {3, 1, 2}).rgb.x, 0.f);  // no function: 0 everywhere
+}
+
 TEST(SolidPattern, EveryValuePatternStaysInTheUnitIntervalAfterItsWave) {
   using K = SolidPatternKind;
   for (const auto& [kind, name] : kSolidPatternNames) {
@@ -138,6 +162,7 @@ TEST(SolidPattern, EveryValuePatternStaysInTheUnitIntervalAfterItsWave) {
       continue;  // a colour, the list patterns and image maps: no value to wave
     SolidPattern s = grey_ramp(kind);
     s.turbulence = {0.5, 0.5, 0.5};
+    if (kind == K::kFunction) s.function = x_times(0.1);
     double lo = 1, hi = 0;
     for (int i = 0; i < 3000; ++i) {
       const Vec3d p{std::sin(i * 1.3) * 7, std::cos(i * 0.7) * 7, i * 0.01 - 15};

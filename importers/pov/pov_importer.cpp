@@ -27,13 +27,13 @@ bool is_object(const std::string& feature) {
 }
 
 // SDL functions the evaluator answers with zeros: what the scene computes with them (often where
-// it places objects) is wrong, so the geometry counts as incomplete too.
+// it places objects) is wrong, so the geometry counts as incomplete too. A user function says
+// what it lacks: "function internal(8)", "function pigment".
 bool is_zero_function(const std::string& feature) {
-  static const char* kFunctions[] = {"trace",      "inside",   "min_extent",
-                                     "max_extent", "function", "spline"};
+  static const char* kFunctions[] = {"trace", "inside", "min_extent", "max_extent", "spline"};
   for (const char* name : kFunctions)
     if (feature == name) return true;
-  return false;
+  return feature.starts_with("function ");
 }
 
 // Once per feature, at the first place it appears (and where an unsupported object declared

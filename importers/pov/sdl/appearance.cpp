@@ -100,6 +100,17 @@ void move_pigment(Pigment& pigment, const Matrix& inverse) {
 
 // ---- pigment steps (POV-Ray 3.7 reference, "Patterns", "Pattern Modifiers") ----
 
+// `function { body }` as a pattern, after the keyword: the compiled function in `m`; false (and
+// reported) when it needs what filmback does not evaluate.
+bool read_function_pattern(Parser& parser, SolidPatternModifiers& m) {
+  const SourceLocation where = parser.location_of(parser.peek());
+  FunctionValue f = parser.parse_function_body({"x", "y", "z"}, true);
+  m.function = std::move(f.program);
+  if (f.unsupported.empty()) return true;
+  parser.unsupported("function " + f.unsupported, where);
+  return false;
+}
+
 // The entries of a list pattern (checker A, B; hexagon A, B, C; brick A, B), at most `max`:
 // pigments, colours or pigment identifiers.
 void parse_list_entries(Parser& parser, Pigment& p, size_t max) {
@@ -150,10 +161,13 @@ void parse_pigment_pattern(Parser& parser, Pigment& p, const Tok& tok) {
   } else if (w == "image_map") {
     parser.parse_image_map(p);  // image_map.cpp
     return;
+  } else if (w == "function") {
+    p.averaged = !read_function_pattern(parser, p);
+    if (p.averaged) p.pattern = Pattern::kSolid;
   } else {
     parser.parse_pattern_arguments(w);
   }
-  if (p.averaged) parser.unsupported("pattern " + w, parser.location_of(tok));
+  if (p.averaged && w != "function") parser.unsupported("pattern " + w, parser.location_of(tok));
 }
 
 // poly_wave [Exponent]
@@ -261,10 +275,13 @@ void parse_normal_pattern(Parser& parser, Normal& n, const Tok& tok) {
   n.name = w;
   if (w == "gradient") {
     n.gradient = parser.parse_vector();
+  } else if (w == "function") {
+    n.rendered = read_function_pattern(parser, n);
   } else {
     parser.parse_pattern_arguments(w);
   }
-  if (!n.rendered) parser.unsupported("normal pattern " + w, parser.location_of(tok));
+  if (!n.rendered && w != "function")
+    parser.unsupported("normal pattern " + w, parser.location_of(tok));
   if (w == "checker" || w == "brick" || w == "hexagon") {
     bool entries = false;
     while (parser.peek().word("normal") ||

@@ -81,12 +81,11 @@ Value skip_opaque_block(Parser& p, const std::string& w) {
   return value;
 }
 
-// function [(params)] { ... }: not evaluated.
-Value skip_function(Parser& p) {
-  if (p.peek().symbol("(")) p.skip_parenthesised();
-  p.skip_block();
+// function [(params)] { ... }, compiled (function_compiler.cpp).
+Value function_value(Parser& p) {
   Value value;
   value.kind = ValueKind::kFunction;
+  value.function = std::make_shared<const FunctionValue>(p.parse_function());
   return value;
 }
 
@@ -332,7 +331,7 @@ Value Parser::parse_rvalue() {
     }
     if (w == "sky_sphere") return Value::of(parse_sky_sphere(*this));
     if (is_opaque_block(w)) return skip_opaque_block(*this, w);
-    if (w == "function") return skip_function(*this);
+    if (w == "function") return function_value(*this);
     if (w == "array") return parse_array(*this);
   }
   unget(std::move(tok));
@@ -568,12 +567,9 @@ Value Parser::parse_primary() {
     fail("unexpected '" + tok.token.text + "' in an expression");
   if (tok.identifier) {
     const Value& value = tok.value;
-    if (value.kind == ValueKind::kFunction && peek().symbol("(")) {
-      // user functions are parsed, not evaluated
-      skip_parenthesised();
-      unsupported("function", location_of(tok));
-      return Value::number(0);
-    }
+    // (parse_postfix reads a pigment function's .red, .gray ...)
+    if (value.kind == ValueKind::kFunction && peek().symbol("("))
+      return call_function(*value.function, tok);
     if (value.kind == ValueKind::kOpaque && value.text == "spline" && peek().symbol("(")) {
       skip_parenthesised();
       unsupported("spline", location_of(tok));

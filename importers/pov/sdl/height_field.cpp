@@ -1,11 +1,13 @@
-// height_field { [type] "file" ... } (POV-Ray 3.7 reference, "Height Field"): the image's heights
-// over the unit square of POV-Ray's x-z plane, two triangles a cell, as POV-Ray draws it: a
-// triangle mesh from here on (docs/pov.md, "Geometry").
+// height_field { [type] "file" ... } or { function W, H { ... } } (POV-Ray 3.7 reference, "Height
+// Field"): the image's heights, or the function's sampled as POV-Ray samples it, over the unit
+// square of POV-Ray's x-z plane, two triangles a cell, as POV-Ray draws it: a triangle mesh from
+// here on (docs/pov.md, "Geometry").
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
 
+#include "core/function/user_function.h"
 #include "core/util/error.h"
 #include "importers/pov/sdl/height_field_image.h"
 #include "importers/pov/sdl/parser.h"
@@ -83,32 +85,86 @@ void height_field_mesh(const HeightImage& image, const HeightFieldOptions& optio
     }
 }
 
+// The modifiers after the image or function, up to the first that is not the height field's own.
+HeightFieldOptions read_height_field_options(Parser& p) {
+  HeightFieldOptions options;
+  for (;;) {
+    Tok tok = p.next();  // directives run
+    if (tok.word("smooth")) {
+      options.smooth = p.parse_bool_option();
+    } else if (tok.word("water_level")) {
+      options.water_level = p.parse_float();
+    } else if (tok.word("hierarchy") || tok.word("premultiplied")) {
+      p.parse_bool_option();  // a speed hint; an alpha channel is no height
+    } else if (tok.word("gamma")) {
+      p.parse_float();  // heights are data, read linear
+    } else {
+      p.unget(std::move(tok));
+      return options;
+    }
+  }
+}
+
+// The W x H image POV-Ray makes of a height_field's function (Make_Pattern_Image in POV-Ray 3.7's
+// parser): pixel (column, row) holds f(column / (W - 1), row / (H - 1), 0) in a 16-bit grey image,
+// so clamped to [0, 1] and rounded to 1/65535, then read as every 16-bit image is (65535 / 65536).
+HeightImage sample_function(const UserFunction& f, uint32_t width, uint32_t height) {
+  HeightImage image;
+  image.width = width;
+  image.height = height;
+  image.heights.reserve(size_t(width) * height);
+  double arguments[UserFunction::kMaxStack] = {};
+  for (uint32_t row = 0; row < height; ++row)
+    for (uint32_t column = 0; column < width; ++column) {
+      arguments[0] = double(column) / (width - 1);
+      arguments[1] = double(row) / (height - 1);
+      const double value = f.evaluate({arguments, size_t(f.parameter_count())});
+      // NaN (sqrt of a negative number) is a black pixel, as the clamp to the image's range makes
+      // it
+      const double grey = std::isnan(value) ? 0 : std::round(std::clamp(value, 0.0, 1.0) * 65535);
+      image.heights.push_back(grey / 65536);
+    }
+  return image;
+}
+
+// function W, H { body }, after `function`.
+HeightImage read_height_function(Parser& p) {
+  const SourceLocation where = p.location_of(p.peek());
+  const double width = p.parse_float();
+  p.expect(",");
+  const double height = p.parse_float();
+  // POV-Ray rounds the resolution to the nearest integer
+  const double columns = std::floor(width + 0.5), rows = std::floor(height + 0.5);
+  if (!(columns >= 2 && rows >= 2))
+    p.fail_at(where, "height_field function resolution " + number_string(width) + ", " +
+                         number_string(height) + ": it needs at least 2, 2");
+  if (!(columns * rows <= double(p.options().limits.objects)))
+    p.fail_at(where, "height_field function resolution " + number_string(columns) + " x " +
+                         number_string(rows) + " is past the scene's object limit");
+  p.count_objects(2 * uint64_t(columns - 1) * uint64_t(rows - 1));
+  const SourceLocation body = p.location_of(p.peek());
+  const FunctionValue f = p.parse_function_body({"x", "y", "z"}, true);
+  if (!f.unsupported.empty()) p.unsupported("function " + f.unsupported, body);
+  return sample_function(*f.program, uint32_t(columns), uint32_t(rows));
+}
+
 }  // namespace
 
 void Parser::parse_height_field(Object& o) {
   o.shape = Shape::kMesh;
+  if (peek().word("function")) {
+    next();
+    const HeightImage image = read_height_function(*this);
+    height_field_mesh(image, read_height_field_options(*this), o);
+    return;
+  }
   if (peek().keyword() && std::find(std::begin(kHeightFieldTypes), std::end(kHeightFieldTypes),
                                     peek().token.text) != std::end(kHeightFieldTypes))
     next();
   const SourceLocation where = location_of(peek());
   const Value name = parse_expression();
   if (name.kind != ValueKind::kString) fail_at(where, "height_field expects an image file name");
-  HeightFieldOptions options;
-  for (;;) {
-    Tok tok = next();  // directives run
-    if (tok.word("smooth")) {
-      options.smooth = parse_bool_option();
-    } else if (tok.word("water_level")) {
-      options.water_level = parse_float();
-    } else if (tok.word("hierarchy") || tok.word("premultiplied")) {
-      parse_bool_option();  // a speed hint; an alpha channel is no height
-    } else if (tok.word("gamma")) {
-      parse_float();  // heights are data, read linear
-    } else {
-      unget(std::move(tok));
-      break;
-    }
-  }
+  const HeightFieldOptions options = read_height_field_options(*this);
   const std::optional<std::filesystem::path> file = resolve_include(name.text, nullptr, false);
   if (!file)
     fail_at(where, "cannot find the height_field image \"" + name.text +

@@ -305,11 +305,10 @@ constexpr ShapeParser kShapes[] = {
     {"lathe", [](Parser& p, Object& o) { p.parse_lathe(o); }},
 };
 
-// height_field { function ... } needs user functions, which are not evaluated; gif and pot keep
-// their heights in palette indices (pot: two 8-bit halves of one 16-bit height), which
-// OpenImageIO's GIF reader turns into colours; iff and sys it does not read.
+// gif and pot keep their heights in palette indices (pot: two 8-bit halves of one 16-bit height),
+// which OpenImageIO's GIF reader turns into colours; iff and sys it does not read.
 bool is_unread_height_field(const Tok& first) {
-  for (std::string_view w : {"function", "gif", "pot", "iff", "sys"})
+  for (std::string_view w : {"gif", "pot", "iff", "sys"})
     if (first.word(w)) return true;
   return false;
 }

@@ -18,6 +18,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/function/user_function.h"
 #include "importers/pov/pov_scene.h"
 #include "importers/pov/sdl/evaluate.h"
 #include "importers/pov/sdl/lexer.h"
@@ -54,6 +55,16 @@ struct Macro {
 struct ArrayValue;
 struct ReadFile;
 
+// A declared `function { ... }` (function_compiler.cpp): its compiled program, or, when it needs
+// what filmback does not evaluate (a vector function, an internal(N) not implemented), a program
+// of the same parameters that gives 0 and the feature it lacks, reported where it is used.
+struct FunctionValue {
+  std::shared_ptr<const UserFunction> program;
+  std::string unsupported;  // empty: `program` is the function
+  // A pigment function's pigment, in POV-Ray's space, colours as written; `program` is its grey.
+  std::shared_ptr<const SolidPattern> pigment;
+};
+
 enum class ValueKind {
   kNone,
   kFloat,
@@ -77,6 +88,7 @@ struct Value {
   std::shared_ptr<const Item> item;
   std::shared_ptr<const Macro> macro;
   std::shared_ptr<ReadFile> file;
+  std::shared_ptr<const FunctionValue> function;  // kFunction
 
   bool numeric() const {
     return kind == ValueKind::kFloat || kind == ValueKind::kVector || kind == ValueKind::kColour;
@@ -196,6 +208,13 @@ class Parser {
   bool starts_value(const Tok& tok) const;  // a number, vector or colour starts at `tok`  // an
                                             // optional boolean after a flag keyword (`hollow on`)
   Colour parse_colour(bool float_fills_filter_transmit = true);
+  // ---- user functions (function_compiler.cpp) ----
+  FunctionValue parse_function();  // after the `function` keyword: [(params)] { body }
+  // { body } of a function of `parameters`; `default_parameters`: x, y, z, which u, v also name.
+  FunctionValue parse_function_body(std::vector<std::string> parameters, bool default_parameters);
+  // A call of `function` at parse time, after its name: (arguments). A float, a pigment
+  // function's colour, or 0 if the function is unsupported.
+  Value call_function(const FunctionValue& function, const Tok& name);
   bool starts_colour(const Tok& tok) const;
 
   // ---- appearance (appearance.cpp) ----
@@ -229,7 +248,7 @@ class Parser {
   void parse_prism(Object& o);         // prism.cpp
   void parse_lathe(Object& o);         // lathe.cpp: its spline and points, after the '{'
   bool parse_text(Object& o);          // text.cpp; false: its font is not here (reported)
-  void parse_height_field(Object& o);  // height_field.cpp: an image's, after the '{'
+  void parse_height_field(Object& o);  // height_field.cpp: an image's or a function's, after the '{'
   void parse_blob(Object& o);          // blob.cpp: threshold and components, after the '{'
   void skip_rest_of_block();           // to the '}' closing a block already open
   void parse_object_mods(Node& node);
