@@ -210,11 +210,6 @@ void UserFunction::call_internal(int number) {
   append({FunctionOp::kInternal, uint32_t(number), 0}, internal_function_arguments(number));
 }
 
-void UserFunction::sample_pattern(SolidPattern pattern) {
-  append({FunctionOp::kPattern, uint32_t(patterns_.size()), 0}, 3);
-  patterns_.push_back(std::move(pattern));
-}
-
 void UserFunction::sample_pigment(SolidPattern pigment, PigmentChannel channel) {
   append({FunctionOp::kPigment, uint32_t(patterns_.size()), double(channel)}, 3);
   patterns_.push_back(std::move(pigment));
@@ -264,13 +259,6 @@ double UserFunction::run(const double* arguments) const {
     } else if (op == FunctionOp::kInternal) {
       top -= internal_function_arguments(int(in.index));
       stack[top] = internal_function(int(in.index), stack + top);
-      ++top;
-    } else if (op == FunctionOp::kPattern) {
-      top -= 3;
-      const SolidPattern& pattern = patterns_[in.index];
-      const Vec3d p = solid::warped_point(
-          pattern, pattern.pattern_from_world.point({stack[top], stack[top + 1], stack[top + 2]}));
-      stack[top] = solid::shape_value(pattern, solid::raw_value(pattern, p));
       ++top;
     } else if (op == FunctionOp::kPigment) {
       top -= 3;

@@ -71,7 +71,6 @@ enum class FunctionOp : uint8_t {
   // calls: their arguments on the stack, replaced by the result
   kCall,      // callees[index], with its parameter count of arguments
   kInternal,  // POV-Ray's internal(index) (core/function/internal_functions.h)
-  kPattern,   // patterns[index]'s value at (x, y, z): three arguments
   kPigment,   // patterns[index]'s colour at (x, y, z), channel `constant` (a PigmentChannel)
 };
 
@@ -116,7 +115,6 @@ class UserFunction {
   void apply(FunctionOp op, int operands);
   void call(std::shared_ptr<const UserFunction> callee);
   void call_internal(int number);  // its argument count from internal_function_arguments()
-  void sample_pattern(SolidPattern pattern);
   void sample_pigment(SolidPattern pigment, PigmentChannel channel);
   // The program complete: exactly one value on the stack.
   void finish();
