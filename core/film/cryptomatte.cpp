@@ -86,7 +86,7 @@ void CryptomatteFilm::append_layers(Image& image, std::string_view view_layer) c
       }
   std::vector<float> pixels(size_t(width_) * height_ * n, 0.f);
   for (size_t pixel = 0; pixel < size_t(width_) * height_; ++pixel) {
-    std::copy_n(&image.pixels[pixel * old_n], old_n, &pixels[pixel * n]);
+    std::copy_n(image.pixels.data() + pixel * old_n, old_n, pixels.data() + pixel * n);
     if (weights_[pixel] == 0.f) continue;  // no sample landed: no id, never NaN
     float* out = &pixels[pixel * n + old_n];
     for (size_t layer = 0; layer < layers_.size(); ++layer) {
