@@ -192,7 +192,7 @@ TEST(Polynomial, RestrictedToARayIsTheSubstitution) {
   // x^2 y z + 3 z^4 - 2 along o + t d, checked at five values of t
   const Polynomial3 p{{1, 2, 1, 1}, {3, 0, 0, 4}, {-2, 0, 0, 0}};
   const Vec3d o{0.5, -1.5, 2}, d{1, 0.25, -0.75};
-  double c[5];
+  double c[kMaxPolynomialDegree + 1];
   restrict_to_ray(p, o, d, c);
   for (double t : {-2.0, -0.5, 0.0, 1.0, 3.0})
     EXPECT_NEAR(evaluate_polynomial(c, 4, t), evaluate_polynomial3(p, o + d * t), 1e-12);
