@@ -11,12 +11,11 @@ export's report in Blender's console. Exit 77 (CTest's skip) without `blender`.
 
 import argparse
 import os
-import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, blender  # noqa: E402
+from roundtrip_test import blender, fresh_folder, skip_unless_installed  # noqa: E402
 
 # The path each mesh took, as the export reports it.
 REPORT = ["filmback: mesh object 'bent': Blender's evaluated deformation, 5 times",
@@ -39,11 +38,8 @@ def main():
     p = argparse.ArgumentParser()
     p.add_argument("--scratch", required=True)
     a = p.parse_args()
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
-    shutil.rmtree(a.scratch, ignore_errors=True)
-    os.makedirs(a.scratch)
+    skip_unless_installed("blender")
+    fresh_folder(a.scratch)
     r = blender("--python-exit-code", "1", "--python",
                 os.path.join(HERE, "deformation_export_scene.py"), "--", a.scratch)
     output = r.stdout + r.stderr

@@ -20,7 +20,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, addon_zip, blender_env  # noqa: E402
+from roundtrip_test import (  # noqa: E402
+    addon_zip, blender_env, fresh_folder, skip_unless_installed)
 
 SCREEN = "1280x720x24"  # the screenshot's size
 TIMEOUT_S = 420  # F12, Ctrl+F12 over three frames and the Esc stage, beside CI's other tests
@@ -34,13 +35,8 @@ def main():
     p.add_argument("--samples", type=int)
     p.add_argument("--screenshot")
     a = p.parse_args()
-    for program, package in (("blender", "blender"), ("xvfb-run", "xvfb"), ("xdotool", "xdotool")):
-        if shutil.which(program) is None:
-            print(f"skipped: Debian package {package} is not installed")
-            sys.exit(SKIP)
-    shutil.rmtree(a.scratch, ignore_errors=True)
-    temporary = os.path.join(a.scratch, "tmp")
-    os.makedirs(temporary)
+    skip_unless_installed("blender", ("xvfb-run", "xvfb"), "xdotool")
+    temporary = fresh_folder(os.path.join(fresh_folder(a.scratch), "tmp"))
     env = blender_env(dict(BLENDER_USER_SCRIPTS=os.path.join(a.scratch, "scripts"),
                            BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"),
                            TMPDIR=temporary))

@@ -13,12 +13,12 @@ Cases (one CTest test each, label blender; exit 77, CTest's skip, when a tool is
 
 import argparse
 import os
-import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, blender, require_validator, validate  # noqa: E402
+from roundtrip_test import (  # noqa: E402
+    blender, fresh_folder, skip_unless_installed, require_validator, validate)
 
 # Lines the add-on prints to Blender's console for what it does not carry.
 CONSOLE_WARNINGS = ["filmback: material 'Toon': node 'Toon BSDF' (BSDF_TOON) is not carried",
@@ -28,8 +28,7 @@ CONSOLE_WARNINGS = ["filmback: material 'Toon': node 'Toon BSDF' (BSDF_TOON) is 
 
 def export(scratch):
     """Runs material_export_scene.py into `scratch`; returns (gltf path, Blender's output)."""
-    shutil.rmtree(scratch, ignore_errors=True)
-    os.makedirs(scratch)
+    fresh_folder(scratch)
     r = blender("--python-exit-code", "1", "--python",
                 os.path.join(HERE, "material_export_scene.py"), "--", scratch)
     output = r.stdout + r.stderr
@@ -62,9 +61,7 @@ def main():
     p.add_argument("--node-modules")
     p.add_argument("case", choices=sorted(CASES))
     a = p.parse_args()
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
+    skip_unless_installed("blender")
     CASES[a.case](a)
 
 

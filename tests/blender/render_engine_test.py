@@ -24,12 +24,11 @@ Each case also checks that the engine leaves no temporary folder behind. Exit 77
 
 import argparse
 import os
-import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, addon_zip, blender  # noqa: E402
+from roundtrip_test import addon_zip, blender, fresh_folder, skip_unless_installed  # noqa: E402
 
 CASES = ("still", "animation", "bad_setting", "cancel", "passes", "cryptomatte")
 # Time for filmback to start, render a second and write its first preview (PREVIEW_EVERY).
@@ -42,14 +41,9 @@ def main():
     p.add_argument("--scratch", required=True)
     p.add_argument("case", choices=CASES)
     a = p.parse_args()
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
-    shutil.rmtree(a.scratch, ignore_errors=True)
-    os.makedirs(a.scratch)
+    skip_unless_installed("blender")
     # The engine's temporary folders go to the case's own, which it checks is left empty.
-    temporary = os.path.join(a.scratch, "tmp")
-    os.makedirs(temporary)
+    temporary = fresh_folder(os.path.join(fresh_folder(a.scratch), "tmp"))
     env = dict(BLENDER_USER_SCRIPTS=os.path.join(a.scratch, "scripts"),
                BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"), TMPDIR=temporary)
     if a.case == "cancel":

@@ -15,7 +15,6 @@ import os
 import sys
 
 import bpy
-from mathutils import Vector
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "importers", "blender"))

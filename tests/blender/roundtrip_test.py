@@ -44,6 +44,24 @@ def blender_env(extra=None):
     return env
 
 
+def skip_unless_installed(*programs):
+    """Exits with CTest's skip status unless every program is on PATH; each is a name that is
+    its own Debian package, or a (program, package) pair."""
+    for program in programs:
+        name, package = program if isinstance(program, tuple) else (program, program)
+        if shutil.which(name) is None:
+            print(f"skipped: Debian package {package} is not installed")
+            sys.exit(SKIP)
+
+
+def fresh_folder(path):
+    """Empties the folder `path` (making it if need be) and returns its absolute path: a case
+    starts from nothing that an earlier run left."""
+    shutil.rmtree(path, ignore_errors=True)
+    os.makedirs(path)
+    return os.path.abspath(path)
+
+
 def blender(*args, env=None, blend_file=None):
     command = ["blender", "-b"] + ([blend_file] if blend_file else ["--factory-startup"])
     return subprocess.run(command + list(args), capture_output=True, text=True, timeout=240,
@@ -188,9 +206,7 @@ def main():
     if a.list:
         print(" ".join(CASES))
         return
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
+    skip_unless_installed("blender")
     os.makedirs(a.scratch, exist_ok=True)
     CASES[a.case](a)
 
