@@ -56,9 +56,9 @@ struct Material {
   float ior = 1.5f;           // KHR_materials_ior
   float specular = 1.f;       // KHR_materials_specular specularFactor: 0 makes it Lambertian
   MaterialTextures textures;  // none by default
-  // A POV-Ray pigment (importers/pov): the base colour is base_color times this solid texture's
-  // colour at the hit's world position, its transmit scales the coverage (alpha) and its filter
-  // the transmission (docs/pov.md, "Appearance").
+  // A POV-Ray pigment (importers/pov): the base colour and the emission are base_color and
+  // emission times this solid texture's colour at the hit's world position, its transmit scales
+  // the coverage (alpha) and its filter the transmission (docs/pov.md, "Appearance").
   std::optional<SolidPattern> base_color_pattern;
   // A POV-Ray normal pattern: the shading normal bent at every hit (core/texture/solid_normal.h).
   std::optional<SolidNormal> normal_pattern;

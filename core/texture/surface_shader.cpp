@@ -170,6 +170,7 @@ Rgb SurfaceShader::emission(uint32_t index, const SurfacePoint& point) const {
     const auto c = lookup(m.textures.emissive, point, true);
     emission *= Rgb(c[0], c[1], c[2]);
   }
+  if (m.base_color_pattern) emission *= solid_colour(*m.base_color_pattern, point).rgb;
   return max(emission, Rgb{});
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/texture/solid_normal.h"
+#include "core/texture/solid_pattern.h"
 
 namespace fb {
 namespace {
@@ -50,6 +51,31 @@ TEST(SurfaceShader, LayersBlendByCoverageBottomUp) {
   EXPECT_FLOAT_EQ(hit.specular, 0.8f);
   EXPECT_FLOAT_EQ(hit.roughness, 0.2f);
   EXPECT_FLOAT_EQ(hit.ior, 1.7f);
+}
+
+// POV-Ray's emission and a self-lit finish's ambient are times the pigment (docs/pov.md): a
+// gradient pigment glows in its colour at the hit, not in its average.
+TEST(SurfaceShader, EmissionIsTimesThePatternAtTheHit) {
+  Scene scene;
+  Material glow;
+  glow.emission = {2.f, 2.f, 2.f};
+  SolidPattern ramp;
+  ramp.kind = SolidPatternKind::kGradient;
+  ramp.gradient = {1, 0, 0};
+  ramp.colour_map = {{0.f, {{0, 0, 0}, 0, 0}}, {1.f, {{1, 0.5f, 0.25f}, 0, 0}}};
+  glow.base_color_pattern = ramp;
+  scene.materials = {glow};
+  const SurfaceShader shader(scene);
+  for (const float x : {0.25f, 0.75f}) {
+    SurfacePoint point;
+    point.position = {x, 0.f, 0.f};
+    const Rgb expected = evaluate_solid(ramp, Vec3d(point.position), nullptr).rgb * 2.f;
+    const Rgb emitted = shader.emission(0, point);
+    EXPECT_NEAR(emitted.x, expected.x, 1e-6f);
+    EXPECT_NEAR(emitted.y, expected.y, 1e-6f);
+    EXPECT_NEAR(emitted.z, expected.z, 1e-6f);
+    EXPECT_NEAR(emitted.x, 2.f * x, 1e-5f);  // the ramp's red, not its mean
+  }
 }
 
 TEST(SurfaceShader, NormalPatternBendsTheShadingNormalOnly) {

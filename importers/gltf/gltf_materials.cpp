@@ -96,6 +96,12 @@ class MaterialReader {
       if (factor->size() != 3) pov.fail("base_color_factor", "expected [r, g, b]");
       m.base_color = Rgb(float((*factor)[0]), float((*factor)[1]), float((*factor)[2]));
     }
+    // The emission before the pigment multiplies it (emissiveFactor is after, for other viewers).
+    if (const auto factor = pov.numbers("emission_factor", 3, 0, kLargestFactor)) {
+      if (factor->size() != 3) pov.fail("emission_factor", "expected [r, g, b]");
+      if (!m.base_color_pattern) pov.fail("emission_factor", "expected beside a pigment");
+      m.emission = Rgb(float((*factor)[0]), float((*factor)[1]), float((*factor)[2]));
+    }
     // Fully covered everywhere: no need to test each hit.
     if (m.alpha_mode == AlphaMode::kBlend && m.alpha >= 1 && !m.textures.base_color.present() &&
         !m.base_color_pattern)

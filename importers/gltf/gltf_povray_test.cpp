@@ -171,6 +171,7 @@ TEST(GltfPovray, PigmentsReadBackExactly) {
   m.base_color = {1.3f, 0.7f, 0.7f};  // diffuse times a colour: beyond glTF's [0, 1]
   m.base_color_pattern = every_field();
   m.alpha_mode = AlphaMode::kBlend;  // the pattern's transmit lowers the coverage
+  m.emission = {2.5f, 0.5f, 0.125f};  // times the pattern at the hit; emissiveFactor is a mean
   scene.materials = {m, Material()};
   const Scene back = round_trip(scene, "pigment.gltf");
   ASSERT_EQ(back.materials.size(), 2u);
@@ -180,6 +181,9 @@ TEST(GltfPovray, PigmentsReadBackExactly) {
   ASSERT_TRUE(b.base_color_pattern);
   expect_same_pattern(*m.base_color_pattern, *b.base_color_pattern);
   EXPECT_EQ(b.alpha_mode, AlphaMode::kBlend);
+  EXPECT_EQ(b.emission.x, 2.5f);
+  EXPECT_EQ(b.emission.y, 0.5f);
+  EXPECT_EQ(b.emission.z, 0.125f);
   EXPECT_FALSE(back.materials[1].base_color_pattern);
 }
 

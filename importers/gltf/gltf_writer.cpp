@@ -107,9 +107,12 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
                   : m.alpha_mode == AlphaMode::kBlend ? "BLEND"
                                                       : "OPAQUE";
   if (m.alpha_mode == AlphaMode::kMask) out.alphaCutoff = m.alpha_cutoff;
-  // glTF's emissiveFactor stops at 1: the rest goes to KHR_materials_emissive_strength.
-  const float strength = std::max(max_component(m.emission), 1.f);
-  out.emissiveFactor = {m.emission.x / strength, m.emission.y / strength, m.emission.z / strength};
+  // glTF's emissiveFactor stops at 1: the rest goes to KHR_materials_emissive_strength. Under a
+  // POV-Ray pigment, other viewers get the emission times the pigment's mean colour.
+  const Rgb emission =
+      m.base_color_pattern ? m.emission * gltf::mean_colour(*m.base_color_pattern).rgb : m.emission;
+  const float strength = std::max(max_component(emission), 1.f);
+  out.emissiveFactor = {emission.x / strength, emission.y / strength, emission.z / strength};
   if (strength > 1)
     out.extensions["KHR_materials_emissive_strength"] =
         Value(Value::Object{{"emissiveStrength", number(strength)}});
@@ -127,7 +130,10 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   if (m.base_color_pattern) viewed = viewed * gltf::mean_colour(*m.base_color_pattern).rgb;
   if (m.base_color_pattern || max_component(m.base_color) > 1) {
     Value::Object ours{{"base_color_factor", gltf::number_array(m.base_color)}};
-    if (m.base_color_pattern) ours["pigment"] = gltf::pattern_json(*m.base_color_pattern);
+    if (m.base_color_pattern) {
+      ours["pigment"] = gltf::pattern_json(*m.base_color_pattern);
+      if (max_component(m.emission) > 0) ours["emission_factor"] = gltf::number_array(m.emission);
+    }
     out.extensions["FILMBACK_povray"] = Value(std::move(ours));
     out.pbrMetallicRoughness.baseColorFactor = {std::min(viewed.x, 1.f), std::min(viewed.y, 1.f),
                                                 std::min(viewed.z, 1.f), m.alpha};

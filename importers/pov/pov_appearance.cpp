@@ -258,11 +258,13 @@ Material make_layer_material(const Texture& texture, const std::optional<Interio
     m.base_color = m.base_color * pigment.colour.rgb;
 
   // POV-Ray's ambient stands in for indirect light, which the path tracer computes: dropped,
-  // except on a finish without diffuse, which is self-lit (test markers, skies).
-  m.emission = rho * Rgb(float(f.emission.r), float(f.emission.g), float(f.emission.b));
+  // except on a finish without diffuse, which is self-lit (test markers, skies). Both are times
+  // the pigment: a pattern's colour at the hit (SurfaceShader::emission), or the plain colour.
+  m.emission = Rgb(float(f.emission.r), float(f.emission.g), float(f.emission.b));
   if (d == 0.f)
-    m.emission += rho * Rgb(float(f.ambient.r), float(f.ambient.g), float(f.ambient.b)) *
+    m.emission += Rgb(float(f.ambient.r), float(f.ambient.g), float(f.ambient.b)) *
                   decode(ambient_light, gamma);
+  if (!colour_at_hit) m.emission = m.emission * rho;
 
   const Highlight h = highlight(f);
   if (reflection > 0 || m.transmission > 0) {

@@ -355,7 +355,8 @@ typedef struct fb_pov_finish {
   uint32_t present; /* 0: the material has no POV-Ray finish (not from a .pov scene) */
   float pigment[3]; /* the pigment's colour (a pattern's average) */
   /* fb_hit.base_color is the pigment at the hit times this (diffuse, or 1 for metals and
-   * transparent pigments, docs/pov.md "Finishes and interiors"); 0: read `pigment` instead */
+   * transparent pigments, docs/pov.md "Finishes and interiors"); 0 (no diffuse): fb_hit.emission
+   * is the pigment at the hit times ambient + emission, or read `pigment` where they are 0 */
   float pigment_scale;
   float filter, transmit; /* the pigment's (0 for a patterned pigment: not known per hit) */
   /* the probability that intersect() keeps a hit on it: 1 - transmit where the host blends a

@@ -36,9 +36,17 @@ inline Rgb rgb(const float c[3]) {
 }
 
 // The pigment's colour at the hit: the host's base colour divided by what the importer scaled the
-// pigment by, or the pigment's constant colour where that scale is 0.
-inline Rgb pigment_at_hit(const fb_pov_finish& f, const float base_color[3]) {
-  return f.pigment_scale > 0.f ? rgb(base_color) / f.pigment_scale : rgb(f.pigment);
+// pigment by. Where that scale is 0 (a finish without diffuse), the host's emission, which is the
+// pigment at the hit times ambient + emission (docs/pov.md, "Finishes and interiors"), divided by
+// them; the pigment's constant colour in a channel where they are 0.
+inline Rgb pigment_at_hit(const fb_pov_finish& f, const fb_hit& hit) {
+  if (f.pigment_scale > 0.f) return rgb(hit.base_color) / f.pigment_scale;
+  float pigment[3];
+  for (int c = 0; c < 3; ++c) {
+    const float glow = f.ambient[c] + f.emission[c];
+    pigment[c] = glow > 0.f ? hit.emission[c] / glow : f.pigment[c];
+  }
+  return rgb(pigment);
 }
 
 // What a hit lets through of what lies behind it: filter * pigment + transmit (POV-Ray's

@@ -113,7 +113,7 @@ Rgb PovRayTracer::Tracer::light_through(const fb_ray& shadow, float distance) co
     fb_hit hit;
     if (!api.intersect(ctx, &ray, &hit)) return through;
     const fb_pov_finish& f = finish(hit.material);
-    const Rgb pigment = lighting::pigment_at_hit(f, hit.base_color);
+    const Rgb pigment = lighting::pigment_at_hit(f, hit);
     through *= lighting::passed_through(f, pigment) / std::max(f.coverage, 1e-6f);
     if (!(fb::max_component(through) > 0.f)) return {};
     const Vec3f p(hit.position), d(ray.direction);
@@ -141,7 +141,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
   if (dot(n, view) > 0.f) n = ng;  // a bent normal turned away from the viewer
   const float eta = entering ? f.ior : 1.f / std::max(f.ior, 1e-6f);  // n2 / n1
   const Vec3f p(hit.position), p_error(hit.position_error);
-  const Rgb pigment = lighting::pigment_at_hit(f, hit.base_color);
+  const Rgb pigment = lighting::pigment_at_hit(f, hit);
   const float opacity = 1.f - f.filter - f.transmit;  // POV-Ray 3.7's Opacity()
 
   Rgb colour = pigment * (lighting::rgb(f.ambient) + lighting::rgb(f.emission)) * opacity;

@@ -75,11 +75,13 @@ struct PovComparison {
 
 constexpr int kPovCaseSize = 64;
 
-PovComparison compare_with_povray(const std::string& name, const std::string& sdl, uint32_t samples) {
+PovComparison compare_with_povray(const std::string& name, const std::string& sdl,
+                                  uint32_t samples) {
   const std::filesystem::path pov_file = test::scratch_dir() / (name + ".pov");
   std::ofstream(pov_file) << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n" << sdl;
   std::string why;
-  const std::vector<float> reference = test::povray_render(pov_file, kPovCaseSize, kPovCaseSize, why);
+  const std::vector<float> reference =
+      test::povray_render(pov_file, kPovCaseSize, kPovCaseSize, why);
   EXPECT_FALSE(reference.empty()) << why;
   if (reference.empty()) return {};
 
@@ -159,6 +161,17 @@ const PovCase kPovCases[] = {
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgbf <0.95, 1, 0.95, 0.9> } finish { ambient 0 diffuse "
      "0.1 phong 0.5 reflection { 0.05, 1 fresnel } } interior { ior 1.5 } }\n",
      1, 0.02},
+    // A finish without diffuse glows in its pigment's colour at each hit, a pattern's too (a disc,
+    // not a plane: a plane's checkers alias at the horizon, where one ray per pixel lands apart).
+    {"self_lit_patterns",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "disc { 0, y, 2.5 pigment { checker rgb 0.9, rgb <0.7, 0.1, 0.1> } finish { ambient 1 diffuse "
+     "0 "
+     "} }\n"
+     "sphere { <0, 0.8, 0>, 0.8 pigment { gradient x color_map { [0 rgb <0.1, 0.2, 0.9>] [1 rgb "
+     "<0.9, 0.8, 0.1>] } scale 1.6 translate -0.8 * x } finish { ambient 0.3 emission 0.5 diffuse "
+     "0 } }\n",
+     1, 0.001},
     {"area_light",
      "light_source { <0, 4, -1> rgb 1 area_light <2, 0, 0>, <0, 0, 2>, 5, 5 }\n"
      "plane { y, 0 pigment { rgb 0.8 } finish { ambient 0.1 } }\n"
@@ -171,7 +184,8 @@ class PovRayIntegrator : public ::testing::TestWithParam<PovCase> {};
 TEST_P(PovRayIntegrator, RendersAsPovRayDoes) {
   if (!test::have_povray()) GTEST_SKIP() << "no povray";
   const PovCase& c = GetParam();
-  const PovComparison result = compare_with_povray(c.name, std::string(kPovCaseCamera) + c.sdl, c.samples);
+  const PovComparison result =
+      compare_with_povray(c.name, std::string(kPovCaseCamera) + c.sdl, c.samples);
   EXPECT_GT(result.lit_values, kPovCaseSize * kPovCaseSize);  // most of the image is lit
   EXPECT_LT(result.mean_relative, c.tolerance);
 }
