@@ -64,8 +64,8 @@ struct Material {
   std::optional<SolidNormal> normal_pattern;
   // POV-Ray's layered textures: materials over this one, each over the one before, each with a
   // base_color_pattern whose filter and transmit at the hit let the layers below show through
-  // (SurfaceShader::shade; docs/pov.md "Layered textures"). Only the base material's alpha,
-  // emission and ior count.
+  // (SurfaceShader::shade; docs/pov.md "Layered textures"). Their emission composites as their
+  // colours do (SurfaceShader::emission); only the base material's alpha and ior count.
   std::vector<Material> layers;
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha = 1.f;          // baseColorFactor's fourth component

@@ -65,6 +65,15 @@ SolidColour SurfaceShader::solid_colour(const SolidPattern& pattern,
   return evaluate_solid(pattern, world_from_render_.point(Vec3d(point.position)), &images_);
 }
 
+SurfaceShader::LayerCover SurfaceShader::layer_cover(const Material& layer,
+                                                     const SurfacePoint& point) const {
+  // a layer without a pattern is an opaque one of its base colour
+  const SolidColour c = layer.base_color_pattern ? solid_colour(*layer.base_color_pattern, point)
+                                                 : SolidColour{{1.f, 1.f, 1.f}, 0.f, 0.f};
+  return {c.rgb, std::clamp(1.f - c.filter - c.transmit, 0.f, 1.f),
+          c.rgb * c.filter + Rgb{c.transmit, c.transmit, c.transmit}};
+}
+
 std::array<float, 4> SurfaceShader::lookup(const TextureRef& ref, const SurfacePoint& point,
                                            bool srgb) const {
   TextureLookup lookup(ref.image, texture_position(point, ref.texcoord, ref.uv_transform));
@@ -102,14 +111,10 @@ void SurfaceShader::shade(uint32_t index, const SurfacePoint& point, fb_hit& hit
   // its layer's coverage, as POV-Ray adds every layer's highlights unweighted (a clear top layer
   // with phong is a clear coat).
   for (const Material& layer : m.layers) {
-    // a layer without a pattern is an opaque one of its base colour
-    const SolidColour c = layer.base_color_pattern ? solid_colour(*layer.base_color_pattern, point)
-                                                   : SolidColour{{1.f, 1.f, 1.f}, 0.f, 0.f};
-    const float cover = std::clamp(1.f - c.filter - c.transmit, 0.f, 1.f);
-    base = layer.base_color * c.rgb * cover +
-           base * (c.rgb * c.filter + Rgb{c.transmit, c.transmit, c.transmit});
-    metallic += (layer.metallic - metallic) * cover;
-    transmission += (layer.transmission - transmission) * cover;
+    const LayerCover c = layer_cover(layer, point);
+    base = layer.base_color * c.colour * c.cover + base * c.through;
+    metallic += (layer.metallic - metallic) * c.cover;
+    transmission += (layer.transmission - transmission) * c.cover;
     if (layer.specular > specular)
       specular = layer.specular, roughness = layer.roughness, ior = layer.ior;
   }
@@ -171,6 +176,11 @@ Rgb SurfaceShader::emission(uint32_t index, const SurfacePoint& point) const {
     emission *= Rgb(c[0], c[1], c[2]);
   }
   if (m.base_color_pattern) emission *= solid_colour(*m.base_color_pattern, point).rgb;
+  for (const Material& layer : m.layers) {
+    if (max_component(emission) == 0.f && max_component(layer.emission) == 0.f) continue;
+    const LayerCover c = layer_cover(layer, point);
+    emission = layer.emission * c.colour * c.cover + emission * c.through;
+  }
   return max(emission, Rgb{});
 }
 

@@ -34,7 +34,8 @@ class SurfaceShader {
   // `camera_ray`) into `surface` (hit.geometric_normal must be set too).
   void shade(uint32_t material, const SurfacePoint& point, Vec3f ray_direction, bool camera_ray,
              fb_hit& hit, Surface& surface) const;
-  // Radiance leaving the point: the emissive factor (with its strength) times the texture, or
+  // Radiance leaving the point: the emissive factor (with its strength) times the texture (or a
+  // POV-Ray pigment, and its texture layers' composited as shade() composites their colours), or
   // the shader graph's emission.
   Rgb emission(uint32_t material, const SurfacePoint& point) const;
   // Coverage in [0, 1]: alpha factor times base colour texture alpha (glTF "Alpha Coverage"),
@@ -53,6 +54,13 @@ class SurfaceShader {
   // RGBA of texture `ref` at the point; `srgb` decodes the colour channels.
   std::array<float, 4> lookup(const TextureRef& ref, const SurfacePoint& point, bool srgb) const;
   SolidColour solid_colour(const SolidPattern& pattern, const SurfacePoint& point) const;
+  // How a POV-Ray texture layer at the point covers what is below it.
+  struct LayerCover {
+    Rgb colour;   // its pigment's
+    float cover;  // 1 - filter - transmit: the share of the layer's own colour
+    Rgb through;  // filter times its colour, plus transmit: what passes from below
+  };
+  LayerCover layer_cover(const Material& layer, const SurfacePoint& point) const;
   const std::vector<Material>& materials_;
   Transform world_from_render_;
   TextureImages images_;

@@ -122,6 +122,11 @@ struct Texture {
   // before; none of them has layers of its own.
   std::vector<Texture> layers;
   SourceLocation where;
+
+  // The layer a later pigment, finish or normal changes: the topmost, as POV-Ray's
+  // Parse_Texture and Parse_Object_Mods change the head of its layer list, which is the last
+  // layer written.
+  Texture& top() { return layers.empty() ? *this : layers.back(); }
 };
 
 // ---- Objects ----------------------------------------------------------------------------------
@@ -277,7 +282,7 @@ struct Scene {
   std::optional<SkySphere> sky_sphere;
   std::optional<double> assumed_gamma;
   Colour ambient_light{1, 1, 1};
-  std::vector<std::filesystem::path> images;  // image_map files, found; each once
+  std::vector<std::filesystem::path> images;           // image_map files, found; each once
   std::optional<double> max_trace_level, adc_bailout;  // global_settings, as written
   double version = 3.7;
   // Features met but not rendered, in the order met; the converters report each once per scene.

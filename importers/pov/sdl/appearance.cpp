@@ -409,7 +409,7 @@ bool parse_texture_part(Parser& parser, const Tok& tok, Texture& t) {
   } else if (tok.identifier && tok.value.get<Pigment>()) {
     t.pigment = *tok.value.get<Pigment>();
   } else if (w == "finish") {
-    t.finish = parser.parse_finish();
+    t.finish = parser.parse_finish(t.finish);
   } else if (tok.identifier && tok.value.get<Finish>()) {
     t.finish = *tok.value.get<Finish>();
   } else if (w == "normal") {
@@ -628,8 +628,8 @@ Pigment Parser::parse_pigment_items(const char* closing) {
   return p;
 }
 
-Finish Parser::parse_finish() {
-  Finish f = default_texture_.finish;
+Finish Parser::parse_finish(Finish start) {
+  Finish f = std::move(start);
   expect("{");
   auto optional_albedo = [&] {
     if (peek().word("albedo")) next();
@@ -733,7 +733,7 @@ Texture Parser::parse_texture_items(const char* closing) {
       t = *tok.value.get<Texture>();
     } else if (patterned && tok.identifier && tok.value.get<Texture>()) {
       keep_first(first_sub, *tok.value.get<Texture>());
-    } else if (parse_texture_part(*this, tok, t)) {
+    } else if (parse_texture_part(*this, tok, t.top())) {
       // pigment, finish or normal, read
     } else if (w == "texture" && patterned) {
       keep_first(first_sub, parse_texture());

@@ -470,7 +470,7 @@ void Parser::run_default() {
     } else if (tok.word("pigment")) {
       default_texture_.pigment = parse_pigment();
     } else if (tok.word("finish")) {
-      default_texture_.finish = parse_finish();
+      default_texture_.finish = parse_finish(default_texture_.finish);
     } else if (tok.word("normal")) {
       default_texture_.normal = parse_normal();
     } else {

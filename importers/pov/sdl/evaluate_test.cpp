@@ -540,6 +540,30 @@ TEST_F(Sdl, LayeredTexturesKeepEveryLayerInOrder) {
   EXPECT_NE(error.find("at most 64 layers"), std::string::npos) << error;
 }
 
+// A finish, pigment or normal after a layered texture changes its top layer, the last written, as
+// POV-Ray changes the head of its layer list (measured: `texture { T finish { ambient 1 diffuse
+// 0 } }` over a blue base under a half-transparent red layer renders (0.5, 0, 0.05)); a finish
+// changes the finish it finds rather than starting from the default one.
+TEST_F(Sdl, ChangesAfterALayeredTextureGoToItsTopLayer) {
+  Scene scene =
+      run("#declare T = texture { pigment { rgb <0, 0, 1> } finish { phong 0.5 } }\n"
+          "  texture { pigment { rgbt <1, 0, 0, 0.5> } finish { phong 0.7 } }\n"
+          "box { 0, 1 texture { T finish { ambient 1 diffuse 0 } } }\n"
+          "box { 0, 1 texture { T } finish { ambient 0.5 } normal { bumps 0.3 } }\n");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  for (const Object& o : scene.objects) {
+    ASSERT_EQ(o.texture.layers.size(), 1u);
+    EXPECT_EQ(o.texture.finish.ambient.r, 0.1);  // the base keeps POV-Ray's default
+    EXPECT_EQ(o.texture.finish.phong, 0.5);
+    EXPECT_EQ(o.texture.layers[0].finish.phong, 0.7);  // kept: the finish was changed, not reset
+  }
+  EXPECT_EQ(scene.objects[0].texture.layers[0].finish.ambient.r, 1);
+  EXPECT_EQ(scene.objects[0].texture.layers[0].finish.diffuse, 0);
+  EXPECT_EQ(scene.objects[1].texture.layers[0].finish.ambient.r, 0.5);
+  EXPECT_FALSE(scene.objects[1].texture.normal);
+  ASSERT_TRUE(scene.objects[1].texture.layers[0].normal);
+}
+
 // An unsupported object is reported where the scene places it, not where it is declared: an
 // include that declares shapes the scene never uses leaves its geometry complete.
 TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {

@@ -319,7 +319,7 @@ Value Parser::parse_rvalue() {
     const std::string& w = tok.token.text;
     if (is_object_keyword(tok)) return Value::of(parse_object(tok));
     if (w == "pigment") return Value::of(parse_pigment());
-    if (w == "finish") return Value::of(parse_finish());
+    if (w == "finish") return Value::of(parse_finish(default_texture_.finish));
     if (w == "normal") return Value::of(parse_normal());
     if (w == "texture") return Value::of(parse_layered_texture(*this));
     if (w == "interior") return Value::of(parse_interior());

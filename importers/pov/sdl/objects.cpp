@@ -457,15 +457,14 @@ bool parse_appearance_mod(Parser& p, const Tok& tok, Object& o) {
   } else if (w == "pigment") {
     Pigment pigment = p.parse_pigment();
     p.ensure_texture(o);
-    o.texture.pigment = std::move(pigment);
+    o.texture.top().pigment = std::move(pigment);
   } else if (w == "finish") {
-    Finish f = p.parse_finish();
     p.ensure_texture(o);
-    o.texture.finish = f;
+    o.texture.top().finish = p.parse_finish(o.texture.top().finish);
   } else if (w == "normal") {
     Normal normal = p.parse_normal();
     p.ensure_texture(o);
-    o.texture.normal = std::move(normal);
+    o.texture.top().normal = std::move(normal);
   } else if (w == "interior") {
     o.interior = p.parse_interior();
   } else if (w == "material") {

@@ -219,7 +219,7 @@ class Parser {
 
   // ---- appearance (appearance.cpp) ----
   Pigment parse_pigment();  // after the `pigment` keyword
-  Finish parse_finish();
+  Finish parse_finish(Finish start);  // after `finish`: changes `start`, as POV-Ray does
   Normal parse_normal();                           // after the `normal` keyword
   Normal parse_normal_items(const char* closing);  // a normal's body up to `closing`
   Texture parse_texture();
