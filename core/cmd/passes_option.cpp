@@ -14,7 +14,7 @@ namespace {
 
 // Blender passes filmback does not write yet, named so that asking for one says so rather than
 // calling it unknown (docs/blender.md, "Passes").
-constexpr std::string_view kUnwrittenPasses[] = {"GlossCol", "Vector", "CryptoAsset"};
+constexpr std::string_view kUnwrittenPasses[] = {"Vector", "CryptoAsset"};
 
 std::string written_pass_names() {
   std::string names = "Combined";

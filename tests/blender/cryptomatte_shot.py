@@ -25,12 +25,8 @@ import bpy
 from bpy_extras.object_utils import world_to_camera_view
 from mathutils import Vector
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "importers",
-                                "blender"))
-import export_shot  # noqa: E402  (filmback's add-on, enabled for this session)
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_shot import configure_cycles  # noqa: E402
+from make_shot import configure_cycles, export_and_render_layers  # noqa: E402
 
 WIDTH_PX, HEIGHT_PX = 64, 48
 SAMPLES = 64
@@ -76,12 +72,7 @@ def build_shot(out_dir):
         json.dump({"width_px": WIDTH_PX, "height_px": HEIGHT_PX, "samples": SAMPLES,
                    "planes": silhouettes}, f)
 
-    export_shot.export(os.path.join(out_dir, "shot.gltf"), export_lights=False)
-    image = scene.render.image_settings
-    image.file_format = "OPEN_EXR_MULTILAYER"
-    image.color_depth = "32"
-    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
-    bpy.ops.render.render(write_still=True)
+    export_and_render_layers(scene, out_dir)
 
 
 def write_mattes(out_dir, exr, layer, names):

@@ -16,7 +16,7 @@ from never_lose_test import images_identical
 from progress_test import SCENE
 
 QUICK = ["--res", "48x27", "--spp", "4", "-q"]
-ALL_PASSES = "Depth,Normal,DiffCol,Emit,Denoising Albedo,Denoising Normal"
+ALL_PASSES = "Depth,Normal,DiffCol,GlossCol,Emit,Denoising Albedo,Denoising Normal"
 
 
 def exr_header(file):
@@ -37,7 +37,7 @@ class PassesTest(case_main.FolderCase):
         channels = re.search(r"channel list: (.*)", header).group(1).split(", ")
         expected = ["ViewLayer.Combined." + c for c in "RGBA"] + ["ViewLayer.Depth.Z"] + [
             f"ViewLayer.{name}.{c}" for name, letters in [
-                ("Normal", "XYZ"), ("DiffCol", "RGB"), ("Emit", "RGB"),
+                ("Normal", "XYZ"), ("DiffCol", "RGB"), ("GlossCol", "RGB"), ("Emit", "RGB"),
                 ("Denoising Albedo", "RGB"), ("Denoising Normal", "XYZ")] for c in letters]
         self.assertEqual(sorted(channels), sorted(expected))
         self.assertIn("BlenderMultiChannel", header)
@@ -72,7 +72,7 @@ class PassesTest(case_main.FolderCase):
 
     def test_unknown_or_unwritten_pass_refused(self):
         for passes, named in [("Depth,Shadow", "'Shadow'"), ("depth", "'depth'"),
-                              ("Normal,GlossCol", "'GlossCol'"), ("Vector", "'Vector'")]:
+                              ("Normal,Vector", "'Vector'"), ("CryptoAsset", "'CryptoAsset'")]:
             with self.subTest(passes=passes):
                 refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, "--passes",
                                        passes)

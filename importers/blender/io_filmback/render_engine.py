@@ -28,6 +28,7 @@ RENDER_PASSES = (
     ("use_pass_z", "Depth", "Z", "VALUE"),
     ("use_pass_normal", "Normal", "XYZ", "VECTOR"),
     ("use_pass_diffuse_color", "DiffCol", "RGB", "COLOR"),
+    ("use_pass_glossy_color", "GlossCol", "RGB", "COLOR"),
     ("use_pass_emit", "Emit", "RGB", "COLOR"),
 )
 # The view layer's Cryptomatte switches (docs/blender.md, "Cryptomatte"): the property and the
