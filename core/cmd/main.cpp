@@ -56,11 +56,16 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
       ->check(CLI::IsMember({"importance", "splat"}));
   render_cmd->add_option("--integrator", render.options.integrator,
                          "integrator NAME[:k=v,...] (default path)");
-  render_cmd->add_option("--passes", render.passes,
-                         "Blender render passes written beside the beauty into the EXR as "
-                         "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, "
-                         "Emit, Denoising Albedo, Denoising Normal, CryptoObject, CryptoMaterial "
-                         "(default: the beauty alone)");
+  render_cmd->add_option(
+      "--passes", render.passes,
+      "Blender render passes written beside the beauty into the EXR as "
+      "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, GlossCol, "
+      "Emit, Denoising Albedo, Denoising Normal, CryptoObject, CryptoMaterial, "
+      "CryptoAsset "
+      "(default: the beauty alone)");
+  render_cmd->add_option("--cryptomatte-levels", render.options.cryptomatte_levels,
+                         "with Cryptomatte passes: the ranks written per pixel, an even number "
+                         "from 2 to 16 (Blender's Cryptomatte Levels; default 6)");
   render_cmd->add_option("--view-layer", render.options.view_layer,
                          "with --passes: the view layer the passes' channels are named after, "
                          "<NAME>.<Pass>.<Channel> (Blender's view layer; default ViewLayer)");

@@ -14,13 +14,13 @@ namespace {
 
 // Blender passes filmback does not write yet, named so that asking for one says so rather than
 // calling it unknown (docs/blender.md, "Passes").
-constexpr std::string_view kUnwrittenPasses[] = {"GlossCol", "Vector", "CryptoAsset"};
+constexpr std::string_view kUnwrittenPasses[] = {"Vector"};
 
 std::string written_pass_names() {
   std::string names = "Combined";
   for (const RenderPass& pass : kRenderPasses)
     names += std::string(", ") + pass.name;
-  return names + ", CryptoObject, CryptoMaterial";
+  return names + ", CryptoObject, CryptoMaterial, CryptoAsset";
 }
 
 }  // namespace
@@ -48,6 +48,17 @@ std::vector<std::string> parse_passes_option(const std::string& list) {
 void check_passes_combinations(const RenderCommand& c) {
   if (c.options.view_layer.empty())
     throw UsageError("--view-layer: an empty name; expected Blender's view layer name");
+  if (const auto levels = c.options.cryptomatte_levels) {
+    if (!valid_cryptomatte_levels(*levels))
+      throw UsageError("--cryptomatte-levels: " + std::to_string(*levels) +
+                       "; expected an even number from 2 to " +
+                       std::to_string(kMaxCryptomatteLevels) + " (Blender's Cryptomatte Levels)");
+    if (std::none_of(c.options.passes.begin(), c.options.passes.end(),
+                     [](const std::string& pass) { return find_cryptomatte_pass(pass); }))
+      throw UsageError(
+          "--cryptomatte-levels without a Cryptomatte pass; expected --passes with CryptoObject, "
+          "CryptoMaterial or CryptoAsset");
+  }
   if (c.options.passes.empty()) {
     if (c.options.view_layer != kViewLayer)
       throw UsageError(

@@ -30,11 +30,12 @@ std::string cryptomatte_hex(uint32_t hash) {
 }
 
 CryptomatteFilm::CryptomatteFilm(uint32_t width, uint32_t height,
-                                 std::vector<CryptomatteLayer> layers)
+                                 std::vector<CryptomatteLayer> layers, uint32_t levels)
     : width_(width),
       height_(height),
+      levels_(std::clamp(levels + levels % 2, 2u, kMaxCryptomatteLevels)),
       layers_(std::move(layers)),
-      slots_(size_t(width) * height * layers_.size() * kCryptomatteLevels),
+      slots_(size_t(width) * height * layers_.size() * levels_),
       weights_(size_t(width) * height, 0.f) {
   for (const CryptomatteLayer& layer : layers_) {
     std::vector<uint32_t>& hashes = hashes_.emplace_back();
@@ -57,7 +58,7 @@ void CryptomatteFilm::add(uint32_t x, uint32_t y, const uint32_t* names, float w
     Slot* s = slots(pixel, layer);
     Slot* free = nullptr;
     Slot* lightest = s;
-    for (Slot* slot = s; slot != s + kCryptomatteLevels; ++slot) {
+    for (Slot* slot = s; slot != s + levels_; ++slot) {
       if (slot->name == name) {
         slot->weight += weight;
         free = lightest = nullptr;
@@ -74,13 +75,13 @@ void CryptomatteFilm::add(uint32_t x, uint32_t y, const uint32_t* names, float w
 }
 
 void CryptomatteFilm::append_layers(Image& image, std::string_view view_layer) const {
-  constexpr uint32_t kRgbaLayers = (kCryptomatteLevels + 1) / 2;
+  const uint32_t rgba_layers = levels_ / 2;
   const size_t old_n = image.channels.size();
-  const size_t added = layers_.size() * kRgbaLayers * 4, n = old_n + added;
+  const size_t added = layers_.size() * rgba_layers * 4, n = old_n + added;
   for (const CryptomatteLayer& layer : layers_)
-    for (uint32_t rgba = 0; rgba < kRgbaLayers; ++rgba)
+    for (uint32_t rgba = 0; rgba < rgba_layers; ++rgba)
       for (const char* c : {"r", "g", "b", "a"}) {
-        char rank[3];
+        char rank[12];  // any uint32_t, though levels / 2 is at most 8
         std::snprintf(rank, sizeof rank, "%02u", rgba);
         image.channels.push_back(std::string(view_layer) + "." + layer.pass + rank + "." + c);
       }
@@ -90,14 +91,14 @@ void CryptomatteFilm::append_layers(Image& image, std::string_view view_layer) c
     if (weights_[pixel] == 0.f) continue;  // no sample landed: no id, never NaN
     float* out = &pixels[pixel * n + old_n];
     for (size_t layer = 0; layer < layers_.size(); ++layer) {
-      std::array<Slot, kCryptomatteLevels> ranked;
-      std::copy_n(slots(pixel, layer), kCryptomatteLevels, ranked.begin());
+      std::array<Slot, kMaxCryptomatteLevels> ranked;
+      std::copy_n(slots(pixel, layer), levels_, ranked.begin());
       // Heaviest first; equal weights by name index, so that the order never depends on arrival.
-      std::sort(ranked.begin(), ranked.end(), [](const Slot& a, const Slot& b) {
+      std::sort(ranked.begin(), ranked.begin() + levels_, [](const Slot& a, const Slot& b) {
         return a.weight != b.weight ? a.weight > b.weight : a.name < b.name;
       });
-      float* ranks = out + layer * kRgbaLayers * 4;
-      for (uint32_t r = 0; r < kCryptomatteLevels; ++r) {
+      float* ranks = out + layer * rgba_layers * 4;
+      for (uint32_t r = 0; r < levels_; ++r) {
         if (ranked[r].name == kCryptomatteNothing) break;
         ranks[2 * r] = cryptomatte_id(hashes_[layer][ranked[r].name]);
         ranks[2 * r + 1] = ranked[r].weight / weights_[pixel];
@@ -113,7 +114,7 @@ std::vector<std::pair<std::string, std::string>> CryptomatteFilm::metadata(
   for (size_t layer = 0; layer < layers_.size(); ++layer) {
     std::vector<bool> met(layers_[layer].names.size(), false);
     for (size_t pixel = 0; pixel < size_t(width_) * height_; ++pixel)
-      for (const Slot* s = slots(pixel, layer); s != slots(pixel, layer) + kCryptomatteLevels; ++s)
+      for (const Slot* s = slots(pixel, layer); s != slots(pixel, layer) + levels_; ++s)
         if (s->name != kCryptomatteNothing) met[s->name] = true;
     nlohmann::json manifest = nlohmann::json::object();
     for (size_t name = 0; name < met.size(); ++name)

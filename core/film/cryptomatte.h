@@ -17,9 +17,14 @@
 
 namespace fb {
 
-// Blender's default Cryptomatte levels (View Layer > Passes > Cryptomatte > Levels): the ranks
-// written per pixel, two per RGBA layer.
-inline constexpr uint32_t kCryptomatteLevels = 6;
+// Blender's Cryptomatte levels (View Layer > Passes > Cryptomatte > Levels,
+// view_layer.pass_cryptomatte_depth): the ranks written per pixel, two per RGBA layer; an even
+// number from 2 to 16, 6 by default.
+inline constexpr uint32_t kDefaultCryptomatteLevels = 6;
+inline constexpr uint32_t kMaxCryptomatteLevels = 16;
+inline bool valid_cryptomatte_levels(uint32_t levels) {
+  return levels >= 2 && levels <= kMaxCryptomatteLevels && levels % 2 == 0;
+}
 
 // MurmurHash3_x86_32 with seed 0 of the name's bytes: Cryptomatte's hash, and the manifest's value.
 uint32_t cryptomatte_hash(std::string_view name);
@@ -31,15 +36,20 @@ float cryptomatte_id(uint32_t hash);
 std::string cryptomatte_hex(uint32_t hash);
 
 // What names a sample in a Cryptomatte pass: the object its camera ray met (Blender's
-// CryptoObject) or that object's material (CryptoMaterial).
-enum class CryptomatteKey { kObject, kMaterial };
+// CryptoObject), that object's material (CryptoMaterial), or the object's topmost parent
+// (CryptoAsset).
+enum class CryptomatteKey { kObject, kMaterial, kAsset };
 
 // Blender's Cryptomatte passes filmback writes, as --passes takes them, and what names a sample in
 // each; null for another name.
 inline const CryptomatteKey* find_cryptomatte_pass(std::string_view pass) {
   static constexpr CryptomatteKey kObject = CryptomatteKey::kObject,
-                                  kMaterial = CryptomatteKey::kMaterial;
-  return pass == "CryptoObject" ? &kObject : pass == "CryptoMaterial" ? &kMaterial : nullptr;
+                                  kMaterial = CryptomatteKey::kMaterial,
+                                  kAsset = CryptomatteKey::kAsset;
+  return pass == "CryptoObject"     ? &kObject
+         : pass == "CryptoMaterial" ? &kMaterial
+         : pass == "CryptoAsset"    ? &kAsset
+                                    : nullptr;
 }
 
 // One Cryptomatte pass and the names its samples may carry: a sample names one of them by index
@@ -54,21 +64,24 @@ struct CryptomatteLayer {
 // but carries no id (Cycles' background has none either).
 inline constexpr uint32_t kCryptomatteNothing = UINT32_MAX;
 
-// Accumulates each pixel's filter weight per id and layer. A pixel keeps kCryptomatteLevels slots
-// per layer: once they are full, an id not among them replaces the lightest slot if this sample
-// alone outweighs that slot's sum, and is dropped otherwise (Cycles drops every newcomer), so that
-// what a pixel loses is what it covers least. Samples land in their own pixel in a fixed order
+// Accumulates each pixel's filter weight per id and layer. A pixel keeps `levels` slots per layer:
+// once they are full, an id not among them replaces the lightest slot if this sample alone
+// outweighs that slot's sum, and is dropped otherwise (Cycles drops every newcomer), so that what a
+// pixel loses is what it covers least. Samples land in their own pixel in a fixed order
 // (core/film/film.h), so the result does not depend on the thread count.
 class CryptomatteFilm {
  public:
-  CryptomatteFilm(uint32_t width, uint32_t height, std::vector<CryptomatteLayer> layers);
+  // `levels` as valid_cryptomatte_levels() accepts (clamped into that range otherwise).
+  CryptomatteFilm(uint32_t width, uint32_t height, std::vector<CryptomatteLayer> layers,
+                  uint32_t levels = kDefaultCryptomatteLevels);
 
   // One sample of pixel (x, y): `names[k]` indexes layer k's names (or is kCryptomatteNothing).
   // A non-finite weight is dropped, as the film drops it.
   void add(uint32_t x, uint32_t y, const uint32_t* names, float weight);
 
-  // Appends each layer's ranks to `image` (its size): "<view_layer>.<pass>NN.r/g/b/a", the id of
-  // rank 2 NN in r, its coverage (its share of the pixel's weight) in g, rank 2 NN + 1 in b and a.
+  // Appends each layer's ranks to `image` (its size): levels / 2 RGBA layers
+  // "<view_layer>.<pass>NN.r/g/b/a", the id of rank 2 NN in r, its coverage (its share of the
+  // pixel's weight) in g, rank 2 NN + 1 in b and a.
   void append_layers(Image& image, std::string_view view_layer) const;
   // The metadata Blender writes beside them, per layer: cryptomatte/<key>/name, hash, conversion
   // and manifest (a JSON object of the names met in the image, each with its hash in hex). The key
@@ -84,12 +97,13 @@ class CryptomatteFilm {
   };
   // Slots of pixel `pixel` in layer `layer`.
   Slot* slots(size_t pixel, size_t layer) {
-    return &slots_[(pixel * layers_.size() + layer) * kCryptomatteLevels];
+    return &slots_[(pixel * layers_.size() + layer) * levels_];
   }
   const Slot* slots(size_t pixel, size_t layer) const {
-    return &slots_[(pixel * layers_.size() + layer) * kCryptomatteLevels];
+    return &slots_[(pixel * layers_.size() + layer) * levels_];
   }
   uint32_t width_, height_;
+  uint32_t levels_;  // slots per pixel and layer
   std::vector<CryptomatteLayer> layers_;
   std::vector<std::vector<uint32_t>> hashes_;  // per layer, per name
   // Per layer and name, the first index with the same name: two glTF nodes may share a name, and

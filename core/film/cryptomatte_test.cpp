@@ -31,6 +31,7 @@ TEST(Cryptomatte, HashesAreBlenderManifestsAndLayerKeys) {
     EXPECT_EQ(cryptomatte_hex(cryptomatte_hash(name)), hex) << name;
   EXPECT_EQ(cryptomatte_hex(cryptomatte_hash("ViewLayer.CryptoObject")).substr(0, 7), "542cafa");
   EXPECT_EQ(cryptomatte_hex(cryptomatte_hash("ViewLayer.CryptoMaterial")).substr(0, 7), "c7dbf5e");
+  EXPECT_EQ(cryptomatte_hex(cryptomatte_hash("ViewLayer.CryptoAsset")).substr(0, 7), "aa21542");
 }
 
 TEST(Cryptomatte, IdIsTheHashsBitsWithTheExponentKeptOffZeroAndAllOnes) {

@@ -14,8 +14,11 @@ std::vector<CryptomatteLayer> cryptomatte_layers(const Scene& scene,
         layer.names.push_back(material.name);
       continue;
     }
+    const bool asset = *key == CryptomatteKey::kAsset;
     for (const MeshInstance& instance : scene.instances)
-      layer.names.push_back(instance.node);
+      layer.names.push_back(asset && instance.asset < scene.assets.size()
+                                ? scene.assets[instance.asset]
+                                : instance.node);
     for (const Solid& solid : scene.solids)
       layer.names.push_back(solid.name);
   }

@@ -12,8 +12,9 @@ namespace fb {
 
 // CryptoObject: each instance's node name (glTF's node name, or its JSON path when it has none;
 // the primitives and GPU instances of one node share it, as Blender's object does), then each
-// solid's name; CryptoMaterial: each material's name. In the order `passes` names them; empty when
-// it names none.
+// solid's name; CryptoAsset: the same, each instance named by its node tree's root instead
+// (Scene::assets); CryptoMaterial: each material's name. In the order `passes` names them; empty
+// when it names none.
 std::vector<CryptomatteLayer> cryptomatte_layers(const Scene& scene,
                                                  const std::vector<std::string>& passes);
 

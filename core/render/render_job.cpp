@@ -457,7 +457,8 @@ RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderContro
   const Scene& geometry_scene = plugins_->refined ? *plugins_->refined : scene_;
   std::optional<CryptomatteFilm> cryptomatte;
   if (auto layers = cryptomatte_layers(geometry_scene, options_.passes); !layers.empty()) {
-    cryptomatte.emplace(film.width(), film.height(), std::move(layers));
+    cryptomatte.emplace(film.width(), film.height(), std::move(layers),
+                        options_.cryptomatte_levels.value_or(kDefaultCryptomatteLevels));
     inputs.cryptomatte = &*cryptomatte;
   }
   result.stats = render_image(inputs, film, state, control, progress ? &*progress : nullptr);

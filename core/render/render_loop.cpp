@@ -256,9 +256,10 @@ class TileRenderer {
     for (size_t i = 0; i < n; ++i) {
       const auto met = in_.geometry.identify(w.rays[i]);
       for (size_t k = 0; k < layers.size(); ++k)
-        w.cryptomatte_names[k] = !met                                       ? kCryptomatteNothing
-                                 : layers[k].key == CryptomatteKey::kObject ? met->object
-                                                                            : met->material;
+        // CryptoAsset's names are per object too (cryptomatte_layers.h).
+        w.cryptomatte_names[k] = !met                                         ? kCryptomatteNothing
+                                 : layers[k].key == CryptomatteKey::kMaterial ? met->material
+                                                                              : met->object;
       in_.cryptomatte->add(w.px[i], w.py[i], w.cryptomatte_names.data(),
                            w.filter_samples[i].weight);
     }

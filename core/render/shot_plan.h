@@ -54,6 +54,9 @@ struct RenderOptions {
   // --view-layer: the layer the passes' channels are named after, "<view_layer>.<Pass>.<Ch>":
   // Blender's view layer the image goes to (filmback/render_passes.h names Blender's default).
   std::string view_layer = kViewLayer;
+  // --cryptomatte-levels: the ranks each Cryptomatte pass writes per pixel (Blender's Levels);
+  // none: Blender's default (core/film/cryptomatte.h).
+  std::optional<uint32_t> cryptomatte_levels;
   std::optional<Rgb> background;
   CameraOverrides camera_overrides;
   std::optional<Vec2d> shutter_s;            // open, close, relative to the frame's time

@@ -101,12 +101,25 @@ int sample_lamp(fb_trace_context* c, uint32_t lamp, const float position[3], con
   return c->lights->sample_lamp(lamp, Vec3f(position), u, *sample) ? 1 : 0;
 }
 
+void closure_weight(fb_trace_context* c, const fb_hit* hit, uint32_t kind, float weight[3]) {
+  const Surface* surface = surface_of(c, hit);
+  Rgb sum{};
+  if (surface && kind <= FB_CLOSURE_TRANSMISSION)
+    sum = surface->closure_weight(static_cast<ClosureKind>(kind));
+  sum.store(weight);
+}
+
 }  // namespace
+
+static_assert(uint32_t(ClosureKind::kDiffuse) == FB_CLOSURE_DIFFUSE &&
+              uint32_t(ClosureKind::kGlossy) == FB_CLOSURE_GLOSSY &&
+              uint32_t(ClosureKind::kTransmission) == FB_CLOSURE_TRANSMISSION);
 
 const fb_scene_api& host_scene_api() {
   static const fb_scene_api api{
       sizeof(fb_scene_api), intersect,  intersect_batch, occluded,    sample_light,   light_pdf,
-      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed, sample_lamp};
+      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed, sample_lamp,
+      closure_weight};
   return api;
 }
 

@@ -17,6 +17,8 @@
 namespace fb {
 
 constexpr uint32_t kNoNode = 0xffffffffu;
+// An instance outside any node tree, its own asset (Scene::assets).
+constexpr uint32_t kNoAsset = 0xffffffffu;
 constexpr uint32_t kNoCurve = 0xffffffffu;
 
 enum class Interpolation : uint8_t { kStep, kLinear, kCubicSpline };

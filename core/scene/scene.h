@@ -41,6 +41,9 @@ struct MeshInstance {
   Transform world_from_object;  // rest pose
   std::string node;
   uint32_t node_index = kNoNode;  // in Scene::hierarchy, whose animation may move it
+  // Index into Scene::assets: the topmost node above it (Blender's CryptoAsset names an object by
+  // its topmost parent); kNoAsset names it by `node`.
+  uint32_t asset = kNoAsset;
 };
 
 // glTF metallic-roughness (core/shading/gltf_bsdf.h has the BSDF); factors multiply textures. Or
@@ -208,6 +211,9 @@ struct Scene {
   std::optional<EnvironmentMap> environment;  // replaces `background` when present
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
+  // The names of the roots of the scene's node trees (a node without a name: its JSON path), which
+  // MeshInstance::asset indexes; kept for every file, one string per root.
+  std::vector<std::string> assets;
   // Meshes posed by the render at the shot's still time (pose_deformed_meshes), not before.
   std::vector<MeshDeformation> deformations;
   // A POV-Ray scene's trace depth (global_settings); none for other scenes.

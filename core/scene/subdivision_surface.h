@@ -83,6 +83,7 @@ struct SubdivisionSurface {
   Transform world_from_object;
   std::string node;
   uint32_t node_index = kNoNode;
+  uint32_t asset = kNoAsset;  // as MeshInstance::asset
 };
 
 }  // namespace fb

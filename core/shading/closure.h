@@ -34,6 +34,11 @@ enum class ClosureType : uint8_t {
   kMultiGgxGlass,      // CLOSURE_BSDF_MICROFACET_MULTI_GGX_GLASS{,_FRESNEL}_ID
 };
 
+// What Cycles 3.4's colour passes sort closures by (kernel/closure/bsdf.h and types.h,
+// CLOSURE_IS_BSDF_DIFFUSE / _GLOSSY / _TRANSMISSION; surface_shader_diffuse, _glossy and
+// _transmission sum the weights of one kind into DiffCol, GlossCol and TransCol).
+enum class ClosureKind : uint8_t { kDiffuse, kGlossy, kTransmission };
+
 // Which Fresnel factor a microfacet lobe applies (bsdf_microfacet.h reflection_color()).
 enum class FresnelMode : uint8_t {
   kNone,        // white: the Glossy and Glass nodes, whose Fresnel is in their weights
@@ -70,6 +75,19 @@ struct Closure {
   };
 
   bool is_diffuse() const { return type <= ClosureType::kPrincipledSheen; }
+  // Cycles' ranges of closure ids: the multiscatter glass, one closure for reflection and
+  // refraction, counts as transmission there.
+  ClosureKind kind() const {
+    if (is_diffuse()) return ClosureKind::kDiffuse;
+    switch (type) {
+      case ClosureType::kSharpRefraction:
+      case ClosureType::kMicrofacetRefract:
+      case ClosureType::kMultiGgxGlass:
+        return ClosureKind::kTransmission;
+      default:
+        return ClosureKind::kGlossy;
+    }
+  }
 };
 
 // What a closure sees of the hit besides its own parameters.

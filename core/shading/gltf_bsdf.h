@@ -161,6 +161,17 @@ class Bsdf {
 
   float alpha() const { return alpha_; }
 
+  // Each lobe's weight as Cycles writes a closure's (its colour and share, Fresnel left in its
+  // evaluation), for the DiffCol, GlossCol and TransCol passes (docs/blender.md, "Passes"): the
+  // diffuse base; one specular layer over the whole surface (the dielectric's reflects unless
+  // KHR_materials_specular is 0, the metal's always); the transmission under it.
+  Rgb diffuse_weight() const { return base_ * ((1.f - metallic_) * (1.f - transmission_)); }
+  Rgb glossy_weight() const {
+    const float weight = metallic_ + (specular_ > 0.f ? 1.f - metallic_ : 0.f);
+    return {weight, weight, weight};
+  }
+  Rgb transmission_weight() const { return base_ * ((1.f - metallic_) * transmission_); }
+
  private:
   static constexpr float kInvPi = std::numbers::inv_pi_v<float>;
 

@@ -25,6 +25,23 @@ void Surface::add_gltf(const GltfSurfaceParams& p) {
                      local.to_local(frame_.I)});
 }
 
+Rgb Surface::closure_weight(ClosureKind kind) const {
+  if (gltf_) {
+    switch (kind) {
+      case ClosureKind::kDiffuse:
+        return gltf_->bsdf.diffuse_weight();
+      case ClosureKind::kGlossy:
+        return gltf_->bsdf.glossy_weight();
+      case ClosureKind::kTransmission:
+        return gltf_->bsdf.transmission_weight();
+    }
+  }
+  Rgb sum{};
+  for (int i = 0; i < count_; ++i)
+    if (closures_[i].kind() == kind) sum += closures_[i].weight;
+  return sum;
+}
+
 Closure* Surface::allocate(ClosureType type, Rgb weight, Vec3f N) {
   weight = max(weight, Rgb{});
   const float sample_weight = std::abs(average(weight));

@@ -85,6 +85,10 @@ class Surface {
   Rgb eval(Vec3f wi, float& pdf) const;
   // u[0] picks the closure, (u[1], u[2]) the direction. False when the sample carries no light.
   bool sample(const float u[3], SurfaceSample& s) const;
+  // The summed weights of the closures of one kind (glTF's model: of its lobes), Cycles'
+  // surface_shader_diffuse, _glossy and _transmission: what the DiffCol, GlossCol and TransCol
+  // passes hold at a camera ray's first hit.
+  Rgb closure_weight(ClosureKind kind) const;
   bool empty() const { return !gltf_ && count_ == 0; }
   const ShadingFrame& frame() const { return frame_; }
   int closure_count() const { return count_; }

@@ -274,7 +274,7 @@ SubdivReport refine_subdivision_surfaces(Scene& scene, SubdivMode mode, const Su
       if (mesh.indices.empty()) continue;
       triangles += mesh.triangle_count();
       scene.instances.push_back(
-          {uint32_t(scene.meshes.size()), s.world_from_object, s.node, s.node_index});
+          {uint32_t(scene.meshes.size()), s.world_from_object, s.node, s.node_index, s.asset});
       scene.meshes.push_back(std::move(mesh));
     }
     made += triangles;

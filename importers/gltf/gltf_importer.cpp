@@ -136,6 +136,7 @@ class Importer {
       Transform parent;
       uint32_t parent_node;  // in scene_.hierarchy when keep_nodes_
       std::string from;      // the JSON path of the reference to the node
+      uint32_t asset;        // in scene_.assets: the tree's root; kNoAsset for a root
     };
     scene_node_.assign(model_.nodes.size(), kNoNode);
     std::vector<Pending> stack;
@@ -148,7 +149,7 @@ class Importer {
       const std::vector<int>& roots = model_.scenes[s].nodes;
       for (size_t r = roots.size(); r-- > 0;)
         stack.push_back({roots[r], Transform(), kNoNode,
-                         index_path("scenes", s) + "." + index_path("nodes", r)});
+                         index_path("scenes", s) + "." + index_path("nodes", r), kNoAsset});
       if (model_.scenes.size() > 1)
         warn("scenes", "the file has " + std::to_string(model_.scenes.size()) +
                            " scenes; rendering scenes[" + std::to_string(s) + "]");
@@ -159,7 +160,8 @@ class Importer {
         for (int c : node.children)
           if (c >= 0 && size_t(c) < is_child.size()) is_child[size_t(c)] = true;
       for (size_t i = model_.nodes.size(); i-- > 0;)
-        if (!is_child[i]) stack.push_back({int(i), Transform(), kNoNode, index_path("nodes", i)});
+        if (!is_child[i])
+          stack.push_back({int(i), Transform(), kNoNode, index_path("nodes", i), kNoAsset});
     }
     std::vector<bool> visited(model_.nodes.size(), false);
     while (!stack.empty()) {
@@ -187,10 +189,15 @@ class Importer {
       if (keep_nodes_)
         scene_node_[size_t(next.index)] = scene_node =
             scene_.hierarchy.add_node(next.parent_node, local, rest);
-      visit(node, path, world, scene_node);
+      uint32_t asset = next.asset;
+      if (asset == kNoAsset) {  // a root: its tree's asset
+        asset = uint32_t(scene_.assets.size());
+        scene_.assets.push_back(node.name.empty() ? path : node.name);
+      }
+      visit(node, path, world, scene_node, asset);
       for (size_t c = node.children.size(); c-- > 0;)
         stack.push_back(
-            {node.children[c], world, scene_node, path + "." + index_path("children", c)});
+            {node.children[c], world, scene_node, path + "." + index_path("children", c), asset});
     }
     // Without a scene every node is drawn; one that no root reaches hangs below a cycle.
     if (model_.scenes.empty())
@@ -201,19 +208,21 @@ class Importer {
                       "hierarchy to be a set of trees");
   }
 
-  // `scene_node` is the node's index in scene_.hierarchy, kNoNode when the file cannot move it.
+  // `scene_node` is the node's index in scene_.hierarchy, kNoNode when the file cannot move it;
+  // `asset` its tree's root in scene_.assets.
   void visit(const tinygltf::Node& node, const std::string& path, const Transform& world,
-             uint32_t scene_node) {
+             uint32_t scene_node, uint32_t asset) {
     if (auto surface = gltf::read_node_subdivision(model_, node, path, world, scene_node,
                                                    scene_.materials, name_, diagnostics_)) {
       for (SubdivisionPart& part : surface->parts)
         if (part.material == gltf::kNoSubdivisionMaterial) part.material = default_material();
+      surface->asset = asset;
       scene_.subdivision_surfaces.push_back(std::move(*surface));
     } else if (node.mesh >= 0 && (node.skin >= 0 || has_morph_targets(node_mesh(node, path)) ||
                                   node.extensions.count("FILMBACK_deformation"))) {
-      add_deformed_mesh(node, path, world, scene_node);
+      add_deformed_mesh(node, path, world, scene_node, asset);
     } else if (node.mesh >= 0) {
-      add_mesh(node, path, world, scene_node);
+      add_mesh(node, path, world, scene_node, asset);
     }
     if (node.camera >= 0)
       scene_.cameras.push_back(gltf::read_camera(model_, node, path, world, scene_node,
@@ -244,7 +253,7 @@ class Importer {
   // the identity; so is an evaluated one whose shapes are in world space. Evaluated shapes
   // (FILMBACK_deformation) replace the skin and the morph targets, which are not read.
   void add_deformed_mesh(const tinygltf::Node& node, const std::string& path,
-                         const Transform& world, uint32_t scene_node) {
+                         const Transform& world, uint32_t scene_node, uint32_t asset) {
     const tinygltf::Mesh& mesh = node_mesh(node, path);
     gltf::check_instance_count(scene_.instances.size(), mesh.primitives.size(), name_,
                                path + ".mesh");
@@ -270,14 +279,14 @@ class Importer {
         d.skin = {node.skin, path + ".skin", &prim, ppath, converted->positions.size()};
       scene_.instances.push_back({d.deformation.mesh, skinned ? Transform() : world,
                                   node.name.empty() ? path : node.name,
-                                  skinned ? kNoNode : scene_node});
+                                  skinned ? kNoNode : scene_node, asset});
       scene_.meshes.push_back(std::move(*converted));
       deformed_.push_back(std::move(d));
     }
   }
 
   void add_mesh(const tinygltf::Node& node, const std::string& path, const Transform& world,
-                uint32_t scene_node) {
+                uint32_t scene_node, uint32_t asset) {
     const tinygltf::Mesh& mesh = node_mesh(node, path);
     // The node's own placement, or one per EXT_mesh_gpu_instancing instance in the node's space.
     std::vector<Transform> placements{world};
@@ -306,8 +315,8 @@ class Importer {
       }
       if (cached->second)
         for (const Transform& placement : placements)
-          scene_.instances.push_back(
-              {*cached->second, placement, node.name.empty() ? path : node.name, scene_node});
+          scene_.instances.push_back({*cached->second, placement,
+                                      node.name.empty() ? path : node.name, scene_node, asset});
     }
   }
 

@@ -3,10 +3,10 @@
     blender -b --factory-startup --python cryptomatte_shot.py -- shot OUTDIR
     blender -b --factory-startup --python cryptomatte_shot.py -- matte OUTDIR EXR LAYER NAME...
 
-`shot` builds two planes side by side, "Left" (material "RedMat") and "Right" ("BlueMat"), seen
-square-on by a camera 5 m away, exports them through filmback's add-on to OUTDIR/shot.gltf and
-renders them with Cycles, its CryptoObject and CryptoMaterial passes on, to OUTDIR/cycles.exr
-(multi-layer). OUTDIR/silhouettes.json gives each plane's image as a raster rectangle [x0, y0, x1,
+`shot` builds two planes side by side, "Left" (material "RedMat") and "Right" ("BlueMat"), and a
+third above them, "Badge" ("GreenMat"), a child of Left, seen square-on by a camera 5 m away,
+exports them through filmback's add-on to OUTDIR/shot.gltf and renders them with Cycles, its
+CryptoObject, CryptoMaterial and CryptoAsset passes on, to OUTDIR/cycles.exr (multi-layer). OUTDIR/silhouettes.json gives each plane's image as a raster rectangle [x0, y0, x1,
 y1] in pixels (Blender's own projection, world_to_camera_view; origin top-left, y down).
 
 `matte` reads EXR's Cryptomatte layer LAYER (e.g. ViewLayer.CryptoObject) with Blender's
@@ -25,19 +25,17 @@ import bpy
 from bpy_extras.object_utils import world_to_camera_view
 from mathutils import Vector
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "importers",
-                                "blender"))
-import export_shot  # noqa: E402  (filmback's add-on, enabled for this session)
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from make_shot import configure_cycles  # noqa: E402
+from make_shot import configure_cycles, export_and_render_layers  # noqa: E402
 
 WIDTH_PX, HEIGHT_PX = 64, 48
 SAMPLES = 64
-# Each plane: its name, material, centre (x, y) and half-size (x, y) in metres, on the z = 0 plane;
-# their edges fall inside pixels, not on pixel boundaries.
-PLANES = [("Left", "RedMat", (-1.03, 0.07), (0.93, 0.81)),
-          ("Right", "BlueMat", (0.97, -0.11), (0.94, 0.62))]
+# Each plane: its name, material, centre (x, y) and half-size (x, y) in metres, on the z = 0 plane,
+# and its parent (Blender's CryptoAsset names an object by its topmost parent); their edges fall
+# inside pixels, not on pixel boundaries.
+PLANES = [("Left", "RedMat", (-1.03, 0.07), (0.93, 0.81), None),
+          ("Right", "BlueMat", (0.97, -0.11), (0.94, 0.62), None),
+          ("Badge", "GreenMat", (0.13, 1.11), (0.57, 0.14), "Left")]
 
 
 def build_shot(out_dir):
@@ -51,21 +49,26 @@ def build_shot(out_dir):
     scene.collection.objects.link(camera)
     camera.location = (0.0, 0.0, 5.0)  # looking down -z
     scene.camera = camera
-    for name, material_name, centre, half in PLANES:
+    for name, material_name, centre, half, parent in PLANES:
         bpy.ops.mesh.primitive_plane_add(size=2.0, location=(centre[0], centre[1], 0.0))
         plane = bpy.context.object
         plane.name = name
         plane.scale = (half[0], half[1], 1.0)
+        if parent:  # kept where it is in the world
+            bpy.context.view_layer.update()
+            plane.parent = bpy.data.objects[parent]
+            plane.matrix_parent_inverse = plane.parent.matrix_world.inverted()
         material = bpy.data.materials.new(material_name)
         material.use_nodes = True
         plane.data.materials.append(material)
     view_layer = scene.view_layers[0]
     view_layer.use_pass_cryptomatte_object = True
     view_layer.use_pass_cryptomatte_material = True
+    view_layer.use_pass_cryptomatte_asset = True
     bpy.context.view_layer.update()
 
     silhouettes = {}
-    for name, _, centre, half in PLANES:
+    for name, _, centre, half, _ in PLANES:
         corners = [world_to_camera_view(scene, camera, Vector((centre[0] + sx * half[0],
                                                                centre[1] + sy * half[1], 0.0)))
                    for sx in (-1, 1) for sy in (-1, 1)]
@@ -76,12 +79,7 @@ def build_shot(out_dir):
         json.dump({"width_px": WIDTH_PX, "height_px": HEIGHT_PX, "samples": SAMPLES,
                    "planes": silhouettes}, f)
 
-    export_shot.export(os.path.join(out_dir, "shot.gltf"), export_lights=False)
-    image = scene.render.image_settings
-    image.file_format = "OPEN_EXR_MULTILAYER"
-    image.color_depth = "32"
-    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
-    bpy.ops.render.render(write_still=True)
+    export_and_render_layers(scene, out_dir)
 
 
 def write_mattes(out_dir, exr, layer, names):

@@ -355,6 +355,17 @@ def export(path):
     export_shot.export(path, export_lights=False)
 
 
+def export_and_render_layers(scene, out_dir):
+    """OUT_DIR/shot.gltf through the add-on, and Cycles' render of `scene` with its view layer's
+    passes to OUT_DIR/cycles.exr, a 32-bit multi-layer EXR."""
+    export(os.path.join(out_dir, "shot.gltf"))
+    image = scene.render.image_settings
+    image.file_format = "OPEN_EXR_MULTILAYER"
+    image.color_depth = "32"
+    scene.render.filepath = os.path.join(out_dir, "cycles.exr")
+    bpy.ops.render.render(write_still=True)
+
+
 def record(kind, **fields):
     def text(value):
         return f"{value:.6f}" if isinstance(value, float) else str(value)

@@ -256,9 +256,13 @@ def channels(exr_path, out, name, pattern):
     return values
 
 
+CRYPTOMATTE_CASE_LEVELS = 10  # the view layer's Cryptomatte Levels; Blender's default is 6
+
+
 def case_cryptomatte(filmback, out):
-    """The view layer, renamed, with its Cryptomatte switches on: the engine asks filmback for
-    CryptoObject and CryptoMaterial in a layer of the view layer's name, loads their layers into
+    """The view layer, renamed, with its Cryptomatte switches on at 10 levels: the engine asks
+    filmback for CryptoObject, CryptoMaterial and CryptoAsset, five RGBA layers each, in a layer of
+    the view layer's name, loads their layers into
     the Render Result and its manifests into the Render Result's metadata; Blender's multi-layer
     EXR of it has both, equal to the command line's, and the compositor's Cryptomatte node,
     reading the Render Result, mattes the sphere by its name: each pixel its coverage, decoded
@@ -268,6 +272,8 @@ def case_cryptomatte(filmback, out):
     view_layer.name = layer = "Shot Layer"
     view_layer.use_pass_cryptomatte_object = True
     view_layer.use_pass_cryptomatte_material = True
+    view_layer.use_pass_cryptomatte_asset = True
+    view_layer.pass_cryptomatte_depth = CRYPTOMATTE_CASE_LEVELS
     scene.use_nodes = True
     tree = scene.node_tree
     crypto = tree.nodes.new("CompositorNodeCryptomatteV2")  # source: the Render Result
@@ -280,11 +286,13 @@ def case_cryptomatte(filmback, out):
     scene.render.filepath = os.path.join(out, "engine.exr")
     bpy.ops.render.render(write_still=True)
     cli = command_line_render(filmback, out, FIRST_FRAME,
-                              ["--passes", "CryptoObject,CryptoMaterial", "--view-layer", layer])
+                              ["--passes", "CryptoObject,CryptoMaterial,CryptoAsset",
+                               "--view-layer", layer,
+                               "--cryptomatte-levels", str(CRYPTOMATTE_CASE_LEVELS)])
     engine = channels(scene.render.filepath, out, "engine", f"{layer}.Crypto")
     cli_values = channels(cli, out, "cli", f"{layer}.Crypto")
     assert sorted(engine) == sorted(cli_values), (sorted(engine), sorted(cli_values))
-    assert len(engine) == 24, sorted(engine)
+    assert len(engine) == 3 * CRYPTOMATTE_CASE_LEVELS // 2 * 4, sorted(engine)
     for name, values in cli_values.items():
         differing = int(numpy.count_nonzero(engine[name] != values))
         assert differing == 0, f"{name}: {differing} values differ from the command line's"
@@ -303,7 +311,7 @@ def case_cryptomatte(filmback, out):
     assert 0 < (sphere_hash >> 23) & 0xFF < 255, manifest["Sphere"]
     sphere_id = numpy.frombuffer(struct.pack("<I", sphere_hash), dtype=numpy.float32)[0]
     expected = numpy.zeros_like(cli_values[f"{layer}.CryptoObject00.r"])
-    for rgba in range(3):
+    for rgba in range(CRYPTOMATTE_CASE_LEVELS // 2):
         for id_channel, coverage_channel in (("r", "g"), ("b", "a")):
             prefix = f"{layer}.CryptoObject{rgba:02d}."
             expected += numpy.where(cli_values[prefix + id_channel] == sphere_id,

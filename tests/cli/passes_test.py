@@ -16,7 +16,7 @@ from never_lose_test import images_identical
 from progress_test import SCENE
 
 QUICK = ["--res", "48x27", "--spp", "4", "-q"]
-ALL_PASSES = "Depth,Normal,DiffCol,Emit,Denoising Albedo,Denoising Normal"
+ALL_PASSES = "Depth,Normal,DiffCol,GlossCol,Emit,Denoising Albedo,Denoising Normal"
 
 
 def exr_header(file):
@@ -37,7 +37,7 @@ class PassesTest(case_main.FolderCase):
         channels = re.search(r"channel list: (.*)", header).group(1).split(", ")
         expected = ["ViewLayer.Combined." + c for c in "RGBA"] + ["ViewLayer.Depth.Z"] + [
             f"ViewLayer.{name}.{c}" for name, letters in [
-                ("Normal", "XYZ"), ("DiffCol", "RGB"), ("Emit", "RGB"),
+                ("Normal", "XYZ"), ("DiffCol", "RGB"), ("GlossCol", "RGB"), ("Emit", "RGB"),
                 ("Denoising Albedo", "RGB"), ("Denoising Normal", "XYZ")] for c in letters]
         self.assertEqual(sorted(channels), sorted(expected))
         self.assertIn("BlenderMultiChannel", header)
@@ -72,7 +72,7 @@ class PassesTest(case_main.FolderCase):
 
     def test_unknown_or_unwritten_pass_refused(self):
         for passes, named in [("Depth,Shadow", "'Shadow'"), ("depth", "'depth'"),
-                              ("Normal,GlossCol", "'GlossCol'"), ("Vector", "'Vector'")]:
+                              ("Normal,Vector", "'Vector'")]:
             with self.subTest(passes=passes):
                 refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, "--passes",
                                        passes)
@@ -80,6 +80,23 @@ class PassesTest(case_main.FolderCase):
                 self.assertIn("--passes", refused.stderr)
                 self.assertIn(named, refused.stderr)
                 self.assertEqual(list(self.dir.iterdir()), [])
+
+    def test_cryptomatte_levels_set_the_layers_and_are_checked(self):
+        two = self.run_cli("render", SCENE, "-o", "two.exr", *QUICK, "--passes", "CryptoObject",
+                           "--cryptomatte-levels", "2")
+        self.assertEqual(two.returncode, 0, two.stderr)
+        channels = re.search(r"channel list: (.*)", exr_header(self.dir / "two.exr")).group(1)
+        self.assertEqual(sorted(c for c in channels.split(", ") if "Crypto" in c),
+                         [f"ViewLayer.CryptoObject00.{c}" for c in "abgr"])
+        for args, named in [(["--passes", "CryptoObject", "--cryptomatte-levels", "3"], "'3'"),
+                            (["--passes", "CryptoObject", "--cryptomatte-levels", "18"], "18"),
+                            (["--passes", "Depth", "--cryptomatte-levels", "4"], "without")]:
+            with self.subTest(args=args):
+                refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, *args)
+                self.assertEqual(refused.returncode, 2, refused.stderr)
+                self.assertIn("--cryptomatte-levels", refused.stderr)
+                self.assertIn(named.strip("'"), refused.stderr)
+                self.assertFalse((self.dir / "bad.exr").exists())
 
     def test_view_layer_names_the_channels_and_needs_passes(self):
         named = self.run_cli("render", SCENE, "-o", "named.exr", *QUICK, "--passes", "Depth",

@@ -7,12 +7,15 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/film/cryptomatte.h"
 #include "core/render/render_job.h"
+#include "support/gltf_builder.h"
+#include "support/import_error.h"
 #include "support/plugins.h"
 
 namespace fb {
@@ -73,10 +76,11 @@ RenderOptions crypto_options(std::vector<std::string> passes) {
 }
 
 // Per pixel of `image`, each name's coverage in the Cryptomatte pass `pass`, the names found
-// through the manifest of `metadata` (as Blender's Cryptomatte node reads them).
+// through the manifest of `metadata` (as Blender's Cryptomatte node reads them), from its
+// levels / 2 RGBA layers.
 std::vector<std::map<std::string, float>> decode(
     const Image& image, const std::vector<std::pair<std::string, std::string>>& metadata,
-    const std::string& pass) {
+    const std::string& pass, uint32_t levels = kDefaultCryptomatteLevels) {
   std::map<uint32_t, std::string> name_of_id;
   const std::string key =
       "cryptomatte/" + cryptomatte_hex(cryptomatte_hash("ViewLayer." + pass)).substr(0, 7);
@@ -88,8 +92,9 @@ std::vector<std::map<std::string, float>> decode(
         cryptomatte_id(uint32_t(std::stoul(hex.get<std::string>(), nullptr, 16))))] = name;
   EXPECT_FALSE(name_of_id.empty()) << key;
   std::vector<std::map<std::string, float>> coverage(size_t(image.width) * image.height);
-  for (uint32_t rgba = 0; rgba < (kCryptomatteLevels + 1) / 2; ++rgba) {
-    const std::string layer = "ViewLayer." + pass + "0" + std::to_string(rgba) + ".";
+  for (uint32_t rgba = 0; rgba < levels / 2; ++rgba) {
+    const std::string layer =
+        "ViewLayer." + pass + (rgba < 10 ? "0" : "") + std::to_string(rgba) + ".";
     const auto first = std::find(image.channels.begin(), image.channels.end(), layer + "r");
     EXPECT_NE(first, image.channels.end()) << layer;
     if (first == image.channels.end()) break;
@@ -198,6 +203,88 @@ TEST(CryptomatteRender, InstancesOfOneMeshAndSolidsKeepTheirOwnNames) {
       EXPECT_EQ(at(objects, x, y), (Coverage{{"Ball", 1.f}})) << x << "," << y;
       EXPECT_EQ(at(materials, x, y), (Coverage{{"BallMat", 1.f}})) << x << "," << y;
     }
+}
+
+TEST(CryptomatteRender, AssetsNameEachObjectByItsTopmostParent) {
+  // A glTF file: "Parent" with children "ChildA" and "ChildB", and a lone "Lone", four quads side
+  // by side across columns [-10, 10), [10, 20), [20, 30) and [30, 50), seen by the same pinhole.
+  test::GltfBuilder gltf;
+  const int material = gltf.material({0.5f, 0.5f, 0.5f});
+  const auto quad = [&](double x0, double x1) {
+    const TriangleMesh m = crypto_quad(crypto_world_x(x0), crypto_world_x(x1), 0);
+    return gltf.mesh(m.positions, m.indices, material);
+  };
+  test::GltfBuilder::Node child_a, child_b, parent, lone, camera;
+  child_a.name = "ChildA", child_a.mesh = quad(10, 20);
+  child_b.name = "ChildB", child_b.mesh = quad(20, 30);
+  parent.name = "Parent", parent.mesh = quad(-10, 10);
+  parent.children = {gltf.node(child_a, false), gltf.node(child_b, false)};
+  gltf.node(parent);
+  lone.name = "Lone", lone.mesh = quad(30, 50);
+  gltf.node(lone);
+  camera.name = "Camera";
+  camera.camera =
+      gltf.perspective_camera(2 * std::atan(kCryptoSensorMm / 2 / kCryptoFocalMm), 1.0, 0.1, 100.0);
+  gltf.node(camera);
+  const Scene scene = test::import_built(gltf, "assets.gltf");
+  const RenderResult result =
+      RenderJob(scene, crypto_options({"CryptoObject", "CryptoAsset"}), test::loader()).run();
+  const auto objects = decode(result.image, result.cryptomatte_metadata, "CryptoObject");
+  const auto assets = decode(result.image, result.cryptomatte_metadata, "CryptoAsset");
+  using Coverage = std::map<std::string, float>;
+  const struct {
+    uint32_t x;
+    const char *object, *asset;
+  } columns[] = {{5, "Parent", "Parent"},
+                 {15, "ChildA", "Parent"},
+                 {25, "ChildB", "Parent"},
+                 {35, "Lone", "Lone"}};
+  for (const auto& c : columns)
+    for (const uint32_t y : {2u, 20u, 37u}) {
+      const size_t pixel = size_t(y) * kCryptoImagePx + c.x;
+      EXPECT_EQ(objects[pixel], (Coverage{{c.object, 1.f}})) << c.x << "," << y;
+      EXPECT_EQ(assets[pixel], (Coverage{{c.asset, 1.f}})) << c.x << "," << y;
+    }
+  // Across the seam between ChildA and ChildB (the middle of column 20) one asset covers it all.
+  EXPECT_EQ(assets[20 * kCryptoImagePx + 20], (Coverage{{"Parent", 1.f}}));
+  // The manifest lists the assets met, the camera's root not among them.
+  const std::string key =
+      "cryptomatte/" + cryptomatte_hex(cryptomatte_hash("ViewLayer.CryptoAsset")).substr(0, 7);
+  const std::map<std::string, std::string> metadata(result.cryptomatte_metadata.begin(),
+                                                    result.cryptomatte_metadata.end());
+  EXPECT_EQ(nlohmann::json::parse(metadata.at(key + "/manifest")),
+            (nlohmann::json{{"Lone", cryptomatte_hex(cryptomatte_hash("Lone"))},
+                            {"Parent", cryptomatte_hex(cryptomatte_hash("Parent"))}}));
+}
+
+TEST(CryptomatteRender, LevelsSetTheRgbaLayersWritten) {
+  // Blender's Levels: levels / 2 RGBA layers, each decoded as at the default 6.
+  const Scene scene = crypto_scene();
+  for (const uint32_t levels : {2u, 10u}) {
+    RenderOptions options = crypto_options({"CryptoObject"});
+    options.cryptomatte_levels = levels;
+    const RenderResult result = RenderJob(scene, options, test::loader()).run();
+    const auto crypto_channels =
+        std::count_if(result.image.channels.begin(), result.image.channels.end(),
+                      [](const std::string& c) { return c.starts_with("ViewLayer.CryptoObject"); });
+    EXPECT_EQ(crypto_channels, levels / 2 * 4) << levels;
+    const std::string last = "ViewLayer.CryptoObject0" + std::to_string(levels / 2 - 1) + ".a";
+    EXPECT_NE(std::find(result.image.channels.begin(), result.image.channels.end(), last),
+              result.image.channels.end())
+        << last;
+    const auto objects = decode(result.image, result.cryptomatte_metadata, "CryptoObject", levels);
+    using Coverage = std::map<std::string, float>;
+    for (const uint32_t y : {3u, 21u, 38u}) {
+      EXPECT_EQ(objects[y * kCryptoImagePx + 5], (Coverage{{"Left", 1.f}})) << levels;
+      EXPECT_EQ(objects[y * kCryptoImagePx + 25], (Coverage{{"Right", 1.f}})) << levels;
+      EXPECT_EQ(objects[y * kCryptoImagePx + 35], Coverage{}) << levels;
+      // The seam halves column 20: two ids, which even 2 levels keep.
+      const Coverage seam = objects[y * kCryptoImagePx + 20];
+      ASSERT_EQ(seam.size(), 2u) << levels;
+      EXPECT_NEAR(seam.at("Left"), 0.5f, 0.13f) << levels;
+      EXPECT_NEAR(seam.at("Left") + seam.at("Right"), 1.f, 1e-5f) << levels;
+    }
+  }
 }
 
 TEST(CryptomatteRender, ChannelsAndKeysNameTheViewLayer) {

@@ -1,6 +1,7 @@
 // Render passes (--passes, filmback/render_passes.h) checked against their meaning on scenes whose
 // answer is known: the depth of a plane, the normals of a sphere, the diffuse colour of a textured
-// wall; and the beauty of a render with passes bit for bit that of one without.
+// wall, the diffuse and glossy weights of a ball; and the beauty of a render with passes bit for
+// bit that of one without.
 #include <gtest/gtest.h>
 
 #include <filmback/render_passes.h>
@@ -68,6 +69,14 @@ Vec3d ball_ray(double px, double py) {
                          -(py - kPassImagePx / 2.0) * pixel_mm, -kPassFocalMm});
 }
 
+// How far pixel (x, y)'s central ray points from the ball's centre, as a share of the ball's
+// angular radius: below 1 the ray hits it.
+double ball_off_centre(uint32_t x, uint32_t y) {
+  const Vec3d d = ball_ray(x + 0.5, y + 0.5);
+  return std::acos(std::min(1.0, dot(d, normalize(kPassBallCentre)))) /
+         std::asin(kPassBallRadius / length(kPassBallCentre));
+}
+
 TEST(RenderPasses, DepthOfAPlaneIsItsDistanceWhereverThePixelSeesIt) {
   // A square 0.6 m wide, 2 m away, in the middle of a 0.5 rad field of view: the pixels along its
   // edges see it and the background. Depth is the nearest sample's, never a mix with the 1e10 m
@@ -126,20 +135,19 @@ TEST(RenderPasses, NormalsOfASphereAreTheAnalyticNormalsAtThePixelCentres) {
   const size_t normal = channel_index(image, "ViewLayer.Normal.X");
   const size_t denoising = channel_index(image, "ViewLayer.Denoising Normal.X");
   const size_t emit = channel_index(image, "ViewLayer.Emit.R");
-  const double half_angle = std::asin(kPassBallRadius / length(kPassBallCentre));
   int on_ball = 0, off_ball = 0;
   for (uint32_t y = 0; y < kPassImagePx; ++y)
     for (uint32_t x = 0; x < kPassImagePx; ++x) {
-      const Vec3d d = ball_ray(x + 0.5, y + 0.5);
-      const double off_centre = std::acos(std::min(1.0, dot(d, normalize(kPassBallCentre))));
-      if (off_centre > 1.05 * half_angle) {
+      const double off_centre = ball_off_centre(x, y);
+      if (off_centre > 1.05) {
         ++off_ball;
         for (int c = 0; c < 3; ++c) {
           EXPECT_EQ(image.at(x, y, normal + c), 0.f) << x << "," << y;
           EXPECT_EQ(image.at(x, y, emit + c), 0.f) << x << "," << y;
         }
       }
-      if (off_centre > 0.9 * half_angle) continue;  // near the limb a sample's offset tilts it
+      if (off_centre > 0.9) continue;  // near the limb a sample's offset tilts it
+      const Vec3d d = ball_ray(x + 0.5, y + 0.5);
       ++on_ball;
       // The nearer root of |t d - c|^2 = r^2.
       const double b = dot(d, kPassBallCentre);
@@ -172,6 +180,40 @@ TEST(RenderPasses, DiffColOfATexturedWallIsItsTexel) {
   }
 }
 
+TEST(RenderPasses, DiffColAndGlossColOfABallAreItsLobesWeights) {
+  // glTF's model (docs/blender.md, "Passes"): the diffuse base takes (1 - metallic) x
+  // (1 - transmission) of the base colour; the specular layer over it all is white (its Fresnel
+  // is in its evaluation), the dielectric's reflecting only while KHR_materials_specular is not 0.
+  for (const float specular : {1.f, 0.f}) {
+    Scene scene = ball_scene({});
+    Material& m = scene.materials[0];
+    m.metallic = 0.25f, m.transmission = 0.4f, m.specular = specular;
+    RenderOptions options = ball_options(4, "box:radius=0.001");
+    options.passes = {"DiffCol", "GlossCol"};
+    const Image image = RenderJob(scene, options, test::loader()).run().image;
+    const size_t diffuse = channel_index(image, "ViewLayer.DiffCol.R");
+    const size_t glossy = channel_index(image, "ViewLayer.GlossCol.R");
+    const Rgb expected_diffuse = m.base_color * (0.75f * 0.6f);
+    const float expected_glossy = specular > 0.f ? 1.f : 0.25f;
+    int on_ball = 0, off_ball = 0;
+    for (uint32_t y = 0; y < kPassImagePx; ++y)
+      for (uint32_t x = 0; x < kPassImagePx; ++x) {
+        const double off_centre = ball_off_centre(x, y);
+        const bool off = off_centre > 1.05;
+        if (!off && off_centre > 0.95) continue;  // the limb: a mix
+        off ? ++off_ball : ++on_ball;
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_FLOAT_EQ(image.at(x, y, diffuse + c), off ? 0.f : expected_diffuse[c])
+              << x << "," << y << " specular " << specular;
+          EXPECT_FLOAT_EQ(image.at(x, y, glossy + c), off ? 0.f : expected_glossy)
+              << x << "," << y << " specular " << specular;
+        }
+      }
+    EXPECT_GT(on_ball, 50);
+    EXPECT_GT(off_ball, 500);
+  }
+}
+
 TEST(RenderPasses, CombinedIsBitIdenticalToTheBeautyWithoutPasses) {
   // A diffuse ball lit by the world: paths bounce, so the passes' work sits among the path's.
   const Scene scene = ball_scene({});
@@ -179,7 +221,7 @@ TEST(RenderPasses, CombinedIsBitIdenticalToTheBeautyWithoutPasses) {
   const Image beauty = RenderJob(scene, options, test::loader()).run().image;
   ASSERT_EQ(beauty.channels, (std::vector<std::string>{"R", "G", "B"}));
   options.passes.assign(
-      {"Depth", "Normal", "DiffCol", "Emit", "Denoising Albedo", "Denoising Normal"});
+      {"Depth", "Normal", "DiffCol", "GlossCol", "Emit", "Denoising Albedo", "Denoising Normal"});
   const Image layers = RenderJob(scene, options, test::loader()).run().image;
   const size_t combined = channel_index(layers, "ViewLayer.Combined.R");
   const size_t alpha = channel_index(layers, "ViewLayer.Combined.A");

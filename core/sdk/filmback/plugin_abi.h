@@ -345,7 +345,20 @@ typedef struct fb_scene_api {
    * size). Returns 0 when the sample carries no light. */
   int (*sample_lamp)(fb_trace_context* context, uint32_t lamp, const float position[3],
                      const float u[2], fb_light_sample* sample);
+  /* Appended by issue 20 (Growth): the summed weights of the surface's closures of one kind at
+   * `hit` (FB_CLOSURE_DIFFUSE, _GLOSSY, _TRANSMISSION): each closure's colour times its share of
+   * the material, its Fresnel factor left in its evaluation, as Cycles 3.4 sums them into the
+   * DiffCol, GlossCol and TransCol passes (docs/blender.md, "Passes"). Zero for a hit without a
+   * surface or an unknown kind. */
+  void (*closure_weight)(fb_trace_context* context, const fb_hit* hit, uint32_t kind,
+                         float weight[3]);
 } fb_scene_api;
+
+/* The kinds of closure fb_scene_api.closure_weight() sums, Cycles' CLOSURE_IS_BSDF_DIFFUSE,
+ * _GLOSSY and _TRANSMISSION (a multiscatter glass, one closure for both, is transmission). */
+#define FB_CLOSURE_DIFFUSE 0u
+#define FB_CLOSURE_GLOSSY 1u
+#define FB_CLOSURE_TRANSMISSION 2u
 
 /* POV-Ray's finish and interior as the scene wrote them (docs/pov.md, "The povray integrator"),
  * for an integrator that lights a surface as POV-Ray 3.7 does rather than physically. Colours

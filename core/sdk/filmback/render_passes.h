@@ -32,6 +32,7 @@ inline constexpr RenderPass kRenderPasses[] = {
     {"Depth", "Z", PassFiltering::kNearest},
     {"Normal", "XYZ", PassFiltering::kWeightedMean},
     {"DiffCol", "RGB", PassFiltering::kWeightedMean},
+    {"GlossCol", "RGB", PassFiltering::kWeightedMean},
     {"Emit", "RGB", PassFiltering::kWeightedMean},
     {"Denoising Albedo", "RGB", PassFiltering::kWeightedMean},
     {"Denoising Normal", "XYZ", PassFiltering::kWeightedMean},
@@ -64,15 +65,18 @@ inline PassFiltering channel_filtering(std::string_view channel) {
 // one per channel. As Cycles 3.4 defines them (kernel/film/data_passes.h, denoising_passes.h):
 //  - Depth: the hit's depth along the view axis (camera_z_depth), kMissDepthM for a miss;
 //  - Normal: the world-space shading normal (normal map applied), 0 for a miss;
-//  - DiffCol: the diffuse closure's colour, base colour x (1 - metallic) x (1 - transmission);
+//  - DiffCol, GlossCol: the summed weights of the surface's diffuse and glossy closures
+//    (fb_scene_api::closure_weight; for a principled surface the diffuse one is base colour x
+//    (1 - metallic) x (1 - transmission), the glossy one white, its Fresnel not included);
 //  - Emit: the radiance the surface emits towards the camera (front faces, or both if two-sided);
 //  - Denoising Albedo: the textured base colour (Cycles sums its closures' albedos, which for a
 //    principled surface is near it);
 //  - Denoising Normal: as Normal, in world space; the host turns the resolved pixels into Cycles'
 //    camera space (core/render/blender_layers.h), which the integrator does not know.
 // Unlike Cycles' Denoising passes, these do not follow rays through perfectly specular surfaces.
-inline void first_hit_pass_values(const RenderPass& pass, const fb_scene& scene, const fb_ray& ray,
-                                  const fb_hit& hit, float* out) {
+inline void first_hit_pass_values(const RenderPass& pass, const fb_scene& scene,
+                                  fb_trace_context* context, const fb_ray& ray, const fb_hit& hit,
+                                  float* out) {
   const std::string_view name = pass.name;
   const bool miss = std::isinf(hit.t);
   if (name == "Depth") {
@@ -83,8 +87,11 @@ inline void first_hit_pass_values(const RenderPass& pass, const fb_scene& scene,
   if (!miss) {
     if (name == "Normal" || name == "Denoising Normal") {
       v = Vec3f(hit.shading_normal);
-    } else if (name == "DiffCol") {
-      v = Vec3f(hit.base_color) * ((1.f - hit.metallic) * (1.f - hit.transmission));
+    } else if (name == "DiffCol" || name == "GlossCol") {
+      float weight[3];
+      scene.api->closure_weight(context, &hit,
+                                name == "DiffCol" ? FB_CLOSURE_DIFFUSE : FB_CLOSURE_GLOSSY, weight);
+      v = Vec3f(weight);
     } else if (name == "Emit") {
       const bool front = dot(Vec3f(hit.geometric_normal), Vec3f(ray.direction)) <= 0.f;
       if (front || scene.materials[hit.material].double_sided) v = Vec3f(hit.emission);

@@ -64,11 +64,13 @@ def plugin_names(executable):
 
 
 def render_command(executable, scene_path, output_path, preview_path, samples, sampler,
-                   integrator, filter_spec, passes=(), view_layer=None):
+                   integrator, filter_spec, passes=(), view_layer=None,
+                   cryptomatte_levels=None):
     """The argument list (no shell) rendering `scene_path` into `output_path`, the image so far
     into `preview_path` while it renders. An empty integrator or filter leaves the shot's own
     (the file's pixel filter, the path integrator); `passes` are Blender's pass names written
-    beside the beauty (docs/cli.md, --passes), in the layer named `view_layer`."""
+    beside the beauty (docs/cli.md, --passes), in the layer named `view_layer`, the Cryptomatte
+    ones with `cryptomatte_levels` ranks per pixel."""
     command = [executable, "render", scene_path, "-o", output_path,
                "--spp", str(samples), "--sampler", sampler, "--progress-every", PROGRESS_EVERY,
                "--preview", preview_path, "--preview-every", PREVIEW_EVERY]
@@ -80,6 +82,8 @@ def render_command(executable, scene_path, output_path, preview_path, samples, s
         command += ["--passes", ",".join(passes)]
         if view_layer:
             command += ["--view-layer", view_layer]
+        if cryptomatte_levels and any(p.startswith("Crypto") for p in passes):
+            command += ["--cryptomatte-levels", str(cryptomatte_levels)]
     return command
 
 

@@ -28,17 +28,17 @@ RENDER_PASSES = (
     ("use_pass_z", "Depth", "Z", "VALUE"),
     ("use_pass_normal", "Normal", "XYZ", "VECTOR"),
     ("use_pass_diffuse_color", "DiffCol", "RGB", "COLOR"),
+    ("use_pass_glossy_color", "GlossCol", "RGB", "COLOR"),
     ("use_pass_emit", "Emit", "RGB", "COLOR"),
 )
 # The view layer's Cryptomatte switches (docs/blender.md, "Cryptomatte"): the property and the
-# pass's name. Each is CRYPTOMATTE_RGBA_LAYERS passes of channels r, g, b, a (lower-case, as in
-# the files Blender writes of Cycles' passes), "CryptoObject00", "01", ..., for filmback's 6
-# levels.
+# pass's name. Each is cryptomatte_levels() / 2 passes of channels r, g, b, a (lower-case, as in
+# the files Blender writes of Cycles' passes), "CryptoObject00", "01", ..., two levels each.
 CRYPTOMATTE_PASSES = (
     ("use_pass_cryptomatte_object", "CryptoObject"),
     ("use_pass_cryptomatte_material", "CryptoMaterial"),
+    ("use_pass_cryptomatte_asset", "CryptoAsset"),
 )
-CRYPTOMATTE_RGBA_LAYERS = 3
 
 POLL_INTERVAL_S = 0.05
 STDERR_LINES_KEPT = 200  # warnings and errors; what a broken filmback prints past them is dropped
@@ -87,13 +87,21 @@ def result_size(render):
             render.resolution_y * render.resolution_percentage // 100)
 
 
+def cryptomatte_levels(view_layer):
+    """The view layer's Cryptomatte Levels as filmback takes them: Cycles writes
+    ceil(levels / 2) RGBA layers of at most 16 levels, so an odd number counts as the next even
+    one."""
+    levels = min(max(int(view_layer.pass_cryptomatte_depth), 2), 16)
+    return levels + levels % 2
+
+
 def enabled_passes(view_layer):
     """(name as --passes takes it, [(Render Result pass, channels, kind)]) for each pass of
     RENDER_PASSES and CRYPTOMATTE_PASSES the view layer has switched on."""
     passes = [(name, [(name, channels, kind)]) for prop, name, channels, kind in RENDER_PASSES
               if getattr(view_layer, prop)]
     passes += [(name, [(f"{name}{i:02d}", "rgba", "COLOR")
-                       for i in range(CRYPTOMATTE_RGBA_LAYERS)])
+                       for i in range(cryptomatte_levels(view_layer) // 2)])
                for prop, name in CRYPTOMATTE_PASSES if getattr(view_layer, prop)]
     return passes
 
@@ -162,7 +170,8 @@ class FilmbackRenderEngine(bpy.types.RenderEngine):
                                               settings.samples, settings.sampler,
                                               settings.integrator.strip(),
                                               settings.filter.strip(),
-                                              [name for name, _ in passes], view_layer.name)
+                                              [name for name, _ in passes], view_layer.name,
+                                              cryptomatte_levels(view_layer))
         self.update_stats("", f"filmback: rendering frame {frame}")
         try:
             status, stderr_text = self.run(command, preview_path, scene.render)

@@ -62,7 +62,7 @@ class PathTracer {
     for (size_t i = 0; i < count; ++i) {
       float* v = values + stride * i;
       for (const fb::RenderPass* pass : passes_) {
-        fb::first_hit_pass_values(*pass, scene, rays[i], hits[i], v + 3);
+        fb::first_hit_pass_values(*pass, scene, ctx, rays[i], hits[i], v + 3);
         v += std::char_traits<char>::length(pass->channels);
       }
       clamped(trace(scene, ctx, i, rays[i], hits[i])).store(values + stride * i);
