@@ -558,16 +558,16 @@ std::optional<RenderGeometry::SurfaceIdentity> RenderGeometry::identify(const fb
   if (h.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     const Instance& instance = instances_[h.instID[0] - meshes_.size() - solids_.size()];
-    return SurfaceIdentity{instance.object, prototypes_[instance.prototype].material};
+    return SurfaceIdentity{instance.object, prototypes_[instance.prototype].material, rh.ray.tfar};
   }
   if (h.geomID < meshes_.size())
-    return SurfaceIdentity{meshes_[h.geomID].object, meshes_[h.geomID].material};
+    return SurfaceIdentity{meshes_[h.geomID].object, meshes_[h.geomID].material, rh.ray.tfar};
   // A solid's material is its primitive's: which one, only its exact intersection says.
   const unsigned solid = h.geomID - unsigned(meshes_.size());
   const auto found = first_covered_hit(embree_solids_[solid], Vec3d(Vec3f(ray.origin)),
                                        Vec3d(Vec3f(ray.direction)), ray.t_min);
   if (!found) return std::nullopt;  // cannot happen: Embree's hit came from the same computation
-  return SurfaceIdentity{object_count_ + solid, found->material};
+  return SurfaceIdentity{object_count_ + solid, found->material, float(found->t)};
 }
 
 bool RenderGeometry::fill_embree_hit(const RTCRayHit& found, const HitRequest& request,

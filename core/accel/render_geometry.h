@@ -67,12 +67,14 @@ class RenderGeometry {
   bool occluded(const fb_ray& ray) const;
 
   // What a ray meets first, by what names it (Cryptomatte, core/film/cryptomatte.h): the scene
-  // object, an index into Scene::instances or, past them, into Scene::solids; and its material.
+  // object, an index into Scene::instances or, past them, into Scene::solids; its material; and
+  // how far along the ray (the Vector pass places the point: core/render/motion_vectors.h).
   // None for a miss. Embree's intersection only, no hit record: a render that asks for Cryptomatte
-  // traces each camera ray once more, and one that does not pays nothing.
+  // or Vector traces each camera ray once more, and one that does not pays nothing.
   struct SurfaceIdentity {
     uint32_t object;
     uint32_t material;
+    float t;
   };
   std::optional<SurfaceIdentity> identify(const fb_ray& ray) const;
 

@@ -56,11 +56,12 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
       ->check(CLI::IsMember({"importance", "splat"}));
   render_cmd->add_option("--integrator", render.options.integrator,
                          "integrator NAME[:k=v,...] (default path)");
-  render_cmd->add_option("--passes", render.passes,
-                         "Blender render passes written beside the beauty into the EXR as "
-                         "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, "
-                         "Emit, Denoising Albedo, Denoising Normal, CryptoObject, CryptoMaterial "
-                         "(default: the beauty alone)");
+  render_cmd->add_option(
+      "--passes", render.passes,
+      "Blender render passes written beside the beauty into the EXR as "
+      "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, "
+      "Emit, Denoising Albedo, Denoising Normal, Vector, CryptoObject, CryptoMaterial "
+      "(default: the beauty alone)");
   render_cmd->add_option("--view-layer", render.options.view_layer,
                          "with --passes: the view layer the passes' channels are named after, "
                          "<NAME>.<Pass>.<Channel> (Blender's view layer; default ViewLayer)");

@@ -7,6 +7,7 @@
 
 #include "core/cmd/commands.h"
 #include "core/film/cryptomatte.h"
+#include "core/render/motion_vectors.h"
 #include "core/util/error.h"
 
 namespace fb {
@@ -14,13 +15,13 @@ namespace {
 
 // Blender passes filmback does not write yet, named so that asking for one says so rather than
 // calling it unknown (docs/blender.md, "Passes").
-constexpr std::string_view kUnwrittenPasses[] = {"GlossCol", "Vector", "CryptoAsset"};
+constexpr std::string_view kUnwrittenPasses[] = {"GlossCol", "CryptoAsset"};
 
 std::string written_pass_names() {
   std::string names = "Combined";
   for (const RenderPass& pass : kRenderPasses)
     names += std::string(", ") + pass.name;
-  return names + ", CryptoObject, CryptoMaterial";
+  return names + ", Vector, CryptoObject, CryptoMaterial";
 }
 
 }  // namespace
@@ -37,7 +38,7 @@ std::vector<std::string> parse_passes_option(const std::string& list) {
         std::end(kUnwrittenPasses))
       throw UsageError("--passes: '" + name + "' is a Blender pass filmback does not write yet; " +
                        "expected some of " + written_pass_names());
-    if (!find_render_pass(name) && !find_cryptomatte_pass(name))
+    if (!find_render_pass(name) && !find_cryptomatte_pass(name) && name != kVectorPass)
       throw UsageError("--passes: unknown pass '" + name + "'; expected some of " +
                        written_pass_names() + " (Blender's names, comma-separated)");
     passes.push_back(name);

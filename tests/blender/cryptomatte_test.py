@@ -12,16 +12,14 @@ exactly 0 outside, its share of the pixel within sampling noise along the edges 
 Cycles' mask of the same name. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
-import argparse
 import json
 import os
-import shutil
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, blender  # noqa: E402
+from roundtrip_test import blender, driver_arguments  # noqa: E402
 
 # 64 samples per pixel, stratified by both renderers: an edge pixel's share came within 0.020 of
 # the exact one in both (measured), and the two masks within 0.016 of each other.
@@ -79,16 +77,8 @@ def check_mask(label, mask, expected_rows, failures):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--filmback", required=True)
-    p.add_argument("--scratch", required=True)
-    a = p.parse_args()
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
-    out = os.path.abspath(a.scratch)
-    shutil.rmtree(out, ignore_errors=True)
-    os.makedirs(out)
+    a = driver_arguments()
+    out = a.scratch
     run_blender("shot", out)
     with open(os.path.join(out, "silhouettes.json")) as f:
         shot = json.load(f)

@@ -50,6 +50,23 @@ def blender(*args, env=None, blend_file=None):
                           env=blender_env(env))
 
 
+def driver_arguments():
+    """A comparison driver's command line, --filmback EXE --scratch DIR: the parsed arguments,
+    the scratch folder absolute and emptied. Exits SKIP (CTest's skip) when `blender` is not
+    installed."""
+    p = argparse.ArgumentParser()
+    p.add_argument("--filmback", required=True)
+    p.add_argument("--scratch", required=True)
+    a = p.parse_args()
+    if shutil.which("blender") is None:
+        print("skipped: Debian package blender is not installed")
+        sys.exit(SKIP)
+    a.scratch = os.path.abspath(a.scratch)
+    shutil.rmtree(a.scratch, ignore_errors=True)
+    os.makedirs(a.scratch)
+    return a
+
+
 def build_scene(scratch):
     """Runs roundtrip_scene.py once per scratch folder; returns its folder."""
     out = os.path.join(scratch, "scene")

@@ -29,6 +29,7 @@ RENDER_PASSES = (
     ("use_pass_normal", "Normal", "XYZ", "VECTOR"),
     ("use_pass_diffuse_color", "DiffCol", "RGB", "COLOR"),
     ("use_pass_emit", "Emit", "RGB", "COLOR"),
+    ("use_pass_vector", "Vector", "XYZW", "VECTOR"),
 )
 # The view layer's Cryptomatte switches (docs/blender.md, "Cryptomatte"): the property and the
 # pass's name. Each is CRYPTOMATTE_RGBA_LAYERS passes of channels r, g, b, a (lower-case, as in
