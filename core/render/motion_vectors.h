@@ -3,8 +3,9 @@
 // stands now, in Cycles 3.4's convention (measured): X, Y = previous minus current, Z, W =
 // current minus next, y up. The point is placed by its object's transforms at the frame's time
 // ± 1 / fps and projected by the camera (pose and lens track) at those times: a few matrix
-// products per hit, everything else worked out once per render. Motion is rigid: a mesh's
-// deformation (skins, morph targets, Blender's evaluated meshes) is not followed, only its node.
+// products per hit, everything else worked out once per render. A skinned or morphed mesh that
+// deforms between the frames around this one is posed at the three times once, and the point
+// follows its triangle; Blender's evaluated meshes (FILMBACK_deformation) only their node.
 #pragma once
 
 #include <array>
@@ -14,6 +15,7 @@
 #include <filmback/camera_projection.h>
 #include <filmback/plugin_abi.h>
 
+#include "core/accel/render_geometry.h"
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
 
@@ -33,9 +35,10 @@ class MotionVectors {
   // distortion.
   MotionVectors(const Scene& scene, const ShotPlan& plan, const Transform& render_from_world);
 
-  // X, Y, Z, W (pixels) of the point at distance `t` along camera ray `ray` (render space) on
-  // object `object`. A point behind the camera at one of the times has 0 for that pair.
-  std::array<float, 4> at(const fb_ray& ray, float t, uint32_t object) const;
+  // X, Y, Z, W (pixels) of the point a camera ray `ray` (render space) met, as
+  // RenderGeometry::identify tells it. A point behind the camera at one of the times has 0 for
+  // that pair.
+  std::array<float, 4> at(const fb_ray& ray, const RenderGeometry::SurfaceIdentity& met) const;
 
  private:
   // The camera at one moment: where it stands and how it projects.
@@ -54,6 +57,18 @@ class MotionVectors {
   static constexpr uint32_t kStill = UINT32_MAX;
   std::vector<uint32_t> moving_of_object_;
   std::vector<std::array<Transform, 2>> moving_;
+  // A deforming mesh: its triangles, and its vertices a frame before, at the frame and a frame
+  // after, in render space (float, near the camera, as the geometry's). deformed_of_object_
+  // indexes it per object (kStill: rigid).
+  struct DeformedPoses {
+    const std::vector<uint32_t>* indices;
+    std::array<std::vector<Vec3f>, 3> render_positions;
+  };
+  std::vector<uint32_t> deformed_of_object_;
+  std::vector<DeformedPoses> deformed_;
+  // The world points a frame before, at and a frame after where `met` is on deformed mesh `d`.
+  std::array<Vec3d, 3> deformed_points(const DeformedPoses& d,
+                                       const RenderGeometry::SurfaceIdentity& met) const;
 };
 
 }  // namespace fb

@@ -258,8 +258,8 @@ class TileRenderer {
       const auto met = in_.geometry.identify(w.rays[i]);
       const float weight = w.filter_samples[i].weight;
       if (met && in_.motion_vector_film)
-        in_.motion_vector_film->add(w.px[i], w.py[i],
-                                    in_.motion_vectors->at(w.rays[i], met->t, met->object), weight);
+        in_.motion_vector_film->add(w.px[i], w.py[i], in_.motion_vectors->at(w.rays[i], *met),
+                                    weight);
       if (!layers) continue;
       for (size_t k = 0; k < layers->size(); ++k)
         w.cryptomatte_names[k] = !met                                          ? kCryptomatteNothing

@@ -1,7 +1,7 @@
 // Blender's Vector pass (--passes Vector; core/render/motion_vectors.h) on shots whose motion is
 // known in pixels: a quad keyed to move 4 px right and 2 px up per frame under an orthographic
-// camera, a camera travelling past a still quad, and a quad turning in the image plane, whose
-// vectors grow with the distance from its centre.
+// camera, a camera travelling past a still quad, a quad turning in the image plane, whose
+// vectors grow with the distance from its centre, and a quad a morph target stretches.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -202,6 +202,54 @@ TEST(MotionVectorRender, TurningQuadsVectorsGrowWithTheDistanceFromItsCentre) {
     }
   EXPECT_GT(checked, 100u);
   EXPECT_GT(largest, 0.3f);  // the outer pixels move by 0.05 x 7 px
+}
+
+TEST(MotionVectorRender, MorphedQuadsPointsFollowTheirTriangles) {
+  // A 1 m quad whose morph target takes its right edge 2.4 m (24 px) further right, its weight
+  // keyed from 0 (t = 0) to 1 (t = 1 s): the right edge moves 1 px per frame, the left one not at
+  // all, and a point between them by its share of the way (the displacement is linear across
+  // each triangle). At frame 12 the quad spans 22 px, from column 5 to 26.
+  constexpr double kRestSideM = 1, kStretchM = 2.4;
+  GltfBuilder gltf;
+  GltfBuilder::Node quad, camera;
+  quad.mesh =
+      gltf.mesh(vector_square(kRestSideM), kVectorSquare, gltf.material({0.5f, 0.5f, 0.5f}));
+  const Vec3f stretch{float(kStretchM), 0, 0}, still{0, 0, 0};
+  gltf.morph_target(quad.mesh, {still, stretch, stretch, still});
+  constexpr double kQuadXM = -0.6;  // the stretched quad centred at frame 12
+  quad.translation = {kQuadXM, 0, -5};
+  camera.camera = gltf.orthographic_camera(kVectorWidthPx * kVectorMetresPerPx / 2,
+                                           kVectorHeightPx * kVectorMetresPerPx / 2, 0.1, 100);
+  const int q = gltf.node(quad);
+  gltf.node(camera);
+  gltf.animate(q, "weights", {0, 1}, {0, 1});
+  const Scene scene = test::import_built(gltf, "morphed_quad.gltf");
+  const Image image = RenderJob(scene, vector_options(), test::loader()).run().image;
+  const double left_px = kVectorWidthPx / 2.0 + (kQuadXM - kRestSideM / 2) / kVectorMetresPerPx;
+  const double width_px = (kRestSideM + kStretchM / 2) / kVectorMetresPerPx;
+  const double per_frame_px = kStretchM / kVectorMetresPerPx / (kVectorFps * 1.0);
+  const double top_px = kVectorHeightPx / 2.0 - kRestSideM / 2 / kVectorMetresPerPx;
+  size_t checked = 0;
+  for (uint32_t y = 0; y < kVectorHeightPx; ++y)
+    for (uint32_t x = 0; x < kVectorWidthPx; ++x) {
+      const std::array<float, 4> v = vector_at(image, x, y);
+      const double share = pixel_share(x, y, left_px, top_px, left_px + width_px,
+                                       top_px + kRestSideM / kVectorMetresPerPx);
+      if (share == 0) {
+        for (size_t k = 0; k < 4; ++k)
+          EXPECT_EQ(v[k], 0.f) << "channel " << k << " at " << x << "," << y;
+        continue;
+      }
+      if (share < 1) continue;  // an edge pixel: the mean of its hits only
+      // The pixel's mean over its samples is its centre's value: the motion is linear in x.
+      const float expected = float(-per_frame_px * (x + 0.5 - left_px) / width_px);
+      EXPECT_NEAR(v[0], expected, kVectorTolerancePx) << x << "," << y;
+      EXPECT_NEAR(v[2], expected, kVectorTolerancePx) << x << "," << y;
+      EXPECT_NEAR(v[1], 0.f, kVectorTolerancePx) << x << "," << y;
+      EXPECT_NEAR(v[3], 0.f, kVectorTolerancePx) << x << "," << y;
+      ++checked;
+    }
+  EXPECT_EQ(checked, 220u);  // 22 whole columns of 10 rows
 }
 
 TEST(MotionVectorRender, APanoramicCameraIsAUsageError) {
