@@ -14,22 +14,21 @@ Install, as a user does) and runs render_engine_case.py under `blender -b`:
   cancel       a long render cancelled after 2.5 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
                stand-in for Esc under `blender -b`) returns promptly with a partial image, having
                shown at least one preview as the image filled in
-  passes       the view layer's Z pass: ViewLayer.Depth.Z in Blender's multi-layer EXR of the
-               Render Result, bit-identical to the command line's --passes Depth
+  passes       the view layer's Z and Vector passes: ViewLayer.Depth.Z and Vector.X/Y/Z/W in
+               Blender's multi-layer EXR of the Render Result, bit-identical to the command
+               line's --passes Depth,Vector
   cryptomatte  the view layer's Cryptomatte Object and Material switches: their layers in the
                Render Result bit-identical to the command line's, the manifests in its metadata,
                and the compositor's Cryptomatte node matting the sphere by name from it
 Each case also checks that the engine leaves no temporary folder behind. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
-import argparse
 import os
-import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, addon_zip, blender  # noqa: E402
+from roundtrip_test import addon_zip, blender, driver_arguments  # noqa: E402
 
 CASES = ("still", "animation", "bad_setting", "cancel", "passes", "cryptomatte")
 # Time for filmback to start, render a second and write its first preview (PREVIEW_EVERY).
@@ -37,16 +36,7 @@ CANCEL_AFTER_S = "2.5"
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--filmback", required=True)
-    p.add_argument("--scratch", required=True)
-    p.add_argument("case", choices=CASES)
-    a = p.parse_args()
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
-    shutil.rmtree(a.scratch, ignore_errors=True)
-    os.makedirs(a.scratch)
+    a = driver_arguments(CASES)
     # The engine's temporary folders go to the case's own, which it checks is left empty.
     temporary = os.path.join(a.scratch, "tmp")
     os.makedirs(temporary)

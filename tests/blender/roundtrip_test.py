@@ -50,13 +50,15 @@ def blender(*args, env=None, blend_file=None):
                           env=blender_env(env))
 
 
-def driver_arguments():
-    """A comparison driver's command line, --filmback EXE --scratch DIR: the parsed arguments,
-    the scratch folder absolute and emptied. Exits SKIP (CTest's skip) when `blender` is not
-    installed."""
+def driver_arguments(cases=None):
+    """A driver's command line, --filmback EXE --scratch DIR, then one of `cases` when it has
+    some: the parsed arguments, the scratch folder absolute and emptied. Exits SKIP (CTest's
+    skip) when `blender` is not installed."""
     p = argparse.ArgumentParser()
     p.add_argument("--filmback", required=True)
     p.add_argument("--scratch", required=True)
+    if cases:
+        p.add_argument("case", choices=cases)
     a = p.parse_args()
     if shutil.which("blender") is None:
         print("skipped: Debian package blender is not installed")
