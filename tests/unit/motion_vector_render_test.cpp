@@ -1,7 +1,8 @@
 // Blender's Vector pass (--passes Vector; core/render/motion_vectors.h) on shots whose motion is
 // known in pixels: a quad keyed to move 4 px right and 2 px up per frame under an orthographic
 // camera, a camera travelling past a still quad, a quad turning in the image plane, whose
-// vectors grow with the distance from its centre, and a quad a morph target stretches.
+// vectors grow with the distance from its centre, a quad a morph target stretches and one a
+// skin's joint carries.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -250,6 +251,37 @@ TEST(MotionVectorRender, MorphedQuadsPointsFollowTheirTriangles) {
       ++checked;
     }
   EXPECT_EQ(checked, 220u);  // 22 whole columns of 10 rows
+}
+
+TEST(MotionVectorRender, SkinnedQuadMovesWithItsJoint) {
+  // A 1 m quad bound to one joint (its node's own placement is ignored, as glTF says) that
+  // travels 3 px left per frame 5 m in front of the orthographic camera.
+  GltfBuilder gltf;
+  GltfBuilder::Node joint, quad, camera;
+  const int joint_node = gltf.node(joint);
+  quad.mesh = gltf.mesh(vector_square(1.0), kVectorSquare, gltf.material({0.5f, 0.5f, 0.5f}));
+  gltf.skin_weights(quad.mesh, 0, std::vector<uint16_t>(16, 0),
+                    {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+  quad.skin = gltf.skin({joint_node});
+  gltf.node(quad);
+  camera.camera = gltf.orthographic_camera(kVectorWidthPx * kVectorMetresPerPx / 2,
+                                           kVectorHeightPx * kVectorMetresPerPx / 2, 0.1, 100);
+  gltf.node(camera);
+  const float half = float(3 * kVectorMetresPerPx * kVectorFps / 2);
+  gltf.animate(joint_node, "translation", {0, 1}, {half, 0, -5, -half, 0, -5});
+  const Scene scene = test::import_built(gltf, "skinned_quad.gltf");
+  const Image image = RenderJob(scene, vector_options(), test::loader()).run().image;
+  const double x0 = kVectorWidthPx / 2.0 - 5, y0 = kVectorHeightPx / 2.0 - 5;
+  for (uint32_t y = 0; y < kVectorHeightPx; ++y)
+    for (uint32_t x = 0; x < kVectorWidthPx; ++x) {
+      const std::array<float, 4> v = vector_at(image, x, y);
+      const std::array<float, 4> expected = pixel_share(x, y, x0, y0, x0 + 10, y0 + 10) > 0
+                                                ? std::array{3.f, 0.f, 3.f, 0.f}
+                                                : std::array{0.f, 0.f, 0.f, 0.f};
+      for (size_t k = 0; k < 4; ++k)
+        EXPECT_NEAR(v[k], expected[k], kVectorTolerancePx)
+            << "channel " << k << " at " << x << "," << y;
+    }
 }
 
 TEST(MotionVectorRender, APanoramicCameraIsAUsageError) {
