@@ -29,6 +29,7 @@ struct RenderGeometry::Mesh {
   uint32_t first_emitter = FB_NONE;
   uint32_t step_count = 1;  // evenly spaced over the open shutter when more than one
   size_t vertex_count = 0;  // per step
+  bool mirrored = false;    // placed by a mirroring transform: each triangle's corners 1, 2 swapped
 };
 
 // One placement of an instanced mesh (a prototype): render_from_object at each motion step, as a
@@ -261,7 +262,8 @@ RenderGeometry::Mesh RenderGeometry::build_mesh(
   mesh.indices = source.indices;
   // A mirroring transform turns counter-clockwise into clockwise: swap two corners so the
   // winding (and with it the front face) survives, as glTF requires.
-  if (render_from_object_steps.front().determinant3x3() < 0)
+  mesh.mirrored = render_from_object_steps.front().determinant3x3() < 0;
+  if (mesh.mirrored)
     for (size_t i = 0; i < mesh.indices.size(); i += 3)
       std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
   return mesh;
@@ -558,16 +560,29 @@ std::optional<RenderGeometry::SurfaceIdentity> RenderGeometry::identify(const fb
   if (h.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
     const Instance& instance = instances_[h.instID[0] - meshes_.size() - solids_.size()];
-    return SurfaceIdentity{instance.object, prototypes_[instance.prototype].material};
+    return SurfaceIdentity{instance.object,
+                           prototypes_[instance.prototype].material,
+                           rh.ray.tfar,
+                           h.primID,
+                           instance.mirrored ? h.v : h.u,
+                           instance.mirrored ? h.u : h.v};
   }
-  if (h.geomID < meshes_.size())
-    return SurfaceIdentity{meshes_[h.geomID].object, meshes_[h.geomID].material};
+  if (h.geomID < meshes_.size()) {
+    // A mirrored copy swapped its corners 1 and 2 (build_mesh): so are Embree's weights.
+    const Mesh& mesh = meshes_[h.geomID];
+    return SurfaceIdentity{mesh.object,
+                           mesh.material,
+                           rh.ray.tfar,
+                           h.primID,
+                           mesh.mirrored ? h.v : h.u,
+                           mesh.mirrored ? h.u : h.v};
+  }
   // A solid's material is its primitive's: which one, only its exact intersection says.
   const unsigned solid = h.geomID - unsigned(meshes_.size());
   const auto found = first_covered_hit(embree_solids_[solid], Vec3d(Vec3f(ray.origin)),
                                        Vec3d(Vec3f(ray.direction)), ray.t_min);
   if (!found) return std::nullopt;  // cannot happen: Embree's hit came from the same computation
-  return SurfaceIdentity{object_count_ + solid, found->material};
+  return SurfaceIdentity{object_count_ + solid, found->material, float(found->t)};
 }
 
 bool RenderGeometry::fill_embree_hit(const RTCRayHit& found, const HitRequest& request,

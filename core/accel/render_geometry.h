@@ -67,12 +67,18 @@ class RenderGeometry {
   bool occluded(const fb_ray& ray) const;
 
   // What a ray meets first, by what names it (Cryptomatte, core/film/cryptomatte.h): the scene
-  // object, an index into Scene::instances or, past them, into Scene::solids; and its material.
-  // None for a miss. Embree's intersection only, no hit record: a render that asks for Cryptomatte
-  // traces each camera ray once more, and one that does not pays nothing.
+  // object, an index into Scene::instances or, past them, into Scene::solids; its material; and
+  // where (the Vector pass places the point: core/render/motion_vectors.h): how far along the ray
+  // and, on a mesh, the triangle of the scene's mesh with the weights u, v of its corners 1 and 2
+  // in the scene mesh's order (0 on a solid). None for a miss. Embree's intersection only, no hit
+  // record: a render that asks for Cryptomatte or Vector traces each camera ray once more, and
+  // one that does not pays nothing.
   struct SurfaceIdentity {
     uint32_t object;
     uint32_t material;
+    float t;
+    uint32_t primitive = 0;
+    float u = 0.f, v = 0.f;
   };
   std::optional<SurfaceIdentity> identify(const fb_ray& ray) const;
 

@@ -60,9 +60,8 @@ void add_scene_and_plugin_options(CLI::App* render_cmd, fb::RenderCommand& rende
       "--passes", render.passes,
       "Blender render passes written beside the beauty into the EXR as "
       "ViewLayer.<Pass>.<Channel>, comma-separated: Depth, Normal, DiffCol, GlossCol, "
-      "Emit, Denoising Albedo, Denoising Normal, CryptoObject, CryptoMaterial, "
-      "CryptoAsset "
-      "(default: the beauty alone)");
+      "Emit, Denoising Albedo, Denoising Normal, Vector, CryptoObject, CryptoMaterial, "
+      "CryptoAsset (default: the beauty alone)");
   render_cmd->add_option("--cryptomatte-levels", render.options.cryptomatte_levels,
                          "with Cryptomatte passes: the ranks written per pixel, an even number "
                          "from 2 to 16 (Blender's Cryptomatte Levels; default 6)");

@@ -7,20 +7,24 @@
 
 #include "core/cmd/commands.h"
 #include "core/film/cryptomatte.h"
+#include "core/render/motion_vectors.h"
 #include "core/util/error.h"
 
 namespace fb {
 namespace {
 
-// Blender passes filmback does not write yet, named so that asking for one says so rather than
-// calling it unknown (docs/blender.md, "Passes").
-constexpr std::string_view kUnwrittenPasses[] = {"Vector"};
+// Cycles 3.4's passes that filmback does not write, named so that asking for one says so rather
+// than calling it unknown (docs/blender.md, "Passes").
+constexpr std::string_view kUnwrittenPasses[] = {
+    "TransCol", "DiffDir",   "DiffInd",   "GlossDir", "GlossInd", "TransDir",
+    "TransInd", "VolumeDir", "VolumeInd", "AO",       "Shadow",   "Env",
+    "Mist",     "IndexOB",   "IndexMA",   "UV",       "Position"};
 
 std::string written_pass_names() {
   std::string names = "Combined";
   for (const RenderPass& pass : kRenderPasses)
     names += std::string(", ") + pass.name;
-  return names + ", CryptoObject, CryptoMaterial, CryptoAsset";
+  return names + ", Vector, CryptoObject, CryptoMaterial, CryptoAsset";
 }
 
 }  // namespace
@@ -35,9 +39,9 @@ std::vector<std::string> parse_passes_option(const std::string& list) {
       continue;
     if (std::find(std::begin(kUnwrittenPasses), std::end(kUnwrittenPasses), name) !=
         std::end(kUnwrittenPasses))
-      throw UsageError("--passes: '" + name + "' is a Blender pass filmback does not write yet; " +
+      throw UsageError("--passes: '" + name + "' is a Blender pass filmback does not write; " +
                        "expected some of " + written_pass_names());
-    if (!find_render_pass(name) && !find_cryptomatte_pass(name))
+    if (!find_render_pass(name) && !find_cryptomatte_pass(name) && name != kVectorPass)
       throw UsageError("--passes: unknown pass '" + name + "'; expected some of " +
                        written_pass_names() + " (Blender's names, comma-separated)");
     passes.push_back(name);

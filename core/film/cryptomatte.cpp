@@ -77,19 +77,19 @@ void CryptomatteFilm::add(uint32_t x, uint32_t y, const uint32_t* names, float w
 void CryptomatteFilm::append_layers(Image& image, std::string_view view_layer) const {
   const uint32_t rgba_layers = levels_ / 2;
   const size_t old_n = image.channels.size();
-  const size_t added = layers_.size() * rgba_layers * 4, n = old_n + added;
+  std::vector<std::string> names;
   for (const CryptomatteLayer& layer : layers_)
     for (uint32_t rgba = 0; rgba < rgba_layers; ++rgba)
       for (const char* c : {"r", "g", "b", "a"}) {
         char rank[12];  // any uint32_t, though levels / 2 is at most 8
         std::snprintf(rank, sizeof rank, "%02u", rgba);
-        image.channels.push_back(std::string(view_layer) + "." + layer.pass + rank + "." + c);
+        names.push_back(std::string(view_layer) + "." + layer.pass + rank + "." + c);
       }
-  std::vector<float> pixels(size_t(width_) * height_ * n, 0.f);
+  append_channels(image, names);
+  const size_t n = image.channels.size();
   for (size_t pixel = 0; pixel < size_t(width_) * height_; ++pixel) {
-    std::copy_n(image.pixels.data() + pixel * old_n, old_n, pixels.data() + pixel * n);
     if (weights_[pixel] == 0.f) continue;  // no sample landed: no id, never NaN
-    float* out = &pixels[pixel * n + old_n];
+    float* out = &image.pixels[pixel * n + old_n];
     for (size_t layer = 0; layer < layers_.size(); ++layer) {
       std::array<Slot, kMaxCryptomatteLevels> ranked;
       std::copy_n(slots(pixel, layer), levels_, ranked.begin());
@@ -105,7 +105,6 @@ void CryptomatteFilm::append_layers(Image& image, std::string_view view_layer) c
       }
     }
   }
-  image.pixels = std::move(pixels);
 }
 
 std::vector<std::pair<std::string, std::string>> CryptomatteFilm::metadata(

@@ -1,6 +1,7 @@
 // A float image with named channels, top row first (docs/conventions.md, "Raster").
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,5 +17,16 @@ struct Image {
     return pixels[(size_t(y) * width + x) * channels.size() + c];
   }
 };
+
+// Widens `image` by the channels `names`, after its own, zero in every pixel (the host's passes
+// beside what the film resolved: Cryptomatte, Vector).
+inline void append_channels(Image& image, const std::vector<std::string>& names) {
+  const size_t old_n = image.channels.size(), n = old_n + names.size();
+  std::vector<float> pixels(size_t(image.width) * image.height * n, 0.f);
+  for (size_t pixel = 0; pixel < size_t(image.width) * image.height; ++pixel)
+    std::copy_n(image.pixels.data() + pixel * old_n, old_n, pixels.data() + pixel * n);
+  image.channels.insert(image.channels.end(), names.begin(), names.end());
+  image.pixels = std::move(pixels);
+}
 
 }  // namespace fb

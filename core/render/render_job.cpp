@@ -35,6 +35,7 @@ struct RenderJob::Plugins {
   std::unique_ptr<LightSampler> lights;
   TimeSampling time;
   std::unique_ptr<CameraPath> camera_path;
+  std::unique_ptr<MotionVectors> motion_vectors;  // only when --passes asks for Vector
   std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
   std::string subdiv_summary;
   std::vector<fb_material> materials;
@@ -202,6 +203,9 @@ void RenderJob::build_geometry() {
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
                                             plan_.times.still_s(), options_.background,
                                             options_.light_selection);
+  if (std::find(options_.passes.begin(), options_.passes.end(), kVectorPass) !=
+      options_.passes.end())
+    p.motion_vectors = std::make_unique<MotionVectors>(*geometry_scene, plan_, p.render_from_world);
 }
 
 // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
@@ -461,6 +465,12 @@ RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderContro
                         options_.cryptomatte_levels.value_or(kDefaultCryptomatteLevels));
     inputs.cryptomatte = &*cryptomatte;
   }
+  std::optional<MotionVectorFilm> motion_vector_film;
+  if (plugins_->motion_vectors) {
+    motion_vector_film.emplace(film.width(), film.height());
+    inputs.motion_vectors = plugins_->motion_vectors.get();
+    inputs.motion_vector_film = &*motion_vector_film;
+  }
   result.stats = render_image(inputs, film, state, control, progress ? &*progress : nullptr);
   progress.reset();
   if (!crop && !result.stats.interrupted) state.splat_tiles.clear();
@@ -470,6 +480,7 @@ RenderResult RenderJob::run(Film& film, SamplingState& state, const RenderContro
     cryptomatte->append_layers(image, options_.view_layer);
     result.cryptomatte_metadata = cryptomatte->metadata(options_.view_layer);
   }
+  if (motion_vector_film) motion_vector_film->append_pass(image, options_.view_layer);
   const uint32_t* counts = film.sample_counts();
   // Over the pixels rendered: a part's crop, or the whole frame.
   const PixelRect rendered = crop.value_or(whole_frame(film.width(), film.height()));

@@ -215,7 +215,7 @@ class TileRenderer {
       }
       context.surfaces.reset();  // the previous call's hits are done with
       in_.integrator.radiance(in_.scene, &context, w.rays, w.values.data());
-      if (in_.cryptomatte) add_cryptomatte_samples(w, n);
+      if (in_.cryptomatte || in_.motion_vector_film) add_identified_samples(w, n);
       for (size_t i = 0; i < n; ++i) {
         float* v = &w.values[i * channels_];
         const float camera_weight = w.camera_rays[i].weight;
@@ -248,20 +248,25 @@ class TileRenderer {
             float(w.py[i]) - margin_y_ + 0.5f + w.filter_samples[i].y};
   }
 
-  // Each sample's object and material, found by intersecting its camera ray again, into the
-  // Cryptomatte film with the sample's filter weight, as the film takes the sample.
-  void add_cryptomatte_samples(TileWork& w, size_t n) const {
-    const std::vector<CryptomatteLayer>& layers = in_.cryptomatte->layers();
-    w.cryptomatte_names.resize(layers.size());
+  // Each sample's object, material and point, found by intersecting its camera ray again, into
+  // the Cryptomatte and Vector films with the sample's filter weight, as the film takes the sample.
+  void add_identified_samples(TileWork& w, size_t n) const {
+    const std::vector<CryptomatteLayer>* layers =
+        in_.cryptomatte ? &in_.cryptomatte->layers() : nullptr;
+    if (layers) w.cryptomatte_names.resize(layers->size());
     for (size_t i = 0; i < n; ++i) {
       const auto met = in_.geometry.identify(w.rays[i]);
-      for (size_t k = 0; k < layers.size(); ++k)
+      const float weight = w.filter_samples[i].weight;
+      if (met && in_.motion_vector_film)
+        in_.motion_vector_film->add(w.px[i], w.py[i], in_.motion_vectors->at(w.rays[i], *met),
+                                    weight);
+      if (!layers) continue;
+      for (size_t k = 0; k < layers->size(); ++k)
         // CryptoAsset's names are per object too (cryptomatte_layers.h).
-        w.cryptomatte_names[k] = !met                                         ? kCryptomatteNothing
-                                 : layers[k].key == CryptomatteKey::kMaterial ? met->material
-                                                                              : met->object;
-      in_.cryptomatte->add(w.px[i], w.py[i], w.cryptomatte_names.data(),
-                           w.filter_samples[i].weight);
+        w.cryptomatte_names[k] = !met ? kCryptomatteNothing
+                                 : (*layers)[k].key == CryptomatteKey::kMaterial ? met->material
+                                                                                 : met->object;
+      in_.cryptomatte->add(w.px[i], w.py[i], w.cryptomatte_names.data(), weight);
     }
   }
 

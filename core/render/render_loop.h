@@ -16,6 +16,7 @@
 #include "core/film/adaptive_sampling.h"
 #include "core/film/cryptomatte.h"
 #include "core/film/film.h"
+#include "core/film/motion_vector_film.h"
 #include "core/film/pixel_rect.h"
 #include "core/film/sampling_state.h"
 #include "core/film/splat_tiles.h"
@@ -23,6 +24,7 @@
 #include "core/plugin/instances.h"
 #include "core/render/light_sampler.h"
 #include "core/render/motion.h"
+#include "core/render/motion_vectors.h"
 #include "core/render/progress.h"
 #include "core/render/sampler.h"
 #include "core/render/tile_size.h"
@@ -69,6 +71,11 @@ struct RenderInputs {
   // the object and material it meets, which go here with the sample's filter weight. Importance
   // reconstruction only. None: nothing more is traced.
   CryptomatteFilm* cryptomatte = nullptr;
+  // Vector (core/render/motion_vectors.h): the point each sample's camera ray meets (the same
+  // second intersection as Cryptomatte's, once for both) and its motion, into the film with the
+  // sample's filter weight; misses add nothing. Both or neither. Importance reconstruction only.
+  const MotionVectors* motion_vectors = nullptr;
+  MotionVectorFilm* motion_vector_film = nullptr;
 };
 
 struct RenderStats {

@@ -7,6 +7,7 @@
 
 #include "core/film/cryptomatte.h"
 #include "core/plugin/params.h"
+#include "core/render/motion_vectors.h"
 #include "core/scene/default_camera.h"
 #include "core/util/error.h"
 
@@ -174,7 +175,8 @@ PluginChoice choose_camera_model(const std::optional<std::string>& typed, const 
 }
 
 // --passes reaches the integrator as its parameter `passes` (docs/plugins.md, "Render passes"),
-// but for the Cryptomatte passes, which the host writes (core/film/cryptomatte.h).
+// but for the Cryptomatte passes and Vector, which the host writes (core/film/cryptomatte.h,
+// core/film/motion_vector_film.h).
 PluginChoice choose_integrator(const std::optional<std::string>& typed,
                                const std::vector<std::string>& passes) {
   PluginChoice choice =
@@ -184,7 +186,8 @@ PluginChoice choose_integrator(const std::optional<std::string>& typed,
   if (!passes.empty()) {
     std::string list;
     for (const std::string& pass : passes)
-      if (!find_cryptomatte_pass(pass)) list += (list.empty() ? "" : ",") + pass;
+      if (!find_cryptomatte_pass(pass) && pass != kVectorPass)
+        list += (list.empty() ? "" : ",") + pass;
     if (!list.empty()) choice.typed.emplace_back("passes", list);
   }
   return choice;

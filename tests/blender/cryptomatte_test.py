@@ -13,7 +13,6 @@ exactly 0 outside, its share of the pixel within sampling noise along the edges 
 Cycles' mask of the same name. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
-import argparse
 import json
 import os
 import subprocess
@@ -21,7 +20,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import blender, fresh_folder, skip_unless_installed  # noqa: E402
+from roundtrip_test import blender, driver_arguments  # noqa: E402
 
 # 64 samples per pixel, stratified by both renderers: an edge pixel's share came within 0.020 of
 # the exact one in both (measured; 0.035 in Cycles along the small Badge's edges), and the two
@@ -81,12 +80,8 @@ def check_mask(label, mask, expected_rows, failures):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--filmback", required=True)
-    p.add_argument("--scratch", required=True)
-    a = p.parse_args()
-    skip_unless_installed("blender")
-    out = fresh_folder(a.scratch)
+    a = driver_arguments()
+    out = a.scratch
     run_blender("shot", out)
     with open(os.path.join(out, "silhouettes.json")) as f:
         shot = json.load(f)

@@ -10,17 +10,15 @@ of each pass, away from its edges (OpenImageIO's `oiiotool --printstats`, to 6 d
 Cycles' within TOLERANCE. Exit 77 (CTest's skip) when `blender` or `oiiotool` is missing.
 """
 
-import argparse
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import SKIP, blender  # noqa: E402
+from roundtrip_test import blender, driver_arguments, skip_unless_installed  # noqa: E402
 
 # Both renderers write the first hit's closure weights: measured in full float, the means agree
 # within 1.5e-8 (Fresnel's 0.0337 of the glass included), except the Sheen patch's DiffCol, 1.1e-4
@@ -49,19 +47,9 @@ def patch_means(exr, shot):
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--filmback", required=True)
-    p.add_argument("--scratch", required=True)
-    a = p.parse_args()
-    if shutil.which("blender") is None:
-        print("skipped: Debian package blender is not installed")
-        sys.exit(SKIP)
-    if shutil.which("oiiotool") is None:
-        print("skipped: Debian package openimageio-tools is not installed")
-        sys.exit(SKIP)
-    out = os.path.abspath(a.scratch)
-    shutil.rmtree(out, ignore_errors=True)
-    os.makedirs(out)
+    a = driver_arguments()
+    skip_unless_installed(("oiiotool", "openimageio-tools"))
+    out = a.scratch
     r = blender("--python-exit-code", "1", "--python", os.path.join(HERE, "gloss_shot.py"), "--",
                 out)
     if r.returncode != 0:

@@ -214,17 +214,19 @@ def depth_pass(exr_path, out, name):
 
 
 def case_passes(filmback, out):
-    """The view layer's Z pass switched on: the engine asks filmback for Depth and loads it into
-    the Render Result, which Blender writes into its multi-layer EXR as it writes Cycles'."""
+    """The view layer's Z and Vector passes switched on: the engine asks filmback for Depth and
+    Vector and loads them into the Render Result, which Blender writes into its multi-layer EXR as
+    it writes Cycles'."""
     scene = build_shot()
     view_layer = scene.view_layers[0]
     assert view_layer.name == "ViewLayer", view_layer.name
     view_layer.use_pass_z = True
+    view_layer.use_pass_vector = True
     scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
     scene.render.image_settings.color_depth = "32"
     scene.render.filepath = os.path.join(out, "engine.exr")
     bpy.ops.render.render(write_still=True)
-    cli = command_line_render(filmback, out, FIRST_FRAME, ["--passes", "Depth"])
+    cli = command_line_render(filmback, out, FIRST_FRAME, ["--passes", "Depth,Vector"])
     engine_depth = depth_pass(scene.render.filepath, out, "engine_depth.exr")
     cli_depth = depth_pass(cli, out, "cli_depth.exr")
     assert engine_depth.shape == (WIDTH_PX * HEIGHT_PX,), engine_depth.shape
@@ -232,7 +234,16 @@ def case_passes(filmback, out):
         "expected both hits and the background's 1e10 m in the depth"
     differing = int(numpy.count_nonzero(engine_depth != cli_depth))
     assert differing == 0, f"{differing} depth pixels differ from the command line's"
-    print("engine's Depth pass bit-identical to the command line's")
+    engine_vector = channels(scene.render.filepath, out, "engine_vector", "ViewLayer.Vector.")
+    cli_vector = channels(cli, out, "cli_vector", "ViewLayer.Vector.")
+    assert sorted(engine_vector) == ["ViewLayer.Vector." + c for c in "WXYZ"], sorted(engine_vector)
+    # The marker moves 1 m per frame along x (its keys may start at this frame: X or Z).
+    assert any((engine_vector["ViewLayer.Vector." + c] != 0).any() for c in "XZ"), \
+        "no motion in the Vector pass"
+    for name, values in engine_vector.items():
+        differing = int(numpy.count_nonzero(values != cli_vector[name]))
+        assert differing == 0, f"{differing} pixels of {name} differ from the command line's"
+    print("engine's Depth and Vector passes bit-identical to the command line's")
 
 
 def channels(exr_path, out, name, pattern):

@@ -14,21 +14,22 @@ Install, as a user does) and runs render_engine_case.py under `blender -b`:
   cancel       a long render cancelled after 2.5 s (FILMBACK_TEST_CANCEL_AFTER_S, the engine's
                stand-in for Esc under `blender -b`) returns promptly with a partial image, having
                shown at least one preview as the image filled in
-  passes       the view layer's Z pass: ViewLayer.Depth.Z in Blender's multi-layer EXR of the
-               Render Result, bit-identical to the command line's --passes Depth
+  passes       the view layer's Z and Vector passes: ViewLayer.Depth.Z and Vector.X/Y/Z/W in
+               Blender's multi-layer EXR of the Render Result, bit-identical to the command
+               line's --passes Depth,Vector
   cryptomatte  the view layer's Cryptomatte Object and Material switches: their layers in the
                Render Result bit-identical to the command line's, the manifests in its metadata,
                and the compositor's Cryptomatte node matting the sphere by name from it
 Each case also checks that the engine leaves no temporary folder behind. Exit 77 (CTest's skip) when `blender` is not installed.
 """
 
-import argparse
 import os
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from roundtrip_test import addon_zip, blender, fresh_folder, skip_unless_installed  # noqa: E402
+from roundtrip_test import (  # noqa: E402
+    addon_zip, blender, driver_arguments, fresh_folder)
 
 CASES = ("still", "animation", "bad_setting", "cancel", "passes", "cryptomatte")
 # Time for filmback to start, render a second and write its first preview (PREVIEW_EVERY).
@@ -36,14 +37,9 @@ CANCEL_AFTER_S = "2.5"
 
 
 def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("--filmback", required=True)
-    p.add_argument("--scratch", required=True)
-    p.add_argument("case", choices=CASES)
-    a = p.parse_args()
-    skip_unless_installed("blender")
+    a = driver_arguments(CASES)
     # The engine's temporary folders go to the case's own, which it checks is left empty.
-    temporary = fresh_folder(os.path.join(fresh_folder(a.scratch), "tmp"))
+    temporary = fresh_folder(os.path.join(a.scratch, "tmp"))
     env = dict(BLENDER_USER_SCRIPTS=os.path.join(a.scratch, "scripts"),
                BLENDER_USER_CONFIG=os.path.join(a.scratch, "config"), TMPDIR=temporary)
     if a.case == "cancel":

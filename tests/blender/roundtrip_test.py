@@ -68,6 +68,21 @@ def blender(*args, env=None, blend_file=None):
                           env=blender_env(env))
 
 
+def driver_arguments(cases=None):
+    """A driver's command line, --filmback EXE --scratch DIR, then one of `cases` when it has
+    some: the parsed arguments, the scratch folder absolute and emptied. Exits SKIP (CTest's
+    skip) when `blender` is not installed."""
+    p = argparse.ArgumentParser()
+    p.add_argument("--filmback", required=True)
+    p.add_argument("--scratch", required=True)
+    if cases:
+        p.add_argument("case", choices=cases)
+    a = p.parse_args()
+    skip_unless_installed("blender")
+    a.scratch = fresh_folder(a.scratch)
+    return a
+
+
 def build_scene(scratch):
     """Runs roundtrip_scene.py once per scratch folder; returns its folder."""
     out = os.path.join(scratch, "scene")

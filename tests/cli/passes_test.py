@@ -1,6 +1,6 @@
 """Render passes (docs/cli.md, "--passes") end to end through the built `filmback`: the passes go
 into the same EXR as the beauty with Blender's multi-layer names, whose Combined is bit-identical
-to a render without --passes; an unknown pass, one filmback does not write, and --passes with parts,
+to a render without --passes; Vector is 0 where nothing moves; an unknown pass, one filmback does not write, and --passes with parts,
 checkpoints or splatting are usage errors naming what was refused.
 
 Run: passes_test.py --filmback BIN --scratch DIR [unittest names...]; --list prints the case
@@ -70,9 +70,32 @@ class PassesTest(case_main.FolderCase):
                              rf'cryptomatte/{key}/manifest: "{{\\"\w+\\":\\"[0-9a-f]{{8}}\\"')
         self.assertIn('\\"Sphere\\":\\"', header)  # the default scene's sphere node
 
+    def test_vector_channels_zero_on_a_still_scene_and_refused_for_a_panorama(self):
+        still = self.run_cli("render", SCENE, "-o", "vector.exr", *QUICK, "--passes", "Vector")
+        self.assertEqual(still.returncode, 0, still.stderr)
+        channels = re.search(r"channel list: (.*)",
+                             exr_header(self.dir / "vector.exr")).group(1).split(", ")
+        self.assertEqual(sorted(channels), sorted(["ViewLayer.Combined." + c for c in "RGBA"] +
+                                                  ["ViewLayer.Vector." + c for c in "XYZW"]))
+        # Nothing moves, camera included: every pixel's vector is 0 (oiiotool's channel bounds).
+        stats = subprocess.run(["oiiotool", "--stats", "vector.exr"], cwd=self.dir,
+                               capture_output=True, text=True, check=True).stdout
+        lows = re.search(r"Min: (.*)", stats).group(1).split()
+        highs = re.search(r"Max: (.*)", stats).group(1).split()
+        order = re.search(r"channel list: (.*)", exr_header(self.dir / "vector.exr")).group(1)
+        for i, name in enumerate(order.split(", ")):
+            if name.startswith("ViewLayer.Vector."):
+                self.assertEqual((float(lows[i]), float(highs[i])), (0.0, 0.0), name)
+        refused = self.run_cli("render", SCENE, "-o", "pano.exr", *QUICK, "--passes", "Vector",
+                               "--camera-model", "equirectangular")
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("--passes Vector", refused.stderr)
+        self.assertIn("equirectangular", refused.stderr)
+        self.assertFalse((self.dir / "pano.exr").exists())
+
     def test_unknown_or_unwritten_pass_refused(self):
         for passes, named in [("Depth,Shadow", "'Shadow'"), ("depth", "'depth'"),
-                              ("Normal,Vector", "'Vector'")]:
+                              ("Normal,TransCol", "'TransCol'")]:
             with self.subTest(passes=passes):
                 refused = self.run_cli("render", SCENE, "-o", "bad.exr", *QUICK, "--passes",
                                        passes)

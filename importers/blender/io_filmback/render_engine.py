@@ -30,6 +30,7 @@ RENDER_PASSES = (
     ("use_pass_diffuse_color", "DiffCol", "RGB", "COLOR"),
     ("use_pass_glossy_color", "GlossCol", "RGB", "COLOR"),
     ("use_pass_emit", "Emit", "RGB", "COLOR"),
+    ("use_pass_vector", "Vector", "XYZW", "VECTOR"),
 )
 # The view layer's Cryptomatte switches (docs/blender.md, "Cryptomatte"): the property and the
 # pass's name. Each is cryptomatte_levels() / 2 passes of channels r, g, b, a (lower-case, as in
