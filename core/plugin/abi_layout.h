@@ -46,6 +46,8 @@ inline constexpr Layout kHitLayouts[] = {
 inline constexpr Layout kSceneApiLayouts[] = {
     {uint32_t(offsetof(fb_scene_api, bsdf_eval)), uint32_t(offsetof(fb_scene_api, bsdf_eval))},
     {uint32_t(offsetof(fb_scene_api, sample_lamp)), uint32_t(offsetof(fb_scene_api, sample_lamp))},
+    {uint32_t(offsetof(fb_scene_api, medium_segment)),
+     uint32_t(offsetof(fb_scene_api, medium_segment))},
     {sizeof(fb_scene_api), sizeof(fb_scene_api)}};
 // fb_scene's first layout ends at view_axis; issue 19 appended `povray` and `lamp_count`.
 inline constexpr Layout kSceneLayouts[] = {

@@ -33,6 +33,7 @@ struct RenderJob::Plugins {
   std::unique_ptr<IntegratorInstance> integrator;
   std::unique_ptr<RenderGeometry> geometry;
   std::unique_ptr<LightSampler> lights;
+  std::optional<RenderMedia> media;  // the scene's global media, if it has any
   TimeSampling time;
   std::unique_ptr<CameraPath> camera_path;
   std::unique_ptr<Scene> refined;  // the scene with its subdivision surfaces made triangles
@@ -202,6 +203,7 @@ void RenderJob::build_geometry() {
   p.lights = std::make_unique<LightSampler>(*geometry_scene, p.render_from_world, *p.geometry,
                                             plan_.times.still_s(), options_.background,
                                             options_.light_selection);
+  if (!scene_.media.empty()) p.media.emplace(scene_.media, p.render_from_world.inverse());
 }
 
 // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
@@ -421,6 +423,7 @@ RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
   inputs.camera_path = p.camera_path.get();
   if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
   inputs.texture_footprint = options_.texture_footprint && !scene_.images.empty();
+  inputs.media = p.media ? &*p.media : nullptr;
   inputs.crop = crop;
   return inputs;
 }

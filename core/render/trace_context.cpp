@@ -101,12 +101,23 @@ int sample_lamp(fb_trace_context* c, uint32_t lamp, const float position[3], con
   return c->lights->sample_lamp(lamp, Vec3f(position), u, *sample) ? 1 : 0;
 }
 
+int medium_segment(fb_trace_context* c, const fb_ray* ray, float t_end, int povray_blend,
+                   float transmittance[3], float emitted[3]) {
+  if (!c->media) return 0;
+  const MediumSegment s = c->media->along(
+      *ray, t_end, povray_blend ? MediumModel::kPovRayBlend : MediumModel::kPhysical);
+  s.transmittance.store(transmittance);
+  s.emitted.store(emitted);
+  return 1;
+}
+
 }  // namespace
 
 const fb_scene_api& host_scene_api() {
   static const fb_scene_api api{
       sizeof(fb_scene_api), intersect,  intersect_batch, occluded,    sample_light,   light_pdf,
-      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed, sample_lamp};
+      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed, sample_lamp,
+      medium_segment};
   return api;
 }
 

@@ -345,6 +345,14 @@ typedef struct fb_scene_api {
    * size). Returns 0 when the sample carries no light. */
   int (*sample_lamp)(fb_trace_context* context, uint32_t lamp, const float position[3],
                      const float u[2], fb_light_sample* sample);
+  /* Appended by issue 19 (Growth, fog): the medium that fills the scene (POV-Ray's fog) along
+   * `ray` up to distance `t_end` (its hit, or HUGE_VAL when it escapes): the radiance from the far
+   * end is to be multiplied by transmittance[] and emitted[] added, per channel. `povray_blend`
+   * nonzero asks for POV-Ray's blend (its fog's filter and transmit included), 0 for the physical
+   * medium it maps to (docs/pov.md, "Fog"). Returns 0, writing nothing, when the scene has no
+   * such medium. */
+  int (*medium_segment)(fb_trace_context* context, const fb_ray* ray, float t_end, int povray_blend,
+                        float transmittance[3], float emitted[3]);
 } fb_scene_api;
 
 /* POV-Ray's finish and interior as the scene wrote them (docs/pov.md, "The povray integrator"),

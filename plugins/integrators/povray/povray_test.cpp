@@ -75,11 +75,13 @@ struct PovComparison {
 
 constexpr int kPovCaseSize = 64;
 
-PovComparison compare_with_povray(const std::string& name, const std::string& sdl, uint32_t samples) {
+PovComparison compare_with_povray(const std::string& name, const std::string& sdl,
+                                  uint32_t samples) {
   const std::filesystem::path pov_file = test::scratch_dir() / (name + ".pov");
   std::ofstream(pov_file) << "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n" << sdl;
   std::string why;
-  const std::vector<float> reference = test::povray_render(pov_file, kPovCaseSize, kPovCaseSize, why);
+  const std::vector<float> reference =
+      test::povray_render(pov_file, kPovCaseSize, kPovCaseSize, why);
   EXPECT_FALSE(reference.empty()) << why;
   if (reference.empty()) return {};
 
@@ -164,6 +166,20 @@ const PovCase kPovCases[] = {
      "plane { y, 0 pigment { rgb 0.8 } finish { ambient 0.1 } }\n"
      "sphere { <0, 0.8, 0>, 0.6 pigment { rgb <0.9, 0.5, 0.2> } }\n",
      100, 0.02},
+    // POV-Ray's fog (docs/pov.md "Fog"): the blend by exp(-depth / distance) with the fog's filter
+    // and transmit, complete where rays escape; ground fog thinning above its offset.
+    {"fog_constant",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.9, 0.5, 0.2> } finish { reflection 0.3 } }\n"
+     "fog { distance 5 rgbf <0.6, 0.7, 0.8, 0.4> }\n",
+     1, 0.001},
+    {"fog_ground",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.9, 0.5, 0.2> } }\n"
+     "fog { fog_type 2 distance 2 rgbt <0.8, 0.8, 0.7, 0.2> fog_offset 0.3 fog_alt 0.4 }\n",
+     1, 0.001},
 };
 
 class PovRayIntegrator : public ::testing::TestWithParam<PovCase> {};
@@ -171,7 +187,8 @@ class PovRayIntegrator : public ::testing::TestWithParam<PovCase> {};
 TEST_P(PovRayIntegrator, RendersAsPovRayDoes) {
   if (!test::have_povray()) GTEST_SKIP() << "no povray";
   const PovCase& c = GetParam();
-  const PovComparison result = compare_with_povray(c.name, std::string(kPovCaseCamera) + c.sdl, c.samples);
+  const PovComparison result =
+      compare_with_povray(c.name, std::string(kPovCaseCamera) + c.sdl, c.samples);
   EXPECT_GT(result.lit_values, kPovCaseSize * kPovCaseSize);  // most of the image is lit
   EXPECT_LT(result.mean_relative, c.tolerance);
 }
