@@ -48,6 +48,8 @@ inline constexpr Layout kSceneApiLayouts[] = {
     {uint32_t(offsetof(fb_scene_api, sample_lamp)), uint32_t(offsetof(fb_scene_api, sample_lamp))},
     {uint32_t(offsetof(fb_scene_api, closure_weight)),
      uint32_t(offsetof(fb_scene_api, closure_weight))},
+    {uint32_t(offsetof(fb_scene_api, medium_segment)),
+     uint32_t(offsetof(fb_scene_api, medium_segment))},
     {sizeof(fb_scene_api), sizeof(fb_scene_api)}};
 // fb_scene's first layout ends at view_axis; issue 19 appended `povray` and `lamp_count`.
 inline constexpr Layout kSceneLayouts[] = {

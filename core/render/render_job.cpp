@@ -33,6 +33,7 @@ struct RenderJob::Plugins {
   std::unique_ptr<IntegratorInstance> integrator;
   std::unique_ptr<RenderGeometry> geometry;
   std::unique_ptr<LightSampler> lights;
+  std::optional<RenderMedia> media;  // the scene's global media, if it has any
   TimeSampling time;
   std::unique_ptr<CameraPath> camera_path;
   std::unique_ptr<MotionVectors> motion_vectors;  // only when --passes asks for Vector
@@ -206,6 +207,7 @@ void RenderJob::build_geometry() {
   if (std::find(options_.passes.begin(), options_.passes.end(), kVectorPass) !=
       options_.passes.end())
     p.motion_vectors = std::make_unique<MotionVectors>(*geometry_scene, plan_, p.render_from_world);
+  if (!scene_.media.empty()) p.media.emplace(scene_.media, p.render_from_world.inverse());
 }
 
 // The scene and its table as far as the integrator knows them (plugin_abi.h, "Growth").
@@ -425,6 +427,7 @@ RenderInputs RenderJob::inputs(const std::optional<PixelRect>& crop) const {
   inputs.camera_path = p.camera_path.get();
   if (p.time.curve && plan_.zoom) inputs.zoom = &*plan_.zoom;
   inputs.texture_footprint = options_.texture_footprint && !scene_.images.empty();
+  inputs.media = p.media ? &*p.media : nullptr;
   inputs.crop = crop;
   return inputs;
 }

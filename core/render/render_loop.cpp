@@ -151,6 +151,7 @@ class TileRenderer {
     fb_trace_context& context = w.context;
     context.geometry = &in_.geometry;
     context.lights = &in_.lights;
+    context.media = in_.media;
     context.sampler = &sampler_;
     context.hit_size = in_.integrator.hit_size();
     context.rays_traced = 0;

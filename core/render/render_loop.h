@@ -22,6 +22,7 @@
 #include "core/film/splat_tiles.h"
 #include "core/math/transform.h"
 #include "core/plugin/instances.h"
+#include "core/render/global_medium_segment.h"
 #include "core/render/light_sampler.h"
 #include "core/render/motion.h"
 #include "core/render/motion_vectors.h"
@@ -59,6 +60,8 @@ struct RenderInputs {
   // is asked for each ray's neighbours one pixel right and down, at twice the camera's cost, so
   // only scenes with image textures turn it on. Off: the finest level, as before.
   bool texture_footprint = false;
+  // The scene's global media (core/render/global_medium_segment.h); none without them.
+  const RenderMedia* media = nullptr;
   // A part of the render (docs/cli.md, "Parts of a render"): only the tiles it needs are sampled,
   // each pixel with exactly the samples of the whole render (the sampler is seeded per pixel of
   // the whole sample domain). Importance: every tile that meets part_region(crop) (whole tiles,

@@ -109,6 +109,16 @@ void closure_weight(fb_trace_context* c, const fb_hit* hit, uint32_t kind, float
   sum.store(weight);
 }
 
+int medium_segment(fb_trace_context* c, const fb_ray* ray, float t_end, int povray_blend,
+                   float transmittance[3], float emitted[3]) {
+  if (!c->media) return 0;
+  const MediumSegment s = c->media->along(
+      *ray, t_end, povray_blend ? MediumModel::kPovRayBlend : MediumModel::kPhysical);
+  s.transmittance.store(transmittance);
+  s.emitted.store(emitted);
+  return 1;
+}
+
 }  // namespace
 
 static_assert(uint32_t(ClosureKind::kDiffuse) == FB_CLOSURE_DIFFUSE &&
@@ -116,10 +126,20 @@ static_assert(uint32_t(ClosureKind::kDiffuse) == FB_CLOSURE_DIFFUSE &&
               uint32_t(ClosureKind::kTransmission) == FB_CLOSURE_TRANSMISSION);
 
 const fb_scene_api& host_scene_api() {
-  static const fb_scene_api api{
-      sizeof(fb_scene_api), intersect,  intersect_batch, occluded,    sample_light,   light_pdf,
-      next_samples,         background, bsdf_eval,       bsdf_sample, lights_crossed, sample_lamp,
-      closure_weight};
+  static const fb_scene_api api{sizeof(fb_scene_api),
+                                intersect,
+                                intersect_batch,
+                                occluded,
+                                sample_light,
+                                light_pdf,
+                                next_samples,
+                                background,
+                                bsdf_eval,
+                                bsdf_sample,
+                                lights_crossed,
+                                sample_lamp,
+                                closure_weight,
+                                medium_segment};
   return api;
 }
 

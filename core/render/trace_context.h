@@ -8,6 +8,7 @@
 #include <filmback/plugin_abi.h>
 
 #include "core/accel/render_geometry.h"
+#include "core/render/global_medium_segment.h"
 #include "core/render/light_sampler.h"
 #include "core/render/sampler.h"
 #include "core/shading/surface_arena.h"
@@ -17,8 +18,9 @@ struct fb_trace_context {
   const fb::RenderGeometry* geometry = nullptr;
   const fb::LightSampler* lights = nullptr;
   const fb::Sampler* sampler = nullptr;
-  std::vector<fb::SampleKey> paths;  // one per ray of the current batch
-  fb::SurfaceArena surfaces;         // of the hits the current batch traces (fb_hit.surface)
+  const fb::RenderMedia* media = nullptr;  // none: the scene has no global medium
+  std::vector<fb::SampleKey> paths;        // one per ray of the current batch
+  fb::SurfaceArena surfaces;               // of the hits the current batch traces (fb_hit.surface)
   // The integrator's fb_hit size (fb_integrator_api.hit_size): smaller when it was built against
   // an older header, whose records the host writes and reads no further (plugin_abi.h, "Growth").
   uint32_t hit_size = sizeof(fb_hit);

@@ -15,6 +15,7 @@
 #include "core/math/transform.h"
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
+#include "core/scene/global_medium.h"
 #include "core/scene/material_textures.h"
 #include "core/scene/mesh_deformation.h"
 #include "core/scene/pov_finish.h"
@@ -209,6 +210,9 @@ struct Scene {
   std::vector<SceneCamera> cameras;           // in the order the scene's nodes were met
   Rgb background{0.f, 0.f, 0.f};              // uniform radiance seen by rays that escape
   std::optional<EnvironmentMap> environment;  // replaces `background` when present
+  // Media filling the scene (POV-Ray's fog, fb_scene_api::medium_segment); none: the render is
+  // as without them, bit for bit.
+  std::vector<GlobalMedium> media;
   ShotSettings settings;
   NodeHierarchy hierarchy;  // nodes and animation curves; empty for a scene without nodes
   // The names of the roots of the scene's node trees (a node without a name: its JSON path), which

@@ -158,6 +158,25 @@ Transform aimed(Vec3d position, Vec3d target) {
   return Transform::look_at(position, position + n, up);
 }
 
+// POV-Ray's fogs as global media (docs/pov.md "Fog"): a fog of zero distance is none, as in
+// POV-Ray; the up vector mirrored into the world like any direction (heights keep their values).
+void convert_fogs(const std::vector<Fog>& fogs, double gamma, fb::Scene& out) {
+  for (const Fog& fog : fogs) {
+    if (std::abs(fog.distance) < 1e-10) continue;
+    GlobalMedium m;
+    m.profile = fog.ground ? MediumProfile::kGround : MediumProfile::kConstant;
+    m.distance_m = std::abs(fog.distance);
+    m.colour = decode(fog.colour, gamma);
+    m.filter = float(std::clamp(fog.colour.filter, 0.0, 1.0));
+    m.transmit = float(std::clamp(fog.colour.transmit, 0.0, 1.0));
+    const Vec3d up = world_from_pov(fog.up);
+    const double length = std::sqrt(dot(up, up));
+    m.up = length > 0 ? up / length : Vec3d{0, 1, 0};
+    m.offset_m = fog.offset, m.altitude_m = fog.altitude;
+    out.media.push_back(m);
+  }
+}
+
 }  // namespace
 
 double colour_gamma(const Scene& scene) {
@@ -398,6 +417,7 @@ void convert_environment(const Scene& scene, fb::Scene& out, Diagnostics& diagno
   const double gamma = colour_gamma(scene);
   const Rgb background = scene.background ? decode(*scene.background, gamma) : Rgb{};
   out.background = background;
+  convert_fogs(scene.fogs, gamma, out);
   if (!scene.sky_sphere || scene.sky_sphere->pigments.empty()) return;
   const SkySphere& sky = *scene.sky_sphere;
   std::vector<SolidPattern> layers;

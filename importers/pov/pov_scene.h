@@ -259,6 +259,16 @@ struct SkySphere {
   Matrix transform;
 };
 
+// fog { ... } (POV-Ray 3.7 reference, "Fog"): constant, or ground fog thinning above fog_offset.
+struct Fog {
+  bool ground = false;  // fog_type 2
+  double distance = 0;  // 0: no fog (POV-Ray ignores it)
+  Colour colour;        // with the fog's filter and transmit
+  Vec3d up{0, 1, 0};    // POV-Ray space, after the fog's transforms
+  double offset = 0, altitude = 0;
+  SourceLocation where;
+};
+
 struct Unsupported {
   std::string feature;  // "media", "photons", "isosurface", ...
   SourceLocation where;
@@ -280,6 +290,7 @@ struct Scene {
   std::vector<LightSource> lights;
   std::optional<Colour> background;
   std::optional<SkySphere> sky_sphere;
+  std::vector<Fog> fogs;
   std::optional<double> assumed_gamma;
   Colour ambient_light{1, 1, 1};
   std::vector<std::filesystem::path> images;           // image_map files, found; each once

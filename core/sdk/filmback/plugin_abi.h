@@ -352,6 +352,14 @@ typedef struct fb_scene_api {
    * surface or an unknown kind. */
   void (*closure_weight)(fb_trace_context* context, const fb_hit* hit, uint32_t kind,
                          float weight[3]);
+  /* Appended by issue 19 (Growth, fog): the medium that fills the scene (POV-Ray's fog) along
+   * `ray` up to distance `t_end` (its hit, or HUGE_VAL when it escapes): the radiance from the far
+   * end is to be multiplied by transmittance[] and emitted[] added, per channel. `povray_blend`
+   * nonzero asks for POV-Ray's blend (its fog's filter and transmit included), 0 for the physical
+   * medium it maps to (docs/pov.md, "Fog"). Returns 0, writing nothing, when the scene has no
+   * such medium. */
+  int (*medium_segment)(fb_trace_context* context, const fb_ray* ray, float t_end, int povray_blend,
+                        float transmittance[3], float emitted[3]);
 } fb_scene_api;
 
 /* The kinds of closure fb_scene_api.closure_weight() sums, Cycles' CLOSURE_IS_BSDF_DIFFUSE,

@@ -414,20 +414,53 @@ TEST_F(Sdl, TraceDepthAndReflectionFalloffAreRead) {
 
 TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   Scene scene =
-      run("fog { distance 10 color rgb 1 }\n"
+      run("rainbow { angle 42 width 5 }\n"
           "ovus { 1, 0.5 translate x }\n"
           "#declare F = function(a) { a * 2 }\n"
           "sphere { 0, 1 normal { quilted 0.5 } }\n"
           "global_settings { radiosity { count 100 } }\n");
   ASSERT_EQ(scene.objects.size(), 1u);
   ASSERT_GE(scene.unsupported.size(), 4u);
-  EXPECT_EQ(scene.unsupported[0].feature, "fog");
+  EXPECT_EQ(scene.unsupported[0].feature, "rainbow");
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
   EXPECT_EQ(scene.unsupported[1].feature, "ovus");
   EXPECT_EQ(scene.unsupported[1].where.line, 2u);
   ASSERT_TRUE(scene.objects[0].texture.normal);
   EXPECT_FALSE(scene.objects[0].texture.normal->rendered);
   EXPECT_EQ(scene.unsupported[2].feature, "normal pattern quilted");
+}
+
+// fog (POV-Ray 3.7 reference, "Fog"): its type, distance, colour with filter and transmit, ground
+// fog's offset and altitude, and its up vector turned by its transforms; turbulence is read and
+// reported; a type POV-Ray does not have, or a ground fog without altitude, is refused.
+TEST_F(Sdl, FogIsReadWithItsTypeColourAndUp) {
+  Scene scene =
+      run("fog { fog_type 2 distance 50 colour rgbft <0.5, 0.6, 0.7, 0.1, 0.2> fog_offset 3\n"
+          "      fog_alt 1.5 up x rotate z * 90 turbulence 0.2 octaves 3 }\n"
+          "fog { distance 10 rgb 1 }\n");
+  ASSERT_EQ(scene.fogs.size(), 2u);
+  const Fog& ground = scene.fogs[0];
+  EXPECT_TRUE(ground.ground);
+  EXPECT_EQ(ground.distance, 50);
+  EXPECT_EQ(ground.colour.g, 0.6);
+  EXPECT_EQ(ground.colour.filter, 0.1);
+  EXPECT_EQ(ground.colour.transmit, 0.2);
+  EXPECT_EQ(ground.offset, 3);
+  EXPECT_EQ(ground.altitude, 1.5);
+  EXPECT_NEAR(ground.up.x, 0, 1e-12);
+  EXPECT_NEAR(ground.up.y, 1, 1e-12);
+  EXPECT_FALSE(scene.fogs[1].ground);
+  EXPECT_EQ(scene.fogs[1].colour.b, 1);
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "fog turbulence");
+  EXPECT_EQ(scene.unsupported[0].where.line, 2u);
+  const std::string type = error_of("fog { fog_type 3 distance 1 }");
+  EXPECT_NE(type.find("scene.pov:1:"), std::string::npos) << type;
+  EXPECT_NE(type.find("fog_type must be 1 (constant) or 2"), std::string::npos) << type;
+  const std::string alt = error_of("fog { fog_type 2 distance 1 }");
+  EXPECT_NE(alt.find("needs a fog_alt above 0"), std::string::npos) << alt;
+  const std::string huge = error_of("fog { distance 1e300 * 1e300 }");
+  EXPECT_NE(huge.find("must be finite"), std::string::npos) << huge;
 }
 
 TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {

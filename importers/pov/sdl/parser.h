@@ -260,6 +260,7 @@ class Parser {
   CameraStatement parse_camera(const Tok& keyword);
   LightSource parse_light(const Tok& keyword);
   void parse_statement(const Tok& tok);
+  void parse_fog(const Tok& keyword);                 // fog.cpp: after `fog`
   void emit(Node node, const SourceLocation& where);  // a top-level object statement
   void count_objects(uint64_t n);
 

@@ -194,7 +194,11 @@ void Parser::parse_statement(const Tok& tok) {
     scene_.sky_sphere = *tok.value.get<SkySphere>();
     return;
   }
-  if ((w == "fog" || w == "rainbow" || w == "media") && tok.keyword()) {
+  if (w == "fog" && tok.keyword()) {
+    parse_fog(tok);
+    return;
+  }
+  if ((w == "rainbow" || w == "media") && tok.keyword()) {
     unsupported(w, location_of(tok));
     skip_block();
     return;

@@ -9,7 +9,9 @@
 // sample's radiance down so that its largest component is at most the clamp (pbrt 4e's RGBFilm
 // maxComponentValue): fireflies are bounded at the price of a bias. `passes` (what --passes sets:
 // Blender's pass names, comma-separated) adds those render passes of the first hit as further
-// channels (filmback/render_passes.h); none by default, and then none is computed.
+// channels (filmback/render_passes.h); none by default, and then none is computed. A scene's
+// medium (fb_scene_api::medium_segment: POV-Ray's fog as the absorbing, emitting medium it maps
+// to) adds its light along every segment and dims what lies beyond, shadow rays included.
 #include <filmback/geometry.h>
 #include <filmback/plugin_sdk.h>
 #include <filmback/render_passes.h>
@@ -91,16 +93,29 @@ Rgb emitted(const fb_material& m, const fb_hit& hit, Vec3f direction) {
   return Rgb(hit.emission);
 }
 
+// The share of the light that the scene's medium (POV-Ray's fog as the physical medium it maps
+// to, docs/pov.md "Fog") lets through along `ray` up to `t_end`; 1 without one.
+Rgb medium_transmittance(const fb_scene_api& api, fb_trace_context* ctx, const fb_ray& ray,
+                         float t_end) {
+  float transmittance[3], emitted[3];
+  if (!api.medium_segment(ctx, &ray, t_end, 0, transmittance, emitted)) return {1.f, 1.f, 1.f};
+  return Rgb(transmittance);
+}
+
 // Light from the lights with a size that the ray from the previous vertex passed through before
-// `t_end` (fb_scene_api::lights_crossed), weighted against light sampling's choice of them.
+// `t_end` (fb_scene_api::lights_crossed), weighted against light sampling's choice of them, and
+// dimmed by the medium before each when the scene has one (`in_medium`).
 Rgb lights_on_the_way(const fb_scene_api& api, fb_trace_context* ctx, const fb_ray& ray,
-                      float t_end, float bsdf_pdf, bool delta) {
+                      float t_end, float bsdf_pdf, bool delta, bool in_medium) {
   fb_light_crossing crossings[8];
   const uint32_t n = api.lights_crossed(ctx, &ray, t_end, crossings, 8);
   Rgb L{};
-  for (uint32_t i = 0; i < n; ++i)
-    L += Rgb(crossings[i].radiance) *
+  for (uint32_t i = 0; i < n; ++i) {
+    const Rgb through =
+        in_medium ? medium_transmittance(api, ctx, ray, crossings[i].t) : Rgb{1.f, 1.f, 1.f};
+    L += Rgb(crossings[i].radiance) * through *
          (delta ? 1.f : fb::power_heuristic(bsdf_pdf, crossings[i].pdf));
+  }
   return L;
 }
 
@@ -114,9 +129,18 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
   const float time_s = ray.time_s;
   for (int depth = 0;; ++depth) {
     const bool found = depth == 0 ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
+    const float t_end = found ? hit.t : HUGE_VALF;
+    // The scene's medium over the segment, if it has one: it adds its own light, and dims what
+    // comes from further on (the absorbing, emitting medium POV-Ray's fog maps to).
+    float segment_transmittance[3], segment_emitted[3];
+    const bool in_medium =
+        api.medium_segment(ctx, &ray, t_end, 0, segment_transmittance, segment_emitted) != 0;
     // Cycles' lights are not seen by the camera; BSDF-sampled rays find those with a size.
-    if (depth > 0)
-      L += beta * lights_on_the_way(api, ctx, ray, found ? hit.t : HUGE_VALF, bsdf_pdf, delta);
+    if (depth > 0) L += beta * lights_on_the_way(api, ctx, ray, t_end, bsdf_pdf, delta, in_medium);
+    if (in_medium) {
+      L += beta * Rgb(segment_emitted);
+      beta *= Rgb(segment_transmittance);
+    }
     if (!found) {
       float le[3], world_pdf = 0.f;
       api.background(ctx, ray.direction, le, &world_pdf);
@@ -170,7 +194,9 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
         if (ls.distance == 0.f || !api.occluded(ctx, &shadow)) {
           // Where BSDF sampling never goes (pdf 0), light sampling takes the whole weight.
           const float weight = ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, pdf);
-          L += beta * Rgb(f) * Rgb(ls.radiance) * (weight / ls.pdf);
+          const Rgb through =
+              in_medium ? medium_transmittance(api, ctx, shadow, shadow.t_max) : Rgb{1.f, 1.f, 1.f};
+          L += beta * Rgb(f) * Rgb(ls.radiance) * through * (weight / ls.pdf);
         }
       }
     }

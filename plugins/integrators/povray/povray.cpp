@@ -6,7 +6,8 @@
 // specular highlights, shadowed by what lies between, seen through filter and transmit; then the
 // refracted or straight-through ray weighted by the pigment's filter and transmit, and the
 // reflected ray by reflection min/max, falloff, fresnel and metallic; down to max_trace_level,
-// pruned below adc_bailout, the background or sky_sphere where a ray escapes. No light bounces
+// pruned below adc_bailout, the background or sky_sphere where a ray escapes; the scene's fog
+// blended over every ray but the shadow rays (ComputeFog). No light bounces
 // between surfaces but by these mirror and refraction rays: POV-Ray's `ambient` stands in for it.
 // A surface without a POV-Ray finish (another scene's) is lit as diffuse 1 in its base colour.
 #include <filmback/geometry.h>
@@ -58,7 +59,7 @@ class PovRayTracer {
     const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
     Tracer tracer{scene, ctx, max_trace_level_};
     for (size_t i = 0; i < count; ++i)
-      tracer.shade({rays[i], 1, 0, 1.f}, hits[i], i).store(values + 3 * i);
+      tracer.seen({rays[i], 1, 0, 1.f}, hits[i], i).store(values + 3 * i);
   }
 
  private:
@@ -72,6 +73,7 @@ class PovRayTracer {
       adc_bailout = povray != nullptr ? povray->adc_bailout : 1.f / 255.f;
     }
     Rgb trace(const PovRay& r, size_t path) const;
+    Rgb seen(const PovRay& r, const fb_hit& hit, size_t path) const;
     Rgb shade(const PovRay& r, const fb_hit& hit, size_t path) const;
     Rgb light_through(const fb_ray& shadow, float distance) const;
     const fb_pov_finish& finish(uint32_t material) const {
@@ -97,7 +99,17 @@ Rgb PovRayTracer::Tracer::trace(const PovRay& r, size_t path) const {
     return {};
   fb_hit hit;
   if (!api.intersect(ctx, &r.ray, &hit)) hit.t = HUGE_VALF;
-  return shade(r, hit, path);
+  return seen(r, hit, path);
+}
+
+// What the ray brings back through the scene's fog: POV-Ray's ComputeFog blends the fog's colour
+// over the ray's colour by the fog's depth up to the hit, infinite where it escapes (POV-Ray's
+// BOUND_HUGE). Shadow rays are not fogged (a light's media_attenuation is off by default).
+Rgb PovRayTracer::Tracer::seen(const PovRay& r, const fb_hit& hit, size_t path) const {
+  const Rgb colour = shade(r, hit, path);
+  float transmittance[3], emitted[3];
+  if (!api.medium_segment(ctx, &r.ray, hit.t, 1, transmittance, emitted)) return colour;
+  return colour * lighting::rgb(transmittance) + lighting::rgb(emitted);
 }
 
 // What a shadow ray from a lit point brings of a light `distance` away: each surface between

@@ -177,6 +177,20 @@ const PovCase kPovCases[] = {
      "plane { y, 0 pigment { rgb 0.8 } finish { ambient 0.1 } }\n"
      "sphere { <0, 0.8, 0>, 0.6 pigment { rgb <0.9, 0.5, 0.2> } }\n",
      100, 0.02},
+    // POV-Ray's fog (docs/pov.md "Fog"): the blend by exp(-depth / distance) with the fog's filter
+    // and transmit, complete where rays escape; ground fog thinning above its offset.
+    {"fog_constant",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.9, 0.5, 0.2> } finish { reflection 0.3 } }\n"
+     "fog { distance 5 rgbf <0.6, 0.7, 0.8, 0.4> }\n",
+     1, 0.001},
+    {"fog_ground",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.9, 0.5, 0.2> } }\n"
+     "fog { fog_type 2 distance 2 rgbt <0.8, 0.8, 0.7, 0.2> fog_offset 0.3 fog_alt 0.4 }\n",
+     1, 0.001},
 };
 
 class PovRayIntegrator : public ::testing::TestWithParam<PovCase> {};
