@@ -1,4 +1,5 @@
-// bicubic_patch { type 0 | 1 [u_steps U] [v_steps V] [flatness F] [accuracy A] <P1>, ..., <P16> }
+// bicubic_patch { type 0 | 1 [u_steps U] [v_steps V] [flatness F] [accuracy A] [uv_vectors ...]
+// <P1>, ..., <P16> }
 // (POV-Ray 3.7 reference, "Bicubic Patch"; Parse_Bicubic_Patch, bezier.cpp): the Bézier surface
 // over 16 control points, four rows of four (row i weighted by u, column j by v), drawn as
 // POV-Ray draws it: as triangles over its subdivision into 2^U x 2^V sub-patches, each split
@@ -94,6 +95,13 @@ void Parser::parse_bicubic_patch(Object& o) {
     } else if (tok.word("v_steps")) {
       next();
       v_steps = patch_steps(*this, "v_steps");
+    } else if (tok.word("uv_vectors")) {
+      // Where the patch's corners sit in uv_mapping's texture space: the look, not the shape.
+      unsupported("bicubic_patch uv_vectors", location_of(next()));
+      for (int corner = 0; corner < 4; ++corner) {
+        if (corner) accept(",");
+        parse_additive();  // no comparison: the next corner opens with a '<'
+      }
     } else if (tok.word("flatness") || tok.word("accuracy")) {
       next();  // the grid is always whole (see above)
       parse_count();

@@ -1017,13 +1017,16 @@ TEST_F(Sdl, BicubicPatchTriangles) {
   for (const Vec3d& n : patch.normals)
     EXPECT_NEAR(length(n), 1, 1e-12);
   scene =
-      run("bicubic_patch { type 0 u_steps 1e9 v_steps -3 <0,0,0>,<1,0,0>,<2,0,0>,<3,0,0>,"
+      run("bicubic_patch { type 0 u_steps 1e9 v_steps -3 uv_vectors <0,0> <1,0> <1,1> <0,1>\n"
+          "<0,0,0>,<1,0,0>,<2,0,0>,<3,0,0>,"
           "<0,1,0>,<1,1,0>,<2,1,0>,<3,1,0>,<0,2,0>,<1,2,0>,<2,2,0>,<3,2,0>,<0,3,0>,<1,3,0>,"
           "<2,3,0>,<3,3,0> }");
   ASSERT_EQ(scene.objects.size(), 1u);
   EXPECT_EQ(scene.objects[0].vertices.size(), 1025u * 2);  // bounded to 2^10 rows, one column
   ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_NE(scene.warnings[0].find("bounded to 10"), std::string::npos) << scene.warnings[0];
+  ASSERT_EQ(scene.unsupported.size(), 1u);  // uv_vectors: where a texture goes, not the shape
+  EXPECT_EQ(scene.unsupported[0].feature, "bicubic_patch uv_vectors");
   const std::string error = error_of("bicubic_patch { u_steps 3 <0,0,0> }");
   EXPECT_NE(error.find("type 0"), std::string::npos) << error;
 }
