@@ -51,6 +51,27 @@ TEST(SolidSweep, TwoEqualSpheresAreACapsule) {
   EXPECT_FALSE(capsule.contains({0, 0.51, 0}));
 }
 
+// Degenerate splines: spheres about one centre are the largest of them (the envelope's
+// polynomial vanishes: only the end spheres and the largest in between bound the set).
+TEST(SolidSweep, CoincidentCentresAreTheLargestSphere) {
+  const RenderSolid linear(
+      sweep_solid(SweepSpline::kLinear, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, {0.5, 0.8, 0.3}),
+      Transform(), kReach);
+  const auto hit = linear.first_hit({0.1, 0.2, 5}, {0, 0, -1}, 0);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 5 - std::sqrt(0.64 - 0.05), 1e-12);
+  EXPECT_TRUE(linear.contains({0.7, 0, 0}));
+  EXPECT_FALSE(linear.contains({0.81, 0, 0}));
+  const RenderSolid spline(
+      sweep_solid(SweepSpline::kBSpline, {{1, 2, 3}, {1, 2, 3}, {1, 2, 3}, {1, 2, 3}},
+                  {0.3, 0.3, 0.3, 0.3}),
+      Transform(), kReach);
+  const auto ball = spline.first_hit({1, 2, 8}, {0, 0, -1}, 0);
+  ASSERT_TRUE(ball);
+  EXPECT_NEAR(ball->t, 5 - 0.3, 1e-12);
+  EXPECT_LT(length(ball->normal - Vec3d{0, 0, 1}), 1e-12);
+}
+
 struct SweepCase {
   const char* name;
   SweepSpline spline;
