@@ -8,8 +8,10 @@
 #include <string>
 #include <utility>
 
+#include "core/math/lemon.h"
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
+#include "core/math/sphere_sweep.h"
 #include "core/math/superellipsoid.h"
 #include "core/scene/lathe.h"
 #include "core/util/error.h"
@@ -33,6 +35,8 @@ struct RenderSolid::Node {
   double magnitude = 0;  // farthest corner of a bounded primitive from the render origin
   Blob blob;             // kBlob, in object space
   Sor sor;               // kSor, in object space
+  Lemon lemon;           // kLemon
+  std::shared_ptr<const SphereSweep> sweep;  // kSphereSweep
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)
@@ -500,6 +504,99 @@ void sor_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, 
   }
 }
 
+// (rho + major)^2 + z^2 <= 1 between the planes z_low and z_high (core/math/lemon.h; caps parts 1
+// and 2, surface unless open): the ray's piece within the slab, searched within the lemon's box
+// a little widened, is cut at the spindle torus's crossings (its quartic, or the unit sphere's
+// quadratic below kLemonLeastMajor), and each piece is inside or not by the lemon's own test at
+// its middle, so the crossings of the rest of the torus (the "apple") only split a piece. The
+// lemon is convex, but rounding at its cusps may split its span: up to three are kept.
+void lemon_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  const Lemon& lemon = leaf.lemon;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0, d = r.d;
+  const double m = 1.001 * lemon_widest(lemon);
+  double s_lo = -kInf, s_hi = kInf;
+  if (!clip_to_box({{-m, -m, -kInf}, {m, m, kInf}}, {o, d}, s_lo, s_hi)) return;
+  Boundary from{t0 + s_lo}, exit{t0 + s_hi};
+  if (d.z != 0) {
+    const double s_low = (lemon.z_low - o.z) / d.z, s_high = (lemon.z_high - o.z) / d.z;
+    const Boundary low = on(leaf, t0 + s_low, 1, !leaf.open);
+    const Boundary high = on(leaf, t0 + s_high, 2, !leaf.open);
+    const bool up = d.z > 0;
+    if ((up ? s_low : s_high) >= s_lo) s_lo = up ? s_low : s_high, from = up ? low : high;
+    if ((up ? s_high : s_low) <= s_hi) s_hi = up ? s_high : s_low, exit = up ? high : low;
+  } else if (o.z < lemon.z_low || o.z > lemon.z_high) {
+    return;
+  }
+  if (!(s_lo < s_hi)) return;
+  double c[5];
+  int degree = 4;
+  if (lemon.major < kLemonLeastMajor) {
+    c[0] = dot(o, o) - 1, c[1] = 2 * dot(o, d), c[2] = dot(d, d), degree = 2;
+  } else {
+    lemon_quartic(lemon, o, d, c);
+  }
+  double roots[4];
+  const int count = sign_changes(c, degree, s_lo, s_hi, roots);
+  bool inside = false;
+  Boundary entry;
+  for (int i = 0; i <= count; ++i) {
+    const Boundary end = i < count ? on(leaf, t0 + roots[i]) : exit;
+    if (!(end.t > from.t)) continue;  // an empty piece: it leaves the state as it was
+    const double mid = 0.5 * ((from.t - t0) + (end.t - t0));
+    const bool piece_inside = lemon_value(lemon, o + d * mid) <= 0;
+    if (piece_inside && !inside) entry = from;
+    if (!piece_inside && inside) push(out, n, entry, from, lo, hi);
+    inside = piece_inside;
+    from = end;
+  }
+  if (inside) push(out, n, entry, exit, lo, hi);
+}
+
+// The sphere sweep (core/math/sphere_sweep.h) along the ray: cut at every segment's possible
+// crossings (its end spheres' and its envelope's) among the segments whose box the ray meets,
+// each piece then inside or not by the sweep's own test at its middle, so a crossing hidden
+// inside another segment's spheres only splits a piece. `crossings` holds
+// sweep_boundaries spans (only their `in` is used).
+size_t sweep_boundaries(const SphereSweep& sweep) {
+  return sweep.segments.size() * kSweepSegmentCrossings;
+}
+
+void sweep_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n,
+                 Span* crossings) {
+  if (!(dot(r.d, r.d) > 0)) return;
+  const SphereSweep& sweep = *leaf.sweep;
+  const double t0 = nearest_to_origin(r);
+  const Vec3d o = r.o + r.d * t0, d = r.d;
+  int count = 0;
+  for (uint32_t i = 0; i < sweep.segments.size(); ++i) {
+    const SweepSegment& segment = sweep.segments[i];
+    double s_lo = -kInf, s_hi = kInf;
+    if (!clip_to_box(segment.bounds, {o, d}, s_lo, s_hi)) continue;
+    double s[kSweepSegmentCrossings];
+    const int found = sweep_segment_crossings(segment, o, d, s);
+    for (int k = 0; k < found; ++k) {
+      if (!std::isfinite(s[k])) continue;
+      crossings[count].in = on(leaf, t0 + s[k], 0);
+      crossings[count++].in.segment = i;
+    }
+  }
+  std::sort(crossings, crossings + count,
+            [](const Span& a, const Span& b) { return a.in.t < b.in.t; });
+  bool inside = false;
+  Boundary entry;
+  for (int k = 0; k + 1 < count; ++k) {
+    const Boundary &from = crossings[k].in, &end = crossings[k + 1].in;
+    if (!(end.t > from.t)) continue;  // an empty piece: it leaves the state as it was
+    const bool piece_inside = sphere_sweep_value(sweep, r.o + r.d * (0.5 * (from.t + end.t))) <= 0;
+    if (piece_inside && !inside) entry = from;
+    if (!piece_inside && inside) push(out, n, entry, from, lo, hi);
+    inside = piece_inside;
+  }
+  if (inside) push(out, n, entry, crossings[count - 1].in, lo, hi);
+}
+
 // The boundaries lathe_spans may cut a ray at: each segment's crossings and its two ends.
 size_t lathe_boundaries(const Outline& profile) {
   return profile.segments.size() * (kLatheSegmentCrossings + 2);
@@ -608,6 +705,12 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kLathe:
       lathe_spans(leaf, r, lo, hi, out, n, scratch);
       break;
+    case SolidKind::kLemon:
+      lemon_spans(leaf, r, lo, hi, out, n);
+      break;
+    case SolidKind::kSphereSweep:
+      sweep_spans(leaf, r, lo, hi, out, n, scratch);
+      break;
     default:
       break;
   }
@@ -636,14 +739,20 @@ size_t primitive_max_spans(const Node& leaf) {
       return 2 * leaf.sor.size() + 1;
     case SolidKind::kLathe:  // pieces between its cuts, every other one inside
       return lathe_boundaries(*leaf.outline) / 2 + 1;
+    case SolidKind::kLemon:  // five pieces between four crossings, every other one inside
+      return 3;
+    case SolidKind::kSphereSweep:  // pieces between its crossings, every other one inside
+      return sweep_boundaries(*leaf.sweep) / 2 + 1;
     default:
       return 1;
   }
 }
 
-// The scratch primitive_spans needs: an outline's wall crossings, a lathe's cuts.
+// The scratch primitive_spans needs: an outline's wall crossings, a lathe's cuts, a sweep's
+// crossings.
 size_t primitive_workspace(const Node& leaf) {
   if (leaf.kind == SolidKind::kOutline) return leaf.outline->degrees;
+  if (leaf.kind == SolidKind::kSphereSweep) return sweep_boundaries(*leaf.sweep);
   return leaf.kind == SolidKind::kLathe ? lathe_boundaries(*leaf.outline) : 0;
 }
 
@@ -752,6 +861,10 @@ Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
       return part == 0 ? sor_side_gradient(leaf.sor, p) : Vec3d{0, part == 1 ? -1.0 : 1.0, 0};
     case SolidKind::kLathe:
       return lathe_normal(leaf.outline->segments[b.segment], p, d, part == 3);
+    case SolidKind::kLemon:
+      return part == 0 ? lemon_gradient(leaf.lemon, p) : Vec3d{0, 0, part == 1 ? -1.0 : 1.0};
+    case SolidKind::kSphereSweep:
+      return sweep_segment_normal(leaf.sweep->segments[b.segment], p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -803,6 +916,8 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
     node.z1 = std::max(solid.radius0, solid.radius1);
   node.blob = solid.blob;
   node.sor = solid.sor;
+  node.lemon = solid.lemon;
+  node.sweep = solid.sweep;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

@@ -47,6 +47,10 @@ Bounds3d object_bounds(const Solid& primitive) {
       return sor_bounds(primitive.sor);
     case SolidKind::kLathe:
       return lathe_bounds(*primitive.outline);
+    case SolidKind::kLemon:
+      return lemon_bounds(primitive.lemon);
+    case SolidKind::kSphereSweep:
+      return sphere_sweep_bounds(*primitive.sweep);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

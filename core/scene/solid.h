@@ -11,8 +11,10 @@
 
 #include "core/math/blob.h"
 #include "core/math/bounds.h"
+#include "core/math/lemon.h"
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
+#include "core/math/sphere_sweep.h"
 #include "core/math/transform.h"
 #include "core/scene/outline.h"
 
@@ -53,6 +55,12 @@ enum class SolidKind : uint8_t {
   // axis; a point is inside when the half-line from (sqrt(x^2 + z^2), y) towards +x crosses them
   // an odd number of times (POV-Ray's Lathe::Inside), so an unclosed curve bounds a set too.
   kLathe,
+  // The inner part of a spindle torus between two planes (core/math/lemon.h): POV-Ray's lemon, and
+  // an ovus's collar; `open`: the planes bound the set but are not surface.
+  kLemon,
+  // POV-Ray's sphere_sweep: the union of the spheres swept along its spline
+  // (core/math/sphere_sweep.h).
+  kSphereSweep,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -65,7 +73,7 @@ struct Solid {
   Transform world_from_object;
   // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1; kSuperellipsoid: exponents e, n
   double radius0 = 1, radius1 = 1;
-  bool open = false;     // kCylinder, kCone, kOutline, kSor: no end caps
+  bool open = false;     // kCylinder, kCone, kOutline, kSor, kLemon: no end caps
   bool conic = false;    // kOutline: a conic sweep between radius0 < radius1
   bool inverse = false;  // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
@@ -76,6 +84,8 @@ struct Solid {
   std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat), kLathe
   Blob blob;                               // kBlob
   Sor sor;                                 // kSor
+  Lemon lemon;                             // kLemon
+  std::shared_ptr<const SphereSweep> sweep;  // kSphereSweep
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

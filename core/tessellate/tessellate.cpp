@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/math/constants.h"
+#include "core/math/lemon.h"
 #include "core/math/sor.h"
 #include "core/math/superellipsoid.h"
 #include "core/scene/lathe.h"
@@ -287,6 +288,9 @@ void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics) {
                                            "have no triangle form yet: left out of the mesh"
                                      : primitive.kind == SolidKind::kBlob
                                          ? ": blobs have no triangle form yet: left out of the mesh"
+                                     : primitive.kind == SolidKind::kSphereSweep
+                                         ? ": sphere sweeps have no triangle form yet: left out of "
+                                           "the mesh"
                                          : ": the surface has no triangles: left out"));
 }
 
@@ -357,6 +361,22 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
     case SolidKind::kDisc:
       pieces.push_back(line(1, 0, std::min(r1, 1.0), 0));  // outward: +z
       break;
+    case SolidKind::kLemon: {
+      // The minor circle's arc about (-major, 0) between the slab's planes, caps unless open.
+      const Lemon& lemon = primitive.lemon;
+      const double from = std::asin(std::clamp(lemon.z_low, -1.0, 1.0));
+      const double to = std::asin(std::clamp(lemon.z_high, -1.0, 1.0));
+      widest = lemon_widest(lemon);
+      pieces.push_back(
+          arc(-lemon.major, 0, 1, from, to, arc_segments(to - from, 1, error / 4, most)));
+      for (ProfilePoint& p : pieces.back())
+        p.rho = std::max(p.rho, 0.0);  // a cusp on the axis
+      const double rho_low = pieces.back().front().rho, rho_high = pieces.back().back().rho;
+      if (caps && rho_low > 0)
+        pieces.insert(pieces.begin(), line(0, lemon.z_low, rho_low, lemon.z_low));
+      if (caps && rho_high > 0) pieces.push_back(line(rho_high, lemon.z_high, 0, lemon.z_high));
+      break;
+    }
     default:
       return mesh;  // set operations are not primitives
   }

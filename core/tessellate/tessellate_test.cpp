@@ -31,6 +31,9 @@ double surface_distance(const Solid& s, Vec3d p) {
     }
     case SolidKind::kTorus:
       return std::abs(std::hypot(rho - 1, p.z) - s.radius1);
+    case SolidKind::kLemon:  // the minor circle's arc, or a cap's plane
+      return std::min({std::abs(std::hypot(rho + s.lemon.major, p.z) - 1),
+                       std::abs(p.z - s.lemon.z_low), std::abs(p.z - s.lemon.z_high)});
     case SolidKind::kSor: {  // about y: the radial distance to the side, or to a cap's plane
       const double radial = std::sqrt(p.x * p.x + p.z * p.z);
       const SorSegment& seg = p.y < s.sor.front().y1 ? s.sor.front() : s.sor.back();
@@ -93,6 +96,20 @@ double largest_error(const Solid& s, const TriangleMesh& mesh, double world_scal
   return worst;
 }
 
+// Triangles not wound counter-clockwise about their vertices' normals (none should be: they face
+// out of the solid).
+size_t wound_against_normals(const TriangleMesh& mesh) {
+  size_t wrong = 0;
+  for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+    const Vec3f a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
+                c = mesh.positions[mesh.indices[i + 2]];
+    const Vec3f n = mesh.normals[mesh.indices[i]] + mesh.normals[mesh.indices[i + 1]] +
+                    mesh.normals[mesh.indices[i + 2]];
+    wrong += !(dot(cross(b - a, c - a), n) > 0.f);
+  }
+  return wrong;
+}
+
 Solid shape(SolidKind kind, double scale, double radius0 = 1, double radius1 = 1) {
   Solid s;
   s.kind = kind;
@@ -138,6 +155,29 @@ TEST(Tessellate, SuperellipsoidStaysWithinTheTolerance) {
   }
 }
 
+// A lemon's arc and caps within the tolerance, wound out of the solid; open: no caps.
+TEST(Tessellate, LemonStaysWithinTheTolerance) {
+  const double scale = 2.5;
+  Solid s = shape(SolidKind::kLemon, scale);
+  s.lemon = {0.3, -0.5, 0.6};
+  for (bool open : {false, true}) {
+    s.open = open;
+    for (double tolerance : {1e-2, 1e-3}) {
+      TessellationOptions options;
+      options.tolerance_m = tolerance, options.relative_tolerance = 0;
+      const TriangleMesh mesh = tessellate(s, options);
+      ASSERT_GT(mesh.triangle_count(), 0u);
+      const double error = largest_error(s, mesh, scale);
+      EXPECT_LE(error, tolerance);
+      EXPECT_GT(error, tolerance / 8) << "finer than it needs to be";
+      EXPECT_EQ(wound_against_normals(mesh), 0u);
+      const bool caps = std::any_of(mesh.normals.begin(), mesh.normals.end(),
+                                    [](Vec3f n) { return std::abs(n.z) > 1 - 1e-6f; });
+      EXPECT_EQ(caps, !open);
+    }
+  }
+}
+
 // A sor's profile, sampled per segment, and its caps, within the tolerance.
 TEST(Tessellate, SorStaysWithinTheTolerance) {
   const double scale = 2.5;
@@ -149,13 +189,7 @@ TEST(Tessellate, SorStaysWithinTheTolerance) {
     const TriangleMesh mesh = tessellate(s, options);
     ASSERT_GT(mesh.triangle_count(), 0u);
     EXPECT_LE(largest_error(s, mesh, scale), tolerance);
-    for (size_t i = 0; i < mesh.indices.size(); i += 3) {  // faces out of the solid
-      const Vec3f a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
-                  c = mesh.positions[mesh.indices[i + 2]];
-      const Vec3f n = mesh.normals[mesh.indices[i]] + mesh.normals[mesh.indices[i + 1]] +
-                      mesh.normals[mesh.indices[i + 2]];
-      ASSERT_GT(dot(cross(b - a, c - a), n), 0.f) << "triangle " << i / 3;
-    }
+    EXPECT_EQ(wound_against_normals(mesh), 0u);
   }
 }
 
@@ -257,13 +291,7 @@ TEST(Tessellate, LatheStaysWithinTheTolerance) {
     const double error = largest_error(s, mesh, scale);
     EXPECT_LE(error, tolerance);
     EXPECT_GT(error, tolerance / 16) << "finer than it needs to be";
-    for (size_t i = 0; i < mesh.indices.size(); i += 3) {  // wound about the normals
-      const Vec3f a = mesh.positions[mesh.indices[i]], b = mesh.positions[mesh.indices[i + 1]],
-                  c = mesh.positions[mesh.indices[i + 2]];
-      const Vec3f n = mesh.normals[mesh.indices[i]] + mesh.normals[mesh.indices[i + 1]] +
-                      mesh.normals[mesh.indices[i + 2]];
-      ASSERT_GT(dot(cross(b - a, c - a), n), 0.f) << "triangle " << i / 3;
-    }
+    EXPECT_EQ(wound_against_normals(mesh), 0u);
     for (size_t i = 0; i < mesh.positions.size(); ++i) {  // the normals out of the solid
       const Vec3d p(mesh.positions[i]), n(mesh.normals[i]);
       if (p.y < 1e-3 || p.y > 1 - 1e-3) continue;  // at the corners, beside the other piece

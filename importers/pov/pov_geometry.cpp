@@ -53,6 +53,7 @@ class Converter {
   }
   static std::string name(const Object& o) { return o.keyword + " at " + o.where.text(); }
   std::optional<Solid> primitive(const Object& o);
+  std::optional<Solid> ovus(const Object& o);
   std::optional<Solid> solid(const Object& o);
   void mesh(const Object& o);
 
@@ -178,6 +179,34 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       s.outline = o.outline;
       degenerate = !(o.outline->hi.x > 0);  // all on the axis: no surface
       break;
+    case Shape::kSphereSweep: {  // POV-Ray's object space; the parser built the segments
+      s.kind = SolidKind::kSphereSweep;
+      s.sweep = o.sweep;
+      degenerate = true;  // unless some sphere has a radius
+      for (const SweepSegment& segment : o.sweep->segments)
+        for (double r : segment.r)
+          degenerate = degenerate && r == 0;
+      break;
+    }
+    case Shape::kLemon: {
+      // Compute_Lemon_Data: in units of the axis's length, base at height 0 with radius a, apex
+      // at 1 with radius b, the minor circle of radius r through both rims has its centre at
+      // (h, v), h <= 0 (the parser raised r so that it is): with f = sqrt((4 r^2 - (a - b)^2 -
+      // 1) / ((a - b)^2 + 1)), h = (a + b - f) / 2 and v = ((b - a) f + 1) / 2. The canonical
+      // lemon is that circle's, scaled to radius 1 and centred at height 0.
+      const Vec3d axis = o.a - o.b;
+      const double len = length(axis);
+      const double a = o.r1 / len, b = o.r0 / len, r = o.r2 / len, k = (a - b) * (a - b) + 1;
+      const double f = std::sqrt(std::max(4 * r * r - k, 0.0) / k);
+      const double h = std::min((a + b - f) / 2, 0.0), v = ((b - a) * f + 1) / 2;
+      s.kind = SolidKind::kLemon;
+      s.lemon = {-h / r, -v / r, (1 - v) / r};
+      degenerate = !(len > 0) || !(r > 0) || lemon_bounds(s.lemon).empty();
+      const Vec3d w = axis / len;
+      const auto [u, u2] = perpendiculars(w);
+      place = columns(u * (len * r), u2 * (len * r), w * (len * r), o.b + w * (len * v));
+      break;
+    }
     default:
       return std::nullopt;
   }
@@ -188,6 +217,69 @@ std::optional<Solid> Converter::primitive(const Object& o) {
   }
   s.material = material_for_(o.texture, o.interior);
   return s;
+}
+
+// POV-Ray 3.7's ovus (Parse_Ovus, ovus.cpp): the bottom sphere about the origin, the top one about
+// (0, bottom, 0), joined by a collar of the spindle torus whose minor circle (radius twice the
+// larger sphere's) touches both from outside the axis: their merge, which is POV-Ray's inside.
+// The collar's planes are where the circle touches the spheres, so they are no surface. A top
+// radius of twice the bottom's or more swallows the bottom sphere: POV-Ray draws the top sphere.
+std::optional<Solid> Converter::ovus(const Object& o) {
+  const double bottom = o.r0, top = o.r1;
+  const Transform world_from_object = world_from_pov_space() * o.world_from_object;
+  if (!invertible(world_from_object) || !(std::max(bottom, top) > 0)) {
+    warn(o, "is degenerate (zero size or a singular transform): left out");
+    return std::nullopt;
+  }
+  Solid u;
+  u.kind = SolidKind::kUnion;
+  u.name = name(o);
+  const uint32_t material = material_for_(o.texture, o.interior);
+  const auto add = [&](SolidKind kind, const Transform& place) -> Solid& {
+    Solid& s = u.children.emplace_back();
+    s.kind = kind;
+    s.name = u.name;
+    s.material = material;
+    s.world_from_object = world_from_object * place;
+    return s;
+  };
+  const auto sphere = [&](double y, double r) {
+    if (r > 0)
+      add(SolidKind::kSphere, Transform::translate({0, y, 0}) * Transform::scale({r, r, r}));
+  };
+  if (!(top < 2 * bottom)) {
+    warn(o,
+         "top radius is not below twice the bottom radius: drawn as its top sphere, as POV-Ray "
+         "draws it");
+    sphere(bottom, top);
+    return std::move(u.children.front());
+  }
+  sphere(0, bottom);
+  sphere(bottom, top);
+  // The torus's minor circle: radius c, centre at height v and at h on the far side of the axis;
+  // it touches the spheres at the heights low and high.
+  double c, v, h, low, high;
+  if (bottom > top) {
+    c = 2 * bottom;
+    v = 2 * top - bottom - top * top / (2 * bottom);
+    h = std::sqrt(std::max(bottom * bottom - v * v, 0.0));
+    low = -v;
+    high = (bottom - v) * top / (c - top) + bottom;
+  } else {
+    c = 2 * top;
+    v = -2 * top + bottom + 1.5 * top * top / bottom;
+    h = std::sqrt(std::max(top * top - (v - bottom) * (v - bottom), 0.0));
+    high = 2 * bottom - v;
+    low = -v * bottom / (c - bottom);
+  }
+  const Lemon collar{h / c, (low - v) / c, (high - v) / c};
+  if (!lemon_bounds(collar).empty()) {
+    // canonical z is POV-Ray's y, as for the torus
+    Solid& s = add(SolidKind::kLemon, columns({c, 0, 0}, {0, 0, c}, {0, c, 0}, {0, v, 0}));
+    s.lemon = collar;
+    s.open = true;
+  }
+  return u;
 }
 
 std::optional<Solid> Converter::solid(const Object& o) {
@@ -219,6 +311,10 @@ std::optional<Solid> Converter::solid(const Object& o) {
       if (s->children.empty()) return std::nullopt;
       break;
     }
+    case Shape::kOvus:
+      s = ovus(o);
+      if (!s) return std::nullopt;
+      break;
     default:
       s = primitive(o);
       if (!s) return std::nullopt;

@@ -189,6 +189,120 @@ TEST(PovGeometry, QuadricIsThePolynomialInPovRaysOrder) {
   EXPECT_NEAR(y->t, 5 - 1 / std::sqrt(2.0), 1e-12);
 }
 
+// POV-Ray 3.7's Ovus::Inside, with the collar's circle as Parse_Ovus places it (centre at
+// (-horizontal, vertical), radius twice the larger sphere's, between the heights where it touches
+// the spheres): the reference the converted ovus's set is held to.
+struct PovOvus {
+  double bottom, top, c, v, h, low, high;
+  explicit PovOvus(double b, double t) : bottom(b), top(t) {
+    if (b > t) {
+      c = 2 * b, v = 2 * t - b - t * t / (2 * b), h = std::sqrt(b * b - v * v);
+      low = -v, high = (b - v) * t / (c - t) + b;
+    } else {
+      c = 2 * t, v = -2 * t + b + 1.5 * t * t / b, h = std::sqrt(t * t - (v - b) * (v - b));
+      high = 2 * b - v, low = -v * b / (c - b);
+    }
+  }
+  // How far p is inside (negative: outside) each part, the largest.
+  double depth(Vec3d p) const {
+    const double rho = std::hypot(p.x, p.z);
+    double d = std::max(bottom - length(p), top - length(p - Vec3d{0, bottom, 0}));
+    if (p.y > low && p.y < high) d = std::max(d, c - std::hypot(rho + h, p.y - v));
+    return d;
+  }
+};
+
+// The ovus (both of Parse_Ovus's cases) is POV-Ray's set: contains() agrees with Ovus::Inside,
+// every hit is on its surface (depth 0), and the surface is smooth where the collar meets the
+// spheres (POV-Ray's construction makes them touch): normals on either side of a joint agree.
+TEST(PovGeometry, OvusIsPovRaysSet) {
+  for (const auto& [b, t] : {std::pair{1.0, 0.65}, {0.6, 1.0}}) {
+    SCOPED_TRACE(t);
+    const PovOvus pov(b, t);
+    const auto c = convert({shape(Shape::kOvus, {}, {}, b, t)});
+    EXPECT_EQ(c->diagnostics.count(), 0u);
+    ASSERT_EQ(c->scene.solids.size(), 1u);
+    const RenderSolid solid(c->scene.solids[0], Transform(), {{-1e6, -1e6, -1e6}, {1e6, 1e6, 1e6}});
+    uint64_t state = 12345;
+    const auto random = [&] {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      return double(state >> 11) / double(1ull << 53) * 2 - 1;
+    };
+    for (int i = 0; i < 3000; ++i) {
+      const Vec3d p{random() * 1.5, b / 2 + random() * 2, random() * 1.5};  // POV-Ray's space
+      const double depth = pov.depth(p);
+      if (std::abs(depth) < 1e-9) continue;
+      EXPECT_EQ(solid.contains({p.x, p.y, -p.z}), depth > 0) << p.x << " " << p.y << " " << p.z;
+    }
+    for (int i = 0; i < 500; ++i) {
+      const Vec3d o = normalize(Vec3d{random(), random(), random()}) * 5;
+      const Vec3d d = normalize(Vec3d{random() * 0.5, b / 2 + random(), random() * 0.5} - o);
+      const auto hit = solid.first_hit(o, d, 0);
+      if (!hit) continue;
+      const Vec3d q{hit->position.x, hit->position.y, -hit->position.z};
+      EXPECT_NEAR(pov.depth(q), 0, 1e-9) << "ray " << i;
+    }
+    // Across each joint the surface is smooth: rays just above and just below a joint's circle.
+    for (const double y : {pov.low, pov.high}) {
+      Vec3d normals[2];
+      for (int side = 0; side < 2; ++side) {
+        const auto hit = solid.first_hit({5, y + (side ? 1e-6 : -1e-6), 0}, {-1, 0, 0}, 0);
+        ASSERT_TRUE(hit);
+        normals[side] = hit->normal;
+      }
+      EXPECT_LT(length(normals[0] - normals[1]), 1e-5) << "joint at " << y;
+    }
+  }
+  // A top radius twice the bottom's or more: POV-Ray draws the top sphere, with a warning.
+  const auto c = convert({shape(Shape::kOvus, {}, {}, 0.5, 1.2)});
+  EXPECT_EQ(c->diagnostics.count(), 1u);
+  const auto hit = trace(*c, {0, 5, 0}, {0, -1, 0});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->position.y, 0.5 + 1.2, 1e-12);
+}
+
+// A lemon between two points, POV-Ray 3.8's: its ends are discs of the given radii on the
+// axis's planes, its wall the arc of the circle of the inner radius through both rims.
+TEST(PovGeometry, LemonRunsBetweenItsRims) {
+  Object o = shape(Shape::kLemon, {0, 1, 0}, {0, -1, 0}, 0.3, 0.5);
+  o.r2 = 1.5;
+  const auto c = convert({o});
+  ASSERT_EQ(c->scene.solids.size(), 1u);
+  const RenderSolid solid(c->scene.solids[0], Transform(), {{-1e6, -1e6, -1e6}, {1e6, 1e6, 1e6}});
+  // Just inside each end, the wall is at the rim's radius; past the ends, nothing.
+  for (const auto& [y, rim] : {std::pair{-1 + 1e-9, 0.5}, {1 - 1e-9, 0.3}}) {
+    const auto hit = solid.first_hit({0, y, -5}, {0, 0, 1}, 0);
+    ASSERT_TRUE(hit);
+    EXPECT_NEAR(hit->position.z, -rim, 1e-8) << y;
+  }
+  EXPECT_FALSE(solid.first_hit({0, 1.001, -5}, {0, 0, 1}, 0));
+  const auto cap = solid.first_hit({0.2, 5, 0}, {0, -1, 0}, 0);
+  ASSERT_TRUE(cap);
+  EXPECT_NEAR(cap->position.y, 1, 1e-12);
+  expect_near(cap->normal, {0, 1, 0}, 1e-12);
+  // The wall's points are the inner radius from the circle's centre: three of them fix it.
+  Vec3d wall[3];
+  for (int i = 0; i < 3; ++i) {
+    const auto hit = solid.first_hit({5, -0.5 + 0.5 * i, 0}, {-1, 0, 0}, 0);
+    ASSERT_TRUE(hit);
+    wall[i] = hit->position;
+  }
+  // The circle through (x_i, y_i) in the meridian plane: its radius is the inner radius.
+  const double ax = wall[0].x, ay = wall[0].y, bx = wall[1].x, by = wall[1].y, cx = wall[2].x,
+               cy = wall[2].y;
+  const double d = 2 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by));
+  const double ux = ((ax * ax + ay * ay) * (by - cy) + (bx * bx + by * by) * (cy - ay) +
+                     (cx * cx + cy * cy) * (ay - by)) /
+                    d;
+  const double uy = ((ax * ax + ay * ay) * (cx - bx) + (bx * bx + by * by) * (ax - cx) +
+                     (cx * cx + cy * cy) * (bx - ax)) /
+                    d;
+  EXPECT_NEAR(std::hypot(ax - ux, ay - uy), 1.5, 1e-9);
+  EXPECT_LT(ux, 0);  // on the far side of the axis: the lemon, not the apple
+  EXPECT_NEAR(std::hypot(0.5 - ux, -1 - uy), 1.5, 1e-9);  // through the base's rim
+  EXPECT_NEAR(std::hypot(0.3 - ux, 1 - uy), 1.5, 1e-9);   // and the apex's
+}
+
 TEST(PovGeometry, WhatCannotBeConvertedIsReported) {
   Object hidden = shape(Shape::kSphere, {0, 0, 0}, {}, 1);
   hidden.no_image = true;

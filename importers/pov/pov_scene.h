@@ -13,6 +13,7 @@
 
 #include <filmback/vec.h>
 
+#include "core/math/sphere_sweep.h"
 #include "core/math/transform.h"
 #include "core/scene/outline.h"
 #include "core/scene/solid_texture.h"
@@ -150,6 +151,9 @@ enum class Shape {
   kBlob,            // threshold r0 (> 0), `blob_components`
   kSor,             // `profile` points (radius, height), height increasing; open
   kLathe,           // `outline`: its curve in the (radius, height) plane, about the y axis
+  kOvus,            // bottom radius r0, top radius r1 (>= 0)
+  kLemon,           // apex a radius r0, base b radius r1, inner radius r2 (bounded as POV-Ray's)
+  kSphereSweep,     // `sweep`, its segments as the parser built them
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -174,10 +178,12 @@ struct Object {
   SourceLocation where;
   Vec3d a{0, 0, 0}, b{0, 0, 0};
   double r0 = 0, r1 = 0;
+  double r2 = 0;  // kLemon
   bool open = false;
   int order = 0;                                        // kPolynomial
   std::vector<double> coefficients;                     // kPolynomial
   std::shared_ptr<const Outline> outline;               // kPrism, kLathe
+  std::shared_ptr<const SphereSweep> sweep;             // kSphereSweep
   bool conic = false;                                   // kPrism: conic_sweep
   std::vector<BlobComponentStatement> blob_components;  // kBlob
   std::vector<std::pair<double, double>> profile;       // kSor

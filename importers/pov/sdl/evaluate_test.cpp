@@ -971,6 +971,123 @@ TEST_F(Sdl, LatheSplines) {
   EXPECT_EQ(run("lathe { cubic_spline 4, <-1, 0>, <1, 1>, <1, 2>, <-1, 3> }").objects.size(), 1u);
 }
 
+// ovus and lemon: their radii; a negative radius, a lemon whose ends coincide refused at their
+// place; a lemon's inner radius below the least that reaches both rims raised, with a warning.
+TEST_F(Sdl, OvusAndLemon) {
+  Scene scene = run("ovus { 1, 0.65 }\nlemon { <0, 1, 0>, 0.3, <0, -1, 0>, 0.5, 2 open }");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  EXPECT_EQ(scene.objects[0].shape, Shape::kOvus);
+  EXPECT_EQ(scene.objects[0].r0, 1);
+  EXPECT_EQ(scene.objects[0].r1, 0.65);
+  const Object& lemon = scene.objects[1];
+  EXPECT_EQ(lemon.shape, Shape::kLemon);
+  EXPECT_EQ(lemon.a.y, 1);
+  EXPECT_EQ(lemon.r0, 0.3);
+  EXPECT_EQ(lemon.b.y, -1);
+  EXPECT_EQ(lemon.r1, 0.5);
+  EXPECT_EQ(lemon.r2, 2);
+  EXPECT_TRUE(lemon.open);
+  EXPECT_TRUE(scene.warnings.empty());
+  // Axis 2 long: in its units a = 0.25, b = 0.15, and the least inner radius is
+  // 2 sqrt((a^2 - b^2)^2 + 2 a^2 + 2 b^2 + 1) / 2.
+  scene = run("lemon { <0, 1, 0>, 0.3, <0, -1, 0>, 0.5,\n 0.2 }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const double a = 0.25, b = 0.15;
+  EXPECT_NEAR(scene.objects[0].r2,
+              std::sqrt((a * a - b * b) * (a * a - b * b) + 2 * a * a + 2 * b * b + 1), 1e-15);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_EQ(scene.warnings[0].rfind("scene.pov:2:2: ", 0), 0u) << scene.warnings[0];
+  std::string error = error_of("ovus { 1,\n -0.5 }");
+  EXPECT_EQ(error.rfind("scene.pov:2:2: ", 0), 0u) << error;
+  EXPECT_NE(error.find("not negative"), std::string::npos) << error;
+  error = error_of("lemon { <0, 1, 0>, -0.3, <0, -1, 0>, 0.5, 2 }");
+  EXPECT_EQ(error.rfind("scene.pov:1:20: ", 0), 0u) << error;
+  error = error_of("lemon {\n <0, 1, 0>, 0.3, <0, 1, 0>, 0.5, 2 }");
+  EXPECT_EQ(error.rfind("scene.pov:2:2: ", 0), 0u) << error;
+  EXPECT_NE(error.find("degenerate lemon"), std::string::npos) << error;
+}
+
+// sphere_sweep: its segments per spline; too few spheres, a negative radius and an unknown
+// spline refused at their place; `tolerance` read.
+TEST_F(Sdl, SphereSweepSplines) {
+  Scene scene = run(
+      "sphere_sweep { linear_spline 3, <0, 0, 0>, 0.5, <1, 0, 0>, 0.2, <1, 1, 0>, 0.3 "
+      "tolerance 1e-4 }\n"
+      "sphere_sweep { b_spline 5, <0, 0, 0>, 1, <1, 0, 0>, 1, <2, 0, 0>, 1, <3, 0, 0>, 1, "
+      "<4, 0, 0>, 1 }\n"
+      "sphere_sweep { cubic_spline 4, <0, 0, 0>, 1, <1, 0, 0>, 1, <2, 0, 0>, 1, <3, 0, 0>, 1 }");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  for (const Object& o : scene.objects)
+    ASSERT_EQ(o.shape, Shape::kSphereSweep);
+  ASSERT_EQ(scene.objects[0].sweep->segments.size(), 2u);
+  const SweepSegment& linear = scene.objects[0].sweep->segments[1];
+  EXPECT_EQ(linear.c[0].x, 1);
+  EXPECT_EQ(linear.c[1].y, 1);  // from <1, 0, 0> to <1, 1, 0>
+  EXPECT_NEAR(linear.r[1], 0.1, 1e-15);
+  ASSERT_EQ(scene.objects[1].sweep->segments.size(), 2u);
+  // a uniform B-spline through evenly spaced points starts at (P0 + 4 P1 + P2) / 6 = P1
+  EXPECT_NEAR(scene.objects[1].sweep->segments[0].c[0].x, 1, 1e-15);
+  ASSERT_EQ(scene.objects[2].sweep->segments.size(), 1u);
+  EXPECT_EQ(scene.objects[2].sweep->segments[0].c[0].x, 1);  // Catmull-Rom: from P1 to P2
+  std::string error =
+      error_of("sphere_sweep { b_spline\n 3, <0, 0, 0>, 1, <1, 0, 0>, 1, <2, 0, 0>, 1 }");
+  EXPECT_EQ(error.rfind("scene.pov:2:2: ", 0), 0u) << error;
+  EXPECT_NE(error.find("at least 4 spheres"), std::string::npos) << error;
+  error = error_of("sphere_sweep { linear_spline 2, <0, 0, 0>, 1,\n <1, 0, 0>, -1 }");
+  EXPECT_EQ(error.rfind("scene.pov:2:13: ", 0), 0u) << error;
+  error = error_of("sphere_sweep { bezier_spline 2, <0, 0, 0>, 1, <1, 0, 0>, 1 }");
+  EXPECT_EQ(error.rfind("scene.pov:1:16: ", 0), 0u) << error;
+}
+
+// bicubic_patch: the grid of 2^u_steps x 2^v_steps sub-patches, two triangles each, vertices on
+// the Bézier surface (its corners the corner control points) with unit normals; huge step counts
+// bounded with a warning; a missing type refused.
+TEST_F(Sdl, BicubicPatchTriangles) {
+  Scene scene = run(
+      "bicubic_patch { type 1 flatness 0.01 u_steps 2 v_steps 3\n"
+      "<0, 0, 2>, <1, 0, 0>, <2, 0, 0>, <3, 0, -2>, <0, 1, 0>, <1, 1, 0>, <2, 1, 0>, <3, 1, 0>,\n"
+      "<0, 2, 0>, <1, 2, 0>, <2, 2, 0>, <3, 2, 0>, <0, 3, 2>, <1, 3, 0>, <2, 3, 0>, <3, 3, -2> }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  const Object& patch = scene.objects[0];
+  EXPECT_EQ(patch.shape, Shape::kMesh);
+  EXPECT_EQ(patch.keyword, "bicubic_patch");
+  ASSERT_EQ(patch.vertices.size(), 5u * 9u);
+  ASSERT_EQ(patch.normals.size(), patch.vertices.size());
+  EXPECT_EQ(patch.indices.size(), 3u * 2 * 4 * 8);
+  // Rows run with u (the first index), columns with v: vertex (i, j) is at (u, v) = (i/4, j/8).
+  const auto at = [&](size_t i, size_t j) { return patch.vertices[i * 9 + j]; };
+  EXPECT_EQ(at(0, 0).z, 2);
+  EXPECT_EQ(at(4, 8).x, 3);
+  EXPECT_EQ(at(4, 8).y, 3);
+  EXPECT_EQ(at(4, 8).z, -2);
+  // Here x = 3 v and y = 3 u exactly (evenly spaced control points), z the Bézier blend.
+  const Vec3d mid = at(2, 4);
+  EXPECT_NEAR(mid.x, 1.5, 1e-12);
+  EXPECT_NEAR(mid.y, 1.5, 1e-12);
+  const double b[4] = {0.125, 0.375, 0.375, 0.125};  // Bernstein weights at 1/2
+  const double z[4][4] = {{2, 0, 0, -2}, {0, 0, 0, 0}, {0, 0, 0, 0}, {2, 0, 0, -2}};
+  double expected_z = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      expected_z += b[i] * b[j] * z[i][j];
+  EXPECT_NEAR(mid.z, expected_z, 1e-12);
+  for (const Vec3d& n : patch.normals)
+    EXPECT_NEAR(length(n), 1, 1e-12);
+  scene =
+      run("bicubic_patch { type 0 u_steps 1e9 v_steps -3 uv_vectors <0,0> <1,0> <1,1> <0,1>\n"
+          "<0,0,0>,<1,0,0>,<2,0,0>,<3,0,0>,"
+          "<0,1,0>,<1,1,0>,<2,1,0>,<3,1,0>,<0,2,0>,<1,2,0>,<2,2,0>,<3,2,0>,<0,3,0>,<1,3,0>,"
+          "<2,3,0>,<3,3,0> }");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_EQ(scene.objects[0].vertices.size(), 1025u * 2);  // bounded to 2^10 rows, one column
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("bounded to 10"), std::string::npos) << scene.warnings[0];
+  ASSERT_EQ(scene.unsupported.size(), 1u);  // uv_vectors: where a texture goes, not the shape
+  EXPECT_EQ(scene.unsupported[0].feature, "bicubic_patch uv_vectors");
+  const std::string error = error_of("bicubic_patch { u_steps 3 <0,0,0> }");
+  EXPECT_NE(error.find("type 0"), std::string::npos) << error;
+}
+
 TEST_F(Sdl, PolygonAndMeshes) {
   // an L-shaped (concave) hexagon: 4 triangles covering area 3
   Scene scene = run("polygon { 7, <0,0>, <2,0>, <2,1>, <1,1>, <1,2>, <0,2>, <0,0> }");

@@ -16,11 +16,10 @@ constexpr std::string_view kSupported[] = {
     "object",      "union",    "merge",           "difference",   "intersection", "light_source",
     "light_group", "quadric",  "cubic",           "quartic",      "poly",         "polynomial",
     "prism",       "text",     "superellipsoid",  "height_field", "blob",         "sor",
-    "lathe"};
+    "lathe",       "ovus",     "lemon",           "sphere_sweep", "bicubic_patch"};
 // parsed and reported: their geometry needs code the renderer does not have yet
-constexpr std::string_view kUnsupported[] = {"isosurface",   "julia_fractal", "parametric",
-                                             "sphere_sweep", "bicubic_patch", "ovus",
-                                             "lemon",        "fractal"};
+constexpr std::string_view kUnsupported[] = {"isosurface", "julia_fractal", "parametric",
+                                             "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -285,6 +284,58 @@ void parse_sor(Parser& p, Object& o) {
   }
 }
 
+// A radius that must be finite and not negative, refused at its place otherwise.
+double parse_radius(Parser& p, const std::string& what) {
+  const SourceLocation where = p.location_of(p.peek());
+  const double r = p.parse_float();
+  if (!(r >= 0 && std::isfinite(r)))
+    p.fail_at(where, what + " " + number_string(r) + ": it must be finite and not negative");
+  return r;
+}
+
+// ovus { bottom_radius, top_radius } (POV-Ray 3.7's Parse_Ovus): "Both Ovus radii must be
+// positive"; the shape itself is worked out where it is converted (importers/pov/pov_geometry).
+void parse_ovus(Parser& p, Object& o) {
+  o.shape = Shape::kOvus;
+  o.r0 = parse_radius(p, "ovus bottom radius");
+  p.accept(",");
+  o.r1 = parse_radius(p, "ovus top radius");
+}
+
+// lemon { apex, apex_radius, base, base_radius, inner_radius [open] } (POV-Ray 3.8's
+// Parse_Lemon and Compute_Lemon_Data): radii not negative, the two points apart; an inner radius
+// too small for the torus's circle to reach both end circles is raised to the least that does,
+// with a warning, as POV-Ray does.
+void parse_lemon(Parser& p, Object& o) {
+  o.shape = Shape::kLemon;
+  const SourceLocation where = p.location_of(p.peek());
+  o.a = p.parse_vector();
+  p.accept(",");
+  o.r0 = parse_radius(p, "lemon apex radius");
+  p.accept(",");
+  o.b = p.parse_vector();
+  p.accept(",");
+  o.r1 = parse_radius(p, "lemon base radius");
+  p.accept(",");
+  const SourceLocation inner_where = p.location_of(p.peek());
+  o.r2 = parse_radius(p, "lemon inner radius");
+  const double len = length(o.a - o.b);
+  if (!(len > 0 && std::isfinite(len)))
+    p.fail_at(where, "lemon's apex and base coincide (or are not finite): degenerate lemon");
+  // In units of the axis's length, base at height 0 with radius a, apex at 1 with radius b: the
+  // circle through both end circles' rims reaches the axis (the torus's major radius 0) at r =
+  // sqrt((a^2 - b^2)^2 + 2 a^2 + 2 b^2 + 1) / 2; below it the circle would pass the axis.
+  const double a = o.r1 / len, b = o.r0 / len;
+  const double least =
+      0.5 * len * std::sqrt((a * a - b * b) * (a * a - b * b) + 2 * a * a + 2 * b * b + 1);
+  if (o.r2 < least) {
+    p.warn_at(inner_where, "lemon inner radius " + number_string(o.r2) +
+                               " is too small: the least is " + number_string(least) +
+                               ", which is used");
+    o.r2 = least;
+  }
+}
+
 // The other shapes, whose arguments need their own parser.
 struct ShapeParser {
   std::string_view name;
@@ -303,6 +354,10 @@ constexpr ShapeParser kShapes[] = {
     {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
     {"sor", parse_sor},
     {"lathe", [](Parser& p, Object& o) { p.parse_lathe(o); }},
+    {"ovus", parse_ovus},
+    {"lemon", parse_lemon},
+    {"sphere_sweep", [](Parser& p, Object& o) { p.parse_sphere_sweep(o); }},
+    {"bicubic_patch", [](Parser& p, Object& o) { p.parse_bicubic_patch(o); }},
 };
 
 // gif and pot keep their heights in palette indices (pot: two 8-bit halves of one 16-bit height),
