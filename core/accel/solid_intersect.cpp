@@ -33,6 +33,7 @@ struct RenderSolid::Node {
   double magnitude = 0;  // farthest corner of a bounded primitive from the render origin
   Blob blob;             // kBlob, in object space
   Sor sor;               // kSor, in object space
+  std::shared_ptr<const Isosurface> isosurface;  // kIsosurface, in object space
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)
@@ -565,6 +566,28 @@ void lathe_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out
   if (inside) push(out, n, entry, box_out, lo, hi);
 }
 
+// f < threshold within the container (core/scene/isosurface.h): the walk's crossings pair up from
+// its inside state at the container's entry. The container's boundary is part 1, surface unless
+// `open`. Where a cap stopped the walk, the ray leaves the set through no surface. The walk
+// starts at the container's entry whatever lo is, and stops only past hi: the same ray meets the
+// same crossings before hi.
+void isosurface_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  const Isosurface& iso = *leaf.isosurface;
+  double t_in = 0, t_out = 0;
+  if (!isosurface_container_chord(iso, r.o, r.d, t_in, t_out)) return;
+  const IsosurfaceWalk walk = isosurface_walk(iso, r.o, r.d, t_in, t_out, hi);
+  const bool caps = !leaf.open;
+  bool inside = walk.inside_at_entry;
+  Boundary from = on(leaf, t_in, 1, caps);
+  for (int i = 0; i < walk.count; ++i) {
+    const Boundary crossing = on(leaf, walk.crossings[i]);
+    if (inside) push(out, n, from, crossing, lo, hi);
+    from = crossing, inside = !inside;
+  }
+  if (inside)
+    push(out, n, from, walk.complete ? on(leaf, t_out, 1, caps) : Boundary{walk.t_end}, lo, hi);
+}
+
 // The primitive's spans (at most primitive_max_spans) into out, using primitive_workspace spans
 // of scratch; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out,
@@ -608,6 +631,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kLathe:
       lathe_spans(leaf, r, lo, hi, out, n, scratch);
       break;
+    case SolidKind::kIsosurface:
+      isosurface_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -636,6 +662,8 @@ size_t primitive_max_spans(const Node& leaf) {
       return 2 * leaf.sor.size() + 1;
     case SolidKind::kLathe:  // pieces between its cuts, every other one inside
       return lathe_boundaries(*leaf.outline) / 2 + 1;
+    case SolidKind::kIsosurface:  // every other piece between its crossings
+      return kIsosurfaceMaxCrossings / 2 + 1;
     default:
       return 1;
   }
@@ -752,6 +780,9 @@ Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
       return part == 0 ? sor_side_gradient(leaf.sor, p) : Vec3d{0, part == 1 ? -1.0 : 1.0, 0};
     case SolidKind::kLathe:
       return lathe_normal(leaf.outline->segments[b.segment], p, d, part == 3);
+    case SolidKind::kIsosurface:
+      return part == 1 ? isosurface_container_normal(*leaf.isosurface, p)
+                       : isosurface_gradient(*leaf.isosurface, p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -803,6 +834,7 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
     node.z1 = std::max(solid.radius0, solid.radius1);
   node.blob = solid.blob;
   node.sor = solid.sor;
+  node.isosurface = solid.isosurface;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

@@ -47,6 +47,8 @@ Bounds3d object_bounds(const Solid& primitive) {
       return sor_bounds(primitive.sor);
     case SolidKind::kLathe:
       return lathe_bounds(*primitive.outline);
+    case SolidKind::kIsosurface:
+      return isosurface_bounds(*primitive.isosurface);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

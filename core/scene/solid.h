@@ -14,6 +14,7 @@
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
 #include "core/math/transform.h"
+#include "core/scene/isosurface.h"
 #include "core/scene/outline.h"
 
 namespace fb {
@@ -53,6 +54,9 @@ enum class SolidKind : uint8_t {
   // axis; a point is inside when the half-line from (sqrt(x^2 + z^2), y) towards +x crosses them
   // an odd number of times (POV-Ray's Lathe::Inside), so an unclosed curve bounds a set too.
   kLathe,
+  // POV-Ray's isosurface (core/scene/isosurface.h): where `isosurface`'s function is below its
+  // threshold within its container; `open`: the container bounds the set but is no surface.
+  kIsosurface,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -65,7 +69,7 @@ struct Solid {
   Transform world_from_object;
   // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1; kSuperellipsoid: exponents e, n
   double radius0 = 1, radius1 = 1;
-  bool open = false;     // kCylinder, kCone, kOutline, kSor: no end caps
+  bool open = false;     // kCylinder, kCone, kOutline, kSor: no end caps; kIsosurface: container
   bool conic = false;    // kOutline: a conic sweep between radius0 < radius1
   bool inverse = false;  // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
@@ -76,6 +80,7 @@ struct Solid {
   std::shared_ptr<const Outline> outline;  // kOutline (shared: a text's glyphs repeat), kLathe
   Blob blob;                               // kBlob
   Sor sor;                                 // kSor
+  std::shared_ptr<const Isosurface> isosurface;  // kIsosurface
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

@@ -178,6 +178,10 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       s.outline = o.outline;
       degenerate = !(o.outline->hi.x > 0);  // all on the axis: no surface
       break;
+    case Shape::kIsosurface:  // POV-Ray's object space; the parser checked the bounds
+      s.kind = SolidKind::kIsosurface;
+      s.isosurface = o.isosurface;
+      break;
     default:
       return std::nullopt;
   }

@@ -14,6 +14,7 @@
 #include <filmback/vec.h>
 
 #include "core/math/transform.h"
+#include "core/scene/isosurface.h"
 #include "core/scene/outline.h"
 #include "core/scene/solid_texture.h"
 
@@ -145,6 +146,7 @@ enum class Shape {
   kBlob,            // threshold r0 (> 0), `blob_components`
   kSor,             // `profile` points (radius, height), height increasing; open
   kLathe,           // `outline`: its curve in the (radius, height) plane, about the y axis
+  kIsosurface,      // `isosurface`: its function, threshold and container; open
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -176,6 +178,7 @@ struct Object {
   bool conic = false;                                   // kPrism: conic_sweep
   std::vector<BlobComponentStatement> blob_components;  // kBlob
   std::vector<std::pair<double, double>> profile;       // kSor
+  std::shared_ptr<const Isosurface> isosurface;         // kIsosurface
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;
@@ -277,7 +280,7 @@ struct Scene {
   std::optional<SkySphere> sky_sphere;
   std::optional<double> assumed_gamma;
   Colour ambient_light{1, 1, 1};
-  std::vector<std::filesystem::path> images;  // image_map files, found; each once
+  std::vector<std::filesystem::path> images;           // image_map files, found; each once
   std::optional<double> max_trace_level, adc_bailout;  // global_settings, as written
   double version = 3.7;
   // Features met but not rendered, in the order met; the converters report each once per scene.

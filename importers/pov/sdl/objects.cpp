@@ -11,16 +11,15 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",      "box",      "plane",           "cylinder",     "cone",         "torus",
-    "disc",        "triangle", "smooth_triangle", "mesh",         "mesh2",        "polygon",
-    "object",      "union",    "merge",           "difference",   "intersection", "light_source",
-    "light_group", "quadric",  "cubic",           "quartic",      "poly",         "polynomial",
-    "prism",       "text",     "superellipsoid",  "height_field", "blob",         "sor",
-    "lathe"};
+    "sphere",      "box",        "plane",           "cylinder",     "cone",         "torus",
+    "disc",        "triangle",   "smooth_triangle", "mesh",         "mesh2",        "polygon",
+    "object",      "union",      "merge",           "difference",   "intersection", "light_source",
+    "light_group", "quadric",    "cubic",           "quartic",      "poly",         "polynomial",
+    "prism",       "text",       "superellipsoid",  "height_field", "blob",         "sor",
+    "lathe",       "isosurface", "parametric"};
 // parsed and reported: their geometry needs code the renderer does not have yet
-constexpr std::string_view kUnsupported[] = {"isosurface",   "julia_fractal", "parametric",
-                                             "sphere_sweep", "bicubic_patch", "ovus",
-                                             "lemon",        "fractal"};
+constexpr std::string_view kUnsupported[] = {"julia_fractal", "sphere_sweep", "bicubic_patch",
+                                             "ovus",          "lemon",        "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -303,6 +302,8 @@ constexpr ShapeParser kShapes[] = {
     {"blob", [](Parser& p, Object& o) { p.parse_blob(o); }},
     {"sor", parse_sor},
     {"lathe", [](Parser& p, Object& o) { p.parse_lathe(o); }},
+    {"isosurface", [](Parser& p, Object& o) { p.parse_isosurface(o); }},
+    {"parametric", [](Parser& p, Object& o) { p.parse_parametric(o); }},
 };
 
 // gif and pot keep their heights in palette indices (pot: two 8-bit halves of one 16-bit height),
