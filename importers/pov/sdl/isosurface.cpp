@@ -88,8 +88,9 @@ void Parser::parse_contained_by(Isosurface& container) {
 void Parser::parse_isosurface(Object& o) {
   o.shape = Shape::kIsosurface;
   Isosurface iso;
-  if (!peek().word("function")) fail("isosurface expects its function first");
-  const SourceLocation function_where = location_of(next());
+  const Tok first = next();  // directives run: an #if may choose the function
+  const SourceLocation function_where = location_of(first);
+  if (!first.word("function")) fail_at(function_where, "isosurface expects its function first");
   const FunctionValue f = parse_function_body({"x", "y", "z"}, true);
   if (!f.unsupported.empty()) unsupported("function " + f.unsupported, function_where);
   iso.function = f.program;
