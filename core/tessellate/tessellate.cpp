@@ -329,8 +329,10 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
     const double longest = std::max({size.x, size.y, size.z});
     const double radius = 0.125 * std::min({size.x, size.y, size.z});
     const double cells = std::ceil(longest / std::sqrt(8 * error * radius));
-    tessellate_isosurface(*primitive.isosurface, primitive.open,
-                          uint32_t(std::min(cells, double(kIsosurfaceMaxCells))), mesh);
+    tessellate_isosurface(
+        *primitive.isosurface, primitive.open,
+        cells < kIsosurfaceMaxCells ? uint32_t(cells) : kIsosurfaceMaxCells,  // NaN: the most
+        mesh);
     return mesh;
   }
   const bool lathe = primitive.kind == SolidKind::kLathe;

@@ -78,7 +78,8 @@ void Parser::parse_contained_by(Isosurface& container) {
     container.box_hi = parse_vector();
     const Bounds3d box = isosurface_bounds(container);
     const Vec3d size = box.hi - box.lo;
-    if (!(box.finite() && size.x > 0 && size.y > 0 && size.z > 0))
+    if (!(box.finite() && size.x > 0 && size.y > 0 && size.z > 0 &&
+          std::isfinite(size.x + size.y + size.z)))
       fail_at(where, "contained_by box: its corners must be finite and span a volume");
   }
   expect("}");

@@ -59,6 +59,8 @@ TEST_F(Sdl, IsosurfaceRefusesBoundsThatCannotBeWalked) {
       {"isosurface { function { y } threshold 1e400 }", "scene.pov:1:39: ", "not finite"},
       {"isosurface { function { y } contained_by { box { 0, <1, 0, 1> } } }",
        "scene.pov:1:44: ", "span a volume"},
+      {"isosurface { function { y } contained_by { box { -1e308, 1e308 } } }",
+       "scene.pov:1:44: ", "span a volume"},
       {"isosurface { function { y } contained_by { sphere { 0, 0 } } }",
        "scene.pov:1:44: ", "radius must be positive"},
       {"isosurface { function { y } contained_by { cone { 0, 1, 1, 0 } } }",
