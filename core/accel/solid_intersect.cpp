@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/function/isosurface_function.h"
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
 #include "core/math/superellipsoid.h"

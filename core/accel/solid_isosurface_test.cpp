@@ -10,7 +10,8 @@
 #include <random>
 
 #include "core/accel/solid_intersect.h"
-#include "core/scene/isosurface.h"
+#include "core/function/isosurface_function.h"
+#include "core/function/user_function.h"
 #include "support/finite_difference.h"
 #include "support/solid_builders.h"
 

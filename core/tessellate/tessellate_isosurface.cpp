@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/function/isosurface_function.h"
+
 namespace fb {
 
 namespace {

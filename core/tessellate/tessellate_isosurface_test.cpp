@@ -10,6 +10,7 @@
 #include <memory>
 #include <utility>
 
+#include "core/function/user_function.h"
 #include "core/tessellate/tessellate.h"
 
 namespace fb {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "core/function/isosurface_function.h"
 #include "importers/pov/sdl/parser.h"
 
 namespace fb::pov::sdl {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/scene/isosurface.h"
+#include "core/function/isosurface_function.h"
 #include "importers/pov/sdl/sdl_test_fixture.h"
 
 namespace fb::pov {
