@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/function/isosurface_function.h"
 #include "core/math/lemon.h"
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
@@ -36,7 +37,8 @@ struct RenderSolid::Node {
   Blob blob;             // kBlob, in object space
   Sor sor;               // kSor, in object space
   Lemon lemon;           // kLemon
-  std::shared_ptr<const SphereSweep> sweep;  // kSphereSweep
+  std::shared_ptr<const SphereSweep> sweep;      // kSphereSweep
+  std::shared_ptr<const Isosurface> isosurface;  // kIsosurface, in object space
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)
@@ -662,6 +664,28 @@ void lathe_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out
   if (inside) push(out, n, entry, box_out, lo, hi);
 }
 
+// f < threshold within the container (core/scene/isosurface.h): the walk's crossings pair up from
+// its inside state at the container's entry. The container's boundary is part 1, surface unless
+// `open`. Where a cap stopped the walk, the ray leaves the set through no surface. The walk
+// starts at the container's entry whatever lo is, and stops only past hi: the same ray meets the
+// same crossings before hi.
+void isosurface_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  const Isosurface& iso = *leaf.isosurface;
+  double t_in = 0, t_out = 0;
+  if (!isosurface_container_chord(iso, r.o, r.d, t_in, t_out)) return;
+  const IsosurfaceWalk walk = isosurface_walk(iso, r.o, r.d, t_in, t_out, hi);
+  const bool caps = !leaf.open;
+  bool inside = walk.inside_at_entry;
+  Boundary from = on(leaf, t_in, 1, caps);
+  for (int i = 0; i < walk.count; ++i) {
+    const Boundary crossing = on(leaf, walk.crossings[i]);
+    if (inside) push(out, n, from, crossing, lo, hi);
+    from = crossing, inside = !inside;
+  }
+  if (inside)
+    push(out, n, from, walk.complete ? on(leaf, t_out, 1, caps) : Boundary{walk.t_end}, lo, hi);
+}
+
 // The primitive's spans (at most primitive_max_spans) into out, using primitive_workspace spans
 // of scratch; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out,
@@ -711,6 +735,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kSphereSweep:
       sweep_spans(leaf, r, lo, hi, out, n, scratch);
       break;
+    case SolidKind::kIsosurface:
+      isosurface_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -743,6 +770,8 @@ size_t primitive_max_spans(const Node& leaf) {
       return 3;
     case SolidKind::kSphereSweep:  // pieces between its crossings, every other one inside
       return sweep_boundaries(*leaf.sweep) / 2 + 1;
+    case SolidKind::kIsosurface:  // every other piece between its crossings
+      return kIsosurfaceMaxCrossings / 2 + 1;
     default:
       return 1;
   }
@@ -865,6 +894,9 @@ Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
       return part == 0 ? lemon_gradient(leaf.lemon, p) : Vec3d{0, 0, part == 1 ? -1.0 : 1.0};
     case SolidKind::kSphereSweep:
       return sweep_segment_normal(leaf.sweep->segments[b.segment], p);
+    case SolidKind::kIsosurface:
+      return part == 1 ? isosurface_container_normal(*leaf.isosurface, p)
+                       : isosurface_gradient(*leaf.isosurface, p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -918,6 +950,7 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   node.sor = solid.sor;
   node.lemon = solid.lemon;
   node.sweep = solid.sweep;
+  node.isosurface = solid.isosurface;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

@@ -51,6 +51,8 @@ Bounds3d object_bounds(const Solid& primitive) {
       return lemon_bounds(primitive.lemon);
     case SolidKind::kSphereSweep:
       return sphere_sweep_bounds(*primitive.sweep);
+    case SolidKind::kIsosurface:
+      return isosurface_bounds(*primitive.isosurface);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

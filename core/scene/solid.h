@@ -16,6 +16,7 @@
 #include "core/math/sor.h"
 #include "core/math/sphere_sweep.h"
 #include "core/math/transform.h"
+#include "core/scene/isosurface.h"
 #include "core/scene/outline.h"
 
 namespace fb {
@@ -61,6 +62,9 @@ enum class SolidKind : uint8_t {
   // POV-Ray's sphere_sweep: the union of the spheres swept along its spline
   // (core/math/sphere_sweep.h).
   kSphereSweep,
+  // POV-Ray's isosurface (core/scene/isosurface.h): where `isosurface`'s function is below its
+  // threshold within its container; `open`: the container bounds the set but is no surface.
+  kIsosurface,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -73,7 +77,8 @@ struct Solid {
   Transform world_from_object;
   // kCone: base and cap radii (>= 0); kTorus, kDisc: radius1; kSuperellipsoid: exponents e, n
   double radius0 = 1, radius1 = 1;
-  bool open = false;     // kCylinder, kCone, kOutline, kSor, kLemon: no end caps
+  // kCylinder, kCone, kOutline, kSor, kLemon: no end caps; kIsosurface: no container walls
+  bool open = false;
   bool conic = false;    // kOutline: a conic sweep between radius0 < radius1
   bool inverse = false;  // the complement of the set
   // Its boundary limits the set but is no surface: POV-Ray's clipped_by, which leaves the clipped
@@ -85,7 +90,8 @@ struct Solid {
   Blob blob;                               // kBlob
   Sor sor;                                 // kSor
   Lemon lemon;                             // kLemon
-  std::shared_ptr<const SphereSweep> sweep;  // kSphereSweep
+  std::shared_ptr<const SphereSweep> sweep;      // kSphereSweep
+  std::shared_ptr<const Isosurface> isosurface;  // kIsosurface
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

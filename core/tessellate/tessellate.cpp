@@ -11,6 +11,7 @@
 #include "core/math/superellipsoid.h"
 #include "core/scene/lathe.h"
 #include "core/tessellate/tessellate_csg.h"
+#include "core/tessellate/tessellate_isosurface.h"
 #include "core/tessellate/tessellate_outline.h"
 
 namespace fb {
@@ -320,6 +321,22 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
   const uint32_t most = std::max(options.max_segments, 3u);
   if (primitive.kind == SolidKind::kSuperellipsoid) {
     superellipsoid_mesh(primitive, error, most, mesh);
+    return mesh;
+  }
+  if (primitive.kind == SolidKind::kIsosurface) {
+    // Flat pieces across a cell stray by about cell^2 curvature / 8. The function's curvature is
+    // not known: cells of sqrt(8 error r) meet the tolerance where the surface curves no more
+    // than a sphere of radius r, taken as a quarter of the container's least half-size. The grid
+    // is capped (kIsosurfaceMaxCells), past which the tolerance is not met.
+    const Bounds3d box = isosurface_bounds(*primitive.isosurface);
+    const Vec3d size = box.hi - box.lo;
+    const double longest = std::max({size.x, size.y, size.z});
+    const double radius = 0.125 * std::min({size.x, size.y, size.z});
+    const double cells = std::ceil(longest / std::sqrt(8 * error * radius));
+    tessellate_isosurface(
+        *primitive.isosurface, primitive.open,
+        cells < kIsosurfaceMaxCells ? uint32_t(cells) : kIsosurfaceMaxCells,  // NaN: the most
+        mesh);
     return mesh;
   }
   const bool lathe = primitive.kind == SolidKind::kLathe;

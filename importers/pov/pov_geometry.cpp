@@ -207,6 +207,10 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       place = columns(u * (len * r), u2 * (len * r), w * (len * r), o.b + w * (len * v));
       break;
     }
+    case Shape::kIsosurface:  // POV-Ray's object space; the parser checked the bounds
+      s.kind = SolidKind::kIsosurface;
+      s.isosurface = o.isosurface;
+      break;
     default:
       return std::nullopt;
   }

@@ -15,6 +15,7 @@
 
 #include "core/math/sphere_sweep.h"
 #include "core/math/transform.h"
+#include "core/scene/isosurface.h"
 #include "core/scene/outline.h"
 #include "core/scene/solid_texture.h"
 
@@ -154,6 +155,7 @@ enum class Shape {
   kOvus,            // bottom radius r0, top radius r1 (>= 0)
   kLemon,           // apex a radius r0, base b radius r1, inner radius r2 (bounded as POV-Ray's)
   kSphereSweep,     // `sweep`, its segments as the parser built them
+  kIsosurface,      // `isosurface`: its function, threshold and container; open
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -187,6 +189,7 @@ struct Object {
   bool conic = false;                                   // kPrism: conic_sweep
   std::vector<BlobComponentStatement> blob_components;  // kBlob
   std::vector<std::pair<double, double>> profile;       // kSor
+  std::shared_ptr<const Isosurface> isosurface;         // kIsosurface
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 
 #include "core/image/image_io.h"
@@ -196,47 +197,45 @@ double sum_rgb(const Image& image, uint32_t x, uint32_t y) {
   return image.at(x, y, 0) + image.at(x, y, 1) + image.at(x, y, 2);
 }
 
-// The shot rendered by both, its blobs compared (one line of the table on stdout).
-void expect_drawn_as_povray_draws(const fs::path& povray, const SolidShot& shot) {
-  SCOPED_TRACE(shot.name);
-  const fs::path work = fs::path(FILMBACK_POV_WORK_DIR) / "geometry" / shot.name;
-  fs::remove_all(work);
-  fs::create_directories(work);
-  std::ofstream(work / "scene.pov") << scene_sdl(shot);
-  const Image reference = povray_render(povray, work);
-  const Image image = filmback_render(work);
-  write_images(image, {work / "filmback.exr"}, {});
-  ASSERT_EQ(reference.width, image.width);
-  ASSERT_EQ(reference.height, image.height);
-  const std::vector<Blob> pov_blobs = find_blobs(reference, 0.0), blobs = find_blobs(image, 0.0);
-  ASSERT_FALSE(pov_blobs.empty());
-  ASSERT_FALSE(blobs.empty());
-  const Blob p = shot.several ? together(pov_blobs) : largest(pov_blobs);
-  const Blob b = shot.several ? together(blobs) : largest(blobs);
-  const double dx = b.x_px - p.x_px, dy = b.y_px - p.y_px, area = b.flux / p.flux;
-  int large = 0;
-  for (uint32_t y = 0; y < kGeometryHeight; ++y)
-    for (uint32_t x = 0; x < kGeometryWidth; ++x)
-      large += std::abs(sum_rgb(image, x, y) - sum_rgb(reference, x, y)) > 3 * kLargePixelError;
-  std::printf("%-30s %9.4f %9.4f %+8.4f %+8.4f %9.1f %8.4f %7d\n", shot.name, p.x_px, p.y_px, dx,
-              dy, p.flux / 3, area, large);
-  EXPECT_LT(std::hypot(dx, dy), kMaxCentroidErrorPx);
-  EXPECT_NEAR(area, 1.0, kMaxAreaError);
-  EXPECT_LT(large, 1 + int(0.01 * p.flux / 3)) << "pixels off by more than " << kLargePixelError;
-}
-
-void print_table_header() {
-  std::printf("%-30s %9s %9s %8s %8s %9s %8s %7s\n", "shot", "pov_x", "pov_y", "dx_px", "dy_px",
-              "area_px", "area", "large");
-}
-
-TEST(PovGeometryRender, FilmbackDrawsEachObjectOnPovRaysPixels) {
+// Each shot rendered by POV-Ray and by filmback: the white blobs' centroids, areas and the pixels
+// that differ much.
+void expect_on_povrays_pixels(std::span<const SolidShot> shots) {
   const std::optional<fs::path> povray = find_on_path("povray");
   if (!povray)
     GTEST_SKIP() << "POV-Ray is not installed: no `povray` on PATH (Debian package `povray`)";
-  print_table_header();
-  for (const SolidShot& shot : kSolidShots)
-    expect_drawn_as_povray_draws(*povray, shot);
+  std::printf("%-30s %9s %9s %8s %8s %9s %8s %7s\n", "shot", "pov_x", "pov_y", "dx_px", "dy_px",
+              "area_px", "area", "large");
+  for (const SolidShot& shot : shots) {
+    SCOPED_TRACE(shot.name);
+    const fs::path work = fs::path(FILMBACK_POV_WORK_DIR) / "geometry" / shot.name;
+    fs::remove_all(work);
+    fs::create_directories(work);
+    std::ofstream(work / "scene.pov") << scene_sdl(shot);
+    const Image reference = povray_render(*povray, work);
+    const Image image = filmback_render(work);
+    write_images(image, {work / "filmback.exr"}, {});
+    ASSERT_EQ(reference.width, image.width);
+    ASSERT_EQ(reference.height, image.height);
+    const std::vector<Blob> pov_blobs = find_blobs(reference, 0.0), blobs = find_blobs(image, 0.0);
+    ASSERT_FALSE(pov_blobs.empty());
+    ASSERT_FALSE(blobs.empty());
+    const Blob p = shot.several ? together(pov_blobs) : largest(pov_blobs);
+    const Blob b = shot.several ? together(blobs) : largest(blobs);
+    const double dx = b.x_px - p.x_px, dy = b.y_px - p.y_px, area = b.flux / p.flux;
+    int large = 0;
+    for (uint32_t y = 0; y < kGeometryHeight; ++y)
+      for (uint32_t x = 0; x < kGeometryWidth; ++x)
+        large += std::abs(sum_rgb(image, x, y) - sum_rgb(reference, x, y)) > 3 * kLargePixelError;
+    std::printf("%-30s %9.4f %9.4f %+8.4f %+8.4f %9.1f %8.4f %7d\n", shot.name, p.x_px, p.y_px, dx,
+                dy, p.flux / 3, area, large);
+    EXPECT_LT(std::hypot(dx, dy), kMaxCentroidErrorPx);
+    EXPECT_NEAR(area, 1.0, kMaxAreaError);
+    EXPECT_LT(large, 1 + int(0.01 * p.flux / 3)) << "pixels off by more than " << kLargePixelError;
+  }
+}
+
+TEST(PovGeometryRender, FilmbackDrawsEachObjectOnPovRaysPixels) {
+  expect_on_povrays_pixels(kSolidShots);
 }
 
 // The shapes of issue 19's last batch, in a test of their own so that it runs alone. (Debian's
@@ -269,12 +268,32 @@ const SolidShot kEggSweepAndPatchShots[] = {
 };
 
 TEST(PovGeometryRender, FilmbackDrawsOvusSweepsAndPatchesOnPovRaysPixels) {
-  const std::optional<fs::path> povray = find_on_path("povray");
-  if (!povray)
-    GTEST_SKIP() << "POV-Ray is not installed: no `povray` on PATH (Debian package `povray`)";
-  print_table_header();
-  for (const SolidShot& shot : kEggSweepAndPatchShots)
-    expect_drawn_as_povray_draws(*povray, shot);
+  expect_on_povrays_pixels(kEggSweepAndPatchShots);
+}
+
+// Isosurfaces (walked by their gradient bound) and a parametric surface (a 256 x 256 mesh), their
+// own test so that they can be run alone: the same tolerances as the exact solids.
+const SolidShot kFunctionShots[] = {
+    // A wavy ball, turned and squashed, in a box container that cuts it on one side.
+    {"isosurface_wavy_ball",
+     "isosurface { function { sqrt(x*x + y*y + z*z) + 0.1 * sin(5*x) * sin(5*y) * sin(5*z) }"
+     " threshold 0.8 max_gradient 1.9 contained_by { box { -1, <1, 1, 0.6> } }"
+     " scale <1.5, 1.2, 1.4> rotate <30, 40, 0> }"},
+    // An open wavy sheet in a sphere container, minus a box: CSG through the walk's spans.
+    {"isosurface_open_sheet_csg",
+     "difference { isosurface { function { y - 0.3 * sin(3 * x) * cos(2 * z) } max_gradient 1.2"
+     " contained_by { sphere { 0, 1.4 } } open } box { <0, -2, -2>, <2, 2, 0> } rotate <-40, 20, "
+     "0> }"},
+    // A torus over u, v in [0, 2 pi]: POV-Ray subdivides it, filmback meshes it.
+    {"parametric_torus",
+     "parametric { function { (1 + 0.4 * cos(v)) * cos(u) }, function { 0.4 * sin(v) },"
+     " function { (1 + 0.4 * cos(v)) * sin(u) } <0, 0>, <2 * pi, 2 * pi>"
+     " contained_by { box { -1.5, 1.5 } } accuracy 0.0001 precompute 15, x, y, z"
+     " rotate <-50, 20, 0> }"},
+};
+
+TEST(PovGeometryRender, IsosurfaceAndParametricOnPovRaysPixels) {
+  expect_on_povrays_pixels(kFunctionShots);
 }
 
 }  // namespace

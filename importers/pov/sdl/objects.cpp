@@ -11,15 +11,15 @@ namespace fb::pov::sdl {
 namespace {
 
 constexpr std::string_view kSupported[] = {
-    "sphere",      "box",      "plane",           "cylinder",     "cone",         "torus",
-    "disc",        "triangle", "smooth_triangle", "mesh",         "mesh2",        "polygon",
-    "object",      "union",    "merge",           "difference",   "intersection", "light_source",
-    "light_group", "quadric",  "cubic",           "quartic",      "poly",         "polynomial",
-    "prism",       "text",     "superellipsoid",  "height_field", "blob",         "sor",
-    "lathe",       "ovus",     "lemon",           "sphere_sweep", "bicubic_patch"};
+    "sphere",      "box",        "plane",           "cylinder",     "cone",         "torus",
+    "disc",        "triangle",   "smooth_triangle", "mesh",         "mesh2",        "polygon",
+    "object",      "union",      "merge",           "difference",   "intersection", "light_source",
+    "light_group", "quadric",    "cubic",           "quartic",      "poly",         "polynomial",
+    "prism",       "text",       "superellipsoid",  "height_field", "blob",         "sor",
+    "lathe",       "ovus",       "lemon",           "sphere_sweep", "bicubic_patch", "isosurface",
+    "parametric"};
 // parsed and reported: their geometry needs code the renderer does not have yet
-constexpr std::string_view kUnsupported[] = {"isosurface", "julia_fractal", "parametric",
-                                             "fractal"};
+constexpr std::string_view kUnsupported[] = {"julia_fractal", "fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -358,6 +358,8 @@ constexpr ShapeParser kShapes[] = {
     {"lemon", parse_lemon},
     {"sphere_sweep", [](Parser& p, Object& o) { p.parse_sphere_sweep(o); }},
     {"bicubic_patch", [](Parser& p, Object& o) { p.parse_bicubic_patch(o); }},
+    {"isosurface", [](Parser& p, Object& o) { p.parse_isosurface(o); }},
+    {"parametric", [](Parser& p, Object& o) { p.parse_parametric(o); }},
 };
 
 // gif and pot keep their heights in palette indices (pot: two 8-bit halves of one 16-bit height),

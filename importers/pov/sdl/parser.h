@@ -249,11 +249,14 @@ class Parser {
   void parse_lathe(Object& o);  // lathe.cpp: its spline and points, after the '{'
   bool parse_text(Object& o);   // text.cpp; false: its font is not here (reported)
   void parse_height_field(
-      Object& o);              // height_field.cpp: an image's or a function's, after the '{'
-  void parse_blob(Object& o);  // blob.cpp: threshold and components, after the '{'
+      Object& o);                    // height_field.cpp: an image's or a function's, after the '{'
+  void parse_blob(Object& o);        // blob.cpp: threshold and components, after the '{'
   void parse_sphere_sweep(Object& o);   // sphere_sweep.cpp: spline, spheres, tolerance
   void parse_bicubic_patch(Object& o);  // bicubic_patch.cpp: its triangles, after the '{'
-  void skip_rest_of_block();            // to the '}' closing a block already open
+  void parse_isosurface(Object& o);  // isosurface.cpp: its function and bounds, after the '{'
+  void parse_contained_by(Isosurface& container);  // isosurface.cpp: after `contained_by`
+  void parse_parametric(Object& o);  // parametric.cpp: its three functions as a mesh, after '{'
+  void skip_rest_of_block();         // to the '}' closing a block already open
   void parse_object_mods(Node& node);
   void parse_clipped_by(Node& node, Object& o);
   void complete_appearance(Object& o);  // after the modifiers: CSG and mesh inheritance
