@@ -21,13 +21,12 @@ PhysicalCamera lens_at_frame(const SceneCamera& camera, double frame) {
 
 MotionVectors::MotionVectors(const Scene& scene, const ShotPlan& plan,
                              const Transform& render_from_world)
-    : orthographic_(plan.camera_model.name == "orthographic"),
+    : orthographic_(blender_projection(plan.camera_model) == FB_PROJECTION_ORTHOGRAPHIC),
       world_from_render_(render_from_world.inverse()),
       moving_of_object_(scene.instances.size() + scene.solids.size(), kStill) {
   const SceneCamera& camera = plan.camera;
   const std::string& model = plan.camera_model.name;
-  if ((model != "perspective" && model != "thinlens" && !orthographic_) ||
-      !camera.lens_distortion.empty())
+  if (!blender_projection(plan.camera_model) || !camera.lens_distortion.empty())
     throw UsageError("--passes Vector: the camera is '" + model +
                      (camera.lens_distortion.empty() ? "'" : "' with lens distortion") +
                      "; expected perspective, thinlens or orthographic without lens distortion, "

@@ -174,6 +174,17 @@ PluginChoice choose_camera_model(const std::optional<std::string>& typed, const 
   return {"perspective", {}, camera.lens_distortion, camera.origin(CameraValue::kFstop)};
 }
 
+}  // namespace
+
+std::optional<uint32_t> blender_projection(const PluginChoice& camera_model) {
+  if (camera_model.name == "orthographic") return FB_PROJECTION_ORTHOGRAPHIC;
+  if (camera_model.name == "perspective" || camera_model.name == "thinlens")
+    return FB_PROJECTION_PERSPECTIVE;
+  return std::nullopt;
+}
+
+namespace {
+
 // --passes reaches the integrator as its parameter `passes` (docs/plugins.md, "Render passes"),
 // but for the Cryptomatte passes and Vector, which the host writes (core/film/cryptomatte.h,
 // core/film/motion_vector_film.h).

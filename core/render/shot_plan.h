@@ -143,6 +143,11 @@ ShotPlan plan_shot(const Scene& scene, const RenderOptions& options);
 // intended aspect (16:9 when the scene does not say).
 std::pair<uint32_t, uint32_t> default_resolution(const SceneCamera& camera);
 
+// The projection of Blender's that the chosen camera plugin makes (FB_PROJECTION_PERSPECTIVE for
+// the pinhole and the thin lens, FB_PROJECTION_ORTHOGRAPHIC), for what the host projects points
+// by itself (the Vector pass); none for any other plugin.
+std::optional<uint32_t> blender_projection(const PluginChoice& camera_model);
+
 // The filter a render with `typed` (--filter) uses on this shot, as PluginChoice::text() says it:
 // "gaussian:radius=2.25,sigma=0.375" for a shot's Gaussian of width 1.5 px.
 std::string planned_filter_text(const std::optional<std::string>& typed, const ShotSettings& shot);

@@ -415,7 +415,7 @@ TEST_F(Sdl, TraceDepthAndReflectionFalloffAreRead) {
 TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   Scene scene =
       run("rainbow { angle 42 width 5 }\n"
-          "ovus { 1, 0.5 translate x }\n"
+          "julia_fractal { <-0.083, 0, -0.83, -0.025> translate x }\n"
           "#declare F = function(a) { a * 2 }\n"
           "sphere { 0, 1 normal { quilted 0.5 } }\n"
           "global_settings { radiosity { count 100 } }\n");
@@ -423,7 +423,7 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   ASSERT_GE(scene.unsupported.size(), 4u);
   EXPECT_EQ(scene.unsupported[0].feature, "rainbow");
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
-  EXPECT_EQ(scene.unsupported[1].feature, "ovus");
+  EXPECT_EQ(scene.unsupported[1].feature, "julia_fractal");
   EXPECT_EQ(scene.unsupported[1].where.line, 2u);
   ASSERT_TRUE(scene.objects[0].texture.normal);
   EXPECT_FALSE(scene.objects[0].texture.normal->rendered);
@@ -600,14 +600,14 @@ TEST_F(Sdl, ChangesAfterALayeredTextureGoToItsTopLayer) {
 // An unsupported object is reported where the scene places it, not where it is declared: an
 // include that declares shapes the scene never uses leaves its geometry complete.
 TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
-  write("lib/shapes.inc", "#declare Q = lemon { <0, 0, 0>, 1, <0, 1, 0>, 1, 2 }\n");
+  write("lib/shapes.inc", "#declare Q = julia_fractal { <-0.083, 0, -0.83, -0.025> }\n");
   Scene scene = run("#include \"shapes.inc\"\nsphere { 0, 1 }");
   EXPECT_TRUE(scene.unsupported.empty());
   ASSERT_EQ(scene.objects.size(), 1u);
 
   scene = run("#include \"shapes.inc\"\nobject { Q translate x }");
   ASSERT_EQ(scene.unsupported.size(), 1u);
-  EXPECT_EQ(scene.unsupported[0].feature, "lemon");
+  EXPECT_EQ(scene.unsupported[0].feature, "julia_fractal");
   const std::string written = scene.unsupported[0].where.text();
   EXPECT_EQ(written.substr(written.size() - 19), "lib/shapes.inc:1:14") << written;
   ASSERT_TRUE(scene.unsupported[0].placed);
@@ -624,10 +624,10 @@ TEST_F(Sdl, UnsupportedObjectsAreReportedWherePlaced) {
 
   // written where it is placed: no separate placement; in clipped_by too
   scene =
-      run("#include \"shapes.inc\"\novus { 1, 0.5 }\n"
+      run("#include \"shapes.inc\"\njulia_fractal { <0, 0, 0, 0> }\n"
           "sphere { 0, 1 clipped_by { object { Q } } }");
   ASSERT_EQ(scene.unsupported.size(), 2u);
-  EXPECT_EQ(scene.unsupported[0].feature, "ovus");
+  EXPECT_EQ(scene.unsupported[0].feature, "julia_fractal");
   EXPECT_FALSE(scene.unsupported[0].placed);
   EXPECT_EQ(scene.unsupported[1].placed->text(), "scene.pov:3:1");
 }
