@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 #include "core/accel/solid_intersect.h"
 #include "core/math/blob.h"
 #include "support/finite_difference.h"
+#include "support/random_rays.h"
 #include "support/solid_builders.h"
 
 namespace fb {
@@ -65,20 +65,15 @@ TEST(SolidBlob, OneSphereComponentHasItsClosedForm) {
   EXPECT_FALSE(solid.first_hit({1 + 1.42, 2, 10}, {0, 0, -1}, 0));
 }
 
-struct BlobRays {
-  std::mt19937_64 rng{23};
-  std::uniform_real_distribution<double> u{-1, 1};
-  Vec3d in_box() { return {1.8 * u(rng), 1.8 * u(rng), 1.8 * u(rng)}; }
-  std::pair<Vec3d, Vec3d> next() {
-    const Vec3d from = normalize(in_box()) * 6;
-    return {from, normalize(in_box() * 0.6 - from)};
-  }
-};
+// Rays from 6 away towards the blob's middle, and points of its box (half-size 1.8).
+test::RaysAtABox blob_rays() {
+  return test::RaysAtABox(23, {0, 0, 0}, 6, 1.08);
+}
 
 TEST(SolidBlob, HitsLieOnTheThresholdAndNormalsMatchFiniteDifferences) {
   const Blob blob = mixed_blob();
   const RenderSolid solid(blob_solid(blob), Transform(), kReach);
-  BlobRays rays;
+  test::RaysAtABox rays = blob_rays();
   int hits = 0;
   for (int i = 0; i < 500; ++i) {
     const auto [o, d] = rays.next();
@@ -99,10 +94,10 @@ TEST(SolidBlob, HitsLieOnTheThresholdAndNormalsMatchFiniteDifferences) {
 TEST(SolidBlob, ContainsAgreesWithTheField) {
   const Blob blob = mixed_blob();
   const RenderSolid solid(blob_solid(blob), Transform(), kReach);
-  BlobRays points;
+  test::RaysAtABox points = blob_rays();
   int inside = 0;
   for (int i = 0; i < 3000; ++i) {
-    const Vec3d p = points.in_box();
+    const Vec3d p = points.in_box(1.8);
     const double f = blob_field(blob, p) - blob.threshold;
     if (std::abs(f) < 1e-9) continue;
     EXPECT_EQ(solid.contains(p), f >= 0) << p.x << " " << p.y << " " << p.z;
@@ -115,7 +110,7 @@ TEST(SolidBlob, ContainsAgreesWithTheField) {
 TEST(SolidBlob, MissesNoSpanDenseSamplingFinds) {
   const Blob blob = mixed_blob();
   const RenderSolid solid(blob_solid(blob, Transform::scale({2, 2, 2})), Transform(), kReach);
-  BlobRays rays;
+  test::RaysAtABox rays = blob_rays();
   for (int i = 0; i < 300; ++i) {
     const auto [o, d] = rays.next();
     double first_inside = -1;

@@ -7,12 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <random>
 
 #include "core/accel/solid_intersect.h"
 #include "core/function/isosurface_function.h"
 #include "core/function/user_function.h"
 #include "support/finite_difference.h"
+#include "support/random_rays.h"
 #include "support/solid_builders.h"
 
 namespace fb {
@@ -70,15 +70,10 @@ const Transform kWavyPlacement = Transform::translate({0.3, -0.2, 0.1}) *
                                  Transform::rotate({0.3, 0.1, 0.2, 0.92}) *
                                  Transform::scale({2, 1.5, 1.8});
 
-struct IsoRays {
-  std::mt19937_64 rng{19};
-  std::uniform_real_distribution<double> u{-1, 1};
-  Vec3d in_box(double half) { return {half * u(rng), half * u(rng), half * u(rng)}; }
-  std::pair<Vec3d, Vec3d> next() {
-    const Vec3d from = normalize(in_box(1)) * 8;
-    return {from, normalize(in_box(1.5) - from)};
-  }
-};
+// Rays from 8 away towards the container (half-size 1.5), and points about it.
+test::RaysAtABox iso_rays() {
+  return test::RaysAtABox(19, {0, 0, 0}, 8, 1.5);
+}
 
 TEST(SolidIsosurface, SphereFunctionMatchesTheExactSphere) {
   Program g;
@@ -89,7 +84,7 @@ TEST(SolidIsosurface, SphereFunctionMatchesTheExactSphere) {
   const Transform place = Transform::translate({1, 2, -1}) * Transform::scale({0.7, 0.7, 0.7});
   const RenderSolid as_function(isosurface_solid(iso, place), Transform(), kReach);
   const RenderSolid exact(primitive(SolidKind::kSphere, place), Transform(), kReach);
-  IsoRays rays;
+  test::RaysAtABox rays = iso_rays();
   int hits = 0;
   for (int i = 0; i < 400; ++i) {
     auto [o, d] = rays.next();
@@ -111,7 +106,7 @@ TEST(SolidIsosurface, HitsLieOnTheLevelSetAndNormalsMatchFiniteDifferences) {
   const auto f = [&](Vec3d world) { return isosurface_value(iso, object_from_world.point(world)); };
   // Relative to the container's size (2.4 object units across)
   const double tolerance = 1e-9 * 2.4;
-  IsoRays rays;
+  test::RaysAtABox rays = iso_rays();
   int hits = 0;
   for (int i = 0; i < 400; ++i) {
     const auto [o, d] = rays.next();
@@ -130,7 +125,7 @@ TEST(SolidIsosurface, MissesNoSpanDenseSamplingFinds) {
   const Isosurface iso = wavy_isosurface();
   const RenderSolid solid(isosurface_solid(iso, kWavyPlacement), Transform(), kReach);
   const Transform object_from_world = kWavyPlacement.inverse();
-  IsoRays rays;
+  test::RaysAtABox rays = iso_rays();
   for (int i = 0; i < 100; ++i) {
     const auto [o, d] = rays.next();
     double first_inside = HUGE_VAL;
@@ -150,7 +145,7 @@ TEST(SolidIsosurface, ContainsIsBelowTheThresholdWithinTheContainer) {
   Isosurface iso = wavy_isosurface();
   iso.sphere_container = true, iso.centre = {0.2, 0, 0}, iso.radius = 0.85;
   const RenderSolid solid(isosurface_solid(iso), Transform(), kReach);
-  IsoRays points;
+  test::RaysAtABox points = iso_rays();
   int inside = 0;
   for (int i = 0; i < 3000; ++i) {
     const Vec3d p = points.in_box(1.2);
@@ -221,7 +216,7 @@ TEST(SolidIsosurface, NowhereDefinedFunctionGivesNoSurfaceInBoundedTime) {
   iso.accuracy = 1e-9;
   const RenderSolid solid(isosurface_solid(iso), Transform(), kReach);
   const auto start = std::chrono::steady_clock::now();
-  IsoRays rays;
+  test::RaysAtABox rays = iso_rays();
   for (int i = 0; i < 50; ++i) {
     const auto [o, d] = rays.next();
     EXPECT_FALSE(solid.first_hit(o, d, 0));

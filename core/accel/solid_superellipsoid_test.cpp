@@ -9,6 +9,7 @@
 #include "core/accel/solid_intersect.h"
 #include "core/math/superellipsoid.h"
 #include "support/finite_difference.h"
+#include "support/random_rays.h"
 #include "support/solid_builders.h"
 
 namespace fb {
@@ -38,20 +39,14 @@ Vec3d object_point(Vec3d world) {
 }
 
 // Rays from a sphere around the shape towards random points of its box.
-struct RandomRays {
-  std::mt19937_64 rng{19};
-  std::uniform_real_distribution<double> u{-1, 1};
-  Vec3d inside_box() { return {u(rng), u(rng), u(rng)}; }
-  std::pair<Vec3d, Vec3d> next() {
-    const Vec3d from = kCentre + normalize(inside_box()) * (3 * kScale);
-    return {from, normalize(kCentre + inside_box() * kScale - from)};
-  }
-};
+test::RaysAtABox superellipsoid_rays() {
+  return test::RaysAtABox(19, kCentre, 3 * kScale, kScale);
+}
 
 TEST(SolidSuperellipsoid, HitsLieOnTheImplicitSurface) {
   for (const SuperellipsoidExponents s : kShapes) {
     const RenderSolid solid(superellipsoid(s), Transform(), kReach);
-    RandomRays rays;
+    test::RaysAtABox rays = superellipsoid_rays();
     int hits = 0;
     for (int i = 0; i < 400; ++i) {
       const auto [o, d] = rays.next();
@@ -73,7 +68,7 @@ TEST(SolidSuperellipsoid, NormalsMatchFiniteDifferences) {
   for (const SuperellipsoidExponents s : kShapes) {
     if (s.e < 0.1) continue;  // a box to rounding: its f has no useful finite differences
     const RenderSolid solid(superellipsoid(s), Transform(), kReach);
-    RandomRays rays;
+    test::RaysAtABox rays = superellipsoid_rays();
     int checked = 0;
     for (int i = 0; i < 400; ++i) {
       const auto [o, d] = rays.next();
@@ -116,11 +111,11 @@ TEST(SolidSuperellipsoid, ContainsAgreesWithTheImplicitFunction) {
 TEST(SolidSuperellipsoid, MissesNoSpanDenseSamplingFinds) {
   for (const SuperellipsoidExponents s : kShapes) {
     const RenderSolid solid(superellipsoid(s), Transform(), kReach);
-    RandomRays rays;
+    test::RaysAtABox rays = superellipsoid_rays();
     for (int i = 0; i < 150; ++i) {
       auto [o, d] = rays.next();
       // Aim near the surface: grazing rays are the hard ones.
-      const Vec3d towards = kCentre + normalize(rays.inside_box()) * (0.9 * kScale);
+      const Vec3d towards = kCentre + rays.direction() * (0.9 * kScale);
       d = normalize(towards - o);
       constexpr int kSamples = 8000;
       const double length_t = 6 * kScale;
