@@ -175,7 +175,9 @@ Rgb SurfaceShader::emission(uint32_t index, const SurfacePoint& point) const {
     const auto c = lookup(m.textures.emissive, point, true);
     emission *= Rgb(c[0], c[1], c[2]);
   }
-  if (m.base_color_pattern) emission *= solid_colour(*m.base_color_pattern, point).rgb;
+  // The pattern only where something glows: shade() asks this at every hit.
+  if (m.base_color_pattern && max_component(emission) > 0.f)
+    emission *= solid_colour(*m.base_color_pattern, point).rgb;
   for (const Material& layer : m.layers) {
     if (max_component(emission) == 0.f && max_component(layer.emission) == 0.f) continue;
     const LayerCover c = layer_cover(layer, point);
