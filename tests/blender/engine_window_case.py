@@ -15,17 +15,20 @@ Writes OUT/window.png (the screenshot), OUT/result.exr (the Render Result as Ble
 OUT/anim_000N.exr (the frames), OUT/cancelled.exr (the Render Result after Esc) and OUT/passed
 when each image is bit-identical to a command-line render of the add-on's export of its frame and
 Esc returned promptly with a partial image. A render cancelled other than by the case's Esc quits
-Blender without OUT/passed; one not finished within WINDOW_TIMEOUT_S ends Blender at once (exit 3)
-and the filmback it started. Esc waits for filmback's first preview (at most
+Blender without OUT/passed; a case not done within CASE_LIMIT_S prints where it was (each stage is
+logged with its time, and every thread's Python stack) and ends Blender at once (exit 3) and the
+filmback it started. Esc waits for filmback's first preview (at most
 ESCAPE_WITHOUT_PREVIEW_S) and is pressed again if the render goes on (a key that came while
 Blender was not reading events): its return time counts from the last press.
 """
 
+import faulthandler
 import os
 import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import traceback
 
@@ -40,9 +43,14 @@ import render_engine_case as shot  # noqa: E402
 
 WIDTH_PX, HEIGHT_PX = 480, 270  # the render view shows it at 1:1 in a 1280 x 720 window
 SAMPLES = 16  # the test's; docs/blender.md's screenshot passes more
-WINDOW_TIMEOUT_S = 180.0  # per render
+# The whole case (three renders, their checks, the Esc stage), under CI's load; the driver
+# (engine_window_test.TIMEOUT_S) allows 420 s. A watchdog thread, not Blender's timers: a stop
+# must also come when Blender's main thread is stuck. Past the watchdog, faulthandler's own
+# thread dumps the stacks and exits, should the watchdog not get Python's lock.
+CASE_LIMIT_S = 360.0
+LAST_RESORT_S = CASE_LIMIT_S + 20.0
 WATCH_INTERVAL_S = 0.2
-SETTLE_S = 1.0  # for the render view to redraw the final image before the screenshot
+SETTLE_S = 1.0  # after the render job, for the render view to redraw the final image
 ESCAPE_AFTER_PREVIEW_S = 1.0  # for the engine (polling every 0.1 s) to show filmback's preview
 # On a loaded machine the first preview can be late: Esc then comes this long after F12 anyway.
 ESCAPE_WITHOUT_PREVIEW_S = 40.0
@@ -88,6 +96,16 @@ def preview_written():
     return bool(glob.glob(os.path.join(tempfile.gettempdir(), "filmback-render-*", "preview.exr")))
 
 
+def log(message):
+    """A line of the case's progress on stderr, with the time since Blender started it, which
+    the driver prints whether the case passed, failed or was stopped."""
+    print(f"engine_window_case: {time.monotonic() - STARTED:6.1f} s: {message}", file=sys.stderr,
+          flush=True)
+
+
+STARTED = time.monotonic()
+
+
 def show_render_properties():
     """The Properties editor on its Render tab: the engine list and filmback's settings panel."""
     for window in bpy.context.window_manager.windows:
@@ -110,8 +128,12 @@ class WindowCase:
         self.escape_key = None  # the xdotool that pressed it
         self.escape_presses = 0
         self.check = None  # what to do once the render in progress has ended
+        self.watchdog = threading.Timer(CASE_LIMIT_S, self.stop_case)
+        self.watchdog.daemon = True
 
     def start(self):
+        self.watchdog.start()
+        faulthandler.dump_traceback_later(LAST_RESORT_S, exit=True)
         scene = shot.build_shot()
         scene.render.resolution_x, scene.render.resolution_y = WIDTH_PX, HEIGHT_PX
         scene.filmback.samples = self.samples
@@ -127,6 +149,7 @@ class WindowCase:
     def render(self, check, animation=False):
         self.state, self.ended, self.check = None, None, check
         self.started = time.monotonic()
+        log(f"{'Ctrl+F12' if animation else 'F12'} for {check.__name__}")
         with window_override():
             bpy.ops.render.render("INVOKE_DEFAULT", animation=animation)
 
@@ -144,12 +167,17 @@ class WindowCase:
         if self.escape_at is not None and now >= self.escape_at:
             self.escape_key = press_escape()
             self.escape_presses += 1
+            log(f"Esc pressed ({self.escape_presses}), preview written: {preview_written()}")
             self.escape_at, self.escaped = None, now
         elif (self.escaped is not None and self.state is None and
               now - self.escaped >= ESCAPE_RETRY_S and self.escape_presses < ESCAPE_PRESSES):
             self.escape_at = now
-        if self.state is not None and self.ended is None:
+        # The handlers run before Blender's render job has ended (an animation's, or any under
+        # load, can go on for seconds): until it has, operators refuse to run ("can't modify
+        # blend data in this state (drawing/rendering)"), the exporter and quitting included.
+        if self.state is not None and self.ended is None and not bpy.app.is_job_running("RENDER"):
             self.ended = now
+            log(f"the render job ended ({self.state}) after {now - self.started:.1f} s")
         if self.ended is not None and now - self.ended >= SETTLE_S:
             try:
                 if self.check():  # done
@@ -159,13 +187,16 @@ class WindowCase:
                 traceback.print_exc()
                 self.quit("the render did not check out")
                 return None
-        elif self.ended is None and now - self.started >= WINDOW_TIMEOUT_S:
-            # Blender does not quit while a render job runs: end the render and the case at once.
-            print(f"engine_window_case: no render ended within {WINDOW_TIMEOUT_S} s "
-                  f"(Esc pressed {self.escape_presses} times)", file=sys.stderr)
-            kill_own_filmback()
-            os._exit(3)
         return WATCH_INTERVAL_S
+
+    def stop_case(self):
+        """The watchdog's: where the case was, every thread's stack, then Blender ended at once
+        (it does not quit while a render job runs) with the filmback it started."""
+        log(f"not done within {CASE_LIMIT_S} s: waiting for {self.check.__name__}, render "
+            f"{self.state or 'running'}, Esc pressed {self.escape_presses} times")
+        faulthandler.dump_traceback(file=sys.stderr, all_threads=True)
+        kill_own_filmback()
+        os._exit(3)
 
     def assert_complete(self):
         assert self.state == "complete", f"the render ended {self.state}, not complete"
@@ -177,6 +208,7 @@ class WindowCase:
     def check_still(self):
         """The F12 image in the render view: photographed, then compared; Ctrl+F12 next."""
         self.assert_complete()
+        log("checking the F12 image")
         with window_override():
             bpy.ops.screen.screenshot(filepath=os.path.join(self.out, "window.png"))
         scene = bpy.context.scene
@@ -193,6 +225,7 @@ class WindowCase:
         """Ctrl+F12: each frame's file equal to its frame's command-line render; F12 and Esc
         next, on a render that would run for hours (as render_engine_case's cancel case)."""
         self.assert_complete()
+        log("checking the frames")
         for frame in range(shot.FIRST_FRAME, shot.LAST_FRAME + 1):
             frame_path = os.path.join(self.out, f"anim_{frame:04d}.exr")
             assert os.path.exists(frame_path), f"frame {frame} was not written"
@@ -225,8 +258,13 @@ class WindowCase:
 
     def quit(self, failure=None):
         if failure:
-            print(f"engine_window_case: {failure}", file=sys.stderr)
-        bpy.ops.wm.quit_blender()
+            log(failure)
+        try:
+            bpy.ops.wm.quit_blender()
+        except RuntimeError:  # Blender would go on to the watchdog's limit: end it now
+            traceback.print_exc()
+            kill_own_filmback()
+            os._exit(3)
 
 
 def main():

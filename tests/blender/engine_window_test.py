@@ -15,6 +15,7 @@ Exit 77 (CTest's skip) when `blender`, `xvfb-run` or `xdotool` is not installed.
 import argparse
 import os
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -24,8 +25,25 @@ from roundtrip_test import (  # noqa: E402
     addon_zip, blender_env, fresh_folder, skip_unless_installed)
 
 SCREEN = "1280x720x24"  # the screenshot's size
-TIMEOUT_S = 420  # F12, Ctrl+F12 over three frames and the Esc stage, beside CI's other tests
+TIMEOUT_S = 420  # F12, Ctrl+F12 over three frames and the Esc stage, beside CI's other tests;
+# the case stops itself earlier (engine_window_case.CASE_LIMIT_S), with what it was waiting for
 PYTHON_ERROR_EXIT = 2  # Blender's own exit status is 1 after Esc (WM_exit: exit(G.is_break))
+
+
+def run_in_own_session(command, env):
+    """Runs `command` in a session of its own and returns (exit status, stdout, stderr); the
+    status is None when it ran past TIMEOUT_S, and then the whole session (xvfb-run, Xvfb,
+    Blender and the filmback it started) is killed, so that what it printed can be read (killing
+    xvfb-run alone leaves Blender holding the pipes)."""
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               env=env, start_new_session=True)
+    try:
+        stdout, stderr = process.communicate(timeout=TIMEOUT_S)
+        return process.returncode, stdout, stderr
+    except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        stdout, stderr = process.communicate()
+        return None, stdout, stderr
 
 
 def main():
@@ -46,11 +64,14 @@ def main():
                addon_zip(a.scratch), os.path.abspath(a.filmback), a.scratch]
     if a.samples:
         command.append(str(a.samples))
-    r = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT_S, env=env)
-    print(r.stdout)
-    print(r.stderr, file=sys.stderr)
-    if r.returncode not in (0, 1) or not os.path.exists(os.path.join(a.scratch, "passed")):
-        sys.exit(f"engine_window_case.py failed (exit {r.returncode})")
+    returncode, stdout, stderr = run_in_own_session(command, env)
+    print(stdout)
+    print(stderr, file=sys.stderr)
+    if returncode is None:
+        sys.exit(f"engine_window_case.py did not end within {TIMEOUT_S} s: Blender, Xvfb and "
+                 "filmback were killed (the case's log above says where it was)")
+    if returncode not in (0, 1) or not os.path.exists(os.path.join(a.scratch, "passed")):
+        sys.exit(f"engine_window_case.py failed (exit {returncode})")
     left = [name for name in os.listdir(temporary) if name.startswith("filmback")]
     if left:
         sys.exit(f"temporary files left in {temporary}: {left}")
