@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/accel/instancing.h"
+#include "core/render/motion_vectors.h"
 #include "core/render/tile_size.h"
 #include "core/subdiv/face_varying.h"
 #include "core/util/error.h"
@@ -29,9 +30,20 @@ uint64_t default_memory_limit_bytes() {
   return uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE)) / 2;
 }
 
+PassFilmCounts pass_film_counts(const std::vector<std::string>& passes,
+                                uint32_t cryptomatte_levels) {
+  PassFilmCounts counts;
+  counts.cryptomatte_levels = cryptomatte_levels;
+  for (const std::string& pass : passes) {
+    if (find_cryptomatte_pass(pass)) ++counts.cryptomatte_passes;
+    if (pass == kVectorPass) counts.vector = true;
+  }
+  return counts;
+}
+
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
-                               const GeometryCounts& geometry) {
+                               const GeometryCounts& geometry, const PassFilmCounts& passes) {
   const double pixels = double(width) * height, c = double(channels);
   MemoryEstimate e;
   // core/film/film.h: a double sum per channel, a double weight and a 32-bit count per pixel; the
@@ -43,6 +55,15 @@ MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
     const double grown = 1.0 + 2.0 * splat_margin_px / kTileSize;
     e.splat_bytes = pixels * grown * grown * (c + 1) * sizeof(double);
   }
+  // CryptomatteFilm: per pixel, pass and level a slot (an index and a float weight), per pixel a
+  // float weight; MotionVectorFilm: four double sums and a double weight. Their channels (two per
+  // level, and X, Y, Z, W) are floats in the resolved image and in its copy, as the film's are.
+  if (passes.cryptomatte_passes > 0) {
+    const double slots = double(passes.cryptomatte_passes) * passes.cryptomatte_levels;
+    e.pass_bytes += pixels * (slots * (sizeof(uint32_t) + sizeof(float)) + sizeof(float) +
+                              2 * 2 * slots * sizeof(float));
+  }
+  if (passes.vector) e.pass_bytes += pixels * (5 * sizeof(double) + 2 * 4 * sizeof(float));
   e.geometry_bytes = geometry.triangles * kBytesPerTriangle +
                      geometry.instances * kBytesPerInstance + geometry.texturing_bytes +
                      geometry.deformation_bytes;
@@ -144,6 +165,7 @@ void check_memory(const MemoryEstimate& e, uint64_t limit_bytes, const std::stri
   std::string parts = "film " + gigabytes(e.film_bytes);
   if (e.splat_bytes > 0) parts += ", splat tiles " + gigabytes(e.splat_bytes);
   parts += ", geometry and BVH " + gigabytes(e.geometry_bytes);
+  if (e.pass_bytes > 0) parts += ", Cryptomatte and Vector passes " + gigabytes(e.pass_bytes);
   throw InputError(scene + ": the render needs about " + gigabytes(e.total()) + " (" + parts +
                    "), more than the memory limit of " + gigabytes(double(limit_bytes)) + " (" +
                    source + ")");

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/film/cryptomatte.h"
 #include "core/film/film.h"
 #include "core/scene/scene.h"
 #include "core/scene/subdivision_surface.h"
@@ -38,19 +39,34 @@ struct GeometryCounts {
 
 GeometryCounts geometry_counts(const Scene& scene);
 
+// The films kept beside the image for the passes --passes asks for: a Cryptomatte film of
+// `cryptomatte_levels` slots per pixel for each Cryptomatte pass (core/film/cryptomatte.h), and
+// the Vector pass's (core/film/motion_vector_film.h).
+struct PassFilmCounts {
+  uint32_t cryptomatte_passes = 0;
+  uint32_t cryptomatte_levels = kDefaultCryptomatteLevels;
+  bool vector = false;
+};
+
+// Those of `passes` (names as --passes takes them) with `cryptomatte_levels` slots.
+PassFilmCounts pass_film_counts(const std::vector<std::string>& passes,
+                                uint32_t cryptomatte_levels);
+
 struct MemoryEstimate {
   double film_bytes = 0;      // sums, weights and counts; the resolved image and one copy of it
   double splat_bytes = 0;     // --reconstruction splat: the tiles' own sums
   double geometry_bytes = 0;  // stored triangles, their texture coordinates, Embree's BVHs,
                               // instances, deformed meshes' motion steps
-  double total() const { return film_bytes + splat_bytes + geometry_bytes; }
+  double pass_bytes = 0;      // Cryptomatte and Vector films, their channels in both images
+  double total() const { return film_bytes + splat_bytes + geometry_bytes + pass_bytes; }
 };
 
-// For a film of width x height pixels with `channels` channels, the geometry `geometry` counts
-// and, when splatting, a filter reaching `splat_margin_px` pixels beyond each tile of 16 x 16.
+// For a film of width x height pixels with `channels` channels, the geometry `geometry` counts,
+// when splatting, a filter reaching `splat_margin_px` pixels beyond each tile of 16 x 16, and the
+// pass films `passes`.
 MemoryEstimate estimate_memory(uint32_t width, uint32_t height, size_t channels,
                                Reconstruction reconstruction, uint32_t splat_margin_px,
-                               const GeometryCounts& geometry);
+                               const GeometryCounts& geometry, const PassFilmCounts& passes = {});
 
 // Triangles that refining `surface` to its render level makes (--subdiv render), known from the
 // cage before any refinement: a level-0 surface is its cage triangulated (n - 2 per n-gon); each

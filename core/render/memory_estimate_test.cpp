@@ -185,6 +185,36 @@ TEST(MemoryEstimate, RefinedTextureCoordinatesFollowFromTheCage) {
   EXPECT_GT(refined_texturing_bytes(cube), 2 * 32 * 150);
 }
 
+// Counted as core/film/cryptomatte.h and motion_vector_film.h allocate them: at 4K with the three
+// Cryptomatte passes at 16 levels, the passes outweigh the film several times over.
+TEST(MemoryEstimate, CountsCryptomatteAndVectorPassFilms) {
+  const PassFilmCounts passes =
+      pass_film_counts({"Depth", "CryptoObject", "Vector", "CryptoMaterial"}, 6);
+  EXPECT_EQ(passes.cryptomatte_passes, 2u);
+  EXPECT_EQ(passes.cryptomatte_levels, 6u);
+  EXPECT_TRUE(passes.vector);
+  const MemoryEstimate e = estimate_memory(100, 50, 3, Reconstruction::kImportance, 0, {}, passes);
+  // per pixel: 12 slots of 8 bytes and a float weight; 24 + 4 float channels, twice; the Vector
+  // film's 5 doubles
+  EXPECT_EQ(e.pass_bytes, 5000.0 * (12 * 8 + 4 + 2 * 28 * 4 + 5 * 8));
+  EXPECT_EQ(e.total(), e.film_bytes + e.pass_bytes);
+  EXPECT_EQ(estimate_memory(100, 50, 3, Reconstruction::kImportance, 0, {},
+                            pass_film_counts({"Depth", "Normal"}, 6))
+                .pass_bytes,
+            0);
+  const MemoryEstimate uhd =
+      estimate_memory(3840, 2160, 4, Reconstruction::kImportance, 0, {},
+                      pass_film_counts({"CryptoObject", "CryptoMaterial", "CryptoAsset"}, 16));
+  EXPECT_GT(uhd.pass_bytes, 4 * uhd.film_bytes);
+  try {
+    check_memory(uhd, uint64_t(uhd.film_bytes) * 2, "--memory-limit", "s.gltf");
+    FAIL() << "expected a refusal";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("Cryptomatte and Vector passes"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(MemoryEstimate, RefusesOverTheLimitNamingBothNumbers) {
   const MemoryEstimate e =
       estimate_memory(4096, 4096, 3, Reconstruction::kImportance, 0, {1e6, 0, 0});

@@ -242,14 +242,17 @@ void RenderJob::make_scene_table() {
 
 RenderJob::~RenderJob() = default;
 
-// The film, splat tiles and flattened geometry, against the limit, before any of them exists.
+// The film, splat tiles, flattened geometry and pass films, against the limit, before any of them
+// exists.
 void RenderJob::check_memory_budget(const GeometryCounts& geometry) const {
   const Plugins& p = *plugins_;
   float radius[2];
   p.filter->radius(radius);
   const MemoryEstimate estimate = estimate_memory(
       plan_.width_px, plan_.height_px, p.integrator->channels().size(), options_.reconstruction,
-      SplatTiles::reach(std::max(radius[0], radius[1])), geometry);
+      SplatTiles::reach(std::max(radius[0], radius[1])), geometry,
+      pass_film_counts(options_.passes,
+                       options_.cryptomatte_levels.value_or(kDefaultCryptomatteLevels)));
   if (options_.memory_limit_bytes)
     check_memory(estimate, *options_.memory_limit_bytes, "--memory-limit", scene_.file.string());
   else
