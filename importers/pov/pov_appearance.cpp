@@ -337,15 +337,19 @@ MaterialTable::MaterialTable(const Scene& scene, fb::Scene& out, Diagnostics& di
       ambient_light_(scene.ambient_light) {}
 
 void MaterialTable::report(const Texture& texture) {
-  const auto once = [&](const std::string& feature, const SourceLocation& where) {
-    if (reported_.insert(feature).second)
-      diagnostics_.warn(where.text() + ": " + feature + " is not rendered (first met here)");
+  const auto once = [&](const std::string& what, const SourceLocation& where) {
+    if (reported_.insert(what).second)
+      diagnostics_.warn(where.text() + ": " + what + " (first met here)");
   };
-  if (texture.finish.brilliance != 1) once("finish brilliance", texture.where);
+  // The importer does not know the integrator: the message says which one leaves it out.
+  if (texture.finish.brilliance != 1)
+    once(
+        "finish brilliance is not rendered by the path integrator (--integrator povray renders it)",
+        texture.where);
   const auto walk = [&](const auto& self, const Pigment& p) -> void {
     if (p.averaged)
       once("pattern " + (p.name.empty() ? std::string("image_map") : p.name) +
-               " (its average colour is used)",
+               " is not rendered (its average colour is used)",
            p.where);
     for (const Pigment& entry : p.list)
       self(self, entry);
