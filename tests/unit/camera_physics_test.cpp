@@ -34,7 +34,7 @@ void add_camera(GltfBuilder& gltf) {
   gltf.node(camera);
 }
 
-Image render(const Scene& scene, RenderOptions options) {
+Image render_camera_shot(const Scene& scene, RenderOptions options) {
   options.show_progress = false;
   return RenderJob(scene, options, test::loader()).run().image;
 }
@@ -101,7 +101,7 @@ Image render_marker(const CocShot& shot, double depth_m, double radius_m, uint32
   options.camera_overrides.focus_distance_m = shot.focus_m;
   Scene with_blades = scene;
   with_blades.cameras[0].physical.aperture_blades = shot.blades;
-  return render(with_blades, options);
+  return render_camera_shot(with_blades, options);
 }
 
 TEST(ThinLens, OutOfFocusPointsImageAsTheCircleOfConfusion) {
@@ -161,7 +161,7 @@ class PhysicalSensor : public ::testing::Test {
     options.shutter_s = Vec2d{0, exposure_s};
     options.sensor_model = FB_SENSOR_PHYSICAL;
     options.iso = iso;
-    return render(scene, options);
+    return render_camera_shot(scene, options);
   }
 
   // cos^4 of the chief ray averaged over pixel (x, y) (the box filter's footprint).

@@ -56,7 +56,8 @@ RenderOptions streak_options() {
   return options;
 }
 
-Image render(const Scene& scene, const RenderOptions& options, std::string* plan = nullptr) {
+Image render_motion_shot(const Scene& scene, const RenderOptions& options,
+                         std::string* plan = nullptr) {
   const RenderJob job(scene, options, test::loader());
   if (plan) *plan = job.plan();
   return job.run().image;
@@ -123,7 +124,7 @@ Streak measure(const std::vector<double>& p) {
 TEST(MotionBlur, MovingEmitterStreaksOverItsProjectedTravel) {
   const Scene scene = streak_scene(true);
   std::string plan;
-  const Streak s = measure(column_sums(render(scene, streak_options(), &plan)));
+  const Streak s = measure(column_sums(render_motion_shot(scene, streak_options(), &plan)));
   EXPECT_NE(plan.find("time samples for 1 moving instance"), std::string::npos) << plan;
   std::printf(
       "moving marker: streak %.4f px (expected %.4f), from %.4f to %.4f px (expected "
@@ -141,7 +142,7 @@ TEST(MotionBlur, ShutterCurveWeighsTheStreak) {
   // centroid sits at open + 2L/3, L/6 right of the centre; the streak's ends stay put.
   RenderOptions options = streak_options();
   options.shutter_curve = "table:values=[0,1]";
-  const Image image = render(streak_scene(true), options);
+  const Image image = render_motion_shot(streak_scene(true), options);
   const Streak s = measure(column_sums(image));
   std::printf("rising shutter: centroid %.4f px (expected %.4f)\n", s.centroid_px,
               kCentreX + kTravelPx / 6);
@@ -154,7 +155,7 @@ TEST(MotionBlur, ShutterCurveWeighsTheStreak) {
 TEST(MotionBlur, MovingCameraStreaksAStillEmitter) {
   const Scene scene = streak_scene(false);
   std::string plan;
-  const Streak s = measure(column_sums(render(scene, streak_options(), &plan)));
+  const Streak s = measure(column_sums(render_motion_shot(scene, streak_options(), &plan)));
   EXPECT_NE(plan.find("the moving camera"), std::string::npos) << plan;
   std::printf("moving camera: streak %.4f px (expected %.4f), centroid %.4f px\n",
               s.right_px - s.left_px, kTravelPx, s.centroid_px);
@@ -169,7 +170,7 @@ TEST(MotionBlur, MovingSceneIsBitIdenticalForAnyThreadCount) {
   std::vector<float> pixels[2];
   for (int threads : {1, 2}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    pixels[threads - 1] = render(scene, options).pixels;
+    pixels[threads - 1] = render_motion_shot(scene, options).pixels;
   }
   EXPECT_EQ(pixels[0], pixels[1]);
 }
@@ -199,7 +200,7 @@ TEST(MotionBlur, TurningArmDrawsAnArc) {
   options.width = options.height = kSize;
   options.shutter_s = Vec2d{-0.3, 0.3};
   std::string plan;
-  const Image image = render(scene, options, &plan);
+  const Image image = render_motion_shot(scene, options, &plan);
   double sum = 0, mx = 0, my = 0;
   for (uint32_t y = 0; y < kSize; ++y)
     for (uint32_t x = 0; x < kSize; ++x) {
@@ -280,15 +281,16 @@ TEST(MotionBlur, OpenShutterOnAStillSceneChangesNoPixel) {
   options.width = 48, options.height = 32, options.samples_per_pixel = 8, options.seed = 5;
   options.show_progress = false;
   std::string plan;
-  const std::vector<float> closed = render(scene, options).pixels;
+  const std::vector<float> closed = render_motion_shot(scene, options).pixels;
   for (const Vec2d shutter : {Vec2d{0, 1.0 / 48}, Vec2d{-0.5, 0.5}}) {
     options.shutter_s = shutter;
-    EXPECT_EQ(render(scene, options, &plan).pixels, closed) << shutter.x << "," << shutter.y;
+    EXPECT_EQ(render_motion_shot(scene, options, &plan).pixels, closed)
+        << shutter.x << "," << shutter.y;
     EXPECT_NE(plan.find("nothing moves in it: no time samples"), std::string::npos) << plan;
   }
   // Once the shutter reaches the animation, the lamp moves and time is sampled.
   options.shutter_s = Vec2d{1.5, 2.5};
-  render(scene, options, &plan);
+  render_motion_shot(scene, options, &plan);
   EXPECT_NE(plan.find("time samples for 1 moving instance"), std::string::npos) << plan;
 }
 
