@@ -41,6 +41,29 @@ TEST(SolidPattern, CheckerAlternatesByTheParityOfTheUnitCube) {
   EXPECT_EQ(evaluate_solid(s, {1.5, 0.5, 0.5}).rgb.y, 1.f);
 }
 
+// A surface lying on a cell border (`plane { z, 0 }` moved under the checker) is hit at float
+// precision: points a few 1e-6 either side of the border take one side, not a speckle of both;
+// a point clearly past the border takes the other.
+TEST(SolidPattern, LatticeBordersHoldAtFloatPrecision) {
+  for (const SolidPatternKind kind : {SolidPatternKind::kChecker, SolidPatternKind::kCells}) {
+    SolidPattern s = grey_ramp(kind);
+    s.list = {plain({1, 0, 0}), plain({0, 0, 1})};
+    for (const Vec3d on_border : {Vec3d{0.5, 0.5, 0}, Vec3d{-3.5, 20, 0.25}, Vec3d{7, 0.5, 2.5}}) {
+      const float centre = evaluate_solid(s, on_border).rgb.x;
+      for (const double error : {-4e-6, -1e-6, 1e-6, 4e-6})
+        for (int axis = 0; axis < 3; ++axis) {
+          Vec3d p = on_border;
+          (axis == 0 ? p.x : axis == 1 ? p.y : p.z) += error;
+          EXPECT_EQ(evaluate_solid(s, p).rgb.x, centre) << int(kind) << " axis " << axis;
+        }
+    }
+  }
+  SolidPattern checker = grey_ramp(SolidPatternKind::kChecker);
+  checker.list = {plain({1, 0, 0}), plain({0, 0, 1})};
+  EXPECT_NE(evaluate_solid(checker, {0.5, 0.5, -1e-3}).rgb.x,
+            evaluate_solid(checker, {0.5, 0.5, 0}).rgb.x);
+}
+
 TEST(SolidPattern, ListEntriesKeepTheirOwnPatternSpace) {
   SolidPattern inner;
   inner.kind = SolidPatternKind::kChecker;

@@ -75,6 +75,20 @@ TEST_F(Sdl, ColourPromotionAndKeywords) {
   EXPECT_DOUBLE_EQ(scene.background->g, 0.25);
 }
 
+// No comma is needed between a list's colours either: a second `rgb` starts the next colour
+// (POV-Ray renders `checker rgb <1,0,0> rgb <0,1,0>` red and green), where `filter` and
+// `transmit` after a colour still modify it.
+TEST_F(Sdl, ColourListsNeedNoComma) {
+  const Scene scene =
+      run("plane { y, 0 pigment { checker rgb <1, 0, 0> rgbt <0, 1, 0, 0.5> transmit 0.25 } }");
+  const Pigment& checker = scene.objects.at(0).texture.pigment;
+  ASSERT_EQ(checker.list.size(), 2u);
+  EXPECT_EQ(checker.list[0].colour.r, 1);
+  EXPECT_EQ(checker.list[0].colour.g, 0);
+  EXPECT_EQ(checker.list[1].colour.g, 1);
+  EXPECT_EQ(checker.list[1].colour.transmit, 0.25);
+}
+
 TEST_F(Sdl, Strings) {
   sdl_true("strcmp(str(2, -5, 1), \"002.0\") = 0");  // measured with povray 3.7.0.10
   sdl_true("strcmp(str(3.14159, 0, 2), \"3.14\") = 0");

@@ -187,6 +187,10 @@ Colour Parser::parse_colour(bool float_fills_filter_transmit) {
       break;
     }
     if (tok.keyword() && (w.rfind("rgb", 0) == 0 || w.rfind("srgb", 0) == 0) && is_colour_word(w)) {
+      if (any) {  // `checker rgb <1,0,0> rgb <0,1,0>`: a second vector starts the next colour,
+        unget(std::move(tok));  // as in POV-Ray (component keywords still modify this one)
+        break;
+      }
       bool srgb = w[0] == 's';
       std::string channels = w.substr(srgb ? 4 : 3);
       int dims = 3 + static_cast<int>(channels.size());
