@@ -17,10 +17,11 @@ Value vector_value(Vec3d v) {
   return Value::vector({v.x, v.y, v.z});
 }
 
-// The OBJECT argument, '(' already read: an object identifier, as POV-Ray requires. None when
-// the object is one filmback does not convert (then reported here).
+// The call's '(' and OBJECT argument: an object identifier, as POV-Ray requires. None when the
+// object is one filmback does not convert (then reported here).
 std::shared_ptr<const ObjectProbe> object_argument(Parser& p, const Tok& name) {
   const std::string& function = name.token.text;
+  p.expect("(");
   const Value object = p.parse_expression();
   if (!object.get<Node>()) p.fail(function + "() expects an object identifier");
   std::shared_ptr<const ObjectProbe> probe = p.object_probe(object);
@@ -52,7 +53,6 @@ std::shared_ptr<const ObjectProbe> Parser::object_probe(const Value& object) {
 // the surface normal there into the vector identifier NORMAL; a miss gives <0, 0, 0> and a zero
 // normal, as in POV-Ray.
 Value trace_function(Parser& p, const Tok& name) {
-  p.expect("(");
   std::shared_ptr<const ObjectProbe> probe = object_argument(p, name);
   p.expect(",");
   const Vec3d origin = p.parse_vector();
@@ -74,7 +74,6 @@ Value trace_function(Parser& p, const Tok& name) {
 
 // inside(OBJECT, P): 1 if P is in the object's set, else 0.
 Value inside_function(Parser& p, const Tok& name) {
-  p.expect("(");
   std::shared_ptr<const ObjectProbe> probe = object_argument(p, name);
   p.expect(",");
   const Vec3d point = p.parse_vector();
@@ -84,7 +83,6 @@ Value inside_function(Parser& p, const Tok& name) {
 
 // min_extent(OBJECT), max_extent(OBJECT): corners of the object's bounding box.
 Value extent_function(Parser& p, const Tok& name) {
-  p.expect("(");
   std::shared_ptr<const ObjectProbe> probe = object_argument(p, name);
   p.expect(")");
   if (!probe || probe->bounds().empty()) return vector_value({0, 0, 0});

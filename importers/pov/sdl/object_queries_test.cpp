@@ -20,6 +20,10 @@ class ObjectQueries : public Sdl {
   Vec3d vector_of(const std::string& declarations, const std::string& expression) {
     return centre(declarations + "\nsphere { " + expression + ", 1 }");
   }
+  // The normal the trace() `call` leaves in N.
+  Vec3d normal_of(const std::string& declarations, const std::string& call) {
+    return vector_of(declarations + "#declare P = " + call + ";", "N");
+  }
 };
 
 void expect_near(Vec3d actual, Vec3d expected, double tolerance, const char* what) {
@@ -34,8 +38,8 @@ TEST_F(ObjectQueries, TraceMeetsASphereWhereItsEquationSaysWithItsOutwardNormal)
   // The direction's length does not matter: POV-Ray normalises it.
   expect_near(vector_of(kSphere, "trace(S, <1, 10, 3>, -5*y, N)"), {1, 4, 3}, kTraceTolerance,
               "from above");
-  expect_near(vector_of(std::string(kSphere) + "#declare P = trace(S, <1, 10, 3>, -y, N);", "N"),
-              {0, 1, 0}, kTraceTolerance, "normal from above");
+  expect_near(normal_of(kSphere, "trace(S, <1, 10, 3>, -y, N)"), {0, 1, 0}, kTraceTolerance,
+              "normal from above");
   expect_near(vector_of(kSphere, "trace(S, <-10, 2, 3>, x)"), {-1, 2, 3}, kTraceTolerance,
               "from the side, no normal asked");
   // From inside, the ray leaves through the far side.
@@ -45,8 +49,7 @@ TEST_F(ObjectQueries, TraceMeetsASphereWhereItsEquationSaysWithItsOutwardNormal)
 
 TEST_F(ObjectQueries, TraceThatMissesGivesZeroAndAZeroNormal) {
   expect_near(vector_of(kSphere, "trace(S, <10, 10, 10>, y, N)"), {0, 0, 0}, 0, "miss");
-  expect_near(vector_of(std::string(kSphere) + "#declare P = trace(S, <10, 10, 10>, y, N);", "N"),
-              {0, 0, 0}, 0, "normal of a miss");
+  expect_near(normal_of(kSphere, "trace(S, <10, 10, 10>, y, N)"), {0, 0, 0}, 0, "normal of a miss");
   // Behind the origin is no hit either.
   expect_near(vector_of(kSphere, "trace(S, <1, 10, 3>, y, N)"), {0, 0, 0}, 0, "behind");
 }
@@ -60,8 +63,8 @@ const char* const kBox =
 TEST_F(ObjectQueries, TraceAndExtentsFollowATransformedBox) {
   expect_near(vector_of(kBox, "trace(B, <0.5, 0.5, -10>, z, N)"), {0.5, 0.5, 3}, kTraceTolerance,
               "front face");
-  expect_near(vector_of(std::string(kBox) + "#declare P = trace(B, <0.5, 0.5, -10>, z, N);", "N"),
-              {0, 0, -1}, kTraceTolerance, "front face normal");
+  expect_near(normal_of(kBox, "trace(B, <0.5, 0.5, -10>, z, N)"), {0, 0, -1}, kTraceTolerance,
+              "front face normal");
   expect_near(vector_of(kBox, "min_extent(B)"), {-1, -1, 3}, kTraceTolerance, "min_extent");
   expect_near(vector_of(kBox, "max_extent(B)"), {1, 1, 7}, kTraceTolerance, "max_extent");
   sdl_true(std::string(kBox) + "inside(B, <0.9, 0.9, 6.9>) = 1");
@@ -79,9 +82,8 @@ const char* const kDifference =
 TEST_F(ObjectQueries, TraceInsideAndExtentsFollowATransformedDifference) {
   expect_near(vector_of(kDifference, "trace(D, <5, 10, 0>, -y, N)"), {5, 1, 0}, kTraceTolerance,
               "cut");
-  expect_near(
-      vector_of(std::string(kDifference) + "#declare P = trace(D, <5, 10, 0>, -y, N);", "N"),
-      {0, 1, 0}, kTraceTolerance, "cut normal");
+  expect_near(normal_of(kDifference, "trace(D, <5, 10, 0>, -y, N)"), {0, 1, 0}, kTraceTolerance,
+              "cut normal");
   // Beside the cut, the box's top.
   expect_near(vector_of(kDifference, "trace(D, <3.5, 10, 0>, -y)"), {3.5, 2, 0}, kTraceTolerance,
               "top");
@@ -102,10 +104,10 @@ const char* const kMesh =
 TEST_F(ObjectQueries, TraceMeetsAMeshWithItsNormalTowardsTheRay) {
   expect_near(vector_of(kMesh, "trace(M, <0.2, 5, 0.3>, -y, N)"), {0.2, 1, 0.3},
               kTriangleTraceTolerance, "from above");
-  expect_near(vector_of(std::string(kMesh) + "#declare P = trace(M, <0.2, 5, 0.3>, -y, N);", "N"),
-              {0, 1, 0}, kTriangleTraceTolerance, "normal from above");
-  expect_near(vector_of(std::string(kMesh) + "#declare P = trace(M, <0.2, -5, 0.3>, y, N);", "N"),
-              {0, -1, 0}, kTriangleTraceTolerance, "normal from below");
+  expect_near(normal_of(kMesh, "trace(M, <0.2, 5, 0.3>, -y, N)"), {0, 1, 0},
+              kTriangleTraceTolerance, "normal from above");
+  expect_near(normal_of(kMesh, "trace(M, <0.2, -5, 0.3>, y, N)"), {0, -1, 0},
+              kTriangleTraceTolerance, "normal from below");
   expect_near(vector_of(kMesh, "trace(M, <3, 5, 0>, -y, N)"), {0, 0, 0}, 0, "beside");
   expect_near(vector_of(kMesh, "min_extent(M)"), {-1, 1, -1}, kTriangleTraceTolerance, "min");
   expect_near(vector_of(kMesh, "max_extent(M)"), {1, 1, 1}, kTriangleTraceTolerance, "max");
@@ -120,7 +122,7 @@ TEST_F(ObjectQueries, TraceMeetsAHeightField) {
       "#declare N = <9, 9, 9>;\n";
   expect_near(vector_of(field, "trace(H, <0.7, 10, -0.4>, -y, N)"), {0.7, 1, -0.4},
               kTriangleTraceTolerance, "surface");
-  expect_near(vector_of(field + "#declare P = trace(H, <0.7, 10, -0.4>, -y, N);", "N"), {0, 1, 0},
+  expect_near(normal_of(field, "trace(H, <0.7, 10, -0.4>, -y, N)"), {0, 1, 0},
               kTriangleTraceTolerance, "normal");
 }
 
