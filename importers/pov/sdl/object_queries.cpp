@@ -1,5 +1,7 @@
 #include "importers/pov/sdl/object_queries.h"
 
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "core/util/error.h"
@@ -58,17 +60,20 @@ Value trace_function(Parser& p, const Tok& name) {
   const Vec3d origin = p.parse_vector();
   p.expect(",");
   const Vec3d direction = p.parse_vector();
-  Value* normal = nullptr;
+  std::optional<std::string> normal;  // the identifier's name
   if (p.accept(",")) {
     const Token identifier = p.raw_next();
-    normal = identifier.kind == TokenKind::kWord ? p.find(identifier.text) : nullptr;
-    if (!normal)
+    if (identifier.kind != TokenKind::kWord || !p.find(identifier.text))
       p.fail("trace(): its fourth argument must be a declared identifier, found '" +
              identifier.text + "'");
+    normal = identifier.text;
   }
   p.expect(")");
   const std::optional<ProbeHit> hit = probe ? probe->trace(origin, direction) : std::nullopt;
-  if (normal) *normal = vector_value(hit ? hit->normal : Vec3d{0, 0, 0});
+  // Looked up again: reading the ')' may have run a directive that changed the scopes.
+  if (normal) {
+    if (Value* slot = p.find(*normal)) *slot = vector_value(hit ? hit->normal : Vec3d{0, 0, 0});
+  }
   return vector_value(hit ? hit->position : Vec3d{0, 0, 0});
 }
 
@@ -78,6 +83,9 @@ Value inside_function(Parser& p, const Tok& name) {
   p.expect(",");
   const Vec3d point = p.parse_vector();
   p.expect(")");
+  // Triangles have no inside here, where POV-Ray gives a height field (and a mesh with an
+  // inside_vector) one: reported, as the answer may be wrong.
+  if (probe && probe->has_triangles()) p.unsupported(name.token.text, p.location_of(name));
   return Value::number(probe && probe->inside(point) ? 1 : 0);
 }
 

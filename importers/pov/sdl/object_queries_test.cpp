@@ -111,7 +111,11 @@ TEST_F(ObjectQueries, TraceMeetsAMeshWithItsNormalTowardsTheRay) {
   expect_near(vector_of(kMesh, "trace(M, <3, 5, 0>, -y, N)"), {0, 0, 0}, 0, "beside");
   expect_near(vector_of(kMesh, "min_extent(M)"), {-1, 1, -1}, kTriangleTraceTolerance, "min");
   expect_near(vector_of(kMesh, "max_extent(M)"), {1, 1, 1}, kTriangleTraceTolerance, "max");
-  sdl_true(std::string(kMesh) + "inside(M, <0, 0.5, 0>) = 0");  // triangles have no inside here
+  // Triangles have no inside here: 0, reported as a function answered with zero.
+  const Scene scene = run(std::string(kMesh) + "sphere { 0, 1 + inside(M, <0, 0.5, 0>) }");
+  EXPECT_EQ(scene.objects.at(0).r0, 1);
+  ASSERT_EQ(scene.unsupported.size(), 1u);
+  EXPECT_EQ(scene.unsupported[0].feature, "inside");
 }
 
 // A height field of a constant function is flat at that height over x, z in [0, 1], before its
