@@ -12,7 +12,7 @@ namespace fb::pov::sdl {
 namespace {
 
 // Probes kept at once: a scene that traces a fresh #local object in every loop iteration builds
-// one probe per iteration, and the oldest are then dropped rather than kept to the end.
+// one probe per iteration; past this many, all are dropped (and built again when asked).
 constexpr size_t kMaxCachedObjectProbes = 64;
 
 Value vector_value(Vec3d v) {
