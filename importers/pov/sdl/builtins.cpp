@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "importers/pov/sdl/keyword_table.h"
+#include "importers/pov/sdl/object_queries.h"
 
 namespace fb::pov::sdl {
 
@@ -473,17 +474,6 @@ Value array_dimensions(Parser& p, const Tok& tok) {
   return Value::number(static_cast<double>(array.array->sizes[static_cast<size_t>(d) - 1]));
 }
 
-// inside, trace, min_extent, max_extent need the geometry's intersection code: parsed, reported,
-// answered with zeros.
-Value needs_geometry(Parser& p, const Tok& tok) {
-  const std::string& word = tok.token.text;
-  SourceLocation where = p.location_of(tok);
-  p.skip_parenthesised();
-  p.unsupported(word, where);
-  if (word == "inside") return Value::number(0);
-  return from_vec3({0, 0, 0});
-}
-
 struct Function {
   std::string_view name;
   Handler call;
@@ -517,10 +507,10 @@ constexpr Function kFunctions[] = {
     {"defined", is_defined},
     {"dimensions", array_dimensions},
     {"dimension_size", array_dimensions},
-    {"inside", needs_geometry},
-    {"trace", needs_geometry},
-    {"min_extent", needs_geometry},
-    {"max_extent", needs_geometry},
+    {"inside", inside_function},
+    {"trace", trace_function},
+    {"min_extent", extent_function},
+    {"max_extent", extent_function},
 };
 
 }  // namespace

@@ -1293,6 +1293,8 @@ TEST_F(Sdl, TruncatedSampleScenesFailCleanly) {
   EXPECT_GT(errors, 0);
 }
 
+// language/tracevines.pov is not among them: once trace() answers, its vines grow for 28.7
+// million tokens, past the token limit (docs/pov.md "The language").
 TEST_F(Sdl, SampleScenesEvaluate) {
   fs::path examples = "/usr/share/doc/povray/examples";
   fs::path includes = "/usr/share/povray-3.7/include";
@@ -1300,7 +1302,7 @@ TEST_F(Sdl, SampleScenesEvaluate) {
     GTEST_SKIP() << "povray-examples not installed";
   for (const char* name :
        {"advanced/woodbox.pov", "advanced/chess2.pov", "advanced/glasschess/glasschess.pov",
-        "advanced/benchmark/benchmark.pov", "language/tracevines.pov",
+        "advanced/benchmark/benchmark.pov", "language/trace-wicker.pov",
         "animations/splinefollow/splinefollow.pov", "objects/mesh2.pov"}) {
     EvaluateOptions options;
     options.scene_file = examples / name;

@@ -54,6 +54,7 @@ struct Macro {
 
 struct ArrayValue;
 struct ReadFile;
+class ObjectProbe;  // object_probe.h
 
 // A declared `function { ... }` (function_compiler.cpp): its compiled program, or, when it needs
 // what filmback does not evaluate (a vector function, an internal(N) not implemented), a program
@@ -218,9 +219,9 @@ class Parser {
   bool starts_colour(const Tok& tok) const;
 
   // ---- appearance (appearance.cpp) ----
-  Pigment parse_pigment();  // after the `pigment` keyword
+  Pigment parse_pigment();            // after the `pigment` keyword
   Finish parse_finish(Finish start);  // after `finish`: changes `start`, as POV-Ray does
-  Normal parse_normal();                           // after the `normal` keyword
+  Normal parse_normal();              // after the `normal` keyword
   Normal parse_normal_items(const char* closing);  // a normal's body up to `closing`
   Texture parse_texture();
   // `layer` (and the layers it carries) over `texture`'s top layer; fails past the layer limit.
@@ -249,11 +250,11 @@ class Parser {
   void parse_lathe(Object& o);  // lathe.cpp: its spline and points, after the '{'
   bool parse_text(Object& o);   // text.cpp; false: its font is not here (reported)
   void parse_height_field(
-      Object& o);                    // height_field.cpp: an image's or a function's, after the '{'
-  void parse_blob(Object& o);        // blob.cpp: threshold and components, after the '{'
+      Object& o);              // height_field.cpp: an image's or a function's, after the '{'
+  void parse_blob(Object& o);  // blob.cpp: threshold and components, after the '{'
   void parse_sphere_sweep(Object& o);   // sphere_sweep.cpp: spline, spheres, tolerance
   void parse_bicubic_patch(Object& o);  // bicubic_patch.cpp: its triangles, after the '{'
-  void parse_isosurface(Object& o);  // isosurface.cpp: its function and bounds, after the '{'
+  void parse_isosurface(Object& o);     // isosurface.cpp: its function and bounds, after the '{'
   void parse_contained_by(Isosurface& container);  // isosurface.cpp: after `contained_by`
   void parse_parametric(Object& o);  // parametric.cpp: its three functions as a mesh, after '{'
   void skip_rest_of_block();         // to the '}' closing a block already open
@@ -319,6 +320,9 @@ class Parser {
   std::string array_limit_message() const;
   void check_string(const std::string& s);
   const EvaluateOptions& options() const { return options_; }
+  // object_queries.cpp: the probe trace(), inside() and the extents ask of a declared object,
+  // built at its first use; none when the object is unsupported.
+  std::shared_ptr<const ObjectProbe> object_probe(const Value& object);
   int nesting = 0;  // expression/block recursion, bounded so that deep nesting cannot overflow
   // The frame address where evaluation started: Nesting also bounds the stack the recursion has
   // used, since a level's frames are several times larger in a sanitized build.
@@ -381,6 +385,11 @@ class Parser {
   // with the file it is written in.
   size_t directive_frames_ = 0;
   std::map<std::string, std::string> written_files_;  // #fopen ... write, by name
+  struct CachedProbe {
+    std::shared_ptr<const Item> object;
+    std::shared_ptr<const ObjectProbe> probe;
+  };
+  std::unordered_map<const Item*, CachedProbe> object_probes_;  // by the declared object
 };
 
 // RAII bound on recursion depth (expressions in parentheses, nested blocks).
