@@ -8,6 +8,7 @@
 
 #include "core/function/user_function.h"
 #include "core/math/constants.h"
+#include "core/texture/solid_defaults.h"
 #include "core/texture/solid_image_map.h"
 
 namespace fb {
@@ -112,6 +113,10 @@ SolidColourStop stop(float v, float r, float g, float b) {
   return {v, {{r, g, b}, 0.f, 0.f}};
 }
 
+}  // namespace
+
+namespace solid {
+
 const std::vector<SolidColourStop>& default_map(SolidPatternKind kind) {
   using K = SolidPatternKind;
   static const std::vector<SolidColourStop> grey = {stop(0, 0, 0, 0), stop(1, 1, 1, 1)};
@@ -160,6 +165,10 @@ bool is_list(SolidPatternKind kind) {
   using K = SolidPatternKind;
   return kind == K::kChecker || kind == K::kHexagon || kind == K::kBrick;
 }
+
+}  // namespace solid
+
+namespace {
 
 // Patterns that apply their turbulence themselves instead of warping the point first
 // (HasSpecialTurbulenceHandling in POV-Ray's source).
@@ -444,13 +453,13 @@ SolidColour evaluate_solid(const SolidPattern& s, Vec3d world_point, const Textu
   const Vec3d p = solid::warped_point(s, s.pattern_from_world.point(world_point));
   if (s.kind == SolidPatternKind::kImageMap)
     return images ? image_map_colour(s.image_map, p, *images, s.colour) : s.colour;
-  if (is_list(s.kind)) {
-    const int index = std::clamp(int(solid::raw_value(s, p)), 0, list_size(s.kind) - 1);
+  if (solid::is_list(s.kind)) {
+    const int index = std::clamp(int(solid::raw_value(s, p)), 0, solid::list_size(s.kind) - 1);
     return size_t(index) < s.list.size() ? evaluate_solid(s.list[index], world_point, images)
-                                         : default_list_colour(s.kind, index);
+                                         : solid::default_list_colour(s.kind, index);
   }
   const double value = solid::shape_value(s, solid::raw_value(s, p));
-  return solid::colour_at(s.colour_map.empty() ? default_map(s.kind) : s.colour_map, value);
+  return solid::colour_at(s.colour_map.empty() ? solid::default_map(s.kind) : s.colour_map, value);
 }
 
 }  // namespace fb

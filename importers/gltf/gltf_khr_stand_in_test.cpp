@@ -14,6 +14,7 @@
 #include "importers/gltf/gltf_writer.h"
 #include "support/gltf_builder.h"
 #include "support/povray_light.h"
+#include "support/written_gltf.h"
 
 namespace fb {
 namespace {
@@ -244,13 +245,7 @@ TEST(GltfKhrStandIn, ConvertWritesScaledStandInsAndKeepsPovRaysLights) {
   glossy.roughness = 0.3f;
   scene.materials.push_back(glossy);
   const std::filesystem::path file = test::scratch_dir() / "stand_ins.gltf";
-  Diagnostics diagnostics;
-  write_gltf(scene, file, diagnostics);
-
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string error, warning;
-  ASSERT_TRUE(loader.LoadASCIIFromFile(&model, &error, &warning, file.string())) << error;
+  const tinygltf::Model model = test::written_gltf(scene, file);
   ASSERT_EQ(model.lights.size(), 3u);
   ASSERT_EQ(model.cameras.size(), 1u);
   const std::vector<ViewedPoint> seen =
@@ -280,6 +275,7 @@ TEST(GltfKhrStandIn, ConvertWritesScaledStandInsAndKeepsPovRaysLights) {
   EXPECT_FLOAT_EQ(float(model.materials[1].pbrMetallicRoughness.roughnessFactor), 0.3f);
 
   // filmback reads FILMBACK_povray: the lights exactly as they were.
+  Diagnostics diagnostics;
   const Scene back = import_gltf(file, diagnostics);
   ASSERT_EQ(back.lights.size(), 3u);
   for (size_t i = 0; i < 3; ++i) {

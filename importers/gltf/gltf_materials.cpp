@@ -71,10 +71,19 @@ class MaterialReader {
     m.ior = float(extension_fields(g.extensions, "KHR_materials_ior", path)
                       .number("ior", 1, 10)
                       .value_or(1.5));
+    // FILMBACK_povray's specular_factor is the exact one, KHR's the colour other viewers read
+    // (gltf_writer.cpp, khr_specular_for_viewers).
+    const Fields pov = extension_fields(g.extensions, "FILMBACK_povray", path);
     const Fields specular = extension_fields(g.extensions, "KHR_materials_specular", path);
-    m.specular = float(specular.number("specularFactor", 0, 1).value_or(1.0));
-    if (const std::optional<Rgb> colour = specular.color("specularColorFactor"))
-      fold_specular_colour(*colour, specular.path() + ".specularColorFactor", m);
+    if (const std::optional<double> exact = pov.number("specular_factor", 0, 1)) {
+      m.specular = float(*exact);
+    } else {
+      m.specular = float(specular.number("specularFactor", 0, 1).value_or(1.0));
+      // With specularFactor 0 there is no specular layer, whatever its colour.
+      if (const std::optional<Rgb> colour = specular.color("specularColorFactor");
+          colour && m.specular > 0)
+        fold_specular_colour(*colour, specular.path() + ".specularColorFactor", m);
+    }
     if (specular.has("specularTexture") || specular.has("specularColorTexture"))
       warn(specular.path(), "specular textures are not supported yet; the factors are used");
 
@@ -90,7 +99,6 @@ class MaterialReader {
                   "'" + g.alphaMode + "' is not an alpha mode (expected OPAQUE, MASK or BLEND)");
     }
     // A POV-Ray pigment and the exact base colour factor (docs/pov.md "Conversion").
-    const Fields pov = extension_fields(g.extensions, "FILMBACK_povray", path);
     if (pov.has("pigment")) m.base_color_pattern = read_pattern(pov.object("pigment"));
     if (const auto factor = pov.numbers("base_color_factor", 3, 0, kLargestFactor)) {
       if (factor->size() != 3) pov.fail("base_color_factor", "expected [r, g, b]");

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "core/texture/solid_defaults.h"
 #include "core/texture/solid_pattern.h"
 #include "core/util/error.h"
 
@@ -183,23 +184,29 @@ SolidPattern read_pattern(const Fields& json) {
   return read(json, 0, count);
 }
 
+// The colours a pattern shows, as the renderer evaluates them (evaluate_solid): a list pattern's
+// entries, POV-Ray's default colours for those it leaves out; a value pattern's map, POV-Ray's
+// default map for its kind when it has none (a `radial` without one is cyan, yellow and magenta,
+// not black).
 SolidColour mean_colour(const SolidPattern& p) {
   SolidColour mean;
-  if (p.kind == K::kSolid || p.kind == K::kImageMap) return p.colour;  // an image map's average
-  if (!p.list.empty()) {
-    for (const SolidPattern& entry : p.list) {
-      const SolidColour c = mean_colour(entry);
-      mean.rgb += c.rgb, mean.filter += c.filter, mean.transmit += c.transmit;
-    }
-    const float n = float(p.list.size());
-    return {mean.rgb * (1 / n), mean.filter / n, mean.transmit / n};
-  }
-  // The map over evenly spread values (the default map, black to white, when it is empty).
-  constexpr int kSamples = 64;
-  for (int i = 0; i < kSamples; ++i) {
-    const SolidColour c = solid::colour_at(p.colour_map, (i + 0.5) / kSamples);
+  const auto add = [&mean](const SolidColour& c) {
     mean.rgb += c.rgb, mean.filter += c.filter, mean.transmit += c.transmit;
+  };
+  if (p.kind == K::kSolid || p.kind == K::kImageMap) return p.colour;  // an image map's average
+  if (solid::is_list(p.kind)) {
+    const int n = solid::list_size(p.kind);
+    for (int i = 0; i < n; ++i)
+      add(size_t(i) < p.list.size() ? mean_colour(p.list[size_t(i)])
+                                    : solid::default_list_colour(p.kind, i));
+    return {mean.rgb * (1.f / float(n)), mean.filter / float(n), mean.transmit / float(n)};
   }
+  // The map over evenly spread values.
+  const std::vector<SolidColourStop>& map =
+      p.colour_map.empty() ? solid::default_map(p.kind) : p.colour_map;
+  constexpr int kSamples = 64;
+  for (int i = 0; i < kSamples; ++i)
+    add(solid::colour_at(map, (i + 0.5) / kSamples));
   return {mean.rgb * (1.f / kSamples), mean.filter / kSamples, mean.transmit / kSamples};
 }
 

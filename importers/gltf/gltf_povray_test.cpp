@@ -1,16 +1,22 @@
 // FILMBACK_povray (docs/pov.md "Conversion"): POV-Ray's lights and pigments written by
-// `filmback convert` read back exactly, and bad values are errors naming the JSON path.
+// `filmback convert` read back exactly, bad values are errors naming the JSON path, and what
+// other viewers read in its place (mean colours, specular levels) is what filmback shows.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "core/math/constants.h"
+#include "core/texture/solid_pattern.h"
 #include "core/util/error.h"
 #include "importers/gltf/gltf_importer.h"
+#include "importers/gltf/gltf_povray_pattern.h"
 #include "importers/gltf/gltf_writer.h"
 #include "support/gltf_builder.h"
 #include "support/povray_light.h"
+#include "support/written_gltf.h"
 
 namespace fb {
 namespace {
@@ -164,13 +170,43 @@ SolidPattern every_field() {
   return outer;
 }
 
+// A viewer without FILMBACK_povray gets a pattern's mean colour: the colours the renderer shows,
+// POV-Ray's defaults included (a radial without a map is cyan, yellow and magenta, a checker
+// without colours blue and green), against the mean of evaluate_solid over points spread evenly
+// in angle about y (radial's value) and in checker cells.
+TEST(GltfPovray, ViewersGetTheMeanOfWhatTheRendererShows) {
+  SolidPattern radial;
+  radial.kind = SolidPatternKind::kRadial;
+  SolidPattern bare_checker;
+  bare_checker.kind = SolidPatternKind::kChecker;
+  SolidPattern checker = bare_checker;
+  checker.list = {solid({1, 0, 0}), radial};
+  for (const SolidPattern& p : {radial, bare_checker, checker}) {
+    SCOPED_TRACE(int(p.kind));
+    constexpr int kPoints = 40000;
+    Rgb sum;
+    for (int i = 0; i < kPoints; ++i) {
+      // Additive recurrences (irrational steps): angle, radius and height evenly spread.
+      const double u = std::fmod(i * 0.6180339887, 1.0), v = std::fmod(i * 0.7548776662, 1.0),
+                   w = std::fmod(i * 0.5698402910, 1.0);
+      const double angle = 2 * kPi * u, radius = 1 + 49 * v;
+      sum +=
+          evaluate_solid(p, {radius * std::cos(angle), 100 * w - 50, radius * std::sin(angle)}).rgb;
+    }
+    const Rgb mean = gltf::mean_colour(p).rgb;
+    EXPECT_NEAR(mean.x, sum.x / kPoints, 0.01);
+    EXPECT_NEAR(mean.y, sum.y / kPoints, 0.01);
+    EXPECT_NEAR(mean.z, sum.z / kPoints, 0.01);
+  }
+}
+
 TEST(GltfPovray, PigmentsReadBackExactly) {
   Scene scene;
   Material m;
   m.name = "pigment";
   m.base_color = {1.3f, 0.7f, 0.7f};  // diffuse times a colour: beyond glTF's [0, 1]
   m.base_color_pattern = every_field();
-  m.alpha_mode = AlphaMode::kBlend;  // the pattern's transmit lowers the coverage
+  m.alpha_mode = AlphaMode::kBlend;   // the pattern's transmit lowers the coverage
   m.emission = {2.5f, 0.5f, 0.125f};  // times the pattern at the hit; emissiveFactor is a mean
   scene.materials = {m, Material()};
   const Scene back = round_trip(scene, "pigment.gltf");
@@ -205,6 +241,59 @@ std::string error_after(const Scene& scene, const std::string& from, const std::
     return e.what();
   }
   return "no error";
+}
+
+// A viewer that knows only standard glTF gets a finish's specular level from what it reads:
+// Blender 3.4 sets Principled Specular = lum(specularColorFactor) F0(ior) / 0.08 (F0 = 0.08
+// Specular) and ignores specularFactor, a viewer that follows KHR_materials_specular has F0 =
+// F0(ior) specularColorFactor specularFactor. filmback reads back the exact factor.
+TEST(GltfPovray, SpecularLevelsReachOtherViewersAndReadBackExactly) {
+  Scene scene;
+  Material lambertian, highlight, glass, glossy;
+  lambertian.specular = 0.f;
+  highlight.specular = 0.5f;
+  glass.specular = 0.5f, glass.transmission = 1.f, glass.ior = 1.33f;
+  scene.materials = {lambertian, highlight, glass, glossy};
+  const std::filesystem::path file = test::scratch_dir() / "specular_levels.gltf";
+  const tinygltf::Model model = test::written_gltf(scene, file);
+  ASSERT_EQ(model.materials.size(), 4u);
+
+  // The F0 each reading gives, at glTF's default ior 1.5 (F0 0.04).
+  const auto khr = [&](size_t i, const char* key, double absent) {
+    const auto& ext = model.materials[i].extensions;
+    const auto it = ext.find("KHR_materials_specular");
+    if (it == ext.end() || !it->second.Has(key)) return absent;
+    const tinygltf::Value& v = it->second.Get(key);
+    return v.IsArray() ? v.Get(1).GetNumberAsDouble() : v.GetNumberAsDouble();
+  };
+  const auto blender_f0 = [&](size_t i) { return khr(i, "specularColorFactor", 1) * 0.04; };
+  const auto khr_f0 = [&](size_t i) {
+    return khr(i, "specularColorFactor", 1) * khr(i, "specularFactor", 1) * 0.04;
+  };
+  for (size_t i : {size_t(0), size_t(1), size_t(3)}) {
+    SCOPED_TRACE(i);
+    EXPECT_NEAR(blender_f0(i), scene.materials[i].specular * 0.04, 1e-7);
+    EXPECT_NEAR(khr_f0(i), scene.materials[i].specular * 0.04, 1e-7);
+  }
+  // Lambertian: no layer at grazing angles either (F90 = specularFactor).
+  EXPECT_EQ(khr(0, "specularFactor", 1), 0);
+  // Glass keeps specularFactor: its ior also sets refraction.
+  EXPECT_EQ(khr(2, "specularFactor", 1), 0.5);
+  EXPECT_EQ(khr(2, "specularColorFactor", 1), 1);
+
+  Diagnostics diagnostics;
+  const Scene back = import_gltf(file, diagnostics);
+  ASSERT_EQ(back.materials.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(back.materials[i].specular, scene.materials[i].specular);
+    EXPECT_EQ(back.materials[i].ior, scene.materials[i].ior);
+  }
+  const std::string e = error_after(scene, "\"specular_factor\": 0.5", "\"specular_factor\": 1.5");
+  EXPECT_NE(e.find("materials[1].extensions.FILMBACK_povray.specular_factor: expected a number "
+                   "in [0, 1]"),
+            std::string::npos)
+      << e;
 }
 
 Scene with_pattern(SolidPattern p) {

@@ -87,6 +87,33 @@ int add_mesh(tinygltf::Model& model, const TriangleMesh& mesh) {
   return int(model.meshes.size() - 1);
 }
 
+// KHR_materials_specular as a viewer that knows only standard glTF reads it (docs/pov.md "Other
+// viewers"). filmback's specular s scales the whole dielectric Fresnel term, which is
+// specularFactor (F0 and F90); Blender 3.4's importer ignores specularFactor and sets Principled
+// Specular from specularColorFactor and the ior alone (lum(colour) F0(ior) / 0.08), so every
+// material there kept F0 = 0.04. Hence: s = 0 is both factors 0, no specular layer in any
+// reading; 0 < s < 1 on an opaque material is specularColorFactor s, F0 = s F0(ior) for every
+// viewer (F90 stays 1 where filmback's is s: grazing angles only), with s itself in
+// FILMBACK_povray. A transmissive material keeps specularFactor: Blender's reading subtracts the
+// transmission from the colour, and its ior also sets refraction.
+struct KhrSpecular {
+  Value::Object khr;           // empty: the extension's defaults are right
+  bool exact_in_ours = false;  // s goes into FILMBACK_povray's specular_factor
+};
+
+KhrSpecular khr_specular_for_viewers(const Material& m) {
+  KhrSpecular out;
+  if (m.specular >= 1.f) return out;
+  if (m.specular > 0.f && m.transmission == 0.f) {
+    out.khr["specularColorFactor"] = gltf::number_array(Rgb(m.specular, m.specular, m.specular));
+    out.exact_in_ours = true;
+    return out;
+  }
+  out.khr["specularFactor"] = number(m.specular);
+  if (m.specular == 0.f) out.khr["specularColorFactor"] = gltf::number_array(Rgb(0.f, 0.f, 0.f));
+  return out;
+}
+
 tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   tinygltf::Material out;
   out.name = m.name;
@@ -96,8 +123,8 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
   out.pbrMetallicRoughness.roughnessFactor = m.roughness;
   // A Lambertian material (specular 0: filmback ignores its roughness) is matte in glTF's own
   // BSDF at any roughness, but Blender's Principled diffuse (Disney's) brightens with roughness
-  // (retro-reflection) and its glTF importer does not read specularFactor 0: at roughness 0.5 it
-  // reflects, averaged over directions, what Lambert's does (1.008; 1.065 at roughness 1).
+  // (retro-reflection): at roughness 0.5 it reflects, averaged over directions, what Lambert's
+  // does (1.008; 1.065 at roughness 1).
   // Not under a POV-Ray pattern with filter, which makes points of it refract.
   if (m.specular == 0 && m.metallic == 0 && m.transmission == 0 &&
       !(m.base_color_pattern && gltf::mean_colour(*m.base_color_pattern).filter > 0))
@@ -121,23 +148,25 @@ tinygltf::Material material(const Material& m, Diagnostics& diagnostics) {
         Value(Value::Object{{"transmissionFactor", number(m.transmission)}});
   if (m.ior != 1.5f)
     out.extensions["KHR_materials_ior"] = Value(Value::Object{{"ior", number(m.ior)}});
-  if (m.specular != 1.f)
-    out.extensions["KHR_materials_specular"] =
-        Value(Value::Object{{"specularFactor", number(m.specular)}});
-  // FILMBACK_povray: a POV-Ray pigment, and a base colour beyond glTF's [0, 1]; other viewers get
-  // the factor times the pigment's mean colour, clamped.
+  // FILMBACK_povray: a POV-Ray pigment, a base colour beyond glTF's [0, 1] and a specular factor
+  // other viewers get as a colour (khr_specular_for_viewers); they get the base colour factor
+  // times the pigment's mean colour, clamped.
+  Value::Object ours;
+  const KhrSpecular specular = khr_specular_for_viewers(m);
+  if (!specular.khr.empty()) out.extensions["KHR_materials_specular"] = Value(specular.khr);
+  if (specular.exact_in_ours) ours["specular_factor"] = number(m.specular);
   Rgb viewed = m.base_color;
   if (m.base_color_pattern) viewed = viewed * gltf::mean_colour(*m.base_color_pattern).rgb;
   if (m.base_color_pattern || max_component(m.base_color) > 1) {
-    Value::Object ours{{"base_color_factor", gltf::number_array(m.base_color)}};
+    ours["base_color_factor"] = gltf::number_array(m.base_color);
     if (m.base_color_pattern) {
       ours["pigment"] = gltf::pattern_json(*m.base_color_pattern);
       if (max_component(m.emission) > 0) ours["emission_factor"] = gltf::number_array(m.emission);
     }
-    out.extensions["FILMBACK_povray"] = Value(std::move(ours));
     out.pbrMetallicRoughness.baseColorFactor = {std::min(viewed.x, 1.f), std::min(viewed.y, 1.f),
                                                 std::min(viewed.z, 1.f), m.alpha};
   }
+  if (!ours.empty()) out.extensions["FILMBACK_povray"] = Value(std::move(ours));
   if (m.textures.any())
     diagnostics.warn("material '" + m.name + "': its textures are not written by convert");
   if (m.normal_pattern || !m.layers.empty())
