@@ -42,7 +42,7 @@ struct MaterialValue {
 using ColourMap = std::vector<ColourMapEntry>;
 
 using Item = std::variant<Node, Pigment, Finish, Normal, Texture, Interior, MaterialValue,
-                          CameraStatement, Matrix, ColourMap, SkySphere>;
+                          CameraStatement, Matrix, ColourMap, SkySphere, Media>;
 
 struct Macro {
   std::string name;
@@ -218,14 +218,18 @@ class Parser {
   bool starts_colour(const Tok& tok) const;
 
   // ---- appearance (appearance.cpp) ----
-  Pigment parse_pigment();  // after the `pigment` keyword
+  Pigment parse_pigment();            // after the `pigment` keyword
   Finish parse_finish(Finish start);  // after `finish`: changes `start`, as POV-Ray does
-  Normal parse_normal();                           // after the `normal` keyword
+  Normal parse_normal();              // after the `normal` keyword
   Normal parse_normal_items(const char* closing);  // a normal's body up to `closing`
   Texture parse_texture();
   // `layer` (and the layers it carries) over `texture`'s top layer; fails past the layer limit.
   void add_texture_layer(Texture& texture, Texture layer);
   Interior parse_interior();
+  // media.cpp: after `media`, `scattering` and `density` (in a media)
+  Media parse_media(const Tok& keyword);
+  void parse_media_scattering(Media& media);
+  Colour parse_media_density(const SourceLocation& where);
   MaterialValue parse_material();
   ColourMap parse_colour_map(bool pigment_map);      // after colour_map / pigment_map
   Pigment parse_pigment_items(const char* closing);  // a pigment's body up to `closing`
@@ -249,11 +253,11 @@ class Parser {
   void parse_lathe(Object& o);  // lathe.cpp: its spline and points, after the '{'
   bool parse_text(Object& o);   // text.cpp; false: its font is not here (reported)
   void parse_height_field(
-      Object& o);                    // height_field.cpp: an image's or a function's, after the '{'
-  void parse_blob(Object& o);        // blob.cpp: threshold and components, after the '{'
+      Object& o);              // height_field.cpp: an image's or a function's, after the '{'
+  void parse_blob(Object& o);  // blob.cpp: threshold and components, after the '{'
   void parse_sphere_sweep(Object& o);   // sphere_sweep.cpp: spline, spheres, tolerance
   void parse_bicubic_patch(Object& o);  // bicubic_patch.cpp: its triangles, after the '{'
-  void parse_isosurface(Object& o);  // isosurface.cpp: its function and bounds, after the '{'
+  void parse_isosurface(Object& o);     // isosurface.cpp: its function and bounds, after the '{'
   void parse_contained_by(Isosurface& container);  // isosurface.cpp: after `contained_by`
   void parse_parametric(Object& o);  // parametric.cpp: its three functions as a mesh, after '{'
   void skip_rest_of_block();         // to the '}' closing a block already open
