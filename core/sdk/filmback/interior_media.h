@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include <filmback/geometry.h>
 #include <filmback/plugin_abi.h>
 #include <filmback/vec.h>
 
@@ -70,6 +71,42 @@ inline HomogeneousSegment homogeneous_segment(Rgb sigma, Rgb emission, float len
     emitted[c] = float(emission[c] * (x > 1e-12 ? -std::expm1(-x) / s : d));
   }
   return {Rgb(transmittance), Rgb(emitted)};
+}
+
+// What a shadow ray lets through on its way to a light, crossing surfaces and interior media:
+// `passed(hit)` is what a surface lets through (0 where it blocks), `extinction(medium)` what a
+// medium attenuates by (m^-1), each medium segment dimming by e^(-extinction d) (segment_medium
+// follows which medium the ray is in; a light inside one is dimmed up to it). Past `most_surfaces`
+// surfaces the ray counts as blocked (a bound on untrusted scenes). The shadow ray's direction is
+// unit.
+template <typename Passed, typename Extinction>
+Rgb shadow_ray_through(const fb_scene& scene, fb_trace_context* context, const fb_ray& shadow,
+                       int most_surfaces, Passed passed, Extinction extinction) {
+  fb_ray ray = shadow;
+  Rgb through{1.f, 1.f, 1.f};
+  uint32_t inside = FB_NONE;
+  const auto dim = [&](uint32_t medium, float length) {
+    through *=
+        homogeneous_segment(extinction(*interior_medium(scene, medium)), {}, length).transmittance;
+  };
+  for (int i = 0; i < most_surfaces; ++i) {
+    fb_hit hit;
+    if (!scene.api->intersect(context, &ray, &hit)) {
+      if (inside != FB_NONE && std::isfinite(ray.t_max)) dim(inside, ray.t_max);
+      return through;
+    }
+    const uint32_t medium = segment_medium(scene, inside, hit, ray.direction);
+    if (medium != FB_NONE) dim(medium, hit.t);
+    inside = medium_after_crossing(scene, medium, hit, ray.direction);
+    through *= passed(hit);
+    if (!(max_component(through) > 0.f)) return {};
+    const Vec3f p(hit.position), d(ray.direction);
+    offset_ray_origin(p, Vec3f(hit.position_error), Vec3f(hit.geometric_normal), d)
+        .store(ray.origin);
+    ray.t_max = shadow.t_max - dot(p - Vec3f(shadow.origin), d);
+    if (!(ray.t_max > 0.f)) return through;
+  }
+  return {};
 }
 
 // A free flight through a homogeneous medium that attenuates by sigma_t and scatters sigma_s

@@ -135,34 +135,10 @@ Rgb lights_on_the_way(const fb_scene_api& api, fb_trace_context* ctx, const fb_r
 // where it is clear, fully transmitting with ior 1 (a POV-Ray container such as `hollow` with
 // `rgbt 1`), tinted by its colour; any other surface blocks it.
 Rgb through_interior_media(const fb_scene& scene, fb_trace_context* ctx, const fb_ray& shadow) {
-  const fb_scene_api& api = *scene.api;
-  fb_ray ray = shadow;
-  Rgb through{1.f, 1.f, 1.f};
-  uint32_t inside = FB_NONE;
-  const auto dim = [&](uint32_t medium, float length) {
-    const fb_medium& m = *fb::interior_medium(scene, medium);
-    through *=
-        fb::homogeneous_segment(Rgb(m.absorption) + Rgb(m.scattering), {}, length).transmittance;
-  };
-  for (int i = 0; i < kMostMediumShadowSurfaces; ++i) {
-    fb_hit hit;
-    if (!api.intersect(ctx, &ray, &hit)) {
-      if (inside != FB_NONE && std::isfinite(ray.t_max)) dim(inside, ray.t_max);  // a lamp inside
-      return through;
-    }
-    const uint32_t medium = fb::segment_medium(scene, inside, hit, ray.direction);
-    if (medium != FB_NONE) dim(medium, hit.t);
-    if (!fb::is_clear_boundary(hit)) return {};
-    through *= Rgb(hit.base_color);
-    if (!(fb::max_component(through) > 0.f)) return {};
-    inside = fb::medium_after_crossing(scene, medium, hit, ray.direction);
-    const Vec3f p(hit.position), d(ray.direction);
-    fb::offset_ray_origin(p, Vec3f(hit.position_error), Vec3f(hit.geometric_normal), d)
-        .store(ray.origin);
-    ray.t_max = shadow.t_max - dot(p - Vec3f(shadow.origin), d);
-    if (!(ray.t_max > 0.f)) return through;
-  }
-  return {};
+  return fb::shadow_ray_through(
+      scene, ctx, shadow, kMostMediumShadowSurfaces,
+      [](const fb_hit& hit) { return fb::is_clear_boundary(hit) ? Rgb(hit.base_color) : Rgb{}; },
+      [](const fb_medium& m) { return Rgb(m.absorption) + Rgb(m.scattering); });
 }
 
 // How much of a light a shadow ray sees: all or nothing, or through interior media in a scene

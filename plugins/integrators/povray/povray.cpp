@@ -180,34 +180,14 @@ Rgb PovRayTracer::Tracer::lamps_at(const float position[3], float time_s) const 
 // POV-Ray's.
 Rgb PovRayTracer::Tracer::light_through(const fb_ray& shadow, float distance) const {
   if (!(distance > 0.f)) return {1.f, 1.f, 1.f};  // a light nothing shadows
-  fb_ray ray = shadow;
-  Rgb through{1.f, 1.f, 1.f};
-  uint32_t inside = FB_NONE;  // the interior medium the shadow ray is in (fb::segment_medium)
-  const auto dim = [&](uint32_t medium, float length) {
-    const Rgb extinction(fb::interior_medium(scene, medium)->povray_extinction);
-    through *= fb::homogeneous_segment(extinction, {}, length).transmittance;
-  };
-  for (int i = 0; i < kMostShadowSurfaces; ++i) {
-    fb_hit hit;
-    if (!api.intersect(ctx, &ray, &hit)) {
-      if (inside != FB_NONE && std::isfinite(ray.t_max)) dim(inside, ray.t_max);  // a lamp inside
-      return through;
-    }
-    const uint32_t medium =
-        scene.media != nullptr ? fb::segment_medium(scene, inside, hit, ray.direction) : FB_NONE;
-    if (medium != FB_NONE) dim(medium, hit.t);
-    inside = fb::medium_after_crossing(scene, medium, hit, ray.direction);
-    const fb_pov_finish& f = finish(hit.material);
-    const Rgb pigment = lighting::pigment_at_hit(f, hit);
-    through *= lighting::passed_through(f, pigment) / std::max(f.coverage, 1e-6f);
-    if (!(fb::max_component(through) > 0.f)) return {};
-    const Vec3f p(hit.position), d(ray.direction);
-    fb::offset_ray_origin(p, Vec3f(hit.position_error), Vec3f(hit.geometric_normal), d)
-        .store(ray.origin);
-    ray.t_max = shadow.t_max - dot(p - Vec3f(shadow.origin), d);
-    if (!(ray.t_max > 0.f)) return through;
-  }
-  return {};
+  return fb::shadow_ray_through(
+      scene, ctx, shadow, kMostShadowSurfaces,
+      [this](const fb_hit& hit) {
+        const fb_pov_finish& f = finish(hit.material);
+        return lighting::passed_through(f, lighting::pigment_at_hit(f, hit)) /
+               std::max(f.coverage, 1e-6f);
+      },
+      [](const fb_medium& m) { return Rgb(m.povray_extinction); });
 }
 
 // `medium`: the one the ray travelled in to the hit (fb::segment_medium), which a reflected ray
