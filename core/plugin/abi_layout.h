@@ -51,10 +51,13 @@ inline constexpr Layout kSceneApiLayouts[] = {
     {uint32_t(offsetof(fb_scene_api, medium_segment)),
      uint32_t(offsetof(fb_scene_api, medium_segment))},
     {sizeof(fb_scene_api), sizeof(fb_scene_api)}};
-// fb_scene's first layout ends at view_axis; issue 19 appended `povray` and `lamp_count`.
+// fb_scene's first layout ends at view_axis; issue 19 appended `povray` and `lamp_count`, then
+// `media`.
 inline constexpr Layout kSceneLayouts[] = {
     {padded_size(offsetof(fb_scene, povray), alignof(fb_scene)),
      uint32_t(offsetof(fb_scene, view_axis) + sizeof(float[3]))},
+    {padded_size(offsetof(fb_scene, media), alignof(fb_scene)),
+     uint32_t(offsetof(fb_scene, lamp_count) + sizeof(uint32_t))},
     {sizeof(fb_scene), sizeof(fb_scene)}};
 
 // A growth must change sizeof, else a plugin's size could not tell its layout (plugin_abi.h).

@@ -42,7 +42,8 @@ struct RenderJob::Plugins {
   std::vector<fb_material> materials;
   std::vector<fb_pov_finish> pov_finishes;  // per material, for a POV-Ray scene
   fb_povray_scene povray{};
-  fb_scene_api scene_api{};  // host_scene_api(), as long as the integrator knows it
+  std::vector<fb_medium> interior_media;  // per material, when one holds a medium
+  fb_scene_api scene_api{};               // host_scene_api(), as long as the integrator knows it
   fb_scene scene{};
 };
 
@@ -54,6 +55,17 @@ ImageMetadata::Matrix to_float_matrix(const Transform& t) {
     for (int c = 0; c < 4; ++c)
       m[r * 4 + c] = float(t(r, c));
   return m;
+}
+
+fb_medium to_abi(const InteriorMedium& m) {
+  fb_medium out{};
+  out.present = 1;
+  m.absorption.store(out.absorption);
+  m.scattering.store(out.scattering);
+  m.emission.store(out.emission);
+  m.povray_extinction.store(out.povray_extinction);
+  out.povray_points = m.povray_points;
+  return out;
 }
 
 fb_pov_finish to_abi(const PovFinish& f) {
@@ -237,6 +249,12 @@ void RenderJob::make_scene_table() {
                 float(scene_.pov_tracing->adc_bailout), uint32_t(p.pov_finishes.size()),
                 p.pov_finishes.data()};
     p.scene.povray = &p.povray;
+  }
+  if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                  [](const Material& m) { return m.medium.has_value(); })) {
+    for (const Material& m : scene_.materials)
+      p.interior_media.push_back(m.medium ? to_abi(*m.medium) : fb_medium{});
+    p.scene.media = p.interior_media.data();
   }
 }
 

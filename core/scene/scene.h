@@ -16,6 +16,7 @@
 #include "core/scene/animation.h"
 #include "core/scene/camera.h"
 #include "core/scene/global_medium.h"
+#include "core/scene/interior_medium.h"
 #include "core/scene/material_textures.h"
 #include "core/scene/mesh_deformation.h"
 #include "core/scene/pov_finish.h"
@@ -82,6 +83,8 @@ struct Material {
   // A POV-Ray texture's finish and interior as written (importers/pov), for the `povray`
   // integrator; the fields above are its physical mapping. The base layer's only.
   std::optional<PovFinish> pov_finish;
+  // The medium inside a closed surface of this material (POV-Ray's interior media).
+  std::optional<InteriorMedium> medium;
 };
 
 enum class LightType { kPoint, kSpot, kDirectional, kArea };

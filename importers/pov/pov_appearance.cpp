@@ -136,9 +136,16 @@ void append_finish(std::string& key, const PovFinish& f) {
   append(key, f.reflection_fresnel), append(key, f.reflection_metallic), append(key, f.ior);
   key += "}";
 }
+void append_medium(std::string& key, const InteriorMedium& m) {
+  key += "medium{";
+  append(key, m.absorption), append(key, m.scattering), append(key, m.emission);
+  append(key, m.povray_extinction);
+  key += "}";
+}
 std::string material_key(const Material& m) {
   std::string key;
   if (m.pov_finish) append_finish(key, *m.pov_finish);
+  if (m.medium) append_medium(key, *m.medium);
   append(key, m.base_color), append(key, m.emission), append(key, m.double_sided);
   append(key, m.metallic), append(key, m.roughness), append(key, m.transmission);
   append(key, m.ior), append(key, m.specular), append(key, int(m.alpha_mode)), append(key, m.alpha);
@@ -255,11 +262,16 @@ Material make_layer_material(const Texture& texture, const std::optional<Interio
   const float transmit = colour_at_hit ? 0.f : pigment.colour.transmit;
   const double ior = interior ? interior->ior : 1.0;
   const bool refracts = ior != 1.0;
+  // A ray must meet the surface of a medium to know it enters it: not a coverage that skips hits.
+  const bool holds_medium = interior && !interior->media.empty();
 
   // Transparency: filter is coloured transmission; transmit is plain see-through coverage, unless
-  // the interior refracts, when it is transmission too (tinted, unlike POV-Ray's).
-  m.transmission = std::clamp(filter + (refracts ? transmit : 0.f), 0.f, 1.f);
-  if (!refracts && !over_layers && (transmit > 0 || (patterned && any_transmit(pigment)))) {
+  // the interior refracts or holds a medium, when it is transmission too (tinted, unlike
+  // POV-Ray's).
+  const bool transmit_transmits = refracts || holds_medium;
+  m.transmission = std::clamp(filter + (transmit_transmits ? transmit : 0.f), 0.f, 1.f);
+  if (!transmit_transmits && !over_layers &&
+      (transmit > 0 || (patterned && any_transmit(pigment)))) {
     m.alpha_mode = AlphaMode::kBlend;
     m.alpha = 1.f - transmit;
   }
@@ -318,11 +330,35 @@ Material make_layer_material(const Texture& texture, const std::optional<Interio
   return m;
 }
 
+// The most points along a segment the `povray` integrator sums a medium's light at.
+constexpr uint32_t kMostPovRayMediaPoints = 1024;
+
+// An interior's media as one medium (docs/pov.md "Media"): POV-Ray adds their coefficients.
+// Absorption and scattering are rates, taken as written; emission is light, decoded as colours.
+// POV-Ray samples with the settings of the media with the most intervals (the first of them).
+InteriorMedium interior_medium(const std::vector<Media>& media, double gamma) {
+  const auto rate = [](const Colour& c) { return Rgb(float(c.r), float(c.g), float(c.b)); };
+  const Media* sampled = &media.front();
+  for (const Media& one : media)
+    if (one.intervals > sampled->intervals) sampled = &one;
+  InteriorMedium sum;
+  sum.povray_points = std::min(uint32_t(std::max(2, sampled->samples / 2 + 1) * sampled->intervals),
+                               kMostPovRayMediaPoints);
+  for (const Media& one : media) {
+    sum.absorption += rate(one.absorption);
+    sum.scattering += rate(one.scattering);
+    sum.emission += decode(one.emission, gamma);
+    sum.povray_extinction += rate(one.absorption) + rate(one.scattering) * float(one.extinction);
+  }
+  return sum;
+}
+
 }  // namespace
 
 Material make_material(const Texture& texture, const std::optional<Interior>& interior,
                        double gamma, const Colour& ambient_light) {
   Material m = make_layer_material(texture, interior, gamma, ambient_light, false);
+  if (interior && !interior->media.empty()) m.medium = interior_medium(interior->media, gamma);
   for (const Texture& layer : texture.layers) {
     m.layers.push_back(make_layer_material(layer, interior, gamma, ambient_light, true));
     add_layer_finish(*m.pov_finish, *m.layers.back().pov_finish);

@@ -84,10 +84,12 @@ TEST(PovAppearance, IdenticalTexturesShareOneMaterial) {
   EXPECT_EQ(table.material(a, {}), 0u);
   EXPECT_EQ(table.material(b, {}), 0u);
   EXPECT_EQ(table.material(c, {}), 1u);
-  EXPECT_EQ(table.material(a, Interior{1.5}), 0u);  // an opaque surface's interior is unseen
+  Interior refracting;
+  refracting.ior = 1.5;
+  EXPECT_EQ(table.material(a, refracting), 0u);  // an opaque surface's interior is unseen
   const Texture glassy = plain_texture({1, 1, 1, 0.5, 0}, 0.6);
   EXPECT_EQ(table.material(glassy, {}), 2u);
-  EXPECT_EQ(table.material(glassy, Interior{1.5}), 3u);  // refracting: another material
+  EXPECT_EQ(table.material(glassy, refracting), 3u);  // refracting: another material
   EXPECT_EQ(out.materials.size(), 4u);
   EXPECT_EQ(out.materials[0].name, "scene.pov:3:1");
   a.finish.brilliance = 2;

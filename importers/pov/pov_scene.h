@@ -82,10 +82,22 @@ struct Finish {
   bool conserve_energy = false;
 };
 
+// media { ... } inside an interior (POV-Ray 3.7 reference, "Media"), homogeneous: coefficients
+// per POV-Ray unit of length, each already times the product of the constant densities. A
+// density with a pattern is taken as 1 (reported); method, intervals and samples are read and
+// left to the integrator (docs/pov.md, "Media").
+struct Media {
+  Colour absorption{0, 0, 0}, emission{0, 0, 0}, scattering{0, 0, 0};
+  double extinction = 1;  // scattering's share in the attenuation (POV-Ray's `extinction`)
+  int samples = 10, intervals = 1;  // POV-Ray 3.7's defaults (its least samples, with method 3)
+  SourceLocation where;
+};
+
 struct Interior {
   double ior = 1;
   double fade_distance = 0, fade_power = 0;
   Colour fade_colour{0, 0, 0};
+  std::vector<Media> media;  // summed: POV-Ray adds the coefficients of an interior's media
 };
 
 struct SlopeMapEntry {

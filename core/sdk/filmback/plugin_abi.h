@@ -406,6 +406,21 @@ typedef struct fb_povray_scene {
   const fb_pov_finish* finishes; /* one per material, by index */
 } fb_povray_scene;
 
+/* The homogeneous medium inside a material's closed surfaces (POV-Ray's interior media, docs/pov.md
+ * "Media"): a ray is in it between its entry into such a surface (the side its geometric normal
+ * faces) and its exit. Coefficients per metre. Frozen: a later need appends a new array. */
+typedef struct fb_medium {
+  uint32_t present;    /* 0: the material holds no medium */
+  float absorption[3]; /* sigma_a, m^-1 */
+  float scattering[3]; /* sigma_s, m^-1, isotropic phase */
+  float emission[3];   /* radiance added per metre of path, W sr^-1 m^-3 */
+  /* POV-Ray's attenuation: absorption + its `extinction` times scattering */
+  float povray_extinction[3];
+  /* How many points along a segment POV-Ray 3.7 sums the medium's light at (its samples and
+   * intervals, docs/pov.md "Media") */
+  uint32_t povray_points;
+} fb_medium;
+
 typedef struct fb_scene {
   uint32_t struct_size;
   const fb_scene_api* api;
@@ -418,6 +433,9 @@ typedef struct fb_scene {
    * (NULL for other scenes), and how many lamps fb_scene_api.sample_lamp() takes. */
   const fb_povray_scene* povray;
   uint32_t lamp_count;
+  /* Appended by issue 19 (Growth, media): one per material, by index; NULL when no material
+   * holds a medium (then no ray is ever in one). */
+  const fb_medium* media;
 } fb_scene;
 
 /* The most channels the host takes from an integrator. 16 in the first published layout; 32 since

@@ -33,6 +33,14 @@ inline Vec3f sample_cosine_hemisphere(Vec2f u) {
   return {d.x, d.y, z};
 }
 
+// Uniform on the unit sphere, pdf 1 / (4 pi): z uniform in [-1, 1] (Archimedes), phi in [0, 2 pi).
+inline Vec3f sample_uniform_sphere(Vec2f u) {
+  const float z = 1.f - 2.f * u.x;
+  const float r = std::sqrt(std::max(0.f, 1.f - z * z));
+  const float phi = 2.f * std::numbers::pi_v<float> * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
 // Uniform barycentrics on a triangle (Heitz 2019, "A Low-Distortion Map Between Triangle and
 // Square"): returns (b0, b1) with b2 = 1 - b0 - b1.
 inline Vec2f sample_uniform_triangle(Vec2f u) {

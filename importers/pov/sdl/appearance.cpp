@@ -11,6 +11,9 @@
 namespace fb::pov::sdl {
 namespace {
 
+// POV-Ray has no limit; a scene that piles up media in a loop is bad input, not a slow render.
+constexpr size_t kMostMediaPerInterior = 64;
+
 // POV-Ray's `rotate <a, b, c>`: about x by a, then y by b, then z by c, each the ordinary
 // right-hand-rule matrix (column form Rz * Ry * Rx; ../shared/notes/povray-camera.md 1.1).
 Matrix rotation(Vec3d degrees) {
@@ -838,11 +841,12 @@ Interior Parser::parse_interior() {
       in.fade_colour = parse_colour(false);
     } else if (w == "caustics" || w == "dispersion" || w == "dispersion_samples") {
       parse_float();
-    } else if (w == "media") {
-      unsupported("media", location_of(tok));
-      skip_block();
-    } else if (tok.identifier && tok.value.kind == ValueKind::kOpaque) {
-      // a declared media
+    } else if (w == "media" || (tok.identifier && tok.value.get<Media>())) {
+      // POV-Ray sums an interior's media; each costs every ray through the object a little
+      if (in.media.size() >= kMostMediaPerInterior)
+        fail_at(location_of(tok),
+                "an interior has at most " + std::to_string(kMostMediaPerInterior) + " media");
+      in.media.push_back(w == "media" ? parse_media(tok) : *tok.value.get<Media>());
     } else {
       fail("unexpected '" + w + "' in interior");
     }

@@ -477,6 +477,53 @@ TEST_F(Sdl, FogIsReadWithItsTypeColourAndUp) {
   EXPECT_NE(huge.find("must be finite"), std::string::npos) << huge;
 }
 
+TEST_F(Sdl, MediaAreReadIntoTheInteriorWithTheirDensity) {
+  Scene scene =
+      run("#declare M = media { emission rgb <0.1, 0.2, 0.3> }\n"
+          "sphere { 0, 1 hollow pigment { rgbt 1 } interior {\n"
+          "  media { absorption 0.5 scattering { 1, rgb <0.2, 0.4, 0.6> extinction 0.5 }\n"
+          "          density { rgb 0.5 } density { rgb <1, 1, 0.5> }\n"
+          "          method 3 intervals 2 samples 3, 5 jitter 0.1 translate x }\n"
+          "  media { M } } }\n"
+          "box { 0, 1 interior { media { absorption 1 scattering { 2, 0.1 eccentricity 0.3 }\n"
+          "  density { spherical color_map { [0 rgb 0] [1 rgb 1] } } } } }\n");
+  ASSERT_EQ(scene.objects.size(), 2u);
+  ASSERT_TRUE(scene.objects[0].interior);
+  const std::vector<Media>& media = scene.objects[0].interior->media;
+  ASSERT_EQ(media.size(), 2u);
+  // each coefficient times the product of the constant densities: 0.5 <1, 1, 0.5>
+  EXPECT_DOUBLE_EQ(media[0].absorption.r, 0.25);
+  EXPECT_DOUBLE_EQ(media[0].absorption.b, 0.125);
+  EXPECT_DOUBLE_EQ(media[0].scattering.g, 0.2);
+  EXPECT_DOUBLE_EQ(media[0].scattering.b, 0.15);
+  EXPECT_DOUBLE_EQ(media[0].extinction, 0.5);
+  EXPECT_DOUBLE_EQ(media[0].emission.r, 0);
+  EXPECT_EQ(media[0].samples, 3);  // the least of `samples 3, 5`
+  EXPECT_EQ(media[0].intervals, 2);
+  EXPECT_DOUBLE_EQ(media[1].emission.b, 0.3);  // the declared media
+  EXPECT_EQ(media[1].samples, 10);             // POV-Ray 3.7's default
+  // a density with a pattern counts as 1; scattering type 2 as isotropic: each reported
+  const Media& patterned = scene.objects[1].interior->media.at(0);
+  EXPECT_DOUBLE_EQ(patterned.absorption.g, 1);
+  EXPECT_DOUBLE_EQ(patterned.scattering.r, 0.1);
+  ASSERT_EQ(scene.unsupported.size(), 2u);
+  EXPECT_NE(scene.unsupported[0].feature.find("scattering type"), std::string::npos);
+  EXPECT_EQ(scene.unsupported[0].where.line, 7u);
+  EXPECT_NE(scene.unsupported[1].feature.find("density pattern"), std::string::npos);
+  EXPECT_EQ(scene.unsupported[1].where.line, 8u);
+
+  const std::string negative = error_of("sphere { 0, 1 interior { media {\n absorption -0.5 } } }");
+  EXPECT_NE(negative.find("scene.pov:2:13"), std::string::npos) << negative;
+  EXPECT_NE(negative.find("absorption must be finite and at least 0"), std::string::npos)
+      << negative;
+  const std::string type = error_of("sphere { 0, 1 interior { media { scattering { 7, 1 } } } }");
+  EXPECT_NE(type.find("scattering type must be 1 to 5"), std::string::npos) << type;
+  const std::string samples = error_of("sphere { 0, 1 interior { media { samples 0 } } }");
+  EXPECT_NE(samples.find("media samples must be 1 to 1000"), std::string::npos) << samples;
+  const std::string unknown = error_of("sphere { 0, 1 interior { media { colour 1 } } }");
+  EXPECT_NE(unknown.find("unexpected 'colour' in media"), std::string::npos) << unknown;
+}
+
 TEST_F(Sdl, NormalsAreReadWithTheirPatternAmountAndTransforms) {
   Scene scene =
       run("#declare N = normal { ripples 0.8 frequency 3 }\n"

@@ -63,8 +63,8 @@ SkySphere parse_sky_sphere(Parser& p) {
 
 // Blocks declared by name but not evaluated: skipped, held as an opaque value that names them.
 constexpr std::string_view kOpaqueBlocks[] = {
-    "texture_map", "normal_map", "slope_map", "density_map",      "media",   "density",
-    "fog",         "rainbow",    "spline",    "interior_texture", "photons", "radiosity"};
+    "texture_map", "normal_map", "slope_map",        "density_map", "density",  "fog",
+    "rainbow",     "spline",     "interior_texture", "photons",     "radiosity"};
 
 bool is_opaque_block(std::string_view w) {
   for (std::string_view block : kOpaqueBlocks) {
@@ -327,6 +327,7 @@ Value Parser::parse_rvalue() {
     if (w == "normal") return Value::of(parse_normal());
     if (w == "texture") return Value::of(parse_layered_texture(*this));
     if (w == "interior") return Value::of(parse_interior());
+    if (w == "media") return Value::of(parse_media(tok));
     if (w == "material") return Value::of(parse_material());
     if (w == "camera") return Value::of(parse_camera(tok));
     if (w == "transform") return Value::of(parse_transform_block());

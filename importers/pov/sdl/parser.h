@@ -42,7 +42,7 @@ struct MaterialValue {
 using ColourMap = std::vector<ColourMapEntry>;
 
 using Item = std::variant<Node, Pigment, Finish, Normal, Texture, Interior, MaterialValue,
-                          CameraStatement, Matrix, ColourMap, SkySphere>;
+                          CameraStatement, Matrix, ColourMap, SkySphere, Media>;
 
 struct Macro {
   std::string name;
@@ -227,6 +227,10 @@ class Parser {
   // `layer` (and the layers it carries) over `texture`'s top layer; fails past the layer limit.
   void add_texture_layer(Texture& texture, Texture layer);
   Interior parse_interior();
+  // media.cpp: after `media`, `scattering` and `density` (in a media)
+  Media parse_media(const Tok& keyword);
+  void parse_media_scattering(Media& media);
+  Colour parse_media_density(const SourceLocation& where);
   MaterialValue parse_material();
   ColourMap parse_colour_map(bool pigment_map);      // after colour_map / pigment_map
   Pigment parse_pigment_items(const char* closing);  // a pigment's body up to `closing`

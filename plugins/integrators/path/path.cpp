@@ -11,14 +11,19 @@
 // Blender's pass names, comma-separated) adds those render passes of the first hit as further
 // channels (filmback/render_passes.h); none by default, and then none is computed. A scene's
 // medium (fb_scene_api::medium_segment: POV-Ray's fog as the absorbing, emitting medium it maps
-// to) adds its light along every segment and dims what lies beyond, shadow rays included.
+// to) adds its light along every segment and dims what lies beyond, shadow rays included. An
+// object's interior medium (fb_scene::media, POV-Ray's media) absorbs, emits (in closed form) and
+// scatters isotropically (a free flight from the mean extinction, next-event estimation at the
+// collision); shadow rays of such a scene pass through the clear surfaces that hold media.
 #include <filmback/geometry.h>
+#include <filmback/interior_media.h>
 #include <filmback/plugin_sdk.h>
 #include <filmback/render_passes.h>
 #include <filmback/sampling.h>
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -28,6 +33,12 @@ using fb::Rgb;
 using fb::Vec3f;
 
 constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this short of the light
+// Surfaces a shadow ray passes through in a scene with media before it counts as blocked (a bound
+// on untrusted scenes).
+constexpr int kMostMediumShadowSurfaces = 64;
+// Clear boundaries (fb::is_clear_boundary) a path crosses in all, which are not bounces.
+constexpr int kMostBoundaryCrossings = 256;
+constexpr float kIsotropicPhase = 0.25f * std::numbers::inv_pi_v<float>;  // 1 / (4 pi) sr^-1
 
 constexpr fb_param_desc kParams[] = {
     {"max_depth", FB_PARAM_INT, "8", "", nullptr, 0, 1024,
@@ -119,6 +130,63 @@ Rgb lights_on_the_way(const fb_scene_api& api, fb_trace_context* ctx, const fb_r
   return L;
 }
 
+// What a shadow ray lets through in a scene with interior media: each medium it crosses dims it
+// by e^(-sigma_t d) (fb::segment_medium follows which one it is in), and a surface passes it only
+// where it is clear, fully transmitting with ior 1 (a POV-Ray container such as `hollow` with
+// `rgbt 1`), tinted by its colour; any other surface blocks it.
+Rgb through_interior_media(const fb_scene& scene, fb_trace_context* ctx, const fb_ray& shadow) {
+  return fb::shadow_ray_through(
+      scene, ctx, shadow, kMostMediumShadowSurfaces,
+      [](const fb_hit& hit) { return fb::is_clear_boundary(hit) ? Rgb(hit.base_color) : Rgb{}; },
+      [](const fb_medium& m) { return Rgb(m.absorption) + Rgb(m.scattering); });
+}
+
+// How much of a light a shadow ray sees: all or nothing, or through interior media in a scene
+// that has them; a light of distance 0 casts no shadows (fb_light_sample in plugin_abi.h).
+Rgb shadow_visibility(const fb_scene& scene, fb_trace_context* ctx, const fb_ray& shadow,
+                      float distance) {
+  if (distance == 0.f) return {1.f, 1.f, 1.f};
+  if (scene.media != nullptr) return through_interior_media(scene, ctx, shadow);
+  return scene.api->occluded(ctx, &shadow) ? Rgb{} : Rgb{1.f, 1.f, 1.f};
+}
+
+// Light scattered towards the path at `point` in an interior medium, per unit sigma_s: a light
+// sampled as from a surface, times the isotropic phase 1 / (4 pi), weighted against sampling the
+// phase (power heuristic), and dimmed by the fog on the way when the scene has one.
+Rgb light_at_medium_point(const fb_scene& scene, fb_trace_context* ctx, size_t path, Vec3f point,
+                          float time_s, bool in_fog) {
+  const fb_scene_api& api = *scene.api;
+  float u[3], position[3];
+  point.store(position);
+  api.next_samples(ctx, path, u, 3);
+  fb_light_sample ls;
+  if (!api.sample_light(ctx, position, u, &ls) || !(ls.pdf > 0.f)) return {};
+  fb_ray shadow{};
+  point.store(shadow.origin);
+  for (int c = 0; c < 3; ++c)
+    shadow.direction[c] = ls.direction[c];
+  shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
+  shadow.time_s = time_s;
+  Rgb through = shadow_visibility(scene, ctx, shadow, ls.distance);
+  if (!(fb::max_component(through) > 0.f)) return {};
+  if (in_fog) through *= medium_transmittance(api, ctx, shadow, shadow.t_max);
+  const float weight = ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, kIsotropicPhase);
+  return Rgb(ls.radiance) * through * (kIsotropicPhase * weight / ls.pdf);
+}
+
+// Cycles 3.4's rule (kernel/integrator/path_state.h, path_state_continuation_probability):
+// continue with probability min(1, sqrt(max throughput)). A survivor's throughput grows to
+// sqrt(beta) rather than to 1 as with min(1, beta), so a deep path that then finds a small bright
+// lamp brings a spike about 1 / sqrt(beta) times smaller; unbiased either way.
+bool survives_roulette(const fb_scene_api& api, fb_trace_context* ctx, size_t path, Rgb& beta) {
+  float r;
+  api.next_samples(ctx, path, &r, 1);
+  const float survive = std::min(1.f, std::sqrt(fb::max_component(beta)));
+  if (r >= survive) return false;
+  beta *= 1.f / survive;
+  return true;
+}
+
 Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path, fb_ray ray,
                       fb_hit hit) const {
   const fb_scene_api& api = *scene.api;
@@ -127,8 +195,12 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
   bool delta = false;             // that direction came from a perfectly specular lobe
   float previous[3] = {0, 0, 0};  // where that direction was sampled
   const float time_s = ray.time_s;
+  uint32_t inside = FB_NONE;  // the interior medium the ray starts in (fb::segment_medium)
+  int crossings = 0;          // clear boundaries crossed
+  bool batch_hit = true;      // `hit` is the camera ray's, traced with the batch
   for (int depth = 0;; ++depth) {
-    const bool found = depth == 0 ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
+    const bool found = batch_hit ? !std::isinf(hit.t) : api.intersect(ctx, &ray, &hit) != 0;
+    batch_hit = false;
     const float t_end = found ? hit.t : HUGE_VALF;
     // The scene's medium over the segment, if it has one: it adds its own light, and dims what
     // comes from further on (the absorbing, emitting medium POV-Ray's fog maps to).
@@ -140,6 +212,62 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     if (in_medium) {
       L += beta * Rgb(segment_emitted);
       beta *= Rgb(segment_transmittance);
+    }
+    // An object's interior medium over the segment: its emission in closed form, and its
+    // attenuation, in closed form too unless it scatters: then a free flight either passes to the
+    // hit or scatters the path at a point inside.
+    const uint32_t medium = found && scene.media != nullptr
+                                ? fb::segment_medium(scene, inside, hit, ray.direction)
+                                : FB_NONE;
+    if (medium != FB_NONE) {
+      const fb_medium& m = *fb::interior_medium(scene, medium);
+      const Rgb sigma_t = Rgb(m.absorption) + Rgb(m.scattering);
+      const float length = hit.t * fb::length(Vec3f(ray.direction));
+      const fb::HomogeneousSegment segment =
+          fb::homogeneous_segment(sigma_t, Rgb(m.emission), length);
+      L += beta * segment.emitted;
+      if (!(fb::max_component(Rgb(m.scattering)) > 0.f)) {
+        beta *= segment.transmittance;
+      } else {
+        float u;
+        api.next_samples(ctx, path, &u, 1);
+        const fb::FreeFlight flight = fb::free_flight(sigma_t, Rgb(m.scattering), length, u);
+        beta *= flight.weight;
+        if (flight.collided) {
+          if (depth >= max_depth_) break;
+          const Vec3f point =
+              Vec3f(ray.origin) + fb::normalize(Vec3f(ray.direction)) * flight.distance_m;
+          L += beta * light_at_medium_point(scene, ctx, path, point, time_s, in_medium);
+          float v[2];
+          api.next_samples(ctx, path, v, 2);
+          const Vec3f wi = fb::sample_uniform_sphere({v[0], v[1]});  // phase / pdf = 1
+          bsdf_pdf = kIsotropicPhase;
+          delta = false;
+          point.store(previous);
+          if (depth + 1 >= rr_depth_ && !survives_roulette(api, ctx, path, beta)) break;
+          ray = {};
+          point.store(ray.origin);
+          wi.store(ray.direction);
+          ray.t_max = HUGE_VALF;
+          ray.time_s = time_s;
+          inside = medium;
+          continue;
+        }
+      }
+    }
+    // In a scene with media, a clear surface (a container's) is crossed straight on, into or out
+    // of its medium, tinted by its colour: not a bounce, and the direction's pdf is unchanged.
+    if (found && scene.media != nullptr && fb::is_clear_boundary(hit)) {
+      if (++crossings > kMostBoundaryCrossings) break;
+      beta *= Rgb(hit.base_color);
+      inside = fb::medium_after_crossing(scene, medium, hit, ray.direction);
+      const Vec3f d(ray.direction);
+      fb::offset_ray_origin(Vec3f(hit.position), Vec3f(hit.position_error),
+                            Vec3f(hit.geometric_normal), d)
+          .store(ray.origin);
+      if (std::isfinite(ray.t_max)) ray.t_max -= hit.t;  // a camera ray's far clip stays put
+      --depth;
+      continue;
     }
     if (!found) {
       float le[3], world_pdf = 0.f;
@@ -190,13 +318,13 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
         wi.store(shadow.direction);
         shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
         shadow.time_s = time_s;
-        // distance 0: a light that casts no shadows (fb_light_sample in plugin_abi.h).
-        if (ls.distance == 0.f || !api.occluded(ctx, &shadow)) {
+        const Rgb visible = shadow_visibility(scene, ctx, shadow, ls.distance);
+        if (fb::max_component(visible) > 0.f) {
           // Where BSDF sampling never goes (pdf 0), light sampling takes the whole weight.
           const float weight = ls.is_delta ? 1.f : fb::power_heuristic(ls.pdf, pdf);
           const Rgb through =
               in_medium ? medium_transmittance(api, ctx, shadow, shadow.t_max) : Rgb{1.f, 1.f, 1.f};
-          L += beta * Rgb(f) * Rgb(ls.radiance) * through * (weight / ls.pdf);
+          L += beta * Rgb(f) * Rgb(ls.radiance) * visible * through * (weight / ls.pdf);
         }
       }
     }
@@ -210,18 +338,12 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
     bsdf_pdf = s.pdf;
     delta = (s.flags & FB_BSDF_DELTA) != 0;
     p.store(previous);
+    // Through the surface the ray leaves or enters a medium; reflected, it stays in this one.
+    inside = (s.flags & FB_BSDF_TRANSMISSION) != 0
+                 ? fb::medium_after_crossing(scene, medium, hit, ray.direction)
+                 : medium;
 
-    if (depth + 1 >= rr_depth_) {
-      // Cycles 3.4's rule (kernel/integrator/path_state.h, path_state_continuation_probability):
-      // continue with probability min(1, sqrt(max throughput)). A survivor's throughput grows to
-      // sqrt(beta) rather than to 1 as with min(1, beta), so a deep path that then finds a small
-      // bright lamp brings a spike about 1 / sqrt(beta) times smaller; unbiased either way.
-      float r;
-      api.next_samples(ctx, path, &r, 1);
-      const float survive = std::min(1.f, std::sqrt(fb::max_component(beta)));
-      if (r >= survive) break;
-      beta *= 1.f / survive;
-    }
+    if (depth + 1 >= rr_depth_ && !survives_roulette(api, ctx, path, beta)) break;
     ray = {};
     fb::offset_ray_origin(p, p_error, ng, wi).store(ray.origin);
     wi.store(ray.direction);

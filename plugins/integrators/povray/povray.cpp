@@ -7,10 +7,13 @@
 // refracted or straight-through ray weighted by the pigment's filter and transmit, and the
 // reflected ray by reflection min/max, falloff, fresnel and metallic; down to max_trace_level,
 // pruned below adc_bailout, the background or sky_sphere where a ray escapes; the scene's fog
-// blended over every ray but the shadow rays (ComputeFog). No light bounces
+// blended over every ray but the shadow rays (ComputeFog); an object's interior media over the
+// part of a ray inside it (ComputeMedia: absorption and emission in closed form, the lights'
+// light scattered in sampled along the segment). No light bounces
 // between surfaces but by these mirror and refraction rays: POV-Ray's `ambient` stands in for it.
 // A surface without a POV-Ray finish (another scene's) is lit as diffuse 1 in its base colour.
 #include <filmback/geometry.h>
+#include <filmback/interior_media.h>
 #include <filmback/plugin_sdk.h>
 
 #include <algorithm>
@@ -40,12 +43,14 @@ constexpr fb_param_desc kParams[] = {
 };
 constexpr auto kMaxTraceLevel = fb::param<int>(kParams, "max_trace_level");
 
-// One ray of the tree: where it starts, where it goes, and its weight in the pixel.
+// One ray of the tree: where it starts, where it goes, its weight in the pixel, and the interior
+// medium it starts in (a material index; FB_NONE: none, or not known, fb::segment_medium).
 struct PovRay {
   fb_ray ray;
   int level;      // 1 for the camera's
   int continued;  // straight-through rays taken since the last counted level
   float weight;
+  uint32_t medium = FB_NONE;
 };
 
 class PovRayTracer {
@@ -74,7 +79,9 @@ class PovRayTracer {
     }
     Rgb trace(const PovRay& r, size_t path) const;
     Rgb seen(const PovRay& r, const fb_hit& hit, size_t path) const;
-    Rgb shade(const PovRay& r, const fb_hit& hit, size_t path) const;
+    Rgb shade(const PovRay& r, const fb_hit& hit, size_t path, uint32_t medium) const;
+    Rgb through_medium(const PovRay& r, float t_end, const fb_medium& medium, Rgb behind) const;
+    Rgb lamps_at(const float position[3], float time_s) const;
     Rgb light_through(const fb_ray& shadow, float distance) const;
     const fb_pov_finish& finish(uint32_t material) const {
       return povray && material < povray->finish_count && povray->finishes[material].present
@@ -106,38 +113,87 @@ Rgb PovRayTracer::Tracer::trace(const PovRay& r, size_t path) const {
 // over the ray's colour by the fog's depth up to the hit, infinite where it escapes (POV-Ray's
 // BOUND_HUGE). Shadow rays are not fogged (a light's media_attenuation is off by default).
 Rgb PovRayTracer::Tracer::seen(const PovRay& r, const fb_hit& hit, size_t path) const {
-  const Rgb colour = shade(r, hit, path);
+  const bool found = !std::isinf(hit.t);
+  const uint32_t medium =
+      found ? fb::segment_medium(scene, r.medium, hit, r.ray.direction) : FB_NONE;
+  Rgb colour = shade(r, hit, path, medium);
+  if (medium != FB_NONE)
+    colour = through_medium(r, hit.t, *fb::interior_medium(scene, medium), colour);
   float transmittance[3], emitted[3];
   if (!api.medium_segment(ctx, &r.ray, hit.t, 1, transmittance, emitted)) return colour;
   return colour * lighting::rgb(transmittance) + lighting::rgb(emitted);
 }
 
+// POV-Ray's ComputeMedia over the ray's segment inside an object's media, up to its hit at
+// `t_end`: what lies behind dimmed by e^(-extinction d), plus the light the medium sends along the
+// ray, dimmed by the medium before it, summed as POV-Ray 3.7 sums it (method 3, no jitter): a
+// left Riemann sum over `povray_points` points (docs/pov.md "Media": its emission matches
+// POV-Ray's renders to their 16-bit rounding, where the closed form differs by up to 40 %). The
+// light per metre at a point is emission plus scattering times each light's colour reaching it
+// (isotropic: POV-Ray's phase weight is 1).
+Rgb PovRayTracer::Tracer::through_medium(const PovRay& r, float t_end, const fb_medium& medium,
+                                         Rgb behind) const {
+  const Vec3f origin(r.ray.origin), direction(r.ray.direction);
+  const float length = t_end * fb::length(direction);
+  const Rgb emission(medium.emission), scattering(medium.scattering);
+  const Rgb extinction(medium.povray_extinction);
+  const bool scatters = fb::max_component(scattering) > 0.f && scene.lamp_count > 0;
+  const uint32_t points = std::max(medium.povray_points, 1u);
+  Rgb sent{};
+  for (uint32_t k = 0; k < points; ++k) {
+    const float at = float(k) / float(points);
+    Rgb source = emission;
+    if (scatters) {
+      float point[3];
+      (origin + direction * (t_end * at)).store(point);
+      source += scattering * lamps_at(point, r.ray.time_s);
+    }
+    sent += source * fb::homogeneous_segment(extinction, {}, length * at).transmittance;
+  }
+  sent *= length / float(points);
+  return behind * fb::homogeneous_segment(extinction, {}, length).transmittance + sent;
+}
+
+// The lights' colours reaching a point in a medium, each through what lies between (POV-Ray
+// lights a medium from each light's centre).
+Rgb PovRayTracer::Tracer::lamps_at(const float position[3], float time_s) const {
+  Rgb sum{};
+  for (uint32_t lamp = 0; lamp < scene.lamp_count; ++lamp) {
+    fb_light_sample centre;
+    if (!api.sample_lamp(ctx, lamp, position, nullptr, &centre)) continue;
+    fb_ray shadow{};
+    for (int c = 0; c < 3; ++c)
+      shadow.origin[c] = position[c], shadow.direction[c] = centre.direction[c];
+    shadow.t_max = std::isinf(centre.distance) ? HUGE_VALF : centre.distance * (1.f - 1e-4f);
+    shadow.time_s = time_s;
+    sum += lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf)) *
+           light_through(shadow, centre.distance);
+  }
+  return sum;
+}
+
 // What a shadow ray from a lit point brings of a light `distance` away: each surface between
-// passes its pigment's filter and transmit (POV-Ray's ComputeShadowColour); an opaque one, or one
-// without a POV-Ray finish, blocks it. A surface the host let through already by its coverage
+// passes its pigment's filter and transmit (POV-Ray's ComputeShadowColour), and each interior
+// medium it crosses dims it by e^(-extinction d); an opaque surface, or one without a POV-Ray
+// finish, blocks it. A surface the host let through already by its coverage
 // (fb_pov_finish.coverage) passes the rest of its transmit where it is found, so that the mean is
 // POV-Ray's.
 Rgb PovRayTracer::Tracer::light_through(const fb_ray& shadow, float distance) const {
   if (!(distance > 0.f)) return {1.f, 1.f, 1.f};  // a light nothing shadows
-  fb_ray ray = shadow;
-  Rgb through{1.f, 1.f, 1.f};
-  for (int i = 0; i < kMostShadowSurfaces; ++i) {
-    fb_hit hit;
-    if (!api.intersect(ctx, &ray, &hit)) return through;
-    const fb_pov_finish& f = finish(hit.material);
-    const Rgb pigment = lighting::pigment_at_hit(f, hit);
-    through *= lighting::passed_through(f, pigment) / std::max(f.coverage, 1e-6f);
-    if (!(fb::max_component(through) > 0.f)) return {};
-    const Vec3f p(hit.position), d(ray.direction);
-    fb::offset_ray_origin(p, Vec3f(hit.position_error), Vec3f(hit.geometric_normal), d)
-        .store(ray.origin);
-    ray.t_max = shadow.t_max - dot(p - Vec3f(shadow.origin), d);
-    if (!(ray.t_max > 0.f)) return through;
-  }
-  return {};
+  return fb::shadow_ray_through(
+      scene, ctx, shadow, kMostShadowSurfaces,
+      [this](const fb_hit& hit) {
+        const fb_pov_finish& f = finish(hit.material);
+        return lighting::passed_through(f, lighting::pigment_at_hit(f, hit)) /
+               std::max(f.coverage, 1e-6f);
+      },
+      [](const fb_medium& m) { return Rgb(m.povray_extinction); });
 }
 
-Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path) const {
+// `medium`: the one the ray travelled in to the hit (fb::segment_medium), which a reflected ray
+// stays in and a transmitted one leaves or changes as fb::medium_after_crossing says.
+Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path,
+                                uint32_t medium) const {
   const Vec3f view(r.ray.direction);
   if (std::isinf(hit.t)) {
     float le[3], pdf;
@@ -196,7 +252,11 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
   bool total_internal_reflection = false;
   const float transmitted_weight = fb::max_component(see_through);
   if (transmitted_weight > adc_bailout) {
-    PovRay next{{}, r.level + 1, 0, r.weight * transmitted_weight};
+    PovRay next{{},
+                r.level + 1,
+                0,
+                r.weight * transmitted_weight,
+                fb::medium_after_crossing(scene, medium, hit, r.ray.direction)};
     Vec3f direction = view;
     if (std::abs(eta - 1.f) < 1e-5f) {
       next.level = r.level, next.continued = r.continued + 1;  // straight on, not a new level
@@ -205,6 +265,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
     } else {
       total_internal_reflection = true;
       direction = view - n * (2.f * dot(view, n));
+      next.medium = medium;  // reflected back in
     }
     fb::offset_ray_origin(p, p_error, ng, direction).store(next.ray.origin);
     direction.store(next.ray.direction);
@@ -223,7 +284,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path)
     Vec3f mirrored = view - n * (2.f * dot(view, n));
     // A bent normal may mirror the ray into the surface: mirror it on the geometric normal then.
     if (dot(mirrored, ng) < 0.f) mirrored = view - ng * (2.f * dot(view, ng));
-    PovRay next{{}, r.level + 1, 0, r.weight * reflect_weight};
+    PovRay next{{}, r.level + 1, 0, r.weight * reflect_weight, medium};
     fb::offset_ray_origin(p, p_error, ng, mirrored).store(next.ray.origin);
     mirrored.store(next.ray.direction);
     next.ray.t_max = HUGE_VALF;

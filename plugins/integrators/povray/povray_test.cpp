@@ -191,6 +191,28 @@ const PovCase kPovCases[] = {
      "sphere { <0, 0.8, 0>, 0.8 pigment { rgb <0.9, 0.5, 0.2> } }\n"
      "fog { fog_type 2 distance 2 rgbt <0.8, 0.8, 0.7, 0.2> fog_offset 0.3 fog_alt 0.4 }\n",
      1, 0.001},
+    // Interior media (docs/pov.md "Media"): a sphere's glowing, absorbing medium over a checker
+    // (closed form), and a scattering one lit by the light (sampled along each ray inside), with
+    // an opaque box inside that shadows part of it.
+    {"media_glow",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 hollow pigment { rgbt 1 } interior { media { emission rgb <0.8, "
+     "0.5, 0.2> absorption rgb <0.3, 1, 2> } } }\n",
+     1, 0.02},
+    {"media_scattering",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 hollow pigment { rgbt 1 } interior { media { scattering { 1, rgb "
+     "<0.3, 0.5, 0.8> } absorption 0.2 } } }\n",
+     1, 0.05},
+    {"media_shadowed",
+     "light_source { <3, 5, -4> rgb 1 }\n"
+     "plane { y, 0 pigment { checker rgb 0.9, rgb <0.1, 0.2, 0.7> } }\n"
+     "sphere { <0, 0.8, 0>, 0.8 hollow pigment { rgbt 1 } interior { media { scattering { 1, rgb "
+     "<0.6, 0.8, 1> } } } }\n"
+     "box { <0.05, 0.75, -0.3>, <0.35, 1.05, 0> pigment { rgb <0.9, 0.4, 0.1> } }\n",
+     16, 0.05},
 };
 
 class PovRayIntegrator : public ::testing::TestWithParam<PovCase> {};
