@@ -36,7 +36,6 @@ povray-examples. --choose prints the twenty that the rule below picks (how SCENE
 
 import argparse
 import os
-import platform
 import re
 import shutil
 import subprocess
@@ -48,8 +47,8 @@ from pathlib import Path
 import numpy as np
 import OpenImageIO as oiio
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import sweep  # noqa: E402  (the sample scenes and whether filmback renders their geometry)
+import peer_table
+import sweep  # the sample scenes, and whether filmback renders their geometry
 
 SKIP = 77
 MOST_MEAN_RELATIVE = 0.03
@@ -209,26 +208,12 @@ def main():
                     f"{filmback_s:.2f} | {povray_s:.2f} | {load:.1f} | "
                     f"{'yes' if passed else '**no**'} |")
         print(rows[-1], flush=True)
-    table = [
-        f"{args.res}; {platform.node()}, {os.cpu_count()} cores, load average "
-        f"{load_before:.1f} before, {os.getloadavg()[0]:.1f} after; "
-        f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}",
-        "",
-        "| scene | mean relative difference | 95th-percentile pixel | filmback spp | filmback s "
-        "| POV-Ray s | load | passes |",
-        "|---|---|---|---|---|---|---|---|",
-        *rows,
-        "",
-        f"{len(args.scenes) - len(failed)} of {len(args.scenes)} pass (mean <= 3 %, 95th "
-        "percentile <= 10 %).",
-    ]
-    args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "integrator_vs_povray.md").write_text("\n".join(table) + "\n", encoding="utf-8")
-    print("\n".join(table))
-    if args.check and failed:
-        print("failed: " + ", ".join(failed))
-        return 1
-    return 0
+    return peer_table.report(
+        args.out / "integrator_vs_povray.md", f"{args.res}; {peer_table.machine(load_before)}",
+        ["scene", "mean relative difference", "95th-percentile pixel", "filmback spp",
+         "filmback s", "POV-Ray s", "load", "passes"], rows, failed, args.check,
+        ["", f"{len(args.scenes) - len(failed)} of {len(args.scenes)} pass (mean <= 3 %, "
+         "95th percentile <= 10 %)."])
 
 
 if __name__ == "__main__":

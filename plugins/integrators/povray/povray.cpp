@@ -132,7 +132,8 @@ Rgb PovRayTracer::Tracer::seen(const PovRay& r, const fb_hit& hit, size_t path) 
   const Rgb colour = shade(r, hit, path);
   float transmittance[3], emitted[3];
   if (!api.medium_segment(ctx, &r.ray, hit.t, 1, transmittance, emitted)) return colour;
-  return colour * lighting::rgb(transmittance) + lighting::rgb(emitted);
+  // The fog's colour was blended in decoded values: taken back to the scene's, near POV-Ray's.
+  return colour * lighting::rgb(transmittance) + in_scene_values(lighting::rgb(emitted));
 }
 
 // What a shadow ray from a lit point brings of a light `distance` away: each surface between
