@@ -245,9 +245,14 @@ void RenderJob::make_scene_table() {
   if (scene_.pov_tracing) {
     for (const Material& m : scene_.materials)
       p.pov_finishes.push_back(m.pov_finish ? to_abi(*m.pov_finish) : fb_pov_finish{});
-    p.povray = {sizeof(fb_povray_scene), scene_.pov_tracing->max_trace_level,
-                float(scene_.pov_tracing->adc_bailout), uint32_t(p.pov_finishes.size()),
-                p.pov_finishes.data()};
+    const PovTracing& tracing = *scene_.pov_tracing;
+    p.povray = {sizeof(fb_povray_scene),
+                tracing.max_trace_level,
+                float(tracing.adc_bailout),
+                uint32_t(p.pov_finishes.size()),
+                p.pov_finishes.data(),
+                float(tracing.colour_gamma),
+                {tracing.ambient_light.x, tracing.ambient_light.y, tracing.ambient_light.z}};
     p.scene.povray = &p.povray;
   }
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),

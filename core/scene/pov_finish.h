@@ -32,10 +32,13 @@ struct PovFinish {
   float ior = 1.f;  // the interior's
 };
 
-// A POV-Ray scene's global_settings that decide how deep its rays go.
+// A POV-Ray scene's global_settings that decide how deep its rays go, and in what values POV-Ray
+// computes its colours (docs/pov.md, "The povray integrator").
 struct PovTracing {
   uint32_t max_trace_level = 5;  // POV-Ray 3.7's default
   double adc_bailout = 1.0 / 255;
+  double colour_gamma = 1.0;         // what decoded the scene's colours (c^g)
+  Rgb ambient_light{1.f, 1.f, 1.f};  // decoded; PovFinish::ambient is multiplied by it
 };
 
 }  // namespace fb

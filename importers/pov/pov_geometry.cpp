@@ -394,6 +394,8 @@ void Converter::emit(const Object& o) {
     return;
   }
   if (o.no_shadow) warn(o, "has no_shadow, which is not rendered: it casts shadows");
+  if (o.double_illuminate)
+    warn(o, "has double_illuminate, which is not rendered: it is lit on the lights' side only");
   const bool plain = !o.inverse && o.clipped_by.empty();
   // A union's members keep all their surfaces in POV-Ray: each is an object of its own.
   if (plain && (o.shape == Shape::kUnion || (o.shape == Shape::kMerge && contains_mesh(o)))) {

@@ -324,5 +324,23 @@ TEST(PovGeometry, WhatCannotBeConvertedIsReported) {
             std::string::npos);
 }
 
+// Modifiers that change only how an object is lit are warned about, the object kept (issue 19:
+// objectmods/double_illuminate.pov was rendered without a word about its back-lit panel).
+TEST(PovGeometry, LightingModifiersNotRenderedAreReported) {
+  Object lit_behind = shape(Shape::kSphere, {0, 0, 0}, {}, 1);
+  lit_behind.double_illuminate = true;
+  Object shadowless = shape(Shape::kSphere, {2, 0, 0}, {}, 1);
+  shadowless.no_shadow = true;
+  const auto c = convert({lit_behind, shadowless});
+  EXPECT_EQ(c->scene.solids.size(), 2u);
+  ASSERT_EQ(c->diagnostics.count(), 2u);
+  EXPECT_NE(c->diagnostics.messages()[0].find("has double_illuminate, which is not rendered"),
+            std::string::npos)
+      << c->diagnostics.messages()[0];
+  EXPECT_NE(c->diagnostics.messages()[1].find("has no_shadow, which is not rendered"),
+            std::string::npos)
+      << c->diagnostics.messages()[1];
+}
+
 }  // namespace
 }  // namespace fb::pov

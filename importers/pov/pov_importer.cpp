@@ -6,6 +6,7 @@
 #include "importers/pov/pov_camera.h"
 #include "importers/pov/pov_geometry.h"
 #include "importers/pov/sdl/evaluate.h"
+#include "importers/pov/sdl/solid_pigment.h"
 
 namespace fb {
 namespace {
@@ -99,6 +100,8 @@ Scene import_pov(const std::filesystem::path& file, const ImportOptions& options
   PovTracing& tracing = scene.pov_tracing.emplace();
   if (pov.max_trace_level) tracing.max_trace_level = uint32_t(*pov.max_trace_level);
   if (pov.adc_bailout) tracing.adc_bailout = *pov.adc_bailout;
+  tracing.colour_gamma = pov::colour_gamma(pov);
+  tracing.ambient_light = pov::decode(pov.ambient_light, tracing.colour_gamma);
   return scene;
 }
 

@@ -21,7 +21,6 @@ misses; exit 77 (CTest's skip) when Blender or povray-examples is missing.
 
 import argparse
 import os
-import platform
 import shutil
 import subprocess
 import sys
@@ -30,6 +29,8 @@ from pathlib import Path
 
 import numpy as np
 import OpenImageIO as oiio
+
+import peer_table
 
 HERE = Path(__file__).resolve().parent
 EXAMPLES = Path("/usr/share/doc/povray/examples")
@@ -152,22 +153,11 @@ def main():
         rows.append(f"| {scene} | {ours:.4f} | {theirs:.4f} | {ratio:.3f} | {overlap:.3f} | "
                     f"{filmback_s:.1f} | {cycles_s:.1f} | {'yes' if passed else '**no**'} |")
         print(rows[-1], flush=True)
-    table = [
-        f"{args.res}, {args.spp} spp in both; {platform.node()}, {os.cpu_count()} cores, "
-        f"load average {load_before:.1f} before, {os.getloadavg()[0]:.1f} after; "
-        f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}",
-        "",
-        "| scene | filmback mean | Cycles mean | ratio | overlap | filmback s | Blender s | passes |",
-        "|---|---|---|---|---|---|---|---|",
-        *rows,
-    ]
-    args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "convert_viewer.md").write_text("\n".join(table) + "\n", encoding="utf-8")
-    print("\n".join(table))
-    if args.check and missed:
-        print("missed: " + ", ".join(missed))
-        return 1
-    return 0
+    return peer_table.report(
+        args.out / "convert_viewer.md",
+        f"{args.res}, {args.spp} spp in both; {peer_table.machine(load_before)}",
+        ["scene", "filmback mean", "Cycles mean", "ratio", "overlap", "filmback s", "Blender s",
+         "passes"], rows, missed, args.check)
 
 
 if __name__ == "__main__":

@@ -404,6 +404,13 @@ typedef struct fb_povray_scene {
   float adc_bailout;             /* global_settings adc_bailout (default 1/255) */
   uint32_t finish_count;         /* fb_scene.material_count */
   const fb_pov_finish* finishes; /* one per material, by index */
+  /* Appended by issue 19 (Growth, gamma): the exponent g that decoded the scene's colours (its
+   * assumed_gamma; 2.2 for a legacy scene, docs/pov.md "Colours and assumed_gamma"). POV-Ray
+   * lights in the scene's own values and decodes the pixel by g at the end: an integrator that
+   * does so raises the decoded colours to 1/g first. 1 for a linear scene. */
+  float colour_gamma;
+  float
+      ambient_light[3]; /* global_settings ambient_light, decoded (fb_pov_finish.ambient has it) */
 } fb_povray_scene;
 
 /* The homogeneous medium inside a material's closed surfaces (POV-Ray's interior media, docs/pov.md

@@ -35,6 +35,14 @@ inline Rgb rgb(const float c[3]) {
   return Rgb(c[0], c[1], c[2]);
 }
 
+// Each channel to the power `exponent`, negative ones taken as 0 (a reflection's `exponent`, a
+// colour's gamma).
+inline Rgb raised(Rgb c, float exponent) {
+  if (exponent == 1.f) return c;
+  return {std::pow(std::max(c.x, 0.f), exponent), std::pow(std::max(c.y, 0.f), exponent),
+          std::pow(std::max(c.z, 0.f), exponent)};
+}
+
 // The pigment's colour at the hit: the host's base colour divided by what the importer scaled the
 // pigment by. Where that scale is 0 (a finish without diffuse), the host's emission, which is the
 // pigment at the hit times ambient + emission (docs/pov.md, "Finishes and interiors"), divided by

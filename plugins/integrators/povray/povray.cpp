@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "pov_lighting.h"
@@ -36,6 +37,8 @@ constexpr int kMostShadowSurfaces = 64;
 constexpr int kMostContinuedRays = 256;
 // The finish of surfaces a POV-Ray scene did not describe: diffuse 1 in the hit's base colour.
 constexpr fb_pov_finish kPlainFinish = lighting::diffuse_finish(1.f);
+// A host whose fb_povray_scene ends before colour_gamma and ambient_light: a linear scene.
+constexpr size_t kPovGammaSize = offsetof(fb_povray_scene, ambient_light) + 3 * sizeof(float);
 
 constexpr fb_param_desc kParams[] = {
     {"max_trace_level", FB_PARAM_INT, "0", "", nullptr, 0, 256,
@@ -64,7 +67,7 @@ class PovRayTracer {
     const fb_hit* hits = fb::first_hits(scene, ctx, rays, count);
     Tracer tracer{scene, ctx, max_trace_level_};
     for (size_t i = 0; i < count; ++i)
-      tracer.seen({rays[i], 1, 0, 1.f}, hits[i], i).store(values + 3 * i);
+      tracer.decoded(tracer.seen({rays[i], 1, 0, 1.f}, hits[i], i)).store(values + 3 * i);
   }
 
  private:
@@ -76,7 +79,25 @@ class PovRayTracer {
                         : povray != nullptr ? int(povray->max_trace_level)
                                             : 5;
       adc_bailout = povray != nullptr ? povray->adc_bailout : 1.f / 255.f;
+      const bool has_gamma =
+          povray != nullptr && povray->struct_size >= kPovGammaSize && povray->colour_gamma > 0.f;
+      colour_gamma = has_gamma ? povray->colour_gamma : 1.f;
+      // fb_pov_finish.ambient is the amount times the decoded ambient_light: times this, the
+      // amount times ambient_light as written.
+      if (has_gamma) {
+        const auto scale = [&](float light) {
+          return light > 0.f ? std::pow(light, 1.f / colour_gamma - 1.f) : 0.f;
+        };
+        ambient_in_scene_values = {scale(povray->ambient_light[0]), scale(povray->ambient_light[1]),
+                                   scale(povray->ambient_light[2])};
+      }
     }
+    // POV-Ray computes in the scene's own colour values and decodes the pixel by assumed_gamma
+    // (its output gamma, File_Gamma 1): a decoded colour taken back to them, and the pixel.
+    Rgb in_scene_values(Rgb decoded_colour) const {
+      return lighting::raised(decoded_colour, 1.f / colour_gamma);
+    }
+    Rgb decoded(Rgb pixel) const { return lighting::raised(pixel, colour_gamma); }
     Rgb trace(const PovRay& r, size_t path) const;
     Rgb seen(const PovRay& r, const fb_hit& hit, size_t path) const;
     Rgb shade(const PovRay& r, const fb_hit& hit, size_t path, uint32_t medium) const;
@@ -95,6 +116,8 @@ class PovRayTracer {
     const fb_povray_scene* povray;
     int max_trace_level;
     float adc_bailout;
+    float colour_gamma;
+    Rgb ambient_in_scene_values{1.f, 1.f, 1.f};
   };
 
   int max_trace_level_;
@@ -121,7 +144,8 @@ Rgb PovRayTracer::Tracer::seen(const PovRay& r, const fb_hit& hit, size_t path) 
     colour = through_medium(r, hit.t, *fb::interior_medium(scene, medium), colour);
   float transmittance[3], emitted[3];
   if (!api.medium_segment(ctx, &r.ray, hit.t, 1, transmittance, emitted)) return colour;
-  return colour * lighting::rgb(transmittance) + lighting::rgb(emitted);
+  // The fog's colour was blended in decoded values: taken back to the scene's, near POV-Ray's.
+  return colour * lighting::rgb(transmittance) + in_scene_values(lighting::rgb(emitted));
 }
 
 // POV-Ray's ComputeMedia over the ray's segment inside an object's media, up to its hit at
@@ -135,7 +159,9 @@ Rgb PovRayTracer::Tracer::through_medium(const PovRay& r, float t_end, const fb_
                                          Rgb behind) const {
   const Vec3f origin(r.ray.origin), direction(r.ray.direction);
   const float length = t_end * fb::length(direction);
-  const Rgb emission(medium.emission), scattering(medium.scattering);
+  // Emission was decoded as a colour (the scattering is a rate, as written): back to the
+  // scene's values, as the lamps' colours are.
+  const Rgb emission = in_scene_values(Rgb(medium.emission)), scattering(medium.scattering);
   const Rgb extinction(medium.povray_extinction);
   const bool scatters = fb::max_component(scattering) > 0.f && scene.lamp_count > 0;
   const uint32_t points = std::max(medium.povray_points, 1u);
@@ -166,7 +192,7 @@ Rgb PovRayTracer::Tracer::lamps_at(const float position[3], float time_s) const 
       shadow.origin[c] = position[c], shadow.direction[c] = centre.direction[c];
     shadow.t_max = std::isinf(centre.distance) ? HUGE_VALF : centre.distance * (1.f - 1e-4f);
     shadow.time_s = time_s;
-    sum += lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf)) *
+    sum += in_scene_values(lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf))) *
            light_through(shadow, centre.distance);
   }
   return sum;
@@ -184,7 +210,7 @@ Rgb PovRayTracer::Tracer::light_through(const fb_ray& shadow, float distance) co
       scene, ctx, shadow, kMostShadowSurfaces,
       [this](const fb_hit& hit) {
         const fb_pov_finish& f = finish(hit.material);
-        return lighting::passed_through(f, lighting::pigment_at_hit(f, hit)) /
+        return lighting::passed_through(f, in_scene_values(lighting::pigment_at_hit(f, hit))) /
                std::max(f.coverage, 1e-6f);
       },
       [](const fb_medium& m) { return Rgb(m.povray_extinction); });
@@ -198,7 +224,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path,
   if (std::isinf(hit.t)) {
     float le[3], pdf;
     api.background(ctx, r.ray.direction, le, &pdf);
-    return lighting::rgb(le);
+    return in_scene_values(lighting::rgb(le));
   }
   const fb_pov_finish& f = finish(hit.material);
   // POV-Ray turns the normal to face the ray; the geometric normal decides whether the ray enters
@@ -209,10 +235,12 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path,
   if (dot(n, view) > 0.f) n = ng;  // a bent normal turned away from the viewer
   const float eta = entering ? f.ior : 1.f / std::max(f.ior, 1e-6f);  // n2 / n1
   const Vec3f p(hit.position), p_error(hit.position_error);
-  const Rgb pigment = lighting::pigment_at_hit(f, hit);
+  const Rgb pigment = in_scene_values(lighting::pigment_at_hit(f, hit));
   const float opacity = 1.f - f.filter - f.transmit;  // POV-Ray 3.7's Opacity()
 
-  Rgb colour = pigment * (lighting::rgb(f.ambient) + lighting::rgb(f.emission)) * opacity;
+  Rgb colour = pigment *
+               (lighting::rgb(f.ambient) * ambient_in_scene_values + lighting::rgb(f.emission)) *
+               opacity;
   const float cos_view = -dot(view, n);
   const Rgb reflec = lighting::reflectivity(f, cos_view, eta, pigment);
 
@@ -238,8 +266,9 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path,
       shadow.t_max = std::isinf(point.distance) ? HUGE_VALF : point.distance * (1.f - 1e-4f);
       shadow.time_s = r.ray.time_s;
       // POV-Ray's lights have colour c where filmback's have intensity pi c (docs/pov.md).
-      const Rgb light = lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf)) *
-                        light_through(shadow, point.distance);
+      const Rgb light =
+          in_scene_values(lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf))) *
+          light_through(shadow, point.distance);
       if (!(fb::max_component(light) > 0.f)) continue;
       colour += lighting::diffuse(f, cos_light, opacity, pigment, light) +
                 lighting::phong(f, view, n, to_light, pigment, light) +
@@ -290,10 +319,7 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path,
     next.ray.t_max = HUGE_VALF;
     next.ray.time_s = r.ray.time_s;
     Rgb seen = trace(next, path);
-    if (f.reflection_exponent != 1.f)
-      seen = {std::pow(std::max(seen.x, 0.f), f.reflection_exponent),
-              std::pow(std::max(seen.y, 0.f), f.reflection_exponent),
-              std::pow(std::max(seen.z, 0.f), f.reflection_exponent)};
+    if (f.reflection_exponent != 1.f) seen = lighting::raised(seen, f.reflection_exponent);
     colour += reflec * seen;
   }
   // The host keeps this hit with probability `coverage` and passes the ray on otherwise: divided
