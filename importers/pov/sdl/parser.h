@@ -218,9 +218,9 @@ class Parser {
   bool starts_colour(const Tok& tok) const;
 
   // ---- appearance (appearance.cpp) ----
-  Pigment parse_pigment();  // after the `pigment` keyword
+  Pigment parse_pigment();            // after the `pigment` keyword
   Finish parse_finish(Finish start);  // after `finish`: changes `start`, as POV-Ray does
-  Normal parse_normal();                           // after the `normal` keyword
+  Normal parse_normal();              // after the `normal` keyword
   Normal parse_normal_items(const char* closing);  // a normal's body up to `closing`
   Texture parse_texture();
   // `layer` (and the layers it carries) over `texture`'s top layer; fails past the layer limit.
@@ -249,10 +249,13 @@ class Parser {
   void parse_lathe(Object& o);  // lathe.cpp: its spline and points, after the '{'
   bool parse_text(Object& o);   // text.cpp; false: its font is not here (reported)
   void parse_height_field(
-      Object& o);                    // height_field.cpp: an image's or a function's, after the '{'
-  void parse_blob(Object& o);        // blob.cpp: threshold and components, after the '{'
+      Object& o);              // height_field.cpp: an image's or a function's, after the '{'
+  void parse_blob(Object& o);  // blob.cpp: threshold and components, after the '{'
   void parse_sphere_sweep(Object& o);   // sphere_sweep.cpp: spline, spheres, tolerance
   void parse_bicubic_patch(Object& o);  // bicubic_patch.cpp: its triangles, after the '{'
+  // julia_fractal.cpp: its parameter and items, after the '{'; a function it cannot render is
+  // returned as what to report (the rest of the block unread), otherwise empty.
+  std::string parse_julia_fractal(Object& o);
   void parse_isosurface(Object& o);  // isosurface.cpp: its function and bounds, after the '{'
   void parse_contained_by(Isosurface& container);  // isosurface.cpp: after `contained_by`
   void parse_parametric(Object& o);  // parametric.cpp: its three functions as a mesh, after '{'
