@@ -446,8 +446,9 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
     return mesh;
   }
   if (primitive.kind == SolidKind::kJuliaFractal) {
-    tessellate_julia_fractal(*primitive.julia,
-                             marched_cells(julia_fractal_bounds(*primitive.julia), error), mesh);
+    // A fractal's folds are no gently curved surface: marched_cells' estimate leaves out sheets
+    // thinner than its cells, so the set takes the finest grid (a quarter of a second).
+    tessellate_julia_fractal(*primitive.julia, kMarchedMaxCells, mesh);
     return mesh;
   }
   const bool lathe = primitive.kind == SolidKind::kLathe;
