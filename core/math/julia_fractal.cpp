@@ -132,15 +132,38 @@ Vec3d half_gradient(const Jet& z) {
   return {g[0], g[1], g[2]};
 }
 
-// A step from p (outside) that stays outside: the escaped iterate z_k keeps |z_k| > R on the way
-// to the set, whose points have |z_k| <= R. Half the log-space Newton step to that sphere,
-// (ln|z_k| - ln R) / |grad ln|z_k||, with grad ln|z_k| = J^T z / |z|^2: Hubbard and Douady's
-// factor for the quaternion maps, a heuristic for the others. 0 where that is no number.
-double distance_estimate(const Jet& z, double exit_value) {
-  const double n2 = norm2(z.value);
-  const double slope = length(half_gradient(z));
-  const double d = 0.25 * (std::log(n2) - std::log(exit_value)) * n2 / slope;
-  return d > 0 && std::isfinite(d) ? d : 0;
+// One run of the iteration at a sample of the march: whether p escapes and, if it does, a step
+// from p that stays outside. The escaped iterate z_k keeps |z_k| > R on the way to the set, whose
+// points have |z_k| <= R: half the log-space Newton step to that sphere, (ln|z_k| - ln R) /
+// |grad ln|z_k||, with |grad |z_k|| bounded by the running derivative |z_k'| (no derivatives
+// carried: |z_0'| = 1 / |slice_w|, |z_{k+1}'| <= m g^(m-1) |z_k|^(m-1) |z_k'|, g = 1 for
+// quaternions, whose norm multiplies, sqrt(2) for hypercomplex numbers, |ab| <= sqrt(2) |a| |b|).
+// Hubbard and Douady's factor 1/2 for the quaternion maps, a heuristic for the others.
+struct JuliaSample {
+  bool escaped = false;
+  double step = 0;  // 0 where the estimate is no number
+};
+
+JuliaSample march_sample(const JuliaFractal& julia, Vec3d p) {
+  const bool hypercomplex = julia.algebra == JuliaAlgebra::kHypercomplex;
+  const double growth =
+      julia.power * (hypercomplex ? std::pow(std::sqrt(2.0), julia.power - 1) : 1);
+  const Four c{{julia.c[0], julia.c[1], julia.c[2], julia.c[3]}};
+  Four z = start_value(julia, p);
+  double slope = 1 / std::abs(julia.slice[3]);
+  for (int k = 0; k < julia.max_iteration; ++k) {
+    const double n2 = norm2(z);
+    if (n2 > julia.exit_value || !(n2 == n2)) {
+      const double d = 0.25 * (std::log(n2) - std::log(julia.exit_value)) * std::sqrt(n2) / slope;
+      return {true, d > 0 && std::isfinite(d) ? d : 0};
+    }
+    if (k + 1 == julia.max_iteration) break;
+    slope *= growth * (julia.power == 3 ? n2 : std::sqrt(n2));
+    Four next = product(julia.algebra, z, z);
+    if (julia.power == 3) next = product(julia.algebra, next, z);
+    z = next + c;
+  }
+  return {};
 }
 
 }  // namespace
@@ -189,38 +212,34 @@ JuliaWalk julia_fractal_walk(const JuliaFractal& julia, Vec3d o, Vec3d d, double
   const double speed = length(d);
   const double enough = kJuliaRootFraction * julia.radius;
   double t = t_in;
-  bool outside = escapes(julia, o + d * t);
-  walk.inside_at_entry = !outside;
+  JuliaSample here = march_sample(julia, o + d * t);
+  walk.inside_at_entry = !here.escaped;
   for (int samples = 0;; ++samples) {
     if (!(t < t_out)) {
       walk.t_end = t_out;
       return walk;
     }
     if (samples >= kJuliaMaxSamples || t > hi) break;
-    // Inside, the step is POV-Ray's least; outside, the estimate needs the derivatives.
-    double step = julia.least_step;
-    if (outside) {
-      const JuliaOrbit<Jet> here = orbit(julia, start(julia, o + d * t));
-      step = std::max(step, distance_estimate(here.z, julia.exit_value));
-    }
+    // Inside, the step is POV-Ray's least.
+    const double step = std::max(here.step, julia.least_step);
     const double t_next = std::min(t + step / speed, t_out);
-    const bool next_outside = escapes(julia, o + d * t_next);
-    if (next_outside != outside) {
+    const JuliaSample next = march_sample(julia, o + d * t_next);
+    if (next.escaped != here.escaped) {
       // Bisect, keeping [a, b] across the boundary; the crossing is its outside end, where the
       // gradient of the escaping iterate is the normal.
       double a = t, b = t_next;
       for (int i = 0; i < kJuliaBisections && (b - a) * speed > enough; ++i) {
         const double m = 0.5 * (a + b);
-        (escapes(julia, o + d * m) == outside ? a : b) = m;
+        (escapes(julia, o + d * m) == here.escaped ? a : b) = m;
       }
       if (walk.count == kJuliaMaxCrossings) {
         t = a;
         break;
       }
-      walk.crossings[walk.count++] = outside ? a : b;
+      walk.crossings[walk.count++] = here.escaped ? a : b;
     }
     t = t_next;
-    outside = next_outside;
+    here = next;
   }
   walk.complete = false;
   walk.t_end = t;

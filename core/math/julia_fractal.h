@@ -9,7 +9,8 @@
 // The boundary near a point where z_k first escapes is the level |z_k(p)|^2 = exit_value, so its
 // outward normal is that function's gradient, exact (POV-Ray's Normal_Calc_Julia computes the
 // same Jacobian product). A ray marches by a distance estimate to the escape sphere of the iterate
-// that escaped, (ln|z_k| - ln R) / (2 |grad ln|z_k||), never less than 1 / precision, and bisects
+// that escaped, (ln|z_k| - ln R) / (2 |grad ln|z_k||) with the gradient bounded by the running
+// derivative |z_k'|, never less than 1 / precision, and bisects
 // each step that changes side. (POV-Ray's estimate is the distance to the limit set, which a
 // finite max_iteration's larger set can be nearer than.)
 // docs/pov.md, "Julia fractal".
