@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/function/isosurface_function.h"
+#include "core/math/julia_fractal.h"
 #include "core/math/lemon.h"
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
@@ -39,6 +40,7 @@ struct RenderSolid::Node {
   Lemon lemon;           // kLemon
   std::shared_ptr<const SphereSweep> sweep;      // kSphereSweep
   std::shared_ptr<const Isosurface> isosurface;  // kIsosurface, in object space
+  std::shared_ptr<const JuliaFractal> julia;     // kJuliaFractal, in object space
   // What the tree can give one ray, known at build time so that no ray allocates (issue 17):
   size_t max_spans = 0;        // spans of this node's set along a ray, at most
   size_t max_child_spans = 0;  // of any child's (set operations)
@@ -686,6 +688,24 @@ void isosurface_spans(const Node& leaf, const Ray& r, double lo, double hi, Span
     push(out, n, from, walk.complete ? on(leaf, t_out, 1, caps) : Boundary{walk.t_end}, lo, hi);
 }
 
+// The julia fractal's set (core/math/julia_fractal.h): the march's crossings pair up from its
+// inside state where the ray enters the bounding sphere, which holds the whole set. Where a cap
+// stopped the march, the ray leaves the set through no surface.
+void julia_spans(const Node& leaf, const Ray& r, double lo, double hi, Span* out, int& n) {
+  const JuliaFractal& julia = *leaf.julia;
+  double t_in = 0, t_out = 0;
+  if (!julia_fractal_chord(julia, r.o, r.d, t_in, t_out)) return;
+  const JuliaWalk walk = julia_fractal_walk(julia, r.o, r.d, t_in, t_out, hi);
+  bool inside = walk.inside_at_entry;
+  Boundary from{t_in};
+  for (int i = 0; i < walk.count; ++i) {
+    const Boundary crossing = on(leaf, walk.crossings[i]);
+    if (inside) push(out, n, from, crossing, lo, hi);
+    from = crossing, inside = !inside;
+  }
+  if (inside) push(out, n, from, Boundary{walk.complete ? t_out : walk.t_end}, lo, hi);
+}
+
 // The primitive's spans (at most primitive_max_spans) into out, using primitive_workspace spans
 // of scratch; returns their count.
 int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double hi, Span* out,
@@ -738,6 +758,9 @@ int primitive_spans(const Node& leaf, const Ray& render_ray, double lo, double h
     case SolidKind::kIsosurface:
       isosurface_spans(leaf, r, lo, hi, out, n);
       break;
+    case SolidKind::kJuliaFractal:
+      julia_spans(leaf, r, lo, hi, out, n);
+      break;
     default:
       break;
   }
@@ -772,6 +795,8 @@ size_t primitive_max_spans(const Node& leaf) {
       return sweep_boundaries(*leaf.sweep) / 2 + 1;
     case SolidKind::kIsosurface:  // every other piece between its crossings
       return kIsosurfaceMaxCrossings / 2 + 1;
+    case SolidKind::kJuliaFractal:
+      return kJuliaMaxCrossings / 2 + 1;
     default:
       return 1;
   }
@@ -897,6 +922,8 @@ Vec3d gradient(const Node& leaf, const Boundary& b, Vec3d p, Vec3d d) {
     case SolidKind::kIsosurface:
       return part == 1 ? isosurface_container_normal(*leaf.isosurface, p)
                        : isosurface_gradient(*leaf.isosurface, p);
+    case SolidKind::kJuliaFractal:
+      return julia_fractal_gradient(*leaf.julia, p);
     default:
       return {0, 0, 1};  // kHalfSpace, kDisc
   }
@@ -951,6 +978,7 @@ Node build(const Solid& solid, const Transform& render_from_world, const Bounds3
   node.lemon = solid.lemon;
   node.sweep = solid.sweep;
   node.isosurface = solid.isosurface;
+  node.julia = solid.julia;
   node.window = reach;
   if (solid.is_primitive()) {
     const Transform render_from_object = render_from_world * solid.world_from_object;

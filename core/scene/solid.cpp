@@ -53,6 +53,8 @@ Bounds3d object_bounds(const Solid& primitive) {
       return sphere_sweep_bounds(*primitive.sweep);
     case SolidKind::kIsosurface:
       return isosurface_bounds(*primitive.isosurface);
+    case SolidKind::kJuliaFractal:
+      return julia_fractal_bounds(*primitive.julia);
     default:  // kHalfSpace, kDisc (half-spaces), kPolynomial: unbounded
       return everything();
   }

@@ -11,6 +11,7 @@
 
 #include "core/math/blob.h"
 #include "core/math/bounds.h"
+#include "core/math/julia_fractal.h"
 #include "core/math/lemon.h"
 #include "core/math/polynomial.h"
 #include "core/math/sor.h"
@@ -65,6 +66,9 @@ enum class SolidKind : uint8_t {
   // POV-Ray's isosurface (core/scene/isosurface.h): where `isosurface`'s function is below its
   // threshold within its container; `open`: the container bounds the set but is no surface.
   kIsosurface,
+  // POV-Ray's julia_fractal (core/math/julia_fractal.h): the points of `julia`'s slice whose
+  // iterates stay bounded; within its bounding sphere.
+  kJuliaFractal,
   // Set operations over `children` (world_from_object unused: children carry their placement).
   // A difference A - B is kIntersection{A, B with `inverse`}; POV-Ray's merge renders as union.
   kUnion,
@@ -92,6 +96,7 @@ struct Solid {
   Lemon lemon;                             // kLemon
   std::shared_ptr<const SphereSweep> sweep;      // kSphereSweep
   std::shared_ptr<const Isosurface> isosurface;  // kIsosurface
+  std::shared_ptr<const JuliaFractal> julia;     // kJuliaFractal
   std::vector<Solid> children;
 
   bool is_primitive() const { return kind < SolidKind::kUnion; }

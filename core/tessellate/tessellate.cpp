@@ -12,6 +12,7 @@
 #include "core/scene/lathe.h"
 #include "core/tessellate/tessellate_csg.h"
 #include "core/tessellate/tessellate_isosurface.h"
+#include "core/tessellate/tessellate_julia.h"
 #include "core/tessellate/tessellate_outline.h"
 
 namespace fb {
@@ -174,6 +175,108 @@ void superellipsoid_mesh(const Solid& primitive, double error, uint32_t most, Tr
     }
 }
 
+// One ring of a sphere sweep's mesh: the circle of `radius` about `centre` in the plane normal to
+// `axis`, on the sphere about `sphere` (whose outward normals it takes).
+struct SweepRing {
+  Vec3d centre, axis, sphere;
+  double radius;
+};
+
+// c(u) or r(u) of a segment (power basis), and their derivatives.
+Vec3d sweep_centre_at(const SweepSegment& s, double u) {
+  return s.c[0] + (s.c[1] + (s.c[2] + s.c[3] * u) * u) * u;
+}
+Vec3d sweep_centre_slope(const SweepSegment& s, double u) {
+  return s.c[1] + (s.c[2] * 2 + s.c[3] * (3 * u)) * u;
+}
+double sweep_radius_at(const SweepSegment& s, double u) {
+  return s.r[0] + (s.r[1] + (s.r[2] + s.r[3] * u) * u) * u;
+}
+double sweep_radius_slope(const SweepSegment& s, double u) {
+  return s.r[1] + (2 * s.r[2] + 3 * s.r[3] * u) * u;
+}
+
+// A sphere sweep's segments, each a closed tube whose union is the sweep (they overlap where
+// segments meet, as the spheres do). The tube's rings are where the sphere at u touches the
+// envelope: (p - c) . c' = -r r', a circle about c - (r r' / |c'|^2) c' of radius
+// sqrt(r^2 - (r r')^2 / |c'|^2); each end is closed by the end sphere's cap beyond its ring. The
+// rings' frames are carried along by parallel transport, so the tube does not twist. `error` sets
+// the segments around (as for a sphere of the largest radius) and along (cubic segments: chords of
+// a curve that bends no tighter than that radius; linear ones are cones, one step).
+void sphere_sweep_mesh(const Solid& primitive, double error, uint32_t most, TriangleMesh& mesh) {
+  for (const SweepSegment& segment : primitive.sweep->segments) {
+    double widest = 0, length_along = 0;
+    constexpr int kSweepProbe = 16;
+    for (int i = 0; i <= kSweepProbe; ++i) {
+      const double u = double(i) / kSweepProbe;
+      widest = std::max(widest, sweep_radius_at(segment, u));
+      if (i)
+        length_along +=
+            length(sweep_centre_at(segment, u) - sweep_centre_at(segment, u - 1.0 / kSweepProbe));
+    }
+    if (!(widest > 0)) continue;
+    const bool linear = dot(segment.c[2], segment.c[2]) == 0 &&
+                        dot(segment.c[3], segment.c[3]) == 0 && segment.r[2] == 0 &&
+                        segment.r[3] == 0;
+    const uint32_t around = std::max(arc_segments(2 * kPi, widest, error / 2, most), 3u);
+    const double step = std::sqrt(8 * widest * error / 4);
+    const uint32_t along =
+        linear ? 1u : std::clamp(uint32_t(std::ceil(length_along / step)), 4u, most);
+    std::vector<SweepRing> rings;
+    Vec3d last_axis{0, 0, 1};
+    const auto tube_ring = [&](double u) {
+      const Vec3d c = sweep_centre_at(segment, u), slope = sweep_centre_slope(segment, u);
+      const double r = sweep_radius_at(segment, u), speed = length(slope);
+      if (speed > 0) last_axis = slope / speed;  // a standing centre keeps the last direction
+      const double offset = speed > 0 ? -r * sweep_radius_slope(segment, u) / speed : 0;
+      const double clamped = std::clamp(offset, -r, r);  // swallowed by its neighbour: a point
+      return SweepRing{c + last_axis * clamped, last_axis, c,
+                       std::sqrt(std::max(r * r - clamped * clamped, 0.0))};
+    };
+    // The cap of the end sphere beyond the ring (side -1: behind u = 0, +1: past u = 1), its pole
+    // to just short of the ring (the tube's own), in order from the pole or towards it.
+    const auto cap = [&](const SweepRing& ring, double side, bool from_pole) {
+      const double r = sweep_radius_at(segment, side < 0 ? 0.0 : 1.0);
+      const double reach = std::acos(std::clamp(
+          side * dot(ring.centre - ring.sphere, ring.axis) / std::max(r, 1e-300), -1.0, 1.0));
+      const uint32_t n = arc_segments(reach, r, error / 4, most);
+      for (uint32_t k = 0; k < n; ++k) {  // the ring itself is the tube's
+        const double phi = reach * (from_pole ? k : n - 1 - k) / n;
+        rings.push_back({ring.sphere + ring.axis * (side * r * std::cos(phi)), ring.axis,
+                         ring.sphere, r * std::sin(phi)});
+      }
+    };
+    const SweepRing first = tube_ring(0);
+    cap(first, -1, true);
+    for (uint32_t i = 0; i <= along; ++i)
+      rings.push_back(tube_ring(double(i) / along));
+    cap(rings.back(), 1, false);
+    // Each ring: `around` + 1 vertices (the seam shares its position), frames transported.
+    const uint32_t base = uint32_t(mesh.positions.size()), row = around + 1;
+    Vec3d e1 =
+        normalize(cross(rings.front().axis,
+                        std::abs(rings.front().axis.x) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0}));
+    for (const SweepRing& ring : rings) {
+      const Vec3d projected = e1 - ring.axis * dot(e1, ring.axis);
+      if (length(projected) > 1e-9) e1 = normalize(projected);
+      const Vec3d e2 = cross(ring.axis, e1);
+      for (uint32_t j = 0; j <= around; ++j) {
+        const double theta = 2 * kPi * (j % around) / around;
+        const Vec3d p = ring.centre + (e1 * std::cos(theta) + e2 * std::sin(theta)) * ring.radius;
+        mesh.positions.emplace_back(p);
+        const Vec3d n = p - ring.sphere;
+        mesh.normals.emplace_back(length(n) > 0 ? normalize(n) : ring.axis);
+      }
+    }
+    for (uint32_t i = 0; i + 1 < rings.size(); ++i)
+      for (uint32_t j = 0; j < around; ++j) {
+        const uint32_t a = base + i * row + j, b = a + row, c = b + 1, d = a + 1;
+        triangle(mesh, a, b, c);
+        triangle(mesh, a, c, d);
+      }
+  }
+}
+
 // A sor's profile in the (rho, y) half-plane: each segment sampled at a count doubled until the
 // radius at the samples' midpoints strays from their chord by less than `error`, its normals from
 // the gradient of rho^2 - r(y)^2; the caps as lines unless open. r^2 below 0 (no surface) is
@@ -268,6 +371,19 @@ void swap_y_and_z(TriangleMesh& mesh) {
     std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
 }
 
+// The marching grid's cells on the longest side of `box` for a chord error `error` (object units).
+// Flat pieces across a cell stray by about cell^2 curvature / 8. The surface's curvature is not
+// known: cells of sqrt(8 error r) meet the tolerance where it curves no more than a sphere of
+// radius r, taken as a quarter of the box's least half-size. The grid is capped
+// (kMarchedMaxCells), past which the tolerance is not met.
+uint32_t marched_cells(const Bounds3d& box, double error) {
+  const Vec3d size = box.hi - box.lo;
+  const double longest = std::max({size.x, size.y, size.z});
+  const double radius = 0.125 * std::min({size.x, size.y, size.z});
+  const double cells = std::ceil(longest / std::sqrt(8 * error * radius));
+  return cells < kMarchedMaxCells ? uint32_t(cells) : kMarchedMaxCells;  // NaN: the most
+}
+
 }  // namespace
 
 double tessellation_tolerance_m(const Solid& primitive, const TessellationOptions& options) {
@@ -289,9 +405,6 @@ void warn_untessellated(const Solid& primitive, Diagnostics& diagnostics) {
                                            "have no triangle form yet: left out of the mesh"
                                      : primitive.kind == SolidKind::kBlob
                                          ? ": blobs have no triangle form yet: left out of the mesh"
-                                     : primitive.kind == SolidKind::kSphereSweep
-                                         ? ": sphere sweeps have no triangle form yet: left out of "
-                                           "the mesh"
                                          : ": the surface has no triangles: left out"));
 }
 
@@ -323,20 +436,19 @@ TriangleMesh tessellate(const Solid& primitive, const TessellationOptions& optio
     superellipsoid_mesh(primitive, error, most, mesh);
     return mesh;
   }
+  if (primitive.kind == SolidKind::kSphereSweep) {
+    sphere_sweep_mesh(primitive, error, most, mesh);
+    return mesh;
+  }
   if (primitive.kind == SolidKind::kIsosurface) {
-    // Flat pieces across a cell stray by about cell^2 curvature / 8. The function's curvature is
-    // not known: cells of sqrt(8 error r) meet the tolerance where the surface curves no more
-    // than a sphere of radius r, taken as a quarter of the container's least half-size. The grid
-    // is capped (kIsosurfaceMaxCells), past which the tolerance is not met.
-    const Bounds3d box = isosurface_bounds(*primitive.isosurface);
-    const Vec3d size = box.hi - box.lo;
-    const double longest = std::max({size.x, size.y, size.z});
-    const double radius = 0.125 * std::min({size.x, size.y, size.z});
-    const double cells = std::ceil(longest / std::sqrt(8 * error * radius));
-    tessellate_isosurface(
-        *primitive.isosurface, primitive.open,
-        cells < kIsosurfaceMaxCells ? uint32_t(cells) : kIsosurfaceMaxCells,  // NaN: the most
-        mesh);
+    tessellate_isosurface(*primitive.isosurface, primitive.open,
+                          marched_cells(isosurface_bounds(*primitive.isosurface), error), mesh);
+    return mesh;
+  }
+  if (primitive.kind == SolidKind::kJuliaFractal) {
+    // A fractal's folds are no gently curved surface: marched_cells' estimate leaves out sheets
+    // thinner than its cells, so the set takes the finest grid (a quarter of a second).
+    tessellate_julia_fractal(*primitive.julia, kMarchedMaxCells, mesh);
     return mesh;
   }
   const bool lathe = primitive.kind == SolidKind::kLathe;

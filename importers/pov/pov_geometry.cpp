@@ -211,6 +211,10 @@ std::optional<Solid> Converter::primitive(const Object& o) {
       s.kind = SolidKind::kIsosurface;
       s.isosurface = o.isosurface;
       break;
+    case Shape::kJuliaFractal:  // POV-Ray's object space; the parser checked the parameters
+      s.kind = SolidKind::kJuliaFractal;
+      s.julia = o.julia;
+      break;
     default:
       return std::nullopt;
   }

@@ -13,6 +13,7 @@
 
 #include <filmback/vec.h>
 
+#include "core/math/julia_fractal.h"
 #include "core/math/sphere_sweep.h"
 #include "core/math/transform.h"
 #include "core/scene/isosurface.h"
@@ -168,6 +169,7 @@ enum class Shape {
   kLemon,           // apex a radius r0, base b radius r1, inner radius r2 (bounded as POV-Ray's)
   kSphereSweep,     // `sweep`, its segments as the parser built them
   kIsosurface,      // `isosurface`: its function, threshold and container; open
+  kJuliaFractal,    // `julia`: its parameter, algebra, function and slice
   // triangles (triangle, smooth_triangle, mesh, mesh2, polygon): `vertices`, `indices`
   kMesh,
   // constructive solid geometry over `children`
@@ -202,6 +204,7 @@ struct Object {
   std::vector<BlobComponentStatement> blob_components;  // kBlob
   std::vector<std::pair<double, double>> profile;       // kSor
   std::shared_ptr<const Isosurface> isosurface;         // kIsosurface
+  std::shared_ptr<const JuliaFractal> julia;            // kJuliaFractal
   // kMesh: triangles; `normals` empty or one per vertex; `triangle_textures` empty or one index
   // into `textures` per triangle (mesh2 texture_list), otherwise `texture` applies.
   std::vector<Vec3d> vertices, normals;

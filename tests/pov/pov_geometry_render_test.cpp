@@ -296,5 +296,21 @@ TEST(PovGeometryRender, IsosurfaceAndParametricOnPovRaysPixels) {
   expect_on_povrays_pixels(kFunctionShots);
 }
 
+// Julia fractals (marched by their distance estimate): objects/fractal1.pov's quaternion set and
+// fractal4.pov's hypercomplex one, with a precision fine enough that POV-Ray's own march misses
+// no thin part, so the silhouettes compare at the exact solids' tolerances.
+const SolidShot kJuliaShots[] = {
+    {"julia_quaternion_sqr",
+     "julia_fractal { <-0.083, 0.0, -0.83, -0.025> quaternion sqr max_iteration 8 precision 200"
+     " rotate <30, 40, 0> scale 1.3 }"},
+    {"julia_hypercomplex_sqr",
+     "julia_fractal { <-0.745, 0, 0.113, 0.05> hypercomplex sqr max_iteration 9 precision 200"
+     " scale <1, 2, 1> rotate <135, -30, 0> }"},
+};
+
+TEST(PovGeometryRender, JuliaFractalsOnPovRaysPixels) {
+  expect_on_povrays_pixels(kJuliaShots);
+}
+
 }  // namespace
 }  // namespace fb::test

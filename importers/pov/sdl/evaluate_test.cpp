@@ -429,7 +429,7 @@ TEST_F(Sdl, TraceDepthAndReflectionFalloffAreRead) {
 TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   Scene scene =
       run("rainbow { angle 42 width 5 }\n"
-          "julia_fractal { <-0.083, 0, -0.83, -0.025> translate x }\n"
+          "julia_fractal { <-0.083, 0, -0.83, -0.025> hypercomplex exp translate x }\n"
           "#declare F = function(a) { a * 2 }\n"
           "sphere { 0, 1 normal { quilted 0.5 } }\n"
           "global_settings { radiosity { count 100 } }\n");
@@ -437,7 +437,7 @@ TEST_F(Sdl, UnsupportedFeaturesAreReportedAndSkipped) {
   ASSERT_GE(scene.unsupported.size(), 4u);
   EXPECT_EQ(scene.unsupported[0].feature, "rainbow");
   EXPECT_EQ(scene.unsupported[0].where.text(), "scene.pov:1:1");
-  EXPECT_EQ(scene.unsupported[1].feature, "julia_fractal");
+  EXPECT_EQ(scene.unsupported[1].feature, "julia_fractal hypercomplex exp");
   EXPECT_EQ(scene.unsupported[1].where.line, 2u);
   ASSERT_TRUE(scene.objects[0].texture.normal);
   EXPECT_FALSE(scene.objects[0].texture.normal->rendered);

@@ -10,16 +10,21 @@
 namespace fb::pov::sdl {
 namespace {
 
-constexpr std::string_view kSupported[] = {
-    "sphere",      "box",        "plane",           "cylinder",     "cone",         "torus",
-    "disc",        "triangle",   "smooth_triangle", "mesh",         "mesh2",        "polygon",
-    "object",      "union",      "merge",           "difference",   "intersection", "light_source",
-    "light_group", "quadric",    "cubic",           "quartic",      "poly",         "polynomial",
-    "prism",       "text",       "superellipsoid",  "height_field", "blob",         "sor",
-    "lathe",       "ovus",       "lemon",           "sphere_sweep", "bicubic_patch", "isosurface",
-    "parametric"};
+constexpr std::string_view kSupported[] = {"sphere",       "box",           "plane",
+                                           "cylinder",     "cone",          "torus",
+                                           "disc",         "triangle",      "smooth_triangle",
+                                           "mesh",         "mesh2",         "polygon",
+                                           "object",       "union",         "merge",
+                                           "difference",   "intersection",  "light_source",
+                                           "light_group",  "quadric",       "cubic",
+                                           "quartic",      "poly",          "polynomial",
+                                           "prism",        "text",          "superellipsoid",
+                                           "height_field", "blob",          "sor",
+                                           "lathe",        "ovus",          "lemon",
+                                           "sphere_sweep", "bicubic_patch", "isosurface",
+                                           "parametric",   "julia_fractal"};
 // parsed and reported: their geometry needs code the renderer does not have yet
-constexpr std::string_view kUnsupported[] = {"julia_fractal", "fractal"};
+constexpr std::string_view kUnsupported[] = {"fractal"};
 
 bool is_csg(Shape s) {
   return s == Shape::kUnion || s == Shape::kMerge || s == Shape::kIntersection ||
@@ -635,6 +640,11 @@ Node Parser::parse_object(const Tok& keyword) {
     shape->parse(*this, o);
   } else if (is_polynomial(w)) {
     parse_polynomial(w, o);
+  } else if (w == "julia_fractal") {
+    if (const std::string missing = parse_julia_fractal(o); !missing.empty()) {
+      skip_rest_of_block();
+      return missing_node(missing, where);
+    }
   } else if (w == "text") {
     if (!parse_text(o)) {
       skip_rest_of_block();

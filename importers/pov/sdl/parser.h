@@ -258,7 +258,10 @@ class Parser {
   void parse_blob(Object& o);  // blob.cpp: threshold and components, after the '{'
   void parse_sphere_sweep(Object& o);   // sphere_sweep.cpp: spline, spheres, tolerance
   void parse_bicubic_patch(Object& o);  // bicubic_patch.cpp: its triangles, after the '{'
-  void parse_isosurface(Object& o);     // isosurface.cpp: its function and bounds, after the '{'
+  // julia_fractal.cpp: its parameter and items, after the '{'; a function it cannot render is
+  // returned as what to report (the rest of the block unread), otherwise empty.
+  std::string parse_julia_fractal(Object& o);
+  void parse_isosurface(Object& o);  // isosurface.cpp: its function and bounds, after the '{'
   void parse_contained_by(Isosurface& container);  // isosurface.cpp: after `contained_by`
   void parse_parametric(Object& o);  // parametric.cpp: its three functions as a mesh, after '{'
   void skip_rest_of_block();         // to the '}' closing a block already open
