@@ -151,7 +151,7 @@ TEST_F(ObjectQueries, BadArgumentsAreLocatedErrors) {
 
 TEST_F(ObjectQueries, AnUnsupportedObjectIsReportedAndAnsweredWithZeros) {
   const Scene scene =
-      run("#declare J = julia_fractal { <0.4, 0.4, 0.1, 0.1> }\n"
+      run("#declare J = julia_fractal { <0.4, 0.4, 0.1, 0.1> hypercomplex exp }\n"
           "sphere { trace(J, <0, 5, 0>, -y) + min_extent(J), 1 + inside(J, 0) }\n");
   ASSERT_EQ(scene.objects.size(), 1u);
   expect_near(scene.objects[0].a, {0, 0, 0}, 0, "zeros");
