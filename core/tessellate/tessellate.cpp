@@ -250,7 +250,8 @@ void sphere_sweep_mesh(const Solid& primitive, double error, uint32_t most, Tria
     cap(first, -1, true);
     for (uint32_t i = 0; i <= along; ++i)
       rings.push_back(tube_ring(double(i) / along));
-    cap(rings.back(), 1, false);
+    const SweepRing last = rings.back();  // a copy: cap() grows `rings`
+    cap(last, 1, false);
     // Each ring: `around` + 1 vertices (the seam shares its position), frames transported.
     const uint32_t base = uint32_t(mesh.positions.size()), row = around + 1;
     Vec3d e1 =
