@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "plugin_abi.h"
 #include "vec.h"
 
 namespace fb {
@@ -35,6 +36,20 @@ inline Vec3f offset_ray_origin(Vec3f p, Vec3f p_error, Vec3f n, Vec3f w) {
     return v;
   };
   return {away(po.x, offset.x), away(po.y, offset.y), away(po.z, offset.z)};
+}
+
+// The shadow ray from `origin` towards a sampled light in `direction`, `light_distance` away
+// (infinite for a distant light): it stops a relative 1e-4 short of the light, so that it does not
+// meet the light's own surface.
+inline fb_ray shadow_ray_to_light(Vec3f origin, const float direction[3], float light_distance,
+                                  float time_s) {
+  fb_ray ray{};
+  origin.store(ray.origin);
+  for (int c = 0; c < 3; ++c)
+    ray.direction[c] = direction[c];
+  ray.t_max = std::isinf(light_distance) ? HUGE_VALF : light_distance * (1.f - 1e-4f);
+  ray.time_s = time_s;
+  return ray;
 }
 
 }  // namespace fb

@@ -57,7 +57,7 @@ struct ReadFile;
 class ObjectProbe;  // object_probe.h
 
 // A declared `function { ... }` (function_compiler.cpp): its compiled program, or, when it needs
-// what filmback does not evaluate (a vector function, an internal(N) not implemented), a program
+// what filmback does not evaluate (a vector function, an internal(N) filmback lacks), a program
 // of the same parameters that gives 0 and the feature it lacks, reported where it is used.
 struct FunctionValue {
   std::shared_ptr<const UserFunction> program;

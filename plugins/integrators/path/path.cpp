@@ -32,7 +32,6 @@ namespace {
 using fb::Rgb;
 using fb::Vec3f;
 
-constexpr float kShadowEpsilon = 1e-4f;  // relative: shadow rays stop this short of the light
 // Surfaces a shadow ray passes through in a scene with media before it counts as blocked (a bound
 // on untrusted scenes).
 constexpr int kMostMediumShadowSurfaces = 64;
@@ -161,12 +160,7 @@ Rgb light_at_medium_point(const fb_scene& scene, fb_trace_context* ctx, size_t p
   api.next_samples(ctx, path, u, 3);
   fb_light_sample ls;
   if (!api.sample_light(ctx, position, u, &ls) || !(ls.pdf > 0.f)) return {};
-  fb_ray shadow{};
-  point.store(shadow.origin);
-  for (int c = 0; c < 3; ++c)
-    shadow.direction[c] = ls.direction[c];
-  shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
-  shadow.time_s = time_s;
+  const fb_ray shadow = fb::shadow_ray_to_light(point, ls.direction, ls.distance, time_s);
   Rgb through = shadow_visibility(scene, ctx, shadow, ls.distance);
   if (!(fb::max_component(through) > 0.f)) return {};
   if (in_fog) through *= medium_transmittance(api, ctx, shadow, shadow.t_max);
@@ -311,13 +305,10 @@ Rgb PathTracer::trace(const fb_scene& scene, fb_trace_context* ctx, size_t path,
       api.bsdf_eval(ctx, &hit, ls.direction, f, &pdf);
       if (fb::max_component(Rgb(f)) > 0.f) {
         const bool above = fb::dot(ns, wi) > 0.f;
-        fb_ray shadow{};
-        (above ? fb::offset_ray_origin(lifted, p_error, ng, ng)
-               : fb::offset_ray_origin(p, p_error, ng, wi))
-            .store(shadow.origin);
-        wi.store(shadow.direction);
-        shadow.t_max = std::isinf(ls.distance) ? HUGE_VALF : ls.distance * (1.f - kShadowEpsilon);
-        shadow.time_s = time_s;
+        const fb_ray shadow =
+            fb::shadow_ray_to_light(above ? fb::offset_ray_origin(lifted, p_error, ng, ng)
+                                          : fb::offset_ray_origin(p, p_error, ng, wi),
+                                    ls.direction, ls.distance, time_s);
         const Rgb visible = shadow_visibility(scene, ctx, shadow, ls.distance);
         if (fb::max_component(visible) > 0.f) {
           // Where BSDF sampling never goes (pdf 0), light sampling takes the whole weight.

@@ -187,11 +187,8 @@ Rgb PovRayTracer::Tracer::lamps_at(const float position[3], float time_s) const 
   for (uint32_t lamp = 0; lamp < scene.lamp_count; ++lamp) {
     fb_light_sample centre;
     if (!api.sample_lamp(ctx, lamp, position, nullptr, &centre)) continue;
-    fb_ray shadow{};
-    for (int c = 0; c < 3; ++c)
-      shadow.origin[c] = position[c], shadow.direction[c] = centre.direction[c];
-    shadow.t_max = std::isinf(centre.distance) ? HUGE_VALF : centre.distance * (1.f - 1e-4f);
-    shadow.time_s = time_s;
+    const fb_ray shadow =
+        fb::shadow_ray_to_light(Vec3f(position), centre.direction, centre.distance, time_s);
     sum += in_scene_values(lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf))) *
            light_through(shadow, centre.distance);
   }
@@ -260,11 +257,8 @@ Rgb PovRayTracer::Tracer::shade(const PovRay& r, const fb_hit& hit, size_t path,
       const Vec3f to_light(centre.direction), to_point(point.direction);
       const float cos_light = dot(n, to_light);
       if (cos_light < lighting::kHorizonCosine) continue;
-      fb_ray shadow{};
-      fb::offset_ray_origin(p, p_error, ng, to_point).store(shadow.origin);
-      to_point.store(shadow.direction);
-      shadow.t_max = std::isinf(point.distance) ? HUGE_VALF : point.distance * (1.f - 1e-4f);
-      shadow.time_s = r.ray.time_s;
+      const fb_ray shadow = fb::shadow_ray_to_light(fb::offset_ray_origin(p, p_error, ng, to_point),
+                                                    point.direction, point.distance, r.ray.time_s);
       // POV-Ray's lights have colour c where filmback's have intensity pi c (docs/pov.md).
       const Rgb light =
           in_scene_values(lighting::rgb(centre.radiance) * (1.f / (kPovPi * centre.pdf))) *
